@@ -1,0 +1,41 @@
+// Binding points shared by the C++ core (src/) and every shader: defined once, here.
+#ifndef SUBDFIT_BINDINGS_H
+#define SUBDFIT_BINDINGS_H
+
+// Parameter group "vertices": control-vertex positions, 3 floats per base vertex.
+#define SUBDFIT_SSBO_THETA 0            // θ
+#define SUBDFIT_SSBO_THETA_PLUS 1       // θ + s⊙ε
+#define SUBDFIT_SSBO_THETA_MINUS 2      // θ − s⊙ε
+#define SUBDFIT_SSBO_GRADIENT 3         // g, accumulated by G, consumed and cleared by Adam
+#define SUBDFIT_SSBO_MOMENT1 4          // Adam m
+#define SUBDFIT_SSBO_MOMENT2 5          // Adam v
+#define SUBDFIT_SSBO_GRADIENT_SMOOTH 6  // preconditioned gradient (ping-pong partner of g)
+
+// Subdivision tables (subdiv::PatchSet).
+#define SUBDFIT_SSBO_STENCIL_SOURCE 7   // control points the stencils read (θ, θ+ or θ−)
+#define SUBDFIT_SSBO_STENCIL_OFFSETS 8
+#define SUBDFIT_SSBO_STENCIL_INDICES 9
+#define SUBDFIT_SSBO_STENCIL_WEIGHTS 10
+#define SUBDFIT_SSBO_POINTS 11          // base + refined + local points, 3 floats each
+#define SUBDFIT_SSBO_PATCH_INFO 12      // ivec4 {cv offset, patch type, param0, param1}
+#define SUBDFIT_SSBO_PATCH_CVS 13
+#define SUBDFIT_SSBO_FACE_VERTEX_OFFSETS 14  // ptex face -> base vertices (CSR)
+#define SUBDFIT_SSBO_FACE_VERTEX_INDICES 15
+#define SUBDFIT_SSBO_ADJACENCY_OFFSETS 16    // cage vertex -> neighbours (CSR)
+#define SUBDFIT_SSBO_ADJACENCY_INDICES 17
+#define SUBDFIT_SSBO_LOSS 18            // float accumulator: [0] mean per-pixel loss
+#define SUBDFIT_SSBO_SMOOTH_IN 19       // Jacobi iterate read by the preconditioner
+
+// Texture units of the gradient pass.
+#define SUBDFIT_UNIT_COLOR_PLUS 0
+#define SUBDFIT_UNIT_COLOR_MINUS 1
+#define SUBDFIT_UNIT_FACE_PLUS 2
+#define SUBDFIT_UNIT_FACE_MINUS 3
+#define SUBDFIT_UNIT_TARGET 4
+
+// Render target attachments.
+#define SUBDFIT_ATTACHMENT_COLOR 0
+#define SUBDFIT_ATTACHMENT_FACE_ID 1
+#define SUBDFIT_ATTACHMENT_PATCH_UV 2
+
+#endif

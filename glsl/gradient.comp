@@ -1,0 +1,76 @@
+// G: one thread per pixel. Δ_p = f_p(θ+) − f_p(θ−) with f_p = ‖I_p − T_p‖², then for every
+// parameter i that produced the pixel in either render (the union of the base vertices reaching
+// the + face and the − face), g_i += Δ_p / (2 s_i ε). Where the two renders saw different faces
+// (silhouettes, occlusion) both faces' vertices get the difference: that is what moves edges.
+#include "bindings.h"
+#include "hash.glsl"
+#include "atomics.glsl"
+
+layout(local_size_x = 16, local_size_y = 16) in;
+
+layout(binding = SUBDFIT_UNIT_COLOR_PLUS) uniform sampler2D colorPlus;
+layout(binding = SUBDFIT_UNIT_COLOR_MINUS) uniform sampler2D colorMinus;
+layout(binding = SUBDFIT_UNIT_FACE_PLUS) uniform isampler2D facePlus;
+layout(binding = SUBDFIT_UNIT_FACE_MINUS) uniform isampler2D faceMinus;
+layout(binding = SUBDFIT_UNIT_TARGET) uniform sampler2DArray targets;
+
+layout(std430, binding = SUBDFIT_SSBO_FACE_VERTEX_OFFSETS) readonly buffer FaceOffsets { int faceVertexOffsets[]; };
+layout(std430, binding = SUBDFIT_SSBO_FACE_VERTEX_INDICES) readonly buffer FaceIndices { int faceVertexIndices[]; };
+SUBDFIT_DECLARE_ACCUMULATOR(Gradient, SUBDFIT_SSBO_GRADIENT, gradient, addGradient)
+SUBDFIT_DECLARE_ACCUMULATOR(Loss, SUBDFIT_SSBO_LOSS, loss, addLoss)
+
+uniform int uTargetLayer;
+uniform uint uCounter;
+uniform uint uSeed;
+uniform float uEpsilon;
+uniform float uLossScale;  // 1 / (pixels × views), so the loss is a per-pixel mean
+
+shared float groupLoss[256];
+
+void addFaceVertices(int face, float scaledDelta, int skipFace) {
+    for (int k = faceVertexOffsets[face]; k < faceVertexOffsets[face + 1]; ++k) {
+        int v = faceVertexIndices[k];
+        if (skipFace >= 0) {  // the union: a vertex already credited through the other face
+            bool credited = false;
+            for (int j = faceVertexOffsets[skipFace]; j < faceVertexOffsets[skipFace + 1]; ++j)
+                credited = credited || faceVertexIndices[j] == v;
+            if (credited) continue;
+        }
+        for (uint c = 0u; c < 3u; ++c) {
+            uint i = 3u * uint(v) + c;
+            // 1 / s_i = s_i for signs ±1.
+            addGradient(i, scaledDelta * perturbationSign(i, uCounter, uSeed));
+        }
+    }
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = textureSize(colorPlus, 0);
+    float pixelLoss = 0.0;
+    if (all(lessThan(pixel, size))) {
+        vec3 target = texelFetch(targets, ivec3(pixel, uTargetLayer), 0).rgb;
+        vec3 ePlus = texelFetch(colorPlus, pixel, 0).rgb - target;
+        vec3 eMinus = texelFetch(colorMinus, pixel, 0).rgb - target;
+        float fPlus = dot(ePlus, ePlus);
+        float fMinus = dot(eMinus, eMinus);
+        pixelLoss = 0.5 * (fPlus + fMinus);
+        float delta = fPlus - fMinus;
+        if (delta != 0.0) {
+            float scaledDelta = delta / (2.0 * uEpsilon);
+            int fp = texelFetch(facePlus, pixel, 0).r;
+            int fm = texelFetch(faceMinus, pixel, 0).r;
+            if (fp >= 0) addFaceVertices(fp, scaledDelta, -1);
+            if (fm >= 0 && fm != fp) addFaceVertices(fm, scaledDelta, fp);
+        }
+    }
+    // One atomic per work group for the loss: a single float under 65k atomics would serialise.
+    uint lane = gl_LocalInvocationIndex;
+    groupLoss[lane] = pixelLoss;
+    barrier();
+    for (uint stride = 128u; stride > 0u; stride >>= 1u) {
+        if (lane < stride) groupLoss[lane] += groupLoss[lane + stride];
+        barrier();
+    }
+    if (lane == 0u) addLoss(0u, groupLoss[0] * uLossScale);
+}

@@ -1,0 +1,75 @@
+#include "mesh/draco_reader.h"
+
+#include <draco/compression/decode.h>
+#include <draco/mesh/mesh.h>
+
+#include <cmath>
+
+#include "mesh/file_bytes.h"
+#include "util/error.h"
+
+namespace subdfit::mesh {
+
+namespace {
+
+const draco::PointAttribute* positionAttribute(const draco::Mesh& mesh, int uniqueId,
+                                               const std::string& path) {
+    const draco::PointAttribute* attribute =
+        uniqueId >= 0 ? mesh.GetAttributeByUniqueId(uint32_t(uniqueId))
+                      : mesh.GetNamedAttribute(draco::GeometryAttribute::POSITION);
+    if (!attribute)
+        throw fileError(path, uniqueId >= 0 ? "Draco mesh has no attribute with id " + std::to_string(uniqueId)
+                                            : std::string("Draco mesh has no POSITION attribute"));
+    if (attribute->num_components() != 3)
+        throw fileError(path, "Draco position attribute has " +
+                                  std::to_string(int(attribute->num_components())) + " components, needs 3");
+    return attribute;
+}
+
+}  // namespace
+
+PolygonMesh decodeDracoMesh(const char* data, size_t size, const std::string& pathForErrors,
+                            int positionUniqueId) {
+    const std::string& path = pathForErrors;
+    draco::DecoderBuffer buffer;
+    buffer.Init(data, size);
+
+    auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
+    if (!type.ok()) throw fileError(path, "not Draco data: " + type.status().error_msg_string());
+    if (type.value() != draco::TRIANGULAR_MESH)
+        throw fileError(path, "Draco data is a point cloud, not a triangle mesh");
+
+    draco::Decoder decoder;
+    auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+    if (!decoded.ok()) throw fileError(path, "corrupt Draco mesh: " + decoded.status().error_msg_string());
+    const draco::Mesh& dracoMesh = *decoded.value();
+
+    const draco::PointAttribute* positions = positionAttribute(dracoMesh, positionUniqueId, path);
+    PolygonMesh mesh;
+    mesh.sourcePath = path;
+    mesh.positions.resize(dracoMesh.num_points());
+    for (draco::PointIndex p(0); p < dracoMesh.num_points(); ++p) {
+        glm::vec3& out = mesh.positions[p.value()];
+        if (!positions->ConvertValue<float>(positions->mapped_index(p), 3, &out[0]))
+            throw fileError(path, "Draco positions cannot be converted to float");
+        if (!std::isfinite(out.x) || !std::isfinite(out.y) || !std::isfinite(out.z))
+            throw fileError(path, "non-finite Draco position at point " + std::to_string(p.value()));
+    }
+
+    mesh.faceSizes.assign(dracoMesh.num_faces(), 3);
+    mesh.faceIndices.reserve(size_t(dracoMesh.num_faces()) * 3);
+    for (draco::FaceIndex f(0); f < dracoMesh.num_faces(); ++f)
+        for (const draco::PointIndex& p : dracoMesh.face(f)) {
+            if (p.value() >= dracoMesh.num_points())
+                throw fileError(path, "Draco face " + std::to_string(f.value()) + " names a missing point");
+            mesh.faceIndices.push_back(int(p.value()));
+        }
+    return mesh;
+}
+
+PolygonMesh readDraco(const std::filesystem::path& path) {
+    const std::string bytes = readFileBytes(path);
+    return decodeDracoMesh(bytes.data(), bytes.size(), path.string());
+}
+
+}  // namespace subdfit::mesh

@@ -1,0 +1,162 @@
+#include "mesh/gltf_accessors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "util/error.h"
+
+namespace subdfit::mesh::gltf {
+
+namespace {
+
+// An accessor resolved to raw memory: element i starts at data + i * stride. `data` is null
+// for an accessor without a buffer view, whose elements are all zero (glTF 2.0, 3.6.2.1).
+struct ElementSpan {
+    const unsigned char* data = nullptr;
+    size_t stride = 0;
+    size_t count = 0;
+    int componentType = 0;
+    bool normalized = false;
+};
+
+size_t componentSize(int componentType) {
+    switch (componentType) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+        default: return 0;  // INT and DOUBLE are not valid glTF 2.0 accessor types
+    }
+}
+
+ElementSpan resolve(const tinygltf::Model& model, int index, int expectedType, const std::string& path) {
+    const std::string name = "accessor " + std::to_string(index);
+    if (index < 0 || size_t(index) >= model.accessors.size())
+        throw fileError(path, name + " does not exist (" + std::to_string(model.accessors.size()) + " accessors)");
+    const tinygltf::Accessor& accessor = model.accessors[size_t(index)];
+    if (accessor.sparse.isSparse) throw fileError(path, name + ": sparse accessors are not supported");
+    if (accessor.type != expectedType)
+        throw fileError(path, name + " has type " + std::to_string(accessor.type) + ", expected " +
+                                  (expectedType == TINYGLTF_TYPE_VEC3 ? "VEC3" : "SCALAR"));
+    const size_t components = expectedType == TINYGLTF_TYPE_VEC3 ? 3 : 1;
+    const size_t elementSize = components * componentSize(accessor.componentType);
+    if (elementSize == 0)
+        throw fileError(path, name + " has unsupported componentType " + std::to_string(accessor.componentType));
+
+    ElementSpan span;
+    span.count = accessor.count;
+    span.componentType = accessor.componentType;
+    span.normalized = accessor.normalized;
+    span.stride = elementSize;
+    if (accessor.bufferView < 0 || span.count == 0) return span;
+
+    const std::string_view view = bufferViewBytes(model, accessor.bufferView, path);
+    const size_t declaredStride = model.bufferViews[size_t(accessor.bufferView)].byteStride;
+    if (declaredStride != 0) {
+        if (declaredStride < elementSize)
+            throw fileError(path, name + ": byteStride " + std::to_string(declaredStride) +
+                                      " is smaller than its element (" + std::to_string(elementSize) + " bytes)");
+        span.stride = declaredStride;
+    }
+    // Every quantity is at most the view's length before it is multiplied, so nothing overflows.
+    const size_t offset = accessor.byteOffset;
+    const bool fits = offset <= view.size() && span.count <= view.size() &&
+                      (span.count - 1) * span.stride + elementSize <= view.size() - offset;
+    if (!fits)
+        throw fileError(path, name + " (" + std::to_string(span.count) + " elements at offset " +
+                                  std::to_string(offset) + ", stride " + std::to_string(span.stride) +
+                                  ") runs past the end of buffer view " +
+                                  std::to_string(accessor.bufferView) + " (" + std::to_string(view.size()) +
+                                  " bytes)");
+    span.data = reinterpret_cast<const unsigned char*>(view.data()) + offset;
+    return span;
+}
+
+template <typename T>
+T load(const unsigned char* p) {
+    T value;
+    std::memcpy(&value, p, sizeof value);  // buffer data need not be aligned
+    return value;
+}
+
+// One position component; integer encodings follow KHR_mesh_quantization's normalisation.
+float component(const unsigned char* p, int type, bool normalized) {
+    switch (type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            const float v = load<int8_t>(p);
+            return normalized ? std::max(v / 127.0f, -1.0f) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+            const float v = load<uint8_t>(p);
+            return normalized ? v / 255.0f : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            const float v = load<int16_t>(p);
+            return normalized ? std::max(v / 32767.0f, -1.0f) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            const float v = load<uint16_t>(p);
+            return normalized ? v / 65535.0f : v;
+        }
+        default: return load<float>(p);  // readPositions admits no other type
+    }
+}
+
+}  // namespace
+
+std::string_view bufferViewBytes(const tinygltf::Model& model, int index, const std::string& path) {
+    const std::string name = "buffer view " + std::to_string(index);
+    if (index < 0 || size_t(index) >= model.bufferViews.size())
+        throw fileError(path, name + " does not exist (" + std::to_string(model.bufferViews.size()) + " buffer views)");
+    const tinygltf::BufferView& view = model.bufferViews[size_t(index)];
+    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
+        throw fileError(path, name + " names buffer " + std::to_string(view.buffer) + ", which does not exist");
+    const std::vector<unsigned char>& data = model.buffers[size_t(view.buffer)].data;
+    if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+        throw fileError(path, name + " (" + std::to_string(view.byteLength) + " bytes at offset " +
+                                  std::to_string(view.byteOffset) + ") runs past the end of buffer " +
+                                  std::to_string(view.buffer) + " (" + std::to_string(data.size()) + " bytes)");
+    return {reinterpret_cast<const char*>(data.data()) + view.byteOffset, view.byteLength};
+}
+
+std::vector<glm::vec3> readPositions(const tinygltf::Model& model, int accessor, const std::string& path) {
+    const ElementSpan span = resolve(model, accessor, TINYGLTF_TYPE_VEC3, path);
+    if (span.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        throw fileError(path, "accessor " + std::to_string(accessor) + ": positions cannot be UNSIGNED_INT");
+    std::vector<glm::vec3> positions(span.count, glm::vec3(0.0f));
+    if (!span.data) return positions;
+    const size_t size = componentSize(span.componentType);
+    for (size_t i = 0; i < span.count; ++i) {
+        const unsigned char* element = span.data + i * span.stride;
+        for (int c = 0; c < 3; ++c) {
+            const float v = component(element + size_t(c) * size, span.componentType, span.normalized);
+            if (!std::isfinite(v))
+                throw fileError(path, "accessor " + std::to_string(accessor) + ": non-finite position at vertex " +
+                                          std::to_string(i));
+            positions[i][c] = v;
+        }
+    }
+    return positions;
+}
+
+std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor, const std::string& path) {
+    const ElementSpan span = resolve(model, accessor, TINYGLTF_TYPE_SCALAR, path);
+    const int type = span.componentType;
+    if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        throw fileError(path, "accessor " + std::to_string(accessor) + ": indices must be unsigned byte, short or int");
+    std::vector<uint32_t> indices(span.count, 0u);
+    if (!span.data) return indices;
+    for (size_t i = 0; i < span.count; ++i) {
+        const unsigned char* p = span.data + i * span.stride;
+        indices[i] = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? load<uint8_t>(p)
+                     : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? load<uint16_t>(p)
+                                                                      : load<uint32_t>(p);
+    }
+    return indices;
+}
+
+}  // namespace subdfit::mesh::gltf

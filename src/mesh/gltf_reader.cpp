@@ -1,0 +1,233 @@
+#include "mesh/gltf_reader.h"
+
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <string_view>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat4x4.hpp>
+
+#include "mesh/draco_reader.h"
+#include "mesh/file_bytes.h"
+#include "mesh/gltf_accessors.h"
+#include "util/error.h"
+
+namespace subdfit::mesh {
+
+namespace {
+
+constexpr const char* kDraco = "KHR_draco_mesh_compression";
+
+// Geometry is all we take from a glTF; images are not even decoded.
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+               void*) {
+    return true;
+}
+
+// tinygltf's messages are several lines; ours are one.
+std::string oneLine(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        if (c == '\n' || c == '\r') {
+            if (!out.empty() && out.back() != ' ') out += "; ";
+        } else {
+            out += c;
+        }
+    }
+    while (!out.empty() && (out.back() == ' ' || out.back() == ';')) out.pop_back();
+    return out.empty() ? "unknown error" : out;
+}
+
+tinygltf::Model parseModel(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    const std::string bytes = readFileBytes(path);
+    if (bytes.size() > UINT32_MAX) throw fileError(name, "larger than 4 GiB, which glTF cannot address");
+
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(&skipImage, nullptr);
+    tinygltf::Model model;
+    std::string err, warn;
+    std::string baseDir = path.parent_path().string();
+    if (baseDir.empty()) baseDir = ".";
+    // Binary or text by content, not by extension: a .gltf that is really a GLB still loads.
+    const bool binary = bytes.size() >= 4 && std::string_view(bytes.data(), 4) == "glTF";
+    bool ok = false;
+    try {
+        ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                                  reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                  unsigned(bytes.size()), baseDir)
+                    : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()),
+                                                 baseDir);
+    } catch (const std::exception& e) {
+        err = e.what();  // the JSON parser may throw on some inputs
+        ok = false;
+    }
+    if (!ok) throw fileError(name, std::string(binary ? "invalid GLB: " : "invalid glTF: ") + oneLine(err));
+    return model;
+}
+
+// tinygltf 2.7 records extensionsRequired but enforces none of them, so a file whose geometry
+// we would misread (e.g. meshopt-compressed buffers) must be refused here. Extensions that only
+// change shading cannot change the silhouette a reference render needs.
+void checkRequiredExtensions(const tinygltf::Model& model, const std::string& path) {
+    for (const std::string& ext : model.extensionsRequired) {
+        const bool geometryWeRead = ext == kDraco || ext == "KHR_mesh_quantization";
+        const bool shadingOnly = ext.rfind("KHR_materials_", 0) == 0 || ext.rfind("KHR_texture_", 0) == 0 ||
+                                 ext.rfind("EXT_texture_", 0) == 0 || ext == "KHR_lights_punctual";
+        if (!geometryWeRead && !shadingOnly) throw fileError(path, "requires unsupported glTF extension " + ext);
+    }
+}
+
+glm::dmat4 localTransform(const tinygltf::Node& node) {
+    if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());  // column-major, as glTF
+    glm::dmat4 m(1.0);
+    if (node.translation.size() == 3) m = glm::translate(m, glm::make_vec3(node.translation.data()));
+    if (node.rotation.size() == 4) {
+        const auto& q = node.rotation;  // glTF stores x, y, z, w
+        m *= glm::mat4_cast(glm::normalize(glm::dquat(q[3], q[0], q[1], q[2])));
+    }
+    if (node.scale.size() == 3) m = glm::scale(m, glm::make_vec3(node.scale.data()));
+    return m;
+}
+
+// Collects the scene's triangles into one PolygonMesh.
+class SceneMerger {
+public:
+    SceneMerger(const tinygltf::Model& model, std::string path)
+        : model_(model), path_(std::move(path)), onPath_(model.nodes.size(), 0) {
+        mesh_.sourcePath = path_;
+    }
+
+    void addNode(int index, const glm::dmat4& parent, int depth) {
+        // glTF nodes form a forest; a cycle would recurse forever, and a deep chain would
+        // exhaust the stack.
+        constexpr int kMaxDepth = 1024;
+        if (index < 0 || size_t(index) >= model_.nodes.size())
+            throw fileError(path_, "node " + std::to_string(index) + " does not exist");
+        if (onPath_[size_t(index)]) throw fileError(path_, "node " + std::to_string(index) + " is its own ancestor");
+        if (depth > kMaxDepth) throw fileError(path_, "node hierarchy deeper than " + std::to_string(kMaxDepth));
+        const tinygltf::Node& node = model_.nodes[size_t(index)];
+        const glm::dmat4 world = parent * localTransform(node);
+        if (node.mesh >= 0) addMesh(node.mesh, world);
+        onPath_[size_t(index)] = 1;
+        for (int child : node.children) addNode(child, world, depth + 1);
+        onPath_[size_t(index)] = 0;
+    }
+
+    void addMesh(int index, const glm::dmat4& transform) {
+        if (index < 0 || size_t(index) >= model_.meshes.size())
+            throw fileError(path_, "mesh " + std::to_string(index) + " does not exist");
+        for (const tinygltf::Primitive& primitive : model_.meshes[size_t(index)].primitives)
+            addPrimitive(primitive, transform);
+    }
+
+    PolygonMesh finish() {
+        if (mesh_.faceSizes.empty()) throw fileError(path_, "no triangle primitives in the scene");
+        return std::move(mesh_);
+    }
+
+private:
+    void addPrimitive(const tinygltf::Primitive& primitive, const glm::dmat4& transform) {
+        const int mode = primitive.mode;
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN)
+            return;  // points and lines have no area to render
+
+        std::vector<glm::vec3> positions;
+        std::vector<uint32_t> indices;
+        if (const auto draco = primitive.extensions.find(kDraco); draco != primitive.extensions.end()) {
+            PolygonMesh decoded = decodeDraco(draco->second);
+            positions = std::move(decoded.positions);
+            indices.assign(decoded.faceIndices.begin(), decoded.faceIndices.end());
+        } else {
+            const auto position = primitive.attributes.find("POSITION");
+            if (position == primitive.attributes.end())
+                throw fileError(path_, "a triangle primitive has no POSITION attribute");
+            positions = gltf::readPositions(model_, position->second, path_);
+            if (primitive.indices >= 0) {
+                indices = gltf::readIndices(model_, primitive.indices, path_);
+            } else {
+                indices.resize(positions.size());
+                for (size_t i = 0; i < indices.size(); ++i) indices[i] = uint32_t(i);
+            }
+            if (mode != TINYGLTF_MODE_TRIANGLES) indices = triangleList(indices, mode);
+        }
+        append(positions, indices, transform);
+    }
+
+    PolygonMesh decodeDraco(const tinygltf::Value& extension) {
+        const tinygltf::Value& view = extension.Get("bufferView");
+        const tinygltf::Value& position = extension.Get("attributes").Get("POSITION");
+        if (!view.IsNumber() || !position.IsNumber())
+            throw fileError(path_, std::string(kDraco) + " without bufferView or attributes.POSITION");
+        const std::string_view bytes = gltf::bufferViewBytes(model_, view.GetNumberAsInt(), path_);
+        return decodeDracoMesh(bytes.data(), bytes.size(), path_, position.GetNumberAsInt());
+    }
+
+    // Strips and fans as a plain list, keeping glTF's winding (spec 3.7.2.1).
+    static std::vector<uint32_t> triangleList(const std::vector<uint32_t>& v, int mode) {
+        std::vector<uint32_t> list;
+        for (size_t i = 0; i + 2 < v.size(); ++i) {
+            if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+                list.insert(list.end(), {v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
+            else
+                list.insert(list.end(), {v[0], v[i + 1], v[i + 2]});
+        }
+        return list;
+    }
+
+    void append(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices,
+                const glm::dmat4& transform) {
+        if (indices.size() % 3 != 0)
+            throw fileError(path_, "a TRIANGLES primitive has " + std::to_string(indices.size()) +
+                                       " indices, not a multiple of 3");
+        const size_t base = mesh_.positions.size();
+        if (base + positions.size() > size_t(INT32_MAX)) throw fileError(path_, "too many vertices");
+        for (const glm::vec3& p : positions) {
+            const glm::vec3 q(transform * glm::dvec4(p, 1.0));
+            if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+                throw fileError(path_, "a node transform makes a position non-finite");
+            mesh_.positions.push_back(q);
+        }
+        for (uint32_t i : indices)
+            if (i >= positions.size())
+                throw fileError(path_, "index " + std::to_string(i) + " is out of range (the primitive has " +
+                                           std::to_string(positions.size()) + " vertices)");
+        // A mirroring transform turns triangles inside out; swap two corners to undo it.
+        const bool mirrored = glm::determinant(transform) < 0.0;
+        for (size_t t = 0; t < indices.size(); t += 3) {
+            const int a = int(base + indices[t]), b = int(base + indices[t + 1]), c = int(base + indices[t + 2]);
+            mesh_.faceIndices.insert(mesh_.faceIndices.end(), {a, mirrored ? c : b, mirrored ? b : c});
+            mesh_.faceSizes.push_back(3);
+        }
+    }
+
+    const tinygltf::Model& model_;
+    std::string path_;
+    std::vector<char> onPath_;
+    PolygonMesh mesh_;
+};
+
+}  // namespace
+
+PolygonMesh readGltf(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    const tinygltf::Model model = parseModel(path);
+    checkRequiredExtensions(model, name);
+
+    SceneMerger merger(model, name);
+    if (model.scenes.empty()) {
+        for (size_t m = 0; m < model.meshes.size(); ++m) merger.addMesh(int(m), glm::dmat4(1.0));
+    } else {
+        const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+        if (size_t(scene) >= model.scenes.size())
+            throw fileError(name, "default scene " + std::to_string(scene) + " does not exist");
+        for (int node : model.scenes[size_t(scene)].nodes) merger.addNode(node, glm::dmat4(1.0), 0);
+    }
+    return merger.finish();
+}
+
+}  // namespace subdfit::mesh

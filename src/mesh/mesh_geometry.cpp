@@ -1,0 +1,63 @@
+#include "mesh/mesh_geometry.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "util/error.h"
+
+namespace subdfit::mesh {
+
+PolygonMesh triangulated(const PolygonMesh& mesh) {
+    PolygonMesh out;
+    out.positions = mesh.positions;
+    out.sourcePath = mesh.sourcePath;
+    std::vector<char> isHole(mesh.faceSizes.size(), 0);
+    for (int f : mesh.tags.holes)
+        if (f >= 0 && f < mesh.faceCount()) isHole[size_t(f)] = 1;
+
+    size_t first = 0;
+    for (size_t f = 0; f < mesh.faceSizes.size(); first += size_t(mesh.faceSizes[f]), ++f) {
+        if (isHole[f]) continue;
+        const int* v = mesh.faceIndices.data() + first;
+        for (int k = 1; k + 1 < mesh.faceSizes[f]; ++k) {
+            SUBDFIT_CHECK(first + size_t(k) + 1 < mesh.faceIndices.size());
+            out.faceIndices.insert(out.faceIndices.end(), {v[0], v[k], v[k + 1]});
+            out.faceSizes.push_back(3);
+        }
+    }
+    return out;
+}
+
+std::vector<glm::vec3> vertexNormals(const PolygonMesh& mesh) {
+    // Doubles, so that neither tiny nor huge coordinates underflow or overflow in the cross
+    // products of a float-range mesh.
+    std::vector<glm::dvec3> sums(mesh.positions.size(), glm::dvec3(0.0));
+    size_t first = 0;
+    for (size_t f = 0; f < mesh.faceSizes.size(); first += size_t(mesh.faceSizes[f]), ++f) {
+        const int n = mesh.faceSizes[f];
+        const int* v = mesh.faceIndices.data() + first;
+        for (int k = 0; k < n; ++k) SUBDFIT_CHECK(v[k] >= 0 && v[k] < mesh.vertexCount());
+        // Newell's vector area (twice the area, along the normal; also for non-planar
+        // polygons), taken about the first corner so that a small face far from the origin
+        // does not lose its area to cancellation.
+        const glm::dvec3 origin(mesh.positions[size_t(v[0])]);
+        glm::dvec3 area(0.0);
+        for (int k = 1; k + 1 < n; ++k)
+            area += glm::cross(glm::dvec3(mesh.positions[size_t(v[k])]) - origin,
+                               glm::dvec3(mesh.positions[size_t(v[k + 1])]) - origin);
+        if (!std::isfinite(area.x) || !std::isfinite(area.y) || !std::isfinite(area.z)) continue;
+        for (int k = 0; k < n; ++k) sums[size_t(v[k])] += area;
+    }
+
+    std::vector<glm::vec3> normals(sums.size());
+    for (size_t i = 0; i < sums.size(); ++i) {
+        const double length = glm::length(sums[i]);
+        // Opposite faces can cancel exactly; any unit vector is then as good as another.
+        normals[i] = length > 0.0 && std::isfinite(length) ? glm::vec3(sums[i] / length) : glm::vec3(0, 0, 1);
+    }
+    return normals;
+}
+
+}  // namespace subdfit::mesh

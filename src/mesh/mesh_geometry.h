@@ -1,0 +1,20 @@
+#pragma once
+// Derived geometry of a PolygonMesh that renderers need: triangles and vertex normals. Both
+// expect a mesh that passed validateMesh (broken indices are a SUBDFIT_CHECK failure).
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "mesh/polygon_mesh.h"
+
+namespace subdfit::mesh {
+
+// Fan triangulation of every face (for reference meshes). Faces tagged as holes are left out,
+// as OpenSubdiv does not render them; the result has no tags. Positions are shared unchanged.
+PolygonMesh triangulated(const PolygonMesh& mesh);
+
+// Area-weighted vertex normals (each face contributes its vector area). Never NaN: a vertex
+// whose faces have no area, or that no face uses, gets +Z.
+std::vector<glm::vec3> vertexNormals(const PolygonMesh& mesh);
+
+}  // namespace subdfit::mesh

@@ -1,0 +1,33 @@
+#include "mesh/mesh_loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <string>
+
+#include "mesh/draco_reader.h"
+#include "mesh/gltf_reader.h"
+#include "mesh/obj_reader.h"
+#include "util/error.h"
+
+namespace subdfit::mesh {
+
+namespace {
+
+PolygonMesh readByExtension(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == ".obj") return readObj(path);
+    if (ext == ".gltf" || ext == ".glb") return readGltf(path);
+    if (ext == ".drc") return readDraco(path);
+    throw fileError(path.string(), "unsupported mesh format '" + ext + "' (expected .obj, .gltf, .glb or .drc)");
+}
+
+}  // namespace
+
+PolygonMesh loadMesh(const std::filesystem::path& path) {
+    PolygonMesh mesh = readByExtension(path);
+    validateMesh(mesh);
+    return mesh;
+}
+
+}  // namespace subdfit::mesh

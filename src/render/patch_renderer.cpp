@@ -1,0 +1,48 @@
+#include "render/patch_renderer.h"
+
+#include <algorithm>
+
+#include "bindings.h"
+
+namespace subdfit::render {
+
+int crackFreeTessLevel(int requested, int maxPatchDepth) {
+    int level = 1;
+    while (level < std::max(requested, 1 << maxPatchDepth)) level *= 2;
+    return std::min(level, 64);
+}
+
+PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel)
+    : patchCount_(int(patches.patchInfo.size())),
+      tessLevel_(crackFreeTessLevel(tessLevel, patches.maxPatchDepth)),
+      patchInfo_(gl::Buffer::fromVector(patches.patchInfo)),
+      patchCvs_(gl::Buffer::fromVector(patches.patchCvIndices)) {
+    GLuint id = 0;
+    glCreateVertexArrays(1, &id);  // core profile needs one bound, even with no attributes
+    vertexArray_ = gl::GlHandle<gl::VertexArrayTraits>(id);
+}
+
+void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera,
+                         const RenderTarget& target) const {
+    const auto& program = programs.get("patch_raster", {{GL_VERTEX_SHADER, "patch.vert"},
+                                                        {GL_TESS_CONTROL_SHADER, "patch.tesc"},
+                                                        {GL_TESS_EVALUATION_SHADER, "patch.tese"},
+                                                        {GL_FRAGMENT_SHADER, "patch.frag"}});
+    target.bindAndClear();
+    glEnable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    program.use();
+    program.set("uViewProjection", camera.viewProjection());
+    program.set("uView", camera.view);
+    program.set("uEye", camera.eye);
+    program.set("uTessLevel", float(tessLevel_));
+    points.bindStorage(SUBDFIT_SSBO_POINTS);
+    patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);
+    patchCvs_.bindStorage(SUBDFIT_SSBO_PATCH_CVS);
+    glBindVertexArray(vertexArray_.id());
+    glPatchParameteri(GL_PATCH_VERTICES, 1);
+    if (patchCount_ > 0) glDrawArrays(GL_PATCHES, 0, patchCount_);
+    glBindVertexArray(0);
+}
+
+}  // namespace subdfit::render

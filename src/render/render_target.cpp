@@ -1,0 +1,59 @@
+#include "render/render_target.h"
+
+#include "bindings.h"
+#include "util/error.h"
+
+namespace subdfit::render {
+
+RenderTarget::RenderTarget(int width, int height)
+    : width_(width),
+      height_(height),
+      color_(GL_RGBA32F, width, height),
+      faceId_(GL_R32I, width, height),
+      patchUv_(GL_RG32F, width, height),
+      depth_(GL_DEPTH_COMPONENT32F, width, height) {
+    GLuint id = 0;
+    glCreateFramebuffers(1, &id);
+    framebuffer_ = gl::GlHandle<gl::FramebufferTraits>(id);
+    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0 + SUBDFIT_ATTACHMENT_COLOR, color_.id(), 0);
+    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0 + SUBDFIT_ATTACHMENT_FACE_ID, faceId_.id(), 0);
+    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0 + SUBDFIT_ATTACHMENT_PATCH_UV, patchUv_.id(), 0);
+    glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glNamedFramebufferDrawBuffers(id, 3, buffers);
+    if (glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw Error("render target " + std::to_string(width) + "x" + std::to_string(height) +
+                    " is not complete on this GL implementation");
+}
+
+void RenderTarget::bindAndClear() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+    glViewport(0, 0, width_, height_);
+    const float black[] = {0, 0, 0, 0};
+    const int noFace[] = {-1, -1, -1, -1};
+    const float one = 1.0f;
+    glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, SUBDFIT_ATTACHMENT_COLOR, black);
+    glClearNamedFramebufferiv(framebuffer_.id(), GL_COLOR, SUBDFIT_ATTACHMENT_FACE_ID, noFace);
+    glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, SUBDFIT_ATTACHMENT_PATCH_UV, black);
+    glClearNamedFramebufferfv(framebuffer_.id(), GL_DEPTH, 0, &one);
+}
+
+std::vector<glm::vec4> RenderTarget::readColor() const {
+    std::vector<glm::vec4> pixels(size_t(width_) * height_);
+    glGetTextureImage(color_.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(pixels.size() * sizeof(glm::vec4)), pixels.data());
+    return pixels;
+}
+
+std::vector<int> RenderTarget::readFaceId() const {
+    std::vector<int> pixels(size_t(width_) * height_);
+    glGetTextureImage(faceId_.id(), 0, GL_RED_INTEGER, GL_INT, GLsizei(pixels.size() * sizeof(int)), pixels.data());
+    return pixels;
+}
+
+std::vector<glm::vec2> RenderTarget::readPatchUv() const {
+    std::vector<glm::vec2> pixels(size_t(width_) * height_);
+    glGetTextureImage(patchUv_.id(), 0, GL_RG, GL_FLOAT, GLsizei(pixels.size() * sizeof(glm::vec2)), pixels.data());
+    return pixels;
+}
+
+}  // namespace subdfit::render

@@ -1,0 +1,34 @@
+#pragma once
+// What one raster pass writes: shaded colour (float, so that ε-small differences survive),
+// the ptex face id (−1 on background) and the patch-local (u,v), plus depth.
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+#include <vector>
+
+#include "gl/texture.h"
+
+namespace subdfit::render {
+
+class RenderTarget {
+public:
+    RenderTarget(int width, int height);
+
+    void bindAndClear() const;  // binds the FBO, sets the viewport, clears to background
+    int width() const { return width_; }
+    int height() const { return height_; }
+
+    const gl::Texture& color() const { return color_; }
+    const gl::Texture& faceId() const { return faceId_; }
+    const gl::Texture& patchUv() const { return patchUv_; }
+
+    std::vector<glm::vec4> readColor() const;
+    std::vector<int> readFaceId() const;
+    std::vector<glm::vec2> readPatchUv() const;
+
+private:
+    int width_, height_;
+    gl::Texture color_, faceId_, patchUv_, depth_;
+    gl::GlHandle<gl::FramebufferTraits> framebuffer_;
+};
+
+}  // namespace subdfit::render

@@ -1,0 +1,29 @@
+#include "render/stencil_evaluator.h"
+
+#include "bindings.h"
+
+namespace subdfit::render {
+
+StencilEvaluator::StencilEvaluator(const subdiv::PatchSet& patches)
+    : baseCount_(patches.baseVertexCount),
+      pointCount_(patches.pointCount),
+      offsets_(gl::Buffer::fromVector(patches.stencilOffsets)),
+      indices_(gl::Buffer::fromVector(patches.stencilIndices)),
+      weights_(gl::Buffer::fromVector(patches.stencilWeights)) {}
+
+void StencilEvaluator::evaluate(gl::ProgramCache& programs, const gl::Buffer& controlPoints,
+                                const gl::Buffer& points) const {
+    const auto& program = programs.get("stencil_eval", {{GL_COMPUTE_SHADER, "stencil_eval.comp"}});
+    program.use();
+    program.set("uBaseCount", baseCount_);
+    program.set("uPointCount", pointCount_);
+    controlPoints.bindStorage(SUBDFIT_SSBO_STENCIL_SOURCE);
+    offsets_.bindStorage(SUBDFIT_SSBO_STENCIL_OFFSETS);
+    indices_.bindStorage(SUBDFIT_SSBO_STENCIL_INDICES);
+    weights_.bindStorage(SUBDFIT_SSBO_STENCIL_WEIGHTS);
+    points.bindStorage(SUBDFIT_SSBO_POINTS);
+    glDispatchCompute(GLuint((pointCount_ + 127) / 128), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+}  // namespace subdfit::render

@@ -1,0 +1,39 @@
+#pragma once
+// One group of optimised parameters living on the GPU (e.g. the cage's control vertices):
+// θ, the perturbed θ±, the gradient accumulator and Adam's moments, with the group's own ε
+// and learning rate. Groups the scene does not optimise are never created.
+#include <string>
+#include <vector>
+
+#include "gl/buffer.h"
+
+namespace subdfit::sge {
+
+struct GroupSettings {
+    float epsilon = 0.01f;        // perturbation magnitude, in the group's units
+    float learningRate = 0.002f;  // Adam step size, same units
+    float beta1 = 0.9f;
+    float beta2 = 0.99f;
+};
+
+class ParameterGroup {
+public:
+    ParameterGroup(std::string name, const std::vector<float>& initial, GroupSettings settings);
+
+    const std::string& name() const { return name_; }
+    int count() const { return count_; }
+    const GroupSettings& settings() const { return settings_; }
+    GroupSettings& settings() { return settings_; }
+
+    gl::Buffer theta, thetaPlus, thetaMinus, gradient, gradientSmooth, moment1, moment2;
+    int adamSteps = 0;
+
+    std::vector<float> read() const { return theta.read<float>(); }
+
+private:
+    std::string name_;
+    int count_;
+    GroupSettings settings_;
+};
+
+}  // namespace subdfit::sge

@@ -1,0 +1,29 @@
+#pragma once
+// The OpenSubdiv objects behind one cage at one isolation level. PatchSet (for the GPU) and
+// LimitEvaluator (the CPU reference) are both derived from these, so they share one index
+// space by construction.
+#include <opensubdiv/far/patchTable.h>
+#include <opensubdiv/far/stencilTable.h>
+
+#include <memory>
+
+#include "subdiv/topology.h"
+
+namespace subdfit::subdiv {
+
+struct AdaptiveTables {
+    RefinerPtr refiner;  // refined adaptively
+    std::unique_ptr<const OpenSubdiv::Far::PatchTable> patches;
+    // One row per point above the base vertices, factorized over base vertices only: row i is
+    // point baseVertexCount + i. The points are the refined vertices of levels 1..max (in level
+    // order), then the end-cap local points -- the space patch CV indices refer to.
+    std::unique_ptr<const OpenSubdiv::Far::StencilTable> stencils;
+
+    int baseVertexCount() const;
+    int pointCount() const;  // base vertices + stencil rows
+};
+
+// isolationLevel in [1, 10]; throws subdfit::Error for a bad level or a cage OpenSubdiv rejects.
+AdaptiveTables buildAdaptiveTables(const mesh::PolygonMesh& mesh, int isolationLevel);
+
+}  // namespace subdfit::subdiv

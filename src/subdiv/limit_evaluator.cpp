@@ -1,0 +1,73 @@
+#include "subdiv/limit_evaluator.h"
+
+#include <opensubdiv/far/ptexIndices.h>
+
+#include <glm/geometric.hpp>
+
+#include "util/error.h"
+
+namespace subdfit::subdiv {
+namespace {
+
+namespace Far = OpenSubdiv::Far;
+
+// One point of the refined + local point space, accumulated in double so the reference is
+// not limited by the summation order of long end-cap stencils.
+glm::dvec3 pointPosition(const Far::StencilTable& stencils, int point,
+                         std::span<const glm::vec3> base) {
+    const int baseCount = int(base.size());
+    if (point < baseCount) return glm::dvec3(base[point]);
+    const Far::Stencil row = stencils.GetStencil(point - baseCount);
+    glm::dvec3 sum(0.0);
+    for (int e = 0; e < row.GetSize(); ++e)
+        sum += double(row.GetWeights()[e]) * glm::dvec3(base[row.GetVertexIndices()[e]]);
+    return sum;
+}
+
+}  // namespace
+
+LimitEvaluator::LimitEvaluator(const mesh::PolygonMesh& mesh, const PatchSetOptions& options)
+    : tables_(buildAdaptiveTables(mesh, options.isolationLevel)),
+      patchMap_(std::make_unique<Far::PatchMap>(*tables_.patches)),
+      ptexFaceCount_(Far::PtexIndices(*tables_.refiner).GetNumFaces()) {}
+
+bool LimitEvaluator::hasSurface(int ptexFace, float u, float v) const {
+    return ptexFace >= 0 && ptexFace < ptexFaceCount_ &&
+           patchMap_->FindPatch(ptexFace, u, v) != nullptr;
+}
+
+LimitSample LimitEvaluator::evaluate(int ptexFace, float u, float v,
+                                     std::span<const glm::vec3> basePositions) const {
+    SUBDFIT_CHECK(int(basePositions.size()) == baseVertexCount());
+    SUBDFIT_CHECK(hasSurface(ptexFace, u, v));
+    const Far::PatchTable::PatchHandle& handle = *patchMap_->FindPatch(ptexFace, u, v);
+
+    // EvaluateBasis takes the ptex face's (u, v) and already scales the derivative weights by
+    // the sub-patch's size, so dP/du here is per unit of the face parameter.
+    float wP[20], wDu[20], wDv[20];
+    tables_.patches->EvaluateBasis(handle, u, v, wP, wDu, wDv);
+    const Far::ConstIndexArray cvs = tables_.patches->GetPatchVertices(handle);
+    glm::dvec3 p(0.0), du(0.0), dv(0.0);
+    for (int k = 0; k < cvs.size(); ++k) {
+        const glm::dvec3 cv = pointPosition(*tables_.stencils, cvs[k], basePositions);
+        p += double(wP[k]) * cv;
+        du += double(wDu[k]) * cv;
+        dv += double(wDv[k]) * cv;
+    }
+    return {glm::vec3(p), glm::vec3(du), glm::vec3(dv)};
+}
+
+std::vector<glm::vec3> evaluatePoints(const PatchSet& set, std::span<const glm::vec3> base) {
+    SUBDFIT_CHECK(int(base.size()) == set.baseVertexCount);
+    std::vector<glm::vec3> points(base.begin(), base.end());
+    points.reserve(set.pointCount);
+    for (int row = 0; row < set.stencilCount(); ++row) {
+        glm::vec3 sum(0.0f);
+        for (int e = set.stencilOffsets[row]; e < set.stencilOffsets[row + 1]; ++e)
+            sum += set.stencilWeights[e] * base[set.stencilIndices[e]];
+        points.push_back(sum);
+    }
+    return points;
+}
+
+}  // namespace subdfit::subdiv

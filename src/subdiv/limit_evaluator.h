@@ -1,0 +1,47 @@
+#pragma once
+// CPU reference for what the GPU draws: the limit surface of a cage evaluated through
+// OpenSubdiv's own patch lookup (Far::PatchMap) and basis, on the same tables as PatchSet.
+// Slow per call; meant for tests and checks, not for the fitting loop.
+#include <glm/vec3.hpp>
+#include <opensubdiv/far/patchMap.h>
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "subdiv/adaptive_tables.h"
+#include "subdiv/patch_set.h"
+
+namespace subdfit::subdiv {
+
+struct LimitSample {
+    glm::vec3 position{0.0f};
+    // Derivatives with respect to the ptex face's (u, v) in [0,1]^2, not the sub-patch's.
+    glm::vec3 dPdu{0.0f}, dPdv{0.0f};
+};
+
+class LimitEvaluator {
+public:
+    explicit LimitEvaluator(const mesh::PolygonMesh& mesh, const PatchSetOptions& options = {});
+
+    int baseVertexCount() const { return tables_.baseVertexCount(); }
+    int ptexFaceCount() const { return ptexFaceCount_; }
+    // False for holes (no surface there) and ids out of range.
+    bool hasSurface(int ptexFace, float u, float v) const;
+
+    // basePositions holds baseVertexCount() positions (the cage may have moved since it was
+    // built: topology is fixed, positions are not). Requires hasSurface(ptexFace, u, v).
+    LimitSample evaluate(int ptexFace, float u, float v,
+                         std::span<const glm::vec3> basePositions) const;
+
+private:
+    AdaptiveTables tables_;
+    std::unique_ptr<OpenSubdiv::Far::PatchMap> patchMap_;
+    int ptexFaceCount_ = 0;
+};
+
+// All pointCount points of a PatchSet from base positions: the base copied, then each stencil
+// row applied -- the CPU twin of the GPU stencil pass.
+std::vector<glm::vec3> evaluatePoints(const PatchSet& set, std::span<const glm::vec3> base);
+
+}  // namespace subdfit::subdiv

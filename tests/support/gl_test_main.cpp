@@ -1,0 +1,36 @@
+// GL tests share one offscreen OSMesa context for the whole binary (Magnum's GL tester idea):
+// creating one per test would spend seconds on context set-up and shader compiles.
+#include <gtest/gtest.h>
+
+#include "gl_test_context.h"
+
+namespace subdfit::test {
+namespace {
+
+std::unique_ptr<context::GlContext> sharedContext;
+std::unique_ptr<gl::ProgramCache> sharedPrograms;
+
+}  // namespace
+
+gl::ProgramCache& programs() { return *sharedPrograms; }
+
+gl::Defines platformDefines() {
+    return context::currentGlInfo().hasAtomicFloat ? gl::Defines{{"SUBDFIT_ATOMIC_FLOAT", ""}} : gl::Defines{};
+}
+
+void expectNoGlError() {
+    const GLenum error = glGetError();
+    EXPECT_EQ(error, GLenum(GL_NO_ERROR)) << "GL error 0x" << std::hex << error;
+}
+
+}  // namespace subdfit::test
+
+int main(int argc, char** argv) {
+    ::testing::InitGoogleTest(&argc, argv);
+    subdfit::test::sharedContext = subdfit::context::createHeadlessContext("osmesa");
+    subdfit::test::sharedPrograms = std::make_unique<subdfit::gl::ProgramCache>(subdfit::test::platformDefines());
+    const int result = RUN_ALL_TESTS();
+    subdfit::test::sharedPrograms.reset();
+    subdfit::test::sharedContext.reset();
+    return result;
+}
