@@ -2,6 +2,7 @@
 
 #include <tiny_gltf.h>
 
+#include <cctype>
 #include <cmath>
 #include <string_view>
 
@@ -12,6 +13,7 @@
 
 #include "mesh/draco_reader.h"
 #include "mesh/file_bytes.h"
+#include "mesh/gltf_draco_indices.h"
 #include "mesh/gltf_accessors.h"
 #include "util/error.h"
 
@@ -43,7 +45,8 @@ std::string oneLine(const std::string& text) {
 
 tinygltf::Model parseModel(const std::filesystem::path& path) {
     const std::string name = path.string();
-    const std::string bytes = readFileBytes(path);
+    std::string bytes = readFileBytes(path);
+    gltf::dropDracoPrimitiveIndices(bytes);
     if (bytes.size() > UINT32_MAX) throw fileError(name, "larger than 4 GiB, which glTF cannot address");
 
     tinygltf::TinyGLTF loader;
@@ -54,6 +57,9 @@ tinygltf::Model parseModel(const std::filesystem::path& path) {
     if (baseDir.empty()) baseDir = ".";
     // Binary or text by content, not by extension: a .gltf that is really a GLB still loads.
     const bool binary = bytes.size() >= 4 && std::string_view(bytes.data(), 4) == "glTF";
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".glb" && !binary) throw fileError(name, "not a GLB file (it does not start with 'glTF')");
     bool ok = false;
     try {
         ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,

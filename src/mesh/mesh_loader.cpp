@@ -19,7 +19,8 @@ PolygonMesh readByExtension(const std::filesystem::path& path) {
     if (ext == ".obj") return readObj(path);
     if (ext == ".gltf" || ext == ".glb") return readGltf(path);
     if (ext == ".drc") return readDraco(path);
-    throw fileError(path.string(), "unsupported mesh format '" + ext + "' (expected .obj, .gltf, .glb or .drc)");
+    throw fileError(path.string(), (ext.empty() ? std::string("no file extension") : "unsupported mesh format '" + ext + "'") +
+                                       " (expected .obj, .gltf, .glb or .drc)");
 }
 
 }  // namespace

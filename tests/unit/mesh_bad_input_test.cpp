@@ -29,7 +29,7 @@ const BadFile kCorpus[] = {
     {"crease_out_of_range.obj", "line 5: t crease: vertex 3 is out of range"},
     {"huge_tag_count.obj", "line 5: t crease declares 2000000000/1/0 values but the line has 3"},
     {"bad_boundary_rule.obj", "line 5: t interpolateboundary: value 7"},
-    {"bad_magic.glb", "invalid glTF"},
+    {"bad_magic.glb", "not a GLB file"},
     {"truncated_length.glb", "invalid GLB"},
     {"json_syntax.gltf", "invalid glTF"},
     {"accessor_out_of_bounds.gltf", "accessor 0 (10 elements"},

@@ -1,0 +1,41 @@
+// subdfit-bench: benchmark drivers that print figures and write CSV. Timings are ratios
+// measured within one run; absolute times only mean something on a dedicated GPU.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+
+#include "bench_commands.h"
+#include "util/error.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"subdfit-bench: what accuracy costs in time"};
+    app.require_subcommand(1);
+
+    subdfit::bench::StepCostOptions stepCost;
+    auto* stepCostCommand = app.add_subcommand("step-cost", "SGE step time / forward render time, and scaling");
+    stepCostCommand->add_option("--out", stepCost.out, "folder for step_cost.csv");
+    stepCostCommand->add_option("--repeats", stepCost.repeats, "timed repeats (median)")->capture_default_str();
+    stepCostCommand->add_option("--gl", stepCost.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+
+    subdfit::bench::LumpySphereOptions lumpy;
+    auto* lumpyCommand = app.add_subcommand("lumpy-sphere", "fit a quad-sphere cage to a lumpy sphere (the peer's task)");
+    lumpyCommand->add_option("--out", lumpy.out, "output folder")->capture_default_str();
+    lumpyCommand->add_option("--steps", lumpy.steps, "optimisation steps")->capture_default_str();
+    lumpyCommand->add_option("--res", lumpy.resolution, "resolution")->capture_default_str();
+    lumpyCommand->add_option("--views", lumpy.views, "training views")->capture_default_str();
+    lumpyCommand->add_option("--gl", lumpy.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    try {
+        if (stepCostCommand->parsed()) return subdfit::bench::runStepCost(stepCost);
+        if (lumpyCommand->parsed()) return subdfit::bench::runLumpySphere(lumpy);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "subdfit-bench: error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

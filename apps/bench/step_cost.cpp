@@ -1,0 +1,94 @@
+// `subdfit-bench step-cost`: one SGE step's time over one forward render's time, measured in the
+// same run (two renders are the floor, so the goal is <= 2.2), at a few resolutions; and how the
+// step time scales with the number of parameters.
+#include <glad/gl.h>
+
+#include <cstdio>
+
+#include "bench_common.h"
+#include "bench_commands.h"
+#include "context/gl_context.h"
+#include "fit/cage_fitter.h"
+#include "mesh/mesh_loader.h"
+#include "mesh/procedural.h"
+#include "render/mesh_renderer.h"
+
+namespace subdfit::bench {
+namespace {
+
+struct Timing {
+    double renderMs, stepMs;
+};
+
+Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const render::MeshRenderer& reference,
+                int resolution, int repeats) {
+    const scene::TargetSet targets(programs, reference, render::orbitCameras(8, 1), resolution);
+    fit::CageFitSettings settings;
+    settings.resolution = resolution;
+    fit::CageFitter fitter(programs, cage, settings);
+    const render::RenderTarget image(resolution, resolution);
+    const int views[] = {0};
+    fitter.step(targets, views);  // compile and warm up
+    fitter.render(targets.camera(0), image);
+    glFinish();
+    Timing t{};
+    // The forward render a plain (non-differentiable) pipeline pays: stencils + tessellated raster.
+    t.renderMs = medianMilliseconds(repeats, [&] {
+        fitter.render(targets.camera(0), image);
+        glFinish();
+    });
+    t.stepMs = medianMilliseconds(repeats, [&] {
+        fitter.step(targets, views);
+        glFinish();
+    });
+    return t;
+}
+
+}  // namespace
+
+int runStepCost(const StepCostOptions& o) {
+    auto context = context::createHeadlessContext(o.glProvider);
+    const auto info = context::currentGlInfo();
+    gl::ProgramCache programs(info.hasAtomicFloat ? gl::Defines{{"SUBDFIT_ATOMIC_FLOAT", ""}} : gl::Defines{});
+    const auto reference = mesh::makeLumpySphere(5, 0.15f, 1);
+    const render::MeshRenderer referenceRenderer(reference.positions, mesh::vertexNormals(reference),
+                                                 {reference.faceIndices.begin(), reference.faceIndices.end()});
+    std::printf("renderer: %s\n", info.renderer.c_str());
+
+    std::vector<std::vector<std::string>> rows{{"table", "cage_faces", "parameters", "resolution", "render_ms", "step_ms", "ratio"}};
+    const auto cage = mesh::makeQuadSphere(6);
+    std::printf("\nstep cost, quad-sphere cage (%d faces, %d parameters), median of %d\n", cage.faceCount(),
+                3 * cage.vertexCount(), o.repeats);
+    std::printf("%10s %12s %12s %8s\n", "resolution", "render ms", "step ms", "ratio");
+    double defaultRatio = 0.0;
+    for (int resolution : {128, 256, 512}) {
+        const auto t = timeCage(programs, cage, referenceRenderer, resolution, o.repeats);
+        const double ratio = t.stepMs / t.renderMs;
+        if (resolution == 256) defaultRatio = ratio;
+        std::printf("%10d %12.2f %12.2f %8.2f\n", resolution, t.renderMs, t.stepMs, ratio);
+        rows.push_back({"resolution", std::to_string(cage.faceCount()), std::to_string(3 * cage.vertexCount()),
+                        std::to_string(resolution), std::to_string(t.renderMs), std::to_string(t.stepMs),
+                        std::to_string(ratio)});
+    }
+
+    std::printf("\nscaling at 256^2: step time against parameter count\n");
+    std::printf("%10s %12s %12s %12s %8s\n", "faces", "parameters", "render ms", "step ms", "ratio");
+    for (int n : {4, 8, 16, 32}) {
+        const auto sphere = mesh::makeQuadSphere(n);
+        const auto t = timeCage(programs, sphere, referenceRenderer, 256, o.repeats);
+        std::printf("%10d %12d %12.2f %12.2f %8.2f\n", sphere.faceCount(), 3 * sphere.vertexCount(), t.renderMs,
+                    t.stepMs, t.stepMs / t.renderMs);
+        rows.push_back({"scaling", std::to_string(sphere.faceCount()), std::to_string(3 * sphere.vertexCount()),
+                        "256", std::to_string(t.renderMs), std::to_string(t.stepMs),
+                        std::to_string(t.stepMs / t.renderMs)});
+    }
+    if (!o.out.empty()) {
+        std::filesystem::create_directories(o.out);
+        writeCsv(o.out / "step_cost.csv", rows);
+    }
+    std::printf("peak_rss_mib=%.0f\n", peakResidentMiB());
+    std::printf("step_cost_ratio=%.2f\n", defaultRatio);
+    return 0;
+}
+
+}  // namespace subdfit::bench
