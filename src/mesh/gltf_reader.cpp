@@ -53,8 +53,7 @@ tinygltf::Model parseModel(const std::filesystem::path& path) {
     loader.SetImageLoader(&skipImage, nullptr);
     tinygltf::Model model;
     std::string err, warn;
-    std::string baseDir = path.parent_path().string();
-    if (baseDir.empty()) baseDir = ".";
+    const std::string baseDir = path.has_parent_path() ? path.parent_path().string() : std::string(1, '.');
     // Binary or text by content, not by extension: a .gltf that is really a GLB still loads.
     const bool binary = bytes.size() >= 4 && std::string_view(bytes.data(), 4) == "glTF";
     std::string ext = path.extension().string();

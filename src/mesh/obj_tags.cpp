@@ -188,7 +188,10 @@ std::string formatTagLines(const SubdivisionTags& tags) {
     }
     if (!tags.holes.empty()) {
         out += "t hole " + std::to_string(tags.holes.size()) + "/0/0";
-        for (int f : tags.holes) out += " " + std::to_string(f);
+        for (int f : tags.holes) {
+            out += ' ';
+            out += std::to_string(f);
+        }
         out += "\n";
     }
     for (const std::string& line : tags.passthrough) out += line + "\n";

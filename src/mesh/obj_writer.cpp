@@ -23,9 +23,11 @@ public:
         // Unique per process and call, in the target's folder so that rename() is atomic.
         static std::atomic<unsigned> counter{0};
         for (int attempt = 0; attempt < 100 && fd_ < 0; ++attempt) {
+            std::string temp(1, '.');
+            temp += target.filename().string();
+            temp += ".tmp" + std::to_string(::getpid()) + '_' + std::to_string(counter++);
             auto name = target;
-            name.replace_filename("." + target.filename().string() + ".tmp" + std::to_string(::getpid()) + "_" +
-                                  std::to_string(counter++));
+            name.replace_filename(temp);
             fd_ = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
             if (fd_ >= 0) name_ = name.string();
             else if (errno != EEXIST) break;

@@ -5,6 +5,9 @@
 #include "bindings.h"
 
 namespace subdfit::render {
+namespace {
+constexpr int kPatchesPerDraw = 64;
+}  // namespace
 
 int crackFreeTessLevel(int requested, int maxPatchDepth) {
     int level = 1;
@@ -41,7 +44,10 @@ void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, c
     patchCvs_.bindStorage(SUBDFIT_SSBO_PATCH_CVS);
     glBindVertexArray(vertexArray_.id());
     glPatchParameteri(GL_PATCH_VERTICES, 1);
-    if (patchCount_ > 0) glDrawArrays(GL_PATCHES, 0, patchCount_);
+    // llvmpipe's draw module slows down superlinearly on one long patch draw; short draws of a
+    // few hundred patches keep the cost linear in the patch count (measured by step-cost).
+    for (int first = 0; first < patchCount_; first += kPatchesPerDraw)
+        glDrawArrays(GL_PATCHES, first, std::min(kPatchesPerDraw, patchCount_ - first));
     glBindVertexArray(0);
 }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "mesh/mesh_loader.h"
+#include "test_paths.h"
 #include "util/error.h"
 
 namespace subdfit::mesh {
@@ -74,8 +75,9 @@ TEST(MeshBadInput, CorpusHasNoUntestedFile) {
 }
 
 TEST(MeshBadInput, FolderIsNotAMesh) {
-    fs::create_directories(fs::current_path() / "scratch" / "folder.obj");
-    const std::string message = errorFor(fs::current_path() / "scratch" / "folder.obj");
+    const fs::path folder = test::scratchDir("MeshBadInput.Folder") / "folder.obj";
+    fs::create_directories(folder);
+    const std::string message = errorFor(folder);
     EXPECT_NE(message.find("folder.obj: is a folder"), std::string::npos) << message;
 }
 
