@@ -2,6 +2,11 @@
 // parameter i that produced the pixel in either render (the union of the base vertices reaching
 // the + face and the − face), g_i += Δ_p / (2 s_i ε). Where the two renders saw different faces
 // (silhouettes, occlusion) both faces' vertices get the difference: that is what moves edges.
+//
+// s_i does not depend on the pixel, so for the common case (both renders saw the same face f)
+// Σ_p Δ_p s_i / 2ε = s_i Σ_p Δ_p / 2ε: those pixels only add into a per-face sum (one atomic
+// per pixel instead of one per contributing parameter), and scatter_faces.comp hands each
+// face's sum to its vertices. Pixels whose faces differ take the direct path with the union.
 #include "bindings.h"
 #include "hash.glsl"
 #include "atomics.glsl"
@@ -18,14 +23,13 @@ layout(std430, binding = SUBDFIT_SSBO_FACE_VERTEX_OFFSETS) readonly buffer FaceO
 layout(std430, binding = SUBDFIT_SSBO_FACE_VERTEX_INDICES) readonly buffer FaceIndices { int faceVertexIndices[]; };
 SUBDFIT_DECLARE_ACCUMULATOR(Gradient, SUBDFIT_SSBO_GRADIENT, gradient, addGradient)
 SUBDFIT_DECLARE_ACCUMULATOR(Loss, SUBDFIT_SSBO_LOSS, loss, addLoss)
+SUBDFIT_DECLARE_ACCUMULATOR(FaceDelta, SUBDFIT_SSBO_FACE_DELTA, faceDelta, addFaceDelta)
 
 uniform int uTargetLayer;
 uniform uint uCounter;
 uniform uint uSeed;
 uniform float uEpsilon;
 uniform float uLossScale;  // 1 / (pixels × views), so the loss is a per-pixel mean
-
-shared float groupLoss[256];
 
 void addFaceVertices(int face, float scaledDelta, int skipFace) {
     for (int k = faceVertexOffsets[face]; k < faceVertexOffsets[face + 1]; ++k) {
@@ -60,17 +64,15 @@ void main() {
             float scaledDelta = delta / (2.0 * uEpsilon);
             int fp = texelFetch(facePlus, pixel, 0).r;
             int fm = texelFetch(faceMinus, pixel, 0).r;
-            if (fp >= 0) addFaceVertices(fp, scaledDelta, -1);
-            if (fm >= 0 && fm != fp) addFaceVertices(fm, scaledDelta, fp);
+            if (fp == fm) {
+                if (fp >= 0) addFaceDelta(uint(fp), scaledDelta);
+            } else {
+                if (fp >= 0) addFaceVertices(fp, scaledDelta, -1);
+                if (fm >= 0) addFaceVertices(fm, scaledDelta, fp);
+            }
         }
     }
-    // One atomic per work group for the loss: a single float under 65k atomics would serialise.
-    uint lane = gl_LocalInvocationIndex;
-    groupLoss[lane] = pixelLoss;
-    barrier();
-    for (uint stride = 128u; stride > 0u; stride >>= 1u) {
-        if (lane < stride) groupLoss[lane] += groupLoss[lane + stride];
-        barrier();
-    }
-    if (lane == 0u) addLoss(0u, groupLoss[0] * uLossScale);
+    // The loss goes to one of 256 slots by lane: a single float taking every pixel would
+    // serialise, and a shared-memory reduction costs llvmpipe more in barriers than it saves.
+    if (pixelLoss != 0.0) addLoss(gl_LocalInvocationIndex, pixelLoss * uLossScale);
 }

@@ -1,9 +1,14 @@
 #include "fit/cage_fitter.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "mesh/mesh_adjacency.h"
 
 namespace subdfit::fit {
 namespace {
+
+constexpr int kLossSlots = 256;  // see gradient.comp
 
 std::vector<float> flatten(const std::vector<glm::vec3>& points) {
     std::vector<float> values;
@@ -27,13 +32,12 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
       stencils_(patches_),
       renderer_(patches_, settings.tessLevel),
       vertices_("vertices", flatten(cage.positions), settings.vertices),
-      faceVertices_{gl::Buffer::fromVector(patches_.faceVertexOffsets),
-                    gl::Buffer::fromVector(patches_.faceVertexIndices)},
+      faceVertices_(patches_.faceVertexOffsets, patches_.faceVertexIndices, cage.vertexCount()),
       adjacency_(uploadAdjacency(cage)),
       pointsPlus_(stencils_.makePointBuffer()),
       pointsMinus_(stencils_.makePointBuffer()),
       smoothScratch_(vertices_.gradient.bytes()),
-      loss_(sizeof(float) * 4),
+      loss_(sizeof(float) * kLossSlots),
       plus_(settings.resolution, settings.resolution),
       minus_(settings.resolution, settings.resolution) {}
 
@@ -58,9 +62,15 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
                                  1.0f / (pixels * float(views.size()))},
                                 loss_);
     }
+    sge::scatterFaceDeltas(programs_, vertices_, faceVertices_, counter, settings_.seed);
 }
 
 void CageFitter::update() {
+    if (settings_.plannedSteps > 0) {
+        // Exponential annealing to a tenth: large moves first, then settle within the noise.
+        const float progress = std::min(1.0f, float(steps_) / float(settings_.plannedSteps));
+        vertices_.settings().learningRate = settings_.vertices.learningRate * std::pow(0.1f, progress);
+    }
     sge::precondition(programs_, vertices_, adjacency_, settings_.smoothingLambda,
                       settings_.smoothingIterations, smoothScratch_);
     sge::adamStep(programs_, vertices_);
@@ -76,7 +86,7 @@ std::vector<float> CageFitter::takeGradient() {
 
 float CageFitter::takeMeanLoss() {
     float sum = 0.0f;
-    loss_.download(&sum, sizeof(float));
+    for (float slot : loss_.read<float>()) sum += slot;
     loss_.clearToZero();
     const float mean = stepsSinceLoss_ > 0 ? sum / float(stepsSinceLoss_) : 0.0f;
     stepsSinceLoss_ = 0;

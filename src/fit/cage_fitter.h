@@ -20,6 +20,7 @@ struct CageFitSettings {
     sge::GroupSettings vertices{};
     float smoothingLambda = 4.0f;   // λ of the (I + λL)⁻¹ gradient preconditioner
     int smoothingIterations = 8;    // Jacobi sweeps approximating that inverse
+    int plannedSteps = 0;           // > 0: anneal the learning rate ×0.1 over this many steps
     int tessLevel = 8;              // segments per base-face edge
     int resolution = 256;
     std::uint32_t seed = 1;
@@ -54,7 +55,6 @@ public:
     // Renders the current (unperturbed) cage.
     void render(const render::Camera& camera, const render::RenderTarget& target);
 
-    // Learning-rate schedule hook: the caller may anneal between steps.
     sge::GroupSettings& vertexSettings() { return vertices_.settings(); }
 
 private:

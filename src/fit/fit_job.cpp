@@ -110,6 +110,7 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
     settings.tessLevel = o.tessLevel;
     settings.resolution = o.resolution;
     settings.seed = o.seed;
+    settings.plannedSteps = o.steps;
     CageFitter fitter(programs, cage, settings);
 
     render::RenderTarget image(o.resolution, o.resolution);
@@ -137,8 +138,6 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
             }
             view = order[cursor++];
         }
-        // Exponential annealing to a tenth: large moves first, then settle within noise.
-        fitter.vertexSettings().learningRate = o.learningRate * std::pow(0.1f, float(step) / float(o.steps));
         fitter.step(training, batch);
         if (progress && ((step + 1) % reportEvery == 0 || step + 1 == o.steps)) {
             const double seconds = std::chrono::duration<double>(Clock::now() - fitStarted).count();

@@ -1,5 +1,6 @@
 #include "sge/passes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -10,7 +11,31 @@ namespace {
 
 GLuint groupsOf(int count, int size) { return GLuint((count + size - 1) / size); }
 
+std::vector<int> transposeOffsets(const std::vector<int>& offsets, const std::vector<int>& indices, int columns,
+                                  std::vector<int>& transposed) {
+    std::vector<int> counts(size_t(columns) + 1, 0);
+    for (int column : indices) ++counts[size_t(column) + 1];
+    for (size_t c = 1; c < counts.size(); ++c) counts[c] += counts[c - 1];
+    transposed.assign(indices.size(), 0);
+    std::vector<int> fill(counts.begin(), counts.end() - 1);
+    for (size_t row = 0; row + 1 < offsets.size(); ++row)
+        for (int k = offsets[row]; k < offsets[row + 1]; ++k) transposed[size_t(fill[size_t(indices[k])]++)] = int(row);
+    return counts;
+}
+
 }  // namespace
+
+FaceVertexTable::FaceVertexTable(const std::vector<int>& faceOffsets, const std::vector<int>& faceVertices,
+                                 int vertexCount_)
+    : offsets(gl::Buffer::fromVector(faceOffsets)),
+      indices(gl::Buffer::fromVector(faceVertices)),
+      faceDelta(GLsizeiptr(std::max<size_t>(1, faceOffsets.size())) * sizeof(float)),
+      vertexCount(vertexCount_) {
+    std::vector<int> vertexFaceIndices;
+    const auto vertexFaceOffsets = transposeOffsets(faceOffsets, faceVertices, vertexCount, vertexFaceIndices);
+    vertexOffsets = gl::Buffer::fromVector(vertexFaceOffsets);
+    vertexFaces = gl::Buffer::fromVector(vertexFaceIndices);
+}
 
 void perturb(gl::ProgramCache& programs, ParameterGroup& group, std::uint32_t counter, std::uint32_t seed) {
     const auto& program = programs.get("perturb", {{GL_COMPUTE_SHADER, "perturb.comp"}});
@@ -44,9 +69,26 @@ void accumulateGradient(gl::ProgramCache& programs, ParameterGroup& group, const
     faces.indices.bindStorage(SUBDFIT_SSBO_FACE_VERTEX_INDICES);
     group.gradient.bindStorage(SUBDFIT_SSBO_GRADIENT);
     loss.bindStorage(SUBDFIT_SSBO_LOSS);
+    faces.faceDelta.bindStorage(SUBDFIT_SSBO_FACE_DELTA);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     glDispatchCompute(groupsOf(in.plus->width(), 16), groupsOf(in.plus->height(), 16), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void scatterFaceDeltas(gl::ProgramCache& programs, ParameterGroup& group, FaceVertexTable& faces,
+                       std::uint32_t counter, std::uint32_t seed) {
+    const auto& program = programs.get("scatter_faces", {{GL_COMPUTE_SHADER, "scatter_faces.comp"}});
+    program.use();
+    program.set("uVertexCount", faces.vertexCount);
+    program.set("uCounter", counter);
+    program.set("uSeed", seed);
+    faces.faceDelta.bindStorage(SUBDFIT_SSBO_FACE_DELTA);
+    faces.vertexOffsets.bindStorage(SUBDFIT_SSBO_VERTEX_FACE_OFFSETS);
+    faces.vertexFaces.bindStorage(SUBDFIT_SSBO_VERTEX_FACE_INDICES);
+    group.gradient.bindStorage(SUBDFIT_SSBO_GRADIENT);
+    glDispatchCompute(groupsOf(faces.vertexCount, 128), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    faces.faceDelta.clearToZero();
 }
 
 void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency,

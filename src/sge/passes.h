@@ -3,6 +3,7 @@
 // P (perturb.comp), G (gradient.comp), the Laplacian preconditioner (precondition.comp) and
 // Adam (adam.comp). The rasterisation R between P and G lives in render/.
 #include <cstdint>
+#include <vector>
 
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
@@ -14,9 +15,13 @@ namespace subdfit::sge {
 // P: θ± = θ ± s⊙ε with s drawn from (parameter, counter, seed).
 void perturb(gl::ProgramCache& programs, ParameterGroup& group, std::uint32_t counter, std::uint32_t seed);
 
-// Per-pixel face -> contributing parameter table, CSR over base vertices.
+// Which base vertices reach which ptex face, both ways (CSR), plus the per-face Δ sums of G.
 struct FaceVertexTable {
-    gl::Buffer offsets, indices;
+    FaceVertexTable(const std::vector<int>& faceOffsets, const std::vector<int>& faceVertices, int vertexCount);
+    gl::Buffer offsets, indices;              // ptex face -> base vertices
+    gl::Buffer vertexOffsets, vertexFaces;    // base vertex -> ptex faces
+    gl::Buffer faceDelta;                     // one float per ptex face
+    int vertexCount;
 };
 
 struct GradientInputs {
@@ -28,9 +33,15 @@ struct GradientInputs {
     float lossScale;     // weight of each pixel's loss in the reported mean
 };
 
-// G: accumulates Δ_p / (2 s_i ε) into group.gradient and the mean loss into `loss` [0].
+// G: accumulates Δ_p / (2 s_i ε) into group.gradient (directly where the ± faces differ, via
+// faces.faceDelta where they agree) and the mean loss into the 256 slots of `loss`.
 void accumulateGradient(gl::ProgramCache& programs, ParameterGroup& group, const FaceVertexTable& faces,
                         const GradientInputs& inputs, const gl::Buffer& loss);
+
+// G, second half: hands the per-face sums to the vertices' parameters (signs of `counter`)
+// and clears them. Once per perturbation sample, after all its views.
+void scatterFaceDeltas(gl::ProgramCache& programs, ParameterGroup& group, FaceVertexTable& faces,
+                       std::uint32_t counter, std::uint32_t seed);
 
 // g̃ = (I + λL)⁻¹ g by `iterations` Jacobi sweeps into group.gradientSmooth (a plain copy when
 // iterations == 0 or λ == 0). `scratch` must be the size of the gradient.

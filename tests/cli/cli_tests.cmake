@@ -1,0 +1,60 @@
+# The command line end to end (ctest -L cli): bad input files and impossible options are
+# refused with one stderr line naming the culprit and leave no output folder; a short fit
+# writes every result file and no temporary one. Included by tests/CMakeLists.txt.
+set(SUBDFIT_CLI_SCRIPTS ${CMAKE_CURRENT_LIST_DIR})
+set(SUBDFIT_CLI_OUT ${CMAKE_CURRENT_BINARY_DIR}/cli)
+set(SUBDFIT_CLI_BAD ${PROJECT_SOURCE_DIR}/tests/data/bad)
+set(SUBDFIT_CLI_CAGE ${PROJECT_SOURCE_DIR}/assets/osd-shapes/catmark_torus.obj)
+set(SUBDFIT_CLI_REFERENCE ${PROJECT_SOURCE_DIR}/assets/spot/spot_triangulated.obj)
+
+# subdfit_cli_refuses(NAME EXPECT ARG...): `subdfit fit ARG... --out <build>/cli/NAME` must
+# fail, printing one stderr line that contains EXPECT.
+function(subdfit_cli_refuses name expect)
+  list(JOIN ARGN "|" args)
+  add_test(NAME cli.refuses.${name}
+           COMMAND ${CMAKE_COMMAND} -DSUBDFIT=$<TARGET_FILE:subdfit> -DOUT=${SUBDFIT_CLI_OUT}/${name}
+                   -DEXPECT=${expect} -DARGS=fit|${args} -P ${SUBDFIT_CLI_SCRIPTS}/expect_failure.cmake)
+  set_tests_properties(cli.refuses.${name} PROPERTIES LABELS cli TIMEOUT 120)
+endfunction()
+
+# Bad cage files: the message names the file.
+foreach(case
+    "missing_cage|${SUBDFIT_CLI_OUT}/does_not_exist.obj"
+    "truncated_obj|${SUBDFIT_CLI_BAD}/truncated.obj"
+    "bad_face_entry|${SUBDFIT_CLI_BAD}/bad_face_entry.obj"
+    "nan_coordinate|${SUBDFIT_CLI_BAD}/nan_coordinate.obj"
+    "index_out_of_range|${SUBDFIT_CLI_BAD}/index_out_of_range.obj"
+    "empty_mesh|${SUBDFIT_CLI_BAD}/empty.obj"
+    "no_faces|${SUBDFIT_CLI_BAD}/no_faces.obj"
+    "unknown_extension|${SUBDFIT_CLI_BAD}/mesh.txt"
+    "bad_crease_tag|${SUBDFIT_CLI_BAD}/crease_out_of_range.obj"
+    "gltf_index_out_of_range|${SUBDFIT_CLI_BAD}/index_out_of_range.gltf"
+    "truncated_draco|${SUBDFIT_CLI_BAD}/truncated.drc")
+  string(REPLACE "|" ";" case "${case}")
+  list(GET case 0 name)
+  list(GET case 1 file)
+  subdfit_cli_refuses(cage_${name} ${file} --cage ${file} --reference ${SUBDFIT_CLI_REFERENCE})
+endforeach()
+
+# A bad reference is refused the same way (a good cage does not hide it).
+subdfit_cli_refuses(reference_nan_coordinate ${SUBDFIT_CLI_BAD}/nan_coordinate.obj
+                    --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_BAD}/nan_coordinate.obj)
+subdfit_cli_refuses(reference_missing ${SUBDFIT_CLI_OUT}/missing_reference.obj
+                    --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_OUT}/missing_reference.obj)
+
+# Impossible options: the message names the option.
+subdfit_cli_refuses(option_res_0 --res --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --res 0)
+subdfit_cli_refuses(option_views_0 --views --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --views 0)
+subdfit_cli_refuses(option_steps_negative --steps
+                    --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --steps -1)
+subdfit_cli_refuses(option_tess_0 --tess --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --tess 0)
+subdfit_cli_refuses(option_epsilon_0 --epsilon
+                    --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --epsilon 0)
+
+# A short fit that works: every result file, nothing temporary left.
+add_test(NAME cli.fit.torus_to_spot
+         COMMAND ${CMAKE_COMMAND} -DSUBDFIT=$<TARGET_FILE:subdfit> -DOUT=${SUBDFIT_CLI_OUT}/fit_torus_to_spot
+                 -DSTEPS=3
+                 "-DARGS=fit|--cage|${SUBDFIT_CLI_CAGE}|--reference|${SUBDFIT_CLI_REFERENCE}|--steps|3|--res|64|--views|2"
+                 -P ${SUBDFIT_CLI_SCRIPTS}/expect_success.cmake)
+set_tests_properties(cli.fit.torus_to_spot PROPERTIES LABELS cli TIMEOUT 600)
