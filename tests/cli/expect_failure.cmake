@@ -43,7 +43,8 @@ if(EXISTS "${OUT}")
 endif()
 
 if(problems)
-  message(FATAL_ERROR "subdfit ${args} --out ${OUT}${problems}\n"
+  list(JOIN args " " shown)
+  message(FATAL_ERROR "subdfit ${shown} --out ${OUT}${problems}\n"
                       "exit: ${rc}\nstderr:\n${err}\nstdout:\n${out}")
 endif()
 message(STATUS "refused as expected (exit ${rc}): ${message}")

@@ -17,7 +17,8 @@ execute_process(
   ERROR_VARIABLE err
   TIMEOUT 600)
 if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "subdfit ${args} --out ${OUT}\nexit: ${rc}\nstderr:\n${err}\nstdout:\n${out}")
+  list(JOIN args " " shown)
+  message(FATAL_ERROR "subdfit ${shown} --out ${OUT}\nexit: ${rc}\nstderr:\n${err}\nstdout:\n${out}")
 endif()
 
 set(problems "")
@@ -62,6 +63,7 @@ if(at EQUAL -1)
 endif()
 
 if(problems)
-  message(FATAL_ERROR "subdfit ${args} --out ${OUT}${problems}\nfiles: ${entries}\nstderr:\n${err}")
+  list(JOIN args " " shown)
+  message(FATAL_ERROR "subdfit ${shown} --out ${OUT}${problems}\nfiles: ${entries}\nstderr:\n${err}")
 endif()
 message(STATUS "fit succeeded: ${entries}")
