@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "mesh/mesh_adjacency.h"
+#include "util/error.h"
 
 namespace subdfit::fit {
 namespace {
@@ -103,6 +104,25 @@ std::vector<glm::vec3> CageFitter::vertices() const {
 void CageFitter::setVertices(const std::vector<glm::vec3>& positions) {
     const auto values = flatten(positions);
     vertices_.theta.upload(values.data(), GLsizeiptr(values.size() * sizeof(float)));
+}
+
+CageFitter::State CageFitter::state() const {
+    return {steps_, samples_, vertices_.adamSteps, vertices_.theta.read<float>(), vertices_.moment1.read<float>(),
+            vertices_.moment2.read<float>()};
+}
+
+void CageFitter::restore(const State& state) {
+    const size_t count = size_t(vertices_.count());
+    if (state.theta.size() != count || state.moment1.size() != count || state.moment2.size() != count)
+        throw Error("checkpoint holds " + std::to_string(state.theta.size()) + " vertex parameters, the cage has " +
+                    std::to_string(count));
+    const auto bytes = GLsizeiptr(count * sizeof(float));
+    vertices_.theta.upload(state.theta.data(), bytes);
+    vertices_.moment1.upload(state.moment1.data(), bytes);
+    vertices_.moment2.upload(state.moment2.data(), bytes);
+    vertices_.adamSteps = state.adamSteps;
+    steps_ = state.steps;
+    samples_ = state.samples;
 }
 
 void CageFitter::render(const render::Camera& camera, const render::RenderTarget& target) {

@@ -57,6 +57,16 @@ public:
 
     sge::GroupSettings& vertexSettings() { return vertices_.settings(); }
 
+    // Everything a resumed run needs to continue exactly where this one stopped.
+    struct State {
+        int steps = 0;
+        std::uint32_t samples = 0;
+        int adamSteps = 0;
+        std::vector<float> theta, moment1, moment2;
+    };
+    State state() const;
+    void restore(const State& state);  // throws subdfit::Error if it does not fit this cage
+
 private:
     gl::ProgramCache& programs_;
     CageFitSettings settings_;

@@ -7,6 +7,7 @@
 
 #include "context/gl_context.h"
 #include "fit/cage_fitter.h"
+#include "fit/checkpoint.h"
 #include "fit/image_metrics.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
@@ -50,6 +51,40 @@ bool allFinite(const std::vector<glm::vec3>& points) {
     return true;
 }
 
+// The training views of step `step`: shuffled rounds over all views, every view equally often.
+// A pure function of (seed, step), so a resumed run visits exactly what the first would have.
+std::vector<int> viewsForStep(const FitOptions& o, int step) {
+    std::vector<int> views;
+    for (int j = 0; j < o.viewsPerStep; ++j) {
+        const long long k = (long long)step * o.viewsPerStep + j;
+        const long long round = k / o.views;
+        std::vector<int> order(size_t(o.views));
+        std::iota(order.begin(), order.end(), 0);
+        std::mt19937 rng(std::uint32_t(o.seed * 2654435761u + std::uint32_t(round)));
+        std::shuffle(order.begin(), order.end(), rng);
+        views.push_back(order[size_t(k % o.views)]);
+    }
+    return views;
+}
+
+// What must match for a checkpoint to be resumed: the inputs' geometry and the settings that
+// shape the optimisation (not the step count, so a finished run can be extended).
+std::string fingerprint(const FitOptions& o, const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference) {
+    std::uint64_t hash = 1469598103934665603ull;  // FNV-1a
+    auto mix = [&](const void* data, size_t bytes) {
+        for (size_t i = 0; i < bytes; ++i) hash = (hash ^ static_cast<const unsigned char*>(data)[i]) * 1099511628211ull;
+    };
+    for (const auto* m : {&cage, &reference}) {
+        mix(m->positions.data(), m->positions.size() * sizeof(glm::vec3));
+        mix(m->faceIndices.data(), m->faceIndices.size() * sizeof(int));
+    }
+    return nlohmann::json{{"inputs", hash}, {"views", o.views}, {"holdout_views", o.holdoutViews},
+                          {"resolution", o.resolution}, {"views_per_step", o.viewsPerStep}, {"tess", o.tessLevel},
+                          {"seed", o.seed}, {"epsilon", o.epsilon}, {"lr", o.learningRate},
+                          {"smoothing", o.smoothing}}
+        .dump();
+}
+
 nlohmann::json variantsJson(const gl::ProgramCache& programs) {
     auto list = nlohmann::json::array();
     for (const auto& variant : programs.variants()) {
@@ -75,6 +110,7 @@ void validate(const FitOptions& o) {
             "--lr must be in (0, 1)");
     require(std::isfinite(o.smoothing) && o.smoothing >= 0.0f, "--smoothing must be >= 0");
     require(!o.out.empty(), "--out is required");
+    require(o.checkpointEvery >= 1, "checkpoint interval must be >= 1 step");
     if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out))
         throw fileError(o.out.string(), "exists and is not a folder");
 }
@@ -119,32 +155,34 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
     const ViewSetScore trainBefore = score(fitter, training);
     const ViewSetScore holdoutBefore = score(fitter, holdout);
 
-    // Views visited in shuffled rounds: every view equally often, in no fixed order.
-    std::mt19937 rng(o.seed);
-    std::vector<int> order(size_t(o.views));
-    std::iota(order.begin(), order.end(), 0);
-    size_t cursor = order.size();
-    std::vector<int> batch(size_t(o.viewsPerStep));
+    const auto checkpointPath = o.out / "checkpoint.bin";
+    const std::string runFingerprint = fingerprint(o, cage, reference);
+    int firstStep = 0;
+    if (o.resume) {
+        if (const auto saved = readCheckpoint(checkpointPath, runFingerprint)) {
+            fitter.restore(*saved);
+            firstStep = std::min(saved->steps, o.steps);
+        }
+    }
+    auto saveCheckpoint = [&] {
+        std::filesystem::create_directories(o.out);
+        writeCheckpoint(checkpointPath, runFingerprint, fitter.state());
+    };
 
     const auto fitStarted = Clock::now();
     const int reportEvery = std::max(1, o.steps / 50);
-    int step = 0;
+    int step = firstStep;
     for (; step < o.steps; ++step) {
         if (cancel && cancel->load()) break;
-        for (auto& view : batch) {
-            if (cursor == order.size()) {
-                std::shuffle(order.begin(), order.end(), rng);
-                cursor = 0;
-            }
-            view = order[cursor++];
-        }
-        fitter.step(training, batch);
+        fitter.step(training, viewsForStep(o, step));
         if (progress && ((step + 1) % reportEvery == 0 || step + 1 == o.steps)) {
             const double seconds = std::chrono::duration<double>(Clock::now() - fitStarted).count();
-            progress({step + 1, o.steps, fitter.takeMeanLoss(), seconds,
-                      seconds / double(step + 1) * double(o.steps - step - 1)});
+            const double done = double(step + 1 - firstStep);
+            progress({step + 1, o.steps, fitter.takeMeanLoss(), seconds, seconds / done * double(o.steps - step - 1)});
         }
+        if ((step + 1) % o.checkpointEvery == 0) saveCheckpoint();
     }
+    saveCheckpoint();
     const double fitSeconds = std::chrono::duration<double>(Clock::now() - fitStarted).count();
 
     fitter.render(holdout.camera(0), image);
@@ -157,6 +195,8 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
     nlohmann::json report = {
         {"steps", step},
         {"steps_requested", o.steps},
+        {"resumed_from_step", firstStep},
+        {"interrupted", step < o.steps},
         {"seconds", std::chrono::duration<double>(Clock::now() - started).count()},
         {"fit_seconds", fitSeconds},
         {"loss_initial", trainBefore.loss},

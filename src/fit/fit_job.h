@@ -24,6 +24,8 @@ struct FitOptions {
     float learningRate = 0.004f;  // Adam step, same units; annealed ×0.1 over the run
     float smoothing = 4.0f;       // λ of the Laplacian preconditioner (0: off)
     std::string glProvider = "auto";
+    bool resume = false;          // continue from out/checkpoint.bin when it exists
+    int checkpointEvery = 100;    // steps between checkpoints (also written on interrupt and at the end)
 };
 
 struct Progress {

@@ -49,9 +49,9 @@ std::vector<std::string> shapeFiles() {
 }
 
 // Closed: every edge is shared by exactly two faces (no boundary, no non-manifold edge, no
-// degenerate self-edge), and no face is a hole.
+// degenerate self-edge). Hole tags do not count: through a hole one sees the inside (both
+// sides are drawn), so a closed cage with holes must not show pinholes either.
 bool isClosed(const mesh::PolygonMesh& m) {
-    if (!m.tags.holes.empty()) return false;
     std::map<std::pair<int, int>, int> edgeUse;
     int offset = 0;
     for (int size : m.faceSizes) {
@@ -156,6 +156,19 @@ TEST_P(RenderShapes, LoadsBuildsAndRendersCleanly) {
               << patches.ptexFaceCount << (closed ? ", closed" : ", open") << ", pinholes " << totalPinholes
               << "\n";
     test::expectNoGlError();
+}
+
+// The detector itself, on a made-up id image: one enclosed background pixel is found, a gap open
+// to one side is not.
+TEST(RenderShapesCorpus, PinholeDetectorFindsEnclosedPixelsOnly) {
+    std::vector<int> ids(size_t(kResolution) * kResolution, -1);
+    for (int y = 10; y < 20; ++y)
+        for (int x = 10; x < 20; ++x) ids[size_t(y) * kResolution + x] = 3;
+    ids[size_t(15) * kResolution + 15] = -1;  // enclosed
+    ids[size_t(10) * kResolution + 12] = -1;  // notch on the border: open to the background
+    const auto found = pinholes(ids);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0], 15 * kResolution + 15);
 }
 
 TEST(RenderShapesCorpus, AllFiftyEightShapesAreBundled) { EXPECT_EQ(shapeFiles().size(), 58u); }
