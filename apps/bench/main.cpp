@@ -28,7 +28,9 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help
+        std::fprintf(stderr, "%s: error: %s (see --help)\n", "subdfit-bench", e.what());
+        return 2;
     }
     try {
         if (stepCostCommand->parsed()) return subdfit::bench::runStepCost(stepCost);

@@ -49,7 +49,9 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help
+        std::fprintf(stderr, "%s: error: %s (see --help)\n", "subdfit", e.what());
+        return 2;
     }
 
     std::signal(SIGINT, onInterrupt);
