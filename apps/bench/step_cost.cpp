@@ -18,6 +18,7 @@ namespace {
 
 struct Timing {
     double renderMs, stepMs;
+    double accumulateMs, updateMs;  // the step's halves: P + 2R + G, then preconditioner + Adam
 };
 
 Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const render::MeshRenderer& reference,
@@ -41,6 +42,14 @@ Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const
         fitter.step(targets, views);
         glFinish();
     });
+    t.accumulateMs = medianMilliseconds(repeats, [&] {
+        fitter.accumulate(targets, views);
+        glFinish();
+    });
+    t.updateMs = medianMilliseconds(repeats, [&] {
+        fitter.update();
+        glFinish();
+    });
     return t;
 }
 
@@ -59,13 +68,15 @@ int runStepCost(const StepCostOptions& o) {
     const auto cage = mesh::makeQuadSphere(6);
     std::printf("\nstep cost, quad-sphere cage (%d faces, %d parameters), median of %d\n", cage.faceCount(),
                 3 * cage.vertexCount(), o.repeats);
-    std::printf("%10s %12s %12s %8s\n", "resolution", "render ms", "step ms", "ratio");
+    std::printf("%10s %12s %12s %8s %14s %10s\n", "resolution", "render ms", "step ms", "ratio", "P+2R+G ms",
+                "Adam ms");
     double defaultRatio = 0.0;
     for (int resolution : {128, 256, 512}) {
         const auto t = timeCage(programs, cage, referenceRenderer, resolution, o.repeats);
         const double ratio = t.stepMs / t.renderMs;
         if (resolution == 256) defaultRatio = ratio;
-        std::printf("%10d %12.2f %12.2f %8.2f\n", resolution, t.renderMs, t.stepMs, ratio);
+        std::printf("%10d %12.2f %12.2f %8.2f %14.2f %10.2f\n", resolution, t.renderMs, t.stepMs, ratio,
+                    t.accumulateMs, t.updateMs);
         rows.push_back({"resolution", std::to_string(cage.faceCount()), std::to_string(3 * cage.vertexCount()),
                         std::to_string(resolution), std::to_string(t.renderMs), std::to_string(t.stepMs),
                         std::to_string(ratio)});

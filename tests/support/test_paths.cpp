@@ -8,7 +8,10 @@ std::filesystem::path assetPath(const std::string& relative) {
 
 std::filesystem::path sharedAssetPath(const std::string& relative) {
     auto p = std::filesystem::path(SUBDFIT_SHARED_ASSETS) / relative;
-    return std::filesystem::exists(p) ? p : std::filesystem::path();
+    if (std::filesystem::exists(p)) return p;
+    // The OpenSubdiv shapes are also bundled (license allows), so a user's clone runs those tests.
+    if (relative.rfind("osd-shapes", 0) == 0 && std::filesystem::exists(assetPath(relative))) return assetPath(relative);
+    return {};
 }
 
 std::filesystem::path scratchDir(const std::string& name) {

@@ -6,7 +6,8 @@ namespace subdfit::test {
 
 // A file bundled in the repository's assets/.
 std::filesystem::path assetPath(const std::string& relative);
-// A file in ../shared/assets-ext (development set); empty path when it is not there.
+// A file in ../shared/assets-ext (development set), else its bundled copy in assets/ when there
+// is one (the OpenSubdiv shapes); empty path when neither is there.
 std::filesystem::path sharedAssetPath(const std::string& relative);
 // A fresh, empty scratch folder under the build tree for one test.
 std::filesystem::path scratchDir(const std::string& name);
