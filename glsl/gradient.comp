@@ -30,6 +30,7 @@ uniform uint uCounter;
 uniform uint uSeed;
 uniform float uEpsilon;
 uniform float uLossScale;  // 1 / (pixels × views), so the loss is a per-pixel mean
+uniform int uMeasureLoss;  // 0: skip the loss (most steps only need the gradient)
 
 void addFaceVertices(int face, float scaledDelta, int skipFace) {
     for (int k = faceVertexOffsets[face]; k < faceVertexOffsets[face + 1]; ++k) {
@@ -50,29 +51,31 @@ void addFaceVertices(int face, float scaledDelta, int skipFace) {
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = textureSize(colorPlus, 0);
-    float pixelLoss = 0.0;
-    if (all(lessThan(pixel, size))) {
-        vec3 target = texelFetch(targets, ivec3(pixel, uTargetLayer), 0).rgb;
-        vec3 ePlus = texelFetch(colorPlus, pixel, 0).rgb - target;
-        vec3 eMinus = texelFetch(colorMinus, pixel, 0).rgb - target;
-        float fPlus = dot(ePlus, ePlus);
-        float fMinus = dot(eMinus, eMinus);
-        pixelLoss = 0.5 * (fPlus + fMinus);
-        float delta = fPlus - fMinus;
-        if (delta != 0.0) {
-            float scaledDelta = delta / (2.0 * uEpsilon);
-            int fp = texelFetch(facePlus, pixel, 0).r;
-            int fm = texelFetch(faceMinus, pixel, 0).r;
-            if (fp == fm) {
-                if (fp >= 0) addFaceDelta(uint(fp), scaledDelta);
-            } else {
-                if (fp >= 0) addFaceVertices(fp, scaledDelta, -1);
-                if (fm >= 0) addFaceVertices(fm, scaledDelta, fp);
-            }
+    if (any(greaterThanEqual(pixel, textureSize(colorPlus, 0)))) return;
+    int fp = texelFetch(facePlus, pixel, 0).r;
+    int fm = texelFetch(faceMinus, pixel, 0).r;
+    // Background in both renders: both colours are the clear colour, so Δ = 0 exactly. Only the
+    // loss, when it is being measured this step, still needs the target.
+    bool covered = fp >= 0 || fm >= 0;
+    if (!covered && uMeasureLoss == 0) return;
+
+    vec3 target = texelFetch(targets, ivec3(pixel, uTargetLayer), 0).rgb;
+    vec3 ePlus = texelFetch(colorPlus, pixel, 0).rgb - target;
+    vec3 eMinus = texelFetch(colorMinus, pixel, 0).rgb - target;
+    float fPlus = dot(ePlus, ePlus);
+    float fMinus = dot(eMinus, eMinus);
+    float delta = fPlus - fMinus;
+    if (covered && delta != 0.0) {
+        float scaledDelta = delta / (2.0 * uEpsilon);
+        if (fp == fm) {
+            addFaceDelta(uint(fp), scaledDelta);
+        } else {
+            if (fp >= 0) addFaceVertices(fp, scaledDelta, -1);
+            if (fm >= 0) addFaceVertices(fm, scaledDelta, fp);
         }
     }
     // The loss goes to one of 256 slots by lane: a single float taking every pixel would
     // serialise, and a shared-memory reduction costs llvmpipe more in barriers than it saves.
-    if (pixelLoss != 0.0) addLoss(gl_LocalInvocationIndex, pixelLoss * uLossScale);
+    float pixelLoss = 0.5 * (fPlus + fMinus);
+    if (uMeasureLoss != 0 && pixelLoss != 0.0) addLoss(gl_LocalInvocationIndex, pixelLoss * uLossScale);
 }

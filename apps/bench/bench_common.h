@@ -8,9 +8,11 @@
 
 namespace subdfit::bench {
 
-// Median wall time in milliseconds of `repeats` calls of `work` (which must glFinish itself).
+// Best (minimum) wall time in milliseconds of `repeats` calls of `work`, which must glFinish
+// itself. On a shared, noisy machine other load only ever adds time, so the minimum is the most
+// repeatable estimate of what the work itself costs.
 template <class Work>
-double medianMilliseconds(int repeats, Work&& work) {
+double bestMilliseconds(int repeats, Work&& work) {
     std::vector<double> times;
     for (int i = 0; i < repeats; ++i) {
         const auto start = std::chrono::steady_clock::now();
@@ -18,7 +20,7 @@ double medianMilliseconds(int repeats, Work&& work) {
         times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     }
     std::sort(times.begin(), times.end());
-    return times[times.size() / 2];
+    return times.front();
 }
 
 // Peak resident set size of this process, MiB (VmHWM).

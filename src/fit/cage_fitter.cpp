@@ -42,12 +42,12 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
       plus_(settings.resolution, settings.resolution),
       minus_(settings.resolution, settings.resolution) {}
 
-void CageFitter::step(const scene::TargetSet& targets, std::span<const int> views) {
-    accumulate(targets, views);
+void CageFitter::step(const scene::TargetSet& targets, std::span<const int> views, bool measureLoss) {
+    accumulate(targets, views, measureLoss);
     update();
 }
 
-void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int> views) {
+void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int> views, bool measureLoss) {
     // A distinct counter per sample keeps every sample's signs independent; the seed separates runs.
     const std::uint32_t counter = samples_++;
     sge::perturb(programs_, vertices_, counter, settings_.seed);
@@ -60,10 +60,11 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
         renderer_.draw(programs_, pointsMinus_, camera, minus_);
         sge::accumulateGradient(programs_, vertices_, faceVertices_,
                                 {&plus_, &minus_, targets.colors().id(), view, counter, settings_.seed,
-                                 1.0f / (pixels * float(views.size()))},
+                                 1.0f / (pixels * float(views.size())), measureLoss},
                                 loss_);
     }
     sge::scatterFaceDeltas(programs_, vertices_, faceVertices_, counter, settings_.seed);
+    if (measureLoss) ++samplesSinceLoss_;
 }
 
 void CageFitter::update() {
@@ -76,7 +77,6 @@ void CageFitter::update() {
                       settings_.smoothingIterations, smoothScratch_);
     sge::adamStep(programs_, vertices_);
     ++steps_;
-    ++stepsSinceLoss_;
 }
 
 std::vector<float> CageFitter::takeGradient() {
@@ -89,8 +89,8 @@ float CageFitter::takeMeanLoss() {
     float sum = 0.0f;
     for (float slot : loss_.read<float>()) sum += slot;
     loss_.clearToZero();
-    const float mean = stepsSinceLoss_ > 0 ? sum / float(stepsSinceLoss_) : 0.0f;
-    stepsSinceLoss_ = 0;
+    const float mean = samplesSinceLoss_ > 0 ? sum / float(samplesSinceLoss_) : 0.0f;
+    samplesSinceLoss_ = 0;
     return mean;
 }
 

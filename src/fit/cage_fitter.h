@@ -32,17 +32,18 @@ public:
     CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const CageFitSettings& settings);
 
     // One optimisation step using the given training views of `targets`: accumulate + update.
-    void step(const scene::TargetSet& targets, std::span<const int> views);
+    // With `measureLoss`, the step's mean loss is added to what takeMeanLoss() reports.
+    void step(const scene::TargetSet& targets, std::span<const int> views, bool measureLoss = true);
 
     // The two halves of a step. accumulate() adds one SGE sample (fresh signs) to the gradient;
     // update() preconditions it, applies Adam and clears it.
-    void accumulate(const scene::TargetSet& targets, std::span<const int> views);
+    void accumulate(const scene::TargetSet& targets, std::span<const int> views, bool measureLoss = true);
     void update();
 
     // The raw accumulated gradient (for tests and benchmarks), then cleared.
     std::vector<float> takeGradient();
 
-    // Mean per-pixel loss over the steps since the last call (one readback).
+    // Mean per-pixel loss over the measured samples since the last call (one readback).
     float takeMeanLoss();
 
     std::vector<glm::vec3> vertices() const;
@@ -78,7 +79,7 @@ private:
     sge::Adjacency adjacency_;
     gl::Buffer pointsPlus_, pointsMinus_, smoothScratch_, loss_;
     render::RenderTarget plus_, minus_;
-    int steps_ = 0, stepsSinceLoss_ = 0;
+    int steps_ = 0, samplesSinceLoss_ = 0;
     std::uint32_t samples_ = 0;  // perturbation counter: one per accumulate()
 };
 

@@ -60,6 +60,7 @@ void accumulateGradient(gl::ProgramCache& programs, ParameterGroup& group, const
     program.set("uSeed", in.seed);
     program.set("uEpsilon", group.settings().epsilon);
     program.set("uLossScale", in.lossScale);
+    program.set("uMeasureLoss", in.measureLoss ? 1 : 0);
     glBindTextureUnit(SUBDFIT_UNIT_COLOR_PLUS, in.plus->color().id());
     glBindTextureUnit(SUBDFIT_UNIT_COLOR_MINUS, in.minus->color().id());
     glBindTextureUnit(SUBDFIT_UNIT_FACE_PLUS, in.plus->faceId().id());

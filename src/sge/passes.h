@@ -31,6 +31,7 @@ struct GradientInputs {
     int targetLayer;
     std::uint32_t counter, seed;
     float lossScale;     // weight of each pixel's loss in the reported mean
+    bool measureLoss;    // also accumulate the loss (costs a target fetch on background pixels)
 };
 
 // G: accumulates Δ_p / (2 s_i ε) into group.gradient (directly where the ± faces differ, via
