@@ -1,5 +1,7 @@
 #include "render/mesh_renderer.h"
 
+#include "render/raster_pass.h"
+
 namespace subdfit::render {
 
 MeshRenderer::MeshRenderer(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals,
@@ -24,13 +26,7 @@ MeshRenderer::MeshRenderer(const std::vector<glm::vec3>& positions, const std::v
 void MeshRenderer::draw(gl::ProgramCache& programs, const Camera& camera, const RenderTarget& target) const {
     const auto& program = programs.get("mesh_raster", {{GL_VERTEX_SHADER, "mesh.vert"},
                                                        {GL_FRAGMENT_SHADER, "mesh.frag"}});
-    target.bindAndClear();
-    glEnable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    program.use();
-    program.set("uViewProjection", camera.viewProjection());
-    program.set("uView", camera.view);
-    program.set("uEye", camera.eye);
+    beginRasterPass(program, camera, target);
     glBindVertexArray(vertexArray_.id());
     glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
     glBindVertexArray(0);

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "bindings.h"
+#include "render/raster_pass.h"
 
 namespace subdfit::render {
 namespace {
@@ -31,13 +32,7 @@ void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, c
                                                         {GL_TESS_CONTROL_SHADER, "patch.tesc"},
                                                         {GL_TESS_EVALUATION_SHADER, "patch.tese"},
                                                         {GL_FRAGMENT_SHADER, "patch.frag"}});
-    target.bindAndClear();
-    glEnable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    program.use();
-    program.set("uViewProjection", camera.viewProjection());
-    program.set("uView", camera.view);
-    program.set("uEye", camera.eye);
+    beginRasterPass(program, camera, target);
     program.set("uTessLevel", float(tessLevel_));
     points.bindStorage(SUBDFIT_SSBO_POINTS);
     patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);

@@ -3,20 +3,8 @@
 # folder left behind.
 #   cmake -DSUBDFIT=<exe> -DOUT=<dir> -DEXPECT=<text> -DARGS=<a|b|c> -P expect_failure.cmake
 # ARGS is '|'-separated (';' would be split by add_test); `--out OUT` is appended.
-foreach(var SUBDFIT OUT EXPECT ARGS)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "expect_failure.cmake: -D${var}=... is required")
-  endif()
-endforeach()
-
-file(REMOVE_RECURSE "${OUT}")
-string(REPLACE "|" ";" args "${ARGS}")
-execute_process(
-  COMMAND "${SUBDFIT}" ${args} --out "${OUT}"
-  RESULT_VARIABLE rc
-  OUTPUT_VARIABLE out
-  ERROR_VARIABLE err
-  TIMEOUT 120)
+include(${CMAKE_CURRENT_LIST_DIR}/run_subdfit.cmake)
+subdfit_cli_run(expect_failure.cmake 120 SUBDFIT OUT EXPECT ARGS)
 
 set(problems "")
 if(NOT rc MATCHES "^[0-9]+$")

@@ -2,20 +2,8 @@
 # file there and non-empty, report.json readable and finite, no temporary file left behind
 # (atomic writes go through hidden '.name.tmp' files that must all have been renamed).
 #   cmake -DSUBDFIT=<exe> -DOUT=<dir> -DARGS=<a|b|c> -DSTEPS=<n> -P expect_success.cmake
-foreach(var SUBDFIT OUT ARGS STEPS)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "expect_success.cmake: -D${var}=... is required")
-  endif()
-endforeach()
-
-file(REMOVE_RECURSE "${OUT}")
-string(REPLACE "|" ";" args "${ARGS}")
-execute_process(
-  COMMAND "${SUBDFIT}" ${args} --out "${OUT}"
-  RESULT_VARIABLE rc
-  OUTPUT_VARIABLE out
-  ERROR_VARIABLE err
-  TIMEOUT 600)
+include(${CMAKE_CURRENT_LIST_DIR}/run_subdfit.cmake)
+subdfit_cli_run(expect_success.cmake 600 SUBDFIT OUT ARGS STEPS)
 if(NOT rc EQUAL 0)
   list(JOIN args " " shown)
   message(FATAL_ERROR "subdfit ${shown} --out ${OUT}\nexit: ${rc}\nstderr:\n${err}\nstdout:\n${out}")
