@@ -1,5 +1,6 @@
 // Adam (Kingma & Ba) on one parameter group, one thread per parameter. A non-finite gradient
 // (which a sound pipeline never produces) is dropped rather than allowed to poison θ.
+// SUBDFIT_ADAM_SHARED_MOMENT: one second moment for the group (see shared_moment.comp).
 #include "bindings.h"
 
 layout(local_size_x = 256) in;
@@ -23,8 +24,12 @@ void main() {
     float g = gradient[i];
     if (isnan(g) || isinf(g)) g = 0.0;
     float m = mix(g, moment1[i], uBeta1);
-    float v = mix(g * g, moment2[i], uBeta2);
     moment1[i] = m;
+#ifdef SUBDFIT_ADAM_SHARED_MOMENT
+    float v = moment2[0];  // updated for the whole group by shared_moment.comp
+#else
+    float v = mix(g * g, moment2[i], uBeta2);
     moment2[i] = v;
+#endif
     theta[i] -= uLearningRate * (m / uBiasCorrection1) / (sqrt(v / uBiasCorrection2) + uAdamEpsilon);
 }

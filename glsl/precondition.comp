@@ -1,5 +1,8 @@
 // Large-steps style preconditioning of the vertex gradient: g̃ = (I + λL)⁻¹ g with L the cage's
-// uniform graph Laplacian, by Jacobi iterations g̃ ← (g + λ Σ_j∈N(i) g̃_j) / (1 + λ|N(i)|).
+// uniform graph Laplacian, by damped Jacobi iterations
+//     g̃ ← (1 − ω) g̃ + ω (g + λ Σ_j∈N(i) g̃_j) / (1 + λ|N(i)|).
+// Plain Jacobi (ω = 1) flips the sign of the checkerboard mode every sweep without shrinking
+// it when λ is large; ω = 2/3 damps every high-frequency mode, which is the point here.
 // It spreads each noisy per-vertex estimate over the neighbourhood, so the cage moves smoothly
 // and cannot tangle, while leaving the low-frequency (shape) part of the gradient intact.
 #include "bindings.h"
@@ -25,7 +28,10 @@ void main() {
         neighbourSum += vec3(smoothIn[3 * j], smoothIn[3 * j + 1], smoothIn[3 * j + 2]);
     }
     vec3 g = vec3(gradient[3 * v], gradient[3 * v + 1], gradient[3 * v + 2]);
-    vec3 result = (g + uLambda * neighbourSum) / (1.0 + uLambda * float(end - begin));
+    const float omega = 2.0 / 3.0;
+    vec3 previous = vec3(smoothIn[3 * v], smoothIn[3 * v + 1], smoothIn[3 * v + 2]);
+    vec3 jacobi = (g + uLambda * neighbourSum) / (1.0 + uLambda * float(end - begin));
+    vec3 result = mix(previous, jacobi, omega);
     smoothOut[3 * v] = result.x;
     smoothOut[3 * v + 1] = result.y;
     smoothOut[3 * v + 2] = result.z;

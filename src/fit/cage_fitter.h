@@ -17,7 +17,7 @@
 namespace subdfit::fit {
 
 struct CageFitSettings {
-    sge::GroupSettings vertices{};
+    sge::GroupSettings vertices{.sharedMoment = true};
     float smoothingLambda = 4.0f;   // λ of the (I + λL)⁻¹ gradient preconditioner
     int smoothingIterations = 8;    // Jacobi sweeps approximating that inverse
     int plannedSteps = 0;           // > 0: anneal the learning rate ×0.1 over this many steps

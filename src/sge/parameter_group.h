@@ -14,6 +14,9 @@ struct GroupSettings {
     float learningRate = 0.002f;  // Adam step size, same units
     float beta1 = 0.9f;
     float beta2 = 0.99f;
+    // One Adam second moment for the whole group instead of one per parameter: keeps a
+    // preconditioned (smoothed) gradient's step smooth. Used for cage vertices.
+    bool sharedMoment = false;
 };
 
 class ParameterGroup {

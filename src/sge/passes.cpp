@@ -122,7 +122,19 @@ void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjac
 void adamStep(gl::ProgramCache& programs, ParameterGroup& group) {
     const auto& s = group.settings();
     ++group.adamSteps;
-    const auto& program = programs.get("adam", {{GL_COMPUTE_SHADER, "adam.comp"}});
+    gl::Defines defines;
+    if (s.sharedMoment) {
+        defines["SUBDFIT_ADAM_SHARED_MOMENT"] = "";
+        const auto& reduce = programs.get("shared_moment", {{GL_COMPUTE_SHADER, "shared_moment.comp"}});
+        reduce.use();
+        reduce.set("uCount", unsigned(group.count()));
+        reduce.set("uBeta2", s.beta2);
+        group.gradientSmooth.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
+        group.moment2.bindStorage(SUBDFIT_SSBO_MOMENT2);
+        glDispatchCompute(1, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    const auto& program = programs.get("adam", {{GL_COMPUTE_SHADER, "adam.comp"}}, defines);
     program.use();
     program.set("uCount", unsigned(group.count()));
     program.set("uLearningRate", s.learningRate);
