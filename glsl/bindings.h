@@ -29,16 +29,30 @@
 #define SUBDFIT_SSBO_VERTEX_FACE_OFFSETS 21  // base vertex -> ptex faces it reaches (CSR)
 #define SUBDFIT_SSBO_VERTEX_FACE_INDICES 22
 
+// Map parameter groups (per-face tiles of (T+1)² shared nodes, maps::TexelLayout).
+#define SUBDFIT_SSBO_FACE_NODES 23           // [ptex face][j][i] -> node
+#define SUBDFIT_SSBO_DISPLACEMENT 24         // height per node (θ, θ+ or θ− as the pass needs)
+#define SUBDFIT_SSBO_NORMAL_MAP 25           // tangent-space (x, y) per node
+#define SUBDFIT_SSBO_GRADIENT_DISPLACEMENT 26
+#define SUBDFIT_SSBO_GRADIENT_NORMAL_MAP 27
+
 // Texture units of the gradient pass.
 #define SUBDFIT_UNIT_COLOR_PLUS 0
 #define SUBDFIT_UNIT_COLOR_MINUS 1
 #define SUBDFIT_UNIT_FACE_PLUS 2
 #define SUBDFIT_UNIT_FACE_MINUS 3
 #define SUBDFIT_UNIT_TARGET 4
+#define SUBDFIT_UNIT_UV_PLUS 5
+#define SUBDFIT_UNIT_UV_MINUS 6
 
 // Render target attachments.
 #define SUBDFIT_ATTACHMENT_COLOR 0
 #define SUBDFIT_ATTACHMENT_FACE_ID 1
 #define SUBDFIT_ATTACHMENT_PATCH_UV 2
+
+// Perturbation seeds per group: one hash stream each, so groups' signs are independent.
+#define SUBDFIT_SEED_VERTICES 0u
+#define SUBDFIT_SEED_DISPLACEMENT 0x68e31da4u
+#define SUBDFIT_SEED_NORMAL_MAP 0xb5297a4du
 
 #endif

@@ -25,6 +25,23 @@ SUBDFIT_DECLARE_ACCUMULATOR(Gradient, SUBDFIT_SSBO_GRADIENT, gradient, addGradie
 SUBDFIT_DECLARE_ACCUMULATOR(Loss, SUBDFIT_SSBO_LOSS, loss, addLoss)
 SUBDFIT_DECLARE_ACCUMULATOR(FaceDelta, SUBDFIT_SSBO_FACE_DELTA, faceDelta, addFaceDelta)
 
+#if defined(SUBDFIT_DISPLACEMENT) || defined(SUBDFIT_NORMAL_MAP)
+#define SUBDFIT_MAPS
+#include "maps.glsl"
+layout(binding = SUBDFIT_UNIT_UV_PLUS) uniform sampler2D uvPlus;
+layout(binding = SUBDFIT_UNIT_UV_MINUS) uniform sampler2D uvMinus;
+#endif
+#ifdef SUBDFIT_DISPLACEMENT
+SUBDFIT_DECLARE_ACCUMULATOR(DisplacementGradient, SUBDFIT_SSBO_GRADIENT_DISPLACEMENT, displacementGradient,
+                            addDisplacementGradient)
+uniform float uEpsilonDisplacement;
+#endif
+#ifdef SUBDFIT_NORMAL_MAP
+SUBDFIT_DECLARE_ACCUMULATOR(NormalMapGradient, SUBDFIT_SSBO_GRADIENT_NORMAL_MAP, normalMapGradient,
+                            addNormalMapGradient)
+uniform float uEpsilonNormalMap;
+#endif
+
 uniform int uTargetLayer;
 uniform uint uCounter;
 uniform uint uSeed;
@@ -48,6 +65,43 @@ void addFaceVertices(int face, float scaledDelta, int skipFace) {
         }
     }
 }
+
+#ifdef SUBDFIT_MAPS
+// Texel groups: the nodes under the pixel's (face, u, v) in either render, each once.
+void addMapNode(int node, float delta) {
+#ifdef SUBDFIT_DISPLACEMENT
+    addDisplacementGradient(uint(node), delta / (2.0 * uEpsilonDisplacement) *
+                                            perturbationSign(uint(node), uCounter, uSeed ^ SUBDFIT_SEED_DISPLACEMENT));
+#endif
+#ifdef SUBDFIT_NORMAL_MAP
+    for (uint c = 0u; c < 2u; ++c) {
+        uint i = 2u * uint(node) + c;
+        addNormalMapGradient(i, delta / (2.0 * uEpsilonNormalMap) *
+                                    perturbationSign(i, uCounter, uSeed ^ SUBDFIT_SEED_NORMAL_MAP));
+    }
+#endif
+}
+
+void addMapGradients(ivec2 pixel, int fp, int fm, float delta) {
+    ivec4 plusNodes = ivec4(-1);
+    if (fp >= 0) {
+        plusNodes = mapFootprint(fp, texelFetch(uvPlus, pixel, 0).rg).nodes;
+        for (int k = 0; k < 4; ++k) {
+            bool repeated = false;  // nodes are shared along cell and tile borders
+            for (int j = 0; j < k; ++j) repeated = repeated || plusNodes[j] == plusNodes[k];
+            if (!repeated) addMapNode(plusNodes[k], delta);
+        }
+    }
+    if (fm >= 0) {
+        ivec4 minusNodes = mapFootprint(fm, texelFetch(uvMinus, pixel, 0).rg).nodes;
+        for (int k = 0; k < 4; ++k) {
+            bool repeated = any(equal(plusNodes, ivec4(minusNodes[k])));
+            for (int j = 0; j < k; ++j) repeated = repeated || minusNodes[j] == minusNodes[k];
+            if (!repeated) addMapNode(minusNodes[k], delta);
+        }
+    }
+}
+#endif
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -73,6 +127,9 @@ void main() {
             if (fp >= 0) addFaceVertices(fp, scaledDelta, -1);
             if (fm >= 0) addFaceVertices(fm, scaledDelta, fp);
         }
+#ifdef SUBDFIT_MAPS
+        addMapGradients(pixel, fp, fm, delta);
+#endif
     }
     // The loss goes to one of 256 slots by lane: a single float taking every pixel would
     // serialise, and a shared-memory reduction costs llvmpipe more in barriers than it saves.

@@ -1,8 +1,13 @@
 #include "bindings.h"
 #include "shading.glsl"
+#ifdef SUBDFIT_NORMAL_MAP
+#include "maps.glsl"
+#endif
 
 in vec3 teWorldPosition;
 in vec3 teWorldNormal;
+in vec3 teTangentU;
+in vec3 teTangentV;
 flat in int tePtexFace;
 in vec2 tePtexUv;
 
@@ -10,11 +15,33 @@ layout(location = SUBDFIT_ATTACHMENT_COLOR) out vec4 outColor;
 layout(location = SUBDFIT_ATTACHMENT_FACE_ID) out int outFaceId;
 layout(location = SUBDFIT_ATTACHMENT_PATCH_UV) out vec2 outPatchUv;
 
+#ifdef SUBDFIT_NORMAL_MAP
+layout(std430, binding = SUBDFIT_SSBO_NORMAL_MAP) readonly buffer NormalMap { float normalMap[]; };
+
+// Tangent-space normal n_ts = normalize(x, y, 1) in the frame (T, B, N): T along ∂P/∂u made
+// orthogonal to N, B = N × T (flipped to agree with ∂P/∂v) -- the frame the exported glTF's
+// TANGENT attribute carries.
+vec3 mappedNormal(vec3 N) {
+    MapFootprint m = mapFootprint(tePtexFace, tePtexUv);
+    vec2 t = vec2(0.0);
+    for (int k = 0; k < 4; ++k) t += m.weights[k] * vec2(normalMap[2 * m.nodes[k]], normalMap[2 * m.nodes[k] + 1]);
+    vec3 T = teTangentU - N * dot(N, teTangentU);
+    if (dot(T, T) < 1e-20) return N;
+    T = normalize(T);
+    vec3 B = cross(N, T);
+    if (dot(B, teTangentV) < 0.0) B = -B;
+    return normalize(t.x * T + t.y * B + N);
+}
+#endif
+
 uniform mat4 uView;
 uniform vec3 uEye;
 
 void main() {
     vec3 n = normalize(teWorldNormal);
+#ifdef SUBDFIT_NORMAL_MAP
+    n = mappedNormal(n);
+#endif
     if (dot(n, uEye - teWorldPosition) < 0.0) n = -n;  // open surfaces are seen from both sides
     outColor = vec4(shadeLambert(normalize(mat3(uView) * n)), 1.0);
     outFaceId = tePtexFace;

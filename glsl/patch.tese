@@ -1,5 +1,8 @@
 #include "bindings.h"
 #include "osd_patch_basis"
+#ifdef SUBDFIT_DISPLACEMENT
+#include "maps.glsl"
+#endif
 
 layout(quads, equal_spacing, ccw) in;
 
@@ -7,12 +10,17 @@ flat in int tcPatch[];
 
 out vec3 teWorldPosition;
 out vec3 teWorldNormal;
+out vec3 teTangentU;  // ∂P/∂u and ∂P/∂v of the ptex face: the normal map's tangent frame
+out vec3 teTangentV;
 flat out int tePtexFace;
 out vec2 tePtexUv;
 
 layout(std430, binding = SUBDFIT_SSBO_POINTS) readonly buffer Points { float points[]; };
 layout(std430, binding = SUBDFIT_SSBO_PATCH_INFO) readonly buffer PatchInfo { ivec4 patchInfo[]; };
 layout(std430, binding = SUBDFIT_SSBO_PATCH_CVS) readonly buffer PatchCvs { int patchCvs[]; };
+#ifdef SUBDFIT_DISPLACEMENT
+layout(std430, binding = SUBDFIT_SSBO_DISPLACEMENT) readonly buffer Displacement { float displacement[]; };
+#endif
 
 uniform mat4 uViewProjection;
 
@@ -42,19 +50,40 @@ void main() {
 
     vec3 P, dPds, dPdt;
     evaluatePatch(info, param, st, P, dPds, dPdt);
-    vec3 N = cross(dPds, dPdt);
-    if (dot(N, N) < 1e-24) {
-        // The tangents vanish at some extraordinary corners: take the normal a hair inside.
-        vec3 Q, dQds, dQdt;
-        evaluatePatch(info, param, mix(st, vec2(0.5), 1e-3), Q, dQds, dQdt);
-        N = cross(dQds, dQdt);
+    if (dot(cross(dPds, dPdt), cross(dPds, dPdt)) < 1e-24) {
+        // The tangents vanish at some extraordinary corners: take them a hair inside.
+        vec3 Q;
+        evaluatePatch(info, param, mix(st, vec2(0.5), 1e-3), Q, dPds, dPdt);
     }
-    teWorldNormal = dot(N, N) > 0.0 ? normalize(N) : vec3(0.0, 0.0, 1.0);
-    teWorldPosition = P;
+    // Patch-local derivatives -> ptex-face derivatives (a depth-d patch spans 1/2^d of the face).
+    float fraction = OsdPatchParamGetParamFraction(param);
+    vec3 dPdu = dPds / fraction, dPdv = dPdt / fraction;
+    vec3 N = cross(dPdu, dPdv);
+    vec3 unitN = dot(N, N) > 0.0 ? normalize(N) : vec3(0.0, 0.0, 1.0);
 
     float uv[2] = float[2](st.x, st.y);
     OsdPatchParamUnnormalize(param, uv);
     tePtexUv = vec2(uv[0], uv[1]);
     tePtexFace = OsdPatchParamGetFaceId(param);
+
+#ifdef SUBDFIT_DISPLACEMENT
+    // P' = P + d(u,v) N̂. Shading normal of the displaced surface to first order:
+    // ∂P'/∂u ≈ ∂P/∂u + (∂d/∂u) N̂ (the d ∂N̂/∂u term is dropped: d is small against curvature).
+    MapFootprint m = mapFootprint(tePtexFace, tePtexUv);
+    vec4 d = vec4(displacement[m.nodes.x], displacement[m.nodes.y], displacement[m.nodes.z], displacement[m.nodes.w]);
+    float height = dot(m.weights, d);
+    float n = float(uMapResolution);
+    float dddu = n * mix(d.y - d.x, d.w - d.z, m.fraction.y);
+    float dddv = n * mix(d.z - d.x, d.w - d.y, m.fraction.x);
+    P += height * unitN;
+    dPdu += dddu * unitN;
+    dPdv += dddv * unitN;
+    N = cross(dPdu, dPdv);
+    unitN = dot(N, N) > 0.0 ? normalize(N) : unitN;
+#endif
+    teWorldNormal = unitN;
+    teTangentU = dPdu;
+    teTangentV = dPdv;
+    teWorldPosition = P;
     gl_Position = uViewProjection * vec4(P, 1.0);
 }

@@ -24,6 +24,10 @@ sge::Adjacency uploadAdjacency(const mesh::PolygonMesh& cage) {
             cage.vertexCount()};
 }
 
+int tessLevelFor(const CageFitSettings& s) {
+    return s.mapEffects.any() ? std::max(s.tessLevel, s.maps.resolution) : s.tessLevel;
+}
+
 }  // namespace
 
 CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const CageFitSettings& settings)
@@ -31,8 +35,10 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
       settings_(settings),
       patches_(subdiv::buildPatchSet(cage)),
       stencils_(patches_),
-      renderer_(patches_, settings.tessLevel),
+      renderer_(patches_, tessLevelFor(settings)),
       vertices_("vertices", flatten(cage.positions), settings.vertices),
+      maps_(settings.mapEffects.any() ? std::make_unique<maps::MapParameters>(cage, settings.mapEffects, settings.maps)
+                                      : nullptr),
       faceVertices_(patches_.faceVertexOffsets, patches_.faceVertexIndices, cage.vertexCount()),
       adjacency_(uploadAdjacency(cage)),
       pointsPlus_(stencils_.makePointBuffer()),
@@ -42,6 +48,13 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
       plus_(settings.resolution, settings.resolution),
       minus_(settings.resolution, settings.resolution) {}
 
+std::vector<sge::ParameterGroup*> CageFitter::groups() {
+    std::vector<sge::ParameterGroup*> out{&vertices_};
+    if (maps_)
+        for (auto* group : maps_->groups()) out.push_back(group);
+    return out;
+}
+
 void CageFitter::step(const scene::TargetSet& targets, std::span<const int> views, bool measureLoss) {
     accumulate(targets, views, measureLoss);
     update();
@@ -50,17 +63,17 @@ void CageFitter::step(const scene::TargetSet& targets, std::span<const int> view
 void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int> views, bool measureLoss) {
     // A distinct counter per sample keeps every sample's signs independent; the seed separates runs.
     const std::uint32_t counter = samples_++;
-    sge::perturb(programs_, vertices_, counter, settings_.seed);
+    for (auto* group : groups()) sge::perturb(programs_, *group, counter, settings_.seed);
     stencils_.evaluate(programs_, vertices_.thetaPlus, pointsPlus_);
     stencils_.evaluate(programs_, vertices_.thetaMinus, pointsMinus_);
     const float pixels = float(settings_.resolution) * float(settings_.resolution);
     for (int view : views) {
         const auto& camera = targets.camera(view);
-        renderer_.draw(programs_, pointsPlus_, camera, plus_);
-        renderer_.draw(programs_, pointsMinus_, camera, minus_);
+        renderer_.draw(programs_, pointsPlus_, camera, plus_, maps_.get(), maps::ParameterVersion::Plus);
+        renderer_.draw(programs_, pointsMinus_, camera, minus_, maps_.get(), maps::ParameterVersion::Minus);
         sge::accumulateGradient(programs_, vertices_, faceVertices_,
                                 {&plus_, &minus_, targets.colors().id(), view, counter, settings_.seed,
-                                 1.0f / (pixels * float(views.size())), measureLoss},
+                                 1.0f / (pixels * float(views.size())), measureLoss, maps_.get()},
                                 loss_);
     }
     sge::scatterFaceDeltas(programs_, vertices_, faceVertices_, counter, settings_.seed);
@@ -68,14 +81,24 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
 }
 
 void CageFitter::update() {
-    if (settings_.plannedSteps > 0) {
-        // Exponential annealing to a tenth: large moves first, then settle within the noise.
-        const float progress = std::min(1.0f, float(steps_) / float(settings_.plannedSteps));
-        vertices_.settings().learningRate = settings_.vertices.learningRate * std::pow(0.1f, progress);
+    // Exponential annealing to a tenth: large moves first, then settle within the noise.
+    const float decay = settings_.plannedSteps > 0
+                            ? std::pow(0.1f, std::min(1.0f, float(steps_) / float(settings_.plannedSteps)))
+                            : 1.0f;
+    vertices_.settings().learningRate = settings_.vertices.learningRate * decay;
+    sge::precondition(programs_, vertices_, adjacency_, settings_.smoothingLambda, settings_.smoothingIterations,
+                      smoothScratch_);
+    sge::adamStep(programs_, vertices_, vertices_.gradientSmooth);
+    if (maps_) {
+        if (auto* g = maps_->displacement()) {
+            g->settings().learningRate = settings_.maps.displacement.learningRate * decay;
+            sge::adamStep(programs_, *g, g->gradient);
+        }
+        if (auto* g = maps_->normalMap()) {
+            g->settings().learningRate = settings_.maps.normalMap.learningRate * decay;
+            sge::adamStep(programs_, *g, g->gradient);
+        }
     }
-    sge::precondition(programs_, vertices_, adjacency_, settings_.smoothingLambda,
-                      settings_.smoothingIterations, smoothScratch_);
-    sge::adamStep(programs_, vertices_);
     ++steps_;
 }
 
@@ -106,28 +129,38 @@ void CageFitter::setVertices(const std::vector<glm::vec3>& positions) {
     vertices_.theta.upload(values.data(), GLsizeiptr(values.size() * sizeof(float)));
 }
 
-CageFitter::State CageFitter::state() const {
-    return {steps_, samples_, vertices_.adamSteps, vertices_.theta.read<float>(), vertices_.moment1.read<float>(),
-            vertices_.moment2.read<float>()};
+CageFitter::State CageFitter::state() {
+    State state{steps_, samples_, {}};
+    for (auto* g : groups())
+        state.groups.push_back({g->theta.read<float>(), g->moment1.read<float>(), g->moment2.read<float>(), g->adamSteps});
+    return state;
 }
 
 void CageFitter::restore(const State& state) {
-    const size_t count = size_t(vertices_.count());
-    if (state.theta.size() != count || state.moment1.size() != count || state.moment2.size() != count)
-        throw Error("checkpoint holds " + std::to_string(state.theta.size()) + " vertex parameters, the cage has " +
-                    std::to_string(count));
-    const auto bytes = GLsizeiptr(count * sizeof(float));
-    vertices_.theta.upload(state.theta.data(), bytes);
-    vertices_.moment1.upload(state.moment1.data(), bytes);
-    vertices_.moment2.upload(state.moment2.data(), bytes);
-    vertices_.adamSteps = state.adamSteps;
+    auto all = groups();
+    if (state.groups.size() != all.size())
+        throw Error("checkpoint holds " + std::to_string(state.groups.size()) + " parameter groups, the scene has " +
+                    std::to_string(all.size()));
+    for (size_t k = 0; k < all.size(); ++k) {
+        auto& g = *all[k];
+        const auto& saved = state.groups[k];
+        const size_t count = size_t(g.count());
+        if (saved.theta.size() != count || saved.moment1.size() != count || saved.moment2.size() != count)
+            throw Error("checkpoint group '" + g.name() + "' holds " + std::to_string(saved.theta.size()) +
+                        " parameters, the scene has " + std::to_string(count));
+        const auto bytes = GLsizeiptr(count * sizeof(float));
+        g.theta.upload(saved.theta.data(), bytes);
+        g.moment1.upload(saved.moment1.data(), bytes);
+        g.moment2.upload(saved.moment2.data(), bytes);
+        g.adamSteps = saved.adamSteps;
+    }
     steps_ = state.steps;
     samples_ = state.samples;
 }
 
 void CageFitter::render(const render::Camera& camera, const render::RenderTarget& target) {
     stencils_.evaluate(programs_, vertices_.theta, pointsPlus_);
-    renderer_.draw(programs_, pointsPlus_, camera, target);
+    renderer_.draw(programs_, pointsPlus_, camera, target, maps_.get(), maps::ParameterVersion::Current);
 }
 
 }  // namespace subdfit::fit

@@ -1,12 +1,15 @@
 #pragma once
-// Fits the control vertices of one Catmull-Clark cage to a TargetSet with per-pixel SGE.
-// One step: P (θ±), stencils(θ±), then per view R(θ+), R(θ−), G; then precondition and Adam.
-// Everything stays on the GPU; only takeMeanLoss() and vertices() read back.
+// Fits a Catmull-Clark cage (its control vertices, and the displacement / normal maps when the
+// scene has them) to a TargetSet with per-pixel SGE. One step: P (θ± of every group),
+// stencils(θ±), then per view R(θ+), R(θ−), G; then the vertex preconditioner and Adam per group.
+// Everything stays on the GPU; only takeMeanLoss(), state() and the readers read back.
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "gl/program_cache.h"
+#include "maps/map_parameters.h"
 #include "mesh/polygon_mesh.h"
 #include "render/patch_renderer.h"
 #include "render/stencil_evaluator.h"
@@ -18,12 +21,14 @@ namespace subdfit::fit {
 
 struct CageFitSettings {
     sge::GroupSettings vertices{.sharedMoment = true};
-    float smoothingLambda = 4.0f;   // λ of the (I + λL)⁻¹ gradient preconditioner
-    int smoothingIterations = 8;    // Jacobi sweeps approximating that inverse
-    int plannedSteps = 0;           // > 0: anneal the learning rate ×0.1 over this many steps
-    int tessLevel = 8;              // segments per base-face edge
+    float smoothingLambda = 4.0f;   // λ of the (I + λL)⁻¹ vertex-gradient preconditioner
+    int smoothingIterations = 8;    // damped Jacobi sweeps approximating that inverse
+    int plannedSteps = 0;           // > 0: anneal every learning rate ×0.1 over this many steps
+    int tessLevel = 8;              // segments per base-face edge (at least the map resolution)
     int resolution = 256;
     std::uint32_t seed = 1;
+    maps::MapEffects mapEffects{};  // which texel groups exist at all
+    maps::MapSettings maps{};
 };
 
 class CageFitter {
@@ -35,12 +40,12 @@ public:
     // With `measureLoss`, the step's mean loss is added to what takeMeanLoss() reports.
     void step(const scene::TargetSet& targets, std::span<const int> views, bool measureLoss = true);
 
-    // The two halves of a step. accumulate() adds one SGE sample (fresh signs) to the gradient;
-    // update() preconditions it, applies Adam and clears it.
+    // The two halves of a step. accumulate() adds one SGE sample (fresh signs) to the gradients;
+    // update() preconditions the vertex gradient, applies Adam to every group and clears them.
     void accumulate(const scene::TargetSet& targets, std::span<const int> views, bool measureLoss = true);
     void update();
 
-    // The raw accumulated gradient (for tests and benchmarks), then cleared.
+    // The raw accumulated vertex gradient (for tests and benchmarks), then cleared.
     std::vector<float> takeGradient();
 
     // Mean per-pixel loss over the measured samples since the last call (one readback).
@@ -49,24 +54,29 @@ public:
     std::vector<glm::vec3> vertices() const;
     void setVertices(const std::vector<glm::vec3>& positions);
     int stepsTaken() const { return steps_; }
-    int parameterCount() const { return vertices_.count(); }
     const subdiv::PatchSet& patches() const { return patches_; }
     const render::PatchRenderer& renderer() const { return renderer_; }
+    sge::ParameterGroup& vertexGroup() { return vertices_; }
+    // Null when the scene has no maps.
+    maps::MapParameters* maps() { return maps_.get(); }
+    // Every optimised group, vertices first.
+    std::vector<sge::ParameterGroup*> groups();
 
-    // Renders the current (unperturbed) cage.
+    // Renders the current (unperturbed) scene.
     void render(const render::Camera& camera, const render::RenderTarget& target);
 
-    sge::GroupSettings& vertexSettings() { return vertices_.settings(); }
-
     // Everything a resumed run needs to continue exactly where this one stopped.
+    struct GroupState {
+        std::vector<float> theta, moment1, moment2;
+        int adamSteps = 0;
+    };
     struct State {
         int steps = 0;
         std::uint32_t samples = 0;
-        int adamSteps = 0;
-        std::vector<float> theta, moment1, moment2;
+        std::vector<GroupState> groups;  // in groups() order
     };
-    State state() const;
-    void restore(const State& state);  // throws subdfit::Error if it does not fit this cage
+    State state();
+    void restore(const State& state);  // throws subdfit::Error if it does not fit this scene
 
 private:
     gl::ProgramCache& programs_;
@@ -75,6 +85,7 @@ private:
     render::StencilEvaluator stencils_;
     render::PatchRenderer renderer_;
     sge::ParameterGroup vertices_;
+    std::unique_ptr<maps::MapParameters> maps_;
     sge::FaceVertexTable faceVertices_;
     sge::Adjacency adjacency_;
     gl::Buffer pointsPlus_, pointsMinus_, smoothScratch_, loss_;

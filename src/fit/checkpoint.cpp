@@ -9,7 +9,7 @@
 namespace subdfit::fit {
 namespace {
 
-constexpr char kMagic[8] = {'S', 'D', 'F', 'T', 'C', 'K', 'P', '1'};
+constexpr char kMagic[8] = {'S', 'D', 'F', 'T', 'C', 'K', 'P', '2'};
 
 template <class T>
 void put(std::ostream& out, const T& value) {
@@ -47,10 +47,13 @@ void writeCheckpoint(const std::filesystem::path& path, const std::string& finge
         out.write(fingerprint.data(), std::streamsize(fingerprint.size()));
         put<std::int32_t>(out, state.steps);
         put<std::uint32_t>(out, state.samples);
-        put<std::int32_t>(out, state.adamSteps);
-        putFloats(out, state.theta);
-        putFloats(out, state.moment1);
-        putFloats(out, state.moment2);
+        put<std::uint32_t>(out, std::uint32_t(state.groups.size()));
+        for (const auto& group : state.groups) {
+            put<std::int32_t>(out, group.adamSteps);
+            putFloats(out, group.theta);
+            putFloats(out, group.moment1);
+            putFloats(out, group.moment2);
+        }
         out.close();
         if (!out) throw fileError(path.string(), "could not write checkpoint");
     });
@@ -71,12 +74,18 @@ std::optional<CageFitter::State> readCheckpoint(const std::filesystem::path& pat
     CageFitter::State state;
     state.steps = get<std::int32_t>(in);
     state.samples = get<std::uint32_t>(in);
-    state.adamSteps = get<std::int32_t>(in);
+    const auto groups = get<std::uint32_t>(in);
+    if (!in || state.steps < 0 || groups > 16) throw fileError(path.string(), "damaged checkpoint");
     const std::uint64_t limit = std::uint64_t(1) << 32;
-    state.theta = getFloats(in, limit);
-    state.moment1 = getFloats(in, limit);
-    state.moment2 = getFloats(in, limit);
-    if (!in || state.steps < 0) throw fileError(path.string(), "truncated checkpoint");
+    for (std::uint32_t k = 0; k < groups; ++k) {
+        CageFitter::GroupState group;
+        group.adamSteps = get<std::int32_t>(in);
+        group.theta = getFloats(in, limit);
+        group.moment1 = getFloats(in, limit);
+        group.moment2 = getFloats(in, limit);
+        state.groups.push_back(std::move(group));
+    }
+    if (!in) throw fileError(path.string(), "truncated checkpoint");
     return state;
 }
 

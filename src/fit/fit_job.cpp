@@ -81,8 +81,21 @@ std::string fingerprint(const FitOptions& o, const mesh::PolygonMesh& cage, cons
     return nlohmann::json{{"inputs", hash}, {"views", o.views}, {"holdout_views", o.holdoutViews},
                           {"resolution", o.resolution}, {"views_per_step", o.viewsPerStep}, {"tess", o.tessLevel},
                           {"seed", o.seed}, {"epsilon", o.epsilon}, {"lr", o.learningRate},
-                          {"smoothing", o.smoothing}}
+                          {"smoothing", o.smoothing}, {"maps", o.maps}, {"map_res", o.mapResolution}}
         .dump();
+}
+
+nlohmann::json effectsJson(const maps::MapEffects& effects) {
+    auto list = nlohmann::json::array({"subdivision"});
+    if (effects.displacement) list.push_back("displacement");
+    if (effects.normalMap) list.push_back("normal_map");
+    return list;
+}
+
+nlohmann::json parametersJson(CageFitter& fitter) {
+    nlohmann::json counts = nlohmann::json::object();
+    for (auto* group : fitter.groups()) counts[group->name()] = group->count();
+    return counts;
 }
 
 nlohmann::json variantsJson(const gl::ProgramCache& programs) {
@@ -111,6 +124,8 @@ void validate(const FitOptions& o) {
     require(std::isfinite(o.smoothing) && o.smoothing >= 0.0f, "--smoothing must be >= 0");
     require(!o.out.empty(), "--out is required");
     require(o.checkpointEvery >= 1, "checkpoint interval must be >= 1 step");
+    require(o.mapResolution >= 1 && o.mapResolution <= 64, "--map-res must be in 1..64, got " + std::to_string(o.mapResolution));
+    maps::parseMapEffects(o.maps);
     if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out))
         throw fileError(o.out.string(), "exists and is not a folder");
 }
@@ -147,6 +162,8 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
     settings.resolution = o.resolution;
     settings.seed = o.seed;
     settings.plannedSteps = o.steps;
+    settings.mapEffects = maps::parseMapEffects(o.maps);
+    settings.maps.resolution = o.mapResolution;
     CageFitter fitter(programs, cage, settings);
 
     render::RenderTarget image(o.resolution, o.resolution);
@@ -207,8 +224,8 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
         {"psnr_holdout_initial", holdoutBefore.psnr},
         {"psnr_holdout", holdoutAfter.psnr},
         {"finite", finite},
-        {"effects", {"subdivision"}},
-        {"parameters", {{"vertices", fitter.parameterCount()}}},
+        {"effects", effectsJson(settings.mapEffects)},
+        {"parameters", parametersJson(fitter)},
         {"renderer", glInfo.renderer},
         {"gl_version", glInfo.version},
         {"gl_provider", context->providerName()},
@@ -218,7 +235,7 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
          {{"views", o.views}, {"holdout_views", o.holdoutViews}, {"resolution", o.resolution},
           {"views_per_step", o.viewsPerStep}, {"tess_level", fitter.renderer().tessLevel()},
           {"seed", o.seed}, {"epsilon", o.epsilon}, {"learning_rate", o.learningRate},
-          {"smoothing", o.smoothing}}},
+          {"smoothing", o.smoothing}, {"maps", o.maps}, {"map_resolution", o.mapResolution}}},
         {"cage", {{"path", o.cage.string()}, {"vertices", cage.vertexCount()}, {"faces", cage.faceCount()},
                   {"patches", fitter.renderer().patchCount()}}},
         {"reference", {{"path", o.reference.string()}, {"triangles", reference.faceCount()}}},

@@ -24,6 +24,9 @@ struct FitOptions {
     float learningRate = 0.004f;  // Adam step, same units; annealed ×0.1 over the run
     float smoothing = 4.0f;       // λ of the Laplacian preconditioner (0: off)
     std::string glProvider = "auto";
+    std::string maps = "none";    // none | displacement | normal | displacement,normal
+    int mapResolution = 8;        // cells per ptex-face edge of each map tile
+    bool draco = false;           // fitted.glb with KHR_draco_mesh_compression
     bool resume = false;          // continue from out/checkpoint.bin when it exists
     int checkpointEvery = 100;    // steps between checkpoints (also written on interrupt and at the end)
 };

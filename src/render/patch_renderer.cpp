@@ -27,14 +27,21 @@ PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel)
 }
 
 void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera,
-                         const RenderTarget& target) const {
-    const auto& program = programs.get("patch_raster", {{GL_VERTEX_SHADER, "patch.vert"},
-                                                        {GL_TESS_CONTROL_SHADER, "patch.tesc"},
-                                                        {GL_TESS_EVALUATION_SHADER, "patch.tese"},
-                                                        {GL_FRAGMENT_SHADER, "patch.frag"}});
+                         const RenderTarget& target, const maps::MapParameters* maps,
+                         maps::ParameterVersion version) const {
+    const auto& program = programs.get("patch_raster",
+                                       {{GL_VERTEX_SHADER, "patch.vert"},
+                                        {GL_TESS_CONTROL_SHADER, "patch.tesc"},
+                                        {GL_TESS_EVALUATION_SHADER, "patch.tese"},
+                                        {GL_FRAGMENT_SHADER, "patch.frag"}},
+                                       maps ? maps->defines() : gl::Defines{});
     beginRasterPass(program, camera, target);
     program.set("uTessLevel", float(tessLevel_));
     points.bindStorage(SUBDFIT_SSBO_POINTS);
+    if (maps && maps->effects().any()) {
+        program.set("uMapResolution", maps->layout().resolution);
+        maps->bindForRaster(version);
+    }
     patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);
     patchCvs_.bindStorage(SUBDFIT_SSBO_PATCH_CVS);
     glBindVertexArray(vertexArray_.id());

@@ -3,6 +3,7 @@
 // control points come from an SSBO of evaluated points. Writes colour, ptex face id and (u,v).
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
+#include "maps/map_parameters.h"
 #include "render/camera.h"
 #include "render/render_target.h"
 #include "subdiv/patch_set.h"
@@ -12,14 +13,17 @@ namespace subdfit::render {
 class PatchRenderer {
 public:
     // `tessLevel`: segments per base-face edge, raised to a power of two that keeps adaptive
-    // patches of every depth crack-free.
+    // patches of every depth crack-free (callers with maps ask for at least the map resolution,
+    // so that the detail of the maps is actually rasterised).
     PatchRenderer(const subdiv::PatchSet& patches, int tessLevel);
 
     int tessLevel() const { return tessLevel_; }
     int patchCount() const { return patchCount_; }
 
-    void draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera,
-              const RenderTarget& target) const;
+    // With `maps`, the variant with their effects, reading the given version of their θ.
+    void draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera, const RenderTarget& target,
+              const maps::MapParameters* maps = nullptr,
+              maps::ParameterVersion version = maps::ParameterVersion::Current) const;
 
 private:
     int patchCount_, tessLevel_;

@@ -2,7 +2,8 @@
 
 namespace subdfit::sge {
 
-ParameterGroup::ParameterGroup(std::string name, const std::vector<float>& initial, GroupSettings settings)
+ParameterGroup::ParameterGroup(std::string name, const std::vector<float>& initial, GroupSettings settings,
+                               std::uint32_t seedSalt)
     : theta(gl::Buffer::fromVector(initial)),
       thetaPlus(theta.bytes()),
       thetaMinus(theta.bytes()),
@@ -12,6 +13,7 @@ ParameterGroup::ParameterGroup(std::string name, const std::vector<float>& initi
       moment2(theta.bytes()),
       name_(std::move(name)),
       count_(int(initial.size())),
-      settings_(settings) {}
+      settings_(settings),
+      seedSalt_(seedSalt) {}
 
 }  // namespace subdfit::sge

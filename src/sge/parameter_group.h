@@ -2,6 +2,7 @@
 // One group of optimised parameters living on the GPU (e.g. the cage's control vertices):
 // θ, the perturbed θ±, the gradient accumulator and Adam's moments, with the group's own ε
 // and learning rate. Groups the scene does not optimise are never created.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -21,9 +22,12 @@ struct GroupSettings {
 
 class ParameterGroup {
 public:
-    ParameterGroup(std::string name, const std::vector<float>& initial, GroupSettings settings);
+    // `seedSalt` (SUBDFIT_SEED_* in bindings.h) gives each group its own stream of signs.
+    ParameterGroup(std::string name, const std::vector<float>& initial, GroupSettings settings,
+                   std::uint32_t seedSalt = 0);
 
     const std::string& name() const { return name_; }
+    std::uint32_t seedSalt() const { return seedSalt_; }
     int count() const { return count_; }
     const GroupSettings& settings() const { return settings_; }
     GroupSettings& settings() { return settings_; }
@@ -37,6 +41,7 @@ private:
     std::string name_;
     int count_;
     GroupSettings settings_;
+    std::uint32_t seedSalt_;
 };
 
 }  // namespace subdfit::sge

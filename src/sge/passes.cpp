@@ -42,7 +42,7 @@ void perturb(gl::ProgramCache& programs, ParameterGroup& group, std::uint32_t co
     program.use();
     program.set("uCount", unsigned(group.count()));
     program.set("uCounter", counter);
-    program.set("uSeed", seed);
+    program.set("uSeed", seed ^ group.seedSalt());
     program.set("uEpsilon", group.settings().epsilon);
     group.theta.bindStorage(SUBDFIT_SSBO_THETA);
     group.thetaPlus.bindStorage(SUBDFIT_SSBO_THETA_PLUS);
@@ -53,7 +53,8 @@ void perturb(gl::ProgramCache& programs, ParameterGroup& group, std::uint32_t co
 
 void accumulateGradient(gl::ProgramCache& programs, ParameterGroup& group, const FaceVertexTable& faces,
                         const GradientInputs& in, const gl::Buffer& loss) {
-    const auto& program = programs.get("gradient", {{GL_COMPUTE_SHADER, "gradient.comp"}});
+    const gl::Defines effects = in.maps ? in.maps->defines() : gl::Defines{};
+    const auto& program = programs.get("gradient", {{GL_COMPUTE_SHADER, "gradient.comp"}}, effects);
     program.use();
     program.set("uTargetLayer", in.targetLayer);
     program.set("uCounter", in.counter);
@@ -71,6 +72,14 @@ void accumulateGradient(gl::ProgramCache& programs, ParameterGroup& group, const
     group.gradient.bindStorage(SUBDFIT_SSBO_GRADIENT);
     loss.bindStorage(SUBDFIT_SSBO_LOSS);
     faces.faceDelta.bindStorage(SUBDFIT_SSBO_FACE_DELTA);
+    if (!effects.empty()) {
+        program.set("uMapResolution", in.maps->layout().resolution);
+        if (auto* g = in.maps->displacement()) program.set("uEpsilonDisplacement", g->settings().epsilon);
+        if (auto* g = in.maps->normalMap()) program.set("uEpsilonNormalMap", g->settings().epsilon);
+        glBindTextureUnit(SUBDFIT_UNIT_UV_PLUS, in.plus->patchUv().id());
+        glBindTextureUnit(SUBDFIT_UNIT_UV_MINUS, in.minus->patchUv().id());
+        in.maps->bindForGradient();
+    }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     glDispatchCompute(groupsOf(in.plus->width(), 16), groupsOf(in.plus->height(), 16), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -119,7 +128,7 @@ void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjac
     }
 }
 
-void adamStep(gl::ProgramCache& programs, ParameterGroup& group) {
+void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffer& gradient) {
     const auto& s = group.settings();
     ++group.adamSteps;
     gl::Defines defines;
@@ -129,7 +138,7 @@ void adamStep(gl::ProgramCache& programs, ParameterGroup& group) {
         reduce.use();
         reduce.set("uCount", unsigned(group.count()));
         reduce.set("uBeta2", s.beta2);
-        group.gradientSmooth.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
+        gradient.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
         group.moment2.bindStorage(SUBDFIT_SSBO_MOMENT2);
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -144,7 +153,7 @@ void adamStep(gl::ProgramCache& programs, ParameterGroup& group) {
     program.set("uBiasCorrection2", 1.0f - std::pow(s.beta2, float(group.adamSteps)));
     program.set("uAdamEpsilon", 1e-12f);
     group.theta.bindStorage(SUBDFIT_SSBO_THETA);
-    group.gradientSmooth.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
+    gradient.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
     group.moment1.bindStorage(SUBDFIT_SSBO_MOMENT1);
     group.moment2.bindStorage(SUBDFIT_SSBO_MOMENT2);
     glDispatchCompute(groupsOf(group.count(), 256), 1, 1);

@@ -7,6 +7,7 @@
 
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
+#include "maps/map_parameters.h"
 #include "render/render_target.h"
 #include "sge/parameter_group.h"
 
@@ -32,6 +33,7 @@ struct GradientInputs {
     std::uint32_t counter, seed;
     float lossScale;     // weight of each pixel's loss in the reported mean
     bool measureLoss;    // also accumulate the loss (costs a target fetch on background pixels)
+    maps::MapParameters* maps = nullptr;  // texel groups to credit too, when the scene has them
 };
 
 // G: accumulates Δ_p / (2 s_i ε) into group.gradient (directly where the ± faces differ, via
@@ -53,7 +55,8 @@ struct Adjacency {
 void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency,
                   float lambda, int iterations, gl::Buffer& scratch);
 
-// Adam on θ from group.gradientSmooth; then clears the raw gradient for the next step.
-void adamStep(gl::ProgramCache& programs, ParameterGroup& group);
+// Adam on θ from `gradient` (group.gradient, or group.gradientSmooth after preconditioning);
+// then clears the raw gradient for the next step.
+void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffer& gradient);
 
 }  // namespace subdfit::sge

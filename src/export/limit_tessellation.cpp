@@ -1,0 +1,169 @@
+#include "export/limit_tessellation.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <span>
+
+#include "export/map_atlas.h"
+#include "subdiv/limit_evaluator.h"
+#include "util/error.h"
+
+namespace subdfit::exporter {
+namespace {
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// A usable direction: finite and not lost in rounding relative to the vectors it came from.
+bool usable(const glm::vec3& v, float scale) {
+    const float length = glm::length(v);
+    return finite(v) && length > 1e-30f && length > 1e-7f * scale;
+}
+
+glm::vec3 anyPerpendicular(const glm::vec3& n) {
+    const glm::vec3 axis = std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    return glm::normalize(glm::cross(n, axis));
+}
+
+struct SurfacePoint {
+    glm::vec3 position, dPdu, dPdv;
+    glm::vec3 normal;  // unit, along cross(dPdu, dPdv)
+};
+
+class DisplacedSurface {
+public:
+    DisplacedSurface(const mesh::PolygonMesh& cage, const FittedMaps& maps)
+        : cage_(cage), maps_(maps), evaluator_(cage) {
+        SUBDFIT_CHECK(maps.layout.ptexFaceCount == evaluator_.ptexFaceCount());
+        SUBDFIT_CHECK(maps.displacement.empty() || maps.displacement.size() == size_t(maps.layout.nodeCount));
+    }
+
+    int ptexFaceCount() const { return evaluator_.ptexFaceCount(); }
+    bool hasSurface(int face) const { return evaluator_.hasSurface(face, 0.5f, 0.5f); }
+
+    // The limit point with a unit normal everywhere. Where cross(dPdu, dPdv) vanishes (the
+    // ptex parametrisation can collapse at a corner; a degenerate cage face collapses whole),
+    // the limit normal is still continuous, so a point nudged towards the face centre gives it.
+    SurfacePoint limitPoint(int face, float u, float v) const {
+        SurfacePoint point = evaluate(face, u, v);
+        const glm::vec3 n = glm::cross(point.dPdu, point.dPdv);
+        if (usable(n, glm::length(point.dPdu) * glm::length(point.dPdv))) {
+            point.normal = glm::normalize(n);
+            return point;
+        }
+        for (float step : {1e-4f, 1e-3f, 1e-2f, 1e-1f, 0.5f}) {
+            const SurfacePoint nudged = evaluate(face, u + (0.5f - u) * step, v + (0.5f - v) * step);
+            const glm::vec3 m = glm::cross(nudged.dPdu, nudged.dPdv);
+            if (usable(m, glm::length(nudged.dPdu) * glm::length(nudged.dPdv))) {
+                point.normal = glm::normalize(m);
+                return point;
+            }
+        }
+        point.normal = glm::vec3(0, 0, 1);  // a face with no area at all: any finite answer will do
+        return point;
+    }
+
+    float height(int face, float u, float v) const {
+        return maps_.hasDisplacement() ? maps::sampleBilinear(maps_.layout, maps_.displacement, 1, 0, face, u, v) : 0.0f;
+    }
+
+    // d(height)/du, d(height)/dv by central differences half a map cell wide: at a node that
+    // averages the slopes of the cells on either side (the bilinear map has a kink there);
+    // one-sided at the tile border.
+    glm::vec2 heightGradient(int face, float u, float v) const {
+        if (!maps_.hasDisplacement()) return glm::vec2(0.0f);
+        const float h = 0.5f / float(maps_.layout.resolution);
+        const float u0 = std::max(u - h, 0.0f), u1 = std::min(u + h, 1.0f);
+        const float v0 = std::max(v - h, 0.0f), v1 = std::min(v + h, 1.0f);
+        return {(height(face, u1, v) - height(face, u0, v)) / (u1 - u0),
+                (height(face, u, v1) - height(face, u, v0)) / (v1 - v0)};
+    }
+
+private:
+    SurfacePoint evaluate(int face, float u, float v) const {
+        const subdiv::LimitSample s = evaluator_.evaluate(face, u, v, cage_.positions);
+        return {s.position, s.dPdu, s.dPdv, glm::vec3(0.0f)};
+    }
+
+    const mesh::PolygonMesh& cage_;
+    const FittedMaps& maps_;
+    subdiv::LimitEvaluator evaluator_;
+};
+
+struct Vertex {
+    glm::vec3 position, normal;
+    glm::vec4 tangent;
+};
+
+Vertex displacedVertex(const DisplacedSurface& surface, int face, float u, float v) {
+    const SurfacePoint p = surface.limitPoint(face, u, v);
+    const float d = surface.height(face, u, v);
+    const glm::vec2 slope = surface.heightGradient(face, u, v);
+
+    // The displaced surface P + d·N has derivatives Pu + d_u·N + d·N_u; the curvature term
+    // d·N_u is dropped (it vanishes for flat patches and is small for the displacements a fit
+    // produces). Its dot with N is |Pu × Pv| > 0, so the normal never flips.
+    const glm::vec3 du = p.dPdu + slope.x * p.normal, dv = p.dPdv + slope.y * p.normal;
+    const glm::vec3 cross = glm::cross(du, dv);
+    const glm::vec3 normal = usable(cross, glm::length(du) * glm::length(dv)) ? glm::normalize(cross) : p.normal;
+
+    // Tangent along dP/du in the normal's plane; at a collapsed dP/du, cross(dP/dv, N) points the
+    // same way (for a right-handed frame), and failing both any perpendicular keeps it finite.
+    glm::vec3 tangent = p.dPdu - glm::dot(p.dPdu, normal) * normal;
+    const float scale = glm::length(p.dPdu) + glm::length(p.dPdv);
+    if (!usable(tangent, scale)) tangent = glm::cross(p.dPdv, normal);
+    tangent = usable(tangent, scale) ? glm::normalize(tangent) : anyPerpendicular(normal);
+    const float handedness = glm::dot(glm::cross(normal, tangent), p.dPdv) < 0.0f ? -1.0f : 1.0f;
+
+    return {p.position + d * p.normal, normal, glm::vec4(tangent, handedness)};
+}
+
+}  // namespace
+
+LimitTessellation tessellateLimitSurface(const mesh::PolygonMesh& cage, const FittedMaps& maps, int segments) {
+    if (segments < 1 || segments > 1024)
+        throw Error("invalid option: tessellation segments must be in 1..1024, got " + std::to_string(segments));
+    const DisplacedSurface surface(cage, maps);
+    const AtlasLayout atlas = atlasLayout(maps.layout);
+
+    std::vector<int> faces;
+    for (int face = 0; face < surface.ptexFaceCount(); ++face)
+        if (surface.hasSurface(face)) faces.push_back(face);
+    const size_t side = size_t(segments) + 1;
+    const size_t vertexCount = faces.size() * side * side;
+    if (vertexCount > size_t(std::numeric_limits<std::uint32_t>::max()))
+        throw Error("invalid option: " + std::to_string(segments) + " tessellation segments give " +
+                    std::to_string(vertexCount) + " vertices, more than 32-bit indices address");
+
+    LimitTessellation out;
+    out.positions.reserve(vertexCount);
+    out.normals.reserve(vertexCount);
+    out.tangents.reserve(vertexCount);
+    out.uvs.reserve(vertexCount);
+    out.indices.reserve(faces.size() * size_t(segments) * size_t(segments) * 6);
+    for (int face : faces) {
+        const auto base = std::uint32_t(out.positions.size());
+        for (int j = 0; j <= segments; ++j)
+            for (int i = 0; i <= segments; ++i) {
+                const float u = float(i) / float(segments), v = float(j) / float(segments);
+                const Vertex vertex = displacedVertex(surface, face, u, v);
+                out.positions.push_back(vertex.position);
+                out.normals.push_back(vertex.normal);
+                out.tangents.push_back(vertex.tangent);
+                out.uvs.push_back(atlasUv(atlas, face, u, v));
+            }
+        // (u, v) → (u+1, v) → (u+1, v+1) turns counter-clockwise about dP/du × dP/dv, which
+        // OpenSubdiv orients like the cage face: outwards for a cage wound CCW from outside.
+        for (int j = 0; j < segments; ++j)
+            for (int i = 0; i < segments; ++i) {
+                const std::uint32_t a = base + std::uint32_t(size_t(j) * side + size_t(i)), b = a + 1,
+                                    d = a + std::uint32_t(side), c = d + 1;
+                out.indices.insert(out.indices.end(), {a, b, c, a, c, d});
+            }
+    }
+    return out;
+}
+
+}  // namespace subdfit::exporter

@@ -1,0 +1,163 @@
+#include "export/map_atlas.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "io/atomic_file.h"
+#include "util/error.h"
+
+namespace subdfit::exporter {
+namespace {
+
+constexpr const char* kDisplacementFile = "displacement.exr";
+constexpr const char* kNormalFile = "normal.png";
+constexpr const char* kManifestFile = "maps.json";
+
+void checkMaps(const maps::TexelLayout& layout, const FittedMaps& maps) {
+    SUBDFIT_CHECK(layout.resolution >= 1 && layout.ptexFaceCount >= 1);
+    SUBDFIT_CHECK(layout.faceNodes.size() == size_t(layout.ptexFaceCount) * size_t(layout.nodesPerFace()));
+    SUBDFIT_CHECK(maps.displacement.empty() || maps.displacement.size() == size_t(layout.nodeCount));
+    SUBDFIT_CHECK(maps.normal.empty() || maps.normal.size() == 2 * size_t(layout.nodeCount));
+}
+
+// Visits every tile pixel as (pixel index, node).
+template <typename Visit>
+void forEachTilePixel(const AtlasLayout& atlas, const maps::TexelLayout& layout, Visit visit) {
+    for (int face = 0; face < layout.ptexFaceCount; ++face) {
+        const glm::ivec2 origin = atlas.tileOrigins[size_t(face)];
+        for (int j = 0; j <= layout.resolution; ++j)
+            for (int i = 0; i <= layout.resolution; ++i)
+                visit(size_t(origin.y + j) * size_t(atlas.width) + size_t(origin.x + i), layout.node(face, i, j));
+    }
+}
+
+std::uint16_t unorm16(float value) {
+    return std::uint16_t(std::lround(std::clamp(value, 0.0f, 1.0f) * 65535.0f));
+}
+
+WrittenFile writeDisplacementExr(const std::filesystem::path& path, const AtlasLayout& atlas,
+                                 const FittedMaps& maps) {
+    const std::vector<float> pixels = displacementAtlas(atlas, maps);
+    return writeOutput(path, [&](const std::filesystem::path& temporary) {
+        auto out = OIIO::ImageOutput::create(temporary.string());
+        if (!out) throw fileError(path.string(), "no OpenEXR writer in this OpenImageIO build");
+        OIIO::ImageSpec spec(atlas.width, atlas.height, 1, OIIO::TypeDesc::FLOAT);
+        spec.channelnames = {"Y"};
+        spec.attribute("compression", "zip");
+        if (!out->open(temporary.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) ||
+            !out->close())
+            throw fileError(path.string(), "could not write image: " + out->geterror());
+    });
+}
+
+nlohmann::json manifest(const AtlasLayout& atlas, const FittedMaps& maps, const AtlasOutputs& outputs) {
+    nlohmann::json tiles = nlohmann::json::array();
+    for (const glm::ivec2& origin : atlas.tileOrigins) tiles.push_back({origin.x, origin.y});
+    nlohmann::json doc = {
+        {"generator", "subdfit"},
+        {"resolution", atlas.resolution},
+        {"tileSize", atlas.tileSize},
+        {"columns", atlas.columns},
+        {"rows", atlas.rows},
+        {"width", atlas.width},
+        {"height", atlas.height},
+        {"tiles", tiles},
+        {"tilesNote", "tiles[f] = [x0, y0], the pixel of node (0, 0) of ptex face f; node (i, j) of the face is "
+                      "pixel (x0 + i, y0 + j), i along u, j along v, image row 0 at the top"},
+        {"uv", "texcoord of ptex (u, v) in [0,1]^2 on face f: ((x0 + 0.5 + u * resolution) / width, "
+               "(y0 + 0.5 + v * resolution) / height), v down the image as in glTF; sample bilinearly "
+               "without mipmaps to reproduce the fitted node interpolation exactly"},
+    };
+    if (maps.hasDisplacement() && outputs.displacement)
+        doc["displacement"] = {{"file", kDisplacementFile},
+                               {"channel", "Y"},
+                               {"units", "cage units, along the unit normal of the limit surface"}};
+    if (maps.hasNormal() && outputs.normal)
+        doc["normal"] = {{"file", kNormalFile},
+                         {"encoding", "16-bit RGB, rgb = n * 0.5 + 0.5"},
+                         {"space", "tangent space of the limit surface: x along dP/du, y along dP/dv, z along "
+                                   "N = normalize(cross(dP/du, dP/dv)); n = normalize(x, y, 1)"}};
+    return doc;
+}
+
+}  // namespace
+
+AtlasLayout atlasLayout(const maps::TexelLayout& layout) {
+    SUBDFIT_CHECK(layout.resolution >= 1 && layout.ptexFaceCount >= 1);
+    AtlasLayout atlas;
+    atlas.resolution = layout.resolution;
+    atlas.tileSize = layout.resolution + 1;
+    // Integer ceil(sqrt(F)): a float sqrt can land just below an exact square.
+    while (atlas.columns * atlas.columns < layout.ptexFaceCount) ++atlas.columns;
+    atlas.rows = (layout.ptexFaceCount + atlas.columns - 1) / atlas.columns;
+    atlas.width = atlas.columns * atlas.tileSize;
+    atlas.height = atlas.rows * atlas.tileSize;
+    atlas.tileOrigins.reserve(size_t(layout.ptexFaceCount));
+    for (int face = 0; face < layout.ptexFaceCount; ++face)
+        atlas.tileOrigins.emplace_back(face % atlas.columns * atlas.tileSize, face / atlas.columns * atlas.tileSize);
+    return atlas;
+}
+
+glm::vec2 atlasUv(const AtlasLayout& atlas, int face, float u, float v) {
+    const glm::ivec2 origin = atlas.tileOrigins[size_t(face)];
+    const float t = float(atlas.resolution);
+    return {(float(origin.x) + 0.5f + u * t) / float(atlas.width), (float(origin.y) + 0.5f + v * t) / float(atlas.height)};
+}
+
+std::vector<float> displacementAtlas(const AtlasLayout& atlas, const FittedMaps& maps) {
+    checkMaps(maps.layout, maps);
+    SUBDFIT_CHECK(maps.hasDisplacement());
+    std::vector<float> pixels(size_t(atlas.width) * size_t(atlas.height), 0.0f);
+    forEachTilePixel(atlas, maps.layout, [&](size_t pixel, int node) { pixels[pixel] = maps.displacement[size_t(node)]; });
+    return pixels;
+}
+
+std::vector<std::uint16_t> normalAtlas(const AtlasLayout& atlas, const FittedMaps& maps) {
+    checkMaps(maps.layout, maps);
+    SUBDFIT_CHECK(maps.hasNormal());
+    const std::uint16_t half = unorm16(0.5f), one = unorm16(1.0f);
+    std::vector<std::uint16_t> pixels;
+    pixels.reserve(size_t(atlas.width) * size_t(atlas.height) * 3);
+    for (size_t p = 0; p < size_t(atlas.width) * size_t(atlas.height); ++p) pixels.insert(pixels.end(), {half, half, one});
+    forEachTilePixel(atlas, maps.layout, [&](size_t pixel, int node) {
+        const float x = maps.normal[2 * size_t(node)], y = maps.normal[2 * size_t(node) + 1];
+        const float scale = 1.0f / std::sqrt(x * x + y * y + 1.0f);
+        const float n[3] = {x * scale, y * scale, scale};
+        for (int c = 0; c < 3; ++c) pixels[3 * pixel + size_t(c)] = unorm16(n[c] * 0.5f + 0.5f);
+    });
+    return pixels;
+}
+
+std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const FittedMaps& maps) {
+    const std::vector<std::uint16_t> pixels = normalAtlas(atlas, maps);
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput proxy(bytes);
+    auto out = OIIO::ImageOutput::create("png");
+    if (!out || !out->supports("ioproxy")) throw Error(std::string(kNormalFile) + ": no in-memory PNG writer in this OpenImageIO build");
+    OIIO::ImageSpec spec(atlas.width, atlas.height, 3, OIIO::TypeDesc::UINT16);
+    if (!out->set_ioproxy(&proxy) || !out->open(kNormalFile, spec) ||
+        !out->write_image(OIIO::TypeDesc::UINT16, pixels.data()) || !out->close())
+        throw Error(std::string(kNormalFile) + ": could not encode PNG: " + out->geterror());
+    return bytes;
+}
+
+std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const FittedMaps& maps,
+                                         const AtlasOutputs& outputs) {
+    const AtlasLayout atlas = atlasLayout(maps.layout);
+    checkMaps(maps.layout, maps);
+    std::vector<WrittenFile> written;
+    if (maps.hasDisplacement() && outputs.displacement)
+        written.push_back(writeDisplacementExr(dir / kDisplacementFile, atlas, maps));
+    if (maps.hasNormal() && outputs.normal) written.push_back(writeBytes(dir / kNormalFile, encodeNormalPng(atlas, maps)));
+    if (outputs.manifest) {
+        const std::string text = manifest(atlas, maps, outputs).dump(2) + "\n";
+        written.push_back(writeBytes(dir / kManifestFile, {reinterpret_cast<const unsigned char*>(text.data()), text.size()}));
+    }
+    return written;
+}
+
+}  // namespace subdfit::exporter

@@ -1,0 +1,57 @@
+#pragma once
+// Packs the per-node maps into ordinary images a DCC tool or a glTF viewer can use: one tile of
+// (T+1)×(T+1) pixels per ptex face, pixel (x0+i, y0+j) holding node (i, j) of that face.
+//
+// Why (T+1) and not T: with the nodes *on* pixel centres, GPU bilinear filtering at
+//   UV = ((x0 + 0.5 + u·T) / W, (y0 + 0.5 + v·T) / H)      (glTF convention, v down the image)
+// interpolates exactly the four nodes maps::sampleBilinear would, and never reaches a
+// neighbouring tile (no mips: each tile is a separate chart). Shared border nodes are simply
+// written into every tile that uses them.
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "export/fitted_asset.h"
+#include "export/output_file.h"
+#include "maps/texel_layout.h"
+
+namespace subdfit::exporter {
+
+struct AtlasLayout {
+    int resolution = 0;  // T, cells per tile edge
+    int tileSize = 0;    // T + 1 pixels
+    int columns = 0, rows = 0;
+    int width = 0, height = 0;             // pixels
+    std::vector<glm::ivec2> tileOrigins;   // per ptex face: pixel (x0, y0) of its node (0, 0)
+};
+
+// ceil(sqrt(F)) columns, tiles row-major from the top-left, image row 0 at the top.
+AtlasLayout atlasLayout(const maps::TexelLayout& layout);
+
+// The glTF TEXCOORD of ptex (u, v) on `face`, per the formula above.
+glm::vec2 atlasUv(const AtlasLayout& atlas, int face, float u, float v);
+
+// Row-major from the top, width × height values; pixels outside every tile are 0.
+std::vector<float> displacementAtlas(const AtlasLayout& atlas, const FittedMaps& maps);
+// Row-major from the top, width × height × 3 values, rgb = n·0.5 + 0.5 in 16-bit units with
+// n = normalize(x, y, 1); pixels outside every tile hold the flat normal (0, 0, 1).
+std::vector<std::uint16_t> normalAtlas(const AtlasLayout& atlas, const FittedMaps& maps);
+
+// normal.png's bytes (16-bit RGB), for writing and for embedding in a GLB. Requires a normal map.
+std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const FittedMaps& maps);
+
+// Which files writeMapAtlases may write; a map that is absent is skipped either way.
+struct AtlasOutputs {
+    bool displacement = true;  // displacement.exr, one FLOAT channel "Y"
+    bool normal = true;        // normal.png, 16-bit RGB
+    bool manifest = true;      // maps.json: the layout, the UV formula and the units
+};
+
+// Writes into the existing folder `dir`, each file atomically. Throws subdfit::Error naming the
+// file that could not be written.
+std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const FittedMaps& maps,
+                                         const AtlasOutputs& outputs = {});
+
+}  // namespace subdfit::exporter

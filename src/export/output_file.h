@@ -1,0 +1,23 @@
+#pragma once
+// Every exported file goes through io::writeAtomically (a temporary beside it, then a rename),
+// and every failure -- including the filesystem's own exceptions, e.g. a rename onto a folder --
+// surfaces as subdfit::Error "path: problem".
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <span>
+
+namespace subdfit::exporter {
+
+struct WrittenFile {
+    std::filesystem::path path;
+    std::uintmax_t bytes = 0;
+};
+
+// `write` fills the temporary it is given (whose extension is the destination's).
+WrittenFile writeOutput(const std::filesystem::path& destination,
+                        const std::function<void(const std::filesystem::path& temporary)>& write);
+
+WrittenFile writeBytes(const std::filesystem::path& destination, std::span<const unsigned char> bytes);
+
+}  // namespace subdfit::exporter

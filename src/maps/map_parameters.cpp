@@ -1,0 +1,70 @@
+#include "maps/map_parameters.h"
+
+#include <sstream>
+
+#include "bindings.h"
+#include "util/error.h"
+
+namespace subdfit::maps {
+
+MapEffects parseMapEffects(const std::string& text) {
+    MapEffects effects;
+    if (text == "none" || text.empty()) return effects;
+    std::istringstream items(text);
+    for (std::string item; std::getline(items, item, ',');) {
+        if (item == "displacement") effects.displacement = true;
+        else if (item == "normal") effects.normalMap = true;
+        else throw Error("invalid option: --maps takes none, displacement, normal or displacement,normal; got '" + text + "'");
+    }
+    return effects;
+}
+
+MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, const MapSettings& settings)
+    : effects_(effects),
+      layout_(buildTexelLayout(cage, settings.resolution)),
+      faceNodes_(gl::Buffer::fromVector(layout_.faceNodes)) {
+    if (effects.displacement)
+        displacement_ = std::make_unique<sge::ParameterGroup>(
+            "displacement", std::vector<float>(size_t(layout_.nodeCount), 0.0f), settings.displacement,
+            SUBDFIT_SEED_DISPLACEMENT);
+    if (effects.normalMap)
+        normalMap_ = std::make_unique<sge::ParameterGroup>(
+            "normal_map", std::vector<float>(size_t(layout_.nodeCount) * 2, 0.0f), settings.normalMap,
+            SUBDFIT_SEED_NORMAL_MAP);
+}
+
+std::vector<sge::ParameterGroup*> MapParameters::groups() {
+    std::vector<sge::ParameterGroup*> out;
+    if (displacement_) out.push_back(displacement_.get());
+    if (normalMap_) out.push_back(normalMap_.get());
+    return out;
+}
+
+gl::Defines MapParameters::defines() const {
+    gl::Defines defines;
+    if (effects_.displacement) defines["SUBDFIT_DISPLACEMENT"] = "";
+    if (effects_.normalMap) defines["SUBDFIT_NORMAL_MAP"] = "";
+    return defines;
+}
+
+namespace {
+
+const gl::Buffer& version(const sge::ParameterGroup& group, ParameterVersion v) {
+    return v == ParameterVersion::Plus ? group.thetaPlus : v == ParameterVersion::Minus ? group.thetaMinus : group.theta;
+}
+
+}  // namespace
+
+void MapParameters::bindForRaster(ParameterVersion v) const {
+    faceNodes_.bindStorage(SUBDFIT_SSBO_FACE_NODES);
+    if (displacement_) version(*displacement_, v).bindStorage(SUBDFIT_SSBO_DISPLACEMENT);
+    if (normalMap_) version(*normalMap_, v).bindStorage(SUBDFIT_SSBO_NORMAL_MAP);
+}
+
+void MapParameters::bindForGradient() const {
+    faceNodes_.bindStorage(SUBDFIT_SSBO_FACE_NODES);
+    if (displacement_) displacement_->gradient.bindStorage(SUBDFIT_SSBO_GRADIENT_DISPLACEMENT);
+    if (normalMap_) normalMap_->gradient.bindStorage(SUBDFIT_SSBO_GRADIENT_NORMAL_MAP);
+}
+
+}  // namespace subdfit::maps

@@ -1,0 +1,56 @@
+#pragma once
+// The optional texel parameter groups of a scene: a displacement map (one height per node) and
+// a normal map (tangent-space x, y per node), on one TexelLayout. Only the groups the scene
+// asks for exist: a run without maps has no buffers, no shader defines and no passes for them.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gl/program.h"
+#include "maps/texel_layout.h"
+#include "sge/parameter_group.h"
+
+namespace subdfit::maps {
+
+struct MapEffects {
+    bool displacement = false;
+    bool normalMap = false;
+    bool any() const { return displacement || normalMap; }
+};
+
+// "none", "displacement", "normal", "displacement,normal" (any order). Throws subdfit::Error.
+MapEffects parseMapEffects(const std::string& text);
+
+struct MapSettings {
+    int resolution = 8;  // cells per ptex-face edge
+    // Heights in the normalised frame (scene radius 1); tangent offsets are dimensionless.
+    sge::GroupSettings displacement{.epsilon = 0.004f, .learningRate = 0.001f};
+    sge::GroupSettings normalMap{.epsilon = 0.05f, .learningRate = 0.01f};
+};
+
+// Which θ a raster pass reads: the current one, or a perturbed one.
+enum class ParameterVersion { Current, Plus, Minus };
+
+class MapParameters {
+public:
+    MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, const MapSettings& settings);
+
+    const TexelLayout& layout() const { return layout_; }
+    MapEffects effects() const { return effects_; }
+    sge::ParameterGroup* displacement() { return displacement_.get(); }
+    sge::ParameterGroup* normalMap() { return normalMap_.get(); }
+    std::vector<sge::ParameterGroup*> groups();
+
+    // SUBDFIT_DISPLACEMENT / SUBDFIT_NORMAL_MAP for the effects present.
+    gl::Defines defines() const;
+    void bindForRaster(ParameterVersion version) const;
+    void bindForGradient() const;
+
+private:
+    MapEffects effects_;
+    TexelLayout layout_;
+    gl::Buffer faceNodes_;
+    std::unique_ptr<sge::ParameterGroup> displacement_, normalMap_;
+};
+
+}  // namespace subdfit::maps

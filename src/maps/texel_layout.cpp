@@ -1,0 +1,89 @@
+#include "maps/texel_layout.h"
+
+#include <glm/geometric.hpp>
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include "subdiv/limit_evaluator.h"
+#include "util/error.h"
+
+namespace subdfit::maps {
+namespace {
+
+// Welds points closer than `tolerance` into one index: a hash grid of cell = tolerance, each
+// query checking the 27 cells around it, so points straddling a cell border still meet.
+class PointWelder {
+public:
+    explicit PointWelder(float tolerance) : cell_(tolerance) {}
+
+    int indexOf(const glm::vec3& p, int& nextIndex) {
+        const long long cx = std::llround(p.x / cell_), cy = std::llround(p.y / cell_), cz = std::llround(p.z / cell_);
+        for (long long dx = -1; dx <= 1; ++dx)
+            for (long long dy = -1; dy <= 1; ++dy)
+                for (long long dz = -1; dz <= 1; ++dz) {
+                    const auto it = cells_.find(key(cx + dx, cy + dy, cz + dz));
+                    if (it == cells_.end()) continue;
+                    for (const auto& [q, index] : it->second)
+                        if (glm::length(p - q) <= cell_) return index;
+                }
+        cells_[key(cx, cy, cz)].push_back({p, nextIndex});
+        return nextIndex++;
+    }
+
+private:
+    static long long key(long long x, long long y, long long z) {
+        return (x * 73856093LL) ^ (y * 19349663LL) ^ (z * 83492791LL);
+    }
+    float cell_;
+    std::unordered_map<long long, std::vector<std::pair<glm::vec3, int>>> cells_;
+};
+
+}  // namespace
+
+TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution) {
+    if (resolution < 1 || resolution > 256)
+        throw Error("invalid option: --map-res must be in 1..256, got " + std::to_string(resolution));
+    const subdiv::LimitEvaluator evaluator(cage);
+    TexelLayout layout;
+    layout.resolution = resolution;
+    layout.ptexFaceCount = evaluator.ptexFaceCount();
+    layout.faceNodes.resize(size_t(layout.ptexFaceCount) * size_t(layout.nodesPerFace()));
+
+    float extent = 0.0f;
+    for (const auto& p : cage.positions) extent = std::max({extent, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    // Far below the node spacing of any sane map, far above float rounding of one limit point.
+    PointWelder welder(std::max(extent, 1e-30f) * 1e-5f);
+    int next = 0;
+    const int n = resolution;
+    for (int face = 0; face < layout.ptexFaceCount; ++face) {
+        const bool surface = evaluator.hasSurface(face, 0.5f, 0.5f);
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                const bool border = i == 0 || j == 0 || i == n || j == n;
+                int index;
+                if (border && surface) {
+                    const auto p = evaluator.evaluate(face, float(i) / float(n), float(j) / float(n), cage.positions).position;
+                    index = welder.indexOf(p, next);
+                } else {
+                    index = next++;  // interior nodes (and holes) are their tile's own
+                }
+                layout.faceNodes[size_t(face) * size_t(layout.nodesPerFace()) + size_t(j) * size_t(n + 1) + size_t(i)] = index;
+            }
+    }
+    layout.nodeCount = next;
+    return layout;
+}
+
+float sampleBilinear(const TexelLayout& layout, std::span<const float> values, int stride, int channel, int face,
+                     float u, float v) {
+    const int n = layout.resolution;
+    const float x = std::clamp(u, 0.0f, 1.0f) * float(n), y = std::clamp(v, 0.0f, 1.0f) * float(n);
+    const int i = std::min(int(x), n - 1), j = std::min(int(y), n - 1);
+    const float fx = x - float(i), fy = y - float(j);
+    auto value = [&](int a, int b) { return values[size_t(layout.node(face, a, b)) * size_t(stride) + size_t(channel)]; };
+    return (1 - fx) * (1 - fy) * value(i, j) + fx * (1 - fy) * value(i + 1, j) + (1 - fx) * fy * value(i, j + 1) +
+           fx * fy * value(i + 1, j + 1);
+}
+
+}  // namespace subdfit::maps

@@ -1,0 +1,34 @@
+#pragma once
+// Where the texels of the displacement and normal maps live. Every ptex face of the cage gets a
+// tile of T×T cells whose (T+1)² corner nodes carry the values; a map is sampled bilinearly
+// from the nodes. Nodes on a tile's border are *shared* with the neighbouring tiles (welded by
+// their limit position), so a map is continuous across faces: no seams, and a displaced
+// surface stays watertight wherever the limit normal is continuous.
+#include <span>
+#include <vector>
+
+#include "mesh/polygon_mesh.h"
+
+namespace subdfit::maps {
+
+struct TexelLayout {
+    int resolution = 0;     // T: cells per ptex-face edge
+    int ptexFaceCount = 0;
+    int nodeCount = 0;      // distinct parameters per channel
+    std::vector<int> faceNodes;  // [face][j][i] -> node, i along u, j along v, (T+1)² per face
+
+    int nodesPerFace() const { return (resolution + 1) * (resolution + 1); }
+    int node(int face, int i, int j) const {
+        return faceNodes[size_t(face) * size_t(nodesPerFace()) + size_t(j) * size_t(resolution + 1) + size_t(i)];
+    }
+};
+
+// Throws subdfit::Error for a resolution outside 1..256.
+TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution);
+
+// Bilinear sample of channel `channel` of node values stored `stride` floats per node, at ptex
+// (u, v) of `face` ((u, v) is clamped to the tile: rasterised (u, v) can stray by ~1e-3).
+float sampleBilinear(const TexelLayout& layout, std::span<const float> values, int stride, int channel, int face,
+                     float u, float v);
+
+}  // namespace subdfit::maps
