@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <span>
+#include <optional>
 
 #include "export/map_atlas.h"
 #include "subdiv/limit_evaluator.h"
@@ -16,11 +16,22 @@ namespace {
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// A usable direction: finite and not lost in rounding relative to the vectors it came from.
-bool usable(const glm::vec3& v, float scale) {
-    const float length = glm::length(v);
-    return finite(v) && length > 1e-30f && length > 1e-7f * scale;
+// The unit vector along v, unless v is non-finite, zero, or shorter than 1e-7 of `scale` (the
+// size of what it was computed from, so below that it is rounding noise). v is divided by its
+// largest component first: squaring a tiny vector's components would underflow and lose the
+// direction (normals 3e-4 off unit length came out of a collapsed corner before this).
+std::optional<glm::vec3> direction(const glm::vec3& v, float scale) {
+    const float largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (!finite(v) || !(largest > 0.0f)) return std::nullopt;
+    const glm::vec3 w = v / largest;
+    const float length = glm::length(w);  // in [1, sqrt(3)]
+    if (largest * length <= 1e-7f * scale) return std::nullopt;
+    return w / length;
 }
+
+// The size a cross product of a and b is measured against (it may underflow to 0 for tiny
+// vectors, which only makes direction() more permissive).
+float lengthProduct(const glm::vec3& a, const glm::vec3& b) { return glm::length(a) * glm::length(b); }
 
 glm::vec3 anyPerpendicular(const glm::vec3& n) {
     const glm::vec3 axis = std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
@@ -48,16 +59,14 @@ public:
     // the limit normal is still continuous, so a point nudged towards the face centre gives it.
     SurfacePoint limitPoint(int face, float u, float v) const {
         SurfacePoint point = evaluate(face, u, v);
-        const glm::vec3 n = glm::cross(point.dPdu, point.dPdv);
-        if (usable(n, glm::length(point.dPdu) * glm::length(point.dPdv))) {
-            point.normal = glm::normalize(n);
+        if (const auto n = direction(glm::cross(point.dPdu, point.dPdv), lengthProduct(point.dPdu, point.dPdv))) {
+            point.normal = *n;
             return point;
         }
         for (float step : {1e-4f, 1e-3f, 1e-2f, 1e-1f, 0.5f}) {
             const SurfacePoint nudged = evaluate(face, u + (0.5f - u) * step, v + (0.5f - v) * step);
-            const glm::vec3 m = glm::cross(nudged.dPdu, nudged.dPdv);
-            if (usable(m, glm::length(nudged.dPdu) * glm::length(nudged.dPdv))) {
-                point.normal = glm::normalize(m);
+            if (const auto n = direction(glm::cross(nudged.dPdu, nudged.dPdv), lengthProduct(nudged.dPdu, nudged.dPdv))) {
+                point.normal = *n;
                 return point;
             }
         }
@@ -106,18 +115,17 @@ Vertex displacedVertex(const DisplacedSurface& surface, int face, float u, float
     // d·N_u is dropped (it vanishes for flat patches and is small for the displacements a fit
     // produces). Its dot with N is |Pu × Pv| > 0, so the normal never flips.
     const glm::vec3 du = p.dPdu + slope.x * p.normal, dv = p.dPdv + slope.y * p.normal;
-    const glm::vec3 cross = glm::cross(du, dv);
-    const glm::vec3 normal = usable(cross, glm::length(du) * glm::length(dv)) ? glm::normalize(cross) : p.normal;
+    const glm::vec3 normal = direction(glm::cross(du, dv), lengthProduct(du, dv)).value_or(p.normal);
 
     // Tangent along dP/du in the normal's plane; at a collapsed dP/du, cross(dP/dv, N) points the
     // same way (for a right-handed frame), and failing both any perpendicular keeps it finite.
-    glm::vec3 tangent = p.dPdu - glm::dot(p.dPdu, normal) * normal;
     const float scale = glm::length(p.dPdu) + glm::length(p.dPdv);
-    if (!usable(tangent, scale)) tangent = glm::cross(p.dPdv, normal);
-    tangent = usable(tangent, scale) ? glm::normalize(tangent) : anyPerpendicular(normal);
-    const float handedness = glm::dot(glm::cross(normal, tangent), p.dPdv) < 0.0f ? -1.0f : 1.0f;
+    std::optional<glm::vec3> tangent = direction(p.dPdu - glm::dot(p.dPdu, normal) * normal, scale);
+    if (!tangent) tangent = direction(glm::cross(p.dPdv, normal), scale);
+    if (!tangent) tangent = anyPerpendicular(normal);
+    const float handedness = glm::dot(glm::cross(normal, *tangent), p.dPdv) < 0.0f ? -1.0f : 1.0f;
 
-    return {p.position + d * p.normal, normal, glm::vec4(tangent, handedness)};
+    return {p.position + d * p.normal, normal, glm::vec4(*tangent, handedness)};
 }
 
 }  // namespace
@@ -138,6 +146,7 @@ LimitTessellation tessellateLimitSurface(const mesh::PolygonMesh& cage, const Fi
                     std::to_string(vertexCount) + " vertices, more than 32-bit indices address");
 
     LimitTessellation out;
+    out.atlasSize = {atlas.width, atlas.height};
     out.positions.reserve(vertexCount);
     out.normals.reserve(vertexCount);
     out.tangents.reserve(vertexCount);

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "io/atomic_file.h"
 #include "util/error.h"
 
 namespace subdfit::exporter {

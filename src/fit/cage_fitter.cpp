@@ -63,14 +63,22 @@ void CageFitter::step(const scene::TargetSet& targets, std::span<const int> view
 void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int> views, bool measureLoss) {
     // A distinct counter per sample keeps every sample's signs independent; the seed separates runs.
     const std::uint32_t counter = samples_++;
-    for (auto* group : groups()) sge::perturb(programs_, *group, counter, settings_.seed);
-    stencils_.evaluate(programs_, vertices_.thetaPlus, pointsPlus_);
-    stencils_.evaluate(programs_, vertices_.thetaMinus, pointsMinus_);
+    const auto all = groups();
+    const bool mapsStarted = settings_.plannedSteps <= 0 ||
+                             float(steps_) >= settings_.mapsStartFraction * float(settings_.plannedSteps);
+    sge::ParameterGroup* perturbed = mapsStarted ? all[counter % all.size()] : &vertices_;
+    sge::perturb(programs_, *perturbed, counter, settings_.seed);
+    if (std::find(pendingUpdate_.begin(), pendingUpdate_.end(), perturbed) == pendingUpdate_.end())
+        pendingUpdate_.push_back(perturbed);
+    const bool verticesPerturbed = perturbed == &vertices_;
+    stencils_.evaluate(programs_, verticesPerturbed ? vertices_.thetaPlus : vertices_.theta, pointsPlus_);
+    if (verticesPerturbed) stencils_.evaluate(programs_, vertices_.thetaMinus, pointsMinus_);
+    const gl::Buffer& minusPoints = verticesPerturbed ? pointsMinus_ : pointsPlus_;
     const float pixels = float(settings_.resolution) * float(settings_.resolution);
     for (int view : views) {
         const auto& camera = targets.camera(view);
-        renderer_.draw(programs_, pointsPlus_, camera, plus_, maps_.get(), maps::ParameterVersion::Plus);
-        renderer_.draw(programs_, pointsMinus_, camera, minus_, maps_.get(), maps::ParameterVersion::Minus);
+        renderer_.draw(programs_, pointsPlus_, camera, plus_, maps_.get(), maps::ParameterVersion::Plus, perturbed);
+        renderer_.draw(programs_, minusPoints, camera, minus_, maps_.get(), maps::ParameterVersion::Minus, perturbed);
         sge::accumulateGradient(programs_, vertices_, faceVertices_,
                                 {&plus_, &minus_, targets.colors().id(), view, counter, settings_.seed,
                                  1.0f / (pixels * float(views.size())), measureLoss, maps_.get()},
@@ -85,20 +93,23 @@ void CageFitter::update() {
     const float decay = settings_.plannedSteps > 0
                             ? std::pow(0.1f, std::min(1.0f, float(steps_) / float(settings_.plannedSteps)))
                             : 1.0f;
-    vertices_.settings().learningRate = settings_.vertices.learningRate * decay;
-    sge::precondition(programs_, vertices_, adjacency_, settings_.smoothingLambda, settings_.smoothingIterations,
-                      smoothScratch_);
-    sge::adamStep(programs_, vertices_, vertices_.gradientSmooth);
-    if (maps_) {
-        if (auto* g = maps_->displacement()) {
-            g->settings().learningRate = settings_.maps.displacement.learningRate * decay;
-            sge::adamStep(programs_, *g, g->gradient);
-        }
-        if (auto* g = maps_->normalMap()) {
-            g->settings().learningRate = settings_.maps.normalMap.learningRate * decay;
+    for (auto* g : pendingUpdate_) {
+        if (g == &vertices_) {
+            vertices_.settings().learningRate = settings_.vertices.learningRate * decay;
+            sge::precondition(programs_, vertices_, adjacency_, settings_.smoothingLambda,
+                              settings_.smoothingIterations, smoothScratch_);
+            sge::adamStep(programs_, vertices_, vertices_.gradientSmooth);
+        } else {
+            const bool isDisplacement = maps_ && g == maps_->displacement();
+            g->settings().learningRate =
+                (isDisplacement ? settings_.maps.displacement : settings_.maps.normalMap).learningRate * decay;
             sge::adamStep(programs_, *g, g->gradient);
         }
     }
+    pendingUpdate_.clear();
+    // G also wrote into the groups that were not perturbed (their signs against another
+    // group's Δ): noise by construction, dropped.
+    for (auto* g : groups()) g->gradient.clearToZero();
     ++steps_;
 }
 

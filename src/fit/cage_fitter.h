@@ -1,7 +1,11 @@
 #pragma once
 // Fits a Catmull-Clark cage (its control vertices, and the displacement / normal maps when the
-// scene has them) to a TargetSet with per-pixel SGE. One step: P (θ± of every group),
-// stencils(θ±), then per view R(θ+), R(θ−), G; then the vertex preconditioner and Adam per group.
+// scene has them) to a TargetSet with per-pixel SGE. One step: P (θ± of one group), stencils,
+// then per view R(θ+), R(θ−), G; then Adam on that group (after the vertex preconditioner).
+//
+// Groups take turns, one per sample: perturbing the vertices moves silhouettes and shading far
+// more than a texel does, so a joint perturbation would drown each texel's estimate in the
+// vertices' noise; in turn, each group's estimate only carries its own group's cross terms.
 // Everything stays on the GPU; only takeMeanLoss(), state() and the readers read back.
 #include <cstdint>
 #include <memory>
@@ -28,6 +32,9 @@ struct CageFitSettings {
     int resolution = 256;
     std::uint32_t seed = 1;
     maps::MapEffects mapEffects{};  // which texel groups exist at all
+    // Coarse to fine: the maps join the turns only after this fraction of plannedSteps, once
+    // the cage has its shape (detail fitted on a wrong shape would be undone later).
+    float mapsStartFraction = 0.4f;
     maps::MapSettings maps{};
 };
 
@@ -40,8 +47,9 @@ public:
     // With `measureLoss`, the step's mean loss is added to what takeMeanLoss() reports.
     void step(const scene::TargetSet& targets, std::span<const int> views, bool measureLoss = true);
 
-    // The two halves of a step. accumulate() adds one SGE sample (fresh signs) to the gradients;
-    // update() preconditions the vertex gradient, applies Adam to every group and clears them.
+    // The two halves of a step. accumulate() adds one SGE sample (fresh signs) to the gradient
+    // of the group whose turn it is; update() applies Adam to the groups sampled since the last
+    // update (preconditioning the vertex gradient) and clears every gradient.
     void accumulate(const scene::TargetSet& targets, std::span<const int> views, bool measureLoss = true);
     void update();
 
@@ -92,6 +100,7 @@ private:
     render::RenderTarget plus_, minus_;
     int steps_ = 0, samplesSinceLoss_ = 0;
     std::uint32_t samples_ = 0;  // perturbation counter: one per accumulate()
+    std::vector<sge::ParameterGroup*> pendingUpdate_;  // groups perturbed since the last update()
 };
 
 }  // namespace subdfit::fit

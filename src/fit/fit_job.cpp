@@ -8,6 +8,9 @@
 #include "context/gl_context.h"
 #include "fit/cage_fitter.h"
 #include "fit/checkpoint.h"
+#include "export/glb_writer.h"
+#include "export/limit_tessellation.h"
+#include "export/map_atlas.h"
 #include "fit/image_metrics.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
@@ -96,6 +99,30 @@ nlohmann::json parametersJson(CageFitter& fitter) {
     nlohmann::json counts = nlohmann::json::object();
     for (auto* group : fitter.groups()) counts[group->name()] = group->count();
     return counts;
+}
+
+// displacement.exr, normal.png, maps.json (when the scene has maps) and fitted.glb: the cage's
+// limit surface tessellated as rendered, displaced, with the normal map, in world units.
+nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene::SceneFrame& frame,
+                           const mesh::PolygonMesh& fittedWorld) {
+    exporter::FittedMaps maps;
+    std::vector<exporter::WrittenFile> written;
+    std::vector<unsigned char> normalPng;
+    if (auto* parameters = fitter.maps()) {
+        maps.layout = parameters->layout();
+        if (auto* g = parameters->displacement()) {
+            maps.displacement = g->read();
+            for (float& d : maps.displacement) d /= frame.scale;  // heights back to world units
+        }
+        if (auto* g = parameters->normalMap()) maps.normal = g->read();
+        written = exporter::writeMapAtlases(o.out, maps);
+        if (maps.hasNormal()) normalPng = exporter::encodeNormalPng(exporter::atlasLayout(maps.layout), maps);
+    }
+    const auto tessellation = exporter::tessellateLimitSurface(fittedWorld, maps, fitter.renderer().tessLevel());
+    written.push_back(exporter::writeFittedGlb(o.out / "fitted.glb", tessellation, normalPng, o.draco));
+    nlohmann::json files = nlohmann::json::object();
+    for (const auto& file : written) files[file.path.filename().string()] = file.bytes;
+    return files;
 }
 
 nlohmann::json variantsJson(const gl::ProgramCache& programs) {
@@ -246,6 +273,7 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
     mesh::PolygonMesh fittedWorld = cageWorld;
     fittedWorld.positions = frame.toWorld(fitted);
     mesh::writeObj(o.out / "cage.obj", fittedWorld);
+    report["exports"] = exportAsset(o, fitter, frame, fittedWorld);
     io::writeImage(o.out / "before.png", beforeImage, o.resolution, o.resolution);
     io::writeImage(o.out / "after.png", afterImage, o.resolution, o.resolution);
     io::writeImage(o.out / "target.png", holdout.readColor(0), o.resolution, o.resolution);

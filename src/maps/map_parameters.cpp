@@ -55,10 +55,11 @@ const gl::Buffer& version(const sge::ParameterGroup& group, ParameterVersion v) 
 
 }  // namespace
 
-void MapParameters::bindForRaster(ParameterVersion v) const {
+void MapParameters::bindForRaster(ParameterVersion v, const sge::ParameterGroup* perturbed) const {
+    auto of = [&](const sge::ParameterGroup& g) { return &g == perturbed ? v : ParameterVersion::Current; };
     faceNodes_.bindStorage(SUBDFIT_SSBO_FACE_NODES);
-    if (displacement_) version(*displacement_, v).bindStorage(SUBDFIT_SSBO_DISPLACEMENT);
-    if (normalMap_) version(*normalMap_, v).bindStorage(SUBDFIT_SSBO_NORMAL_MAP);
+    if (displacement_) version(*displacement_, of(*displacement_)).bindStorage(SUBDFIT_SSBO_DISPLACEMENT);
+    if (normalMap_) version(*normalMap_, of(*normalMap_)).bindStorage(SUBDFIT_SSBO_NORMAL_MAP);
 }
 
 void MapParameters::bindForGradient() const {

@@ -24,7 +24,7 @@ MapEffects parseMapEffects(const std::string& text);
 struct MapSettings {
     int resolution = 8;  // cells per ptex-face edge
     // Heights in the normalised frame (scene radius 1); tangent offsets are dimensionless.
-    sge::GroupSettings displacement{.epsilon = 0.004f, .learningRate = 0.001f};
+    sge::GroupSettings displacement{.epsilon = 0.004f, .learningRate = 0.003f};
     sge::GroupSettings normalMap{.epsilon = 0.05f, .learningRate = 0.01f};
 };
 
@@ -43,7 +43,8 @@ public:
 
     // SUBDFIT_DISPLACEMENT / SUBDFIT_NORMAL_MAP for the effects present.
     gl::Defines defines() const;
-    void bindForRaster(ParameterVersion version) const;
+    // Binds θ± of the group being perturbed (`perturbed`, may be null) and θ of the others.
+    void bindForRaster(ParameterVersion version, const sge::ParameterGroup* perturbed) const;
     void bindForGradient() const;
 
 private:

@@ -37,6 +37,23 @@ PolygonMesh makeQuadSphere(int n) {
     return mesh;
 }
 
+PolygonMesh makeQuadGrid(int n, const std::function<float(float, float)>& height) {
+    PolygonMesh mesh;
+    mesh.sourcePath = "quad-grid(" + std::to_string(n) + ")";
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const float x = -1.0f + 2.0f * float(i) / float(n), y = -1.0f + 2.0f * float(j) / float(n);
+            mesh.positions.push_back({x, y, height ? height(x, y) : 0.0f});
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const int a = j * (n + 1) + i;
+            mesh.faceSizes.push_back(4);
+            mesh.faceIndices.insert(mesh.faceIndices.end(), {a, a + 1, a + n + 2, a + n + 1});
+        }
+    return mesh;
+}
+
 PolygonMesh makeLumpySphere(int subdivisions, float amplitude, std::uint32_t seed) {
     PolygonMesh mesh;
     mesh.sourcePath = "lumpy-sphere";

@@ -28,7 +28,7 @@ PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel)
 
 void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera,
                          const RenderTarget& target, const maps::MapParameters* maps,
-                         maps::ParameterVersion version) const {
+                         maps::ParameterVersion version, const sge::ParameterGroup* perturbed) const {
     const auto& program = programs.get("patch_raster",
                                        {{GL_VERTEX_SHADER, "patch.vert"},
                                         {GL_TESS_CONTROL_SHADER, "patch.tesc"},
@@ -40,7 +40,7 @@ void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, c
     points.bindStorage(SUBDFIT_SSBO_POINTS);
     if (maps && maps->effects().any()) {
         program.set("uMapResolution", maps->layout().resolution);
-        maps->bindForRaster(version);
+        maps->bindForRaster(version, perturbed);
     }
     patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);
     patchCvs_.bindStorage(SUBDFIT_SSBO_PATCH_CVS);

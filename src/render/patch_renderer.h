@@ -20,10 +20,12 @@ public:
     int tessLevel() const { return tessLevel_; }
     int patchCount() const { return patchCount_; }
 
-    // With `maps`, the variant with their effects, reading the given version of their θ.
+    // With `maps`, the variant with their effects, reading `version` of the perturbed map group
+    // (if any) and the current θ of the others.
     void draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera, const RenderTarget& target,
               const maps::MapParameters* maps = nullptr,
-              maps::ParameterVersion version = maps::ParameterVersion::Current) const;
+              maps::ParameterVersion version = maps::ParameterVersion::Current,
+              const sge::ParameterGroup* perturbed = nullptr) const;
 
 private:
     int patchCount_, tessLevel_;

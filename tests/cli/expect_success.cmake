@@ -10,7 +10,7 @@ if(NOT rc EQUAL 0)
 endif()
 
 set(problems "")
-foreach(name cage.obj report.json before.png after.png target.png)
+foreach(name cage.obj report.json before.png after.png target.png fitted.glb)
   if(NOT EXISTS "${OUT}/${name}")
     string(APPEND problems "\n  missing ${name}")
   else()

@@ -1,0 +1,148 @@
+#include "export/glb_writer.h"
+
+#include <cstring>
+#include <limits>
+
+#include <glm/common.hpp>
+#include <nlohmann/json.hpp>
+
+#include "export/draco_encoding.h"
+#include "export/glb_container.h"
+#include "util/error.h"
+
+namespace subdfit::exporter {
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kDraco = "KHR_draco_mesh_compression";
+// glTF enums (spec 5.1.1, 5.25).
+constexpr int kFloat = 5126, kUnsignedInt = 5125;
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+constexpr int kLinear = 9729, kClampToEdge = 33071;
+constexpr int kTriangles = 4;
+
+// buffers[0] and its bufferViews, each view starting 4-byte aligned (glTF requires accessor
+// offsets to be multiples of the component size; ours are all 4 bytes).
+class BinaryBuilder {
+public:
+    int addView(std::span<const unsigned char> bytes, int target = 0) {
+        data_.resize((data_.size() + 3) & ~size_t(3), 0);
+        json view = {{"buffer", 0}, {"byteOffset", data_.size()}, {"byteLength", bytes.size()}};
+        if (target) view["target"] = target;
+        data_.insert(data_.end(), bytes.begin(), bytes.end());
+        views_.push_back(std::move(view));
+        return int(views_.size()) - 1;
+    }
+
+    template <typename T>
+    int addArray(const std::vector<T>& values, int target) {
+        return addView({reinterpret_cast<const unsigned char*>(values.data()), values.size() * sizeof(T)}, target);
+    }
+
+    const std::vector<unsigned char>& data() const { return data_; }
+    const json& views() const { return views_; }
+
+private:
+    std::vector<unsigned char> data_;
+    json views_ = json::array();
+};
+
+json accessor(int view, int componentType, size_t count, const char* type) {
+    json a = {{"componentType", componentType}, {"count", count}, {"type", type}};
+    if (view >= 0) a["bufferView"] = view;  // a Draco-compressed accessor has none (KHR spec)
+    return a;
+}
+
+json vec3Json(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
+
+void checkTessellation(const LimitTessellation& tess) {
+    const size_t n = tess.vertexCount();
+    SUBDFIT_CHECK(tess.normals.size() == n && tess.tangents.size() == n && tess.uvs.size() == n);
+    SUBDFIT_CHECK(tess.indices.size() % 3 == 0);
+    if (n == 0 || tess.indices.empty()) throw Error("nothing to export: the tessellation has no triangles");
+}
+
+json material(bool hasNormalTexture) {
+    json m = {{"name", "subdfit"},
+              {"pbrMetallicRoughness",
+               {{"baseColorFactor", {0.5, 0.5, 0.5, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}}}};
+    if (hasNormalTexture) m["normalTexture"] = {{"index", 0}};
+    return m;
+}
+
+json document(const LimitTessellation& tess, std::span<const unsigned char> normalPng, bool draco,
+              BinaryBuilder& binary) {
+    json primitive = {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TANGENT", 2}, {"TEXCOORD_0", 3}}},
+                      {"indices", 4},
+                      {"material", 0},
+                      {"mode", kTriangles}};
+    json accessors = json::array();
+    if (draco) {
+        const DracoEncodedMesh encoded = encodeDraco(tess);
+        const int view = binary.addView(encoded.bytes);
+        accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC3"));
+        accessors.back()["min"] = vec3Json(encoded.positionMin);
+        accessors.back()["max"] = vec3Json(encoded.positionMax);
+        accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC3"));
+        accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC4"));
+        accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC2"));
+        accessors.push_back(accessor(-1, kUnsignedInt, encoded.triangleCount * 3, "SCALAR"));
+        primitive["extensions"][kDraco] = {{"bufferView", view},
+                                           {"attributes",
+                                            {{"POSITION", encoded.position},
+                                             {"NORMAL", encoded.normal},
+                                             {"TANGENT", encoded.tangent},
+                                             {"TEXCOORD_0", encoded.texcoord}}}};
+    } else {
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        for (const glm::vec3& p : tess.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        const size_t n = tess.vertexCount();
+        accessors.push_back(accessor(binary.addArray(tess.positions, kArrayBuffer), kFloat, n, "VEC3"));
+        accessors.back()["min"] = vec3Json(lo);  // required for POSITION (spec 5.1.1)
+        accessors.back()["max"] = vec3Json(hi);
+        accessors.push_back(accessor(binary.addArray(tess.normals, kArrayBuffer), kFloat, n, "VEC3"));
+        accessors.push_back(accessor(binary.addArray(tess.tangents, kArrayBuffer), kFloat, n, "VEC4"));
+        accessors.push_back(accessor(binary.addArray(tess.uvs, kArrayBuffer), kFloat, n, "VEC2"));
+        accessors.push_back(
+            accessor(binary.addArray(tess.indices, kElementArrayBuffer), kUnsignedInt, tess.indices.size(), "SCALAR"));
+    }
+
+    json doc = {{"asset", {{"version", "2.0"}, {"generator", "subdfit"}}},
+                {"scene", 0},
+                {"scenes", json::array({{{"nodes", {0}}}})},
+                {"nodes", json::array({{{"mesh", 0}, {"name", "fitted"}}})},
+                {"meshes", json::array({{{"name", "fitted"}, {"primitives", json::array({primitive})}}})},
+                {"materials", json::array({material(!normalPng.empty())})},
+                {"accessors", accessors}};
+    if (!normalPng.empty()) {
+        const int view = binary.addView(normalPng);
+        doc["images"] = json::array({{{"bufferView", view}, {"mimeType", "image/png"}, {"name", "normal"}}});
+        // No mipmaps: each atlas tile is its own chart, and a coarser level would mix tiles.
+        doc["samplers"] = json::array(
+            {{{"magFilter", kLinear}, {"minFilter", kLinear}, {"wrapS", kClampToEdge}, {"wrapT", kClampToEdge}}});
+        doc["textures"] = json::array({{{"sampler", 0}, {"source", 0}}});
+    }
+    if (draco) doc["extensionsUsed"] = doc["extensionsRequired"] = json::array({kDraco});
+    doc["bufferViews"] = binary.views();
+    doc["buffers"] = json::array({{{"byteLength", binary.data().size()}}});
+    return doc;
+}
+
+}  // namespace
+
+WrittenFile writeFittedGlb(const std::filesystem::path& path, const LimitTessellation& tess,
+                           std::span<const unsigned char> normalPng, bool draco) {
+    std::vector<unsigned char> bytes;
+    try {
+        checkTessellation(tess);
+        BinaryBuilder binary;
+        const json doc = document(tess, normalPng, draco, binary);
+        bytes = packGlb(doc, binary.data());
+    } catch (const Error& e) {
+        throw fileError(path.string(), e.what());
+    }
+    return writeBytes(path, bytes);
+}
+
+}  // namespace subdfit::exporter

@@ -1,0 +1,21 @@
+#pragma once
+// The fitted asset as one self-contained .glb: the displaced limit tessellation with normals,
+// tangents and atlas texcoords, and a plain grey material whose normalTexture is the fitted
+// normal atlas -- viewable in any glTF viewer.
+#include <filesystem>
+#include <span>
+
+#include "export/limit_tessellation.h"
+#include "export/output_file.h"
+
+namespace subdfit::exporter {
+
+// One scene, node, mesh and primitive (POSITION, NORMAL, TANGENT, TEXCOORD_0, uint32 indices),
+// one material (metallic 0, roughness 0.6; normalTexture = the embedded `normalPng` unless it
+// is empty, sampled LINEAR without mipmaps and clamped, as the atlas requires). With `draco`,
+// the primitive is KHR_draco_mesh_compression-encoded (export/draco_encoding.h) and the
+// extension is required. Written atomically; throws subdfit::Error "path: problem".
+WrittenFile writeFittedGlb(const std::filesystem::path& path, const LimitTessellation& tess,
+                           std::span<const unsigned char> normalPng, bool draco);
+
+}  // namespace subdfit::exporter
