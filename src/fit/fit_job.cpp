@@ -117,6 +117,8 @@ nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene:
         if (auto* g = parameters->normalMap()) maps.normal = g->read();
         written = exporter::writeMapAtlases(o.out, maps);
         if (maps.hasNormal()) normalPng = exporter::encodeNormalPng(exporter::atlasLayout(maps.layout), maps);
+    } else {
+        maps.layout = maps::buildTexelLayout(fittedWorld, 1);  // no maps: UVs still name each face's tile
     }
     const auto tessellation = exporter::tessellateLimitSurface(fittedWorld, maps, fitter.renderer().tessLevel());
     written.push_back(exporter::writeFittedGlb(o.out / "fitted.glb", tessellation, normalPng, o.draco));
