@@ -20,4 +20,12 @@ struct LumpySphereOptions {
 };
 int runLumpySphere(const LumpySphereOptions& options);
 
+struct MapsGainOptions {
+    std::filesystem::path out = "bench-maps";
+    int steps = 800;
+    int mapResolution = 8;
+    std::string glProvider = "auto";
+};
+int runMapsGain(const MapsGainOptions& options);
+
 }  // namespace subdfit::bench

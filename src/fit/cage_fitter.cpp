@@ -66,7 +66,10 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     const auto all = groups();
     const bool mapsStarted = settings_.plannedSteps <= 0 ||
                              float(steps_) >= settings_.mapsStartFraction * float(settings_.plannedSteps);
-    sge::ParameterGroup* perturbed = mapsStarted ? all[counter % all.size()] : &vertices_;
+    // Once the maps have started, the vertices keep every other turn and the map groups share
+    // the rest: the cage still sets the shape that the maps' detail sits on.
+    sge::ParameterGroup* perturbed = &vertices_;
+    if (mapsStarted && all.size() > 1 && counter % 2 == 1) perturbed = all[1 + (counter / 2) % (all.size() - 1)];
     sge::perturb(programs_, *perturbed, counter, settings_.seed);
     if (std::find(pendingUpdate_.begin(), pendingUpdate_.end(), perturbed) == pendingUpdate_.end())
         pendingUpdate_.push_back(perturbed);

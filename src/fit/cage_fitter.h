@@ -3,9 +3,10 @@
 // scene has them) to a TargetSet with per-pixel SGE. One step: P (θ± of one group), stencils,
 // then per view R(θ+), R(θ−), G; then Adam on that group (after the vertex preconditioner).
 //
-// Groups take turns, one per sample: perturbing the vertices moves silhouettes and shading far
-// more than a texel does, so a joint perturbation would drown each texel's estimate in the
-// vertices' noise; in turn, each group's estimate only carries its own group's cross terms.
+// Groups take turns, one per sample (vertices every other turn, the map groups sharing the
+// rest): perturbing the vertices moves silhouettes and shading far more than a texel does, so a
+// joint perturbation would drown each texel's estimate in the vertices' noise; in turn, each
+// group's estimate only carries its own group's cross terms.
 // Everything stays on the GPU; only takeMeanLoss(), state() and the readers read back.
 #include <cstdint>
 #include <memory>

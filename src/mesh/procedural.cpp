@@ -54,7 +54,8 @@ PolygonMesh makeQuadGrid(int n, const std::function<float(float, float)>& height
     return mesh;
 }
 
-PolygonMesh makeLumpySphere(int subdivisions, float amplitude, std::uint32_t seed) {
+PolygonMesh makeLumpySphere(int subdivisions, float amplitude, std::uint32_t seed, int bumps, float minWidth,
+                            float maxWidth) {
     PolygonMesh mesh;
     mesh.sourcePath = "lumpy-sphere";
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
@@ -84,14 +85,14 @@ PolygonMesh makeLumpySphere(int subdivisions, float amplitude, std::uint32_t see
     std::normal_distribution<float> normal;
     std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
     struct Bump { glm::vec3 centre; float height, width; };
-    std::vector<Bump> bumps;
-    for (int k = 0; k < 12; ++k)
-        bumps.push_back({glm::normalize(glm::vec3(normal(rng), normal(rng), normal(rng))),
+    std::vector<Bump> lumps;
+    for (int k = 0; k < bumps; ++k)
+        lumps.push_back({glm::normalize(glm::vec3(normal(rng), normal(rng), normal(rng))),
                          (uniform(rng) < 0.5f ? -1.0f : 1.0f) * (0.5f + 0.5f * uniform(rng)),
-                         0.05f + 0.15f * uniform(rng)});
+                         minWidth + (maxWidth - minWidth) * uniform(rng)});
     for (auto& p : mesh.positions) {
         float r = 1.0f;
-        for (const auto& bump : bumps) r += amplitude * bump.height * std::exp(-(1.0f - glm::dot(p, bump.centre)) / bump.width);
+        for (const auto& bump : lumps) r += amplitude * bump.height * std::exp(-(1.0f - glm::dot(p, bump.centre)) / bump.width);
         p *= r;
     }
     mesh.faceSizes.assign(tris.size() / 3, 3);

@@ -16,7 +16,9 @@ PolygonMesh makeQuadSphere(int n);
 PolygonMesh makeQuadGrid(int n, const std::function<float(float, float)>& height = {});
 
 // A "lumpy sphere" reference: an icosphere (`subdivisions` levels; 5 → 20 480 triangles)
-// with radius 1 + amplitude · Σ of a few smooth random bumps, seeded.
-PolygonMesh makeLumpySphere(int subdivisions, float amplitude, std::uint32_t seed);
+// with radius 1 + amplitude · Σ_k h_k exp(−(1 − d·c_k) / w_k) over `bumps` random bumps of
+// width w_k in [minWidth, maxWidth] (in 1 − cos units: w = 0.005 is ~0.1 rad across), seeded.
+PolygonMesh makeLumpySphere(int subdivisions, float amplitude, std::uint32_t seed, int bumps = 12,
+                            float minWidth = 0.05f, float maxWidth = 0.2f);
 
 }  // namespace subdfit::mesh

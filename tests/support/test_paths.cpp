@@ -15,7 +15,8 @@ std::filesystem::path sharedAssetPath(const std::string& relative) {
 }
 
 std::filesystem::path scratchDir(const std::string& name) {
-    auto p = std::filesystem::current_path() / "scratch" / name;
+    // Under the build tree whatever folder the test runs from: never litter the sources.
+    auto p = std::filesystem::path(SUBDFIT_SCRATCH_DIR) / name;
     std::filesystem::remove_all(p);
     std::filesystem::create_directories(p);
     return p;
