@@ -103,10 +103,9 @@ void CageFitter::update() {
                               settings_.smoothingIterations, smoothScratch_);
             sge::adamStep(programs_, vertices_, vertices_.gradientSmooth);
         } else {
-            const bool isDisplacement = maps_ && g == maps_->displacement();
-            g->settings().learningRate =
-                (isDisplacement ? settings_.maps.displacement : settings_.maps.normalMap).learningRate * decay;
-            sge::adamStep(programs_, *g, g->gradient);
+            const bool isDisplacement = g == maps_->displacement();
+            maps_->update(programs_, *g,
+                          (isDisplacement ? settings_.maps.displacement : settings_.maps.normalMap).learningRate * decay);
         }
     }
     pendingUpdate_.clear();

@@ -1,5 +1,6 @@
 #include "maps/map_parameters.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "bindings.h"
@@ -19,10 +20,22 @@ MapEffects parseMapEffects(const std::string& text) {
     return effects;
 }
 
+namespace {
+
+sge::Adjacency uploadAdjacency(const TexelLayout& layout) {
+    const auto graph = nodeAdjacency(layout);
+    return {gl::Buffer::fromVector(graph.offsets), gl::Buffer::fromVector(graph.neighbors), layout.nodeCount};
+}
+
+}  // namespace
+
 MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, const MapSettings& settings)
     : effects_(effects),
       layout_(buildTexelLayout(cage, settings.resolution)),
-      faceNodes_(gl::Buffer::fromVector(layout_.faceNodes)) {
+      settings_(settings),
+      faceNodes_(gl::Buffer::fromVector(layout_.faceNodes)),
+      adjacency_(uploadAdjacency(layout_)),
+      scratch_(GLsizeiptr(std::max(1, layout_.nodeCount)) * 2 * GLsizeiptr(sizeof(float))) {
     if (effects.displacement)
         displacement_ = std::make_unique<sge::ParameterGroup>(
             "displacement", std::vector<float>(size_t(layout_.nodeCount), 0.0f), settings.displacement,
@@ -66,6 +79,12 @@ void MapParameters::bindForGradient() const {
     faceNodes_.bindStorage(SUBDFIT_SSBO_FACE_NODES);
     if (displacement_) displacement_->gradient.bindStorage(SUBDFIT_SSBO_GRADIENT_DISPLACEMENT);
     if (normalMap_) normalMap_->gradient.bindStorage(SUBDFIT_SSBO_GRADIENT_NORMAL_MAP);
+}
+
+void MapParameters::update(gl::ProgramCache& programs, sge::ParameterGroup& group, float learningRate) {
+    group.settings().learningRate = learningRate;
+    sge::precondition(programs, group, adjacency_, settings_.smoothing, settings_.smoothingIterations, scratch_);
+    sge::adamStep(programs, group, group.gradientSmooth);
 }
 
 }  // namespace subdfit::maps

@@ -9,6 +9,7 @@
 #include "gl/program.h"
 #include "maps/texel_layout.h"
 #include "sge/parameter_group.h"
+#include "sge/passes.h"
 
 namespace subdfit::maps {
 
@@ -26,6 +27,9 @@ struct MapSettings {
     // Heights in the normalised frame (scene radius 1); tangent offsets are dimensionless.
     sge::GroupSettings displacement{.epsilon = 0.004f, .learningRate = 0.003f};
     sge::GroupSettings normalMap{.epsilon = 0.05f, .learningRate = 0.01f};
+    // (I + λL)⁻¹ on the node graph, as for the cage: texel estimates are noisy one by one.
+    float smoothing = 2.0f;
+    int smoothingIterations = 8;
 };
 
 // Which θ a raster pass reads: the current one, or a perturbed one.
@@ -47,10 +51,16 @@ public:
     void bindForRaster(ParameterVersion version, const sge::ParameterGroup* perturbed) const;
     void bindForGradient() const;
 
+    // Preconditions `group`'s gradient on the node graph and applies Adam to it.
+    void update(gl::ProgramCache& programs, sge::ParameterGroup& group, float learningRate);
+
 private:
     MapEffects effects_;
     TexelLayout layout_;
+    MapSettings settings_;
     gl::Buffer faceNodes_;
+    sge::Adjacency adjacency_;
+    gl::Buffer scratch_;  // Jacobi ping-pong partner, sized for the largest group
     std::unique_ptr<sge::ParameterGroup> displacement_, normalMap_;
 };
 

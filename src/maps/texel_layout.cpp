@@ -75,6 +75,37 @@ TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution) {
     return layout;
 }
 
+NodeAdjacency nodeAdjacency(const TexelLayout& layout) {
+    std::vector<std::vector<int>> neighbours(size_t(layout.nodeCount));
+    const int n = layout.resolution;
+    for (int face = 0; face < layout.ptexFaceCount; ++face)
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                const int a = layout.node(face, i, j);
+                if (i < n) {
+                    const int b = layout.node(face, i + 1, j);
+                    neighbours[size_t(a)].push_back(b);
+                    neighbours[size_t(b)].push_back(a);
+                }
+                if (j < n) {
+                    const int b = layout.node(face, i, j + 1);
+                    neighbours[size_t(a)].push_back(b);
+                    neighbours[size_t(b)].push_back(a);
+                }
+            }
+    NodeAdjacency adjacency;
+    adjacency.offsets.push_back(0);
+    for (int a = 0; a < layout.nodeCount; ++a) {
+        auto& list = neighbours[size_t(a)];
+        std::sort(list.begin(), list.end());
+        list.erase(std::unique(list.begin(), list.end()), list.end());
+        list.erase(std::remove(list.begin(), list.end(), a), list.end());  // welded degenerate edges
+        adjacency.neighbors.insert(adjacency.neighbors.end(), list.begin(), list.end());
+        adjacency.offsets.push_back(int(adjacency.neighbors.size()));
+    }
+    return adjacency;
+}
+
 float sampleBilinear(const TexelLayout& layout, std::span<const float> values, int stride, int channel, int face,
                      float u, float v) {
     const int n = layout.resolution;

@@ -23,6 +23,13 @@ struct TexelLayout {
     }
 };
 
+// The node graph: grid neighbours within every tile, so nodes on shared borders gather the
+// neighbours of all their tiles (CSR, unique). The maps' smoothing preconditioner runs on it.
+struct NodeAdjacency {
+    std::vector<int> offsets, neighbors;
+};
+NodeAdjacency nodeAdjacency(const TexelLayout& layout);
+
 // Throws subdfit::Error for a resolution outside 1..256.
 TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution);
 

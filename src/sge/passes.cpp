@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "bindings.h"
+#include "maps/map_parameters.h"
 
 namespace subdfit::sge {
 namespace {
@@ -108,7 +109,8 @@ void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjac
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         return;
     }
-    const auto& program = programs.get("precondition", {{GL_COMPUTE_SHADER, "precondition.comp"}});
+    const auto& program = programs.get("precondition", {{GL_COMPUTE_SHADER, "precondition.comp"}},
+                                       {{"SUBDFIT_CHANNELS", std::to_string(group.count() / adjacency.vertexCount)}});
     program.use();
     program.set("uVertexCount", adjacency.vertexCount);
     program.set("uLambda", lambda);

@@ -7,9 +7,12 @@
 
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
-#include "maps/map_parameters.h"
 #include "render/render_target.h"
 #include "sge/parameter_group.h"
+
+namespace subdfit::maps {
+class MapParameters;
+}
 
 namespace subdfit::sge {
 
@@ -48,9 +51,10 @@ void scatterFaceDeltas(gl::ProgramCache& programs, ParameterGroup& group, FaceVe
 
 // g̃ = (I + λL)⁻¹ g by `iterations` Jacobi sweeps into group.gradientSmooth (a plain copy when
 // iterations == 0 or λ == 0). `scratch` must be the size of the gradient.
+// The group's parameter graph (CSR); each node holds group.count() / vertexCount floats.
 struct Adjacency {
     gl::Buffer offsets, indices;
-    int vertexCount;
+    int vertexCount;  // graph nodes
 };
 void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency,
                   float lambda, int iterations, gl::Buffer& scratch);
