@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
     fitCommand->add_option("--smoothing", fit.smoothing, "Laplacian preconditioner strength (0 = off)")->capture_default_str();
     fitCommand->add_option("--maps", fit.maps, "maps to fit: none, displacement, normal, displacement,normal")->capture_default_str();
     fitCommand->add_option("--map-res", fit.mapResolution, "map cells per face edge")->capture_default_str();
+    fitCommand->add_option("--maps-start", fit.mapsStart, "fraction of the steps before the maps join")->capture_default_str();
     fitCommand->add_flag("--draco", fit.draco, "write fitted.glb with Draco compression");
     fitCommand->add_flag("--resume", fit.resume, "continue from DIR/checkpoint.bin (same inputs and settings)");
     fitCommand->add_option("--checkpoint-every", fit.checkpointEvery, "steps between checkpoints")->capture_default_str();

@@ -108,6 +108,7 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
     settings.plannedSteps = o.steps;
     settings.mapEffects = maps::parseMapEffects(o.maps);
     settings.maps.resolution = o.mapResolution;
+    settings.mapsStartFraction = o.mapsStart;
     CageFitter fitter(programs, cage, settings);
 
     render::RenderTarget image(o.resolution, o.resolution);
@@ -179,7 +180,8 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
          {{"views", o.views}, {"holdout_views", o.holdoutViews}, {"resolution", o.resolution},
           {"views_per_step", o.viewsPerStep}, {"tess_level", fitter.renderer().tessLevel()},
           {"seed", o.seed}, {"epsilon", o.epsilon}, {"learning_rate", o.learningRate},
-          {"smoothing", o.smoothing}, {"maps", o.maps}, {"map_resolution", o.mapResolution}}},
+          {"smoothing", o.smoothing}, {"maps", o.maps}, {"map_resolution", o.mapResolution},
+          {"maps_start", o.mapsStart}}},
         {"cage", {{"path", o.cage.string()}, {"vertices", cage.vertexCount()}, {"faces", cage.faceCount()},
                   {"patches", fitter.renderer().patchCount()}}},
         {"reference", {{"path", o.reference.string()}, {"triangles", reference.faceCount()}}},

@@ -34,6 +34,7 @@ void validate(const FitOptions& o) {
     require(!o.out.empty(), "--out is required");
     require(o.checkpointEvery >= 1, "checkpoint interval must be >= 1 step");
     require(o.mapResolution >= 1 && o.mapResolution <= 64, "--map-res must be in 1..64, got " + std::to_string(o.mapResolution));
+    require(o.mapsStart >= 0.0f && o.mapsStart <= 1.0f, "--maps-start must be in 0..1");
     maps::parseMapEffects(o.maps);
     if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out))
         throw fileError(o.out.string(), "exists and is not a folder");
@@ -65,7 +66,8 @@ std::string checkpointFingerprint(const FitOptions& o, const mesh::PolygonMesh& 
     return nlohmann::json{{"inputs", hash}, {"views", o.views}, {"holdout_views", o.holdoutViews},
                           {"resolution", o.resolution}, {"views_per_step", o.viewsPerStep}, {"tess", o.tessLevel},
                           {"seed", o.seed}, {"epsilon", o.epsilon}, {"lr", o.learningRate},
-                          {"smoothing", o.smoothing}, {"maps", o.maps}, {"map_res", o.mapResolution}}
+                          {"smoothing", o.smoothing}, {"maps", o.maps}, {"map_res", o.mapResolution},
+                          {"maps_start", o.mapsStart}}
         .dump();
 }
 
