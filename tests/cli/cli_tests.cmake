@@ -50,6 +50,10 @@ subdfit_cli_refuses(option_steps_negative --steps
 subdfit_cli_refuses(option_tess_0 --tess --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --tess 0)
 subdfit_cli_refuses(option_epsilon_0 --epsilon
                     --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --epsilon 0)
+subdfit_cli_refuses(option_maps_unknown --maps
+                    --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --maps bumps)
+subdfit_cli_refuses(option_map_res_0 --map-res
+                    --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --maps displacement --map-res 0)
 # Options the parser itself rejects get the same one-line treatment.
 subdfit_cli_refuses(option_steps_not_a_number --steps
                     --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --steps abc)
