@@ -121,6 +121,11 @@ void main() {
     float delta = fPlus - fMinus;
     if (covered && delta != 0.0) {
         float scaledDelta = delta / (2.0 * uEpsilon);
+#ifdef SUBDFIT_FULL_IMAGE
+        // The full-image estimator of plain SPSA, for comparison only: every pixel's Δ goes to
+        // every parameter (scatter_faces.comp reads this one sum for all vertices).
+        addFaceDelta(0u, scaledDelta);
+#else
         if (fp == fm) {
             addFaceDelta(uint(fp), scaledDelta);
         } else {
@@ -129,6 +134,7 @@ void main() {
         }
 #ifdef SUBDFIT_MAPS
         addMapGradients(pixel, fp, fm, delta);
+#endif
 #endif
     }
     // The loss goes to one of 256 slots by lane: a single float taking every pixel would

@@ -17,8 +17,12 @@ uniform uint uSeed;
 void main() {
     int v = int(gl_GlobalInvocationID.x);
     if (v >= uVertexCount) return;
+#ifdef SUBDFIT_FULL_IMAGE
+    float sum = faceDelta[0];  // plain SPSA: the whole image's Δ for every vertex
+#else
     float sum = 0.0;
     for (int k = vertexFaceOffsets[v]; k < vertexFaceOffsets[v + 1]; ++k) sum += faceDelta[vertexFaceIndices[k]];
+#endif
     if (sum == 0.0) return;
     for (uint c = 0u; c < 3u; ++c) {
         uint i = 3u * uint(v) + c;

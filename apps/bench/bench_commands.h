@@ -28,4 +28,23 @@ struct MapsGainOptions {
 };
 int runMapsGain(const MapsGainOptions& options);
 
+struct GradientOptions {
+    std::filesystem::path out = "bench-gradient";
+    int maxSamples = 256;
+    int sweepSamples = 64;
+    float epsilon = 0.008f;  // the fit's default vertex ε; also the finite-difference step
+    std::string glProvider = "auto";
+};
+int runGradientQuality(const GradientOptions& options);
+
+struct SoupOptions {
+    std::filesystem::path out = "bench-soup";
+    int triangles = 100000;
+    int steps = 250;
+    int resolution = 512;
+    double seconds = 0.0;  // step time per estimator (0: no limit); with --steps, whichever ends first
+    std::string glProvider = "auto";
+};
+int runSoup(const SoupOptions& options);
+
 }  // namespace subdfit::bench

@@ -32,6 +32,21 @@ int main(int argc, char** argv) {
     mapsCommand->add_option("--map-res", mapsGain.mapResolution, "map cells per face edge")->capture_default_str();
     mapsCommand->add_option("--gl", mapsGain.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
 
+    subdfit::bench::GradientOptions gradient;
+    auto* gradientCommand = app.add_subcommand("gradient", "SGE gradient quality against cost; per-pixel vs full-image; ε");
+    gradientCommand->add_option("--out", gradient.out, "output folder")->capture_default_str();
+    gradientCommand->add_option("--samples", gradient.maxSamples, "largest k")->capture_default_str();
+    gradientCommand->add_option("--gl", gradient.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+
+    subdfit::bench::SoupOptions soup;
+    auto* soupCommand = app.add_subcommand("soup", "triangle soup fitted to an image: per-pixel vs full-image SGE (Fig. 2)");
+    soupCommand->add_option("--out", soup.out, "output folder")->capture_default_str();
+    soupCommand->add_option("--triangles", soup.triangles, "triangles (12 parameters each)")->capture_default_str();
+    soupCommand->add_option("--steps", soup.steps, "optimisation steps per estimator")->capture_default_str();
+    soupCommand->add_option("--res", soup.resolution, "resolution")->capture_default_str();
+    soupCommand->add_option("--seconds", soup.seconds, "step-time budget per estimator (0: none)")->capture_default_str();
+    soupCommand->add_option("--gl", soup.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -43,6 +58,8 @@ int main(int argc, char** argv) {
         if (stepCostCommand->parsed()) return subdfit::bench::runStepCost(stepCost);
         if (lumpyCommand->parsed()) return subdfit::bench::runLumpySphere(lumpy);
         if (mapsCommand->parsed()) return subdfit::bench::runMapsGain(mapsGain);
+        if (gradientCommand->parsed()) return subdfit::bench::runGradientQuality(gradient);
+        if (soupCommand->parsed()) return subdfit::bench::runSoup(soup);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "subdfit-bench: error: %s\n", e.what());
         return 1;

@@ -84,10 +84,11 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
         renderer_.draw(programs_, minusPoints, camera, minus_, maps_.get(), maps::ParameterVersion::Minus, perturbed);
         sge::accumulateGradient(programs_, vertices_, faceVertices_,
                                 {&plus_, &minus_, targets.colors().id(), view, counter, settings_.seed,
-                                 1.0f / (pixels * float(views.size())), measureLoss, maps_.get()},
+                                 1.0f / (pixels * float(views.size())), measureLoss, maps_.get(),
+                                 settings_.fullImageEstimator},
                                 loss_);
     }
-    sge::scatterFaceDeltas(programs_, vertices_, faceVertices_, counter, settings_.seed);
+    sge::scatterFaceDeltas(programs_, vertices_, faceVertices_, counter, settings_.seed, settings_.fullImageEstimator);
     if (measureLoss) ++samplesSinceLoss_;
 }
 

@@ -37,6 +37,8 @@ struct CageFitSettings {
     // the cage has its shape (detail fitted on a wrong shape would be undone later).
     float mapsStartFraction = 0.4f;
     maps::MapSettings maps{};
+    // Plain full-image SPSA instead of the per-pixel estimator: for benchmarks that show why not.
+    bool fullImageEstimator = false;
 };
 
 class CageFitter {

@@ -54,7 +54,8 @@ void perturb(gl::ProgramCache& programs, ParameterGroup& group, std::uint32_t co
 
 void accumulateGradient(gl::ProgramCache& programs, ParameterGroup& group, const FaceVertexTable& faces,
                         const GradientInputs& in, const gl::Buffer& loss) {
-    const gl::Defines effects = in.maps ? in.maps->defines() : gl::Defines{};
+    gl::Defines effects = in.maps ? in.maps->defines() : gl::Defines{};
+    if (in.fullImage) effects["SUBDFIT_FULL_IMAGE"] = "";
     const auto& program = programs.get("gradient", {{GL_COMPUTE_SHADER, "gradient.comp"}}, effects);
     program.use();
     program.set("uTargetLayer", in.targetLayer);
@@ -73,7 +74,7 @@ void accumulateGradient(gl::ProgramCache& programs, ParameterGroup& group, const
     group.gradient.bindStorage(SUBDFIT_SSBO_GRADIENT);
     loss.bindStorage(SUBDFIT_SSBO_LOSS);
     faces.faceDelta.bindStorage(SUBDFIT_SSBO_FACE_DELTA);
-    if (!effects.empty()) {
+    if (in.maps) {
         program.set("uMapResolution", in.maps->layout().resolution);
         if (auto* g = in.maps->displacement()) program.set("uEpsilonDisplacement", g->settings().epsilon);
         if (auto* g = in.maps->normalMap()) program.set("uEpsilonNormalMap", g->settings().epsilon);
@@ -87,8 +88,9 @@ void accumulateGradient(gl::ProgramCache& programs, ParameterGroup& group, const
 }
 
 void scatterFaceDeltas(gl::ProgramCache& programs, ParameterGroup& group, FaceVertexTable& faces,
-                       std::uint32_t counter, std::uint32_t seed) {
-    const auto& program = programs.get("scatter_faces", {{GL_COMPUTE_SHADER, "scatter_faces.comp"}});
+                       std::uint32_t counter, std::uint32_t seed, bool fullImage) {
+    const auto& program = programs.get("scatter_faces", {{GL_COMPUTE_SHADER, "scatter_faces.comp"}},
+                                       fullImage ? gl::Defines{{"SUBDFIT_FULL_IMAGE", ""}} : gl::Defines{});
     program.use();
     program.set("uVertexCount", faces.vertexCount);
     program.set("uCounter", counter);

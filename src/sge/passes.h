@@ -37,6 +37,7 @@ struct GradientInputs {
     float lossScale;     // weight of each pixel's loss in the reported mean
     bool measureLoss;    // also accumulate the loss (costs a target fetch on background pixels)
     maps::MapParameters* maps = nullptr;  // texel groups to credit too, when the scene has them
+    bool fullImage = false;  // plain SPSA (every pixel to every vertex): benchmarks only
 };
 
 // G: accumulates Δ_p / (2 s_i ε) into group.gradient (directly where the ± faces differ, via
@@ -47,7 +48,7 @@ void accumulateGradient(gl::ProgramCache& programs, ParameterGroup& group, const
 // G, second half: hands the per-face sums to the vertices' parameters (signs of `counter`)
 // and clears them. Once per perturbation sample, after all its views.
 void scatterFaceDeltas(gl::ProgramCache& programs, ParameterGroup& group, FaceVertexTable& faces,
-                       std::uint32_t counter, std::uint32_t seed);
+                       std::uint32_t counter, std::uint32_t seed, bool fullImage = false);
 
 // g̃ = (I + λL)⁻¹ g by `iterations` Jacobi sweeps into group.gradientSmooth (a plain copy when
 // iterations == 0 or λ == 0). `scratch` must be the size of the gradient.

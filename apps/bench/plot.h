@@ -1,0 +1,36 @@
+#pragma once
+// Minimal PNG line/scatter plots for the benchmarks, drawn with OpenImageIO alone: white
+// background, framed axes with "nice" ticks (1/2/5 steps, decades on log axes), light grid,
+// title, axis labels and a legend to the right of the axes. Not a general plotting library:
+// just enough for a person to read a benchmark result without other tools.
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace subdfit::bench {
+
+struct Series {
+    std::string label;
+    std::vector<double> x, y;  // same length; extra entries of the longer one are ignored
+    bool markersOnly = false;  // scatter: markers without connecting lines
+};
+
+struct PlotSpec {
+    std::string title, xLabel, yLabel;
+    bool logX = false, logY = false;
+    std::vector<Series> series;
+    // Drawn last as a thick black polyline in the given order, e.g. a Pareto front.
+    std::vector<std::pair<double, double>> highlight;
+    int width = 900, height = 600;
+    // Legend entry for `highlight` (empty: no entry).
+    std::string highlightLabel = "Pareto front";
+};
+
+// Writes `spec` as a PNG, atomically. Points with a NaN/Inf coordinate, or a non-positive one on a
+// log axis, are skipped (lines break there). Text needs a TrueType font (DejaVu Sans from Debian's
+// fonts-dejavu-core, else whatever OpenImageIO finds); without one the plot is drawn without text.
+// Throws subdfit::Error "png: problem" when the image cannot be made or written.
+void writePlot(const std::filesystem::path& png, const PlotSpec& spec);
+
+}  // namespace subdfit::bench
