@@ -28,6 +28,13 @@ struct MapsGainOptions {
 };
 int runMapsGain(const MapsGainOptions& options);
 
+struct AccuracyOptions {
+    std::filesystem::path out = "bench-accuracy";
+    int baseSteps = 400;
+    std::string glProvider = "auto";
+};
+int runAccuracy(const AccuracyOptions& options);
+
 struct GradientOptions {
     std::filesystem::path out = "bench-gradient";
     int maxSamples = 256;

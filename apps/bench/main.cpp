@@ -32,6 +32,12 @@ int main(int argc, char** argv) {
     mapsCommand->add_option("--map-res", mapsGain.mapResolution, "map cells per face edge")->capture_default_str();
     mapsCommand->add_option("--gl", mapsGain.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
 
+    subdfit::bench::AccuracyOptions accuracy;
+    auto* accuracyCommand = app.add_subcommand("accuracy", "held-out PSNR and Chamfer against wall time, knob by knob");
+    accuracyCommand->add_option("--out", accuracy.out, "output folder")->capture_default_str();
+    accuracyCommand->add_option("--steps", accuracy.baseSteps, "base step count")->capture_default_str();
+    accuracyCommand->add_option("--gl", accuracy.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+
     subdfit::bench::GradientOptions gradient;
     auto* gradientCommand = app.add_subcommand("gradient", "SGE gradient quality against cost; per-pixel vs full-image; ε");
     gradientCommand->add_option("--out", gradient.out, "output folder")->capture_default_str();
@@ -59,6 +65,7 @@ int main(int argc, char** argv) {
         if (lumpyCommand->parsed()) return subdfit::bench::runLumpySphere(lumpy);
         if (mapsCommand->parsed()) return subdfit::bench::runMapsGain(mapsGain);
         if (gradientCommand->parsed()) return subdfit::bench::runGradientQuality(gradient);
+        if (accuracyCommand->parsed()) return subdfit::bench::runAccuracy(accuracy);
         if (soupCommand->parsed()) return subdfit::bench::runSoup(soup);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "subdfit-bench: error: %s\n", e.what());

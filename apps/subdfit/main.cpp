@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
     fitCommand->add_option("--steps", fit.steps, "optimisation steps")->capture_default_str();
     fitCommand->add_option("--seed", fit.seed, "random seed (views, perturbations)")->capture_default_str();
     fitCommand->add_option("--views-per-step", fit.viewsPerStep, "views rendered per step")->capture_default_str();
+    fitCommand->add_option("--samples-per-step", fit.samplesPerStep, "perturbations averaged per step")->capture_default_str();
     fitCommand->add_option("--tess", fit.tessLevel, "tessellation segments per face edge")->capture_default_str();
     fitCommand->add_option("--epsilon", fit.epsilon, "vertex perturbation (scene radius = 1)")->capture_default_str();
     fitCommand->add_option("--lr", fit.learningRate, "vertex learning rate (scene radius = 1)")->capture_default_str();

@@ -137,7 +137,10 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
     for (; step < o.steps; ++step) {
         if (cancel && cancel->load()) break;
         // The loss is only read for progress, so about eight steps per report measure it.
-        fitter.step(training, viewsForStep(o, step), step % std::max(1, reportEvery / 8) == 0);
+        const bool measureLoss = step % std::max(1, reportEvery / 8) == 0;
+        const auto views = viewsForStep(o, step);
+        for (int sample = 0; sample < o.samplesPerStep; ++sample) fitter.accumulate(training, views, measureLoss);
+        fitter.update();
         if (progress && ((step + 1) % reportEvery == 0 || step + 1 == o.steps)) {
             const double seconds = std::chrono::duration<double>(Clock::now() - fitStarted).count();
             const double done = double(step + 1 - firstStep);
@@ -178,7 +181,7 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
         {"shader_variants", variantsJson(programs)},
         {"settings",
          {{"views", o.views}, {"holdout_views", o.holdoutViews}, {"resolution", o.resolution},
-          {"views_per_step", o.viewsPerStep}, {"tess_level", fitter.renderer().tessLevel()},
+          {"views_per_step", o.viewsPerStep}, {"samples_per_step", o.samplesPerStep}, {"tess_level", fitter.renderer().tessLevel()},
           {"seed", o.seed}, {"epsilon", o.epsilon}, {"learning_rate", o.learningRate},
           {"smoothing", o.smoothing}, {"maps", o.maps}, {"map_resolution", o.mapResolution},
           {"maps_start", o.mapsStart}}},

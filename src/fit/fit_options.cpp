@@ -26,6 +26,7 @@ void validate(const FitOptions& o) {
             "--res must be in 16..4096 pixels, got " + std::to_string(o.resolution));
     require(o.steps >= 0, "--steps must be >= 0, got " + std::to_string(o.steps));
     require(o.viewsPerStep >= 1 && o.viewsPerStep <= o.views, "--views-per-step must be in 1..--views");
+    require(o.samplesPerStep >= 1 && o.samplesPerStep <= 64, "--samples-per-step must be in 1..64");
     require(o.tessLevel >= 1 && o.tessLevel <= 64, "--tess must be in 1..64");
     require(std::isfinite(o.epsilon) && o.epsilon > 0.0f && o.epsilon < 1.0f, "--epsilon must be in (0, 1)");
     require(std::isfinite(o.learningRate) && o.learningRate > 0.0f && o.learningRate < 1.0f,
@@ -64,7 +65,8 @@ std::string checkpointFingerprint(const FitOptions& o, const mesh::PolygonMesh& 
         mix(m->faceIndices.data(), m->faceIndices.size() * sizeof(int));
     }
     return nlohmann::json{{"inputs", hash}, {"views", o.views}, {"holdout_views", o.holdoutViews},
-                          {"resolution", o.resolution}, {"views_per_step", o.viewsPerStep}, {"tess", o.tessLevel},
+                          {"resolution", o.resolution}, {"views_per_step", o.viewsPerStep}, {"samples_per_step", o.samplesPerStep},
+                          {"tess", o.tessLevel},
                           {"seed", o.seed}, {"epsilon", o.epsilon}, {"lr", o.learningRate},
                           {"smoothing", o.smoothing}, {"maps", o.maps}, {"map_res", o.mapResolution},
                           {"maps_start", o.mapsStart}}

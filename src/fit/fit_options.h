@@ -17,6 +17,7 @@ struct FitOptions {
     int resolution = 256;
     int steps = 500;
     int viewsPerStep = 1;
+    int samplesPerStep = 1;       // perturbations averaged per Adam step
     int tessLevel = 8;
     std::uint32_t seed = 1;
     float epsilon = 0.008f;       // vertex perturbation, in units of the normalised scene (radius 1)
