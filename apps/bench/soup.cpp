@@ -6,6 +6,7 @@
 // full-image estimate is almost pure noise, so it does not converge: that is the point.
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -309,6 +310,7 @@ Curve fit(gl::ProgramCache& programs, const Soup& soup, const SoupOptions& o, bo
     const int maxSteps = o.steps > 0 ? o.steps : 1 << 30;
     const int every = o.steps > 0 ? std::max(1, o.steps / 60) : 10;
     double elapsed = 0.0;  // step time only: loss measurements are not the optimiser's cost
+    std::vector<double> stepSeconds;
     auto record = [&](int step) {
         curve.steps.push_back(step);
         curve.seconds.push_back(elapsed);
@@ -320,15 +322,18 @@ Curve fit(gl::ProgramCache& programs, const Soup& soup, const SoupOptions& o, bo
         const auto start = std::chrono::steady_clock::now();
         fitter.step(std::uint32_t(step), targetTexture.id());
         glFinish();
-        elapsed += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stepSeconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        elapsed += stepSeconds.back();
         ++step;
         if (step % every == 0 || step == maxSteps) record(step);
     }
     if (curve.steps.back() != step) record(step);
     curve.stepsRun = step;
-    curve.stepMs = step > 0 ? 1000.0 * elapsed / step : 0.0;
+    // Median: robust to the other load of a shared machine.
+    std::nth_element(stepSeconds.begin(), stepSeconds.begin() + step / 2, stepSeconds.end());
+    curve.stepMs = 1000.0 * stepSeconds[size_t(step / 2)];
     io::writeImage(png, fitter.renderCurrent().readColor(), o.resolution, o.resolution);
-    std::printf("%-11s %6d steps  %8.1f ms/step  %7.1f s  loss %.4f -> %.4f\n", curve.name.c_str(), step,
+    std::printf("%-11s %6d steps  %8.1f ms/step (median)  %7.1f s  loss %.4f -> %.4f\n", curve.name.c_str(), step,
                 curve.stepMs, elapsed, curve.losses.front(), curve.losses.back());
     std::fflush(stdout);
     return curve;
@@ -356,6 +361,16 @@ int runSoup(const SoupOptions& o) {
     if (o.steps > 0) std::printf("%d steps", o.steps);
     if (o.seconds > 0.0) std::printf("%s%.0f s of steps", o.steps > 0 ? ", at most " : "", o.seconds);
     std::printf(" per estimator\n");
+
+    // Compile (and let llvmpipe JIT) every program of both estimators on a one-triangle soup
+    // first, so that neither curve's time axis carries compilation.
+    for (bool fullImage : {false, true}) {
+        SoupFitter warmUp(programs, Soup{{soup.positions.begin(), soup.positions.begin() + 9},
+                                         {soup.colors.begin(), soup.colors.begin() + 3}},
+                          16, fullImage);
+        warmUp.step(0, targetTexture.id());
+        glFinish();
+    }
 
     const Curve perPixel = fit(programs, soup, o, false, targetTexture, target, o.out / "soup_per_pixel.png");
     const Curve fullImage = fit(programs, soup, o, true, targetTexture, target, o.out / "soup_full_image.png");
