@@ -21,11 +21,11 @@
 #include "bench_common.h"
 #include "context/gl_context.h"
 #include "gl/buffer.h"
-#include "gl/gl_handle.h"
 #include "gl/program_cache.h"
-#include "gl/texture.h"
 #include "io/image_io.h"
 #include "plot.h"
+#include "bindings.h"
+#include "render/render_target.h"
 #include "sge/parameter_group.h"
 #include "sge/passes.h"
 #include "soup_bindings.h"
@@ -39,62 +39,11 @@ constexpr std::uint32_t kSoupSeed = 2024u;
 
 GLuint groupsOf(int count, int size) { return GLuint((count + size - 1) / size); }
 
-// The soup's own FBO: colour (float, so ε-small differences survive), triangle id, depth.
-class SoupTarget {
-public:
-    SoupTarget(int width, int height)
-        : width_(width),
-          height_(height),
-          color_(GL_RGBA32F, width, height),
-          triangle_(GL_R32I, width, height),
-          depth_(GL_DEPTH_COMPONENT32F, width, height) {
-        GLuint id = 0;
-        glCreateFramebuffers(1, &id);
-        framebuffer_ = gl::GlHandle<gl::FramebufferTraits>(id);
-        glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0 + SUBDFIT_SOUP_ATTACHMENT_COLOR, color_.id(), 0);
-        glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0 + SUBDFIT_SOUP_ATTACHMENT_TRIANGLE, triangle_.id(), 0);
-        glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth_.id(), 0);
-        const GLenum buffers[] = {GL_COLOR_ATTACHMENT0 + SUBDFIT_SOUP_ATTACHMENT_COLOR,
-                                  GL_COLOR_ATTACHMENT0 + SUBDFIT_SOUP_ATTACHMENT_TRIANGLE};
-        glNamedFramebufferDrawBuffers(id, 2, buffers);
-        if (glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            throw Error("soup render target " + std::to_string(width) + "x" + std::to_string(height) +
-                        " is not complete on this GL implementation");
-    }
-
-    void bindAndClear() const {
-        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
-        glViewport(0, 0, width_, height_);
-        const float black[] = {0, 0, 0, 0};
-        const int none[] = {-1, -1, -1, -1};
-        const float far = 1.0f;
-        glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, SUBDFIT_SOUP_ATTACHMENT_COLOR, black);
-        glClearNamedFramebufferiv(framebuffer_.id(), GL_COLOR, SUBDFIT_SOUP_ATTACHMENT_TRIANGLE, none);
-        glClearNamedFramebufferfv(framebuffer_.id(), GL_DEPTH, 0, &far);
-    }
-
-    int width() const { return width_; }
-    int height() const { return height_; }
-    const gl::Texture& color() const { return color_; }
-    const gl::Texture& triangle() const { return triangle_; }
-
-    std::vector<glm::vec4> readColor() const {
-        std::vector<glm::vec4> pixels(size_t(width_) * height_);
-        glGetTextureImage(color_.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(pixels.size() * sizeof(glm::vec4)),
-                          pixels.data());
-        return pixels;
-    }
-    std::vector<int> readTriangle() const {
-        std::vector<int> ids(size_t(width_) * height_);
-        glGetTextureImage(triangle_.id(), 0, GL_RED_INTEGER, GL_INT, GLsizei(ids.size() * sizeof(int)), ids.data());
-        return ids;
-    }
-
-private:
-    int width_, height_;
-    gl::Texture color_, triangle_, depth_;
-    gl::GlHandle<gl::FramebufferTraits> framebuffer_;
-};
+// The soup renders into the project's RenderTarget: its face-id attachment holds triangle ids
+// (soup_raster.frag writes them at the same locations; the (u,v) attachment stays unused).
+using SoupTarget = render::RenderTarget;
+static_assert(SUBDFIT_SOUP_ATTACHMENT_COLOR == SUBDFIT_ATTACHMENT_COLOR);
+static_assert(SUBDFIT_SOUP_ATTACHMENT_TRIANGLE == SUBDFIT_ATTACHMENT_FACE_ID);
 
 // Deterministic target, rows bottom-up: a smooth two-axis colour ramp, three discs and a patch of
 // diagonal stripes, so it has both flat regions and edges at several scales.
@@ -221,8 +170,8 @@ public:
         gradient.use();
         glBindTextureUnit(SUBDFIT_SOUP_UNIT_COLOR_PLUS, plus_.color().id());
         glBindTextureUnit(SUBDFIT_SOUP_UNIT_COLOR_MINUS, minus_.color().id());
-        glBindTextureUnit(SUBDFIT_SOUP_UNIT_TRIANGLE_PLUS, plus_.triangle().id());
-        glBindTextureUnit(SUBDFIT_SOUP_UNIT_TRIANGLE_MINUS, minus_.triangle().id());
+        glBindTextureUnit(SUBDFIT_SOUP_UNIT_TRIANGLE_PLUS, plus_.faceId().id());
+        glBindTextureUnit(SUBDFIT_SOUP_UNIT_TRIANGLE_MINUS, minus_.faceId().id());
         glBindTextureUnit(SUBDFIT_SOUP_UNIT_TARGET, targetTexture);
         triangleDelta_.bindStorage(SUBDFIT_SOUP_SSBO_TRIANGLE_DELTA);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -251,7 +200,7 @@ public:
     void verifyTriangleIds(const Soup& soup) {
         const auto& image = renderCurrent();
         const auto color = image.readColor();
-        const auto ids = image.readTriangle();
+        const auto ids = image.readFaceId();
         size_t covered = 0, wrong = 0;
         for (size_t p = 0; p < ids.size(); ++p) {
             const int t = ids[p];
