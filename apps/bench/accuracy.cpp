@@ -178,6 +178,10 @@ int runAccuracy(const AccuracyOptions& o) {
         }
         summary += "\n";
     }
+    // The per-step cost, measured in this same run, completes the picture.
+    runStepCost({.out = o.out / "step-cost", .repeats = 7, .glProvider = o.glProvider});
+    std::ifstream stepCost(o.out / "step-cost" / "step_cost.md");
+    summary += "\n" + std::string(std::istreambuf_iterator<char>(stepCost), {});
     io::writeTextAtomically(o.out / "summary.md", summary);
     std::printf("peak_rss_mib=%.0f\n", peakResidentMiB());
     std::printf("summary=%s\n", (o.out / "summary.md").string().c_str());

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "bench_common.h"
+#include "io/atomic_file.h"
 #include "bench_commands.h"
 #include "context/gl_context.h"
 #include "fit/cage_fitter.h"
@@ -71,6 +72,12 @@ int runStepCost(const StepCostOptions& o) {
                 3 * cage.vertexCount(), o.repeats);
     std::printf("%10s %12s %12s %8s %14s %10s\n", "resolution", "render ms", "step ms", "ratio", "P+2R+G ms",
                 "Adam ms");
+    // The same tables as Markdown, for summaries (subdfit-bench accuracy folds this file in).
+    std::string markdown = "## Step cost (" + info.renderer + ")\n\nOne SGE step over one forward render, best of " +
+                           std::to_string(o.repeats) + "; quad-sphere cage of " + std::to_string(cage.faceCount()) +
+                           " faces. Two renders are the floor (2.0).\n\n| resolution | render ms | step ms | ratio |\n"
+                           "|---|---|---|---|\n";
+    char line[160];
     double defaultRatio = 0.0;
     for (int resolution : {128, 256, 512}) {
         const auto t = timeCage(programs, cage, referenceRenderer, resolution, o.repeats);
@@ -78,6 +85,8 @@ int runStepCost(const StepCostOptions& o) {
         if (resolution == 256) defaultRatio = ratio;
         std::printf("%10d %12.2f %12.2f %8.2f %14.2f %10.2f\n", resolution, t.renderMs, t.stepMs, ratio,
                     t.accumulateMs, t.updateMs);
+        std::snprintf(line, sizeof line, "| %d² | %.2f | %.2f | %.2f |\n", resolution, t.renderMs, t.stepMs, ratio);
+        markdown += line;
         rows.push_back({"resolution", std::to_string(cage.faceCount()), std::to_string(3 * cage.vertexCount()),
                         std::to_string(resolution), std::to_string(t.renderMs), std::to_string(t.stepMs),
                         std::to_string(ratio)});
@@ -85,11 +94,15 @@ int runStepCost(const StepCostOptions& o) {
 
     std::printf("\nscaling at 256^2: step time against parameter count\n");
     std::printf("%10s %12s %12s %12s %8s\n", "faces", "parameters", "render ms", "step ms", "ratio");
+    markdown += "\nScaling at 256²:\n\n| faces | parameters | render ms | step ms | ratio |\n|---|---|---|---|---|\n";
     for (int n : {4, 8, 16, 32}) {
         const auto sphere = mesh::makeQuadSphere(n);
         const auto t = timeCage(programs, sphere, referenceRenderer, 256, o.repeats);
         std::printf("%10d %12d %12.2f %12.2f %8.2f\n", sphere.faceCount(), 3 * sphere.vertexCount(), t.renderMs,
                     t.stepMs, t.stepMs / t.renderMs);
+        std::snprintf(line, sizeof line, "| %d | %d | %.2f | %.2f | %.2f |\n", sphere.faceCount(),
+                      3 * sphere.vertexCount(), t.renderMs, t.stepMs, t.stepMs / t.renderMs);
+        markdown += line;
         rows.push_back({"scaling", std::to_string(sphere.faceCount()), std::to_string(3 * sphere.vertexCount()),
                         "256", std::to_string(t.renderMs), std::to_string(t.stepMs),
                         std::to_string(t.stepMs / t.renderMs)});
@@ -97,6 +110,7 @@ int runStepCost(const StepCostOptions& o) {
     if (!o.out.empty()) {
         std::filesystem::create_directories(o.out);
         writeCsv(o.out / "step_cost.csv", rows);
+        io::writeTextAtomically(o.out / "step_cost.md", markdown);
     }
     std::printf("peak_rss_mib=%.0f\n", peakResidentMiB());
     std::printf("step_cost_ratio=%.2f\n", defaultRatio);
