@@ -13,7 +13,7 @@
 #include "bench_common.h"
 #include "context/gl_context.h"
 #include "fit/cage_fitter.h"
-#include "fit/image_metrics.h"
+#include "fit/finite_differences.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
 #include "plot.h"
@@ -41,34 +41,6 @@ Scene makeScene(gl::ProgramCache& programs) {
         std::vector<unsigned>(reference.faceIndices.begin(), reference.faceIndices.end()));
     s.targets = std::make_unique<scene::TargetSet>(programs, *s.reference, render::orbitCameras(2, 1), 96);
     return s;
-}
-
-// Σ over views and pixels of ‖I − T‖², the loss whose gradient G estimates.
-double totalLoss(fit::CageFitter& fitter, const scene::TargetSet& targets) {
-    render::RenderTarget image(targets.resolution(), targets.resolution());
-    double sum = 0.0;
-    for (int v = 0; v < targets.size(); ++v) {
-        fitter.render(targets.camera(v), image);
-        sum += fit::meanPixelLoss(image.readColor(), targets.readColor(v)) * double(targets.resolution()) *
-               double(targets.resolution());
-    }
-    return sum;
-}
-
-std::vector<double> finiteDifferences(fit::CageFitter& fitter, const Scene& s, float h) {
-    const auto base = s.cage.positions;
-    std::vector<double> gradient(base.size() * 3);
-    for (size_t i = 0; i < gradient.size(); ++i) {
-        auto moved = base;
-        moved[i / 3][int(i % 3)] += h;
-        fitter.setVertices(moved);
-        const double plus = totalLoss(fitter, *s.targets);
-        moved[i / 3][int(i % 3)] -= 2.0f * h;
-        fitter.setVertices(moved);
-        gradient[i] = (plus - totalLoss(fitter, *s.targets)) / (2.0 * h);
-    }
-    fitter.setVertices(base);
-    return gradient;
 }
 
 double cosine(const std::vector<float>& a, const std::vector<double>& b) {
@@ -119,7 +91,7 @@ int runGradientQuality(const GradientOptions& o) {
     fit::CageFitSettings settings;
     settings.resolution = scene.targets->resolution();
     fit::CageFitter probe(programs, scene.cage, settings);
-    const auto reference = finiteDifferences(probe, scene, o.epsilon);
+    const auto reference = fit::vertexFiniteDifferences(probe, *scene.targets, scene.cage.positions, o.epsilon);
     std::printf("scene: %d-quad cage, %zu parameters, 2 views at %d^2; finite differences with h = %.3g\n",
                 scene.cage.faceCount(), reference.size(), scene.targets->resolution(), double(o.epsilon));
 

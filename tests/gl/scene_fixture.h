@@ -5,6 +5,7 @@
 #include <random>
 
 #include "fit/cage_fitter.h"
+#include "fit/finite_differences.h"
 #include "mesh/mesh_loader.h"
 #include "render/mesh_renderer.h"
 #include "scene/scene_frame.h"
@@ -37,18 +38,7 @@ inline FitScene makeFitScene(gl::ProgramCache& programs, mesh::PolygonMesh cage,
 
 // Σ over views and pixels of ‖I − T‖²: the unnormalised loss whose gradient G estimates.
 inline double totalLoss(fit::CageFitter& fitter, const scene::TargetSet& targets) {
-    render::RenderTarget image(targets.resolution(), targets.resolution());
-    double sum = 0.0;
-    for (int v = 0; v < targets.size(); ++v) {
-        fitter.render(targets.camera(v), image);
-        const auto colour = image.readColor();
-        const auto target = targets.readColor(v);
-        for (size_t p = 0; p < colour.size(); ++p) {
-            const glm::vec3 d = glm::vec3(colour[p]) - glm::vec3(target[p]);
-            sum += double(glm::dot(d, d));
-        }
-    }
-    return sum;
+    return fit::totalImageLoss(fitter, targets);
 }
 
 inline std::vector<glm::vec3> noised(std::vector<glm::vec3> points, float sigma, std::uint32_t seed) {

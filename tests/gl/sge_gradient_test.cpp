@@ -36,19 +36,7 @@ TEST(SgeGradient, AgreesWithCentralFiniteDifferences) {
     for (auto& g : sge) g /= samples;
 
     // Central differences with the same step: (f(θ + ε e_i) − f(θ − ε e_i)) / 2ε.
-    const auto base = scene.cage.positions;
-    std::vector<double> reference(sge.size());
-    for (size_t i = 0; i < reference.size(); ++i) {
-        auto moved = base;
-        moved[i / 3][int(i % 3)] += epsilon;
-        fitter.setVertices(moved);
-        const double plus = totalLoss(fitter, *scene.targets);
-        moved[i / 3][int(i % 3)] -= 2.0f * epsilon;
-        fitter.setVertices(moved);
-        const double minus = totalLoss(fitter, *scene.targets);
-        reference[i] = (plus - minus) / (2.0 * epsilon);
-    }
-    fitter.setVertices(base);
+    const auto reference = fit::vertexFiniteDifferences(fitter, *scene.targets, scene.cage.positions, epsilon);
 
     for (double g : sge) ASSERT_TRUE(std::isfinite(g));
     // The estimator is unbiased to first order; its variance per sample is the sum of the
