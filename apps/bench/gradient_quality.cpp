@@ -10,6 +10,7 @@
 #include <numeric>
 
 #include "bench_commands.h"
+#include "gl/platform_defines.h"
 #include "bench_common.h"
 #include "context/gl_context.h"
 #include "fit/cage_fitter.h"
@@ -85,8 +86,7 @@ Curve sampleCurve(gl::ProgramCache& programs, const Scene& s, const std::vector<
 
 int runGradientQuality(const GradientOptions& o) {
     auto context = context::createHeadlessContext(o.glProvider);
-    const auto info = context::currentGlInfo();
-    gl::ProgramCache programs(info.hasAtomicFloat ? gl::Defines{{"SUBDFIT_ATOMIC_FLOAT", ""}} : gl::Defines{});
+    gl::ProgramCache programs(gl::platformDefines());
     const Scene scene = makeScene(programs);
     fit::CageFitSettings settings;
     settings.resolution = scene.targets->resolution();

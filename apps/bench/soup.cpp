@@ -18,6 +18,7 @@
 #include <glm/vec4.hpp>
 
 #include "bench_commands.h"
+#include "gl/platform_defines.h"
 #include "bench_common.h"
 #include "context/gl_context.h"
 #include "gl/buffer.h"
@@ -295,7 +296,7 @@ int runSoup(const SoupOptions& o) {
         throw Error("soup: need --triangles >= 1, --res >= 16 and a positive --steps or --seconds");
     auto context = context::createHeadlessContext(o.glProvider);
     const auto info = context::currentGlInfo();
-    gl::ProgramCache programs(info.hasAtomicFloat ? gl::Defines{{"SUBDFIT_ATOMIC_FLOAT", ""}} : gl::Defines{});
+    gl::ProgramCache programs(gl::platformDefines());
     std::filesystem::create_directories(o.out);
 
     const auto target = makeTargetImage(o.resolution);

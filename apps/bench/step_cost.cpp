@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "bench_common.h"
+#include "gl/platform_defines.h"
 #include "io/atomic_file.h"
 #include "bench_commands.h"
 #include "context/gl_context.h"
@@ -60,7 +61,7 @@ Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const
 int runStepCost(const StepCostOptions& o) {
     auto context = context::createHeadlessContext(o.glProvider);
     const auto info = context::currentGlInfo();
-    gl::ProgramCache programs(info.hasAtomicFloat ? gl::Defines{{"SUBDFIT_ATOMIC_FLOAT", ""}} : gl::Defines{});
+    gl::ProgramCache programs(gl::platformDefines());
     const auto reference = mesh::makeLumpySphere(5, 0.15f, 1);
     const render::MeshRenderer referenceRenderer(reference.positions, mesh::vertexNormals(reference),
                                                  {reference.faceIndices.begin(), reference.faceIndices.end()});

@@ -1,4 +1,5 @@
 #include "fit/fit_job.h"
+#include "gl/platform_defines.h"
 
 #include <chrono>
 #include <cmath>
@@ -88,7 +89,7 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
 
     auto context = context::createHeadlessContext(o.glProvider);
     const auto glInfo = context::currentGlInfo();
-    gl::ProgramCache programs(glInfo.hasAtomicFloat ? gl::Defines{{"SUBDFIT_ATOMIC_FLOAT", ""}} : gl::Defines{});
+    gl::ProgramCache programs(gl::platformDefines());
 
     const render::MeshRenderer referenceRenderer(reference.positions, mesh::vertexNormals(reference),
                                                  triangleIndices(reference));

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "gl_test_context.h"
+#include "gl/platform_defines.h"
 
 namespace subdfit::test {
 namespace {
@@ -15,7 +16,7 @@ std::unique_ptr<gl::ProgramCache> sharedPrograms;
 gl::ProgramCache& programs() { return *sharedPrograms; }
 
 gl::Defines platformDefines() {
-    return context::currentGlInfo().hasAtomicFloat ? gl::Defines{{"SUBDFIT_ATOMIC_FLOAT", ""}} : gl::Defines{};
+    return gl::platformDefines();
 }
 
 void expectNoGlError() {

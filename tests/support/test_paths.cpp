@@ -1,5 +1,7 @@
 #include "test_paths.h"
 
+#include <unistd.h>
+
 namespace subdfit::test {
 
 std::filesystem::path assetPath(const std::string& relative) {
@@ -15,8 +17,10 @@ std::filesystem::path sharedAssetPath(const std::string& relative) {
 }
 
 std::filesystem::path scratchDir(const std::string& name) {
-    // Under the build tree whatever folder the test runs from: never litter the sources.
-    auto p = std::filesystem::path(SUBDFIT_SCRATCH_DIR) / name;
+    // Under the build tree whatever folder the test runs from: never litter the sources. The
+    // process id keeps tests of one suite apart when ctest runs them as parallel processes
+    // (each re-runs the suite's set-up, which would otherwise wipe the other's files).
+    auto p = std::filesystem::path(SUBDFIT_SCRATCH_DIR) / (name + "." + std::to_string(getpid()));
     std::filesystem::remove_all(p);
     std::filesystem::create_directories(p);
     return p;

@@ -9,7 +9,7 @@ std::filesystem::path assetPath(const std::string& relative);
 // A file in ../shared/assets-ext (development set), else its bundled copy in assets/ when there
 // is one (the OpenSubdiv shapes); empty path when neither is there.
 std::filesystem::path sharedAssetPath(const std::string& relative);
-// A fresh, empty scratch folder under the build tree (build/tests/scratch) for one test.
+// A fresh, empty scratch folder under the build tree (build/tests/scratch/NAME.PID) for one test.
 std::filesystem::path scratchDir(const std::string& name);
 
 }  // namespace subdfit::test
