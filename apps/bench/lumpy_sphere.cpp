@@ -30,10 +30,10 @@ int runLumpySphere(const LumpySphereOptions& o) {
     fit.resolution = o.resolution;
     fit.views = o.views;
     fit.glProvider = o.glProvider;
-    const auto report = fit::runFit(fit, [](const fit::Progress& p) {
+    const auto report = fit::runFit(fit, {.progress = [](const fit::Progress& p) {
         std::fprintf(stderr, "step %d/%d  loss %.4e  %.1f s  ETA %.0f s\n", p.step, p.steps, double(p.loss), p.seconds,
                      p.etaSeconds);
-    });
+    }});
     const auto fitted = mesh::loadMesh(fit.out / "cage.obj");
     const auto after = geometry::surfaceDistance(geometry::limitMesh(fitted, 8), reference);
 

@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
     std::signal(SIGTERM, onInterrupt);
     try {
         if (fitCommand->parsed()) {
-            const auto report = subdfit::fit::runFit(fit, printProgress, &interrupted);
+            const auto report = subdfit::fit::runFit(fit, {.progress = printProgress, .cancel = &interrupted});
             std::fprintf(stderr, "done: %d steps in %.1f s, loss %.4e -> %.4e, held-out PSNR %.2f -> %.2f dB\n",
                          report["steps"].get<int>(), report["seconds"].get<double>(),
                          report["loss_initial"].get<double>(), report["loss_final"].get<double>(),

@@ -1,45 +1,21 @@
 #include "fit/fit_job.h"
-#include "gl/platform_defines.h"
 
 #include <chrono>
 #include <cmath>
 
-#include "context/gl_context.h"
-#include "fit/cage_fitter.h"
-#include "fit/checkpoint.h"
 #include "fit/asset_export.h"
-#include "fit/image_metrics.h"
+#include "fit/checkpoint.h"
+#include "gl/platform_defines.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
-#include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
-#include "render/mesh_renderer.h"
-#include "scene/scene_frame.h"
-#include "util/error.h"
 
 namespace subdfit::fit {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-struct ViewSetScore {
-    double loss = 0.0, psnr = 0.0;
-};
-
-ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets) {
-    render::RenderTarget image(targets.resolution(), targets.resolution());
-    double loss = 0.0;
-    for (int i = 0; i < targets.size(); ++i) {
-        fitter.render(targets.camera(i), image);
-        loss += meanPixelLoss(image.readColor(), targets.readColor(i));
-    }
-    loss /= std::max(1, targets.size());
-    return {loss, psnrFromLoss(loss)};
-}
-
-std::vector<unsigned> triangleIndices(const mesh::PolygonMesh& triangles) {
-    return {triangles.faceIndices.begin(), triangles.faceIndices.end()};
-}
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // Every parameter of every group, maps included.
 bool allFinite(CageFitter& fitter) {
@@ -72,59 +48,39 @@ nlohmann::json variantsJson(const gl::ProgramCache& programs) {
     return list;
 }
 
+std::vector<glm::vec4> renderHoldout(CageFitter& fitter, const FitScene& scene) {
+    render::RenderTarget image(scene.holdout.resolution(), scene.holdout.resolution());
+    fitter.render(scene.holdout.camera(0), image);
+    return image.readColor();
+}
+
 }  // namespace
 
+nlohmann::json runFit(const FitOptions& o, const FitHooks& hooks) {
+    validate(o);
+    auto context = context::createHeadlessContext(o.glProvider);
+    gl::ProgramCache programs(gl::platformDefines());
+    FitScene scene(o, programs);
+    return runFit(o, programs, *context, scene, hooks);
+}
 
-nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const std::atomic<bool>* cancel) {
+nlohmann::json runFit(const FitOptions& o, gl::ProgramCache& programs, const context::GlContext& context,
+                      FitScene& scene, const FitHooks& hooks) {
     validate(o);
     const auto started = Clock::now();
+    CageFitter fitter(programs, scene.cage, fitSettings(o));
 
-    // Inputs, in the normalised frame of the reference.
-    mesh::PolygonMesh cage = mesh::loadMesh(o.cage);
-    mesh::PolygonMesh reference = mesh::triangulated(mesh::loadMesh(o.reference));
-    const scene::SceneFrame frame = scene::frameAround(reference.positions);
-    const auto cageWorld = cage;
-    cage.positions = frame.toNormalized(cage.positions);
-    reference.positions = frame.toNormalized(reference.positions);
-
-    auto context = context::createHeadlessContext(o.glProvider);
-    const auto glInfo = context::currentGlInfo();
-    gl::ProgramCache programs(gl::platformDefines());
-
-    const render::MeshRenderer referenceRenderer(reference.positions, mesh::vertexNormals(reference),
-                                                 triangleIndices(reference));
-    const scene::TargetSet training(programs, referenceRenderer, render::orbitCameras(o.views, o.seed),
-                                    o.resolution);
-    // Held-out views: another rotation of the lattice, so none coincides with a training view.
-    const scene::TargetSet holdout(programs, referenceRenderer,
-                                   render::orbitCameras(o.holdoutViews, o.seed ^ 0x9e3779b9u), o.resolution);
-
-    CageFitSettings settings;
-    settings.vertices.epsilon = o.epsilon;
-    settings.vertices.learningRate = o.learningRate;
-    settings.smoothingLambda = o.smoothing;
-    settings.tessLevel = o.tessLevel;
-    settings.resolution = o.resolution;
-    settings.seed = o.seed;
-    settings.plannedSteps = o.steps;
-    settings.mapEffects = maps::parseMapEffects(o.maps);
-    settings.maps.resolution = o.mapResolution;
-    settings.mapsStartFraction = o.mapsStart;
-    CageFitter fitter(programs, cage, settings);
-
-    render::RenderTarget image(o.resolution, o.resolution);
-    fitter.render(holdout.camera(0), image);
-    const auto beforeImage = image.readColor();
-    const ViewSetScore trainBefore = score(fitter, training);
-    const ViewSetScore holdoutBefore = score(fitter, holdout);
+    FitHistory history;
+    history.beforeImage = renderHoldout(fitter, scene);
+    history.trainBefore = score(fitter, scene.training);
+    history.holdoutBefore = score(fitter, scene.holdout);
 
     const auto checkpointPath = o.out / "checkpoint.bin";
-    const std::string runFingerprint = checkpointFingerprint(o, cage, reference);
-    int firstStep = 0;
+    const std::string runFingerprint = checkpointFingerprint(o, scene.cage, scene.reference);
     if (o.resume) {
         if (const auto saved = readCheckpoint(checkpointPath, runFingerprint)) {
             fitter.restore(*saved);
-            firstStep = std::min(saved->steps, o.steps);
+            history.firstStep = std::min(saved->steps, o.steps);
         }
     }
     auto saveCheckpoint = [&] {
@@ -134,50 +90,58 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
 
     const auto fitStarted = Clock::now();
     const int reportEvery = std::max(1, o.steps / 50);
-    int step = firstStep;
+    int step = history.firstStep;
     for (; step < o.steps; ++step) {
-        if (cancel && cancel->load()) break;
+        if (hooks.cancel && hooks.cancel->load()) break;
         // The loss is only read for progress, so about eight steps per report measure it.
         const bool measureLoss = step % std::max(1, reportEvery / 8) == 0;
         const auto views = viewsForStep(o, step);
-        for (int sample = 0; sample < o.samplesPerStep; ++sample) fitter.accumulate(training, views, measureLoss);
+        for (int sample = 0; sample < o.samplesPerStep; ++sample) fitter.accumulate(scene.training, views, measureLoss);
         fitter.update();
-        if (progress && ((step + 1) % reportEvery == 0 || step + 1 == o.steps)) {
-            const double seconds = std::chrono::duration<double>(Clock::now() - fitStarted).count();
-            const double done = double(step + 1 - firstStep);
-            progress({step + 1, o.steps, fitter.takeMeanLoss(), seconds, seconds / done * double(o.steps - step - 1)});
+        if (hooks.progress && ((step + 1) % reportEvery == 0 || step + 1 == o.steps)) {
+            const double seconds = secondsSince(fitStarted);
+            const double done = double(step + 1 - history.firstStep);
+            hooks.progress({step + 1, o.steps, fitter.takeMeanLoss(), seconds, seconds / done * double(o.steps - step - 1)});
         }
         if ((step + 1) % o.checkpointEvery == 0) saveCheckpoint();
     }
     saveCheckpoint();
-    const double fitSeconds = std::chrono::duration<double>(Clock::now() - fitStarted).count();
+    history.steps = step;
+    history.fitSeconds = secondsSince(fitStarted);
 
-    fitter.render(holdout.camera(0), image);
-    const auto afterImage = image.readColor();
-    const ViewSetScore trainAfter = score(fitter, training);
-    const ViewSetScore holdoutAfter = score(fitter, holdout);
-    const auto fitted = fitter.vertices();
-    const bool finite = allFinite(fitter);
+    const nlohmann::json extra = hooks.evaluate ? hooks.evaluate(fitter, scene) : nlohmann::json::object();
+    history.seconds = secondsSince(started);
+    return writeFitResults(o, programs, context, scene, fitter, history, extra);
+}
+
+nlohmann::json writeFitResults(const FitOptions& o, gl::ProgramCache& programs, const context::GlContext& context,
+                               FitScene& scene, CageFitter& fitter, const FitHistory& history,
+                               const nlohmann::json& extra) {
+    const auto afterImage = renderHoldout(fitter, scene);
+    const ViewSetScore trainAfter = score(fitter, scene.training);
+    const ViewSetScore holdoutAfter = score(fitter, scene.holdout);
+    const auto glInfo = context::currentGlInfo();
+    const auto effects = fitter.maps() ? fitter.maps()->effects() : maps::MapEffects{};
 
     nlohmann::json report = {
-        {"steps", step},
+        {"steps", history.steps},
         {"steps_requested", o.steps},
-        {"resumed_from_step", firstStep},
-        {"interrupted", step < o.steps},
-        {"seconds", std::chrono::duration<double>(Clock::now() - started).count()},
-        {"fit_seconds", fitSeconds},
-        {"loss_initial", trainBefore.loss},
+        {"resumed_from_step", history.firstStep},
+        {"interrupted", history.steps < o.steps},
+        {"seconds", history.seconds},
+        {"fit_seconds", history.fitSeconds},
+        {"loss_initial", history.trainBefore.loss},
         {"loss_final", trainAfter.loss},
-        {"psnr_train_initial", trainBefore.psnr},
+        {"psnr_train_initial", history.trainBefore.psnr},
         {"psnr_train", trainAfter.psnr},
-        {"psnr_holdout_initial", holdoutBefore.psnr},
+        {"psnr_holdout_initial", history.holdoutBefore.psnr},
         {"psnr_holdout", holdoutAfter.psnr},
-        {"finite", finite},
-        {"effects", effectsJson(settings.mapEffects)},
+        {"finite", allFinite(fitter)},
+        {"effects", effectsJson(effects)},
         {"parameters", parametersJson(fitter)},
         {"renderer", glInfo.renderer},
         {"gl_version", glInfo.version},
-        {"gl_provider", context->providerName()},
+        {"gl_provider", context.providerName()},
         {"atomic_float", glInfo.hasAtomicFloat},
         {"shader_variants", variantsJson(programs)},
         {"settings",
@@ -186,20 +150,22 @@ nlohmann::json runFit(const FitOptions& o, const ProgressSink& progress, const s
           {"seed", o.seed}, {"epsilon", o.epsilon}, {"learning_rate", o.learningRate},
           {"smoothing", o.smoothing}, {"maps", o.maps}, {"map_resolution", o.mapResolution},
           {"maps_start", o.mapsStart}}},
-        {"cage", {{"path", o.cage.string()}, {"vertices", cage.vertexCount()}, {"faces", cage.faceCount()},
+        {"cage", {{"path", o.cage.string()}, {"vertices", scene.cage.vertexCount()}, {"faces", scene.cage.faceCount()},
                   {"patches", fitter.renderer().patchCount()}}},
-        {"reference", {{"path", o.reference.string()}, {"triangles", reference.faceCount()}}},
+        {"reference", {{"path", o.reference.string()}, {"triangles", scene.reference.faceCount()}}},
     };
+    report.update(extra);
 
     // Outputs only now that everything has worked; each file appears whole or not at all.
     std::filesystem::create_directories(o.out);
-    mesh::PolygonMesh fittedWorld = cageWorld;
-    fittedWorld.positions = frame.toWorld(fitted);
+    mesh::PolygonMesh fittedWorld = scene.cageWorld;
+    fittedWorld.positions = scene.frame.toWorld(fitter.vertices());
     mesh::writeObj(o.out / "cage.obj", fittedWorld);
-    report["exports"] = exportAsset(o, fitter, frame, fittedWorld);
-    io::writeImage(o.out / "before.png", beforeImage, o.resolution, o.resolution);
-    io::writeImage(o.out / "after.png", afterImage, o.resolution, o.resolution);
-    io::writeImage(o.out / "target.png", holdout.readColor(0), o.resolution, o.resolution);
+    report["exports"] = exportAsset(o, fitter, scene.frame, fittedWorld);
+    const int res = o.resolution;
+    if (!history.beforeImage.empty()) io::writeImage(o.out / "before.png", history.beforeImage, res, res);
+    io::writeImage(o.out / "after.png", afterImage, res, res);
+    io::writeImage(o.out / "target.png", scene.holdout.readColor(0), res, res);
     io::writeTextAtomically(o.out / "report.json", report.dump(2) + "\n");
     return report;
 }

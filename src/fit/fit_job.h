@@ -1,13 +1,17 @@
 #pragma once
 // `subdfit fit`: load a cage and a reference, render targets, fit the cage's control vertices
 // (and maps), write cage.obj, the exports, report.json and before/after/target images of a
-// held-out view into a folder.
+// held-out view into a folder. The pieces are public for `simplify` and the viewer, which run
+// the same fit on a cage of their own or step by step.
 #include <atomic>
 #include <functional>
+#include <vector>
 
+#include <glm/vec4.hpp>
 #include <nlohmann/json.hpp>
 
-#include "fit/fit_options.h"
+#include "context/gl_context.h"
+#include "fit/fit_scene.h"
 
 namespace subdfit::fit {
 
@@ -19,9 +23,36 @@ struct Progress {
 
 using ProgressSink = std::function<void(const Progress&)>;
 
-// Throws subdfit::Error for bad options or inputs before anything is written. `cancel`, when
-// set during the fit, stops it early and still writes the results of the steps taken.
-nlohmann::json runFit(const FitOptions& options, const ProgressSink& progress = {},
-                      const std::atomic<bool>* cancel = nullptr);
+// Called once the last step is taken, before anything is written; what it returns is merged
+// into report.json (and it may write files of its own into options.out).
+using FitEvaluation = std::function<nlohmann::json(CageFitter&, FitScene&)>;
+
+struct FitHooks {
+    ProgressSink progress{};
+    const std::atomic<bool>* cancel = nullptr;  // set during the fit: stop early, still write results
+    FitEvaluation evaluate{};
+};
+
+// Throws subdfit::Error for bad options or inputs before anything is written.
+nlohmann::json runFit(const FitOptions& options, const FitHooks& hooks = {});
+
+// The same on a scene built by the caller in the current context.
+nlohmann::json runFit(const FitOptions& options, gl::ProgramCache& programs, const context::GlContext& context,
+                      FitScene& scene, const FitHooks& hooks = {});
+
+// What a report says about the run beyond the fitted scene itself.
+struct FitHistory {
+    int firstStep = 0, steps = 0;
+    double seconds = 0.0, fitSeconds = 0.0;
+    ViewSetScore trainBefore, holdoutBefore;
+    std::vector<glm::vec4> beforeImage;  // held-out view 0 before fitting
+};
+
+// Scores the fitter's current scene and writes cage.obj, the exports, before/after/target PNGs
+// and report.json (with `extra` merged in) into options.out, each file atomically. Returns the
+// report.
+nlohmann::json writeFitResults(const FitOptions& options, gl::ProgramCache& programs,
+                               const context::GlContext& context, FitScene& scene, CageFitter& fitter,
+                               const FitHistory& history, const nlohmann::json& extra = nlohmann::json::object());
 
 }  // namespace subdfit::fit

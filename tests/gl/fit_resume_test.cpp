@@ -41,7 +41,7 @@ TEST(FitResume, InterruptedRunContinuesToTheSameResult) {
     std::atomic<bool> cancel{false};
     auto interruptedOptions = smallFit(dir, "resumed");
     const auto interrupted = fit::runFit(
-        interruptedOptions, [&](const fit::Progress& p) { cancel = cancel || p.step >= 20; }, &cancel);
+        interruptedOptions, {.progress = [&](const fit::Progress& p) { cancel = cancel || p.step >= 20; }, .cancel = &cancel});
     EXPECT_TRUE(interrupted["interrupted"].get<bool>());
     EXPECT_EQ(interrupted["steps"], 20);
     EXPECT_TRUE(std::filesystem::exists(interruptedOptions.out / "cage.obj"));

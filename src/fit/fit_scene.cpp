@@ -1,0 +1,62 @@
+#include "fit/fit_scene.h"
+
+#include "fit/image_metrics.h"
+#include "mesh/mesh_geometry.h"
+#include "mesh/mesh_loader.h"
+
+namespace subdfit::fit {
+namespace {
+
+mesh::PolygonMesh normalized(mesh::PolygonMesh mesh, const scene::SceneFrame& frame) {
+    mesh.positions = frame.toNormalized(mesh.positions);
+    return mesh;
+}
+
+render::MeshRenderer rendererFor(const mesh::PolygonMesh& triangles) {
+    return {triangles.positions, mesh::vertexNormals(triangles),
+            std::vector<unsigned>(triangles.faceIndices.begin(), triangles.faceIndices.end())};
+}
+
+}  // namespace
+
+FitScene::FitScene(const FitOptions& options, gl::ProgramCache& programs)
+    : FitScene(options, programs, mesh::loadMesh(options.cage), mesh::loadMesh(options.reference)) {}
+
+FitScene::FitScene(const FitOptions& o, gl::ProgramCache& programs, mesh::PolygonMesh cageWorldIn,
+                   const mesh::PolygonMesh& referenceWorld)
+    : frame(scene::frameAround(referenceWorld.positions)),
+      cageWorld(std::move(cageWorldIn)),
+      cage(normalized(cageWorld, frame)),
+      reference(normalized(mesh::triangulated(referenceWorld), frame)),
+      referenceRenderer(rendererFor(reference)),
+      training(programs, referenceRenderer, render::orbitCameras(o.views, o.seed), o.resolution),
+      holdout(programs, referenceRenderer, render::orbitCameras(o.holdoutViews, o.seed ^ 0x9e3779b9u),
+              o.resolution) {}
+
+CageFitSettings fitSettings(const FitOptions& o) {
+    CageFitSettings settings;
+    settings.vertices.epsilon = o.epsilon;
+    settings.vertices.learningRate = o.learningRate;
+    settings.smoothingLambda = o.smoothing;
+    settings.tessLevel = o.tessLevel;
+    settings.resolution = o.resolution;
+    settings.seed = o.seed;
+    settings.plannedSteps = o.steps;
+    settings.mapEffects = maps::parseMapEffects(o.maps);
+    settings.maps.resolution = o.mapResolution;
+    settings.mapsStartFraction = o.mapsStart;
+    return settings;
+}
+
+ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets) {
+    render::RenderTarget image(targets.resolution(), targets.resolution());
+    double loss = 0.0;
+    for (int i = 0; i < targets.size(); ++i) {
+        fitter.render(targets.camera(i), image);
+        loss += meanPixelLoss(image.readColor(), targets.readColor(i));
+    }
+    loss /= std::max(1, targets.size());
+    return {loss, psnrFromLoss(loss)};
+}
+
+}  // namespace subdfit::fit

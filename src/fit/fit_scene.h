@@ -1,0 +1,40 @@
+#pragma once
+// What every fit works on, built the same way by `subdfit fit`, `subdfit simplify` and the
+// viewer: the cage and the reference in the normalised frame of the reference, the reference's
+// renderer, and the training and held-out target images. Needs a current GL context.
+#include "fit/cage_fitter.h"
+#include "fit/fit_options.h"
+#include "render/mesh_renderer.h"
+#include "scene/scene_frame.h"
+#include "scene/target_set.h"
+
+namespace subdfit::fit {
+
+class FitScene {
+public:
+    // Loads options.cage and options.reference. Throws subdfit::Error "path: problem".
+    FitScene(const FitOptions& options, gl::ProgramCache& programs);
+    // From meshes already in memory (world units; the reference need not be triangulated).
+    FitScene(const FitOptions& options, gl::ProgramCache& programs, mesh::PolygonMesh cageWorld,
+             const mesh::PolygonMesh& referenceWorld);
+
+    scene::SceneFrame frame;      // around the reference
+    mesh::PolygonMesh cageWorld;  // as given, for writing results back with its tags and order
+    mesh::PolygonMesh cage;       // normalised
+    mesh::PolygonMesh reference;  // normalised, triangulated
+    render::MeshRenderer referenceRenderer;
+    scene::TargetSet training;
+    // Another rotation of the view lattice, so no held-out view coincides with a training view.
+    scene::TargetSet holdout;
+};
+
+// The fitter settings `options` ask for.
+CageFitSettings fitSettings(const FitOptions& options);
+
+struct ViewSetScore {
+    double loss = 0.0, psnr = 0.0;
+};
+// Mean loss and PSNR of the fitter's current scene over every view of `targets`.
+ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets);
+
+}  // namespace subdfit::fit
