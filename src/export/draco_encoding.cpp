@@ -48,9 +48,9 @@ std::unique_ptr<draco::Mesh> toDraco(const LimitTessellation& tess, DracoEncoded
                                                      draco::PointIndex(tess.indices[3 * t + 1]),
                                                      draco::PointIndex(tess.indices[3 * t + 2])});
     ids.position = addAttribute(mesh, draco::GeometryAttribute::POSITION, 3, &tess.positions[0].x);
-    ids.normal = addAttribute(mesh, draco::GeometryAttribute::NORMAL, 3, &tess.normals[0].x);
-    ids.tangent = addAttribute(mesh, draco::GeometryAttribute::GENERIC, 4, &tess.tangents[0].x);
-    ids.texcoord = addAttribute(mesh, draco::GeometryAttribute::TEX_COORD, 2, &tess.uvs[0].x);
+    if (tess.hasNormals()) ids.normal = addAttribute(mesh, draco::GeometryAttribute::NORMAL, 3, &tess.normals[0].x);
+    if (tess.hasTangents()) ids.tangent = addAttribute(mesh, draco::GeometryAttribute::GENERIC, 4, &tess.tangents[0].x);
+    if (tess.hasUvs()) ids.texcoord = addAttribute(mesh, draco::GeometryAttribute::TEX_COORD, 2, &tess.uvs[0].x);
     return owned;
 }
 
@@ -64,7 +64,7 @@ void describeDecoded(DracoEncodedMesh& encoded) {
     if (!decoded.ok()) throw Error("Draco cannot decode its own output: " + decoded.status().error_msg_string());
     const draco::Mesh& mesh = *decoded.value();
     for (int id : {encoded.position, encoded.normal, encoded.tangent, encoded.texcoord})
-        SUBDFIT_CHECK(mesh.GetAttributeByUniqueId(uint32_t(id)) != nullptr);
+        SUBDFIT_CHECK(id < 0 || mesh.GetAttributeByUniqueId(uint32_t(id)) != nullptr);
     const draco::PointAttribute* positions = mesh.GetAttributeByUniqueId(uint32_t(encoded.position));
     encoded.vertexCount = mesh.num_points();
     encoded.triangleCount = mesh.num_faces();
@@ -82,8 +82,7 @@ void describeDecoded(DracoEncodedMesh& encoded) {
 
 DracoEncodedMesh encodeDraco(const LimitTessellation& tess) {
     SUBDFIT_CHECK(tess.vertexCount() > 0 && tess.triangleCount() > 0);
-    SUBDFIT_CHECK(tess.normals.size() == tess.vertexCount() && tess.tangents.size() == tess.vertexCount() &&
-                  tess.uvs.size() == tess.vertexCount());
+    SUBDFIT_CHECK(tess.attributesConsistent());
     DracoEncodedMesh encoded;
     const std::unique_ptr<draco::Mesh> mesh = toDraco(tess, encoded);
 

@@ -11,7 +11,7 @@ namespace subdfit::exporter {
 
 struct DracoEncodedMesh {
     std::vector<unsigned char> bytes;
-    // Draco unique ids of the attributes, as the extension's `attributes` names them.
+    // Draco unique ids of the attributes, as the extension's `attributes` names them; -1 when absent.
     int position = -1, normal = -1, tangent = -1, texcoord = -1;
     // Of the mesh as a decoder gets it back (the accessors must describe that, not our input).
     std::size_t vertexCount = 0, triangleCount = 0;

@@ -57,10 +57,8 @@ json accessor(int view, int componentType, size_t count, const char* type) {
 json vec3Json(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
 
 void checkTessellation(const LimitTessellation& tess) {
-    const size_t n = tess.vertexCount();
-    SUBDFIT_CHECK(tess.normals.size() == n && tess.tangents.size() == n && tess.uvs.size() == n);
-    SUBDFIT_CHECK(tess.indices.size() % 3 == 0);
-    if (n == 0 || tess.indices.empty()) throw Error("nothing to export: the tessellation has no triangles");
+    SUBDFIT_CHECK(tess.attributesConsistent());
+    if (tess.vertexCount() == 0 || tess.indices.empty()) throw Error("nothing to export: the mesh has no triangles");
 }
 
 json material(bool hasNormalTexture) {
@@ -71,29 +69,42 @@ json material(bool hasNormalTexture) {
     return m;
 }
 
+// The primitive's vertex attributes, in accessor order: what the mesh has.
+struct AttributeSlot {
+    const char* name;
+    const char* type;
+    int dracoId;
+};
+
+std::vector<AttributeSlot> presentAttributes(const LimitTessellation& tess, const DracoEncodedMesh& ids) {
+    std::vector<AttributeSlot> slots{{"POSITION", "VEC3", ids.position}};
+    if (tess.hasNormals()) slots.push_back({"NORMAL", "VEC3", ids.normal});
+    if (tess.hasTangents()) slots.push_back({"TANGENT", "VEC4", ids.tangent});
+    if (tess.hasUvs()) slots.push_back({"TEXCOORD_0", "VEC2", ids.texcoord});
+    return slots;
+}
+
 json document(const LimitTessellation& tess, std::span<const unsigned char> normalPng, bool draco,
               BinaryBuilder& binary) {
-    json primitive = {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TANGENT", 2}, {"TEXCOORD_0", 3}}},
-                      {"indices", 4},
-                      {"material", 0},
-                      {"mode", kTriangles}};
+    const DracoEncodedMesh encoded = draco ? encodeDraco(tess) : DracoEncodedMesh{};
+    const auto slots = presentAttributes(tess, encoded);
+    json attributes = json::object(), dracoAttributes = json::object();
     json accessors = json::array();
+    for (size_t i = 0; i < slots.size(); ++i) {
+        attributes[slots[i].name] = i;
+        dracoAttributes[slots[i].name] = slots[i].dracoId;
+    }
+    json primitive = {{"attributes", attributes}, {"indices", slots.size()}, {"mode", kTriangles}};
+    const bool hasMaterial = tess.hasUvs() || !normalPng.empty();
+    if (hasMaterial) primitive["material"] = 0;
+
     if (draco) {
-        const DracoEncodedMesh encoded = encodeDraco(tess);
         const int view = binary.addView(encoded.bytes);
-        accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC3"));
-        accessors.back()["min"] = vec3Json(encoded.positionMin);
-        accessors.back()["max"] = vec3Json(encoded.positionMax);
-        accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC3"));
-        accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC4"));
-        accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC2"));
+        for (const auto& slot : slots) accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, slot.type));
+        accessors[0]["min"] = vec3Json(encoded.positionMin);
+        accessors[0]["max"] = vec3Json(encoded.positionMax);
         accessors.push_back(accessor(-1, kUnsignedInt, encoded.triangleCount * 3, "SCALAR"));
-        primitive["extensions"][kDraco] = {{"bufferView", view},
-                                           {"attributes",
-                                            {{"POSITION", encoded.position},
-                                             {"NORMAL", encoded.normal},
-                                             {"TANGENT", encoded.tangent},
-                                             {"TEXCOORD_0", encoded.texcoord}}}};
+        primitive["extensions"][kDraco] = {{"bufferView", view}, {"attributes", dracoAttributes}};
     } else {
         glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
         for (const glm::vec3& p : tess.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
@@ -101,9 +112,11 @@ json document(const LimitTessellation& tess, std::span<const unsigned char> norm
         accessors.push_back(accessor(binary.addArray(tess.positions, kArrayBuffer), kFloat, n, "VEC3"));
         accessors.back()["min"] = vec3Json(lo);  // required for POSITION (spec 5.1.1)
         accessors.back()["max"] = vec3Json(hi);
-        accessors.push_back(accessor(binary.addArray(tess.normals, kArrayBuffer), kFloat, n, "VEC3"));
-        accessors.push_back(accessor(binary.addArray(tess.tangents, kArrayBuffer), kFloat, n, "VEC4"));
-        accessors.push_back(accessor(binary.addArray(tess.uvs, kArrayBuffer), kFloat, n, "VEC2"));
+        if (tess.hasNormals())
+            accessors.push_back(accessor(binary.addArray(tess.normals, kArrayBuffer), kFloat, n, "VEC3"));
+        if (tess.hasTangents())
+            accessors.push_back(accessor(binary.addArray(tess.tangents, kArrayBuffer), kFloat, n, "VEC4"));
+        if (tess.hasUvs()) accessors.push_back(accessor(binary.addArray(tess.uvs, kArrayBuffer), kFloat, n, "VEC2"));
         accessors.push_back(
             accessor(binary.addArray(tess.indices, kElementArrayBuffer), kUnsignedInt, tess.indices.size(), "SCALAR"));
     }
@@ -113,8 +126,8 @@ json document(const LimitTessellation& tess, std::span<const unsigned char> norm
                 {"scenes", json::array({{{"nodes", {0}}}})},
                 {"nodes", json::array({{{"mesh", 0}, {"name", "fitted"}}})},
                 {"meshes", json::array({{{"name", "fitted"}, {"primitives", json::array({primitive})}}})},
-                {"materials", json::array({material(!normalPng.empty())})},
                 {"accessors", accessors}};
+    if (hasMaterial) doc["materials"] = json::array({material(!normalPng.empty())});
     if (!normalPng.empty()) {
         const int view = binary.addView(normalPng);
         doc["images"] = json::array({{{"bufferView", view}, {"mimeType", "image/png"}, {"name", "normal"}}});
@@ -143,6 +156,16 @@ WrittenFile writeFittedGlb(const std::filesystem::path& path, const LimitTessell
         throw fileError(path.string(), e.what());
     }
     return writeBytes(path, bytes);
+}
+
+WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
+                         const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices,
+                         bool draco) {
+    LimitTessellation mesh;
+    mesh.positions = positions;
+    mesh.normals = normals;
+    mesh.indices = indices;
+    return writeFittedGlb(path, mesh, {}, draco);
 }
 
 }  // namespace subdfit::exporter

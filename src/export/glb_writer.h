@@ -10,12 +10,18 @@
 
 namespace subdfit::exporter {
 
-// One scene, node, mesh and primitive (POSITION, NORMAL, TANGENT, TEXCOORD_0, uint32 indices),
-// one material (metallic 0, roughness 0.6; normalTexture = the embedded `normalPng` unless it
-// is empty, sampled LINEAR without mipmaps and clamped, as the atlas requires). With `draco`,
+// One scene, node, mesh and primitive (POSITION, and NORMAL, TANGENT, TEXCOORD_0 where the
+// tessellation has them, uint32 indices); with texcoords or a normal map, one material
+// (metallic 0, roughness 0.6; normalTexture = the embedded `normalPng` unless it is empty,
+// sampled LINEAR without mipmaps and clamped, as the atlas requires). With `draco`,
 // the primitive is KHR_draco_mesh_compression-encoded (export/draco_encoding.h) and the
 // extension is required. Written atomically; throws subdfit::Error "path: problem".
 WrittenFile writeFittedGlb(const std::filesystem::path& path, const LimitTessellation& tess,
                            std::span<const unsigned char> normalPng, bool draco);
+
+// A plain triangle mesh (a cage, a decimated mesh): positions, optional normals, indices.
+WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
+                         const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices,
+                         bool draco);
 
 }  // namespace subdfit::exporter

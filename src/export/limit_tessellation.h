@@ -26,6 +26,17 @@ struct LimitTessellation {
     // Triangles, counter-clockwise seen from outside (the cage's own winding).
     std::vector<std::uint32_t> indices;
 
+    // Only positions and indices are required: a mesh without the others (a cage, a decimated
+    // mesh) goes through the same writers.
+    bool hasNormals() const { return !normals.empty(); }
+    bool hasTangents() const { return !tangents.empty(); }
+    bool hasUvs() const { return !uvs.empty(); }
+    bool attributesConsistent() const {
+        const std::size_t n = positions.size();
+        return (!hasNormals() || normals.size() == n) && (!hasTangents() || tangents.size() == n) &&
+               (!hasUvs() || uvs.size() == n) && indices.size() % 3 == 0;
+    }
+
     std::size_t vertexCount() const { return positions.size(); }
     std::size_t triangleCount() const { return indices.size() / 3; }
 };

@@ -18,6 +18,7 @@
 #include "maps/texel_layout.h"
 #include "mesh/file_bytes.h"
 #include "mesh/gltf_reader.h"
+#include "mesh/mesh_geometry.h"
 #include "mesh/procedural.h"
 #include "test_paths.h"
 #include "util/error.h"
@@ -277,6 +278,32 @@ TEST_F(ExportGlb, GlbWithoutNormalMapHasNoTexture) {
     EXPECT_FALSE(doc.contains("textures"));
     EXPECT_FALSE(doc["materials"][0].contains("normalTexture"));
     EXPECT_EQ(size_t(mesh::readGltf(file.path).vertexCount()), tess_->vertexCount());
+}
+
+// A cage ships as positions and indices only; with Draco (which reorders vertices) every
+// vertex decodes within the 14-bit position quantisation of one of the cage's.
+TEST_F(ExportGlb, PlainMeshGlbHasOnlyPositionsAndRoundTrips) {
+    const mesh::PolygonMesh cage = mesh::triangulated(mesh::makeQuadSphere(3));
+    const std::vector<std::uint32_t> indices(cage.faceIndices.begin(), cage.faceIndices.end());
+    for (bool draco : {false, true}) {
+        SCOPED_TRACE(draco ? "draco" : "plain");
+        const WrittenFile file = writeMeshGlb(*dir_ / (draco ? "cage_draco.glb" : "cage.glb"), cage.positions, {},
+                                              indices, draco);
+        const json doc = readGlb(file.path).document;
+        EXPECT_EQ(doc["meshes"][0]["primitives"][0]["attributes"].size(), 1u);
+        EXPECT_FALSE(doc.contains("materials"));
+        const mesh::PolygonMesh read = mesh::readGltf(file.path);
+        ASSERT_EQ(read.faceCount(), cage.faceCount());
+        ASSERT_EQ(read.vertexCount(), cage.vertexCount());
+        float worst = 0.0f;
+        for (const glm::vec3& p : read.positions) {
+            float nearest = 1e9f;
+            for (const glm::vec3& q : cage.positions) nearest = std::min(nearest, glm::length(p - q));
+            worst = std::max(worst, nearest);
+        }
+        EXPECT_LT(worst, draco ? 2e-4f : 1e-7f);
+        if (!draco) EXPECT_EQ(read.faceIndices, cage.faceIndices);
+    }
 }
 
 TEST_F(ExportGlb, UnwritableDestinationThrowsAndLeavesNoTemporary) {
