@@ -302,7 +302,9 @@ TEST_F(ExportGlb, PlainMeshGlbHasOnlyPositionsAndRoundTrips) {
             worst = std::max(worst, nearest);
         }
         EXPECT_LT(worst, draco ? 2e-4f : 1e-7f);
-        if (!draco) EXPECT_EQ(read.faceIndices, cage.faceIndices);
+        if (!draco) {
+            EXPECT_EQ(read.faceIndices, cage.faceIndices);
+        }
     }
 }
 
