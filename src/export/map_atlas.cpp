@@ -54,8 +54,6 @@ WrittenFile writeDisplacementExr(const std::filesystem::path& path, const AtlasL
 }
 
 nlohmann::json manifest(const AtlasLayout& atlas, const FittedMaps& maps, const AtlasOutputs& outputs) {
-    nlohmann::json tiles = nlohmann::json::array();
-    for (const glm::ivec2& origin : atlas.tileOrigins) tiles.push_back({origin.x, origin.y});
     nlohmann::json doc = {
         {"generator", "subdfit"},
         {"resolution", atlas.resolution},
@@ -64,9 +62,11 @@ nlohmann::json manifest(const AtlasLayout& atlas, const FittedMaps& maps, const 
         {"rows", atlas.rows},
         {"width", atlas.width},
         {"height", atlas.height},
-        {"tiles", tiles},
-        {"tilesNote", "tiles[f] = [x0, y0], the pixel of node (0, 0) of ptex face f; node (i, j) of the face is "
-                      "pixel (x0 + i, y0 + j), i along u, j along v, image row 0 at the top"},
+        {"ptexFaces", atlas.tileOrigins.size()},
+        // A formula rather than a list: the list would outweigh a small cage and its maps.
+        {"tileOrigin", "ptex face f's node (0, 0) is pixel (x0, y0) = (tileSize * (f mod columns), "
+                       "tileSize * floor(f / columns)); node (i, j) of the face is pixel (x0 + i, y0 + j), "
+                       "i along u, j along v, image row 0 at the top"},
         {"uv", "texcoord of ptex (u, v) in [0,1]^2 on face f: ((x0 + 0.5 + u * resolution) / width, "
                "(y0 + 0.5 + v * resolution) / height), v down the image as in glTF; sample bilinearly "
                "without mipmaps to reproduce the fitted node interpolation exactly"},

@@ -64,8 +64,7 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     // A distinct counter per sample keeps every sample's signs independent; the seed separates runs.
     const std::uint32_t counter = samples_++;
     const auto all = groups();
-    const bool mapsStarted = settings_.plannedSteps <= 0 ||
-                             float(steps_) >= settings_.mapsStartFraction * float(settings_.plannedSteps);
+    const bool mapsStarted = steps_ >= mapsStartStep();
     // Once the maps have started, the vertices keep every other turn and the map groups share
     // the rest: the cage still sets the shape that the maps' detail sits on.
     sge::ParameterGroup* perturbed = &vertices_;
@@ -136,6 +135,11 @@ std::vector<glm::vec3> CageFitter::vertices() const {
     std::vector<glm::vec3> points(values.size() / 3);
     for (size_t i = 0; i < points.size(); ++i) points[i] = {values[3 * i], values[3 * i + 1], values[3 * i + 2]};
     return points;
+}
+
+int CageFitter::mapsStartStep() const {
+    if (settings_.plannedSteps <= 0) return 0;
+    return int(std::ceil(settings_.mapsStartFraction * float(settings_.plannedSteps)));
 }
 
 void CageFitter::setVertices(const std::vector<glm::vec3>& positions) {

@@ -65,6 +65,10 @@ public:
     std::vector<glm::vec3> vertices() const;
     void setVertices(const std::vector<glm::vec3>& positions);
     int stepsTaken() const { return steps_; }
+    // Learning rates and ε may change between steps (a viewer's sliders, a refining stage).
+    CageFitSettings& settings() { return settings_; }
+    // The first step at which the map groups take turns (0 without a plan).
+    int mapsStartStep() const;
     const subdiv::PatchSet& patches() const { return patches_; }
     const render::PatchRenderer& renderer() const { return renderer_; }
     sge::ParameterGroup& vertexGroup() { return vertices_; }

@@ -93,6 +93,7 @@ nlohmann::json runFit(const FitOptions& o, gl::ProgramCache& programs, const con
     int step = history.firstStep;
     for (; step < o.steps; ++step) {
         if (hooks.cancel && hooks.cancel->load()) break;
+        if (hooks.initializeMaps && fitter.maps() && step == fitter.mapsStartStep()) hooks.initializeMaps(fitter, scene);
         // The loss is only read for progress, so about eight steps per report measure it.
         const bool measureLoss = step % std::max(1, reportEvery / 8) == 0;
         const auto views = viewsForStep(o, step);
@@ -109,14 +110,13 @@ nlohmann::json runFit(const FitOptions& o, gl::ProgramCache& programs, const con
     history.steps = step;
     history.fitSeconds = secondsSince(fitStarted);
 
-    const nlohmann::json extra = hooks.evaluate ? hooks.evaluate(fitter, scene) : nlohmann::json::object();
     history.seconds = secondsSince(started);
-    return writeFitResults(o, programs, context, scene, fitter, history, extra);
+    return writeFitResults(o, programs, context, scene, fitter, history, hooks.evaluate);
 }
 
 nlohmann::json writeFitResults(const FitOptions& o, gl::ProgramCache& programs, const context::GlContext& context,
                                FitScene& scene, CageFitter& fitter, const FitHistory& history,
-                               const nlohmann::json& extra) {
+                               const FitEvaluation& evaluate) {
     const auto afterImage = renderHoldout(fitter, scene);
     const ViewSetScore trainAfter = score(fitter, scene.training);
     const ViewSetScore holdoutAfter = score(fitter, scene.holdout);
@@ -154,7 +154,6 @@ nlohmann::json writeFitResults(const FitOptions& o, gl::ProgramCache& programs, 
                   {"patches", fitter.renderer().patchCount()}}},
         {"reference", {{"path", o.reference.string()}, {"triangles", scene.reference.faceCount()}}},
     };
-    report.update(extra);
 
     // Outputs only now that everything has worked; each file appears whole or not at all.
     std::filesystem::create_directories(o.out);
@@ -162,6 +161,7 @@ nlohmann::json writeFitResults(const FitOptions& o, gl::ProgramCache& programs, 
     fittedWorld.positions = scene.frame.toWorld(fitter.vertices());
     mesh::writeObj(o.out / "cage.obj", fittedWorld);
     report["exports"] = exportAsset(o, fitter, scene.frame, fittedWorld);
+    if (evaluate) report.update(evaluate(fitter, scene, report["exports"]));
     const int res = o.resolution;
     if (!history.beforeImage.empty()) io::writeImage(o.out / "before.png", history.beforeImage, res, res);
     io::writeImage(o.out / "after.png", afterImage, res, res);

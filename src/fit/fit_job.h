@@ -23,14 +23,20 @@ struct Progress {
 
 using ProgressSink = std::function<void(const Progress&)>;
 
-// Called once the last step is taken, before anything is written; what it returns is merged
-// into report.json (and it may write files of its own into options.out).
-using FitEvaluation = std::function<nlohmann::json(CageFitter&, FitScene&)>;
+// Called once the fitted cage and its exports are written (`exports`: {file name: bytes}), before
+// report.json; what it returns is merged into the report, and it may write files of its own
+// into options.out.
+using FitEvaluation = std::function<nlohmann::json(CageFitter&, FitScene&, const nlohmann::json& exports)>;
+
+// Sets the map groups' θ from the fitter's current cage, just before the maps join the fit
+// (not again when a resumed run restores them from a checkpoint).
+using MapInitializer = std::function<void(CageFitter&, FitScene&)>;
 
 struct FitHooks {
     ProgressSink progress{};
     const std::atomic<bool>* cancel = nullptr;  // set during the fit: stop early, still write results
     FitEvaluation evaluate{};
+    MapInitializer initializeMaps{};
 };
 
 // Throws subdfit::Error for bad options or inputs before anything is written.
@@ -49,10 +55,10 @@ struct FitHistory {
 };
 
 // Scores the fitter's current scene and writes cage.obj, the exports, before/after/target PNGs
-// and report.json (with `extra` merged in) into options.out, each file atomically. Returns the
-// report.
+// and report.json (with what `evaluate` adds) into options.out, each file atomically. Returns
+// the report.
 nlohmann::json writeFitResults(const FitOptions& options, gl::ProgramCache& programs,
                                const context::GlContext& context, FitScene& scene, CageFitter& fitter,
-                               const FitHistory& history, const nlohmann::json& extra = nlohmann::json::object());
+                               const FitHistory& history, const FitEvaluation& evaluate = {});
 
 }  // namespace subdfit::fit

@@ -1,4 +1,5 @@
 #include "sge/parameter_group.h"
+#include "util/error.h"
 
 namespace subdfit::sge {
 
@@ -15,5 +16,10 @@ ParameterGroup::ParameterGroup(std::string name, const std::vector<float>& initi
       count_(int(initial.size())),
       settings_(settings),
       seedSalt_(seedSalt) {}
+
+void ParameterGroup::write(const std::vector<float>& values) {
+    SUBDFIT_CHECK(int(values.size()) == count_);
+    theta.upload(values.data(), GLsizeiptr(values.size() * sizeof(float)));
+}
 
 }  // namespace subdfit::sge

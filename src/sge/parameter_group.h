@@ -36,6 +36,8 @@ public:
     int adamSteps = 0;
 
     std::vector<float> read() const { return theta.read<float>(); }
+    // Replaces θ (count() values), e.g. with maps baked elsewhere.
+    void write(const std::vector<float>& values);
 
 private:
     std::string name_;

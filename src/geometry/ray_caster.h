@@ -1,0 +1,42 @@
+#pragma once
+// Ray queries against a triangle mesh, by Embree: the bake baseline casts along the limit
+// normal of a cage to find the reference surface, as a texture baker does.
+#include <glm/vec3.hpp>
+
+#include <memory>
+#include <optional>
+
+#include "mesh/polygon_mesh.h"
+
+namespace subdfit::geometry {
+
+struct RayHit {
+    float distance = 0.0f;  // along the (unit) direction
+    int triangle = -1;
+    float u = 0.0f, v = 0.0f;  // barycentrics: the point is (1−u−v)·p0 + u·p1 + v·p2
+};
+
+class RayCaster {
+public:
+    // `triangles`: a triangulated mesh; kept by reference for hit lookups, so it must outlive this.
+    explicit RayCaster(const mesh::PolygonMesh& triangles);
+    ~RayCaster();
+    RayCaster(const RayCaster&) = delete;
+    RayCaster& operator=(const RayCaster&) = delete;
+
+    // The first hit along the unit `direction` within (0, maxDistance], either side of any
+    // triangle. Thread-safe.
+    std::optional<RayHit> cast(const glm::vec3& origin, const glm::vec3& direction, float maxDistance) const;
+
+    // The nearer of the hits along +direction and −direction (distance signed accordingly).
+    std::optional<RayHit> castBothWays(const glm::vec3& origin, const glm::vec3& direction, float maxDistance) const;
+
+    const mesh::PolygonMesh& mesh() const { return mesh_; }
+
+private:
+    struct Embree;
+    const mesh::PolygonMesh& mesh_;
+    std::unique_ptr<Embree> embree_;
+};
+
+}  // namespace subdfit::geometry

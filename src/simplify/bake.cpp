@@ -1,0 +1,115 @@
+#include "simplify/bake.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/ray_caster.h"
+#include "mesh/mesh_geometry.h"
+#include "subdiv/limit_evaluator.h"
+
+namespace subdfit::simplify {
+namespace {
+
+// Where a node is baked: the first tile that holds it.
+struct NodeSite {
+    int face = -1, i = 0, j = 0;
+};
+
+std::vector<NodeSite> nodeSites(const maps::TexelLayout& layout) {
+    std::vector<NodeSite> sites(size_t(layout.nodeCount));
+    for (int f = 0; f < layout.ptexFaceCount; ++f)
+        for (int j = 0; j <= layout.resolution; ++j)
+            for (int i = 0; i <= layout.resolution; ++i) {
+                NodeSite& site = sites[size_t(layout.node(f, i, j))];
+                if (site.face < 0) site = {f, i, j};
+            }
+    return sites;
+}
+
+// The limit sample at a node; where the derivatives vanish (some extraordinary corners), a
+// hair inside the face, as the renderer does.
+subdiv::LimitSample sampleAt(const subdiv::LimitEvaluator& limit, const NodeSite& s, int resolution,
+                             const std::vector<glm::vec3>& base) {
+    glm::vec2 uv = glm::vec2(float(s.i), float(s.j)) / float(resolution);
+    subdiv::LimitSample sample = limit.evaluate(s.face, uv.x, uv.y, base);
+    if (glm::length(glm::cross(sample.dPdu, sample.dPdv)) < 1e-12f) {
+        uv = glm::mix(uv, glm::vec2(0.5f), 1e-3f);
+        const subdiv::LimitSample inside = limit.evaluate(s.face, uv.x, uv.y, base);
+        sample.dPdu = inside.dPdu, sample.dPdv = inside.dPdv;
+    }
+    return sample;
+}
+
+glm::vec3 unitNormal(const glm::vec3& dPdu, const glm::vec3& dPdv, const glm::vec3& fallback) {
+    const glm::vec3 n = glm::cross(dPdu, dPdv);
+    const float length = glm::length(n);
+    return length > 1e-20f ? n / length : fallback;
+}
+
+// ∂d/∂u at a node from its tile's neighbours (central where it can, one-sided at the tile edge).
+glm::vec2 heightGradient(const maps::TexelLayout& layout, const std::vector<float>& d, const NodeSite& s) {
+    const int t = layout.resolution;
+    auto at = [&](int i, int j) { return d[size_t(layout.node(s.face, i, j))]; };
+    const int i0 = std::max(s.i - 1, 0), i1 = std::min(s.i + 1, t);
+    const int j0 = std::max(s.j - 1, 0), j1 = std::min(s.j + 1, t);
+    return {(at(i1, s.j) - at(i0, s.j)) * float(t) / float(i1 - i0),
+            (at(s.i, j1) - at(s.i, j0)) * float(t) / float(j1 - j0)};
+}
+
+}  // namespace
+
+exporter::FittedMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
+                              const BakeOptions& options) {
+    exporter::FittedMaps maps;
+    maps.layout = maps::buildTexelLayout(cage, options.resolution);
+    const auto sites = nodeSites(maps.layout);
+    const size_t nodes = sites.size();
+    const subdiv::LimitEvaluator limit(cage);
+    const geometry::RayCaster caster(reference);
+    const auto referenceNormals = mesh::vertexNormals(reference);
+
+    std::vector<subdiv::LimitSample> samples(nodes);
+    std::vector<glm::vec3> normals(nodes);
+    std::vector<std::optional<geometry::RayHit>> hits(nodes);
+    std::vector<float> heights(nodes, 0.0f);
+    for (size_t n = 0; n < nodes; ++n) {
+        if (sites[n].face < 0 || !limit.hasSurface(sites[n].face, 0.5f, 0.5f)) continue;
+        samples[n] = sampleAt(limit, sites[n], options.resolution, cage.positions);
+        normals[n] = unitNormal(samples[n].dPdu, samples[n].dPdv, glm::vec3(0.0f, 0.0f, 1.0f));
+        hits[n] = caster.castBothWays(samples[n].position, normals[n], options.maxDistance);
+        if (hits[n]) heights[n] = hits[n]->distance;
+    }
+    if (options.effects.displacement) maps.displacement = heights;
+    if (!options.effects.normalMap) return maps;
+
+    // The renderer shades the displaced surface (when there is one) and tilts its normal by the
+    // map: express the reference normal in that surface's frame (T, B, N'), n ∝ x T + y B + N'.
+    const std::vector<float> zero(nodes, 0.0f);
+    const std::vector<float>& d = options.effects.displacement ? heights : zero;
+    maps.normal.assign(2 * nodes, 0.0f);
+    for (size_t n = 0; n < nodes; ++n) {
+        if (!hits[n]) continue;
+        const glm::vec2 g = heightGradient(maps.layout, d, sites[n]);
+        const glm::vec3 du = samples[n].dPdu + g.x * normals[n], dv = samples[n].dPdv + g.y * normals[n];
+        const glm::vec3 N = unitNormal(du, dv, normals[n]);
+        glm::vec3 T = du - N * glm::dot(N, du);
+        if (glm::dot(T, T) < 1e-20f) continue;
+        T = glm::normalize(T);
+        glm::vec3 B = glm::cross(N, T);
+        if (glm::dot(B, dv) < 0.0f) B = -B;
+
+        const int tri = hits[n]->triangle;
+        const float u = hits[n]->u, v = hits[n]->v;
+        auto vertexNormal = [&](int k) { return referenceNormals[size_t(reference.faceIndices[size_t(3 * tri + k)])]; };
+        glm::vec3 r = (1.0f - u - v) * vertexNormal(0) + u * vertexNormal(1) + v * vertexNormal(2);
+        if (glm::dot(r, N) < 0.0f) r = -r;  // the reference may wind the other way
+        const float z = std::max(glm::dot(r, N), 0.2f);  // a map cannot tilt past ~78°
+        maps.normal[2 * n] = glm::dot(r, T) / z;
+        maps.normal[2 * n + 1] = glm::dot(r, B) / z;
+    }
+    return maps;
+}
+
+}  // namespace subdfit::simplify

@@ -1,0 +1,24 @@
+#pragma once
+// The classic bake route, the baseline `simplify` is judged against: displacement and normal
+// maps ray-cast from the reference onto the limit surface of a cage, with no optimisation.
+// Each map node casts along the limit normal both ways; the nearer hit gives its height, and
+// the reference's interpolated normal there, expressed in the displaced surface's tangent frame
+// (the frame the renderer and the exported TANGENT use), gives its normal-map value.
+#include "export/fitted_asset.h"
+#include "maps/map_parameters.h"
+#include "mesh/polygon_mesh.h"
+
+namespace subdfit::simplify {
+
+struct BakeOptions {
+    maps::MapEffects effects{.displacement = true, .normalMap = true};
+    int resolution = 8;          // cells per ptex-face edge, as maps::TexelLayout
+    float maxDistance = 0.25f;   // farthest hit taken, in the meshes' units; none: height 0, flat normal
+};
+
+// `cage` and `reference` (triangulated) in the same units. Only the maps in options.effects
+// are filled; the layout is maps::buildTexelLayout(cage, resolution).
+exporter::FittedMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
+                              const BakeOptions& options);
+
+}  // namespace subdfit::simplify

@@ -1,0 +1,95 @@
+#include "simplify/baselines.h"
+
+#include "export/glb_writer.h"
+#include "export/map_atlas.h"
+#include "fit/cage_fitter.h"
+#include "fit/fit_scene.h"
+#include "mesh/mesh_geometry.h"
+#include "render/mesh_renderer.h"
+#include "simplify/bake.h"
+#include "simplify/decimate.h"
+
+namespace subdfit::simplify {
+namespace {
+
+std::vector<std::uint32_t> indicesOf(const mesh::PolygonMesh& triangles) {
+    return {triangles.faceIndices.begin(), triangles.faceIndices.end()};
+}
+
+}  // namespace
+
+nlohmann::json shipCage(const std::filesystem::path& path, const mesh::PolygonMesh& cageWorld, bool draco) {
+    const auto triangles = mesh::triangulated(cageWorld);
+    const auto written = exporter::writeMeshGlb(path, triangles.positions, {}, indicesOf(triangles), draco);
+    return {{path.filename().string(), written.bytes}};
+}
+
+Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
+                           const BaselineSettings& settings) {
+    const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
+    const auto path = settings.dir / "decimated.glb";
+    auto ship = [&](int triangles) {
+        mesh::PolygonMesh decimated = decimate(welded, triangles);
+        const auto normals = mesh::vertexNormals(decimated);  // normalised or not, the same unit normals
+        const auto written = exporter::writeMeshGlb(path, scene.frame.toWorld(decimated.positions), normals,
+                                                    indicesOf(decimated), settings.draco);
+        return std::make_pair(std::move(decimated), written.bytes);
+    };
+    // Bytes grow with the triangle count: bisect for the most triangles within the budget.
+    int lo = 1, hi = welded.faceCount();
+    while (lo < hi) {
+        const int mid = lo + (hi - lo + 1) / 2;
+        if (ship(mid).second <= budget) lo = mid;
+        else hi = mid - 1;
+    }
+    auto [decimated, bytes] = ship(lo);
+
+    Quality q;
+    q.bytes = bytes;
+    q.files = {{"decimated.glb", bytes}};
+    q.details = {{"triangles", decimated.faceCount()}};
+    const render::MeshRenderer renderer(decimated.positions, mesh::vertexNormals(decimated),
+                                        std::vector<unsigned>(decimated.faceIndices.begin(), decimated.faceIndices.end()));
+    scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
+        renderer.draw(programs, camera, target);
+    }, q);
+    q.distance = worldDistance(decimated, scene.reference, scene.frame, settings.surfaceSamples);
+    return q;
+}
+
+Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& cage,
+                     maps::MapEffects effects, int mapResolution, const BaselineSettings& settings) {
+    if (!effects.any()) effects = {.displacement = true, .normalMap = true};
+    const exporter::FittedMaps baked =
+        bakeMaps(cage, scene.reference, {.effects = effects, .resolution = mapResolution});
+
+    // Shipped exactly as subdfit ships: cage.glb and the map atlases, in world units.
+    const auto dir = settings.dir / "bake";
+    std::filesystem::create_directories(dir);
+    mesh::PolygonMesh cageWorld = cage;
+    cageWorld.positions = scene.frame.toWorld(cage.positions);
+    exporter::FittedMaps bakedWorld = baked;
+    for (float& d : bakedWorld.displacement) d /= scene.frame.scale;
+    Quality q;
+    q.files = shipCage(dir / "cage.glb", cageWorld, settings.draco);
+    for (const auto& file : exporter::writeMapAtlases(dir, bakedWorld)) q.files[file.path.filename().string()] = file.bytes;
+    q.bytes = totalBytes(q.files);
+    q.details = {{"faces", cage.faceCount()}, {"map_resolution", mapResolution}};
+
+    // Rendered by the fitter's own renderer with the baked values in its map groups.
+    fit::CageFitSettings rendering;
+    rendering.mapEffects = effects;
+    rendering.maps.resolution = mapResolution;
+    rendering.tessLevel = settings.segments;
+    fit::CageFitter bakedScene(programs, cage, rendering);
+    if (auto* g = bakedScene.maps()->displacement()) g->write(baked.displacement);
+    if (auto* g = bakedScene.maps()->normalMap()) g->write(baked.normal);
+    scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
+        bakedScene.render(camera, target);
+    }, q);
+    q.distance = worldDistance(limitSurfaceTriangles(cage, baked, settings.segments), scene.reference, scene.frame,
+                               settings.surfaceSamples);
+    return q;
+}
+
+}  // namespace subdfit::simplify

@@ -1,0 +1,25 @@
+#pragma once
+// The cage `simplify` starts from: the reference decimated to the face budget, made a sound
+// Catmull-Clark cage. Decimated vertices lie on the reference, but a Catmull-Clark limit surface
+// only approximates its cage, shrinking into it; so the vertices are then moved until the limit
+// surface passes through where they were (limit interpolation), which starts the fit on the
+// reference's surface rather than inside it.
+#include "mesh/polygon_mesh.h"
+
+namespace subdfit::simplify {
+
+struct InitialCageOptions {
+    int faces = 1000;                // triangle budget of the cage
+    int interpolationIterations = 8; // P += V − limit(P) sweeps
+};
+
+// `reference` in any units, any polygons. The cage is all triangles, welded, with OpenSubdiv's
+// smooth-triangle rule (Loop-like weights on triangles, which keeps them from pinching) and
+// boundaries interpolated with their corners. Throws subdfit::Error naming the reference when
+// the result is not a usable cage.
+mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialCageOptions& options);
+
+// Where each base vertex of `cage` lies on its limit surface at `positions` (one per vertex).
+std::vector<glm::vec3> limitPositionsOfVertices(const mesh::PolygonMesh& cage, const std::vector<glm::vec3>& positions);
+
+}  // namespace subdfit::simplify

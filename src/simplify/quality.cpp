@@ -1,0 +1,58 @@
+#include "simplify/quality.h"
+
+#include "export/limit_tessellation.h"
+#include "fit/image_metrics.h"
+
+namespace subdfit::simplify {
+
+nlohmann::json toJson(const Quality& q) {
+    nlohmann::json j = {{"psnr_holdout", q.psnrHoldout},
+                        {"chamfer", q.distance.chamferL2Squared},
+                        {"hausdorff", q.distance.hausdorff},
+                        {"mean_distance", q.distance.meanDistance},
+                        {"bytes", q.bytes},
+                        {"files", q.files}};
+    j.update(q.details);
+    return j;
+}
+
+std::uintmax_t totalBytes(const nlohmann::json& files) {
+    std::uintmax_t total = 0;
+    for (const auto& [name, bytes] : files.items()) total += bytes.get<std::uintmax_t>();
+    return total;
+}
+
+void scoreHoldout(const scene::TargetSet& holdout, const DrawFunction& draw, Quality& quality) {
+    const render::RenderTarget image(holdout.resolution(), holdout.resolution());
+    double loss = 0.0;
+    for (int i = 0; i < holdout.size(); ++i) {
+        draw(holdout.camera(i), image);
+        auto pixels = image.readColor();
+        loss += fit::meanPixelLoss(pixels, holdout.readColor(i));
+        if (i == 0) quality.view = std::move(pixels);
+    }
+    quality.psnrHoldout = fit::psnrFromLoss(loss / std::max(1, holdout.size()));
+}
+
+geometry::SurfaceDistance worldDistance(const mesh::PolygonMesh& candidate, const mesh::PolygonMesh& reference,
+                                        const scene::SceneFrame& frame, int samples) {
+    geometry::SurfaceDistance d = geometry::surfaceDistance(candidate, reference, samples);
+    d.chamferL2Squared /= double(frame.scale) * double(frame.scale);
+    d.meanDistance /= double(frame.scale);
+    d.hausdorff /= double(frame.scale);
+    return d;
+}
+
+mesh::PolygonMesh limitSurfaceTriangles(const mesh::PolygonMesh& cage, const exporter::FittedMaps& maps,
+                                        int segments) {
+    exporter::FittedMaps layoutOnly = maps;
+    if (layoutOnly.layout.resolution == 0) layoutOnly.layout = maps::buildTexelLayout(cage, 1);
+    const auto tess = exporter::tessellateLimitSurface(cage, layoutOnly, segments);
+    mesh::PolygonMesh triangles;
+    triangles.positions = tess.positions;
+    triangles.faceSizes.assign(tess.triangleCount(), 3);
+    triangles.faceIndices.assign(tess.indices.begin(), tess.indices.end());
+    return triangles;
+}
+
+}  // namespace subdfit::simplify

@@ -1,0 +1,49 @@
+#pragma once
+// How good a simplified asset is, measured the same way for subdfit and for each baseline:
+// PSNR over the held-out views, surface distance to the reference, and the bytes a user ships.
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include <glm/vec4.hpp>
+#include <nlohmann/json.hpp>
+
+#include "export/fitted_asset.h"
+#include "geometry/surface_distance.h"
+#include "render/camera.h"
+#include "render/render_target.h"
+#include "scene/scene_frame.h"
+#include "scene/target_set.h"
+
+namespace subdfit::simplify {
+
+struct Quality {
+    double psnrHoldout = 0.0;
+    geometry::SurfaceDistance distance;  // in the reference's units
+    std::uintmax_t bytes = 0;
+    nlohmann::json files = nlohmann::json::object();  // {shipped file: bytes}
+    nlohmann::json details = nlohmann::json::object();  // what else the report should say
+    std::vector<glm::vec4> view;  // held-out view 0 as rendered, for the side-by-side
+};
+
+nlohmann::json toJson(const Quality& quality);
+
+// The sum of a {file: bytes} object.
+std::uintmax_t totalBytes(const nlohmann::json& files);
+
+// Renders one camera into a target: how a candidate is drawn.
+using DrawFunction = std::function<void(const render::Camera&, const render::RenderTarget&)>;
+
+// Mean-loss PSNR of `draw` over every held-out view; view 0's image goes to `quality.view`.
+void scoreHoldout(const scene::TargetSet& holdout, const DrawFunction& draw, Quality& quality);
+
+// Surface distance of `candidate` (triangles, normalised frame) to `reference` (same), reported
+// in world units.
+geometry::SurfaceDistance worldDistance(const mesh::PolygonMesh& candidate, const mesh::PolygonMesh& reference,
+                                        const scene::SceneFrame& frame, int samples);
+
+// The triangles of a cage's limit surface, displaced by `maps` (any units, as the cage).
+mesh::PolygonMesh limitSurfaceTriangles(const mesh::PolygonMesh& cage, const exporter::FittedMaps& maps,
+                                        int segments);
+
+}  // namespace subdfit::simplify

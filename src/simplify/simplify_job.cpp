@@ -1,0 +1,124 @@
+#include "simplify/simplify_job.h"
+
+#include "gl/platform_defines.h"
+#include "mesh/mesh_loader.h"
+#include "mesh/obj_writer.h"
+#include "simplify/bake.h"
+#include "simplify/baselines.h"
+#include "simplify/comparison_image.h"
+#include "simplify/initial_cage.h"
+#include "util/error.h"
+
+namespace subdfit::simplify {
+namespace {
+
+// Baked maps are already close: the fit only refines them, with steps this much smaller than
+// a fit from flat maps takes (each texel's estimate is noisy, and Adam's steps do not shrink
+// with the signal).
+constexpr float kRefineRate = 0.02f;
+
+exporter::FittedMaps fittedMaps(fit::CageFitter& fitter, const mesh::PolygonMesh& cage) {
+    exporter::FittedMaps maps;
+    if (auto* parameters = fitter.maps()) {
+        maps.layout = parameters->layout();
+        if (auto* g = parameters->displacement()) maps.displacement = g->read();
+        if (auto* g = parameters->normalMap()) maps.normal = g->read();
+    } else {
+        maps.layout = maps::buildTexelLayout(cage, 1);
+    }
+    return maps;
+}
+
+// subdfit's shipped files: the cage GLB and the map files (fitted.glb is a convenience preview
+// of the same asset for viewers without subdivision, not part of what the budget counts).
+nlohmann::json shippedFiles(const nlohmann::json& exports, const nlohmann::json& cageFile) {
+    nlohmann::json files = cageFile;
+    for (const auto& [name, bytes] : exports.items())
+        if (name != "fitted.glb") files[name] = bytes;
+    return files;
+}
+
+// Evaluates the fitted scene and both baselines; writes cage.glb, baselines/ and comparison.png.
+nlohmann::json evaluate(const SimplifyOptions& o, gl::ProgramCache& programs, const mesh::PolygonMesh& initialCage,
+                        fit::CageFitter& fitter, fit::FitScene& scene, const nlohmann::json& exports) {
+    const auto& out = o.fit.out;
+    mesh::PolygonMesh fitted = scene.cage;
+    fitted.positions = fitter.vertices();
+    mesh::PolygonMesh fittedWorld = fitted;
+    fittedWorld.positions = scene.frame.toWorld(fitted.positions);
+    const int segments = fitter.renderer().tessLevel();
+
+    Quality ours;
+    ours.files = shippedFiles(exports, shipCage(out / "cage.glb", fittedWorld, o.fit.draco));
+    ours.bytes = totalBytes(ours.files);
+    scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
+        fitter.render(camera, target);
+    }, ours);
+    ours.distance = worldDistance(limitSurfaceTriangles(fitted, fittedMaps(fitter, fitted), segments),
+                                  scene.reference, scene.frame, o.surfaceSamples);
+
+    const BaselineSettings settings{.dir = out / "baselines", .draco = o.fit.draco,
+                                    .surfaceSamples = o.surfaceSamples, .segments = segments};
+    std::filesystem::create_directories(settings.dir);
+    const Quality decimation = decimationBaseline(programs, scene, ours.bytes, settings);
+    const Quality bake = bakeBaseline(programs, scene, initialCage, maps::parseMapEffects(o.fit.maps),
+                                      o.fit.mapResolution, settings);
+    writeComparison(out / "comparison.png", o.fit.resolution, scene.holdout.readColor(0),
+                    {&ours.view, &decimation.view, &bake.view});
+
+    nlohmann::json report = toJson(ours);
+    report.erase("psnr_holdout");  // the fit's own report has it already, from the same views
+    report["baselines"] = {{"decimation", toJson(decimation)}, {"bake", toJson(bake)}};
+    report["margin_db"] = {{"decimation", ours.psnrHoldout - decimation.psnrHoldout},
+                           {"bake", ours.psnrHoldout - bake.psnrHoldout}};
+    report["comparison_columns"] = {"reference", "subdfit", "decimation", "bake"};
+    return report;
+}
+
+}  // namespace
+
+void validate(const SimplifyOptions& o) {
+    if (o.faces < 4 || o.faces > 1000000)
+        throw Error("invalid option: --faces must be in 4..1000000, got " + std::to_string(o.faces));
+    if (o.surfaceSamples < 1000) throw Error("invalid option: surface samples must be >= 1000");
+    fit::validate(o.fit);
+}
+
+nlohmann::json runSimplify(const SimplifyOptions& options, const fit::FitHooks& hooks) {
+    validate(options);
+    SimplifyOptions o = options;
+    const mesh::PolygonMesh reference = mesh::loadMesh(o.fit.reference);
+    mesh::PolygonMesh cage = initialCage(reference, {.faces = o.faces});
+
+    auto context = context::createHeadlessContext(o.fit.glProvider);
+    gl::ProgramCache programs(gl::platformDefines());
+    fit::FitScene scene(o.fit, programs, cage, reference);
+
+    std::filesystem::create_directories(o.fit.out);
+    o.fit.cage = o.fit.out / "initial_cage.obj";
+    mesh::writeObj(o.fit.cage, cage);
+
+    fit::FitHooks withEvaluation = hooks;
+    // Coarse to fine: the maps start from a bake onto the cage as fitted so far (what the bake
+    // route would ship for this cage), and the fit refines cage and maps together from there.
+    withEvaluation.initializeMaps = [&](fit::CageFitter& fitter, fit::FitScene& fitted) {
+        mesh::PolygonMesh current = fitted.cage;
+        current.positions = fitter.vertices();
+        auto* parameters = fitter.maps();
+        const auto baked = bakeMaps(current, fitted.reference,
+                                    {.effects = parameters->effects(), .resolution = parameters->layout().resolution});
+        if (auto* g = parameters->displacement()) g->write(baked.displacement);
+        if (auto* g = parameters->normalMap()) g->write(baked.normal);
+        fitter.settings().maps.displacement.learningRate *= kRefineRate;
+        fitter.settings().maps.normalMap.learningRate *= kRefineRate;
+        fitter.settings().vertices.learningRate *= 1e-4f;
+    };
+    withEvaluation.evaluate = [&](fit::CageFitter& fitter, fit::FitScene& fitted, const nlohmann::json& exports) {
+        auto report = evaluate(o, programs, scene.cage, fitter, fitted, exports);
+        report["simplify"] = {{"faces_requested", o.faces}, {"reference_triangles", fitted.reference.faceCount()}};
+        return report;
+    };
+    return fit::runFit(o.fit, programs, *context, scene, withEvaluation);
+}
+
+}  // namespace subdfit::simplify

@@ -1,0 +1,28 @@
+#pragma once
+// `subdfit simplify`: a dense asset in, a light Catmull-Clark cage and maps out, judged against
+// the baselines a technical artist would otherwise use, at the same byte budget.
+//
+// DIR gets what `subdfit fit` writes (cage.obj, maps, fitted.glb, report.json, PNGs) plus
+// initial_cage.obj, cage.glb (the cage as shipped), comparison.png (held-out view: reference |
+// subdfit | decimation | bake, error heat maps below) and baselines/ (each baseline's shipped
+// files). report.json adds `bytes`, `chamfer`, `hausdorff` and `baselines`.
+#include <nlohmann/json.hpp>
+
+#include "fit/fit_job.h"
+
+namespace subdfit::simplify {
+
+struct SimplifyOptions {
+    fit::FitOptions fit;          // fit.reference: the dense asset; fit.cage is set by simplify
+    int faces = 1000;             // triangles of the cage
+    int surfaceSamples = 100000;  // per side, for Chamfer and Hausdorff
+};
+
+// Throws subdfit::Error ("invalid option: ...") before any work.
+void validate(const SimplifyOptions& options);
+
+// Resumes from DIR/checkpoint.bin with options.fit.resume. Throws subdfit::Error for bad
+// inputs before anything is written.
+nlohmann::json runSimplify(const SimplifyOptions& options, const fit::FitHooks& hooks = {});
+
+}  // namespace subdfit::simplify
