@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "common/fit_cli.h"
 #include "fit/fit_job.h"
 #include "util/error.h"
 
@@ -29,26 +30,8 @@ int main(int argc, char** argv) {
 
     subdfit::fit::FitOptions fit;
     auto* fitCommand = app.add_subcommand("fit", "fit the control vertices of a cage to a reference mesh");
-    fitCommand->add_option("--cage", fit.cage, "control cage (.obj with OpenSubdiv tags, .gltf, .glb, .drc)")->required();
-    fitCommand->add_option("--reference", fit.reference, "reference mesh to match (.obj, .gltf, .glb, .drc)")->required();
+    subdfit::apps::addFitOptions(*fitCommand, fit);
     fitCommand->add_option("--out", fit.out, "output folder")->required();
-    fitCommand->add_option("--views", fit.views, "training views on a sphere")->capture_default_str();
-    fitCommand->add_option("--holdout-views", fit.holdoutViews, "held-out evaluation views")->capture_default_str();
-    fitCommand->add_option("--res", fit.resolution, "render resolution in pixels")->capture_default_str();
-    fitCommand->add_option("--steps", fit.steps, "optimisation steps")->capture_default_str();
-    fitCommand->add_option("--seed", fit.seed, "random seed (views, perturbations)")->capture_default_str();
-    fitCommand->add_option("--views-per-step", fit.viewsPerStep, "views rendered per step")->capture_default_str();
-    fitCommand->add_option("--samples-per-step", fit.samplesPerStep, "perturbations averaged per step")->capture_default_str();
-    fitCommand->add_option("--tess", fit.tessLevel, "tessellation segments per face edge")->capture_default_str();
-    fitCommand->add_option("--epsilon", fit.epsilon, "vertex perturbation (scene radius = 1)")->capture_default_str();
-    fitCommand->add_option("--lr", fit.learningRate, "vertex learning rate (scene radius = 1)")->capture_default_str();
-    fitCommand->add_option("--smoothing", fit.smoothing, "Laplacian preconditioner strength (0 = off)")->capture_default_str();
-    fitCommand->add_option("--maps", fit.maps, "maps to fit: none, displacement, normal, displacement,normal")->capture_default_str();
-    fitCommand->add_option("--map-res", fit.mapResolution, "map cells per face edge")->capture_default_str();
-    fitCommand->add_option("--maps-start", fit.mapsStart, "fraction of the steps before the maps join")->capture_default_str();
-    fitCommand->add_flag("--draco", fit.draco, "write fitted.glb with Draco compression");
-    fitCommand->add_flag("--resume", fit.resume, "continue from DIR/checkpoint.bin (same inputs and settings)");
-    fitCommand->add_option("--checkpoint-every", fit.checkpointEvery, "steps between checkpoints")->capture_default_str();
     fitCommand->add_option("--gl", fit.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
 
     try {
