@@ -18,6 +18,10 @@ int main(int argc, char** argv) {
     app.add_option("--width", options.width, "window width")->capture_default_str()->check(CLI::Range(320, 8192));
     app.add_option("--height", options.height, "window height")->capture_default_str()->check(CLI::Range(240, 8192));
     app.add_flag("--paused", options.paused, "start with the fit paused");
+    app.add_option("--mode", options.mode, "view to start with: fit, target, difference, faces, uv, displacement, normal")
+        ->transform(CLI::CheckedTransformer(subdfit::view::viewModesByKey(), CLI::ignore_case));
+    app.add_flag("--wireframe", options.cageWireframe, "start with the cage's edges drawn over the view");
+    app.add_flag("--save-on-exit", options.saveOnExit, "save the result into --out (as Save does) when the viewer ends");
     app.add_option("--screenshot", options.screenshot, "write the window as PNG after the last frame, then exit");
     app.add_option("--frames", options.frames, "frames to draw before exiting (with --screenshot: default 1)")
         ->check(CLI::PositiveNumber);

@@ -14,7 +14,7 @@ constexpr float kRadiansPerPixel = 0.008f;
 }  // namespace
 
 void OrbitCamera::reset() {
-    yaw_ = glm::radians(30.0f);
+    yaw_ = glm::radians(-150.0f);
     pitch_ = glm::radians(20.0f);
     distance_ = 1.15f / std::sin(glm::radians(kFovDegrees) * 0.5f);  // unit sphere plus 15 %
     target_ = glm::vec3(0.0f);

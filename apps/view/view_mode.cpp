@@ -15,6 +15,14 @@ const char* viewModeName(ViewMode mode) {
     return "?";
 }
 
+const std::map<std::string, ViewMode>& viewModesByKey() {
+    static const std::map<std::string, ViewMode> keys{
+        {"fit", ViewMode::Fit},   {"target", ViewMode::Target},   {"difference", ViewMode::Difference},
+        {"faces", ViewMode::FaceId}, {"uv", ViewMode::Uv}, {"displacement", ViewMode::Displacement},
+        {"normal", ViewMode::NormalMap}};
+    return keys;
+}
+
 bool viewModeAvailable(ViewMode mode, maps::MapEffects effects) {
     if (mode == ViewMode::Displacement) return effects.displacement;
     if (mode == ViewMode::NormalMap) return effects.normalMap;
@@ -29,7 +37,7 @@ float defaultViewScale(ViewMode mode) {
     switch (mode) {
         case ViewMode::Difference: return 4.0f;     // an error of a quarter of full scale saturates
         case ViewMode::Displacement: return 50.0f;  // ±0.02 of the scene radius saturates
-        case ViewMode::NormalMap: return 1.0f;
+        case ViewMode::NormalMap: return 4.0f;    // tangent offsets of ±0.25 saturate
         default: return 1.0f;
     }
 }

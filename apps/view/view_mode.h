@@ -1,6 +1,9 @@
 #pragma once
 // What the 3D view shows. The values are those of glsl/view_modes.h, which the composite
 // shader switches on.
+#include <map>
+#include <string>
+
 #include "maps/map_parameters.h"
 #include "view_modes.h"
 
@@ -18,6 +21,8 @@ enum class ViewMode {
 constexpr int kViewModeCount = SUBDFIT_VIEW_MODE_COUNT;
 
 const char* viewModeName(ViewMode mode);
+// Command-line names: fit, target, difference, faces, uv, displacement, normal.
+const std::map<std::string, ViewMode>& viewModesByKey();
 
 // The map modes need the scene to have that map.
 bool viewModeAvailable(ViewMode mode, maps::MapEffects effects);

@@ -1,6 +1,7 @@
 #include "viewer.h"
 
 #include <chrono>
+#include <cstdio>
 #include <memory>
 
 #include <GLFW/glfw3.h>
@@ -34,6 +35,8 @@ public:
           imgui_(window_.handle()),
           session_(std::make_unique<FitSession>(options.fit, std::move(inputs))),
           wireframe_(std::make_unique<CageWireframe>(session_->scene().cage)) {
+        panel_.view.mode = options.mode;
+        panel_.view.cageWireframe = options.cageWireframe;
         panel_.playing = !options.paused;
         panel_.tessLevel = options.fit.tessLevel;
         panel_.outPath = options.fit.out.string();
@@ -46,6 +49,10 @@ public:
             const bool last = options_.frames > 0 && frame >= options_.frames;
             drawFrame(last && !options_.screenshot.empty());
             if (last) break;
+        }
+        if (options_.saveOnExit) {
+            session_->save(window_, panel_.outPath);
+            std::printf("%s\n", (std::filesystem::path(panel_.outPath) / "report.json").string().c_str());
         }
     }
 
@@ -60,10 +67,11 @@ private:
         const int panelPixels = std::min(width, int(kPanelWidth * io.DisplayFramebufferScale.x));
         const glm::ivec2 origin(panelPixels, 0), size(width - panelPixels, height);
 
+        // Steps first, so that the panel shows the state the view will show.
+        if (panel_.playing) stepWithinBudget();
         const PanelRequests requests = drawControlPanel(panel_, *session_, kPanelWidth, io.DisplaySize.y);
         handleMouse(io, float(size.y));
         carryOut(requests);
-        if (panel_.playing) stepWithinBudget();
 
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glViewport(0, 0, width, height);
@@ -163,6 +171,10 @@ private:
 
 }  // namespace
 
-void runViewer(const ViewerOptions& options, FitInputs inputs) { Viewer(options, std::move(inputs)).run(); }
+void runViewer(const ViewerOptions& options, FitInputs inputs) {
+    if (!viewModeAvailable(options.mode, maps::parseMapEffects(options.fit.maps)))
+        throw Error(std::string("invalid option: --mode: the ") + viewModeName(options.mode) + " view needs --maps with that map");
+    Viewer(options, std::move(inputs)).run();
+}
 
 }  // namespace subdfit::view

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "fit_session.h"
+#include "view_mode.h"
 
 namespace subdfit::view {
 
@@ -13,11 +14,15 @@ struct ViewerOptions {
     std::filesystem::path screenshot;  // written after the last frame when set
     int frames = 0;                    // > 0: stop after this many frames
     bool paused = false;               // start with the fit paused
+    ViewMode mode = ViewMode::Fit;     // the view to start with
+    bool cageWireframe = false;
+    bool saveOnExit = false;           // write the results into the panel's out folder at the end
     double stepBudgetMs = 16.0;        // fit steps per frame stop once they took this long (at least one runs)
 };
 
 // Opens the window and runs until it is closed or `frames` frames are drawn. Throws
-// subdfit::Error when no window can be had or the first session cannot be built.
+// subdfit::Error when no window can be had, the first session cannot be built or `mode` needs
+// a map the scene does not have.
 void runViewer(const ViewerOptions& options, FitInputs inputs);
 
 }  // namespace subdfit::view
