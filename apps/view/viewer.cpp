@@ -116,7 +116,9 @@ private:
         report([&] {
             if (requests.applyTessLevel) {
                 session_->setTessLevel(panel_.tessLevel);
-                setStatus("tessellation " + std::to_string(session_->fitter().renderer().tessLevel()), false);
+                setStatus("tessellation " + std::to_string(panel_.tessLevel) + " asked, " +
+                              std::to_string(session_->fitter().renderer().tessLevel()) + " rendered (crack-free for this cage)",
+                          false);
             }
             if (requests.save) {
                 const auto report = session_->save(window_, panel_.outPath);
