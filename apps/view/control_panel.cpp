@@ -11,6 +11,20 @@
 namespace subdfit::view {
 namespace {
 
+// log10, so that the late, small improvements stay visible next to the first big ones; a long
+// run is averaged into at most kCurvePoints bins, so drawing it stays cheap whatever its length.
+std::vector<float> lossCurve(const std::vector<float>& losses) {
+    constexpr size_t kCurvePoints = 512;
+    const size_t bins = std::min(losses.size(), kCurvePoints);
+    std::vector<float> curve(bins, 0.0f);
+    for (size_t b = 0; b < bins; ++b) {
+        const size_t begin = b * losses.size() / bins, end = (b + 1) * losses.size() / bins;
+        for (size_t i = begin; i < end; ++i) curve[b] += std::log10(std::max(losses[i], 1e-12f));
+        curve[b] /= float(end - begin);
+    }
+    return curve;
+}
+
 void fitControls(PanelState& state, FitSession& session, PanelRequests& requests) {
     const bool canStep = session.anythingOptimised();
     ImGui::BeginDisabled(!canStep);
@@ -27,10 +41,7 @@ void fitControls(PanelState& state, FitSession& session, PanelRequests& requests
     const auto& losses = session.losses();
     ImGui::Text("step %d / %d   %.1f steps/s", session.stepsTaken(), session.options().steps,
                 double(state.stepsPerSecond));
-    // log10, so that the late, small improvements stay visible next to the first big ones.
-    std::vector<float> curve;
-    curve.reserve(losses.size());
-    for (float loss : losses) curve.push_back(std::log10(std::max(loss, 1e-12f)));
+    const auto curve = lossCurve(losses);
     char overlay[64];
     std::snprintf(overlay, sizeof overlay, "loss %.3e", losses.empty() ? 0.0 : double(losses.back()));
     ImGui::PlotLines("##loss", curve.data(), int(curve.size()), 0, overlay, FLT_MAX, FLT_MAX,
@@ -64,7 +75,6 @@ void viewControls(PanelState& state, FitSession& session, PanelRequests& request
     }
     if (!viewModeAvailable(state.view.mode, effects)) state.view.mode = ViewMode::Fit;
     float& scale = state.scales[size_t(state.view.mode)];
-    if (scale <= 0.0f) scale = defaultViewScale(state.view.mode);
     const auto mode = state.view.mode;
     if (mode == ViewMode::Difference || mode == ViewMode::Displacement || mode == ViewMode::NormalMap)
         ImGui::SliderFloat("colour gain", &scale, 0.1f, 1000.0f, "%.1f", ImGuiSliderFlags_Logarithmic);

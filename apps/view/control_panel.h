@@ -14,7 +14,7 @@ namespace subdfit::view {
 struct PanelState {
     bool playing = true;
     ViewSettings view;
-    std::array<float, kViewModeCount> scales{};  // per mode, so switching back keeps a gain
+    std::array<float, kViewModeCount> scales = defaultViewScales();  // per mode, so switching back keeps a gain
     int tessLevel = 8;
     std::string outPath, cagePath, referencePath;
     std::string status;  // the last save or load, or an error (shown in red)

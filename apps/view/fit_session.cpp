@@ -63,6 +63,7 @@ FitSession::FitSession(const fit::FitOptions& options, FitInputs inputs)
 }
 
 void FitSession::step() {
+    if (!anythingOptimised()) return;  // a step would only count itself
     const auto began = Clock::now();
     const auto views = fit::viewsForStep(options_, fitter_->stepsTaken());
     for (int sample = 0; sample < options_.samplesPerStep; ++sample) fitter_->accumulate(scene_->training, views, true);

@@ -29,7 +29,7 @@ public:
     fit::CageFitter& fitter() { return *fitter_; }
     gl::ProgramCache& programs() { return programs_; }
 
-    // One step of runFit's loop, its mean loss measured and kept.
+    // One step of runFit's loop, its mean loss measured and kept; none while no group is optimised.
     void step();
     int stepsTaken() const { return fitter_->stepsTaken(); }
     const std::vector<float>& losses() const { return losses_; }

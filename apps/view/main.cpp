@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "common/fit_cli.h"
 #include "util/error.h"
@@ -18,8 +20,12 @@ int main(int argc, char** argv) {
     app.add_option("--width", options.width, "window width")->capture_default_str()->check(CLI::Range(320, 8192));
     app.add_option("--height", options.height, "window height")->capture_default_str()->check(CLI::Range(240, 8192));
     app.add_flag("--paused", options.paused, "start with the fit paused");
-    app.add_option("--mode", options.mode, "view to start with: fit, target, difference, faces, uv, displacement, normal")
-        ->transform(CLI::CheckedTransformer(subdfit::view::viewModesByKey(), CLI::ignore_case));
+    std::string mode = "fit";
+    std::vector<std::string> modes;
+    for (const auto& [key, value] : subdfit::view::viewModesByKey()) modes.push_back(key);
+    app.add_option("--mode", mode, "view to start with: fit, target, difference, faces, uv, displacement, normal")
+        ->check(CLI::IsMember(modes))
+        ->capture_default_str();
     app.add_flag("--wireframe", options.cageWireframe, "start with the cage's edges drawn over the view");
     app.add_flag("--save-on-exit", options.saveOnExit, "save the result into --out (as Save does) when the viewer ends");
     app.add_option("--screenshot", options.screenshot, "write the window as PNG after the last frame, then exit");
@@ -33,6 +39,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s: error: %s (see --help)\n", "subdfit-view", e.what());
         return 2;
     }
+    options.mode = subdfit::view::viewModesByKey().at(mode);
     if (!options.screenshot.empty() && options.frames == 0) options.frames = 1;
 
     try {

@@ -42,4 +42,10 @@ float defaultViewScale(ViewMode mode) {
     }
 }
 
+std::array<float, kViewModeCount> defaultViewScales() {
+    std::array<float, kViewModeCount> scales{};
+    for (int m = 0; m < kViewModeCount; ++m) scales[size_t(m)] = defaultViewScale(ViewMode(m));
+    return scales;
+}
+
 }  // namespace subdfit::view

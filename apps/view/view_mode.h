@@ -1,6 +1,7 @@
 #pragma once
 // What the 3D view shows. The values are those of glsl/view_modes.h, which the composite
 // shader switches on.
+#include <array>
 #include <map>
 #include <string>
 
@@ -34,5 +35,6 @@ bool viewModeNeedsTarget(ViewMode mode);
 // Colour-map gain of a mode, to start with (the panel adjusts it): difference in colour units,
 // displacement in scene units (radius 1), normal-map tangent offsets.
 float defaultViewScale(ViewMode mode);
+std::array<float, kViewModeCount> defaultViewScales();
 
 }  // namespace subdfit::view

@@ -100,6 +100,7 @@ private:
     void stepWithinBudget() {
         const auto began = Clock::now();
         int steps = 0;
+        if (!session_->anythingOptimised()) return;
         do {
             session_->step();
             ++steps;
@@ -113,7 +114,7 @@ private:
     void carryOut(const PanelRequests& requests) {
         if (requests.resetCamera) camera_.reset();
         if (requests.step) session_->step();
-        report([&] {
+        tryAction([&] {
             if (requests.applyTessLevel) {
                 session_->setTessLevel(panel_.tessLevel);
                 setStatus("tessellation " + std::to_string(panel_.tessLevel) + " asked, " +
@@ -148,7 +149,7 @@ private:
 
     // Runs a panel action; what goes wrong is shown in the panel, and the viewer carries on.
     template <class Action>
-    void report(Action&& action) {
+    void tryAction(Action&& action) {
         try {
             action();
         } catch (const std::exception& e) {
