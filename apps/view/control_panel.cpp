@@ -76,8 +76,10 @@ void viewControls(PanelState& state, FitSession& session, PanelRequests& request
     if (!viewModeAvailable(state.view.mode, effects)) state.view.mode = ViewMode::Fit;
     float& scale = state.scales[size_t(state.view.mode)];
     const auto mode = state.view.mode;
-    if (mode == ViewMode::Difference || mode == ViewMode::Displacement || mode == ViewMode::NormalMap)
-        ImGui::SliderFloat("colour gain", &scale, 0.1f, 1000.0f, "%.1f", ImGuiSliderFlags_Logarithmic);
+    // Always there (disabled where the mode has no colour map), so the widgets below never move.
+    ImGui::BeginDisabled(mode != ViewMode::Difference && mode != ViewMode::Displacement && mode != ViewMode::NormalMap);
+    ImGui::SliderFloat("colour gain", &scale, 0.1f, 1000.0f, "%.1f", ImGuiSliderFlags_Logarithmic);
+    ImGui::EndDisabled();
     state.view.scale = scale;
     ImGui::Checkbox("cage wireframe", &state.view.cageWireframe);
 

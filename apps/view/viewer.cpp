@@ -88,10 +88,16 @@ private:
     void handleMouse(const ImGuiIO& io, float viewHeight) {
         if (io.WantCaptureMouse) return;  // over the panel, or dragging one of its widgets
         const glm::vec2 delta(io.MouseDelta.x, io.MouseDelta.y);
-        const bool moved = io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f;
-        if (io.MouseDown[ImGuiMouseButton_Left] && moved) camera_.orbit(delta);
-        if ((io.MouseDown[ImGuiMouseButton_Right] || io.MouseDown[ImGuiMouseButton_Middle]) && moved)
+        // Only buttons held since an earlier frame drag: the press frame's delta is the jump
+        // from wherever the pointer was before (e.g. the panel), not a drag.
+        auto dragging = [&](int button) { return io.MouseDown[button] && io.MouseDownDuration[button] > 0.0f; };
+        if (delta == glm::vec2(0.0f)) {
+            // no drag this frame
+        } else if (dragging(ImGuiMouseButton_Left)) {
+            camera_.orbit(delta);
+        } else if (dragging(ImGuiMouseButton_Right) || dragging(ImGuiMouseButton_Middle)) {
             camera_.pan(delta * io.DisplayFramebufferScale.y, viewHeight);
+        }
         if (io.MouseWheel != 0.0f) camera_.zoom(io.MouseWheel);
     }
 
