@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "common/fit_cli.h"
 #include "fit/fit_job.h"
 #include "simplify/simplify_job.h"
 #include "util/error.h"
@@ -42,28 +43,6 @@ void printProgress(const subdfit::fit::Progress& p) {
                  p.seconds, p.etaSeconds);
 }
 
-// The settings `fit` and `simplify` share: everything but the inputs and the output folder.
-void addFitSettings(CLI::App& command, subdfit::fit::FitOptions& fit) {
-    command.add_option("--views", fit.views, "training views on a sphere")->capture_default_str();
-    command.add_option("--holdout-views", fit.holdoutViews, "held-out evaluation views")->capture_default_str();
-    command.add_option("--res", fit.resolution, "render resolution in pixels")->capture_default_str();
-    command.add_option("--steps", fit.steps, "optimisation steps")->capture_default_str();
-    command.add_option("--seed", fit.seed, "random seed (views, perturbations)")->capture_default_str();
-    command.add_option("--views-per-step", fit.viewsPerStep, "views rendered per step")->capture_default_str();
-    command.add_option("--samples-per-step", fit.samplesPerStep, "perturbations averaged per step")->capture_default_str();
-    command.add_option("--tess", fit.tessLevel, "tessellation segments per face edge")->capture_default_str();
-    command.add_option("--epsilon", fit.epsilon, "vertex perturbation (scene radius = 1)")->capture_default_str();
-    command.add_option("--lr", fit.learningRate, "vertex learning rate (scene radius = 1)")->capture_default_str();
-    command.add_option("--smoothing", fit.smoothing, "Laplacian preconditioner strength (0 = off)")->capture_default_str();
-    command.add_option("--maps", fit.maps, "maps to fit: none, displacement, normal, displacement,normal")->capture_default_str();
-    command.add_option("--map-res", fit.mapResolution, "map cells per face edge")->capture_default_str();
-    command.add_option("--maps-start", fit.mapsStart, "fraction of the steps before the maps join")->capture_default_str();
-    command.add_flag("--draco", fit.draco, "compress the exported meshes with Draco");
-    command.add_flag("--resume", fit.resume, "continue from DIR/checkpoint.bin (same inputs and settings)");
-    command.add_option("--checkpoint-every", fit.checkpointEvery, "steps between checkpoints")->capture_default_str();
-    command.add_option("--gl", fit.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -72,19 +51,17 @@ int main(int argc, char** argv) {
 
     subdfit::fit::FitOptions fit;
     auto* fitCommand = app.add_subcommand("fit", "fit the control vertices of a cage to a reference mesh");
-    fitCommand->add_option("--cage", fit.cage, "control cage (.obj with OpenSubdiv tags, .gltf, .glb, .drc)")->required();
-    fitCommand->add_option("--reference", fit.reference, "reference mesh to match (.obj, .gltf, .glb, .drc)")->required();
+    subdfit::apps::addFitOptions(*fitCommand, fit);
     fitCommand->add_option("--out", fit.out, "output folder")->required();
-    addFitSettings(*fitCommand, fit);
+    fitCommand->add_option("--gl", fit.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
 
     subdfit::simplify::SimplifyOptions simplify;
-    simplify.fit.maps = "displacement,normal";
-    simplify.fit.mapResolution = 4;
     auto* simplifyCommand = app.add_subcommand("simplify", "simplify a dense asset into a light cage and maps, with a quality report");
     simplifyCommand->add_option("reference", simplify.fit.reference, "dense reference asset (.obj, .gltf, .glb, .drc)")->required();
     simplifyCommand->add_option("--faces", simplify.faces, "triangles of the cage")->capture_default_str();
     simplifyCommand->add_option("--out", simplify.fit.out, "output folder")->required();
-    addFitSettings(*simplifyCommand, simplify.fit);
+    subdfit::apps::addFitSettings(*simplifyCommand, simplify.fit);
+    simplifyCommand->add_option("--gl", simplify.fit.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
 
     try {
         app.parse(argc, argv);

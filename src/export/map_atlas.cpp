@@ -39,12 +39,12 @@ std::uint16_t unorm16(float value) {
 }
 
 WrittenFile writeDisplacementExr(const std::filesystem::path& path, const AtlasLayout& atlas,
-                                 const FittedMaps& maps) {
+                                 const FittedMaps& maps, bool half) {
     const std::vector<float> pixels = displacementAtlas(atlas, maps);
     return writeOutput(path, [&](const std::filesystem::path& temporary) {
         auto out = OIIO::ImageOutput::create(temporary.string());
         if (!out) throw fileError(path.string(), "no OpenEXR writer in this OpenImageIO build");
-        OIIO::ImageSpec spec(atlas.width, atlas.height, 1, OIIO::TypeDesc::FLOAT);
+        OIIO::ImageSpec spec(atlas.width, atlas.height, 1, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
         spec.channelnames = {"Y"};
         spec.attribute("compression", "zip");
         if (!out->open(temporary.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) ||
@@ -77,7 +77,7 @@ nlohmann::json manifest(const AtlasLayout& atlas, const FittedMaps& maps, const 
                                {"units", "cage units, along the unit normal of the limit surface"}};
     if (maps.hasNormal() && outputs.normal)
         doc["normal"] = {{"file", kNormalFile},
-                         {"encoding", "16-bit RGB, rgb = n * 0.5 + 0.5"},
+                         {"encoding", outputs.compact ? "8-bit RGB, rgb = n * 0.5 + 0.5" : "16-bit RGB, rgb = n * 0.5 + 0.5"},
                          {"space", "tangent space of the limit surface: x along dP/du, y along dP/dv, z along "
                                    "N = normalize(cross(dP/du, dP/dv)); n = normalize(x, y, 1)"}};
     return doc;
@@ -131,15 +131,19 @@ std::vector<std::uint16_t> normalAtlas(const AtlasLayout& atlas, const FittedMap
     return pixels;
 }
 
-std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const FittedMaps& maps) {
+std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const FittedMaps& maps, bool eightBit) {
     const std::vector<std::uint16_t> pixels = normalAtlas(atlas, maps);
+    std::vector<std::uint8_t> pixels8;
+    if (eightBit)
+        for (std::uint16_t p : pixels) pixels8.push_back(std::uint8_t((unsigned(p) * 255u + 32767u) / 65535u));
+    const OIIO::TypeDesc type = eightBit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
+    const void* data = eightBit ? static_cast<const void*>(pixels8.data()) : pixels.data();
     std::vector<unsigned char> bytes;
     OIIO::Filesystem::IOVecOutput proxy(bytes);
     auto out = OIIO::ImageOutput::create("png");
     if (!out || !out->supports("ioproxy")) throw Error(std::string(kNormalFile) + ": no in-memory PNG writer in this OpenImageIO build");
-    OIIO::ImageSpec spec(atlas.width, atlas.height, 3, OIIO::TypeDesc::UINT16);
-    if (!out->set_ioproxy(&proxy) || !out->open(kNormalFile, spec) ||
-        !out->write_image(OIIO::TypeDesc::UINT16, pixels.data()) || !out->close())
+    OIIO::ImageSpec spec(atlas.width, atlas.height, 3, type);
+    if (!out->set_ioproxy(&proxy) || !out->open(kNormalFile, spec) || !out->write_image(type, data) || !out->close())
         throw Error(std::string(kNormalFile) + ": could not encode PNG: " + out->geterror());
     return bytes;
 }
@@ -150,8 +154,9 @@ std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const
     checkMaps(maps.layout, maps);
     std::vector<WrittenFile> written;
     if (maps.hasDisplacement() && outputs.displacement)
-        written.push_back(writeDisplacementExr(dir / kDisplacementFile, atlas, maps));
-    if (maps.hasNormal() && outputs.normal) written.push_back(writeBytes(dir / kNormalFile, encodeNormalPng(atlas, maps)));
+        written.push_back(writeDisplacementExr(dir / kDisplacementFile, atlas, maps, outputs.compact));
+    if (maps.hasNormal() && outputs.normal)
+        written.push_back(writeBytes(dir / kNormalFile, encodeNormalPng(atlas, maps, outputs.compact)));
     if (outputs.manifest) {
         const std::string text = manifest(atlas, maps, outputs).dump(2) + "\n";
         written.push_back(writeBytes(dir / kManifestFile, {reinterpret_cast<const unsigned char*>(text.data()), text.size()}));

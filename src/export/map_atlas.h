@@ -39,14 +39,18 @@ std::vector<float> displacementAtlas(const AtlasLayout& atlas, const FittedMaps&
 // n = normalize(x, y, 1); pixels outside every tile hold the flat normal (0, 0, 1).
 std::vector<std::uint16_t> normalAtlas(const AtlasLayout& atlas, const FittedMaps& maps);
 
-// normal.png's bytes (16-bit RGB), for writing and for embedding in a GLB. Requires a normal map.
-std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const FittedMaps& maps);
+// normal.png's bytes (16-bit RGB, or 8-bit with `eightBit`), for writing and for embedding in a
+// GLB. Requires a normal map.
+std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const FittedMaps& maps, bool eightBit = false);
 
 // Which files writeMapAtlases may write; a map that is absent is skipped either way.
 struct AtlasOutputs {
     bool displacement = true;  // displacement.exr, one FLOAT channel "Y"
     bool normal = true;        // normal.png, 16-bit RGB
     bool manifest = true;      // maps.json: the layout, the UV formula and the units
+    // What an asset ships rather than what a fit keeps: HALF displacement and an 8-bit normal
+    // map, about half the bytes, below the precision a renderer resolves.
+    bool compact = false;
 };
 
 // Writes into the existing folder `dir`, each file atomically. Throws subdfit::Error naming the

@@ -18,7 +18,7 @@ nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene:
             for (float& d : maps.displacement) d /= frame.scale;  // heights back to world units
         }
         if (auto* g = parameters->normalMap()) maps.normal = g->read();
-        written = exporter::writeMapAtlases(o.out, maps);
+        written = exporter::writeMapAtlases(o.out, maps, {.compact = o.compactMaps});
         if (maps.hasNormal()) normalPng = exporter::encodeNormalPng(exporter::atlasLayout(maps.layout), maps);
     } else {
         maps.layout = maps::buildTexelLayout(fittedWorld, 1);  // no maps: UVs still name each face's tile

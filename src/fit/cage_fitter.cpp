@@ -62,13 +62,24 @@ void CageFitter::step(const scene::TargetSet& targets, std::span<const int> view
 
 void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int> views, bool measureLoss) {
     // A distinct counter per sample keeps every sample's signs independent; the seed separates runs.
-    const std::uint32_t counter = samples_++;
+    const std::uint32_t counter = samples_;
     const auto all = groups();
     const bool mapsStarted = steps_ >= mapsStartStep();
     // Once the maps have started, the vertices keep every other turn and the map groups share
     // the rest: the cage still sets the shape that the maps' detail sits on.
-    sge::ParameterGroup* perturbed = &vertices_;
-    if (mapsStarted && all.size() > 1 && counter % 2 == 1) perturbed = all[1 + (counter / 2) % (all.size() - 1)];
+    std::vector<sge::ParameterGroup*> mapTurns;
+    for (size_t k = 1; k < all.size(); ++k)
+        if (optimised(*all[k])) mapTurns.push_back(all[k]);
+    const bool verticesOn = optimised(vertices_);
+    const bool mapsOn = !mapTurns.empty() && (mapsStarted || !verticesOn);
+    sge::ParameterGroup* perturbed = nullptr;
+    if (verticesOn && (!mapsOn || counter % 2 == 0))
+        perturbed = &vertices_;
+    else if (mapsOn)
+        perturbed = mapTurns[(verticesOn ? counter / 2 : counter) % mapTurns.size()];
+    else
+        return;  // nothing is optimised
+    ++samples_;
     sge::perturb(programs_, *perturbed, counter, settings_.seed);
     if (std::find(pendingUpdate_.begin(), pendingUpdate_.end(), perturbed) == pendingUpdate_.end())
         pendingUpdate_.push_back(perturbed);
@@ -113,6 +124,31 @@ void CageFitter::update() {
     // group's Δ): noise by construction, dropped.
     for (auto* g : groups()) g->gradient.clearToZero();
     ++steps_;
+}
+
+float CageFitter::baseLearningRate(const sge::ParameterGroup& group) const {
+    if (maps_ && &group == maps_->displacement()) return settings_.maps.displacement.learningRate;
+    if (maps_ && &group == maps_->normalMap()) return settings_.maps.normalMap.learningRate;
+    SUBDFIT_CHECK(&group == &vertices_);
+    return settings_.vertices.learningRate;
+}
+
+void CageFitter::setRates(sge::ParameterGroup& group, float epsilon, float baseLearningRate) {
+    sge::GroupSettings* base = &settings_.vertices;
+    if (maps_ && &group == maps_->displacement()) base = &settings_.maps.displacement;
+    if (maps_ && &group == maps_->normalMap()) base = &settings_.maps.normalMap;
+    SUBDFIT_CHECK(base != &settings_.vertices || &group == &vertices_);
+    base->epsilon = group.settings().epsilon = epsilon;
+    base->learningRate = baseLearningRate;
+}
+
+bool CageFitter::optimised(const sge::ParameterGroup& group) const {
+    return std::find(frozen_.begin(), frozen_.end(), &group) == frozen_.end();
+}
+
+void CageFitter::setOptimised(const sge::ParameterGroup& group, bool on) {
+    std::erase(frozen_, &group);
+    if (!on) frozen_.push_back(&group);
 }
 
 std::vector<float> CageFitter::takeGradient() {

@@ -65,8 +65,6 @@ public:
     std::vector<glm::vec3> vertices() const;
     void setVertices(const std::vector<glm::vec3>& positions);
     int stepsTaken() const { return steps_; }
-    // Learning rates and ε may change between steps (a viewer's sliders, a refining stage).
-    CageFitSettings& settings() { return settings_; }
     // The first step at which the map groups take turns (0 without a plan).
     int mapsStartStep() const;
     const subdiv::PatchSet& patches() const { return patches_; }
@@ -76,6 +74,15 @@ public:
     maps::MapParameters* maps() { return maps_.get(); }
     // Every optimised group, vertices first.
     std::vector<sge::ParameterGroup*> groups();
+
+    // Knobs for an interactive run (the viewer), between steps. The base learning rate is the
+    // un-annealed one that update() anneals; ε applies from the next sample on.
+    float baseLearningRate(const sge::ParameterGroup& group) const;
+    void setRates(sge::ParameterGroup& group, float epsilon, float baseLearningRate);
+    // A group left out of the turns keeps its θ and Adam moments until it is optimised again.
+    // With the vertices left out, the map groups take every turn, even before their start.
+    bool optimised(const sge::ParameterGroup& group) const;
+    void setOptimised(const sge::ParameterGroup& group, bool on);
 
     // Renders the current (unperturbed) scene.
     void render(const render::Camera& camera, const render::RenderTarget& target);
@@ -108,6 +115,7 @@ private:
     int steps_ = 0, samplesSinceLoss_ = 0;
     std::uint32_t samples_ = 0;  // perturbation counter: one per accumulate()
     std::vector<sge::ParameterGroup*> pendingUpdate_;  // groups perturbed since the last update()
+    std::vector<const sge::ParameterGroup*> frozen_;   // groups left out of the turns
 };
 
 }  // namespace subdfit::fit

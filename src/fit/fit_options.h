@@ -28,6 +28,7 @@ struct FitOptions {
     int mapResolution = 8;        // cells per ptex-face edge of each map tile
     float mapsStart = 0.4f;       // fraction of the steps fitted by the cage alone before maps join
     bool draco = false;           // fitted.glb with KHR_draco_mesh_compression
+    bool compactMaps = false;     // ship maps as HALF EXR and 8-bit PNG (export/map_atlas.h)
     bool resume = false;          // continue from out/checkpoint.bin when it exists
     int checkpointEvery = 100;    // steps between checkpoints (also written on interrupt and at the end)
 };

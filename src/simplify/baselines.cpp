@@ -72,7 +72,7 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     for (float& d : bakedWorld.displacement) d /= scene.frame.scale;
     Quality q;
     q.files = shipCage(dir / "cage.glb", cageWorld, settings.draco);
-    for (const auto& file : exporter::writeMapAtlases(dir, bakedWorld)) q.files[file.path.filename().string()] = file.bytes;
+    for (const auto& file : exporter::writeMapAtlases(dir, bakedWorld, {.compact = settings.compactMaps})) q.files[file.path.filename().string()] = file.bytes;
     q.bytes = totalBytes(q.files);
     q.details = {{"faces", cage.faceCount()}, {"map_resolution", mapResolution}};
 

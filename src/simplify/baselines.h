@@ -21,6 +21,7 @@ namespace subdfit::simplify {
 struct BaselineSettings {
     std::filesystem::path dir;   // where the baselines' shipped files go
     bool draco = false;          // compress meshes as subdfit's are
+    bool compactMaps = true;     // and maps
     int surfaceSamples = 100000; // per side, for the surface distance
     int segments = 8;            // tessellation of limit surfaces for the surface distance
 };

@@ -12,8 +12,20 @@
 
 namespace subdfit::simplify {
 
+// What `simplify` changes of a fit's defaults: both maps, at a resolution a light asset can
+// afford, shipped compact; and the cage fitted alone for most of the run, since the maps are
+// baked onto it and only refined (see simplify_job.cpp).
+inline fit::FitOptions simplifyFitDefaults() {
+    fit::FitOptions o;
+    o.maps = "displacement,normal";
+    o.mapResolution = 4;
+    o.mapsStart = 0.8f;
+    o.compactMaps = true;
+    return o;
+}
+
 struct SimplifyOptions {
-    fit::FitOptions fit;          // fit.reference: the dense asset; fit.cage is set by simplify
+    fit::FitOptions fit = simplifyFitDefaults();  // fit.reference: the dense asset; fit.cage is set by simplify
     int faces = 1000;             // triangles of the cage
     int surfaceSamples = 100000;  // per side, for Chamfer and Hausdorff
 };

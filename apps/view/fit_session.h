@@ -1,0 +1,55 @@
+#pragma once
+// One fit as the viewer runs it: the scene and fitter of `subdfit fit`, stepped one step at a
+// time (the same steps, views and samples as runFit), with the loss of every step kept for the
+// curve. Needs a current GL context; every GL object it holds dies with it.
+#include <chrono>
+#include <memory>
+#include <vector>
+
+#include "fit/fit_job.h"
+#include "mesh/polygon_mesh.h"
+
+namespace subdfit::view {
+
+struct FitInputs {
+    mesh::PolygonMesh cage, reference;
+};
+
+// Reads options.cage and options.reference (no GL needed, so a bad file is refused before a
+// window opens). Throws subdfit::Error "path: problem".
+FitInputs loadFitInputs(const fit::FitOptions& options);
+
+class FitSession {
+public:
+    // Throws subdfit::Error for bad options, inputs or a checkpoint that does not fit (--resume).
+    FitSession(const fit::FitOptions& options, FitInputs inputs);
+
+    const fit::FitOptions& options() const { return options_; }
+    fit::FitScene& scene() { return *scene_; }
+    fit::CageFitter& fitter() { return *fitter_; }
+    gl::ProgramCache& programs() { return programs_; }
+
+    // One step of runFit's loop, its mean loss measured and kept; none while no group is optimised.
+    void step();
+    int stepsTaken() const { return fitter_->stepsTaken(); }
+    const std::vector<float>& losses() const { return losses_; }
+    bool anythingOptimised();
+
+    // Rebuilds the fitter for another tessellation level, keeping its state and knobs.
+    void setTessLevel(int level);
+
+    // The outputs of `subdfit fit` (and checkpoint.bin, so `subdfit fit --resume` can go on)
+    // into `out`. Returns the report.
+    nlohmann::json save(const context::GlContext& context, const std::filesystem::path& out);
+
+private:
+    fit::FitOptions options_;
+    gl::ProgramCache programs_;
+    std::unique_ptr<fit::FitScene> scene_;
+    std::unique_ptr<fit::CageFitter> fitter_;
+    fit::FitHistory history_;
+    std::chrono::steady_clock::time_point started_;
+    std::vector<float> losses_;
+};
+
+}  // namespace subdfit::view

@@ -1,0 +1,5 @@
+uniform vec4 uColor;
+
+out vec4 outColor;
+
+void main() { outColor = uColor; }

@@ -1,0 +1,50 @@
+# The viewer (ctest -L view): a few frames under Xvfb (Mesa llvmpipe over GLX) whose screenshot
+# must show the panel and the object; bad input refused with one line before any window opens.
+# Included by tests/CMakeLists.txt when subdfit-view is built.
+add_executable(subdfit_view_check_screenshot ${CMAKE_CURRENT_LIST_DIR}/check_screenshot.cpp)
+target_link_libraries(subdfit_view_check_screenshot PRIVATE subdfit_warnings PkgConfig::OpenImageIO)
+
+set(SUBDFIT_VIEW_OUT ${CMAKE_CURRENT_BINARY_DIR}/view)
+set(SUBDFIT_VIEW_CAGE ${PROJECT_SOURCE_DIR}/assets/spot/spot_cage_noised.obj)
+set(SUBDFIT_VIEW_REFERENCE ${PROJECT_SOURCE_DIR}/assets/spot/spot_triangulated.obj)
+# Small and short: 64² targets, 640×400 window (the panel takes the left 360 pixels).
+set(SUBDFIT_VIEW_SMALL --cage ${SUBDFIT_VIEW_CAGE} --reference ${SUBDFIT_VIEW_REFERENCE}
+    --res 64 --views 4 --holdout-views 1 --width 640 --height 400)
+
+# subdfit_view_screenshot(NAME [SAVED] ARG...): a screenshot run; with SAVED, --save-on-exit too.
+function(subdfit_view_screenshot name)
+  set(saved "")
+  set(extra ${ARGN})
+  if(ARGV1 STREQUAL "SAVED")
+    set(saved ${SUBDFIT_VIEW_OUT}/${name}_out)
+    list(REMOVE_AT extra 0)
+    list(APPEND extra --save-on-exit --out ${saved})
+  endif()
+  list(JOIN extra "|" args)
+  add_test(NAME view.screenshot.${name}
+           COMMAND ${CMAKE_COMMAND} -DVIEWER=$<TARGET_FILE:subdfit-view>
+                   -DCHECKER=$<TARGET_FILE:subdfit_view_check_screenshot>
+                   -DSHOT=${SUBDFIT_VIEW_OUT}/${name}.png -DVIEW_LEFT=360 -DSAVED=${saved} -DARGS=${args}
+                   -P ${CMAKE_CURRENT_LIST_DIR}/run_viewer.cmake)
+  set_tests_properties(view.screenshot.${name} PROPERTIES LABELS view TIMEOUT 120 SKIP_REGULAR_EXPRESSION "SKIP:")
+endfunction()
+
+# The fit, playing for a few frames (it stops at --steps), then saved as `subdfit fit` would.
+subdfit_view_screenshot(fit SAVED ${SUBDFIT_VIEW_SMALL} --steps 3 --frames 5)
+# The map variant of the composite pass, the difference heat map and the cage overlay.
+subdfit_view_screenshot(maps_difference ${SUBDFIT_VIEW_SMALL} --maps displacement --steps 2 --frames 3
+                        --mode difference --wireframe)
+
+# Refused with one stderr line naming the culprit (tests/cli/expect_failure.cmake), no window needed.
+function(subdfit_view_refuses name expect)
+  list(JOIN ARGN "|" args)
+  add_test(NAME view.refuses.${name}
+           COMMAND ${CMAKE_COMMAND} -DSUBDFIT=$<TARGET_FILE:subdfit-view> -DOUT=${SUBDFIT_VIEW_OUT}/${name}
+                   -DEXPECT=${expect} -DARGS=${args} -P ${PROJECT_SOURCE_DIR}/tests/cli/expect_failure.cmake)
+  set_tests_properties(view.refuses.${name} PROPERTIES LABELS view TIMEOUT 60)
+endfunction()
+
+subdfit_view_refuses(missing_cage ${SUBDFIT_VIEW_OUT}/does_not_exist.obj
+                     --cage ${SUBDFIT_VIEW_OUT}/does_not_exist.obj --reference ${SUBDFIT_VIEW_REFERENCE})
+subdfit_view_refuses(map_mode_without_maps --mode --cage ${SUBDFIT_VIEW_CAGE} --reference ${SUBDFIT_VIEW_REFERENCE}
+                     --mode displacement)
