@@ -7,7 +7,8 @@
 #include <cstdio>
 #include <iostream>
 
-#include "common/fit_cli.h"
+#include "common/simplify_cli.h"
+#include "manifest.h"
 #include "fit/fit_job.h"
 #include "simplify/simplify_job.h"
 #include "util/error.h"
@@ -58,10 +59,17 @@ int main(int argc, char** argv) {
     subdfit::simplify::SimplifyOptions simplify;
     auto* simplifyCommand = app.add_subcommand("simplify", "simplify a dense asset into a light cage and maps, with a quality report");
     simplifyCommand->add_option("reference", simplify.fit.reference, "dense reference asset (.obj, .gltf, .glb, .drc)")->required();
-    simplifyCommand->add_option("--faces", simplify.faces, "triangles of the cage")->capture_default_str();
     simplifyCommand->add_option("--out", simplify.fit.out, "output folder")->required();
-    subdfit::apps::addFitSettings(*simplifyCommand, simplify.fit);
-    simplifyCommand->add_option("--gl", simplify.fit.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+    subdfit::apps::addSimplifySettings(*simplifyCommand, simplify);
+
+    subdfit::simplify::SimplifyOptions batchDefaults;
+    std::filesystem::path manifest, batchOut;
+    std::string shard = "0/1";
+    auto* batchCommand = app.add_subcommand("batch", "simplify every asset of a manifest; resumable, shardable");
+    batchCommand->add_option("manifest", manifest, "one asset a line: REFERENCE [simplify options]")->required();
+    batchCommand->add_option("--out", batchOut, "output folder: one subfolder per asset")->required();
+    batchCommand->add_option("--shard", shard, "run only assets k with k mod N = i (i/N, 0-based)")->capture_default_str();
+    subdfit::apps::addSimplifySettings(*batchCommand, batchDefaults);
 
     try {
         app.parse(argc, argv);
@@ -85,6 +93,18 @@ int main(int argc, char** argv) {
             printSummary(report);
             printComparison(report);
             std::cout << (simplify.fit.out / "report.json").string() << "\n";
+        }
+        if (batchCommand->parsed()) {
+            const auto parsedShard = subdfit::simplify::parseShard(shard);
+            batchDefaults.fit.out = batchOut;  // each asset's own folder is set by the batch
+            const auto items = subdfit::apps::readManifest(manifest, batchDefaults);
+            const auto summary = subdfit::simplify::runBatch(items, batchOut, parsedShard, hooks, [](const std::string& line) {
+                std::fprintf(stderr, "batch: %s\n", line.c_str());
+            });
+            std::fprintf(stderr, "batch: %d finished, %d skipped (done), %d failed, %d in other shards%s\n",
+                         summary.finished, summary.skipped, summary.failed, summary.otherShards,
+                         summary.interrupted ? ", interrupted" : "");
+            if (summary.failed > 0) return 1;
         }
     } catch (const subdfit::Error& e) {
         std::fprintf(stderr, "subdfit: error: %s\n", e.what());
