@@ -23,6 +23,9 @@ RayCaster::RayCaster(const mesh::PolygonMesh& triangles) : mesh_(triangles), emb
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw Error("Embree could not create a device");
     embree_->scene = rtcNewScene(embree_->device);
+    // Watertight: a ray through a shared edge or vertex must not slip between the triangles
+    // (bake rays from symmetric cages do exactly that).
+    rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
     RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                  3 * sizeof(float), triangles.positions.size()));

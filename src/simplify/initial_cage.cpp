@@ -34,19 +34,31 @@ std::vector<VertexSite> vertexSites(const mesh::PolygonMesh& cage) {
     return sites;
 }
 
+// limit(P) at every base vertex, for any positions of one cage's topology.
+class VertexLimits {
+public:
+    explicit VertexLimits(const mesh::PolygonMesh& cage) : evaluator_(cage), sites_(vertexSites(cage)) {}
+
+    std::vector<glm::vec3> operator()(const std::vector<glm::vec3>& positions) const {
+        std::vector<glm::vec3> limit(positions.size());
+        for (size_t v = 0; v < positions.size(); ++v) {
+            const VertexSite& s = sites_[v];
+            limit[v] = s.ptexFace >= 0 && evaluator_.hasSurface(s.ptexFace, s.u, s.v)
+                           ? evaluator_.evaluate(s.ptexFace, s.u, s.v, positions).position
+                           : positions[v];
+        }
+        return limit;
+    }
+
+private:
+    subdiv::LimitEvaluator evaluator_;
+    std::vector<VertexSite> sites_;
+};
+
 }  // namespace
 
 std::vector<glm::vec3> limitPositionsOfVertices(const mesh::PolygonMesh& cage, const std::vector<glm::vec3>& positions) {
-    const subdiv::LimitEvaluator evaluator(cage);
-    const auto sites = vertexSites(cage);
-    std::vector<glm::vec3> limit(positions.size());
-    for (size_t v = 0; v < positions.size(); ++v) {
-        const VertexSite& s = sites[v];
-        limit[v] = s.ptexFace >= 0 && evaluator.hasSurface(s.ptexFace, s.u, s.v)
-                       ? evaluator.evaluate(s.ptexFace, s.u, s.v, positions).position
-                       : positions[v];
-    }
-    return limit;
+    return VertexLimits(cage)(positions);
 }
 
 mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialCageOptions& options) {
@@ -61,8 +73,9 @@ mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialC
     // Jacobi on limit(P) = V: the limit masks are convex combinations with the vertex itself
     // weighted most, so I − L contracts and a few sweeps converge.
     const std::vector<glm::vec3> targets = cage.positions;
+    const VertexLimits limitOf(cage);
     for (int i = 0; i < options.interpolationIterations; ++i) {
-        const auto limit = limitPositionsOfVertices(cage, cage.positions);
+        const auto limit = limitOf(cage.positions);
         for (size_t v = 0; v < targets.size(); ++v) cage.positions[v] += targets[v] - limit[v];
     }
     for (const glm::vec3& p : cage.positions)

@@ -10,7 +10,7 @@ namespace subdfit::simplify {
 
 struct InitialCageOptions {
     int faces = 1000;                // triangle budget of the cage
-    int interpolationIterations = 8; // P += V − limit(P) sweeps
+    int interpolationIterations = 16; // P += V − limit(P) sweeps (each ÷~2 the gap)
 };
 
 // `reference` in any units, any polygons. The cage is all triangles, welded, with OpenSubdiv's

@@ -1,0 +1,173 @@
+// The pieces of `simplify` that need no GL: welding, decimation, the limit-interpolated initial
+// cage, ray casting, the bake, and the batch's sharding and naming.
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <map>
+
+#include "geometry/ray_caster.h"
+#include "mesh/mesh_geometry.h"
+#include "mesh/procedural.h"
+#include "simplify/bake.h"
+#include "simplify/batch.h"
+#include "simplify/decimate.h"
+#include "simplify/initial_cage.h"
+#include "subdiv/limit_evaluator.h"
+#include "util/error.h"
+
+namespace subdfit::simplify {
+namespace {
+
+// Every undirected edge's number of faces.
+std::map<std::pair<int, int>, int> edgeUse(const mesh::PolygonMesh& m) {
+    std::map<std::pair<int, int>, int> use;
+    int first = 0;
+    for (int size : m.faceSizes) {
+        for (int k = 0; k < size; ++k) {
+            const int a = m.faceIndices[size_t(first + k)], b = m.faceIndices[size_t(first + (k + 1) % size)];
+            ++use[{std::min(a, b), std::max(a, b)}];
+        }
+        first += size;
+    }
+    return use;
+}
+
+// The triangles of `m` with three vertices of their own each, as a glTF split at seams has.
+mesh::PolygonMesh unwelded(const mesh::PolygonMesh& m) {
+    const mesh::PolygonMesh t = mesh::triangulated(m);
+    mesh::PolygonMesh out;
+    for (int i : t.faceIndices) {
+        out.faceIndices.push_back(int(out.positions.size()));
+        out.positions.push_back(t.positions[size_t(i)]);
+    }
+    out.faceSizes.assign(t.faceSizes.size(), 3);
+    return out;
+}
+
+TEST(SimplifyWeld, CoincidentVerticesBecomeOne) {
+    const mesh::PolygonMesh sphere = mesh::triangulated(mesh::makeQuadSphere(4));
+    const mesh::PolygonMesh welded = weldedTriangles(unwelded(sphere));
+    EXPECT_EQ(welded.vertexCount(), sphere.vertexCount());
+    EXPECT_EQ(welded.faceCount(), sphere.faceCount());
+    for (const auto& [edge, faces] : edgeUse(welded)) EXPECT_EQ(faces, 2);  // closed again
+}
+
+TEST(SimplifyDecimate, ClosedMeshStaysClosedWithinTheBudget) {
+    const mesh::PolygonMesh dense = weldedTriangles(mesh::makeLumpySphere(4, 0.2f, 3));
+    for (int target : {2000, 400, 60}) {
+        SCOPED_TRACE(target);
+        const mesh::PolygonMesh coarse = decimate(dense, target);
+        EXPECT_LE(coarse.faceCount(), target);
+        EXPECT_GE(coarse.faceCount(), target * 8 / 10);
+        for (const auto& [edge, faces] : edgeUse(coarse)) ASSERT_EQ(faces, 2);
+        for (int i = 0; i < coarse.faceCount(); ++i) {
+            const int* f = &coarse.faceIndices[size_t(3 * i)];
+            ASSERT_TRUE(f[0] != f[1] && f[1] != f[2] && f[0] != f[2]);
+        }
+    }
+    EXPECT_EQ(decimate(dense, dense.faceCount() + 10).faceCount(), dense.faceCount());
+    EXPECT_THROW(decimate(dense, 0), Error);
+}
+
+// The limit surface passes through the decimated vertices: that is the point of the initial
+// cage. Without the interpolation the Catmull-Clark surface shrinks well inside them.
+TEST(SimplifyInitialCage, LimitSurfaceInterpolatesTheDecimatedVertices) {
+    const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 9);
+    const mesh::PolygonMesh raw = initialCage(reference, {.faces = 300, .interpolationIterations = 0});
+    const mesh::PolygonMesh cage = initialCage(reference, {.faces = 300});
+    ASSERT_EQ(cage.faceIndices, raw.faceIndices);
+    EXPECT_EQ(cage.tags.triangles, mesh::TriangleSubdivision::Smooth);
+
+    auto worstGap = [&](const mesh::PolygonMesh& m) {
+        const auto limit = limitPositionsOfVertices(m, m.positions);
+        float worst = 0.0f;
+        for (size_t v = 0; v < limit.size(); ++v) worst = std::max(worst, glm::length(limit[v] - raw.positions[v]));
+        return worst;
+    };
+    const float before = worstGap(raw), after = worstGap(cage);
+    EXPECT_GT(before, 0.01f);
+    EXPECT_LT(after, before / 20.0f);
+    EXPECT_LT(after, 2e-3f);
+}
+
+TEST(SimplifyInitialCage, NonFiniteReferenceIsRefused) {
+    mesh::PolygonMesh reference = mesh::makeLumpySphere(2, 0.1f, 1);
+    reference.sourcePath = "bad.obj";
+    reference.positions[3].x = std::nanf("");
+    EXPECT_THROW(initialCage(reference, {.faces = 40}), Error);
+}
+
+TEST(RayCaster, HitsBothWaysWithSignedDistance) {
+    // The plane z = 0 as two triangles over [−1, 1]².
+    const mesh::PolygonMesh plane = mesh::triangulated(mesh::makeQuadGrid(1));
+    const geometry::RayCaster caster(plane);
+    const auto down = caster.cast({0.2f, 0.3f, 0.5f}, {0.0f, 0.0f, -1.0f}, 1.0f);
+    ASSERT_TRUE(down);
+    EXPECT_NEAR(down->distance, 0.5f, 1e-6f);
+    EXPECT_FALSE(caster.cast({0.2f, 0.3f, 0.5f}, {0.0f, 0.0f, 1.0f}, 1.0f));
+    EXPECT_FALSE(caster.cast({0.2f, 0.3f, 0.5f}, {0.0f, 0.0f, -1.0f}, 0.4f));  // beyond maxDistance
+    const auto both = caster.castBothWays({0.2f, 0.3f, 0.5f}, {0.0f, 0.0f, 1.0f}, 1.0f);
+    ASSERT_TRUE(both);
+    EXPECT_NEAR(both->distance, -0.5f, 1e-6f);
+    // The barycentrics name the hit point.
+    const int* f = &plane.faceIndices[size_t(3 * down->triangle)];
+    const glm::vec3 p = (1.0f - down->u - down->v) * plane.positions[size_t(f[0])] +
+                        down->u * plane.positions[size_t(f[1])] + down->v * plane.positions[size_t(f[2])];
+    EXPECT_NEAR(glm::length(p - glm::vec3(0.2f, 0.3f, 0.0f)), 0.0f, 1e-5f);
+}
+
+// A cage inside a sphere of radius R: every node's height is R minus the limit surface's
+// distance from the centre, and the sphere's normal is the limit normal, so the normal map
+// stays flat up to the cage's own deviation from a sphere.
+TEST(SimplifyBake, SphereHeightsAndNormals) {
+    const mesh::PolygonMesh cage = mesh::makeQuadSphere(4);
+    mesh::PolygonMesh sphere = mesh::triangulated(mesh::makeQuadSphere(48));
+    constexpr float kRadius = 1.05f;
+    for (auto& p : sphere.positions) p *= kRadius;
+    const auto maps = bakeMaps(cage, sphere, {.resolution = 4});
+    ASSERT_EQ(maps.displacement.size(), size_t(maps.layout.nodeCount));
+    ASSERT_EQ(maps.normal.size(), 2 * size_t(maps.layout.nodeCount));
+
+    const subdiv::LimitEvaluator limit(cage);
+    double worstHeight = 0.0, worstTilt = 0.0;
+    for (int f = 0; f < maps.layout.ptexFaceCount; ++f)
+        for (int j = 0; j <= 4; ++j)
+            for (int i = 0; i <= 4; ++i) {
+                const int node = maps.layout.node(f, i, j);
+                const auto s = limit.evaluate(f, float(i) / 4.0f, float(j) / 4.0f, cage.positions);
+                const float expected = kRadius - glm::length(s.position);
+                worstHeight = std::max(worstHeight, double(std::abs(maps.displacement[size_t(node)] - expected)));
+                worstTilt = std::max(worstTilt, double(std::hypot(maps.normal[2 * size_t(node)], maps.normal[2 * size_t(node) + 1])));
+            }
+    EXPECT_LT(worstHeight, 3e-3);  // the reference's own facets and the ray's slant
+    EXPECT_LT(worstTilt, 0.1);
+    for (float d : maps.displacement) ASSERT_TRUE(std::isfinite(d));
+}
+
+TEST(SimplifyBake, OnlyTheAskedMapsAreBaked) {
+    const mesh::PolygonMesh cage = mesh::makeQuadSphere(2);
+    const mesh::PolygonMesh sphere = mesh::triangulated(mesh::makeQuadSphere(8));
+    const auto heights = bakeMaps(cage, sphere, {.effects = {.displacement = true}, .resolution = 2});
+    EXPECT_TRUE(heights.hasDisplacement());
+    EXPECT_FALSE(heights.hasNormal());
+    const auto normals = bakeMaps(cage, sphere, {.effects = {.normalMap = true}, .resolution = 2});
+    EXPECT_FALSE(normals.hasDisplacement());
+    EXPECT_TRUE(normals.hasNormal());
+}
+
+TEST(SimplifyBatch, ShardsParseAndRefuse) {
+    const Shard s = parseShard("2/5");
+    EXPECT_EQ(s.index, 2);
+    EXPECT_EQ(s.count, 5);
+    for (const char* bad : {"5/5", "-1/3", "1/0", "1", "a/b", "1/2x", ""}) EXPECT_THROW(parseShard(bad), Error) << bad;
+}
+
+TEST(SimplifyBatch, NamesAreUnique) {
+    EXPECT_EQ(uniqueNames({"a/duck.glb", "b/duck.obj", "spot.obj", "c/duck.gltf"}),
+              (std::vector<std::string>{"duck", "duck_2", "spot", "duck_3"}));
+}
+
+}  // namespace
+}  // namespace subdfit::simplify
