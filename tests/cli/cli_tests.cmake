@@ -7,14 +7,18 @@ set(SUBDFIT_CLI_BAD ${PROJECT_SOURCE_DIR}/tests/data/bad)
 set(SUBDFIT_CLI_CAGE ${PROJECT_SOURCE_DIR}/assets/osd-shapes/catmark_torus.obj)
 set(SUBDFIT_CLI_REFERENCE ${PROJECT_SOURCE_DIR}/assets/spot/spot_triangulated.obj)
 
-# subdfit_cli_refuses(NAME EXPECT ARG...): `subdfit fit ARG... --out <build>/cli/NAME` must
-# fail, printing one stderr line that contains EXPECT.
-function(subdfit_cli_refuses name expect)
+# subdfit_cli_command_refuses(COMMAND NAME EXPECT ARG...): `subdfit COMMAND ARG... --out
+# <build>/cli/NAME` must fail, printing one stderr line that contains EXPECT.
+function(subdfit_cli_command_refuses command name expect)
   list(JOIN ARGN "|" args)
   add_test(NAME cli.refuses.${name}
            COMMAND ${CMAKE_COMMAND} -DSUBDFIT=$<TARGET_FILE:subdfit> -DOUT=${SUBDFIT_CLI_OUT}/${name}
-                   -DEXPECT=${expect} -DARGS=fit|${args} -P ${SUBDFIT_CLI_SCRIPTS}/expect_failure.cmake)
+                   -DEXPECT=${expect} -DARGS=${command}|${args} -P ${SUBDFIT_CLI_SCRIPTS}/expect_failure.cmake)
   set_tests_properties(cli.refuses.${name} PROPERTIES LABELS cli TIMEOUT 120)
+endfunction()
+
+function(subdfit_cli_refuses name expect)
+  subdfit_cli_command_refuses(fit ${name} ${expect} ${ARGN})
 endfunction()
 
 # Bad cage files: the message names the file.
@@ -66,3 +70,26 @@ add_test(NAME cli.fit.torus_to_spot
                  "-DARGS=fit|--cage|${SUBDFIT_CLI_CAGE}|--reference|${SUBDFIT_CLI_REFERENCE}|--steps|3|--res|64|--views|2"
                  -P ${SUBDFIT_CLI_SCRIPTS}/expect_success.cmake)
 set_tests_properties(cli.fit.torus_to_spot PROPERTIES LABELS cli TIMEOUT 600)
+
+# simplify: a bad or missing reference names the file; impossible options name the option.
+subdfit_cli_command_refuses(simplify simplify_missing_reference ${SUBDFIT_CLI_OUT}/missing.obj
+                            ${SUBDFIT_CLI_OUT}/missing.obj)
+subdfit_cli_command_refuses(simplify simplify_nan_reference ${SUBDFIT_CLI_BAD}/nan_coordinate.obj
+                            ${SUBDFIT_CLI_BAD}/nan_coordinate.obj)
+subdfit_cli_command_refuses(simplify simplify_faces_0 --faces ${SUBDFIT_CLI_REFERENCE} --faces 0)
+subdfit_cli_command_refuses(simplify simplify_map_res_0 --map-res ${SUBDFIT_CLI_REFERENCE} --map-res 0)
+
+# batch: the manifest is read and checked before any work; a bad line names file and line.
+subdfit_cli_command_refuses(batch batch_missing_manifest ${SUBDFIT_CLI_OUT}/missing.txt ${SUBDFIT_CLI_OUT}/missing.txt)
+subdfit_cli_command_refuses(batch batch_bad_line manifest_bad_option.txt:3 ${SUBDFIT_CLI_BAD}/manifest_bad_option.txt)
+subdfit_cli_command_refuses(batch batch_empty_manifest manifest_empty.txt ${SUBDFIT_CLI_BAD}/manifest_empty.txt)
+subdfit_cli_command_refuses(batch batch_bad_shard --shard ${SUBDFIT_CLI_BAD}/manifest_bad_option.txt --shard 2/2)
+
+# A short simplify that works: the fit's files plus the shipped cage, the comparison and the
+# baselines.
+add_test(NAME cli.simplify.spot
+         COMMAND ${CMAKE_COMMAND} -DSUBDFIT=$<TARGET_FILE:subdfit> -DOUT=${SUBDFIT_CLI_OUT}/simplify_spot
+                 -DSTEPS=4 "-DEXTRA=cage.glb|comparison.png|initial_cage.obj|baselines/decimated.glb|baselines/bake/cage.glb"
+                 "-DARGS=simplify|${SUBDFIT_CLI_REFERENCE}|--faces|80|--steps|4|--res|48|--views|2|--holdout-views|1"
+                 -P ${SUBDFIT_CLI_SCRIPTS}/expect_success.cmake)
+set_tests_properties(cli.simplify.spot PROPERTIES LABELS cli TIMEOUT 600)

@@ -1,16 +1,18 @@
 # Runs a short `subdfit fit` that must succeed, then checks the output folder: every result
 # file there and non-empty, report.json readable and finite, no temporary file left behind
 # (atomic writes go through hidden '.name.tmp' files that must all have been renamed).
-#   cmake -DSUBDFIT=<exe> -DOUT=<dir> -DARGS=<a|b|c> -DSTEPS=<n> -P expect_success.cmake
+#   cmake -DSUBDFIT=<exe> -DOUT=<dir> -DARGS=<a|b|c> -DSTEPS=<n> [-DEXTRA=<file|file>] -P expect_success.cmake
+# EXTRA names result files beyond a fit's (e.g. simplify's).
 include(${CMAKE_CURRENT_LIST_DIR}/run_subdfit.cmake)
 subdfit_cli_run(expect_success.cmake 600 SUBDFIT OUT ARGS STEPS)
+string(REPLACE "|" ";" extra "${EXTRA}")
 if(NOT rc EQUAL 0)
   list(JOIN args " " shown)
   message(FATAL_ERROR "subdfit ${shown} --out ${OUT}\nexit: ${rc}\nstderr:\n${err}\nstdout:\n${out}")
 endif()
 
 set(problems "")
-foreach(name cage.obj report.json before.png after.png target.png fitted.glb)
+foreach(name cage.obj report.json before.png after.png target.png fitted.glb ${extra})
   if(NOT EXISTS "${OUT}/${name}")
     string(APPEND problems "\n  missing ${name}")
   else()

@@ -1,0 +1,130 @@
+// `simplify` end to end on a small generated asset: the report's numbers agree with the files
+// on disk and compare at equal bytes; and `batch` skips, resumes, shards and records failures.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <fstream>
+
+#include "mesh/obj_writer.h"
+#include "mesh/procedural.h"
+#include "simplify/batch.h"
+#include "simplify/simplify_job.h"
+#include "test_paths.h"
+
+namespace subdfit::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+simplify::SimplifyOptions smallSimplify(const fs::path& reference, const fs::path& out) {
+    simplify::SimplifyOptions o;
+    o.fit.reference = reference;
+    o.fit.out = out;
+    o.fit.steps = 30;
+    o.fit.views = 4;
+    o.fit.holdoutViews = 2;
+    o.fit.resolution = 64;
+    o.fit.mapResolution = 2;
+    o.fit.checkpointEvery = 5;
+    o.fit.glProvider = "osmesa";
+    o.faces = 120;
+    o.surfaceSamples = 5000;
+    return o;
+}
+
+nlohmann::json readJson(const fs::path& path) {
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+}
+
+TEST(SimplifyJob, ReportMatchesTheFilesAndComparesAtEqualBytes) {
+    const auto dir = scratchDir("simplify_job");
+    mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 4));
+    const auto report = simplify::runSimplify(smallSimplify(dir / "lumpy.obj", dir / "out"));
+
+    // bytes: exactly what the shipped files weigh on disk.
+    std::uintmax_t onDisk = 0;
+    for (const auto& [name, bytes] : report["files"].items()) {
+        ASSERT_TRUE(fs::exists(dir / "out" / name)) << name;
+        EXPECT_EQ(fs::file_size(dir / "out" / name), bytes.get<std::uintmax_t>()) << name;
+        onDisk += fs::file_size(dir / "out" / name);
+    }
+    EXPECT_TRUE(report["files"].contains("cage.glb"));
+    EXPECT_TRUE(report["files"].contains("normal.png"));
+    EXPECT_FALSE(report["files"].contains("fitted.glb"));  // a preview, not what ships
+    EXPECT_EQ(report["bytes"].get<std::uintmax_t>(), onDisk);
+
+    const auto& decimation = report["baselines"]["decimation"];
+    const auto& bake = report["baselines"]["bake"];
+    EXPECT_LE(decimation["bytes"].get<std::uintmax_t>(), onDisk);
+    EXPECT_GT(decimation["triangles"].get<int>(), 120);  // the maps' bytes buy it more triangles
+    EXPECT_EQ(fs::file_size(dir / "out" / "baselines" / "decimated.glb"), decimation["bytes"].get<std::uintmax_t>());
+    // The bake ships the same cage and map formats: within a few percent of subdfit's bytes.
+    EXPECT_NEAR(double(bake["bytes"].get<std::uintmax_t>()), double(onDisk), 0.1 * double(onDisk));
+
+    for (const auto* q : {&report, &decimation, &bake}) {
+        EXPECT_TRUE(std::isfinite((*q)["psnr_holdout"].get<double>()));
+        EXPECT_GT((*q)["psnr_holdout"].get<double>(), 15.0);
+        EXPECT_GE((*q)["chamfer"].get<double>(), 0.0);
+        EXPECT_GE((*q)["hausdorff"].get<double>(), std::sqrt((*q)["chamfer"].get<double>() / 2.0) * 0.5);
+    }
+    EXPECT_NEAR(report["margin_db"]["bake"].get<double>(),
+                report["psnr_holdout"].get<double>() - bake["psnr_holdout"].get<double>(), 1e-9);
+    EXPECT_GT(report["psnr_holdout"].get<double>(), report["psnr_holdout_initial"].get<double>());
+    EXPECT_TRUE(report["finite"].get<bool>());
+    EXPECT_GT(fs::file_size(dir / "out" / "comparison.png"), 1000u);
+}
+
+TEST(SimplifyBatch, SkipsFinishedResumesInterruptedAndRecordsFailures) {
+    const auto dir = scratchDir("simplify_batch");
+    mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(3, 0.15f, 4));
+    mesh::writeObj(dir / "ball.obj", mesh::makeQuadSphere(5));
+    std::vector<simplify::BatchItem> items;
+    for (const char* name : {"lumpy", "missing", "ball"}) {
+        auto o = smallSimplify(dir / (std::string(name) + ".obj"), {});
+        o.fit.steps = 20;
+        o.fit.maps = "none";
+        items.push_back({name, o});
+    }
+    const fs::path out = dir / "out";
+
+    // Interrupted after 10 steps of the first asset: it stays .partial, with its checkpoint.
+    std::atomic<bool> cancel{false};
+    const fit::FitHooks stopEarly{.progress = [&](const fit::Progress& p) { cancel = cancel || p.step >= 10; },
+                                  .cancel = &cancel};
+    const auto first = simplify::runBatch(items, out, {}, stopEarly);
+    EXPECT_TRUE(first.interrupted);
+    EXPECT_EQ(first.finished, 0);
+    EXPECT_EQ(readJson(out / "lumpy.partial" / "status.json")["state"], "interrupted");
+    EXPECT_TRUE(fs::exists(out / "lumpy.partial" / "checkpoint.bin"));
+    EXPECT_FALSE(fs::exists(out / "lumpy"));
+
+    // Shard 1/2 runs only asset 1 (the missing file): recorded as failed, named in the status.
+    const auto shard = simplify::runBatch(items, out, {1, 2});
+    EXPECT_EQ(shard.otherShards, 2);
+    EXPECT_EQ(shard.failed, 1);
+    const auto failed = readJson(out / "missing.partial" / "status.json");
+    EXPECT_EQ(failed["state"], "failed");
+    EXPECT_NE(failed["error"].get<std::string>().find("missing.obj"), std::string::npos);
+
+    // A plain re-run resumes the interrupted asset, finishes the others, still fails the bad one.
+    const auto second = simplify::runBatch(items, out, {});
+    EXPECT_EQ(second.finished, 2);
+    EXPECT_EQ(second.failed, 1);
+    EXPECT_FALSE(fs::exists(out / "lumpy.partial"));
+    EXPECT_EQ(readJson(out / "lumpy" / "status.json")["state"], "done");
+    const auto resumed = readJson(out / "lumpy" / "report.json");
+    EXPECT_EQ(resumed["resumed_from_step"], 10);
+    EXPECT_EQ(resumed["steps"], 20);
+    EXPECT_EQ(readJson(out / "ball" / "report.json")["resumed_from_step"], 0);
+
+    // And once more: nothing left to do but the failure.
+    const auto third = simplify::runBatch(items, out, {});
+    EXPECT_EQ(third.skipped, 2);
+    EXPECT_EQ(third.finished, 0);
+    EXPECT_EQ(third.failed, 1);
+}
+
+}  // namespace
+}  // namespace subdfit::test
