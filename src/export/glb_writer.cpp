@@ -85,7 +85,7 @@ std::vector<AttributeSlot> presentAttributes(const LimitTessellation& tess, cons
 }
 
 json document(const LimitTessellation& tess, std::span<const unsigned char> normalPng, bool draco,
-              BinaryBuilder& binary) {
+              const json& meshExtras, BinaryBuilder& binary) {
     const DracoEncodedMesh encoded = draco ? encodeDraco(tess) : DracoEncodedMesh{};
     const auto slots = presentAttributes(tess, encoded);
     json attributes = json::object(), dracoAttributes = json::object();
@@ -127,6 +127,7 @@ json document(const LimitTessellation& tess, std::span<const unsigned char> norm
                 {"nodes", json::array({{{"mesh", 0}, {"name", "fitted"}}})},
                 {"meshes", json::array({{{"name", "fitted"}, {"primitives", json::array({primitive})}}})},
                 {"accessors", accessors}};
+    if (!meshExtras.empty()) doc["meshes"][0]["extras"] = meshExtras;
     if (hasMaterial) doc["materials"] = json::array({material(!normalPng.empty())});
     if (!normalPng.empty()) {
         const int view = binary.addView(normalPng);
@@ -142,15 +143,13 @@ json document(const LimitTessellation& tess, std::span<const unsigned char> norm
     return doc;
 }
 
-}  // namespace
-
-WrittenFile writeFittedGlb(const std::filesystem::path& path, const LimitTessellation& tess,
-                           std::span<const unsigned char> normalPng, bool draco) {
+WrittenFile writeGlb(const std::filesystem::path& path, const LimitTessellation& tess,
+                     std::span<const unsigned char> normalPng, bool draco, const json& meshExtras) {
     std::vector<unsigned char> bytes;
     try {
         checkTessellation(tess);
         BinaryBuilder binary;
-        const json doc = document(tess, normalPng, draco, binary);
+        const json doc = document(tess, normalPng, draco, meshExtras, binary);
         bytes = packGlb(doc, binary.data());
     } catch (const Error& e) {
         throw fileError(path.string(), e.what());
@@ -158,14 +157,21 @@ WrittenFile writeFittedGlb(const std::filesystem::path& path, const LimitTessell
     return writeBytes(path, bytes);
 }
 
+}  // namespace
+
+WrittenFile writeFittedGlb(const std::filesystem::path& path, const LimitTessellation& tess,
+                           std::span<const unsigned char> normalPng, bool draco) {
+    return writeGlb(path, tess, normalPng, draco, json::object());
+}
+
 WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
                          const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices,
-                         bool draco) {
+                         bool draco, const nlohmann::json& extras) {
     LimitTessellation mesh;
     mesh.positions = positions;
     mesh.normals = normals;
     mesh.indices = indices;
-    return writeFittedGlb(path, mesh, {}, draco);
+    return writeGlb(path, mesh, {}, draco, extras);
 }
 
 }  // namespace subdfit::exporter

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <span>
 
+#include <nlohmann/json.hpp>
+
 #include "export/limit_tessellation.h"
 #include "export/output_file.h"
 
@@ -19,9 +21,10 @@ namespace subdfit::exporter {
 WrittenFile writeFittedGlb(const std::filesystem::path& path, const LimitTessellation& tess,
                            std::span<const unsigned char> normalPng, bool draco);
 
-// A plain triangle mesh (a cage, a decimated mesh): positions, optional normals, indices.
+// A plain triangle mesh (a cage, a decimated mesh): positions, optional normals, indices;
+// `extras` (if not empty) goes into the mesh's glTF `extras`.
 WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
                          const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices,
-                         bool draco);
+                         bool draco, const nlohmann::json& extras = nlohmann::json::object());
 
 }  // namespace subdfit::exporter

@@ -20,7 +20,15 @@ std::vector<std::uint32_t> indicesOf(const mesh::PolygonMesh& triangles) {
 
 nlohmann::json shipCage(const std::filesystem::path& path, const mesh::PolygonMesh& cageWorld, bool draco) {
     const auto triangles = mesh::triangulated(cageWorld);
-    const auto written = exporter::writeMeshGlb(path, triangles.positions, {}, indicesOf(triangles), draco);
+    // glTF has no subdivision surfaces: say how to read the triangles as a cage.
+    const nlohmann::json extras = {
+        {"subdfit",
+         {{"subdivision", "catmull-clark"},
+          {"triangleSubdivision", cageWorld.tags.triangles == mesh::TriangleSubdivision::Smooth ? "smooth" : "catmark"},
+          {"boundary", cageWorld.tags.boundary == mesh::BoundaryInterpolation::EdgeAndCorner ? "edge-and-corner"
+                                                                                              : "edge-only"},
+          {"maps", "maps.json beside this file: ptex-face tiles on the limit surface"}}}};
+    const auto written = exporter::writeMeshGlb(path, triangles.positions, {}, indicesOf(triangles), draco, extras);
     return {{path.filename().string(), written.bytes}};
 }
 

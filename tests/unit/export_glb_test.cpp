@@ -288,8 +288,9 @@ TEST_F(ExportGlb, PlainMeshGlbHasOnlyPositionsAndRoundTrips) {
     for (bool draco : {false, true}) {
         SCOPED_TRACE(draco ? "draco" : "plain");
         const WrittenFile file = writeMeshGlb(*dir_ / (draco ? "cage_draco.glb" : "cage.glb"), cage.positions, {},
-                                              indices, draco);
+                                              indices, draco, {{"subdivision", "catmull-clark"}});
         const json doc = readGlb(file.path).document;
+        EXPECT_EQ(doc["meshes"][0]["extras"]["subdivision"], "catmull-clark");
         EXPECT_EQ(doc["meshes"][0]["primitives"][0]["attributes"].size(), 1u);
         EXPECT_FALSE(doc.contains("materials"));
         const mesh::PolygonMesh read = mesh::readGltf(file.path);
