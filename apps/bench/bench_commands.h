@@ -1,6 +1,7 @@
 #pragma once
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace subdfit::bench {
 
@@ -53,5 +54,16 @@ struct SoupOptions {
     std::string glProvider = "auto";
 };
 int runSoup(const SoupOptions& options);
+
+struct SimplifyTradeoffOptions {
+    std::filesystem::path out = "bench-simplify";
+    std::filesystem::path reference = "assets/spot/spot_triangulated.obj";
+    std::vector<int> faces{100, 300, 1000};
+    std::vector<std::string> maps{"none", "2", "4"};  // "none" or a map resolution (both maps)
+    int steps = 300;
+    int resolution = 128;
+    std::string glProvider = "auto";
+};
+int runSimplifyTradeoff(const SimplifyTradeoffOptions& options);
 
 }  // namespace subdfit::bench

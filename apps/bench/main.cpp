@@ -25,6 +25,16 @@ int main(int argc, char** argv) {
     lumpyCommand->add_option("--views", lumpy.views, "training views")->capture_default_str();
     lumpyCommand->add_option("--gl", lumpy.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
 
+    subdfit::bench::SimplifyTradeoffOptions tradeoff;
+    auto* simplifyCommand = app.add_subcommand("simplify", "simplify at several budgets: PSNR and Chamfer against bytes, vs baselines");
+    simplifyCommand->add_option("--out", tradeoff.out, "output folder")->capture_default_str();
+    simplifyCommand->add_option("--reference", tradeoff.reference, "dense asset")->capture_default_str();
+    simplifyCommand->add_option("--faces", tradeoff.faces, "cage sizes")->capture_default_str();
+    simplifyCommand->add_option("--maps", tradeoff.maps, "map settings: none or a map resolution")->capture_default_str();
+    simplifyCommand->add_option("--steps", tradeoff.steps, "optimisation steps per run")->capture_default_str();
+    simplifyCommand->add_option("--res", tradeoff.resolution, "render resolution")->capture_default_str();
+    simplifyCommand->add_option("--gl", tradeoff.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+
     subdfit::bench::MapsGainOptions mapsGain;
     auto* mapsCommand = app.add_subcommand("maps", "held-out PSNR, time and bytes with and without maps");
     mapsCommand->add_option("--out", mapsGain.out, "output folder")->capture_default_str();
@@ -64,6 +74,7 @@ int main(int argc, char** argv) {
         if (stepCostCommand->parsed()) return subdfit::bench::runStepCost(stepCost);
         if (lumpyCommand->parsed()) return subdfit::bench::runLumpySphere(lumpy);
         if (mapsCommand->parsed()) return subdfit::bench::runMapsGain(mapsGain);
+        if (simplifyCommand->parsed()) return subdfit::bench::runSimplifyTradeoff(tradeoff);
         if (gradientCommand->parsed()) return subdfit::bench::runGradientQuality(gradient);
         if (accuracyCommand->parsed()) return subdfit::bench::runAccuracy(accuracy);
         if (soupCommand->parsed()) return subdfit::bench::runSoup(soup);
