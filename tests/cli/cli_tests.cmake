@@ -81,9 +81,10 @@ subdfit_cli_command_refuses(simplify simplify_map_res_0 --map-res ${SUBDFIT_CLI_
 
 # batch: the manifest is read and checked before any work; a bad line names file and line.
 subdfit_cli_command_refuses(batch batch_missing_manifest ${SUBDFIT_CLI_OUT}/missing.txt ${SUBDFIT_CLI_OUT}/missing.txt)
-subdfit_cli_command_refuses(batch batch_bad_line manifest_bad_option.txt:3 ${SUBDFIT_CLI_BAD}/manifest_bad_option.txt)
-subdfit_cli_command_refuses(batch batch_empty_manifest manifest_empty.txt ${SUBDFIT_CLI_BAD}/manifest_empty.txt)
-subdfit_cli_command_refuses(batch batch_bad_shard --shard ${SUBDFIT_CLI_BAD}/manifest_bad_option.txt --shard 2/2)
+set(SUBDFIT_CLI_MANIFESTS ${PROJECT_SOURCE_DIR}/tests/data/bad-manifests)
+subdfit_cli_command_refuses(batch batch_bad_line bad_option.txt:3 ${SUBDFIT_CLI_MANIFESTS}/bad_option.txt)
+subdfit_cli_command_refuses(batch batch_empty_manifest empty.txt ${SUBDFIT_CLI_MANIFESTS}/empty.txt)
+subdfit_cli_command_refuses(batch batch_bad_shard --shard ${SUBDFIT_CLI_MANIFESTS}/bad_option.txt --shard 2/2)
 
 # A short simplify that works: the fit's files plus the shipped cage, the comparison and the
 # baselines.
