@@ -93,7 +93,10 @@ nlohmann::json runFit(const FitOptions& o, gl::ProgramCache& programs, const con
     int step = history.firstStep;
     for (; step < o.steps; ++step) {
         if (hooks.cancel && hooks.cancel->load()) break;
-        if (hooks.initializeMaps && fitter.maps() && step == fitter.mapsStartStep()) hooks.initializeMaps(fitter, scene);
+        if (hooks.onMapsStart && fitter.maps()) {
+            const int start = fitter.mapsStartStep();
+            if (step == start || (step == history.firstStep && step > start)) hooks.onMapsStart(fitter, scene, step > start);
+        }
         // The loss is only read for progress, so about eight steps per report measure it.
         const bool measureLoss = step % std::max(1, reportEvery / 8) == 0;
         const auto views = viewsForStep(o, step);

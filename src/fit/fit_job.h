@@ -28,15 +28,16 @@ using ProgressSink = std::function<void(const Progress&)>;
 // into options.out.
 using FitEvaluation = std::function<nlohmann::json(CageFitter&, FitScene&, const nlohmann::json& exports)>;
 
-// Sets the map groups' θ from the fitter's current cage, just before the maps join the fit
-// (not again when a resumed run restores them from a checkpoint).
-using MapInitializer = std::function<void(CageFitter&, FitScene&)>;
+// Called once per run when the maps join the fit: at that step (`restored` false: e.g. set the
+// maps' θ from the cage as fitted so far), or at the first step of a run resumed past it
+// (`restored` true: θ came from the checkpoint, settings changed at the start must be redone).
+using MapsStart = std::function<void(CageFitter&, FitScene&, bool restored)>;
 
 struct FitHooks {
     ProgressSink progress{};
     const std::atomic<bool>* cancel = nullptr;  // set during the fit: stop early, still write results
     FitEvaluation evaluate{};
-    MapInitializer initializeMaps{};
+    MapsStart onMapsStart{};
 };
 
 // Throws subdfit::Error for bad options or inputs before anything is written.

@@ -101,15 +101,17 @@ nlohmann::json runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
 
     fit::FitHooks withEvaluation = hooks;
     // Coarse to fine: the maps start from a bake onto the cage as fitted so far (what the bake
-    // route would ship for this cage), and the fit refines cage and maps together from there.
-    withEvaluation.initializeMaps = [&](fit::CageFitter& fitter, fit::FitScene& fitted) {
-        mesh::PolygonMesh current = fitted.cage;
-        current.positions = fitter.vertices();
+    // route would ship for this cage), and the fit only refines them from there.
+    withEvaluation.onMapsStart = [&](fit::CageFitter& fitter, fit::FitScene& fitted, bool restored) {
         auto* parameters = fitter.maps();
-        const auto baked = bakeMaps(current, fitted.reference,
-                                    {.effects = parameters->effects(), .resolution = parameters->layout().resolution});
-        if (auto* g = parameters->displacement()) g->write(baked.displacement);
-        if (auto* g = parameters->normalMap()) g->write(baked.normal);
+        if (!restored) {
+            mesh::PolygonMesh current = fitted.cage;
+            current.positions = fitter.vertices();
+            const auto baked = bakeMaps(current, fitted.reference,
+                                        {.effects = parameters->effects(), .resolution = parameters->layout().resolution});
+            if (auto* g = parameters->displacement()) g->write(baked.displacement);
+            if (auto* g = parameters->normalMap()) g->write(baked.normal);
+        }
         // The bake fits this cage: moving it now would slide the maps off the detail they hold.
         fitter.setOptimised(fitter.vertexGroup(), false);
         for (auto* g : parameters->groups()) fitter.setRates(*g, g->settings().epsilon, kRefineRate * fitter.baseLearningRate(*g));

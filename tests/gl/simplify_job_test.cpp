@@ -6,6 +6,9 @@
 #include <cmath>
 #include <fstream>
 
+#include <glm/geometric.hpp>
+
+#include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
 #include "mesh/procedural.h"
 #include "simplify/batch.h"
@@ -74,6 +77,34 @@ TEST(SimplifyJob, ReportMatchesTheFilesAndComparesAtEqualBytes) {
     EXPECT_GT(report["psnr_holdout"].get<double>(), report["psnr_holdout_initial"].get<double>());
     EXPECT_TRUE(report["finite"].get<bool>());
     EXPECT_GT(fs::file_size(dir / "out" / "comparison.png"), 1000u);
+}
+
+// Resumed past the step where the maps were baked, the run must keep what that step set up (a
+// frozen cage, slow map rates) and end where an uninterrupted run does.
+TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
+    const auto dir = scratchDir("simplify_resume");
+    mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 4));
+    auto options = smallSimplify(dir / "lumpy.obj", dir / "straight");
+    options.fit.steps = 20;
+    options.fit.mapsStart = 0.5f;  // bake at step 10
+    const auto straight = simplify::runSimplify(options);
+
+    options.fit.out = dir / "resumed";
+    std::atomic<bool> cancel{false};
+    const auto interrupted = simplify::runSimplify(
+        options, {.progress = [&](const fit::Progress& p) { cancel = cancel || p.step >= 14; }, .cancel = &cancel});
+    ASSERT_EQ(interrupted["steps"], 14);
+    options.fit.resume = true;
+    const auto resumed = simplify::runSimplify(options);
+    EXPECT_EQ(resumed["resumed_from_step"], 14);
+
+    const auto a = mesh::loadMesh(dir / "straight" / "cage.obj").positions;
+    const auto b = mesh::loadMesh(dir / "resumed" / "cage.obj").positions;
+    ASSERT_EQ(a.size(), b.size());
+    float worst = 0.0f;
+    for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, glm::length(a[i] - b[i]));
+    EXPECT_LT(worst, 1e-5f) << "the cage moved after the bake in one of the runs";
+    EXPECT_NEAR(resumed["psnr_holdout"].get<double>(), straight["psnr_holdout"].get<double>(), 0.02);
 }
 
 TEST(SimplifyBatch, SkipsFinishedResumesInterruptedAndRecordsFailures) {
