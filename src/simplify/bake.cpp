@@ -58,6 +58,19 @@ glm::vec2 heightGradient(const maps::TexelLayout& layout, const std::vector<floa
             (at(s.i, j1) - at(s.i, j0)) * float(t) / float(j1 - j0)};
 }
 
+float meanEdgeLength(const mesh::PolygonMesh& m) {
+    double total = 0.0;
+    size_t edges = 0;
+    int first = 0;
+    for (int size : m.faceSizes) {
+        for (int k = 0; k < size; ++k, ++edges)
+            total += glm::length(m.positions[size_t(m.faceIndices[size_t(first + k)])] -
+                                 m.positions[size_t(m.faceIndices[size_t(first + (k + 1) % size)])]);
+        first += size;
+    }
+    return edges ? float(total / double(edges)) : 0.0f;
+}
+
 }  // namespace
 
 exporter::FittedMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
@@ -69,6 +82,7 @@ exporter::FittedMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
     const subdiv::LimitEvaluator limit(cage);
     const geometry::RayCaster caster(reference);
     const auto referenceNormals = mesh::vertexNormals(reference);
+    const float maxDistance = options.maxDistance > 0.0f ? options.maxDistance : meanEdgeLength(cage);
 
     std::vector<subdiv::LimitSample> samples(nodes);
     std::vector<glm::vec3> normals(nodes);
@@ -78,7 +92,7 @@ exporter::FittedMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
         if (sites[n].face < 0 || !limit.hasSurface(sites[n].face, 0.5f, 0.5f)) continue;
         samples[n] = sampleAt(limit, sites[n], options.resolution, cage.positions);
         normals[n] = unitNormal(samples[n].dPdu, samples[n].dPdv, glm::vec3(0.0f, 0.0f, 1.0f));
-        hits[n] = caster.castBothWays(samples[n].position, normals[n], options.maxDistance);
+        hits[n] = caster.castBothWays(samples[n].position, normals[n], maxDistance);
         if (hits[n]) heights[n] = hits[n]->distance;
     }
     if (options.effects.displacement) maps.displacement = heights;

@@ -13,7 +13,10 @@ namespace subdfit::simplify {
 struct BakeOptions {
     maps::MapEffects effects{.displacement = true, .normalMap = true};
     int resolution = 8;          // cells per ptex-face edge, as maps::TexelLayout
-    float maxDistance = 0.25f;   // farthest hit taken, in the meshes' units; none: height 0, flat normal
+    // Farthest hit taken, in the meshes' units (none: height 0, flat normal); 0 = the cage's
+    // mean edge length, since a surface farther than a cage edge is a different part of the
+    // reference (the far wall of a hole, the other ear), not the one this face stands for.
+    float maxDistance = 0.0f;
 };
 
 // `cage` and `reference` (triangulated) in the same units. Only the maps in options.effects
