@@ -8,6 +8,7 @@
 #include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
 #include "mesh/procedural.h"
+#include "scene_fixture.h"
 #include "test_paths.h"
 #include "util/error.h"
 
@@ -58,8 +59,7 @@ TEST(FitResume, InterruptedRunContinuesToTheSameResult) {
     const auto a = mesh::loadMesh(dir / "straight" / "cage.obj").positions;
     const auto b = mesh::loadMesh(dir / "resumed" / "cage.obj").positions;
     ASSERT_EQ(a.size(), b.size());
-    float worst = 0.0f;
-    for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, glm::length(a[i] - b[i]));
+    const float worst = maxDistance(a, b);
     EXPECT_LT(worst, 1e-4f) << "largest vertex difference " << worst;
 }
 

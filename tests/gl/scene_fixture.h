@@ -54,4 +54,11 @@ inline double rmsDistance(const std::vector<glm::vec3>& a, const std::vector<glm
     return std::sqrt(sum / double(std::max<size_t>(1, a.size())));
 }
 
+// The largest distance between corresponding points (same count).
+inline float maxDistance(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b) {
+    float worst = 0.0f;
+    for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, glm::length(a[i] - b[i]));
+    return worst;
+}
+
 }  // namespace subdfit::test

@@ -13,6 +13,7 @@
 #include "mesh/procedural.h"
 #include "simplify/batch.h"
 #include "simplify/simplify_job.h"
+#include "scene_fixture.h"
 #include "test_paths.h"
 
 namespace subdfit::test {
@@ -101,8 +102,7 @@ TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
     const auto a = mesh::loadMesh(dir / "straight" / "cage.obj").positions;
     const auto b = mesh::loadMesh(dir / "resumed" / "cage.obj").positions;
     ASSERT_EQ(a.size(), b.size());
-    float worst = 0.0f;
-    for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, glm::length(a[i] - b[i]));
+    const float worst = maxDistance(a, b);
     EXPECT_LT(worst, 1e-5f) << "the cage moved after the bake in one of the runs";
     EXPECT_NEAR(resumed["psnr_holdout"].get<double>(), straight["psnr_holdout"].get<double>(), 0.02);
 }
