@@ -1,6 +1,6 @@
 #pragma once
 // Geometric error between two triangle meshes: area-uniform samples on each, exact distance to
-// the nearest triangle of the other (candidates from a k-d tree over triangle centroids).
+// the nearest point of the other (Embree point queries, geometry/surface_queries.h).
 #include <cstdint>
 
 #include "mesh/polygon_mesh.h"

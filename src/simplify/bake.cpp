@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/ray_caster.h"
+#include "geometry/surface_queries.h"
 #include "mesh/mesh_geometry.h"
 #include "subdiv/limit_evaluator.h"
 
@@ -80,7 +80,7 @@ exporter::FittedMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
     const auto sites = nodeSites(maps.layout);
     const size_t nodes = sites.size();
     const subdiv::LimitEvaluator limit(cage);
-    const geometry::RayCaster caster(reference);
+    const geometry::SurfaceQueries surface(reference);
     const auto referenceNormals = mesh::vertexNormals(reference);
     const float maxDistance = options.maxDistance > 0.0f ? options.maxDistance : meanEdgeLength(cage);
 
@@ -92,7 +92,7 @@ exporter::FittedMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
         if (sites[n].face < 0 || !limit.hasSurface(sites[n].face, 0.5f, 0.5f)) continue;
         samples[n] = sampleAt(limit, sites[n], options.resolution, cage.positions);
         normals[n] = unitNormal(samples[n].dPdu, samples[n].dPdv, glm::vec3(0.0f, 0.0f, 1.0f));
-        hits[n] = caster.castBothWays(samples[n].position, normals[n], maxDistance);
+        hits[n] = surface.castBothWays(samples[n].position, normals[n], maxDistance);
         if (hits[n]) heights[n] = hits[n]->distance;
     }
     if (options.effects.displacement) maps.displacement = heights;

@@ -7,7 +7,8 @@
 #include <cmath>
 #include <map>
 
-#include "geometry/ray_caster.h"
+#include "geometry/surface_distance.h"
+#include "geometry/surface_queries.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/procedural.h"
 #include "simplify/bake.h"
@@ -99,16 +100,16 @@ TEST(SimplifyInitialCage, NonFiniteReferenceIsRefused) {
     EXPECT_THROW(initialCage(reference, {.faces = 40}), Error);
 }
 
-TEST(RayCaster, HitsBothWaysWithSignedDistance) {
+TEST(SurfaceQueries, HitsBothWaysWithSignedDistance) {
     // The plane z = 0 as two triangles over [−1, 1]².
     const mesh::PolygonMesh plane = mesh::triangulated(mesh::makeQuadGrid(1));
-    const geometry::RayCaster caster(plane);
-    const auto down = caster.cast({0.2f, 0.3f, 0.5f}, {0.0f, 0.0f, -1.0f}, 1.0f);
+    const geometry::SurfaceQueries queries(plane);
+    const auto down = queries.cast({0.2f, 0.3f, 0.5f}, {0.0f, 0.0f, -1.0f}, 1.0f);
     ASSERT_TRUE(down);
     EXPECT_NEAR(down->distance, 0.5f, 1e-6f);
-    EXPECT_FALSE(caster.cast({0.2f, 0.3f, 0.5f}, {0.0f, 0.0f, 1.0f}, 1.0f));
-    EXPECT_FALSE(caster.cast({0.2f, 0.3f, 0.5f}, {0.0f, 0.0f, -1.0f}, 0.4f));  // beyond maxDistance
-    const auto both = caster.castBothWays({0.2f, 0.3f, 0.5f}, {0.0f, 0.0f, 1.0f}, 1.0f);
+    EXPECT_FALSE(queries.cast({0.2f, 0.3f, 0.5f}, {0.0f, 0.0f, 1.0f}, 1.0f));
+    EXPECT_FALSE(queries.cast({0.2f, 0.3f, 0.5f}, {0.0f, 0.0f, -1.0f}, 0.4f));  // beyond maxDistance
+    const auto both = queries.castBothWays({0.2f, 0.3f, 0.5f}, {0.0f, 0.0f, 1.0f}, 1.0f);
     ASSERT_TRUE(both);
     EXPECT_NEAR(both->distance, -0.5f, 1e-6f);
     // The barycentrics name the hit point.
@@ -116,6 +117,25 @@ TEST(RayCaster, HitsBothWaysWithSignedDistance) {
     const glm::vec3 p = (1.0f - down->u - down->v) * plane.positions[size_t(f[0])] +
                         down->u * plane.positions[size_t(f[1])] + down->v * plane.positions[size_t(f[2])];
     EXPECT_NEAR(glm::length(p - glm::vec3(0.2f, 0.3f, 0.0f)), 0.0f, 1e-5f);
+}
+
+// The nearest point, whether it lies inside a triangle, on an edge or at a corner.
+TEST(SurfaceQueries, ClosestDistanceIsExact) {
+    const mesh::PolygonMesh plane = mesh::triangulated(mesh::makeQuadGrid(4));  // [−1, 1]², z = 0
+    const geometry::SurfaceQueries queries(plane);
+    EXPECT_NEAR(queries.closestDistance({0.3f, -0.2f, 0.7f}), 0.7f, 1e-6f);   // above a face
+    EXPECT_NEAR(queries.closestDistance({1.5f, 0.0f, 0.0f}), 0.5f, 1e-6f);    // beyond an edge
+    EXPECT_NEAR(queries.closestDistance({2.0f, 2.0f, 1.0f}), std::sqrt(3.0f), 1e-5f);  // past a corner
+}
+
+TEST(SurfaceDistance, ParallelPlanesAreTheirGapApart) {
+    mesh::PolygonMesh a = mesh::triangulated(mesh::makeQuadGrid(3)), b = a;
+    for (auto& p : b.positions) p.z += 0.1f;
+    const auto d = geometry::surfaceDistance(a, b, 2000);
+    EXPECT_NEAR(d.chamferL2Squared, 2 * 0.01, 1e-6);
+    EXPECT_NEAR(d.meanDistance, 0.1, 1e-6);
+    EXPECT_NEAR(d.hausdorff, 0.1, 1e-6);
+    EXPECT_NEAR(geometry::surfaceDistance(a, a, 2000).hausdorff, 0.0, 1e-6);
 }
 
 // A cage inside a sphere of radius R: every node's height is R minus the limit surface's

@@ -1,6 +1,7 @@
 #pragma once
-// Ray queries against a triangle mesh, by Embree: the bake baseline casts along the limit
-// normal of a cage to find the reference surface, as a texture baker does.
+// Ray and closest-point queries against a triangle mesh, by Embree (one BVH for both): the bake
+// casts along a cage's limit normal to find the reference surface, as a texture baker does, and
+// the surface distance asks for the exact nearest point.
 #include <glm/vec3.hpp>
 
 #include <memory>
@@ -16,13 +17,13 @@ struct RayHit {
     float u = 0.0f, v = 0.0f;  // barycentrics: the point is (1−u−v)·p0 + u·p1 + v·p2
 };
 
-class RayCaster {
+class SurfaceQueries {
 public:
     // `triangles`: a triangulated mesh; kept by reference for hit lookups, so it must outlive this.
-    explicit RayCaster(const mesh::PolygonMesh& triangles);
-    ~RayCaster();
-    RayCaster(const RayCaster&) = delete;
-    RayCaster& operator=(const RayCaster&) = delete;
+    explicit SurfaceQueries(const mesh::PolygonMesh& triangles);
+    ~SurfaceQueries();
+    SurfaceQueries(const SurfaceQueries&) = delete;
+    SurfaceQueries& operator=(const SurfaceQueries&) = delete;
 
     // The first hit along the unit `direction` within (0, maxDistance], either side of any
     // triangle. Thread-safe.
@@ -30,6 +31,10 @@ public:
 
     // The nearer of the hits along +direction and −direction (distance signed accordingly).
     std::optional<RayHit> castBothWays(const glm::vec3& origin, const glm::vec3& direction, float maxDistance) const;
+
+    // The distance from `point` to the nearest point of the mesh (exact; infinity for a mesh
+    // without triangles). Thread-safe.
+    float closestDistance(const glm::vec3& point) const;
 
     const mesh::PolygonMesh& mesh() const { return mesh_; }
 
