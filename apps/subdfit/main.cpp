@@ -8,8 +8,8 @@
 #include <iostream>
 
 #include "common/simplify_cli.h"
-#include "manifest.h"
 #include "fit/fit_job.h"
+#include "manifest.h"
 #include "simplify/simplify_job.h"
 #include "util/error.h"
 
@@ -28,15 +28,12 @@ void printSummary(const nlohmann::json& report) {
 
 void printComparison(const nlohmann::json& report) {
     std::fprintf(stderr, "%-11s %10s %12s %12s\n", "", "bytes", "PSNR (dB)", "Chamfer");
-    auto row = [](const char* name, const nlohmann::json& q, double psnr) {
+    auto row = [](const char* name, const nlohmann::json& q) {
         std::fprintf(stderr, "%-11s %10llu %12.2f %12.4e\n", name, (unsigned long long)q["bytes"].get<std::uint64_t>(),
-                     psnr, q["chamfer"].get<double>());
+                     q["psnr_holdout"].get<double>(), q["chamfer"].get<double>());
     };
-    row("subdfit", report, report["psnr_holdout"].get<double>());
-    for (const char* name : {"decimation", "bake"}) {
-        const auto& b = report["baselines"][name];
-        row(name, b, b["psnr_holdout"].get<double>());
-    }
+    row("subdfit", report);
+    for (const char* name : {"decimation", "bake"}) row(name, report["baselines"][name]);
 }
 
 void printProgress(const subdfit::fit::Progress& p) {
