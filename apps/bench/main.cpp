@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "common/command_line.h"
 #include "bench_commands.h"
 #include "util/error.h"
 
@@ -63,13 +64,7 @@ int main(int argc, char** argv) {
     soupCommand->add_option("--seconds", soup.seconds, "step-time budget per estimator (0: none)")->capture_default_str();
     soupCommand->add_option("--gl", soup.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() == 0) return app.exit(e);  // --help
-        std::fprintf(stderr, "%s: error: %s (see --help)\n", "subdfit-bench", e.what());
-        return 2;
-    }
+    if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit-bench")) return *exitCode;
     try {
         if (stepCostCommand->parsed()) return subdfit::bench::runStepCost(stepCost);
         if (lumpyCommand->parsed()) return subdfit::bench::runLumpySphere(lumpy);

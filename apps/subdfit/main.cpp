@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "common/command_line.h"
 #include "common/simplify_cli.h"
 #include "fit/fit_job.h"
 #include "manifest.h"
@@ -68,13 +69,7 @@ int main(int argc, char** argv) {
     batchCommand->add_option("--shard", shard, "run only assets k with k mod N = i (i/N, 0-based)")->capture_default_str();
     subdfit::apps::addSimplifySettings(*batchCommand, batchDefaults);
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() == 0) return app.exit(e);  // --help
-        std::fprintf(stderr, "%s: error: %s (see --help)\n", "subdfit", e.what());
-        return 2;
-    }
+    if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit")) return *exitCode;
 
     std::signal(SIGINT, onInterrupt);
     std::signal(SIGTERM, onInterrupt);

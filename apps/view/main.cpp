@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/command_line.h"
 #include "common/fit_cli.h"
 #include "util/error.h"
 #include "viewer.h"
@@ -32,13 +33,7 @@ int main(int argc, char** argv) {
     app.add_option("--frames", options.frames, "frames to draw before exiting (with --screenshot: default 1)")
         ->check(CLI::PositiveNumber);
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() == 0) return app.exit(e);  // --help
-        std::fprintf(stderr, "%s: error: %s (see --help)\n", "subdfit-view", e.what());
-        return 2;
-    }
+    if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit-view")) return *exitCode;
     options.mode = subdfit::view::viewModesByKey().at(mode);
     if (!options.screenshot.empty() && options.frames == 0) options.frames = 1;
 

@@ -1,0 +1,23 @@
+#pragma once
+// How every subdfit program reads its command line: --help prints and exits 0; anything the
+// parser refuses is one line on stderr, "PROGRAM: error: ... (see --help)", and exit code 2.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <optional>
+
+namespace subdfit::apps {
+
+// Nothing when the program should go on; otherwise the exit code to return from main.
+inline std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv, const char* program) {
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help
+        std::fprintf(stderr, "%s: error: %s (see --help)\n", program, e.what());
+        return 2;
+    }
+    return std::nullopt;
+}
+
+}  // namespace subdfit::apps
