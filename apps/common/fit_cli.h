@@ -26,6 +26,7 @@ inline void addFitSettings(CLI::App& app, fit::FitOptions& fit) {
     app.add_option("--maps-start", fit.mapsStart, "fraction of the steps before the maps join")->capture_default_str();
     app.add_flag("--draco", fit.draco, "compress the exported meshes with Draco");
     app.add_flag("--resume", fit.resume, "continue from DIR/checkpoint.bin (same inputs and settings)");
+    app.add_flag("--force", fit.force, "write into --out even if it holds other files");
     app.add_option("--checkpoint-every", fit.checkpointEvery, "steps between checkpoints")->capture_default_str();
 }
 

@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 
 #include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <iostream>
 
@@ -13,12 +12,9 @@
 #include "manifest.h"
 #include "simplify/simplify_job.h"
 #include "util/error.h"
+#include "util/interrupt.h"
 
 namespace {
-
-std::atomic<bool> interrupted{false};
-
-void onInterrupt(int) { interrupted = true; }
 
 void printSummary(const nlohmann::json& report) {
     std::fprintf(stderr, "done: %d steps in %.1f s, loss %.4e -> %.4e, held-out PSNR %.2f -> %.2f dB\n",
@@ -71,10 +67,12 @@ int main(int argc, char** argv) {
 
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit")) return *exitCode;
 
-    std::signal(SIGINT, onInterrupt);
-    std::signal(SIGTERM, onInterrupt);
+    subdfit::installStopSignals();
+    const auto say = [](const char* who) {
+        return [who](const std::string& line) { std::fprintf(stderr, "%s: %s\n", who, line.c_str()); };
+    };
     try {
-        const subdfit::fit::FitHooks hooks{.progress = printProgress, .cancel = &interrupted};
+        const subdfit::fit::FitHooks hooks{.progress = printProgress, .cancel = &subdfit::stopRequest(), .note = say("subdfit")};
         if (fitCommand->parsed()) {
             const auto report = subdfit::fit::runFit(fit, hooks);
             printSummary(report);
@@ -89,21 +87,23 @@ int main(int argc, char** argv) {
         if (batchCommand->parsed()) {
             const auto parsedShard = subdfit::simplify::parseShard(shard);
             batchDefaults.fit.out = batchOut;  // each asset's own folder is set by the batch
-            const auto items = subdfit::apps::readManifest(manifest, batchDefaults);
-            const auto summary = subdfit::simplify::runBatch(items, batchOut, parsedShard, hooks, [](const std::string& line) {
-                std::fprintf(stderr, "batch: %s\n", line.c_str());
-            });
-            std::fprintf(stderr, "batch: %d finished, %d skipped (done), %d failed, %d in other shards%s\n",
-                         summary.finished, summary.skipped, summary.failed, summary.otherShards,
-                         summary.interrupted ? ", interrupted" : "");
+            const auto items = subdfit::apps::readManifest(manifest, batchDefaults, say("batch"));
+            const auto summary =
+                subdfit::simplify::runBatch(items, batchOut, parsedShard, hooks, say("batch"), batchDefaults.fit.force);
+            std::fprintf(stderr, "batch: %d finished, %d skipped (done), %d running elsewhere, %d failed, %d in other shards%s\n",
+                         summary.finished, summary.skipped, summary.runningElsewhere, summary.failed,
+                         summary.otherShards, summary.interrupted ? ", interrupted" : "");
             if (summary.failed > 0) return 1;
         }
-    } catch (const subdfit::Error& e) {
-        std::fprintf(stderr, "subdfit: error: %s\n", e.what());
+    } catch (const subdfit::Interrupted& e) {
+        std::fprintf(stderr, "subdfit: %s\n", e.what());
+        return 130;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "subdfit: error: out of memory\n");
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "subdfit: error: %s\n", e.what());
         return 1;
     }
-    return interrupted ? 130 : 0;
+    return subdfit::stopRequested() ? 130 : 0;
 }

@@ -1,10 +1,6 @@
 #pragma once
-// A batch manifest: one asset a line, `REFERENCE [simplify options]` (quotes allowed), `#`
-// comments and blank lines skipped, relative paths taken from the manifest's folder.
-//
-//   # assets.txt
-//   props/crate.glb --faces 200
-//   "scans/statue 01.obj" --faces 2000 --map-res 8
+// A batch manifest as batch items: the core reads the lines (simplify/manifest.h), each line's
+// options are parsed here by the same CLI11 rules as `subdfit simplify`'s.
 #include <filesystem>
 #include <vector>
 
@@ -13,8 +9,8 @@
 namespace subdfit::apps {
 
 // `defaults` are the batch's own options; a line's options override them. Throws
-// subdfit::Error "manifest:line: problem".
+// subdfit::Error "manifest:line: problem". Repeated assets are dropped with a line to `log`.
 std::vector<simplify::BatchItem> readManifest(const std::filesystem::path& manifest,
-                                              const simplify::SimplifyOptions& defaults);
+                                              const simplify::SimplifyOptions& defaults, const simplify::BatchLog& log);
 
 }  // namespace subdfit::apps

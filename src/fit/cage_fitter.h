@@ -13,6 +13,7 @@
 #include <span>
 #include <vector>
 
+#include "fit/fit_state.h"
 #include "gl/program_cache.h"
 #include "maps/map_parameters.h"
 #include "mesh/polygon_mesh.h"
@@ -88,15 +89,8 @@ public:
     void render(const render::Camera& camera, const render::RenderTarget& target);
 
     // Everything a resumed run needs to continue exactly where this one stopped.
-    struct GroupState {
-        std::vector<float> theta, moment1, moment2;
-        int adamSteps = 0;
-    };
-    struct State {
-        int steps = 0;
-        std::uint32_t samples = 0;
-        std::vector<GroupState> groups;  // in groups() order
-    };
+    using GroupState = fit::GroupState;
+    using State = FitState;
     State state();
     void restore(const State& state);  // throws subdfit::Error if it does not fit this scene
 

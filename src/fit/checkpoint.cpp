@@ -1,91 +1,133 @@
 #include "fit/checkpoint.h"
 
 #include <cstdint>
-#include <fstream>
+#include <cstring>
+#include <string_view>
 
 #include "io/atomic_file.h"
+#include "io/input_file.h"
 #include "util/error.h"
+#include "util/hash.h"
 
 namespace subdfit::fit {
 namespace {
 
-constexpr char kMagic[8] = {'S', 'D', 'F', 'T', 'C', 'K', 'P', '2'};
+// The last byte is the format version: a reader refuses any other.
+constexpr std::string_view kMagic{"SDFTCKP3", 8};
+constexpr std::string_view kMagicFamily{"SDFTCKP", 7};
 
-template <class T>
-void put(std::ostream& out, const T& value) {
-    out.write(reinterpret_cast<const char*>(&value), sizeof(T));
-}
+class Writer {
+public:
+    template <class T>
+    void put(const T& value) {
+        bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T));
+    }
+    void putBytes(std::string_view data) {
+        put<std::uint64_t>(data.size());
+        bytes_.append(data);
+    }
+    void putFloats(const std::vector<float>& values) {
+        putBytes({reinterpret_cast<const char*>(values.data()), values.size() * sizeof(float)});
+    }
+    // The payload followed by its checksum.
+    std::string finish() && {
+        put<std::uint64_t>(hash64(bytes_));
+        return std::move(bytes_);
+    }
 
-template <class T>
-T get(std::istream& in) {
-    T value{};
-    in.read(reinterpret_cast<char*>(&value), sizeof(T));
-    return value;
-}
+private:
+    std::string bytes_{kMagic};
+};
 
-void putFloats(std::ostream& out, const std::vector<float>& values) {
-    put<std::uint64_t>(out, values.size());
-    out.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * sizeof(float)));
-}
+// Every read is checked against what is left, so a damaged count can never allocate more
+// than the file holds.
+class Reader {
+public:
+    Reader(std::string_view payload, std::string path) : rest_(payload), path_(std::move(path)) {}
 
-std::vector<float> getFloats(std::istream& in, std::uint64_t limit) {
-    const auto count = get<std::uint64_t>(in);
-    if (!in || count > limit) return {};
-    std::vector<float> values(count);
-    in.read(reinterpret_cast<char*>(values.data()), std::streamsize(count * sizeof(float)));
-    return values;
-}
+    template <class T>
+    T get() {
+        T value;
+        std::memcpy(&value, take(sizeof(T)).data(), sizeof(T));
+        return value;
+    }
+    std::string_view getBytes() { return take(get<std::uint64_t>()); }
+    std::vector<float> getFloats() {
+        const std::string_view bytes = getBytes();
+        if (bytes.size() % sizeof(float) != 0) damaged("a float array of " + std::to_string(bytes.size()) + " bytes");
+        std::vector<float> values(bytes.size() / sizeof(float));
+        std::memcpy(values.data(), bytes.data(), bytes.size());
+        return values;
+    }
+    bool atEnd() const { return rest_.empty(); }
+    [[noreturn]] void damaged(const std::string& what) const {
+        throw fileError(path_, "damaged checkpoint (" + what + "); remove it to start over");
+    }
+
+private:
+    std::string_view take(std::uint64_t n) {
+        if (n > rest_.size()) damaged("it ends early");
+        const std::string_view bytes = rest_.substr(0, size_t(n));
+        rest_.remove_prefix(size_t(n));
+        return bytes;
+    }
+
+    std::string_view rest_;
+    std::string path_;
+};
 
 }  // namespace
 
 void writeCheckpoint(const std::filesystem::path& path, const std::string& fingerprint,
-                     const CageFitter::State& state) {
-    io::writeAtomically(path, [&](const std::filesystem::path& temporary) {
-        std::ofstream out(temporary, std::ios::binary);
-        out.write(kMagic, sizeof(kMagic));
-        put<std::uint64_t>(out, fingerprint.size());
-        out.write(fingerprint.data(), std::streamsize(fingerprint.size()));
-        put<std::int32_t>(out, state.steps);
-        put<std::uint32_t>(out, state.samples);
-        put<std::uint32_t>(out, std::uint32_t(state.groups.size()));
-        for (const auto& group : state.groups) {
-            put<std::int32_t>(out, group.adamSteps);
-            putFloats(out, group.theta);
-            putFloats(out, group.moment1);
-            putFloats(out, group.moment2);
-        }
-        out.close();
-        if (!out) throw fileError(path.string(), "could not write checkpoint");
-    });
+                     const FitState& state) {
+    Writer out;
+    out.putBytes(fingerprint);
+    out.put<std::int32_t>(state.steps);
+    out.put<std::uint32_t>(state.samples);
+    out.put<std::uint32_t>(std::uint32_t(state.groups.size()));
+    for (const auto& group : state.groups) {
+        out.put<std::int32_t>(group.adamSteps);
+        out.putFloats(group.theta);
+        out.putFloats(group.moment1);
+        out.putFloats(group.moment2);
+    }
+    io::writeTextAtomically(path, std::move(out).finish());
 }
 
-std::optional<CageFitter::State> readCheckpoint(const std::filesystem::path& path, const std::string& fingerprint) {
-    if (!std::filesystem::exists(path)) return std::nullopt;
-    std::ifstream in(path, std::ios::binary);
-    char magic[sizeof(kMagic)] = {};
-    in.read(magic, sizeof(magic));
-    if (!in || !std::equal(magic, magic + sizeof(magic), kMagic)) throw fileError(path.string(), "not a subdfit checkpoint");
-    const auto length = get<std::uint64_t>(in);
-    if (!in || length > (1u << 20)) throw fileError(path.string(), "damaged checkpoint header");
-    std::string stored(length, '\0');
-    in.read(stored.data(), std::streamsize(length));
-    if (stored != fingerprint)
-        throw fileError(path.string(), "checkpoint was written for other inputs or settings; remove it or drop --resume");
-    CageFitter::State state;
-    state.steps = get<std::int32_t>(in);
-    state.samples = get<std::uint32_t>(in);
-    const auto groups = get<std::uint32_t>(in);
-    if (!in || state.steps < 0 || groups > 16) throw fileError(path.string(), "damaged checkpoint");
-    const std::uint64_t limit = std::uint64_t(1) << 32;
+std::optional<FitState> readCheckpoint(const std::filesystem::path& path, const std::string& fingerprint) {
+    const std::string name = path.string();
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) return std::nullopt;
+    const std::string bytes = io::readInputFile(path);
+    const std::string_view all(bytes);
+    if (all.substr(0, kMagicFamily.size()) != kMagicFamily) throw fileError(name, "not a subdfit checkpoint");
+    if (all.size() < kMagic.size() || all.substr(0, kMagic.size()) != kMagic)
+        throw fileError(name, "checkpoint of another format version (this subdfit reads version " +
+                                  std::string(1, kMagic.back()) + "); remove it to start over");
+    if (all.size() < kMagic.size() + sizeof(std::uint64_t)) throw fileError(name, "truncated checkpoint; remove it to start over");
+    const std::string_view payload = all.substr(0, all.size() - sizeof(std::uint64_t));
+    std::uint64_t stored;
+    std::memcpy(&stored, all.data() + payload.size(), sizeof stored);
+    if (hash64(payload) != stored)
+        throw fileError(name, "damaged checkpoint (its checksum does not match); remove it to start over");
+
+    Reader in(payload.substr(kMagic.size()), name);
+    if (in.getBytes() != fingerprint)
+        throw fileError(name, "checkpoint was written for other inputs or settings; remove it or drop --resume");
+    FitState state;
+    state.steps = in.get<std::int32_t>();
+    state.samples = in.get<std::uint32_t>();
+    const auto groups = in.get<std::uint32_t>();
+    if (state.steps < 0 || groups > 16) in.damaged("bad step or group count");
     for (std::uint32_t k = 0; k < groups; ++k) {
-        CageFitter::GroupState group;
-        group.adamSteps = get<std::int32_t>(in);
-        group.theta = getFloats(in, limit);
-        group.moment1 = getFloats(in, limit);
-        group.moment2 = getFloats(in, limit);
+        GroupState group;
+        group.adamSteps = in.get<std::int32_t>();
+        group.theta = in.getFloats();
+        group.moment1 = in.getFloats();
+        group.moment2 = in.getFloats();
         state.groups.push_back(std::move(group));
     }
-    if (!in) throw fileError(path.string(), "truncated checkpoint");
+    if (!in.atEnd()) in.damaged("bytes after the last group");
     return state;
 }
 

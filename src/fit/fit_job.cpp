@@ -8,7 +8,9 @@
 #include "gl/platform_defines.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
+#include "io/output_folder.h"
 #include "mesh/obj_writer.h"
+#include "util/error.h"
 
 namespace subdfit::fit {
 namespace {
@@ -58,6 +60,7 @@ std::vector<glm::vec4> renderHoldout(CageFitter& fitter, const FitScene& scene) 
 
 nlohmann::json runFit(const FitOptions& o, const FitHooks& hooks) {
     validate(o);
+    io::checkOutputFolder(o.out, {.ownMarkers = kFitResultMarkers, .force = o.force});
     auto context = context::createHeadlessContext(o.glProvider);
     gl::ProgramCache programs(gl::platformDefines());
     FitScene scene(o, programs);
@@ -69,23 +72,35 @@ nlohmann::json runFit(const FitOptions& o, gl::ProgramCache& programs, const con
     validate(o);
     const auto started = Clock::now();
     CageFitter fitter(programs, scene.cage, fitSettings(o));
+    FitHistory history = fitSteps(o, scene, fitter, o.out / "checkpoint.bin", hooks);
+    history.seconds = secondsSince(started);
+    return writeFitResults(o, programs, context, scene, fitter, history, hooks.evaluate);
+}
 
+FitHistory fitSteps(const FitOptions& o, FitScene& scene, CageFitter& fitter, const std::filesystem::path& checkpoint,
+                    const FitHooks& hooks) {
+    const auto started = Clock::now();
     FitHistory history;
     history.beforeImage = renderHoldout(fitter, scene);
     history.trainBefore = score(fitter, scene.training);
     history.holdoutBefore = score(fitter, scene.holdout);
 
-    const auto checkpointPath = o.out / "checkpoint.bin";
     const std::string runFingerprint = checkpointFingerprint(o, scene.cage, scene.reference);
     if (o.resume) {
-        if (const auto saved = readCheckpoint(checkpointPath, runFingerprint)) {
-            fitter.restore(*saved);
+        if (const auto saved = readCheckpoint(checkpoint, runFingerprint)) {
+            try {
+                fitter.restore(*saved);
+            } catch (const Error& e) {
+                throw fileError(checkpoint.string(), e.what());
+            }
             history.firstStep = std::min(saved->steps, o.steps);
+        } else if (hooks.note) {
+            hooks.note("no checkpoint at " + checkpoint.string() + " to resume: starting from step 0");
         }
     }
     auto saveCheckpoint = [&] {
-        std::filesystem::create_directories(o.out);
-        writeCheckpoint(checkpointPath, runFingerprint, fitter.state());
+        std::filesystem::create_directories(checkpoint.parent_path());
+        writeCheckpoint(checkpoint, runFingerprint, fitter.state());
     };
 
     const auto fitStarted = Clock::now();
@@ -112,9 +127,8 @@ nlohmann::json runFit(const FitOptions& o, gl::ProgramCache& programs, const con
     saveCheckpoint();
     history.steps = step;
     history.fitSeconds = secondsSince(fitStarted);
-
     history.seconds = secondsSince(started);
-    return writeFitResults(o, programs, context, scene, fitter, history, hooks.evaluate);
+    return history;
 }
 
 nlohmann::json writeFitResults(const FitOptions& o, gl::ProgramCache& programs, const context::GlContext& context,
@@ -147,16 +161,13 @@ nlohmann::json writeFitResults(const FitOptions& o, gl::ProgramCache& programs, 
         {"gl_provider", context.providerName()},
         {"atomic_float", glInfo.hasAtomicFloat},
         {"shader_variants", variantsJson(programs)},
-        {"settings",
-         {{"views", o.views}, {"holdout_views", o.holdoutViews}, {"resolution", o.resolution},
-          {"views_per_step", o.viewsPerStep}, {"samples_per_step", o.samplesPerStep}, {"tess_level", fitter.renderer().tessLevel()},
-          {"seed", o.seed}, {"epsilon", o.epsilon}, {"learning_rate", o.learningRate},
-          {"smoothing", o.smoothing}, {"maps", o.maps}, {"map_resolution", o.mapResolution},
-          {"maps_start", o.mapsStart}}},
+        {"settings", settingsJson(o)},
         {"cage", {{"path", o.cage.string()}, {"vertices", scene.cage.vertexCount()}, {"faces", scene.cage.faceCount()},
                   {"patches", fitter.renderer().patchCount()}}},
         {"reference", {{"path", o.reference.string()}, {"triangles", scene.reference.faceCount()}}},
     };
+
+    report["settings"]["tess_level"] = fitter.renderer().tessLevel();  // as rendered: a power of two
 
     // Outputs only now that everything has worked; each file appears whole or not at all.
     std::filesystem::create_directories(o.out);

@@ -5,6 +5,7 @@
 // the same fit on a cage of their own or step by step.
 #include <atomic>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -35,12 +36,19 @@ using MapsStart = std::function<void(CageFitter&, FitScene&, bool restored)>;
 
 struct FitHooks {
     ProgressSink progress{};
-    const std::atomic<bool>* cancel = nullptr;  // set during the fit: stop early, still write results
+    const std::atomic<bool>* cancel = nullptr;  // set during the fit: stop at the next step, checkpointed
     FitEvaluation evaluate{};
     MapsStart onMapsStart{};
+    std::function<void(const std::string& line)> note{};  // news for the user, e.g. "nothing to resume"
 };
 
-// Throws subdfit::Error for bad options or inputs before anything is written.
+// What a folder of fit results holds, so that a later run may write there again
+// (io::checkOutputFolder).
+inline const std::vector<std::string> kFitResultMarkers = {"report.json", "checkpoint.bin"};
+
+// Checks the output folder, loads the inputs, fits and writes the results. Interrupted (hooks
+// .cancel), it still writes the results of the steps taken. Throws subdfit::Error for bad
+// options or inputs before anything is written.
 nlohmann::json runFit(const FitOptions& options, const FitHooks& hooks = {});
 
 // The same on a scene built by the caller in the current context.
@@ -53,7 +61,15 @@ struct FitHistory {
     double seconds = 0.0, fitSeconds = 0.0;
     ViewSetScore trainBefore, holdoutBefore;
     std::vector<glm::vec4> beforeImage;  // held-out view 0 before fitting
+
+    bool interrupted(const FitOptions& o) const { return steps < o.steps; }
 };
+
+// The optimisation alone: scores the starting state, resumes from `checkpoint` when
+// options.resume asks (saying so through hooks.note when there is none), runs the steps up to
+// options.steps or until hooks.cancel, and leaves a checkpoint of where it stopped.
+FitHistory fitSteps(const FitOptions& options, FitScene& scene, CageFitter& fitter,
+                    const std::filesystem::path& checkpoint, const FitHooks& hooks = {});
 
 // Scores the fitter's current scene and writes cage.obj, the exports, before/after/target PNGs
 // and report.json (with what `evaluate` adds) into options.out, each file atomically. Returns

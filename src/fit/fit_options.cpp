@@ -41,6 +41,15 @@ void validate(const FitOptions& o) {
         throw fileError(o.out.string(), "exists and is not a folder");
 }
 
+nlohmann::json settingsJson(const FitOptions& o) {
+    return {{"views", o.views},           {"holdout_views", o.holdoutViews},     {"resolution", o.resolution},
+            {"steps", o.steps},           {"views_per_step", o.viewsPerStep},    {"samples_per_step", o.samplesPerStep},
+            {"tess_level", o.tessLevel},  {"seed", o.seed},                      {"epsilon", o.epsilon},
+            {"learning_rate", o.learningRate}, {"smoothing", o.smoothing},       {"maps", o.maps},
+            {"map_resolution", o.mapResolution}, {"maps_start", o.mapsStart},    {"draco", o.draco},
+            {"compact_maps", o.compactMaps}};
+}
+
 std::vector<int> viewsForStep(const FitOptions& o, int step) {
     std::vector<int> views;
     for (int j = 0; j < o.viewsPerStep; ++j) {

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "mesh/polygon_mesh.h"
 
 namespace subdfit::fit {
@@ -30,11 +32,16 @@ struct FitOptions {
     bool draco = false;           // fitted.glb with KHR_draco_mesh_compression
     bool compactMaps = false;     // ship maps as HALF EXR and 8-bit PNG (export/map_atlas.h)
     bool resume = false;          // continue from out/checkpoint.bin when it exists
+    bool force = false;           // write into a non-empty folder that holds no subdfit results
     int checkpointEvery = 100;    // steps between checkpoints (also written on interrupt and at the end)
 };
 
 // Throws subdfit::Error ("invalid option: ...") for anything impossible, before any work.
 void validate(const FitOptions& options);
+
+// The settings that shape the result (not where it goes, not how often it is checkpointed, not
+// which GL provider runs it), for the report and for telling one run's output from another's.
+nlohmann::json settingsJson(const FitOptions& options);
 
 // The training views of step `step`: shuffled rounds over all views, every view equally often.
 // A pure function of (seed, step), so a resumed run visits exactly what the first would have.

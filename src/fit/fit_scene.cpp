@@ -3,6 +3,7 @@
 #include "fit/image_metrics.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_loader.h"
+#include "util/error.h"
 
 namespace subdfit::fit {
 namespace {
@@ -10,6 +11,15 @@ namespace {
 mesh::PolygonMesh normalized(mesh::PolygonMesh mesh, const scene::SceneFrame& frame) {
     mesh.positions = frame.toNormalized(mesh.positions);
     return mesh;
+}
+
+// The frame is the reference's: its failures are about that file.
+scene::SceneFrame frameOf(const mesh::PolygonMesh& reference) {
+    try {
+        return scene::frameAround(reference.positions);
+    } catch (const Error& e) {
+        throw fileError(reference.sourcePath, e.what());
+    }
 }
 
 render::MeshRenderer rendererFor(const mesh::PolygonMesh& triangles) {
@@ -24,7 +34,7 @@ FitScene::FitScene(const FitOptions& options, gl::ProgramCache& programs)
 
 FitScene::FitScene(const FitOptions& o, gl::ProgramCache& programs, mesh::PolygonMesh cageWorldIn,
                    const mesh::PolygonMesh& referenceWorld)
-    : frame(scene::frameAround(referenceWorld.positions)),
+    : frame(frameOf(referenceWorld)),
       cageWorld(std::move(cageWorldIn)),
       cage(normalized(cageWorld, frame)),
       reference(normalized(mesh::triangulated(referenceWorld), frame)),

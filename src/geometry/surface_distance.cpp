@@ -1,5 +1,6 @@
 #include "geometry/surface_distance.h"
 #include "geometry/surface_queries.h"
+#include "util/interrupt.h"
 
 #include <glm/geometric.hpp>
 
@@ -38,7 +39,10 @@ std::vector<double> distancesTo(const std::vector<glm::vec3>& samples, const mes
     const SurfaceQueries queries(target);
     std::vector<double> out;
     out.reserve(samples.size());
-    for (const auto& p : samples) out.push_back(double(queries.closestDistance(p)));
+    for (const auto& p : samples) {
+        if (out.size() % 4096 == 0) throwIfStopRequested();
+        out.push_back(double(queries.closestDistance(p)));
+    }
     return out;
 }
 

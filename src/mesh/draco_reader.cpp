@@ -5,7 +5,8 @@
 
 #include <cmath>
 
-#include "mesh/file_bytes.h"
+#include "io/input_file.h"
+#include "mesh/input_limits.h"
 #include "util/error.h"
 
 namespace subdfit::mesh {
@@ -44,6 +45,9 @@ PolygonMesh decodeDracoMesh(const char* data, size_t size, const std::string& pa
     if (!decoded.ok()) throw fileError(path, "corrupt Draco mesh: " + decoded.status().error_msg_string());
     const draco::Mesh& dracoMesh = *decoded.value();
 
+    if (std::int64_t(dracoMesh.num_points()) > kMaxVertices || std::int64_t(dracoMesh.num_faces()) > kMaxTriangles)
+        throw fileError(path, "Draco mesh of " + std::to_string(dracoMesh.num_points()) + " points and " +
+                                  std::to_string(dracoMesh.num_faces()) + " faces, more than subdfit takes");
     const draco::PointAttribute* positions = positionAttribute(dracoMesh, positionUniqueId, path);
     PolygonMesh mesh;
     mesh.sourcePath = path;
@@ -68,7 +72,7 @@ PolygonMesh decodeDracoMesh(const char* data, size_t size, const std::string& pa
 }
 
 PolygonMesh readDraco(const std::filesystem::path& path) {
-    const std::string bytes = readFileBytes(path);
+    const std::string bytes = io::readInputFile(path);
     return decodeDracoMesh(bytes.data(), bytes.size(), path.string());
 }
 

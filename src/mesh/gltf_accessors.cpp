@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "mesh/input_limits.h"
 #include "util/error.h"
 
 namespace subdfit::mesh::gltf {
@@ -46,6 +47,9 @@ ElementSpan resolve(const tinygltf::Model& model, int index, int expectedType, c
     if (elementSize == 0)
         throw fileError(path, name + " has unsupported componentType " + std::to_string(accessor.componentType));
 
+    if (accessor.count > size_t(kMaxVertices))
+        throw fileError(path, name + " has " + std::to_string(accessor.count) + " elements, more than " +
+                                  std::to_string(kMaxVertices) + ", the most subdfit reads");
     ElementSpan span;
     span.count = accessor.count;
     span.componentType = accessor.componentType;

@@ -3,7 +3,9 @@
 #include <tiny_gltf.h>
 
 #include <cctype>
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string_view>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -11,11 +13,14 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "io/input_file.h"
 #include "mesh/draco_reader.h"
-#include "mesh/file_bytes.h"
-#include "mesh/gltf_draco_indices.h"
 #include "mesh/gltf_accessors.h"
+#include "mesh/gltf_file_access.h"
+#include "mesh/gltf_preflight.h"
+#include "mesh/input_limits.h"
 #include "util/error.h"
+#include "util/interrupt.h"
 
 namespace subdfit::mesh {
 
@@ -45,31 +50,35 @@ std::string oneLine(const std::string& text) {
 
 tinygltf::Model parseModel(const std::filesystem::path& path) {
     const std::string name = path.string();
-    std::string bytes = readFileBytes(path);
-    gltf::dropDracoPrimitiveIndices(bytes);
-    if (bytes.size() > UINT32_MAX) throw fileError(name, "larger than 4 GiB, which glTF cannot address");
-
-    tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(&skipImage, nullptr);
-    tinygltf::Model model;
-    std::string err, warn;
-    const std::string baseDir = path.has_parent_path() ? path.parent_path().string() : std::string(1, '.');
+    std::string bytes = io::readInputFile(path);
     // Binary or text by content, not by extension: a .gltf that is really a GLB still loads.
     const bool binary = bytes.size() >= 4 && std::string_view(bytes.data(), 4) == "glTF";
     std::string ext = path.extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext == ".glb" && !binary) throw fileError(name, "not a GLB file (it does not start with 'glTF')");
+    gltf::preflight(bytes, name);
+    if (bytes.size() > UINT32_MAX) throw fileError(name, "larger than 4 GiB, which glTF cannot address");
+
+    gltf::FileAccess files(path);
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(&skipImage, nullptr);
+    loader.SetFsCallbacks(files.callbacks());
+    tinygltf::Model model;
+    std::string err, warn;
     bool ok = false;
     try {
         ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
                                                   reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                  unsigned(bytes.size()), baseDir)
+                                                  unsigned(bytes.size()), files.baseDir())
                     : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()),
-                                                 baseDir);
+                                                 files.baseDir());
     } catch (const std::exception& e) {
         err = e.what();  // the JSON parser may throw on some inputs
         ok = false;
     }
+    throwIfStopRequested();  // a read cut short by a stop request is not a bad file
+    // An image outside the folder only warns in tinygltf (it is optional to it); here it is refused.
+    if (!files.refusal().empty()) throw fileError(name, files.refusal());
     if (!ok) throw fileError(name, std::string(binary ? "invalid GLB: " : "invalid glTF: ") + oneLine(err));
     return model;
 }
@@ -98,35 +107,47 @@ glm::dmat4 localTransform(const tinygltf::Node& node) {
     return m;
 }
 
-// Collects the scene's triangles into one PolygonMesh.
+// One mesh's triangles in its own space, decoded once however often the scene instances it.
+struct MeshTriangles {
+    std::vector<glm::vec3> positions;
+    std::vector<uint32_t> indices;  // a triangle list
+};
+
+// What unfolding part of a scene costs, counting every instance; saturating, so that a DAG of
+// 2^30 paths is counted without being walked.
+struct UnfoldCost {
+    static constexpr std::int64_t kSaturated = std::int64_t(1) << 60;
+    std::int64_t nodes = 0, triangles = 0, vertices = 0;
+
+    UnfoldCost& operator+=(const UnfoldCost& other) {
+        nodes = std::min(nodes + other.nodes, kSaturated);
+        triangles = std::min(triangles + other.triangles, kSaturated);
+        vertices = std::min(vertices + other.vertices, kSaturated);
+        return *this;
+    }
+};
+
+// Collects the scene's triangles into one PolygonMesh, after checking what that will cost.
 class SceneMerger {
 public:
     SceneMerger(const tinygltf::Model& model, std::string path)
-        : model_(model), path_(std::move(path)), onPath_(model.nodes.size(), 0) {
+        : model_(model), path_(std::move(path)), meshes_(model.meshes.size()), costs_(model.nodes.size()),
+          visit_(model.nodes.size(), Visit::New) {
         mesh_.sourcePath = path_;
     }
 
-    void addNode(int index, const glm::dmat4& parent, int depth) {
-        // glTF nodes form a forest; a cycle would recurse forever, and a deep chain would
-        // exhaust the stack.
-        constexpr int kMaxDepth = 1024;
-        if (index < 0 || size_t(index) >= model_.nodes.size())
-            throw fileError(path_, "node " + std::to_string(index) + " does not exist");
-        if (onPath_[size_t(index)]) throw fileError(path_, "node " + std::to_string(index) + " is its own ancestor");
-        if (depth > kMaxDepth) throw fileError(path_, "node hierarchy deeper than " + std::to_string(kMaxDepth));
-        const tinygltf::Node& node = model_.nodes[size_t(index)];
-        const glm::dmat4 world = parent * localTransform(node);
-        if (node.mesh >= 0) addMesh(node.mesh, world);
-        onPath_[size_t(index)] = 1;
-        for (int child : node.children) addNode(child, world, depth + 1);
-        onPath_[size_t(index)] = 0;
+    void addScene(const std::vector<int>& roots) {
+        UnfoldCost total;
+        for (int root : roots) total += cost(root, 0);
+        checkLimits(total);
+        for (int root : roots) addNode(root, glm::dmat4(1.0));
     }
 
-    void addMesh(int index, const glm::dmat4& transform) {
-        if (index < 0 || size_t(index) >= model_.meshes.size())
-            throw fileError(path_, "mesh " + std::to_string(index) + " does not exist");
-        for (const tinygltf::Primitive& primitive : model_.meshes[size_t(index)].primitives)
-            addPrimitive(primitive, transform);
+    void addEveryMesh() {
+        UnfoldCost total;
+        for (size_t m = 0; m < model_.meshes.size(); ++m) total += meshCost(int(m));
+        checkLimits(total);
+        for (size_t m = 0; m < model_.meshes.size(); ++m) append(triangles(int(m)), glm::dmat4(1.0));
     }
 
     PolygonMesh finish() {
@@ -135,7 +156,69 @@ public:
     }
 
 private:
-    void addPrimitive(const tinygltf::Primitive& primitive, const glm::dmat4& transform) {
+    enum class Visit : char { New, OnPath, Done };
+
+    void checkNode(int index) const {
+        if (index < 0 || size_t(index) >= model_.nodes.size())
+            throw fileError(path_, "node " + std::to_string(index) + " does not exist");
+    }
+
+    // glTF nodes form a forest, but files may share nodes between parents (a DAG) or loop.
+    UnfoldCost cost(int index, int depth) {
+        constexpr int kMaxDepth = 1024;  // a deeper chain would exhaust the stack
+        checkNode(index);
+        const size_t n = size_t(index);
+        if (visit_[n] == Visit::OnPath) throw fileError(path_, "node " + std::to_string(index) + " is its own ancestor");
+        if (visit_[n] == Visit::Done) return costs_[n];
+        if (depth > kMaxDepth) throw fileError(path_, "node hierarchy deeper than " + std::to_string(kMaxDepth));
+        visit_[n] = Visit::OnPath;
+        const tinygltf::Node& node = model_.nodes[n];
+        UnfoldCost c{.nodes = 1};
+        if (node.mesh >= 0) c += meshCost(node.mesh);
+        for (int child : node.children) c += cost(child, depth + 1);
+        visit_[n] = Visit::Done;
+        return costs_[n] = c;
+    }
+
+    UnfoldCost meshCost(int index) {
+        const MeshTriangles& mesh = triangles(index);
+        return {.triangles = std::int64_t(mesh.indices.size() / 3), .vertices = std::int64_t(mesh.positions.size())};
+    }
+
+    void checkLimits(const UnfoldCost& total) const {
+        auto refuse = [&](const std::string& what, std::int64_t count, std::int64_t limit) {
+            const std::string amount = count >= UnfoldCost::kSaturated ? "an astronomical number of" : std::to_string(count);
+            throw fileError(path_, "the scene unfolds into " + amount + " " + what + " (counting every instance), more than " +
+                                       std::to_string(limit) + ", the most subdfit takes");
+        };
+        if (total.nodes > kMaxNodeInstances) refuse("nodes", total.nodes, kMaxNodeInstances);
+        if (total.triangles > kMaxTriangles) refuse("triangles", total.triangles, kMaxTriangles);
+        if (total.vertices > kMaxVertices) refuse("vertices", total.vertices, kMaxVertices);
+    }
+
+    void addNode(int index, const glm::dmat4& parent) {
+        throwIfStopRequested();
+        const tinygltf::Node& node = model_.nodes[size_t(index)];
+        const glm::dmat4 world = parent * localTransform(node);
+        if (node.mesh >= 0) append(triangles(node.mesh), world);
+        for (int child : node.children) addNode(child, world);
+    }
+
+    const MeshTriangles& triangles(int index) {
+        if (index < 0 || size_t(index) >= model_.meshes.size())
+            throw fileError(path_, "mesh " + std::to_string(index) + " does not exist");
+        auto& cached = meshes_[size_t(index)];
+        if (!cached) {
+            MeshTriangles mesh;
+            for (const tinygltf::Primitive& primitive : model_.meshes[size_t(index)].primitives)
+                addPrimitive(primitive, mesh);
+            cached = std::move(mesh);
+        }
+        return *cached;
+    }
+
+    void addPrimitive(const tinygltf::Primitive& primitive, MeshTriangles& mesh) {
+        throwIfStopRequested();
         const int mode = primitive.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             mode != TINYGLTF_MODE_TRIANGLE_FAN)
@@ -160,7 +243,18 @@ private:
             }
             if (mode != TINYGLTF_MODE_TRIANGLES) indices = triangleList(indices, mode);
         }
-        append(positions, indices, transform);
+        if (indices.size() % 3 != 0)
+            throw fileError(path_, "a TRIANGLES primitive has " + std::to_string(indices.size()) +
+                                       " indices, not a multiple of 3");
+        for (uint32_t i : indices)
+            if (i >= positions.size())
+                throw fileError(path_, "index " + std::to_string(i) + " is out of range (the primitive has " +
+                                           std::to_string(positions.size()) + " vertices)");
+        const auto base = uint32_t(mesh.positions.size());
+        if (std::int64_t(base) + std::int64_t(positions.size()) > kMaxVertices)
+            throw fileError(path_, "a mesh has more than " + std::to_string(kMaxVertices) + " vertices");
+        mesh.positions.insert(mesh.positions.end(), positions.begin(), positions.end());
+        for (uint32_t i : indices) mesh.indices.push_back(base + i);
     }
 
     PolygonMesh decodeDraco(const tinygltf::Value& extension) {
@@ -184,27 +278,19 @@ private:
         return list;
     }
 
-    void append(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices,
-                const glm::dmat4& transform) {
-        if (indices.size() % 3 != 0)
-            throw fileError(path_, "a TRIANGLES primitive has " + std::to_string(indices.size()) +
-                                       " indices, not a multiple of 3");
+    void append(const MeshTriangles& triangles, const glm::dmat4& transform) {
         const size_t base = mesh_.positions.size();
-        if (base + positions.size() > size_t(INT32_MAX)) throw fileError(path_, "too many vertices");
-        for (const glm::vec3& p : positions) {
+        for (const glm::vec3& p : triangles.positions) {
             const glm::vec3 q(transform * glm::dvec4(p, 1.0));
             if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
                 throw fileError(path_, "a node transform makes a position non-finite");
             mesh_.positions.push_back(q);
         }
-        for (uint32_t i : indices)
-            if (i >= positions.size())
-                throw fileError(path_, "index " + std::to_string(i) + " is out of range (the primitive has " +
-                                           std::to_string(positions.size()) + " vertices)");
         // A mirroring transform turns triangles inside out; swap two corners to undo it.
         const bool mirrored = glm::determinant(transform) < 0.0;
-        for (size_t t = 0; t < indices.size(); t += 3) {
-            const int a = int(base + indices[t]), b = int(base + indices[t + 1]), c = int(base + indices[t + 2]);
+        const auto& v = triangles.indices;
+        for (size_t t = 0; t < v.size(); t += 3) {
+            const int a = int(base + v[t]), b = int(base + v[t + 1]), c = int(base + v[t + 2]);
             mesh_.faceIndices.insert(mesh_.faceIndices.end(), {a, mirrored ? c : b, mirrored ? b : c});
             mesh_.faceSizes.push_back(3);
         }
@@ -212,7 +298,9 @@ private:
 
     const tinygltf::Model& model_;
     std::string path_;
-    std::vector<char> onPath_;
+    std::vector<std::optional<MeshTriangles>> meshes_;
+    std::vector<UnfoldCost> costs_;
+    std::vector<Visit> visit_;
     PolygonMesh mesh_;
 };
 
@@ -225,12 +313,12 @@ PolygonMesh readGltf(const std::filesystem::path& path) {
 
     SceneMerger merger(model, name);
     if (model.scenes.empty()) {
-        for (size_t m = 0; m < model.meshes.size(); ++m) merger.addMesh(int(m), glm::dmat4(1.0));
+        merger.addEveryMesh();
     } else {
         const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
         if (size_t(scene) >= model.scenes.size())
             throw fileError(name, "default scene " + std::to_string(scene) + " does not exist");
-        for (int node : model.scenes[size_t(scene)].nodes) merger.addNode(node, glm::dmat4(1.0), 0);
+        merger.addScene(model.scenes[size_t(scene)].nodes);
     }
     return merger.finish();
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <new>
 #include <string>
 
 #include "mesh/draco_reader.h"
@@ -26,9 +27,15 @@ PolygonMesh readByExtension(const std::filesystem::path& path) {
 }  // namespace
 
 PolygonMesh loadMesh(const std::filesystem::path& path) {
-    PolygonMesh mesh = readByExtension(path);
-    validateMesh(mesh);
-    return mesh;
+    try {
+        PolygonMesh mesh = readByExtension(path);
+        validateMesh(mesh);
+        return mesh;
+    } catch (const std::bad_alloc&) {
+        // The limits (input_limits.h) keep a file's demands bounded; what remains is a machine
+        // without the memory for a file within them.
+        throw fileError(path.string(), "out of memory while reading it");
+    }
 }
 
 }  // namespace subdfit::mesh

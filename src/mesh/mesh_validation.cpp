@@ -1,15 +1,43 @@
 #include "mesh/mesh_validation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <unordered_set>
 
 #include "util/error.h"
+#include "util/warnings.h"
 
 namespace subdfit::mesh {
 
 namespace {
 
 bool inRange(int index, int count) { return index >= 0 && index < count; }
+
+// OpenSubdiv drops a crease whose two vertices share no edge with only a warning of its own;
+// an artist who tagged it meant something, so say which.
+void warnAboutCreasesOffEdges(const PolygonMesh& mesh) {
+    if (mesh.tags.creases.empty()) return;
+    std::unordered_set<std::uint64_t> edges;
+    auto key = [](int a, int b) { return std::uint64_t(std::uint32_t(std::min(a, b))) << 32 | std::uint32_t(std::max(a, b)); };
+    size_t corner = 0;
+    for (int size : mesh.faceSizes) {
+        for (int k = 0; k < size; ++k)
+            edges.insert(key(mesh.faceIndices[corner + size_t(k)], mesh.faceIndices[corner + size_t((k + 1) % size)]));
+        corner += size_t(size);
+    }
+    int offEdges = 0;
+    const Crease* first = nullptr;
+    for (const Crease& c : mesh.tags.creases)
+        if (!edges.count(key(c.v0, c.v1))) {
+            ++offEdges;
+            if (!first) first = &c;
+        }
+    if (first)
+        warn(mesh.sourcePath + ": " + std::to_string(offEdges) + " crease tag" + (offEdges > 1 ? "s join" : " joins") +
+             " vertices that share no edge (first: " + std::to_string(first->v0) + "-" + std::to_string(first->v1) +
+             "); OpenSubdiv ignores " + (offEdges > 1 ? "them" : "it"));
+}
 
 void validateTags(const PolygonMesh& mesh) {
     const std::string& path = mesh.sourcePath;
@@ -25,7 +53,9 @@ void validateTags(const PolygonMesh& mesh) {
     for (int f : mesh.tags.holes)
         if (!inRange(f, mesh.faceCount()))
             throw fileError(path, "hole tag names missing face " + std::to_string(f));
+    warnAboutCreasesOffEdges(mesh);
 }
+
 
 }  // namespace
 

@@ -3,9 +3,11 @@
 #include <cmath>
 #include <cstdint>
 
-#include "mesh/file_bytes.h"
+#include "io/input_file.h"
+#include "mesh/input_limits.h"
 #include "mesh/obj_tags.h"
 #include "mesh/obj_tokens.h"
+#include "util/interrupt.h"
 
 namespace subdfit::mesh {
 
@@ -22,7 +24,7 @@ public:
 
     void parse(std::string_view text) {
         while (!text.empty()) {
-            ++at_.line;
+            if (++at_.line % 65536 == 0) throwIfStopRequested();
             const size_t eol = text.find('\n');
             const std::string_view line = text.substr(0, eol);
             text.remove_prefix(eol == std::string_view::npos ? text.size() : eol + 1);
@@ -68,6 +70,8 @@ private:
             if (!std::isfinite(p[axis])) at_.fail("non-finite vertex coordinate " + quoted(token));
         }
         // Further numbers (w, or vertex colours some exporters append) are ignored.
+        if (std::int64_t(mesh_.positions.size()) >= kMaxVertices)
+            at_.fail("more than " + std::to_string(kMaxVertices) + " vertices, the most subdfit reads from one file");
         mesh_.positions.push_back(p);
     }
 
@@ -78,6 +82,8 @@ private:
             ++size;
         }
         if (size < 3) at_.fail("face with " + std::to_string(size) + " vertices (needs at least 3)");
+        if (std::int64_t(mesh_.faceIndices.size()) > kMaxFaceCorners)
+            at_.fail("more than " + std::to_string(kMaxFaceCorners) + " face corners, the most subdfit reads from one file");
         mesh_.faceSizes.push_back(size);
     }
 
@@ -117,7 +123,7 @@ private:
 PolygonMesh readObj(const std::filesystem::path& path) {
     PolygonMesh mesh;
     mesh.sourcePath = path.string();
-    const std::string text = readFileBytes(path);
+    const std::string text = io::readInputFile(path);
     ObjParser parser(mesh);
     parser.parse(text);
     parser.finish();

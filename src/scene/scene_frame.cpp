@@ -24,7 +24,7 @@ std::vector<glm::vec3> SceneFrame::toWorld(const std::vector<glm::vec3>& points)
 }
 
 SceneFrame frameAround(const std::vector<glm::vec3>& points) {
-    if (points.empty()) throw Error("scene has no points");
+    if (points.empty()) throw Error("no vertices");
     // Bounds in double: a 1e4-sized scene with 1e-4 detail must not lose its centre to rounding.
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (const auto& p : points) {
@@ -32,8 +32,8 @@ SceneFrame frameAround(const std::vector<glm::vec3>& points) {
         hi = glm::max(hi, glm::dvec3(p));
     }
     const double radius = 0.5 * glm::length(hi - lo);
-    if (!std::isfinite(radius)) throw Error("scene bounds are not finite");
-    if (radius <= 0.0) throw Error("scene is a single point: every vertex coincides");
+    if (!std::isfinite(radius)) throw Error("the bounds of its vertices are not finite");
+    if (radius <= 0.0) throw Error("every vertex is at the same point: there is nothing to see");
     SceneFrame frame;
     frame.center = glm::vec3(0.5 * (lo + hi));
     frame.scale = float(1.0 / radius);

@@ -1,6 +1,7 @@
 #include "scene/target_set.h"
 
 #include "render/render_target.h"
+#include "util/interrupt.h"
 
 namespace subdfit::scene {
 
@@ -11,6 +12,7 @@ TargetSet::TargetSet(gl::ProgramCache& programs, const render::MeshRenderer& ref
       colors_(GL_RGBA32F, resolution, resolution, std::max(1, int(cameras_.size()))) {
     render::RenderTarget target(resolution, resolution);
     for (int i = 0; i < size(); ++i) {
+        throwIfStopRequested();
         reference.draw(programs, cameras_[i], target);
         glCopyImageSubData(target.color().id(), GL_TEXTURE_2D, 0, 0, 0, 0, colors_.id(), GL_TEXTURE_2D_ARRAY,
                            0, 0, 0, i, resolution, resolution, 1);

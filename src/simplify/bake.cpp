@@ -8,6 +8,7 @@
 #include "geometry/surface_queries.h"
 #include "mesh/mesh_geometry.h"
 #include "subdiv/limit_evaluator.h"
+#include "util/interrupt.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -89,6 +90,7 @@ exporter::FittedMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
     std::vector<std::optional<geometry::RayHit>> hits(nodes);
     std::vector<float> heights(nodes, 0.0f);
     for (size_t n = 0; n < nodes; ++n) {
+        if (n % 4096 == 0) throwIfStopRequested();
         if (sites[n].face < 0 || !limit.hasSurface(sites[n].face, 0.5f, 0.5f)) continue;
         samples[n] = sampleAt(limit, sites[n], options.resolution, cage.positions);
         normals[n] = unitNormal(samples[n].dPdu, samples[n].dPdv, glm::vec3(0.0f, 0.0f, 1.0f));

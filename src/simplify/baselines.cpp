@@ -8,6 +8,7 @@
 #include "render/mesh_renderer.h"
 #include "simplify/bake.h"
 #include "simplify/decimate.h"
+#include "util/interrupt.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -37,6 +38,7 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
     const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
     const auto path = settings.dir / "decimated.glb";
     auto ship = [&](int triangles) {
+        throwIfStopRequested();
         mesh::PolygonMesh decimated = decimate(welded, triangles);
         const auto normals = mesh::vertexNormals(decimated);  // normalised or not, the same unit normals
         const auto written = exporter::writeMeshGlb(path, scene.frame.toWorld(decimated.positions), normals,

@@ -1,12 +1,17 @@
 #include "simplify/batch.h"
 
+#include <cctype>
 #include <charconv>
 #include <chrono>
-#include <fstream>
 #include <map>
 
 #include "io/atomic_file.h"
+#include "io/file_lock.h"
+#include "io/input_file.h"
+#include "io/output_folder.h"
 #include "util/error.h"
+#include "util/hash.h"
+#include "util/interrupt.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -14,20 +19,69 @@ namespace {
 namespace fs = std::filesystem;
 constexpr const char* kStatusFile = "status.json";
 
-std::string readState(const fs::path& dir) {
-    std::ifstream in(dir / kStatusFile);
-    if (!in) return "";
-    const auto status = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-    return status.is_object() && status.contains("state") && status["state"].is_string() ? status["state"].get<std::string>()
-                                                                                        : "";
+// The status of an asset folder; an empty object when there is none or it does not parse.
+nlohmann::json readStatus(const fs::path& dir) {
+    try {
+        const std::string text = io::readInputFile(dir / kStatusFile, 1 << 20);
+        auto status = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+        return status.is_object() ? status : nlohmann::json::object();
+    } catch (const Error&) {
+        return nlohmann::json::object();
+    }
 }
 
-void writeStatus(const fs::path& dir, const std::string& state, const nlohmann::json& details = {}) {
+std::string stateOf(const nlohmann::json& status) {
+    return status.contains("state") && status["state"].is_string() ? status["state"].get<std::string>() : "";
+}
+
+void writeStatus(const fs::path& dir, const std::string& state, const nlohmann::json& details) {
     nlohmann::json status = {{"state", state},
                              {"time", std::chrono::duration_cast<std::chrono::seconds>(
                                           std::chrono::system_clock::now().time_since_epoch()).count()}};
     if (details.is_object()) status.update(details);
     io::writeTextAtomically(dir / kStatusFile, status.dump(2) + "\n");
+}
+
+// What an asset folder was made from: the input file (path, size, content) and the settings.
+nlohmann::json identityOf(const BatchItem& item) {
+    const fs::path& reference = item.options.fit.reference;
+    std::error_code ec;
+    const fs::path resolved = fs::weakly_canonical(reference, ec);
+    const std::string digest = io::fileDigest(reference);  // throws, naming the file, if it is unreadable
+    return {{"input", {{"path", (ec ? reference : resolved).string()}, {"bytes", fs::file_size(reference, ec)},
+                       {"xxh3_128", digest}}},
+            {"settings", settingsJson(item.options)}};
+}
+
+bool sameIdentity(const nlohmann::json& status, const nlohmann::json& identity) {
+    return status.contains("input") && status["input"] == identity["input"] && status.contains("settings") &&
+           status["settings"] == identity["settings"];
+}
+
+// Every path an asset touches, checked to lie inside OUT and not to be a symlink someone planted.
+struct AssetPaths {
+    fs::path finished, partial, lock;
+
+    AssetPaths(const fs::path& out, const std::string& name)
+        : finished(out / name), partial(out / (name + ".partial")), lock(out / kBatchFolder / "locks" / (name + ".lock")) {
+        for (const fs::path* p : {&finished, &partial, &lock}) {
+            if (!io::isStrictlyInside(*p, out)) throw fileError(p->string(), "lies outside the batch's --out folder");
+            std::error_code ec;
+            if (fs::is_symlink(fs::symlink_status(*p, ec)))
+                throw fileError(p->string(), "is a symbolic link; the batch will not follow it");
+        }
+    }
+};
+
+// Statuses are bookkeeping: failing to write one is reported, never thrown, so that an error
+// handler cannot itself fail and stop the batch.
+void writeStatusOrSay(const fs::path& dir, const std::string& state, const nlohmann::json& details,
+                      const BatchLog& say, const std::string& name) {
+    try {
+        writeStatus(dir, state, details);
+    } catch (const std::exception& e) {
+        say(name + ": could not record status '" + state + "': " + e.what());
+    }
 }
 
 }  // namespace
@@ -44,61 +98,132 @@ Shard parseShard(const std::string& text) {
     return shard;
 }
 
-std::vector<std::string> uniqueNames(const std::vector<fs::path>& references) {
-    std::map<std::string, int> seen;
-    std::vector<std::string> names;
-    for (const auto& path : references) {
-        const std::string stem = path.stem().string().empty() ? "asset" : path.stem().string();
-        const int n = ++seen[stem];
-        names.push_back(n == 1 ? stem : stem + "_" + std::to_string(n));
+std::string assetName(const std::string& label, const std::string& identity) {
+    constexpr size_t kMaxLabel = 64;
+    std::string safe;
+    for (const char c : label) {
+        if (safe.size() == kMaxLabel) break;
+        // A leading '.' would hide the folder (or make it . or ..); a leading '-' reads as an option.
+        const bool keep = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || ((c == '.' || c == '-') && !safe.empty());
+        safe += keep && static_cast<unsigned char>(c) < 0x80 ? c : '_';
     }
-    return names;
+    if (safe.empty()) safe = "asset";
+    return safe + "-" + hexDigits(hash64(identity), 12);
+}
+
+std::string assetIdentity(const SimplifyOptions& options) {
+    std::error_code ec;
+    const fs::path resolved = fs::weakly_canonical(fs::absolute(options.fit.reference), ec);
+    return (ec ? options.fit.reference : resolved).string() + "\n" + settingsJson(options).dump();
+}
+
+std::vector<std::string> nameItems(std::vector<BatchItem>& items, const std::vector<fs::path>& written) {
+    std::vector<std::string> dropped;
+    std::map<std::string, int> firstLine;
+    std::vector<BatchItem> kept;
+    for (size_t k = 0; k < items.size(); ++k) {
+        // The label is the path as written, without its extension; a path that climbs out of
+        // the manifest's folder or is absolute says little, so only its file name is kept.
+        const fs::path path = written[k].lexically_normal();
+        const bool local = path.is_relative() && !path.empty() && *path.begin() != "..";
+        const std::string label = local ? (path.parent_path() / path.stem()).string() : path.stem().string();
+        BatchItem item = std::move(items[k]);
+        item.name = assetName(label, assetIdentity(item.options));
+        if (const auto [at, fresh] = firstLine.emplace(item.name, item.line); !fresh) {
+            dropped.push_back("line " + std::to_string(item.line) + " repeats the asset of line " +
+                              std::to_string(at->second) + " (same input and settings): done once");
+            continue;
+        }
+        kept.push_back(std::move(item));
+    }
+    items = std::move(kept);
+    return dropped;
 }
 
 BatchSummary runBatch(const std::vector<BatchItem>& items, const fs::path& out, Shard shard,
-                      const fit::FitHooks& hooks, const BatchLog& log) {
+                      const fit::FitHooks& hooks, const BatchLog& log, bool force) {
     auto say = [&](const std::string& line) { if (log) log(line); };
+    auto stopRequestedHere = [&] { return stopRequested() || (hooks.cancel && hooks.cancel->load()); };
+    io::checkOutputFolder(out, {.ownMarkers = {kBatchFolder}, .force = force});
+    fs::create_directories(out / kBatchFolder);
+
     BatchSummary summary;
-    fs::create_directories(out);
     for (size_t k = 0; k < items.size(); ++k) {
         if (int(k % size_t(shard.count)) != shard.index) {
             ++summary.otherShards;
             continue;
         }
-        const BatchItem& item = items[k];
-        const fs::path finished = out / item.name, partial = out / (item.name + ".partial");
-        if (readState(finished) == "done") {
-            ++summary.skipped;
-            say(item.name + ": done already, skipped");
-            continue;
-        }
-        if (hooks.cancel && hooks.cancel->load()) {
+        if (stopRequestedHere()) {
             summary.interrupted = true;
             break;
         }
-        fs::create_directories(partial);
-        const bool resuming = fs::exists(partial / "checkpoint.bin");
-        say(item.name + (resuming ? ": resuming from its checkpoint" : ": starting"));
-        writeStatus(partial, "running", {{"reference", item.options.fit.reference.string()}});
-
-        SimplifyOptions options = item.options;
-        options.fit.out = partial;
-        options.fit.resume = true;
+        const BatchItem& item = items[k];
         try {
-            const auto report = runSimplify(options, hooks);
-            if (report["interrupted"].get<bool>()) {
-                writeStatus(partial, "interrupted", {{"steps", report["steps"]}});
-                summary.interrupted = true;
-                break;
+            const AssetPaths paths(out, item.name);
+            const auto lock = io::FileLock::tryAcquire(paths.lock);
+            if (!lock) {
+                ++summary.runningElsewhere;
+                say(item.name + ": running elsewhere (another process holds its lock), skipped");
+                continue;
             }
-            writeStatus(partial, "done", {{"psnr_holdout", report["psnr_holdout"]}, {"bytes", report["bytes"]}});
-            fs::remove_all(finished);  // a stale folder without a done status
-            fs::rename(partial, finished);
-            ++summary.finished;
+            // Under the lock, the folders can only change by our hand.
+            const nlohmann::json identity = [&] {
+                try {
+                    return identityOf(item);
+                } catch (const Interrupted&) {
+                    throw;
+                } catch (const Error&) {  // an unreadable input: simplify will say why, in its status
+                    return nlohmann::json{{"input", {{"path", item.options.fit.reference.string()}}}};
+                }
+            }();
+            const nlohmann::json finishedStatus = readStatus(paths.finished);
+            if (stateOf(finishedStatus) == "done") {
+                if (sameIdentity(finishedStatus, identity)) {
+                    ++summary.skipped;
+                    say(item.name + ": done already, skipped");
+                    continue;
+                }
+                say(item.name + ": its finished folder was made from another version of the input: redoing it");
+            }
+            if (fs::exists(paths.partial) && !sameIdentity(readStatus(paths.partial), identity)) {
+                say(item.name + ": its partial work was for another version of the input: starting over");
+                fs::remove_all(paths.partial);
+            }
+            fs::create_directories(paths.partial);
+
+            SimplifyOptions options = item.options;
+            options.fit.out = paths.partial;
+            options.fit.resume = fs::exists(paths.partial / "checkpoint.bin");
+            options.fit.force = true;  // the folder is ours, status.json and all
+            say(item.name + (options.fit.resume ? ": resuming from its checkpoint" : ": starting"));
+            writeStatus(paths.partial, "running", identity);
+            try {
+                const auto report = runSimplify(options, hooks);
+                nlohmann::json details = identity;
+                details.update({{"psnr_holdout", report["psnr_holdout"]}, {"bytes", report["bytes"]}});
+                writeStatus(paths.partial, "done", details);
+                fs::remove_all(paths.finished);  // a stale folder: not done, or from another input
+                fs::rename(paths.partial, paths.finished);
+                ++summary.finished;
+            } catch (const Interrupted&) {
+                writeStatusOrSay(paths.partial, "interrupted", identity, say, item.name);
+                throw;
+            }
+        } catch (const Interrupted& e) {
+            say(item.name + ": " + e.what());
+            summary.interrupted = true;
+            break;
         } catch (const std::exception& e) {
-            writeStatus(partial, "failed", {{"error", e.what()}});
-            say(item.name + ": failed: " + e.what());
+            // Recorded where the asset's work would be, when that folder is ours to write.
             ++summary.failed;
+            say(item.name + ": failed: " + e.what());
+            const fs::path partial = out / (item.name + ".partial");
+            std::error_code ec;
+            if (io::isStrictlyInside(partial, out) && !fs::is_symlink(fs::symlink_status(partial, ec))) {
+                fs::create_directories(partial, ec);
+                writeStatusOrSay(partial, "failed", {{"error", e.what()}, {"reference", item.options.fit.reference.string()}},
+                                 say, item.name);
+            }
         }
     }
     return summary;

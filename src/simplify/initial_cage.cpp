@@ -5,6 +5,7 @@
 #include "simplify/decimate.h"
 #include "subdiv/limit_evaluator.h"
 #include "util/error.h"
+#include "util/interrupt.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -75,6 +76,7 @@ mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialC
     const std::vector<glm::vec3> targets = cage.positions;
     const VertexLimits limitOf(cage);
     for (int i = 0; i < options.interpolationIterations; ++i) {
+        throwIfStopRequested();
         const auto limit = limitOf(cage.positions);
         for (size_t v = 0; v < targets.size(); ++v) cage.positions[v] += targets[v] - limit[v];
     }

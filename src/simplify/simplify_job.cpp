@@ -1,6 +1,10 @@
 #include "simplify/simplify_job.h"
 
+#include <chrono>
+
 #include "gl/platform_defines.h"
+#include "io/output_folder.h"
+#include "io/staged_folder.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
 #include "simplify/bake.h"
@@ -8,6 +12,7 @@
 #include "simplify/comparison_image.h"
 #include "simplify/initial_cage.h"
 #include "util/error.h"
+#include "util/interrupt.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -85,24 +90,30 @@ void validate(const SimplifyOptions& o) {
     fit::validate(o.fit);
 }
 
+nlohmann::json settingsJson(const SimplifyOptions& o) {
+    nlohmann::json settings = fit::settingsJson(o.fit);
+    settings["faces"] = o.faces;
+    settings["surface_samples"] = o.surfaceSamples;
+    return settings;
+}
+
 nlohmann::json runSimplify(const SimplifyOptions& options, const fit::FitHooks& hooks) {
     validate(options);
+    io::checkOutputFolder(options.fit.out, {.ownMarkers = fit::kFitResultMarkers, .force = options.fit.force});
+    const auto started = std::chrono::steady_clock::now();
     SimplifyOptions o = options;
     const mesh::PolygonMesh reference = mesh::loadMesh(o.fit.reference);
-    mesh::PolygonMesh cage = initialCage(reference, {.faces = o.faces});
+    const mesh::PolygonMesh cage = initialCage(reference, {.faces = o.faces});
 
     auto context = context::createHeadlessContext(o.fit.glProvider);
     gl::ProgramCache programs(gl::platformDefines());
     fit::FitScene scene(o.fit, programs, cage, reference);
+    fit::CageFitter fitter(programs, scene.cage, fit::fitSettings(o.fit));
 
-    std::filesystem::create_directories(o.fit.out);
-    o.fit.cage = o.fit.out / "initial_cage.obj";
-    mesh::writeObj(o.fit.cage, cage);
-
-    fit::FitHooks withEvaluation = hooks;
+    fit::FitHooks withBake = hooks;
     // Coarse to fine: the maps start from a bake onto the cage as fitted so far (what the bake
     // route would ship for this cage), and the fit only refines them from there.
-    withEvaluation.onMapsStart = [&](fit::CageFitter& fitter, fit::FitScene& fitted, bool restored) {
+    withBake.onMapsStart = [&](fit::CageFitter& fitter, fit::FitScene& fitted, bool restored) {
         auto* parameters = fitter.maps();
         if (!restored) {
             mesh::PolygonMesh current = fitted.cage;
@@ -116,12 +127,31 @@ nlohmann::json runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
         fitter.setOptimised(fitter.vertexGroup(), false);
         for (auto* g : parameters->groups()) fitter.setRates(*g, g->settings().epsilon, kRefineRate * fitter.baseLearningRate(*g));
     };
-    withEvaluation.evaluate = [&](fit::CageFitter& fitter, fit::FitScene& fitted, const nlohmann::json& exports) {
-        auto report = evaluate(o, programs, scene.cage, fitter, fitted, exports);
-        report["simplify"] = {{"faces_requested", o.faces}, {"reference_triangles", fitted.reference.faceCount()}};
-        return report;
-    };
-    return fit::runFit(o.fit, programs, *context, scene, withEvaluation);
+    const auto checkpoint = o.fit.out / "checkpoint.bin";
+    fit::FitHistory history = fit::fitSteps(o.fit, scene, fitter, checkpoint, withBake);
+    // Unlike `fit`, an interrupted simplify writes no results: they would cost the baselines'
+    // time after the user asked to stop, and the checkpoint keeps the steps taken.
+    if (history.interrupted(o.fit))
+        throw Interrupted("interrupted at step " + std::to_string(history.steps) + " of " + std::to_string(o.fit.steps) +
+                          "; " + checkpoint.string() + " keeps the progress: run again with --resume");
+
+    // Every result lands in one commit, or none does.
+    io::StagedFolder staged(o.fit.out);
+    fit::FitOptions results = o.fit;
+    results.out = staged.path();
+    results.cage = o.fit.out / "initial_cage.obj";
+    mesh::writeObj(staged.path() / "initial_cage.obj", cage);
+    history.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    SimplifyOptions stagedOptions = o;
+    stagedOptions.fit = results;
+    auto report = fit::writeFitResults(results, programs, *context, scene, fitter, history,
+                                       [&](fit::CageFitter& fitted, fit::FitScene& fittedScene, const nlohmann::json& exports) {
+        auto extra = evaluate(stagedOptions, programs, scene.cage, fitted, fittedScene, exports);
+        extra["simplify"] = {{"faces_requested", o.faces}, {"reference_triangles", fittedScene.reference.faceCount()}};
+        return extra;
+    });
+    staged.commit();
+    return report;
 }
 
 }  // namespace subdfit::simplify

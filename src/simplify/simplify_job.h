@@ -33,6 +33,9 @@ struct SimplifyOptions {
 // Throws subdfit::Error ("invalid option: ...") before any work.
 void validate(const SimplifyOptions& options);
 
+// The fit's settings and simplify's own (see fit::settingsJson).
+nlohmann::json settingsJson(const SimplifyOptions& options);
+
 // Resumes from DIR/checkpoint.bin with options.fit.resume. Throws subdfit::Error for bad
 // inputs before anything is written.
 nlohmann::json runSimplify(const SimplifyOptions& options, const fit::FitHooks& hooks = {});

@@ -3,9 +3,11 @@
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
+#include "mesh/input_limits.h"
 #include "subdiv/osd_messages.h"
 #include "util/error.h"
 
@@ -26,11 +28,27 @@ void checkIndices(const mesh::PolygonMesh& mesh) {
     if (std::accumulate(mesh.faceSizes.begin(), mesh.faceSizes.end(), std::size_t(0)) !=
         mesh.faceIndices.size())
         fail("face sizes do not add up to the number of face indices");
-    for (int f = 0; f < faceCount; ++f)
-        if (mesh.faceSizes[f] < 3)
-            fail("face " + std::to_string(f) + " has fewer than 3 vertices");
-    for (int v : mesh.faceIndices)
+    for (int f = 0; f < faceCount; ++f) {
+        if (mesh.faceSizes[f] < 3) fail("face " + std::to_string(f) + " has fewer than 3 vertices");
+        if (mesh.faceSizes[f] > mesh::kMaxCageFaceSize)
+            fail("face " + std::to_string(f) + " has " + std::to_string(mesh.faceSizes[f]) +
+                 " vertices; a cage face may have at most " + std::to_string(mesh::kMaxCageFaceSize) +
+                 " (the limit surface around it costs time growing with the cube of its size): split it");
+    }
+    std::vector<int> valence(size_t(vertexCount), 0);
+    for (int v : mesh.faceIndices) {
         if (!isVertex(v)) fail("face vertex index " + std::to_string(v) + " is out of range");
+        if (++valence[size_t(v)] > mesh::kMaxCageValence)
+            fail("vertex " + std::to_string(v) + " is shared by more than " + std::to_string(mesh::kMaxCageValence) +
+                 " faces, the most a cage vertex may have (the limit surface around it costs time growing with the "
+                 "cube of its valence)");
+    }
+    if (mesh.tags.holes.size() >= size_t(faceCount)) {
+        std::vector<char> hole(size_t(faceCount), 0);
+        for (int h : mesh.tags.holes)
+            if (h >= 0 && h < faceCount) hole[size_t(h)] = 1;
+        if (std::count(hole.begin(), hole.end(), 1) == faceCount) fail("every face is tagged as a hole: nothing to render");
+    }
 
     const auto isSharpness = [](float s) { return std::isfinite(s) && s >= 0.0f; };
     for (const mesh::Crease& c : mesh.tags.creases)

@@ -13,6 +13,7 @@
 #include "mesh/procedural.h"
 #include "simplify/batch.h"
 #include "simplify/simplify_job.h"
+#include "util/interrupt.h"
 #include "scene_fixture.h"
 #include "test_paths.h"
 
@@ -92,9 +93,13 @@ TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
 
     options.fit.out = dir / "resumed";
     std::atomic<bool> cancel{false};
-    const auto interrupted = simplify::runSimplify(
-        options, {.progress = [&](const fit::Progress& p) { cancel = cancel || p.step >= 14; }, .cancel = &cancel});
-    ASSERT_EQ(interrupted["steps"], 14);
+    // Interrupted, simplify keeps its checkpoint and writes no results.
+    EXPECT_THROW(simplify::runSimplify(options, {.progress = [&](const fit::Progress& p) { cancel = cancel || p.step >= 14; },
+                                                 .cancel = &cancel}),
+                 Interrupted);
+    EXPECT_TRUE(fs::exists(dir / "resumed" / "checkpoint.bin"));
+    EXPECT_FALSE(fs::exists(dir / "resumed" / "report.json"));
+    EXPECT_FALSE(fs::exists(dir / "resumed" / "initial_cage.obj"));
     options.fit.resume = true;
     const auto resumed = simplify::runSimplify(options);
     EXPECT_EQ(resumed["resumed_from_step"], 14);

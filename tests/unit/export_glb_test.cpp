@@ -16,7 +16,7 @@
 #include "export/limit_tessellation.h"
 #include "export/map_atlas.h"
 #include "maps/texel_layout.h"
-#include "mesh/file_bytes.h"
+#include "io/input_file.h"
 #include "mesh/gltf_reader.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/procedural.h"
@@ -102,7 +102,7 @@ struct Glb {
 
 // Our own reading of the container, checked against spec 4.4 byte for byte.
 Glb readGlb(const fs::path& path) {
-    const std::string bytes = mesh::readFileBytes(path);
+    const std::string bytes = io::readInputFile(path);
     auto u32 = [&](size_t offset) {
         uint32_t v;
         std::memcpy(&v, bytes.data() + offset, 4);

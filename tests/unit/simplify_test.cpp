@@ -184,10 +184,5 @@ TEST(SimplifyBatch, ShardsParseAndRefuse) {
     for (const char* bad : {"5/5", "-1/3", "1/0", "1", "a/b", "1/2x", ""}) EXPECT_THROW(parseShard(bad), Error) << bad;
 }
 
-TEST(SimplifyBatch, NamesAreUnique) {
-    EXPECT_EQ(uniqueNames({"a/duck.glb", "b/duck.obj", "spot.obj", "c/duck.gltf"}),
-              (std::vector<std::string>{"duck", "duck_2", "spot", "duck_3"}));
-}
-
 }  // namespace
 }  // namespace subdfit::simplify

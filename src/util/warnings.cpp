@@ -1,0 +1,26 @@
+#include "util/warnings.h"
+
+#include <cstdio>
+#include <mutex>
+
+namespace subdfit {
+namespace {
+
+std::mutex mutex;
+WarningSink current;
+
+}  // namespace
+
+void warn(const std::string& message) {
+    std::lock_guard lock(mutex);
+    if (current) current(message);
+    else std::fprintf(stderr, "subdfit: warning: %s\n", message.c_str());
+}
+
+WarningSink setWarningSink(WarningSink sink) {
+    std::lock_guard lock(mutex);
+    std::swap(current, sink);
+    return sink;
+}
+
+}  // namespace subdfit
