@@ -6,6 +6,7 @@
 
 #include "common/command_line.h"
 #include "bench_commands.h"
+#include "io/output_folder.h"
 #include "util/error.h"
 
 int main(int argc, char** argv) {
@@ -66,6 +67,13 @@ int main(int argc, char** argv) {
 
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit-bench")) return *exitCode;
     try {
+        // --out is checked before minutes of benchmarking, not when the first CSV is written.
+        const std::pair<CLI::App*, const std::filesystem::path*> outputs[] = {
+            {stepCostCommand, &stepCost.out}, {lumpyCommand, &lumpy.out},       {mapsCommand, &mapsGain.out},
+            {simplifyCommand, &tradeoff.out}, {gradientCommand, &gradient.out}, {accuracyCommand, &accuracy.out},
+            {soupCommand, &soup.out}};
+        for (const auto& [command, out] : outputs)
+            if (command->parsed() && !out->empty()) subdfit::io::checkOutputFolder(*out, {.force = true});
         if (stepCostCommand->parsed()) return subdfit::bench::runStepCost(stepCost);
         if (lumpyCommand->parsed()) return subdfit::bench::runLumpySphere(lumpy);
         if (mapsCommand->parsed()) return subdfit::bench::runMapsGain(mapsGain);

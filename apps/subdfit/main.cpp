@@ -96,7 +96,7 @@ int main(int argc, char** argv) {
             if (summary.failed > 0) return 1;
         }
     } catch (const subdfit::Interrupted& e) {
-        std::fprintf(stderr, "subdfit: %s\n", e.what());
+        std::fprintf(stderr, "subdfit: %s%s\n", e.what(), simplifyCommand->parsed() ? " (--resume continues)" : "");
         return 130;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "subdfit: error: out of memory\n");

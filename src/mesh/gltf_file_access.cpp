@@ -28,34 +28,35 @@ FileAccess::FileAccess(const fs::path& gltfPath) {
     baseDir_ = folder_.string();
 }
 
-bool FileAccess::mayRead(const std::string& joinedPath) {
+std::string FileAccess::resolve(const std::string& joinedPath) {
     // tinygltf tries baseDir/uri, then ./uri: only the first is ours to allow.
-    const fs::path path(joinedPath);
-    if (!isInside(path.lexically_normal(), folder_)) return false;
+    const fs::path path = fs::path(joinedPath).lexically_normal();
+    if (!isInside(path, folder_)) return "";
     std::error_code ec;
     const fs::path resolved = fs::weakly_canonical(path, ec);
     std::string problem;
     if (ec) problem = "cannot be resolved: " + ec.message();
     else if (!isInside(resolved, folder_)) problem = "resolves outside the glTF file's folder";
     else problem = io::inputFileProblem(resolved);
-    if (problem.empty()) return true;
+    if (problem.empty()) return resolved.string();
     if (refusal_.empty()) refusal_ = "external file '" + path.lexically_relative(folder_).string() + "' " + problem;
-    return false;
+    return "";
 }
 
 tinygltf::FsCallbacks FileAccess::callbacks() {
     tinygltf::FsCallbacks fs{};
     fs.user_data = this;
     fs.ExpandFilePath = [](const std::string& path, void*) { return path; };  // no ~ or $VAR expansion
-    fs.FileExists = [](const std::string& path, void* user) { return self(user).mayRead(path); };
+    fs.FileExists = [](const std::string& path, void* user) { return !self(user).resolve(path).empty(); };
     fs.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
-        if (!self(user).mayRead(path)) {
+        const std::string file = self(user).resolve(path);
+        if (file.empty()) {
             if (err) *err += self(user).refusal();
             return false;
         }
         try {
             out->clear();
-            io::readInputFile(path, [&](std::string_view chunk) { out->insert(out->end(), chunk.begin(), chunk.end()); });
+            io::readInputFile(file, [&](std::string_view chunk) { out->insert(out->end(), chunk.begin(), chunk.end()); });
             return true;
         } catch (const Error& e) {
             if (err) *err += e.what();

@@ -26,7 +26,9 @@ public:
     const std::string& refusal() const { return refusal_; }
 
 private:
-    bool mayRead(const std::string& joinedPath);
+    // The file to read for tinygltf's joined path (dot segments removed, as URIs resolve them,
+    // and symlinks followed), or "" when it may not be read.
+    std::string resolve(const std::string& joinedPath);
 
     std::filesystem::path folder_;  // canonical
     std::string baseDir_;

@@ -12,6 +12,9 @@ TargetSet::TargetSet(gl::ProgramCache& programs, const render::MeshRenderer& ref
       colors_(GL_RGBA32F, resolution, resolution, std::max(1, int(cameras_.size()))) {
     render::RenderTarget target(resolution, resolution);
     for (int i = 0; i < size(); ++i) {
+        // GL queues the draws: without waiting for each, the loop would be over long before
+        // the renders are, and a stop request would only be seen after all of them.
+        glFinish();
         throwIfStopRequested();
         reference.draw(programs, cameras_[i], target);
         glCopyImageSubData(target.color().id(), GL_TEXTURE_2D, 0, 0, 0, 0, colors_.id(), GL_TEXTURE_2D_ARRAY,

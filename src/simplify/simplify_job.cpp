@@ -133,7 +133,7 @@ nlohmann::json runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     // time after the user asked to stop, and the checkpoint keeps the steps taken.
     if (history.interrupted(o.fit))
         throw Interrupted("interrupted at step " + std::to_string(history.steps) + " of " + std::to_string(o.fit.steps) +
-                          "; " + checkpoint.string() + " keeps the progress: run again with --resume");
+                          ", checkpointed in " + checkpoint.string());
 
     // Every result lands in one commit, or none does.
     io::StagedFolder staged(o.fit.out);

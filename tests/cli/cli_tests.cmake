@@ -94,3 +94,13 @@ add_test(NAME cli.simplify.spot
                  "-DARGS=simplify|${SUBDFIT_CLI_REFERENCE}|--faces|80|--steps|4|--res|48|--views|2|--holdout-views|1"
                  -P ${SUBDFIT_CLI_SCRIPTS}/expect_success.cmake)
 set_tests_properties(cli.simplify.spot PROPERTIES LABELS cli TIMEOUT 600)
+
+# What a batch service meets (tests/cli/service/*.sh): manifests named to escape --out or to
+# collide, two batches on one folder, SIGKILL and SIGTERM, FIFOs and devices as inputs, a
+# damaged checkpoint, --out folders that must not be used.
+foreach(script hostile_manifest concurrent_batches signals_and_files)
+  add_test(NAME cli.service.${script}
+           COMMAND bash ${SUBDFIT_CLI_SCRIPTS}/service/${script}.sh $<TARGET_FILE:subdfit> ${SUBDFIT_CLI_OUT}/service_${script}
+                   ${SUBDFIT_CLI_CAGE} ${SUBDFIT_CLI_REFERENCE})
+  set_tests_properties(cli.service.${script} PROPERTIES LABELS cli TIMEOUT 300)
+endforeach()
