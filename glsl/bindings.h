@@ -6,7 +6,7 @@
 #define SUBDFIT_SSBO_THETA 0            // θ
 #define SUBDFIT_SSBO_THETA_PLUS 1       // θ + s⊙ε
 #define SUBDFIT_SSBO_THETA_MINUS 2      // θ − s⊙ε
-#define SUBDFIT_SSBO_GRADIENT 3         // g, accumulated by G, consumed and cleared by Adam
+#define SUBDFIT_SSBO_GRADIENT 3         // g (float), resolved from the sums of G, cleared by Adam
 #define SUBDFIT_SSBO_MOMENT1 4          // Adam m
 #define SUBDFIT_SSBO_MOMENT2 5          // Adam v
 #define SUBDFIT_SSBO_GRADIENT_SMOOTH 6  // preconditioned gradient (ping-pong partner of g)
@@ -25,7 +25,7 @@
 #define SUBDFIT_SSBO_ADJACENCY_INDICES 17
 #define SUBDFIT_SSBO_LOSS 18            // 256 float slots whose sum is the mean per-pixel loss
 #define SUBDFIT_SSBO_SMOOTH_IN 19       // Jacobi iterate read by the preconditioner
-#define SUBDFIT_SSBO_FACE_DELTA 20      // Σ Δ_p/(2ε) per ptex face over pixels whose ± faces agree
+#define SUBDFIT_SSBO_FACE_DELTA 20      // Σ Δ_p/(2ε) per ptex face over pixels whose ± faces agree (fixed point)
 #define SUBDFIT_SSBO_VERTEX_FACE_OFFSETS 21  // base vertex -> ptex faces it reaches (CSR)
 #define SUBDFIT_SSBO_VERTEX_FACE_INDICES 22
 
@@ -33,8 +33,11 @@
 #define SUBDFIT_SSBO_FACE_NODES 23           // [ptex face][j][i] -> node
 #define SUBDFIT_SSBO_DISPLACEMENT 24         // height per node (θ, θ+ or θ− as the pass needs)
 #define SUBDFIT_SSBO_NORMAL_MAP 25           // tangent-space (x, y) per node
-#define SUBDFIT_SSBO_GRADIENT_DISPLACEMENT 26
+#define SUBDFIT_SSBO_GRADIENT_DISPLACEMENT 26  // the map groups' sums of G (fixed point)
 #define SUBDFIT_SSBO_GRADIENT_NORMAL_MAP 27
+
+// Any group's fixed-point gradient sums (glsl/fixed_point.glsl), two uints per parameter.
+#define SUBDFIT_SSBO_GRADIENT_SUM 28
 
 // Texture units of the gradient pass.
 #define SUBDFIT_UNIT_COLOR_PLUS 0

@@ -10,6 +10,7 @@
 #include "bindings.h"
 #include "hash.glsl"
 #include "atomics.glsl"
+#include "fixed_point.glsl"
 
 layout(local_size_x = 16, local_size_y = 16) in;
 
@@ -21,9 +22,10 @@ layout(binding = SUBDFIT_UNIT_TARGET) uniform sampler2DArray targets;
 
 layout(std430, binding = SUBDFIT_SSBO_FACE_VERTEX_OFFSETS) readonly buffer FaceOffsets { int faceVertexOffsets[]; };
 layout(std430, binding = SUBDFIT_SSBO_FACE_VERTEX_INDICES) readonly buffer FaceIndices { int faceVertexIndices[]; };
-SUBDFIT_DECLARE_ACCUMULATOR(Gradient, SUBDFIT_SSBO_GRADIENT, gradient, addGradient)
+// Gradient terms in fixed point, so that a run repeats exactly; the loss is only reported.
+SUBDFIT_DECLARE_FIXED_ACCUMULATOR(Gradient, SUBDFIT_SSBO_GRADIENT_SUM, gradient, addGradient)
+SUBDFIT_DECLARE_FIXED_ACCUMULATOR(FaceDelta, SUBDFIT_SSBO_FACE_DELTA, faceDelta, addFaceDelta)
 SUBDFIT_DECLARE_ACCUMULATOR(Loss, SUBDFIT_SSBO_LOSS, loss, addLoss)
-SUBDFIT_DECLARE_ACCUMULATOR(FaceDelta, SUBDFIT_SSBO_FACE_DELTA, faceDelta, addFaceDelta)
 
 #if defined(SUBDFIT_DISPLACEMENT) || defined(SUBDFIT_NORMAL_MAP)
 #define SUBDFIT_MAPS
@@ -32,12 +34,12 @@ layout(binding = SUBDFIT_UNIT_UV_PLUS) uniform sampler2D uvPlus;
 layout(binding = SUBDFIT_UNIT_UV_MINUS) uniform sampler2D uvMinus;
 #endif
 #ifdef SUBDFIT_DISPLACEMENT
-SUBDFIT_DECLARE_ACCUMULATOR(DisplacementGradient, SUBDFIT_SSBO_GRADIENT_DISPLACEMENT, displacementGradient,
+SUBDFIT_DECLARE_FIXED_ACCUMULATOR(DisplacementGradient, SUBDFIT_SSBO_GRADIENT_DISPLACEMENT, displacementGradient,
                             addDisplacementGradient)
 uniform float uEpsilonDisplacement;
 #endif
 #ifdef SUBDFIT_NORMAL_MAP
-SUBDFIT_DECLARE_ACCUMULATOR(NormalMapGradient, SUBDFIT_SSBO_GRADIENT_NORMAL_MAP, normalMapGradient,
+SUBDFIT_DECLARE_FIXED_ACCUMULATOR(NormalMapGradient, SUBDFIT_SSBO_GRADIENT_NORMAL_MAP, normalMapGradient,
                             addNormalMapGradient)
 uniform float uEpsilonNormalMap;
 #endif

@@ -1,14 +1,16 @@
 // Second half of G: g_i += s_i Σ_{f ∋ v} faceDelta[f] for each parameter i of base vertex v,
-// one thread per vertex (so no atomics), over the ptex faces whose stencils reach v.
+// one thread per vertex (so no atomics), over the ptex faces whose stencils reach v, in the
+// table's order: sums and gradient are fixed point (fixed_point.glsl), so a run repeats exactly.
 #include "bindings.h"
+#include "fixed_point.glsl"
 #include "hash.glsl"
 
 layout(local_size_x = 128) in;
 
-layout(std430, binding = SUBDFIT_SSBO_FACE_DELTA) readonly buffer FaceDelta { float faceDelta[]; };
+layout(std430, binding = SUBDFIT_SSBO_FACE_DELTA) readonly buffer FaceDelta { uint faceDelta[]; };
 layout(std430, binding = SUBDFIT_SSBO_VERTEX_FACE_OFFSETS) readonly buffer Offsets { int vertexFaceOffsets[]; };
 layout(std430, binding = SUBDFIT_SSBO_VERTEX_FACE_INDICES) readonly buffer Indices { int vertexFaceIndices[]; };
-layout(std430, binding = SUBDFIT_SSBO_GRADIENT) buffer Gradient { float gradient[]; };
+layout(std430, binding = SUBDFIT_SSBO_GRADIENT_SUM) buffer Gradient { uint gradient[]; };
 
 uniform int uVertexCount;
 uniform uint uCounter;
@@ -18,14 +20,20 @@ void main() {
     int v = int(gl_GlobalInvocationID.x);
     if (v >= uVertexCount) return;
 #ifdef SUBDFIT_FULL_IMAGE
-    float sum = faceDelta[0];  // plain SPSA: the whole image's Δ for every vertex
+    float sum = fromFixed(faceDelta[0], faceDelta[1]);  // plain SPSA: the whole image's Δ for every vertex
 #else
     float sum = 0.0;
-    for (int k = vertexFaceOffsets[v]; k < vertexFaceOffsets[v + 1]; ++k) sum += faceDelta[vertexFaceIndices[k]];
+    for (int k = vertexFaceOffsets[v]; k < vertexFaceOffsets[v + 1]; ++k) {
+        uint f = uint(vertexFaceIndices[k]);
+        sum += fromFixed(faceDelta[2u * f], faceDelta[2u * f + 1u]);
+    }
 #endif
     if (sum == 0.0) return;
     for (uint c = 0u; c < 3u; ++c) {
         uint i = 3u * uint(v) + c;
-        gradient[i] += sum * perturbationSign(i, uCounter, uSeed);
+        uvec2 total = addFixed(uvec2(gradient[2u * i], gradient[2u * i + 1u]),
+                               toFixed(sum * perturbationSign(i, uCounter, uSeed)));
+        gradient[2u * i] = total.x;
+        gradient[2u * i + 1u] = total.y;
     }
 }

@@ -75,7 +75,7 @@ Curve sampleCurve(gl::ProgramCache& programs, const Scene& s, const std::vector<
         if (k == next) {
             curve.samples.push_back(k);
             curve.seconds.push_back(seconds);
-            curve.cosine.push_back(cosine(fitter.vertexGroup().gradient.read<float>(), reference));
+            curve.cosine.push_back(cosine(fitter.accumulatedGradient(), reference));
             next *= 2;
         }
     }

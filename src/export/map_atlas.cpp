@@ -47,6 +47,7 @@ WrittenFile writeDisplacementExr(const std::filesystem::path& path, const AtlasL
         OIIO::ImageSpec spec(atlas.width, atlas.height, 1, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
         spec.channelnames = {"Y"};
         spec.attribute("compression", "zip");
+        spec.attribute("DateTime", "");  // no capture time: the same fit writes the same bytes
         if (!out->open(temporary.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) ||
             !out->close())
             throw fileError(path.string(), "could not write image: " + out->geterror());

@@ -108,6 +108,7 @@ void CageFitter::update() {
                             ? std::pow(0.1f, std::min(1.0f, float(steps_) / float(settings_.plannedSteps)))
                             : 1.0f;
     for (auto* g : pendingUpdate_) {
+        sge::resolveGradient(programs_, *g);
         if (g == &vertices_) {
             vertices_.settings().learningRate = settings_.vertices.learningRate * decay;
             sge::precondition(programs_, vertices_, adjacency_, settings_.smoothingLambda,
@@ -122,7 +123,7 @@ void CageFitter::update() {
     pendingUpdate_.clear();
     // G also wrote into the groups that were not perturbed (their signs against another
     // group's Δ): noise by construction, dropped.
-    for (auto* g : groups()) g->gradient.clearToZero();
+    for (auto* g : groups()) g->gradientSum.clearToZero();
     ++steps_;
 }
 
@@ -151,8 +152,14 @@ void CageFitter::setOptimised(const sge::ParameterGroup& group, bool on) {
     if (!on) frozen_.push_back(&group);
 }
 
+std::vector<float> CageFitter::accumulatedGradient() {
+    sge::resolveGradient(programs_, vertices_);
+    return vertices_.gradient.read<float>();
+}
+
 std::vector<float> CageFitter::takeGradient() {
-    auto gradient = vertices_.gradient.read<float>();
+    auto gradient = accumulatedGradient();
+    vertices_.gradientSum.clearToZero();
     vertices_.gradient.clearToZero();
     return gradient;
 }

@@ -57,7 +57,8 @@ public:
     void accumulate(const scene::TargetSet& targets, std::span<const int> views, bool measureLoss = true);
     void update();
 
-    // The raw accumulated vertex gradient (for tests and benchmarks), then cleared.
+    // The raw vertex gradient accumulated so far (for tests and benchmarks); take also clears it.
+    std::vector<float> accumulatedGradient();
     std::vector<float> takeGradient();
 
     // Mean per-pixel loss over the measured samples since the last call (one readback).

@@ -77,8 +77,8 @@ void MapParameters::bindForRaster(ParameterVersion v, const sge::ParameterGroup*
 
 void MapParameters::bindForGradient() const {
     faceNodes_.bindStorage(SUBDFIT_SSBO_FACE_NODES);
-    if (displacement_) displacement_->gradient.bindStorage(SUBDFIT_SSBO_GRADIENT_DISPLACEMENT);
-    if (normalMap_) normalMap_->gradient.bindStorage(SUBDFIT_SSBO_GRADIENT_NORMAL_MAP);
+    if (displacement_) displacement_->gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_DISPLACEMENT);
+    if (normalMap_) normalMap_->gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_NORMAL_MAP);
 }
 
 void MapParameters::update(gl::ProgramCache& programs, sge::ParameterGroup& group, float learningRate) {

@@ -12,6 +12,7 @@ ParameterGroup::ParameterGroup(std::string name, const std::vector<float>& initi
       gradientSmooth(theta.bytes()),
       moment1(theta.bytes()),
       moment2(theta.bytes()),
+      gradientSum(2 * theta.bytes()),
       name_(std::move(name)),
       count_(int(initial.size())),
       settings_(settings),

@@ -33,6 +33,9 @@ public:
     GroupSettings& settings() { return settings_; }
 
     gl::Buffer theta, thetaPlus, thetaMinus, gradient, gradientSmooth, moment1, moment2;
+    // What G accumulates, in fixed point (glsl/fixed_point.glsl: two uints per parameter) so that
+    // the sum does not depend on the order of the GPU's atomics; resolved into `gradient`.
+    gl::Buffer gradientSum;
     int adamSteps = 0;
 
     std::vector<float> read() const { return theta.read<float>(); }

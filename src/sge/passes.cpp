@@ -30,7 +30,7 @@ FaceVertexTable::FaceVertexTable(const std::vector<int>& faceOffsets, const std:
                                  int vertexCount_)
     : offsets(gl::Buffer::fromVector(faceOffsets)),
       indices(gl::Buffer::fromVector(faceVertices)),
-      faceDelta(GLsizeiptr(std::max<size_t>(1, faceOffsets.size())) * sizeof(float)),
+      faceDelta(GLsizeiptr(std::max<size_t>(1, faceOffsets.size())) * 2 * sizeof(std::uint32_t)),
       vertexCount(vertexCount_) {
     std::vector<int> vertexFaceIndices;
     const auto vertexFaceOffsets = transposeOffsets(faceOffsets, faceVertices, vertexCount, vertexFaceIndices);
@@ -71,7 +71,7 @@ void accumulateGradient(gl::ProgramCache& programs, ParameterGroup& group, const
     glBindTextureUnit(SUBDFIT_UNIT_TARGET, in.targetArray);
     faces.offsets.bindStorage(SUBDFIT_SSBO_FACE_VERTEX_OFFSETS);
     faces.indices.bindStorage(SUBDFIT_SSBO_FACE_VERTEX_INDICES);
-    group.gradient.bindStorage(SUBDFIT_SSBO_GRADIENT);
+    group.gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_SUM);
     loss.bindStorage(SUBDFIT_SSBO_LOSS);
     faces.faceDelta.bindStorage(SUBDFIT_SSBO_FACE_DELTA);
     if (in.maps) {
@@ -98,10 +98,20 @@ void scatterFaceDeltas(gl::ProgramCache& programs, ParameterGroup& group, FaceVe
     faces.faceDelta.bindStorage(SUBDFIT_SSBO_FACE_DELTA);
     faces.vertexOffsets.bindStorage(SUBDFIT_SSBO_VERTEX_FACE_OFFSETS);
     faces.vertexFaces.bindStorage(SUBDFIT_SSBO_VERTEX_FACE_INDICES);
-    group.gradient.bindStorage(SUBDFIT_SSBO_GRADIENT);
+    group.gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_SUM);
     glDispatchCompute(groupsOf(faces.vertexCount, 128), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     faces.faceDelta.clearToZero();
+}
+
+void resolveGradient(gl::ProgramCache& programs, ParameterGroup& group) {
+    const auto& program = programs.get("resolve_gradient", {{GL_COMPUTE_SHADER, "resolve_gradient.comp"}});
+    program.use();
+    program.set("uCount", unsigned(group.count()));
+    group.gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_SUM);
+    group.gradient.bindStorage(SUBDFIT_SSBO_GRADIENT);
+    glDispatchCompute(groupsOf(group.count(), 256), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency,

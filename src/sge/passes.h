@@ -24,7 +24,7 @@ struct FaceVertexTable {
     FaceVertexTable(const std::vector<int>& faceOffsets, const std::vector<int>& faceVertices, int vertexCount);
     gl::Buffer offsets, indices;              // ptex face -> base vertices
     gl::Buffer vertexOffsets, vertexFaces;    // base vertex -> ptex faces
-    gl::Buffer faceDelta;                     // one float per ptex face
+    gl::Buffer faceDelta;                     // one fixed-point sum (two uints) per ptex face
     int vertexCount;
 };
 
@@ -40,7 +40,7 @@ struct GradientInputs {
     bool fullImage = false;  // plain SPSA (every pixel to every vertex): benchmarks only
 };
 
-// G: accumulates Δ_p / (2 s_i ε) into group.gradient (directly where the ± faces differ, via
+// G: accumulates Δ_p / (2 s_i ε) into group.gradientSum (directly where the ± faces differ, via
 // faces.faceDelta where they agree) and the mean loss into the 256 slots of `loss`.
 void accumulateGradient(gl::ProgramCache& programs, ParameterGroup& group, const FaceVertexTable& faces,
                         const GradientInputs& inputs, const gl::Buffer& loss);
@@ -49,6 +49,9 @@ void accumulateGradient(gl::ProgramCache& programs, ParameterGroup& group, const
 // and clears them. Once per perturbation sample, after all its views.
 void scatterFaceDeltas(gl::ProgramCache& programs, ParameterGroup& group, FaceVertexTable& faces,
                        std::uint32_t counter, std::uint32_t seed, bool fullImage = false);
+
+// group.gradient = the fixed-point sums of G as floats (the sums are left as they are).
+void resolveGradient(gl::ProgramCache& programs, ParameterGroup& group);
 
 // g̃ = (I + λL)⁻¹ g by `iterations` Jacobi sweeps into group.gradientSmooth (a plain copy when
 // iterations == 0 or λ == 0). `scratch` must be the size of the gradient.
