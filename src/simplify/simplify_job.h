@@ -36,8 +36,10 @@ void validate(const SimplifyOptions& options);
 // The fit's settings and simplify's own (see fit::settingsJson).
 nlohmann::json settingsJson(const SimplifyOptions& options);
 
-// Resumes from DIR/checkpoint.bin with options.fit.resume. Throws subdfit::Error for bad
-// inputs before anything is written.
+// Checks DIR (io::checkOutputFolder), loads, fits with DIR/checkpoint.bin as its checkpoint
+// (resumed with options.fit.resume), and writes every result through DIR/.staging-PID/ in one
+// commit. Throws subdfit::Error for bad options or inputs before anything is written, and
+// Interrupted (no results, the checkpoint kept) when hooks.cancel or a stop request ends the fit.
 nlohmann::json runSimplify(const SimplifyOptions& options, const fit::FitHooks& hooks = {});
 
 }  // namespace subdfit::simplify

@@ -46,6 +46,13 @@ subdfit_cli_refuses(reference_nan_coordinate ${SUBDFIT_CLI_BAD}/nan_coordinate.o
 subdfit_cli_refuses(reference_missing ${SUBDFIT_CLI_OUT}/missing_reference.obj
                     --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_OUT}/missing_reference.obj)
 
+# A reference that is a single point, and a cage that is all holes: refused before any fit,
+# naming the file.
+subdfit_cli_refuses(reference_single_point "single_point.obj: every vertex is at the same point"
+                    --cage ${SUBDFIT_CLI_CAGE} --reference ${PROJECT_SOURCE_DIR}/tests/data/bad-scenes/single_point.obj)
+subdfit_cli_refuses(cage_all_holes "all_holes.obj: every face is tagged as a hole"
+                    --cage ${PROJECT_SOURCE_DIR}/tests/data/bad-scenes/all_holes.obj --reference ${SUBDFIT_CLI_REFERENCE})
+
 # Impossible options: the message names the option.
 subdfit_cli_refuses(option_res_0 --res --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --res 0)
 subdfit_cli_refuses(option_views_0 --views --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --views 0)

@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "fit/checkpoint.h"
+#include "error_message.h"
 #include "test_paths.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -39,12 +40,7 @@ std::string readBytes(const fs::path& path) {
 void writeBytes(const fs::path& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
 
 std::string refusal(const fs::path& path, const std::string& fingerprint = "fp") {
-    try {
-        readCheckpoint(path, fingerprint);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
+    return test::errorMessage([&] { readCheckpoint(path, fingerprint); });
 }
 
 class Checkpoint : public ::testing::Test {

@@ -12,6 +12,7 @@
 
 #include "mesh/gltf_preflight.h"
 #include "mesh/mesh_loader.h"
+#include "error_message.h"
 #include "test_paths.h"
 #include "util/error.h"
 
@@ -43,12 +44,7 @@ void write(const fs::path& path, const std::string& text) {
 }
 
 std::string refusal(const fs::path& path) {
-    try {
-        loadMesh(path);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
+    return test::errorMessage([&] { loadMesh(path); });
 }
 
 class HostileGltf : public ::testing::Test {

@@ -12,6 +12,7 @@
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_loader.h"
 #include "subdiv/topology.h"
+#include "error_message.h"
 #include "test_paths.h"
 #include "util/error.h"
 #include "util/warnings.h"
@@ -20,15 +21,6 @@ namespace subdfit::mesh {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string messageOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
 
 // A disk: one n-gon, or n triangles around a centre vertex of valence n.
 PolygonMesh disk(int n, bool fan) {
@@ -54,24 +46,24 @@ PolygonMesh disk(int n, bool fan) {
 TEST(InputLimits, NonRegularFilesAreNeverOpenedForReading) {
     const auto dir = test::scratchDir("input_limits");
     ASSERT_EQ(mkfifo((dir / "pipe.obj").c_str(), 0600), 0);
-    EXPECT_NE(messageOf([&] { loadMesh(dir / "pipe.obj"); }).find("pipe.obj: is not a regular file"), std::string::npos);
+    EXPECT_NE(test::errorMessage([&] { loadMesh(dir / "pipe.obj"); }).find("pipe.obj: is not a regular file"), std::string::npos);
     fs::create_symlink("/dev/zero", dir / "zero.obj");
-    EXPECT_NE(messageOf([&] { loadMesh(dir / "zero.obj"); }).find("zero.obj: is not a regular file"), std::string::npos);
+    EXPECT_NE(test::errorMessage([&] { loadMesh(dir / "zero.obj"); }).find("zero.obj: is not a regular file"), std::string::npos);
     fs::create_directory(dir / "folder.obj");
-    EXPECT_NE(messageOf([&] { loadMesh(dir / "folder.obj"); }).find("is a folder"), std::string::npos);
+    EXPECT_NE(test::errorMessage([&] { loadMesh(dir / "folder.obj"); }).find("is a folder"), std::string::npos);
 }
 
 TEST(InputLimits, AFileBeyondTheSizeLimitIsNotRead) {
     const auto dir = test::scratchDir("input_limits_size");
     std::ofstream(dir / "big.obj") << std::string(100, '#');
-    const std::string message = messageOf([&] { io::readInputFile(dir / "big.obj", 64); });
+    const std::string message = test::errorMessage([&] { io::readInputFile(dir / "big.obj", 64); });
     EXPECT_NE(message.find("big.obj: is 100 bytes, more than the 64-byte input limit"), std::string::npos) << message;
     EXPECT_EQ(io::readInputFile(dir / "big.obj", 100).size(), 100u);
 }
 
 TEST(InputLimits, ALargeNgonIsRefusedAsACageButTriangulatedAsAReference) {
     const PolygonMesh ngon = disk(3000, false);
-    const std::string message = messageOf([&] { subdiv::buildTopologyRefiner(ngon); });
+    const std::string message = test::errorMessage([&] { subdiv::buildTopologyRefiner(ngon); });
     EXPECT_NE(message.find("disk.obj: face 0 has 3000 vertices; a cage face may have at most 128"), std::string::npos)
         << message;
     EXPECT_EQ(triangulated(ngon).faceCount(), 2998);
@@ -79,7 +71,7 @@ TEST(InputLimits, ALargeNgonIsRefusedAsACageButTriangulatedAsAReference) {
 }
 
 TEST(InputLimits, AVertexOfTooHighValenceIsRefusedInACage) {
-    const std::string message = messageOf([&] { subdiv::buildTopologyRefiner(disk(kMaxCageValence + 1, true)); });
+    const std::string message = test::errorMessage([&] { subdiv::buildTopologyRefiner(disk(kMaxCageValence + 1, true)); });
     EXPECT_NE(message.find("vertex 0 is shared by more than 128 faces"), std::string::npos) << message;
     EXPECT_NO_THROW(subdiv::buildTopologyRefiner(disk(66, true)));  // OpenSubdiv's own valence-66 pole
 }
@@ -87,7 +79,7 @@ TEST(InputLimits, AVertexOfTooHighValenceIsRefusedInACage) {
 TEST(InputLimits, ACageOfHolesIsRefusedBeforeAnyWork) {
     PolygonMesh cage = disk(8, true);
     for (int f = 0; f < cage.faceCount(); ++f) cage.tags.holes.push_back(f);
-    EXPECT_NE(messageOf([&] { subdiv::buildTopologyRefiner(cage); }).find("every face is tagged as a hole"),
+    EXPECT_NE(test::errorMessage([&] { subdiv::buildTopologyRefiner(cage); }).find("every face is tagged as a hole"),
               std::string::npos);
     cage.tags.holes.pop_back();
     EXPECT_NO_THROW(subdiv::buildTopologyRefiner(cage));

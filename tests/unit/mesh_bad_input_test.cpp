@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "mesh/mesh_loader.h"
+#include "error_message.h"
 #include "test_paths.h"
 #include "util/error.h"
 
@@ -43,12 +44,7 @@ const BadFile kCorpus[] = {
 };
 
 std::string errorFor(const fs::path& path) {
-    try {
-        loadMesh(path);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
+    return test::errorMessage([&] { loadMesh(path); });
 }
 
 TEST(MeshBadInput, EveryFileIsRefusedWithOneLineNamingFileAndProblem) {

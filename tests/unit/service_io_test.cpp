@@ -11,6 +11,7 @@
 #include "io/output_folder.h"
 #include "io/staged_folder.h"
 #include "simplify/manifest.h"
+#include "error_message.h"
 #include "test_paths.h"
 #include "util/error.h"
 
@@ -20,12 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string refusal(const fs::path& dir, const OutputFolderRule& rule) {
-    try {
-        checkOutputFolder(dir, rule);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
+    return test::errorMessage([&] { checkOutputFolder(dir, rule); });
 }
 
 TEST(OutputFolder, RootFilesAndForeignFoldersAreRefused) {
