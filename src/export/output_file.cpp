@@ -9,12 +9,7 @@ namespace subdfit::exporter {
 
 WrittenFile writeOutput(const std::filesystem::path& destination,
                         const std::function<void(const std::filesystem::path&)>& write) {
-    try {
-        io::writeAtomically(destination, write);
-    } catch (const std::filesystem::filesystem_error& e) {
-        // writeAtomically has already removed its temporary.
-        throw fileError(destination.string(), "could not write: " + e.code().message());
-    }
+    io::writeAtomically(destination, write);
     std::error_code ec;
     const std::uintmax_t size = std::filesystem::file_size(destination, ec);
     if (ec) throw fileError(destination.string(), "written but cannot be read back: " + ec.message());

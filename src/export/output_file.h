@@ -1,7 +1,7 @@
 #pragma once
-// Every exported file goes through io::writeAtomically (a temporary beside it, then a rename),
-// and every failure -- including the filesystem's own exceptions, e.g. a rename onto a folder --
-// surfaces as subdfit::Error "path: problem".
+// Every exported file goes through io::writeAtomically (a temporary of its own beside it,
+// fsynced, then a rename), and every failure surfaces as subdfit::Error "path: problem"; the
+// result says how many bytes were written.
 #include <cstdint>
 #include <filesystem>
 #include <functional>

@@ -1,35 +1,97 @@
 #include "io/atomic_file.h"
 
-#include <fstream>
+#include <fcntl.h>
 #include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
 
 #include "util/error.h"
 
 namespace subdfit::io {
 
-void writeAtomically(const std::filesystem::path& destination,
-                     const std::function<void(const std::filesystem::path&)>& write) {
-    // Keep the real extension last: writers such as OpenImageIO pick the format from it.
-    auto temporary = destination;
-    temporary.replace_filename("." + destination.stem().string() + ".tmp" + std::to_string(getpid()) +
-                               destination.extension().string());
-    try {
-        write(temporary);
-        std::filesystem::rename(temporary, destination);
-    } catch (...) {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
-        throw;
+namespace fs = std::filesystem;
+
+namespace {
+
+// ".NAME.tmpPID_N.EXT" beside the destination: hidden, unique, and with the real extension last.
+fs::path temporaryName(const fs::path& destination) {
+    static std::atomic<unsigned> counter{0};
+    return destination.parent_path() / ("." + destination.stem().string() + ".tmp" + std::to_string(::getpid()) + "_" +
+                                        std::to_string(counter++) + destination.extension().string());
+}
+
+bool syncPath(const fs::path& path, int flags) {
+    const int fd = ::open(path.empty() ? "." : path.c_str(), flags | O_CLOEXEC);
+    if (fd < 0) return false;
+    const bool ok = ::fsync(fd) == 0;
+    ::close(fd);
+    return ok;
+}
+
+}  // namespace
+
+AtomicFile::AtomicFile(fs::path destination) : destination_(std::move(destination)) {
+    for (int attempt = 0; attempt < 100 && fd_ < 0; ++attempt) {
+        temporary_ = temporaryName(destination_);
+        fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd_ < 0 && errno != EEXIST) break;
+    }
+    if (fd_ < 0) {
+        temporary_.clear();
+        fail(std::string("cannot create a temporary file beside it: ") + std::strerror(errno));
     }
 }
 
-void writeTextAtomically(const std::filesystem::path& destination, const std::string& text) {
-    writeAtomically(destination, [&](const std::filesystem::path& temporary) {
-        std::ofstream out(temporary, std::ios::binary);
-        out << text;
-        out.close();
-        if (!out) throw fileError(destination.string(), "could not write");
-    });
+AtomicFile::~AtomicFile() {
+    if (fd_ >= 0) ::close(fd_);
+    if (!temporary_.empty()) ::unlink(temporary_.c_str());
+}
+
+void AtomicFile::write(std::string_view bytes) {
+    while (!bytes.empty()) {
+        const ssize_t n = ::write(fd_, bytes.data(), bytes.size());
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) fail(std::string("cannot write: ") + std::strerror(errno));
+        bytes.remove_prefix(size_t(n));
+    }
+}
+
+void AtomicFile::commit() {
+    // fsync before the rename: a rename that outlives a crash must not point at unwritten data.
+    if (fd_ >= 0) {
+        if (::fsync(fd_) != 0) fail(std::string("cannot write: ") + std::strerror(errno));
+        const int fd = fd_;
+        fd_ = -1;
+        if (::close(fd) != 0) fail(std::string("cannot write: ") + std::strerror(errno));
+    } else if (!syncPath(temporary_, O_RDONLY)) {
+        fail(std::string("cannot write: ") + std::strerror(errno));
+    }
+    if (::rename(temporary_.c_str(), destination_.c_str()) != 0) fail(std::string("cannot replace: ") + std::strerror(errno));
+    temporary_.clear();
+    // The rename lives in the folder: sync it too (best effort; some filesystems refuse).
+    syncPath(destination_.parent_path(), O_RDONLY | O_DIRECTORY);
+}
+
+void AtomicFile::fail(const std::string& what) const { throw fileError(destination_.string(), what); }
+
+void writeAtomically(const fs::path& destination, const std::function<void(const fs::path&)>& write) {
+    AtomicFile file(destination);
+    ::close(file.fd_);  // the writer opens the temporary by name; commit() syncs it by name
+    file.fd_ = -1;
+    try {
+        write(file.temporary_);
+    } catch (const fs::filesystem_error& e) {
+        file.fail("could not write: " + e.code().message());
+    }
+    file.commit();
+}
+
+void writeTextAtomically(const fs::path& destination, std::string_view text) {
+    AtomicFile file(destination);
+    file.write(text);
+    file.commit();
 }
 
 }  // namespace subdfit::io

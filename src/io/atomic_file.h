@@ -1,15 +1,42 @@
 #pragma once
-// Outputs appear whole or not at all: write to a temporary name in the same folder, then rename
-// (atomic on POSIX). A failed write removes the temporary and rethrows.
+// Outputs appear whole or not at all, and a crash leaves either the old file or the new one:
+// each is written to a temporary of its own beside the destination (created with O_EXCL, named
+// by process and call, so two processes or threads never share one), fsynced, renamed over the
+// destination (atomic on POSIX), and the folder fsynced so that the rename itself is durable.
+// A failure removes the temporary and throws subdfit::Error naming the destination.
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 
 namespace subdfit::io {
 
+// For writers that stream bytes themselves.
+class AtomicFile {
+public:
+    explicit AtomicFile(std::filesystem::path destination);
+    ~AtomicFile();  // removes the temporary unless committed
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+
+    void write(std::string_view bytes);
+    // Durably replaces the destination with what was written.
+    void commit();
+
+private:
+    friend void writeAtomically(const std::filesystem::path&, const std::function<void(const std::filesystem::path&)>&);
+    [[noreturn]] void fail(const std::string& what) const;
+
+    std::filesystem::path destination_, temporary_;
+    int fd_ = -1;
+};
+
+// For writers that want a path to write to (OpenImageIO, the glTF and Draco writers): `write`
+// fills the temporary it is given, whose extension is the destination's (writers pick formats
+// by extension).
 void writeAtomically(const std::filesystem::path& destination,
                      const std::function<void(const std::filesystem::path& temporary)>& write);
 
-void writeTextAtomically(const std::filesystem::path& destination, const std::string& text);
+void writeTextAtomically(const std::filesystem::path& destination, std::string_view text);
 
 }  // namespace subdfit::io

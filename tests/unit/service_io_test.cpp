@@ -6,7 +6,10 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <iterator>
+#include <thread>
 
+#include "io/atomic_file.h"
 #include "io/file_lock.h"
 #include "io/output_folder.h"
 #include "io/staged_folder.h"
@@ -86,6 +89,35 @@ TEST(StagedFolder, ResultsAppearOnCommitAndVanishWithout) {
     EXPECT_FALSE(fs::exists(dir / "out" / "initial_cage.obj"));
     for (const auto& entry : fs::directory_iterator(dir / "out"))
         EXPECT_NE(entry.path().filename().string().front(), '.') << entry.path();
+}
+
+TEST(AtomicFile, AFailedWriteLeavesTheOldFileAndNoTemporary) {
+    const auto dir = test::scratchDir("atomic_file");
+    writeTextAtomically(dir / "report.json", "old");
+    EXPECT_THROW(writeAtomically(dir / "report.json",
+                                 [](const fs::path& temporary) {
+                                     std::ofstream(temporary) << "half";
+                                     throw Error("the writer failed");
+                                 }),
+                 Error);
+    std::ifstream in(dir / "report.json");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "old");
+    for (const auto& entry : fs::directory_iterator(dir)) EXPECT_EQ(entry.path().filename(), "report.json");
+}
+
+TEST(AtomicFile, ConcurrentWritersNeverMixTheirBytes) {
+    const auto dir = test::scratchDir("atomic_file_threads");
+    std::vector<std::thread> writers;
+    for (int t = 0; t < 8; ++t)
+        writers.emplace_back([&, t] {
+            for (int k = 0; k < 20; ++k) writeTextAtomically(dir / "out.bin", std::string(1 << 16, char('a' + t)));
+        });
+    for (auto& w : writers) w.join();
+    std::ifstream in(dir / "out.bin", std::ios::binary);
+    const std::string bytes(std::istreambuf_iterator<char>(in), {});
+    ASSERT_EQ(bytes.size(), size_t(1) << 16);
+    EXPECT_EQ(bytes.find_first_not_of(bytes[0]), std::string::npos) << "two writers' bytes in one file";
+    for (const auto& entry : fs::directory_iterator(dir)) EXPECT_EQ(entry.path().filename(), "out.bin");
 }
 
 TEST(FileLock, OneHolderAtATimeAndTheLockDiesWithItsProcess) {
