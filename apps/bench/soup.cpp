@@ -27,8 +27,8 @@
 #include "plot.h"
 #include "bindings.h"
 #include "render/render_target.h"
-#include "sge/parameter_group.h"
-#include "sge/passes.h"
+#include "optim/parameter_group.h"
+#include "optim/updates.h"
 #include "soup_bindings.h"
 #include "util/error.h"
 
@@ -117,14 +117,14 @@ public:
     }
 
     // Positions in clip units: ε = half a pixel, step a quarter pixel. Colours: ε = 0.05.
-    static sge::GroupSettings positionSettings(int resolution) {
-        sge::GroupSettings s;
+    static optim::GroupSettings positionSettings(int resolution) {
+        optim::GroupSettings s;
         s.epsilon = 1.0f / float(resolution);
         s.learningRate = 0.5f / float(resolution);
         return s;
     }
-    static sge::GroupSettings colorSettings() {
-        sge::GroupSettings s;
+    static optim::GroupSettings colorSettings() {
+        optim::GroupSettings s;
         s.epsilon = 0.05f;
         s.learningRate = 0.01f;
         return s;
@@ -159,8 +159,8 @@ public:
 
     // One SGE step: P, R+, R−, G (two passes), Adam.
     void step(std::uint32_t counter, GLuint targetTexture) {
-        sge::perturb(programs_, positions_, counter, kPerturbationSeed);
-        sge::perturb(programs_, colors_, counter, kPerturbationSeed);
+        optim::perturb(programs_, positions_, counter, kPerturbationSeed);
+        optim::perturb(programs_, colors_, counter, kPerturbationSeed);
         render(positions_.thetaPlus, colors_.thetaPlus, plus_);
         render(positions_.thetaMinus, colors_.thetaMinus, minus_);
 
@@ -192,8 +192,8 @@ public:
         glDispatchCompute(groupsOf(triangles_, 256), 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
-        sge::adamStep(programs_, positions_, positions_.gradient);
-        sge::adamStep(programs_, colors_, colors_.gradient);
+        optim::adamStep(programs_, positions_, positions_.gradient);
+        optim::adamStep(programs_, colors_, colors_.gradient);
     }
 
     // Checks on the CPU that the id buffer names the triangle that drew each pixel (llvmpipe has
@@ -227,7 +227,7 @@ private:
     gl::ProgramCache& programs_;
     int triangles_;
     bool fullImage_;
-    sge::ParameterGroup positions_, colors_;
+    optim::ParameterGroup positions_, colors_;
     gl::Buffer triangleDelta_;
     SoupTarget plus_, minus_, image_;
     gl::GlHandle<gl::VertexArrayTraits> vertexArray_;

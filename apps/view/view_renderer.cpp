@@ -36,7 +36,7 @@ void ViewRenderer::draw(FitSession& session, const CageWireframe& wireframe, con
     program.set("uScale", settings.scale);
     if (maps) {
         program.set("uMapResolution", maps->layout().resolution);
-        maps->bindForRaster(maps::ParameterVersion::Current, nullptr);
+        maps->forRaster(maps::ParameterVersion::Current).bind();
     }
     glBindTextureUnit(0, fit_->color().id());
     glBindTextureUnit(1, fit_->faceId().id());

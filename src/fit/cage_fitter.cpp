@@ -18,7 +18,7 @@ std::vector<float> flatten(const std::vector<glm::vec3>& points) {
     return values;
 }
 
-sge::Adjacency uploadAdjacency(const mesh::PolygonMesh& cage) {
+optim::Adjacency uploadAdjacency(const mesh::PolygonMesh& cage) {
     const auto adjacency = mesh::vertexAdjacency(cage);
     return {gl::Buffer::fromVector(adjacency.offsets), gl::Buffer::fromVector(adjacency.neighbors),
             cage.vertexCount()};
@@ -48,8 +48,8 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
       plus_(settings.resolution, settings.resolution),
       minus_(settings.resolution, settings.resolution) {}
 
-std::vector<sge::ParameterGroup*> CageFitter::groups() {
-    std::vector<sge::ParameterGroup*> out{&vertices_};
+std::vector<optim::ParameterGroup*> CageFitter::groups() {
+    std::vector<optim::ParameterGroup*> out{&vertices_};
     if (maps_)
         for (auto* group : maps_->groups()) out.push_back(group);
     return out;
@@ -67,12 +67,12 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     const bool mapsStarted = steps_ >= mapsStartStep();
     // Once the maps have started, the vertices keep every other turn and the map groups share
     // the rest: the cage still sets the shape that the maps' detail sits on.
-    std::vector<sge::ParameterGroup*> mapTurns;
+    std::vector<optim::ParameterGroup*> mapTurns;
     for (size_t k = 1; k < all.size(); ++k)
         if (optimised(*all[k])) mapTurns.push_back(all[k]);
     const bool verticesOn = optimised(vertices_);
     const bool mapsOn = !mapTurns.empty() && (mapsStarted || !verticesOn);
-    sge::ParameterGroup* perturbed = nullptr;
+    optim::ParameterGroup* perturbed = nullptr;
     if (verticesOn && (!mapsOn || counter % 2 == 0))
         perturbed = &vertices_;
     else if (mapsOn)
@@ -80,7 +80,7 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     else
         return;  // nothing is optimised
     ++samples_;
-    sge::perturb(programs_, *perturbed, counter, settings_.seed);
+    optim::perturb(programs_, *perturbed, counter, settings_.seed);
     if (std::find(pendingUpdate_.begin(), pendingUpdate_.end(), perturbed) == pendingUpdate_.end())
         pendingUpdate_.push_back(perturbed);
     const bool verticesPerturbed = perturbed == &vertices_;
@@ -88,10 +88,12 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     if (verticesPerturbed) stencils_.evaluate(programs_, vertices_.thetaMinus, pointsMinus_);
     const gl::Buffer& minusPoints = verticesPerturbed ? pointsMinus_ : pointsPlus_;
     const float pixels = float(settings_.resolution) * float(settings_.resolution);
+    const auto mapsPlus = maps_ ? maps_->forRaster(maps::ParameterVersion::Plus, perturbed) : render::PatchMaps{};
+    const auto mapsMinus = maps_ ? maps_->forRaster(maps::ParameterVersion::Minus, perturbed) : render::PatchMaps{};
     for (int view : views) {
         const auto& camera = targets.camera(view);
-        renderer_.draw(programs_, pointsPlus_, camera, plus_, maps_.get(), maps::ParameterVersion::Plus, perturbed);
-        renderer_.draw(programs_, minusPoints, camera, minus_, maps_.get(), maps::ParameterVersion::Minus, perturbed);
+        renderer_.draw(programs_, pointsPlus_, camera, plus_, &mapsPlus);
+        renderer_.draw(programs_, minusPoints, camera, minus_, &mapsMinus);
         sge::accumulateGradient(programs_, vertices_, faceVertices_,
                                 {&plus_, &minus_, targets.colors().id(), view, counter, settings_.seed,
                                  1.0f / (pixels * float(views.size())), measureLoss, maps_.get(),
@@ -108,12 +110,12 @@ void CageFitter::update() {
                             ? std::pow(0.1f, std::min(1.0f, float(steps_) / float(settings_.plannedSteps)))
                             : 1.0f;
     for (auto* g : pendingUpdate_) {
-        sge::resolveGradient(programs_, *g);
+        optim::resolveGradient(programs_, *g);
         if (g == &vertices_) {
             vertices_.settings().learningRate = settings_.vertices.learningRate * decay;
-            sge::precondition(programs_, vertices_, adjacency_, settings_.smoothingLambda,
+            optim::precondition(programs_, vertices_, adjacency_, settings_.smoothingLambda,
                               settings_.smoothingIterations, smoothScratch_);
-            sge::adamStep(programs_, vertices_, vertices_.gradientSmooth);
+            optim::adamStep(programs_, vertices_, vertices_.gradientSmooth);
         } else {
             const bool isDisplacement = g == maps_->displacement();
             maps_->update(programs_, *g,
@@ -127,15 +129,15 @@ void CageFitter::update() {
     ++steps_;
 }
 
-float CageFitter::baseLearningRate(const sge::ParameterGroup& group) const {
+float CageFitter::baseLearningRate(const optim::ParameterGroup& group) const {
     if (maps_ && &group == maps_->displacement()) return settings_.maps.displacement.learningRate;
     if (maps_ && &group == maps_->normalMap()) return settings_.maps.normalMap.learningRate;
     SUBDFIT_CHECK(&group == &vertices_);
     return settings_.vertices.learningRate;
 }
 
-void CageFitter::setRates(sge::ParameterGroup& group, float epsilon, float baseLearningRate) {
-    sge::GroupSettings* base = &settings_.vertices;
+void CageFitter::setRates(optim::ParameterGroup& group, float epsilon, float baseLearningRate) {
+    optim::GroupSettings* base = &settings_.vertices;
     if (maps_ && &group == maps_->displacement()) base = &settings_.maps.displacement;
     if (maps_ && &group == maps_->normalMap()) base = &settings_.maps.normalMap;
     SUBDFIT_CHECK(base != &settings_.vertices || &group == &vertices_);
@@ -143,17 +145,17 @@ void CageFitter::setRates(sge::ParameterGroup& group, float epsilon, float baseL
     base->learningRate = baseLearningRate;
 }
 
-bool CageFitter::optimised(const sge::ParameterGroup& group) const {
+bool CageFitter::optimised(const optim::ParameterGroup& group) const {
     return std::find(frozen_.begin(), frozen_.end(), &group) == frozen_.end();
 }
 
-void CageFitter::setOptimised(const sge::ParameterGroup& group, bool on) {
+void CageFitter::setOptimised(const optim::ParameterGroup& group, bool on) {
     std::erase(frozen_, &group);
     if (!on) frozen_.push_back(&group);
 }
 
 std::vector<float> CageFitter::accumulatedGradient() {
-    sge::resolveGradient(programs_, vertices_);
+    optim::resolveGradient(programs_, vertices_);
     return vertices_.gradient.read<float>();
 }
 
@@ -221,7 +223,8 @@ void CageFitter::restore(const State& state) {
 
 void CageFitter::render(const render::Camera& camera, const render::RenderTarget& target) {
     stencils_.evaluate(programs_, vertices_.theta, pointsPlus_);
-    renderer_.draw(programs_, pointsPlus_, camera, target, maps_.get(), maps::ParameterVersion::Current);
+    const auto maps = maps_ ? maps_->forRaster(maps::ParameterVersion::Current) : render::PatchMaps{};
+    renderer_.draw(programs_, pointsPlus_, camera, target, &maps);
 }
 
 }  // namespace subdfit::fit

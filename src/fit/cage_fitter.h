@@ -26,7 +26,7 @@
 namespace subdfit::fit {
 
 struct CageFitSettings {
-    sge::GroupSettings vertices{.sharedMoment = true};
+    optim::GroupSettings vertices{.sharedMoment = true};
     float smoothingLambda = 4.0f;   // λ of the (I + λL)⁻¹ vertex-gradient preconditioner
     int smoothingIterations = 8;    // damped Jacobi sweeps approximating that inverse
     int plannedSteps = 0;           // > 0: anneal every learning rate ×0.1 over this many steps
@@ -71,20 +71,20 @@ public:
     int mapsStartStep() const;
     const subdiv::PatchSet& patches() const { return patches_; }
     const render::PatchRenderer& renderer() const { return renderer_; }
-    sge::ParameterGroup& vertexGroup() { return vertices_; }
+    optim::ParameterGroup& vertexGroup() { return vertices_; }
     // Null when the scene has no maps.
     maps::MapParameters* maps() { return maps_.get(); }
     // Every optimised group, vertices first.
-    std::vector<sge::ParameterGroup*> groups();
+    std::vector<optim::ParameterGroup*> groups();
 
     // Knobs for an interactive run (the viewer), between steps. The base learning rate is the
     // un-annealed one that update() anneals; ε applies from the next sample on.
-    float baseLearningRate(const sge::ParameterGroup& group) const;
-    void setRates(sge::ParameterGroup& group, float epsilon, float baseLearningRate);
+    float baseLearningRate(const optim::ParameterGroup& group) const;
+    void setRates(optim::ParameterGroup& group, float epsilon, float baseLearningRate);
     // A group left out of the turns keeps its θ and Adam moments until it is optimised again.
     // With the vertices left out, the map groups take every turn, even before their start.
-    bool optimised(const sge::ParameterGroup& group) const;
-    void setOptimised(const sge::ParameterGroup& group, bool on);
+    bool optimised(const optim::ParameterGroup& group) const;
+    void setOptimised(const optim::ParameterGroup& group, bool on);
 
     // Renders the current (unperturbed) scene.
     void render(const render::Camera& camera, const render::RenderTarget& target);
@@ -101,16 +101,16 @@ private:
     subdiv::PatchSet patches_;
     render::StencilEvaluator stencils_;
     render::PatchRenderer renderer_;
-    sge::ParameterGroup vertices_;
+    optim::ParameterGroup vertices_;
     std::unique_ptr<maps::MapParameters> maps_;
     sge::FaceVertexTable faceVertices_;
-    sge::Adjacency adjacency_;
+    optim::Adjacency adjacency_;
     gl::Buffer pointsPlus_, pointsMinus_, smoothScratch_, loss_;
     render::RenderTarget plus_, minus_;
     int steps_ = 0, samplesSinceLoss_ = 0;
     std::uint32_t samples_ = 0;  // perturbation counter: one per accumulate()
-    std::vector<sge::ParameterGroup*> pendingUpdate_;  // groups perturbed since the last update()
-    std::vector<const sge::ParameterGroup*> frozen_;   // groups left out of the turns
+    std::vector<optim::ParameterGroup*> pendingUpdate_;  // groups perturbed since the last update()
+    std::vector<const optim::ParameterGroup*> frozen_;   // groups left out of the turns
 };
 
 }  // namespace subdfit::fit

@@ -22,7 +22,7 @@ MapEffects parseMapEffects(const std::string& text) {
 
 namespace {
 
-sge::Adjacency uploadAdjacency(const TexelLayout& layout) {
+optim::Adjacency uploadAdjacency(const TexelLayout& layout) {
     const auto graph = nodeAdjacency(layout);
     return {gl::Buffer::fromVector(graph.offsets), gl::Buffer::fromVector(graph.neighbors), layout.nodeCount};
 }
@@ -37,17 +37,17 @@ MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, 
       adjacency_(uploadAdjacency(layout_)),
       scratch_(GLsizeiptr(std::max(1, layout_.nodeCount)) * 2 * GLsizeiptr(sizeof(float))) {
     if (effects.displacement)
-        displacement_ = std::make_unique<sge::ParameterGroup>(
+        displacement_ = std::make_unique<optim::ParameterGroup>(
             "displacement", std::vector<float>(size_t(layout_.nodeCount), 0.0f), settings.displacement,
             SUBDFIT_SEED_DISPLACEMENT);
     if (effects.normalMap)
-        normalMap_ = std::make_unique<sge::ParameterGroup>(
+        normalMap_ = std::make_unique<optim::ParameterGroup>(
             "normal_map", std::vector<float>(size_t(layout_.nodeCount) * 2, 0.0f), settings.normalMap,
             SUBDFIT_SEED_NORMAL_MAP);
 }
 
-std::vector<sge::ParameterGroup*> MapParameters::groups() {
-    std::vector<sge::ParameterGroup*> out;
+std::vector<optim::ParameterGroup*> MapParameters::groups() {
+    std::vector<optim::ParameterGroup*> out;
     if (displacement_) out.push_back(displacement_.get());
     if (normalMap_) out.push_back(normalMap_.get());
     return out;
@@ -62,17 +62,21 @@ gl::Defines MapParameters::defines() const {
 
 namespace {
 
-const gl::Buffer& version(const sge::ParameterGroup& group, ParameterVersion v) {
+const gl::Buffer& version(const optim::ParameterGroup& group, ParameterVersion v) {
     return v == ParameterVersion::Plus ? group.thetaPlus : v == ParameterVersion::Minus ? group.thetaMinus : group.theta;
 }
 
 }  // namespace
 
-void MapParameters::bindForRaster(ParameterVersion v, const sge::ParameterGroup* perturbed) const {
-    auto of = [&](const sge::ParameterGroup& g) { return &g == perturbed ? v : ParameterVersion::Current; };
-    faceNodes_.bindStorage(SUBDFIT_SSBO_FACE_NODES);
-    if (displacement_) version(*displacement_, of(*displacement_)).bindStorage(SUBDFIT_SSBO_DISPLACEMENT);
-    if (normalMap_) version(*normalMap_, of(*normalMap_)).bindStorage(SUBDFIT_SSBO_NORMAL_MAP);
+render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::ParameterGroup* perturbed) const {
+    auto bind = [this, v, perturbed] {
+        auto of = [&](const optim::ParameterGroup& g) { return &g == perturbed ? v : ParameterVersion::Current; };
+        faceNodes_.bindStorage(SUBDFIT_SSBO_FACE_NODES);
+        if (displacement_) version(*displacement_, of(*displacement_)).bindStorage(SUBDFIT_SSBO_DISPLACEMENT);
+        if (normalMap_) version(*normalMap_, of(*normalMap_)).bindStorage(SUBDFIT_SSBO_NORMAL_MAP);
+    };
+    return {.displacement = effects_.displacement, .normalMap = effects_.normalMap, .resolution = layout_.resolution,
+            .bind = bind};
 }
 
 void MapParameters::bindForGradient() const {
@@ -81,10 +85,10 @@ void MapParameters::bindForGradient() const {
     if (normalMap_) normalMap_->gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_NORMAL_MAP);
 }
 
-void MapParameters::update(gl::ProgramCache& programs, sge::ParameterGroup& group, float learningRate) {
+void MapParameters::update(gl::ProgramCache& programs, optim::ParameterGroup& group, float learningRate) {
     group.settings().learningRate = learningRate;
-    sge::precondition(programs, group, adjacency_, settings_.smoothing, settings_.smoothingIterations, scratch_);
-    sge::adamStep(programs, group, group.gradientSmooth);
+    optim::precondition(programs, group, adjacency_, settings_.smoothing, settings_.smoothingIterations, scratch_);
+    optim::adamStep(programs, group, group.gradientSmooth);
 }
 
 }  // namespace subdfit::maps

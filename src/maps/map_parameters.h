@@ -8,8 +8,9 @@
 
 #include "gl/program.h"
 #include "maps/texel_layout.h"
-#include "sge/parameter_group.h"
-#include "sge/passes.h"
+#include "optim/parameter_group.h"
+#include "optim/updates.h"
+#include "render/patch_renderer.h"
 
 namespace subdfit::maps {
 
@@ -25,8 +26,8 @@ MapEffects parseMapEffects(const std::string& text);
 struct MapSettings {
     int resolution = 8;  // cells per ptex-face edge
     // Heights in the normalised frame (scene radius 1); tangent offsets are dimensionless.
-    sge::GroupSettings displacement{.epsilon = 0.004f, .learningRate = 0.003f};
-    sge::GroupSettings normalMap{.epsilon = 0.05f, .learningRate = 0.01f};
+    optim::GroupSettings displacement{.epsilon = 0.004f, .learningRate = 0.003f};
+    optim::GroupSettings normalMap{.epsilon = 0.05f, .learningRate = 0.01f};
     // (I + λL)⁻¹ on the node graph, as for the cage: texel estimates are noisy one by one.
     float smoothing = 2.0f;
     int smoothingIterations = 8;
@@ -41,27 +42,28 @@ public:
 
     const TexelLayout& layout() const { return layout_; }
     MapEffects effects() const { return effects_; }
-    sge::ParameterGroup* displacement() { return displacement_.get(); }
-    sge::ParameterGroup* normalMap() { return normalMap_.get(); }
-    std::vector<sge::ParameterGroup*> groups();
+    optim::ParameterGroup* displacement() { return displacement_.get(); }
+    optim::ParameterGroup* normalMap() { return normalMap_.get(); }
+    std::vector<optim::ParameterGroup*> groups();
 
     // SUBDFIT_DISPLACEMENT / SUBDFIT_NORMAL_MAP for the effects present.
     gl::Defines defines() const;
-    // Binds θ± of the group being perturbed (`perturbed`, may be null) and θ of the others.
-    void bindForRaster(ParameterVersion version, const sge::ParameterGroup* perturbed) const;
+    // The patch pass's maps: θ± of the group being perturbed (`perturbed`, may be null) and θ of
+    // the others. Valid while this object lives.
+    render::PatchMaps forRaster(ParameterVersion version, const optim::ParameterGroup* perturbed = nullptr) const;
     void bindForGradient() const;
 
     // Preconditions `group`'s gradient on the node graph and applies Adam to it.
-    void update(gl::ProgramCache& programs, sge::ParameterGroup& group, float learningRate);
+    void update(gl::ProgramCache& programs, optim::ParameterGroup& group, float learningRate);
 
 private:
     MapEffects effects_;
     TexelLayout layout_;
     MapSettings settings_;
     gl::Buffer faceNodes_;
-    sge::Adjacency adjacency_;
+    optim::Adjacency adjacency_;
     gl::Buffer scratch_;  // Jacobi ping-pong partner, sized for the largest group
-    std::unique_ptr<sge::ParameterGroup> displacement_, normalMap_;
+    std::unique_ptr<optim::ParameterGroup> displacement_, normalMap_;
 };
 
 }  // namespace subdfit::maps

@@ -27,20 +27,23 @@ PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel)
 }
 
 void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera,
-                         const RenderTarget& target, const maps::MapParameters* maps,
-                         maps::ParameterVersion version, const sge::ParameterGroup* perturbed) const {
+                         const RenderTarget& target, const PatchMaps* maps) const {
+    const bool withMaps = maps && (maps->displacement || maps->normalMap);
+    gl::Defines defines;
+    if (withMaps && maps->displacement) defines["SUBDFIT_DISPLACEMENT"] = "";
+    if (withMaps && maps->normalMap) defines["SUBDFIT_NORMAL_MAP"] = "";
     const auto& program = programs.get("patch_raster",
                                        {{GL_VERTEX_SHADER, "patch.vert"},
                                         {GL_TESS_CONTROL_SHADER, "patch.tesc"},
                                         {GL_TESS_EVALUATION_SHADER, "patch.tese"},
                                         {GL_FRAGMENT_SHADER, "patch.frag"}},
-                                       maps ? maps->defines() : gl::Defines{});
+                                       defines);
     beginRasterPass(program, camera, target);
     program.set("uTessLevel", float(tessLevel_));
     points.bindStorage(SUBDFIT_SSBO_POINTS);
-    if (maps && maps->effects().any()) {
-        program.set("uMapResolution", maps->layout().resolution);
-        maps->bindForRaster(version, perturbed);
+    if (withMaps) {
+        program.set("uMapResolution", maps->resolution);
+        if (maps->bind) maps->bind();
     }
     patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);
     patchCvs_.bindStorage(SUBDFIT_SSBO_PATCH_CVS);

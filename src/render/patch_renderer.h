@@ -1,14 +1,23 @@
 #pragma once
 // Draws a cage's limit surface with GPU tessellation: one GL patch per OpenSubdiv patch, whose
 // control points come from an SSBO of evaluated points. Writes colour, ptex face id and (u,v).
+#include <functional>
+
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
-#include "maps/map_parameters.h"
 #include "render/camera.h"
 #include "render/render_target.h"
 #include "subdiv/patch_set.h"
 
 namespace subdfit::render {
+
+// Per-texel maps the patch pass can apply (glsl/maps.glsl). Each effect is a bit of the pass's
+// shader variant; whoever owns the maps binds their buffers.
+struct PatchMaps {
+    bool displacement = false, normalMap = false;
+    int resolution = 1;           // cells per ptex-face edge
+    std::function<void()> bind;   // the node table and the map values this pass reads
+};
 
 class PatchRenderer {
 public:
@@ -20,12 +29,9 @@ public:
     int tessLevel() const { return tessLevel_; }
     int patchCount() const { return patchCount_; }
 
-    // With `maps`, the variant with their effects, reading `version` of the perturbed map group
-    // (if any) and the current θ of the others.
+    // With `maps`, the variant with their effects.
     void draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera, const RenderTarget& target,
-              const maps::MapParameters* maps = nullptr,
-              maps::ParameterVersion version = maps::ParameterVersion::Current,
-              const sge::ParameterGroup* perturbed = nullptr) const;
+              const PatchMaps* maps = nullptr) const;
 
 private:
     int patchCount_, tessLevel_;

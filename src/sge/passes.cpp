@@ -6,6 +6,7 @@
 
 #include "bindings.h"
 #include "maps/map_parameters.h"
+#include "optim/updates.h"
 
 namespace subdfit::sge {
 namespace {
@@ -38,21 +39,7 @@ FaceVertexTable::FaceVertexTable(const std::vector<int>& faceOffsets, const std:
     vertexFaces = gl::Buffer::fromVector(vertexFaceIndices);
 }
 
-void perturb(gl::ProgramCache& programs, ParameterGroup& group, std::uint32_t counter, std::uint32_t seed) {
-    const auto& program = programs.get("perturb", {{GL_COMPUTE_SHADER, "perturb.comp"}});
-    program.use();
-    program.set("uCount", unsigned(group.count()));
-    program.set("uCounter", counter);
-    program.set("uSeed", seed ^ group.seedSalt());
-    program.set("uEpsilon", group.settings().epsilon);
-    group.theta.bindStorage(SUBDFIT_SSBO_THETA);
-    group.thetaPlus.bindStorage(SUBDFIT_SSBO_THETA_PLUS);
-    group.thetaMinus.bindStorage(SUBDFIT_SSBO_THETA_MINUS);
-    glDispatchCompute(groupsOf(group.count(), 256), 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-}
-
-void accumulateGradient(gl::ProgramCache& programs, ParameterGroup& group, const FaceVertexTable& faces,
+void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group, const FaceVertexTable& faces,
                         const GradientInputs& in, const gl::Buffer& loss) {
     gl::Defines effects = in.maps ? in.maps->defines() : gl::Defines{};
     if (in.fullImage) effects["SUBDFIT_FULL_IMAGE"] = "";
@@ -87,7 +74,7 @@ void accumulateGradient(gl::ProgramCache& programs, ParameterGroup& group, const
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-void scatterFaceDeltas(gl::ProgramCache& programs, ParameterGroup& group, FaceVertexTable& faces,
+void scatterFaceDeltas(gl::ProgramCache& programs, optim::ParameterGroup& group, FaceVertexTable& faces,
                        std::uint32_t counter, std::uint32_t seed, bool fullImage) {
     const auto& program = programs.get("scatter_faces", {{GL_COMPUTE_SHADER, "scatter_faces.comp"}},
                                        fullImage ? gl::Defines{{"SUBDFIT_FULL_IMAGE", ""}} : gl::Defines{});
@@ -102,77 +89,6 @@ void scatterFaceDeltas(gl::ProgramCache& programs, ParameterGroup& group, FaceVe
     glDispatchCompute(groupsOf(faces.vertexCount, 128), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     faces.faceDelta.clearToZero();
-}
-
-void resolveGradient(gl::ProgramCache& programs, ParameterGroup& group) {
-    const auto& program = programs.get("resolve_gradient", {{GL_COMPUTE_SHADER, "resolve_gradient.comp"}});
-    program.use();
-    program.set("uCount", unsigned(group.count()));
-    group.gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_SUM);
-    group.gradient.bindStorage(SUBDFIT_SSBO_GRADIENT);
-    glDispatchCompute(groupsOf(group.count(), 256), 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-}
-
-void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency,
-                  float lambda, int iterations, gl::Buffer& scratch) {
-    if (iterations <= 0 || lambda <= 0.0f) {
-        group.gradientSmooth.copyFrom(group.gradient);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        return;
-    }
-    const auto& program = programs.get("precondition", {{GL_COMPUTE_SHADER, "precondition.comp"}},
-                                       {{"SUBDFIT_CHANNELS", std::to_string(group.count() / adjacency.vertexCount)}});
-    program.use();
-    program.set("uVertexCount", adjacency.vertexCount);
-    program.set("uLambda", lambda);
-    group.gradient.bindStorage(SUBDFIT_SSBO_GRADIENT);
-    adjacency.offsets.bindStorage(SUBDFIT_SSBO_ADJACENCY_OFFSETS);
-    adjacency.indices.bindStorage(SUBDFIT_SSBO_ADJACENCY_INDICES);
-    // Jacobi ping-pong; the sweep count is arranged so the last one writes gradientSmooth.
-    const gl::Buffer* in = &group.gradient;
-    for (int k = 0; k < iterations; ++k) {
-        const bool last = (iterations - 1 - k) % 2 == 0;
-        gl::Buffer* out = last ? &group.gradientSmooth : &scratch;
-        in->bindStorage(SUBDFIT_SSBO_SMOOTH_IN);
-        out->bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
-        glDispatchCompute(groupsOf(adjacency.vertexCount, 128), 1, 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        in = out;
-    }
-}
-
-void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffer& gradient) {
-    const auto& s = group.settings();
-    ++group.adamSteps;
-    gl::Defines defines;
-    if (s.sharedMoment) {
-        defines["SUBDFIT_ADAM_SHARED_MOMENT"] = "";
-        const auto& reduce = programs.get("shared_moment", {{GL_COMPUTE_SHADER, "shared_moment.comp"}});
-        reduce.use();
-        reduce.set("uCount", unsigned(group.count()));
-        reduce.set("uBeta2", s.beta2);
-        gradient.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
-        group.moment2.bindStorage(SUBDFIT_SSBO_MOMENT2);
-        glDispatchCompute(1, 1, 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    }
-    const auto& program = programs.get("adam", {{GL_COMPUTE_SHADER, "adam.comp"}}, defines);
-    program.use();
-    program.set("uCount", unsigned(group.count()));
-    program.set("uLearningRate", s.learningRate);
-    program.set("uBeta1", s.beta1);
-    program.set("uBeta2", s.beta2);
-    program.set("uBiasCorrection1", 1.0f - std::pow(s.beta1, float(group.adamSteps)));
-    program.set("uBiasCorrection2", 1.0f - std::pow(s.beta2, float(group.adamSteps)));
-    program.set("uAdamEpsilon", 1e-12f);
-    group.theta.bindStorage(SUBDFIT_SSBO_THETA);
-    gradient.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
-    group.moment1.bindStorage(SUBDFIT_SSBO_MOMENT1);
-    group.moment2.bindStorage(SUBDFIT_SSBO_MOMENT2);
-    glDispatchCompute(groupsOf(group.count(), 256), 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    group.gradient.clearToZero();
 }
 
 }  // namespace subdfit::sge

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "gl_test_context.h"
-#include "sge/passes.h"
-#include "sge/sign_hash.h"
+#include "optim/sign_hash.h"
+#include "optim/updates.h"
 
-namespace subdfit::sge {
+namespace subdfit::optim {
 namespace {
 
 constexpr int kParameters = 100'000;
@@ -99,4 +99,4 @@ TEST(SignHash, SignsAreUncorrelatedBetweenCountersSeedsAndNeighbours) {
 }
 
 }  // namespace
-}  // namespace subdfit::sge
+}  // namespace subdfit::optim

@@ -9,7 +9,7 @@
 #include "maps/texel_layout.h"
 #include "mesh/procedural.h"
 #include "scene_fixture.h"
-#include "sge/passes.h"
+#include "optim/updates.h"
 #include "subdiv/limit_evaluator.h"
 #include "test_paths.h"
 
@@ -22,7 +22,7 @@ double cosine(const std::vector<double>& a, const std::vector<double>& b) {
                           std::inner_product(b.begin(), b.end(), b.begin(), 0.0));
 }
 
-void upload(sge::ParameterGroup& group, const std::vector<float>& values) {
+void upload(optim::ParameterGroup& group, const std::vector<float>& values) {
     group.theta.upload(values.data(), GLsizeiptr(values.size() * sizeof(float)));
 }
 
@@ -40,7 +40,7 @@ TEST(MapsGradient, DisplacementTexelsAgreeWithFiniteDifferences) {
     // Vertices and texels are perturbed together, as in a fit: the vertex signs are noise here.
     const int samples = 256;
     for (int k = 0; k < samples; ++k) fitter.accumulate(*scene.targets, views, false);
-    sge::resolveGradient(programs(), displacement);  // G's fixed-point sums as floats
+    optim::resolveGradient(programs(), displacement);  // G's fixed-point sums as floats
     const auto raw = displacement.gradient.read<float>();
     std::vector<double> sge(raw.begin(), raw.end());
     for (auto& g : sge) g /= samples;

@@ -1,7 +1,7 @@
-#include "sge/parameter_group.h"
+#include "optim/parameter_group.h"
 #include "util/error.h"
 
-namespace subdfit::sge {
+namespace subdfit::optim {
 
 ParameterGroup::ParameterGroup(std::string name, const std::vector<float>& initial, GroupSettings settings,
                                std::uint32_t seedSalt)
@@ -23,4 +23,4 @@ void ParameterGroup::write(const std::vector<float>& values) {
     theta.upload(values.data(), GLsizeiptr(values.size() * sizeof(float)));
 }
 
-}  // namespace subdfit::sge
+}  // namespace subdfit::optim

@@ -4,7 +4,7 @@
 // reproduce any step exactly. Integer arithmetic only; a GL test checks bit-for-bit agreement.
 #include <cstdint>
 
-namespace subdfit::sge {
+namespace subdfit::optim {
 
 constexpr std::uint32_t pcgHash(std::uint32_t v) {
     const std::uint32_t state = v * 747796405u + 2891336453u;
@@ -17,4 +17,4 @@ constexpr float perturbationSign(std::uint32_t parameter, std::uint32_t counter,
     return (h & 0x80000000u) != 0u ? 1.0f : -1.0f;
 }
 
-}  // namespace subdfit::sge
+}  // namespace subdfit::optim

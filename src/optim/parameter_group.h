@@ -8,7 +8,7 @@
 
 #include "gl/buffer.h"
 
-namespace subdfit::sge {
+namespace subdfit::optim {
 
 struct GroupSettings {
     float epsilon = 0.01f;        // perturbation magnitude, in the group's units
@@ -49,4 +49,4 @@ private:
     std::uint32_t seedSalt_;
 };
 
-}  // namespace subdfit::sge
+}  // namespace subdfit::optim

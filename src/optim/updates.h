@@ -1,0 +1,35 @@
+#pragma once
+// The passes that change a parameter group, each a thin wrapper over its shader in glsl/: P
+// (perturb.comp), the resolve of G's fixed-point sums (resolve_gradient.comp), the Laplacian
+// preconditioner (precondition.comp) and Adam (adam.comp, shared_moment.comp). G itself, which
+// reads renders, is the estimator's (sge/).
+#include <cstdint>
+
+#include "gl/buffer.h"
+#include "gl/program_cache.h"
+#include "optim/parameter_group.h"
+
+namespace subdfit::optim {
+
+// P: θ± = θ ± s⊙ε with s drawn from (parameter, counter, seed).
+void perturb(gl::ProgramCache& programs, ParameterGroup& group, std::uint32_t counter, std::uint32_t seed);
+
+// group.gradient = the fixed-point sums of G as floats (the sums are left as they are).
+void resolveGradient(gl::ProgramCache& programs, ParameterGroup& group);
+
+// The group's parameter graph (CSR); each node holds group.count() / vertexCount floats.
+struct Adjacency {
+    gl::Buffer offsets, indices;
+    int vertexCount;  // graph nodes
+};
+
+// g̃ = (I + λL)⁻¹ g by `iterations` Jacobi sweeps into group.gradientSmooth (a plain copy when
+// iterations == 0 or λ == 0). `scratch` must be the size of the gradient.
+void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency,
+                  float lambda, int iterations, gl::Buffer& scratch);
+
+// Adam on θ from `gradient` (group.gradient, or group.gradientSmooth after preconditioning);
+// then clears the raw gradient for the next step.
+void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffer& gradient);
+
+}  // namespace subdfit::optim
