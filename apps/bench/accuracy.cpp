@@ -86,8 +86,8 @@ int runAccuracy(const AccuracyOptions& o) {
                 const auto report = fit::runFit(fit);
                 const auto shipped = mesh::triangulated(mesh::loadMesh(fit.out / "fitted.glb"));
                 const double chamfer = geometry::surfaceDistance(shipped, asset.reference, 50000).chamferL2Squared;
-                const Result r{asset.name, knob.name, value, report["fit_seconds"].get<double>(),
-                               report["psnr_holdout"].get<double>(), chamfer};
+                const Result r{asset.name, knob.name, value, report.fitSeconds,
+                               report.holdoutAfter.psnr, chamfer};
                 std::printf("%-7s %-17s %6d %9.1f %9.2f %13.3e\n", r.asset.c_str(), r.knob.c_str(), r.value, r.seconds,
                             r.psnr, r.chamfer);
                 std::fflush(stdout);

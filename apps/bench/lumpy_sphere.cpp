@@ -38,19 +38,19 @@ int runLumpySphere(const LumpySphereOptions& o) {
     const auto after = geometry::surfaceDistance(geometry::limitMesh(fitted, 8), reference);
 
     std::printf("lumpy sphere: %d-face cage, %d-triangle reference, %d views at %d^2, %d steps\n", cage.faceCount(),
-                reference.faceCount(), o.views, o.resolution, report["steps"].get<int>());
+                reference.faceCount(), o.views, o.resolution, report.steps);
     std::printf("%-8s %14s %14s %12s\n", "", "chamfer L2^2", "mean dist", "hausdorff");
     std::printf("%-8s %14.3e %14.3e %12.3e\n", "before", before.chamferL2Squared, before.meanDistance, before.hausdorff);
     std::printf("%-8s %14.3e %14.3e %12.3e\n", "after", after.chamferL2Squared, after.meanDistance, after.hausdorff);
-    std::printf("fit_seconds=%.1f total_seconds=%.1f psnr_holdout=%.2f\n", report["fit_seconds"].get<double>(),
-                report["seconds"].get<double>(), report["psnr_holdout"].get<double>());
+    std::printf("fit_seconds=%.1f total_seconds=%.1f psnr_holdout=%.2f\n", report.fitSeconds,
+                report.seconds, report.holdoutAfter.psnr);
     writeCsv(o.out / "lumpy_sphere.csv",
              {{"stage", "seconds", "chamfer_l2sq", "mean_distance", "hausdorff", "psnr_holdout"},
               {"before", "0", std::to_string(before.chamferL2Squared), std::to_string(before.meanDistance),
-               std::to_string(before.hausdorff), std::to_string(report["psnr_holdout_initial"].get<double>())},
-              {"after", std::to_string(report["fit_seconds"].get<double>()), std::to_string(after.chamferL2Squared),
+               std::to_string(before.hausdorff), std::to_string(report.holdoutBefore.psnr)},
+              {"after", std::to_string(report.fitSeconds), std::to_string(after.chamferL2Squared),
                std::to_string(after.meanDistance), std::to_string(after.hausdorff),
-               std::to_string(report["psnr_holdout"].get<double>())}});
+               std::to_string(report.holdoutAfter.psnr)}});
     std::printf("peak_rss_mib=%.0f\n", peakResidentMiB());
     std::printf("chamfer_l2sq=%.3e\n", after.chamferL2Squared);
     return 0;

@@ -38,22 +38,22 @@ int runMapsGain(const MapsGainOptions& o) {
         fit.draco = run.draco;
         fit.glProvider = o.glProvider;
         const auto report = fit::runFit(fit);
-        const auto& exports = report["exports"];
+        const auto& exports = report.exports;
         std::uintmax_t mapsBytes = 0;
         for (const char* name : {"displacement.exr", "normal.png"})
-            if (exports.contains(name)) mapsBytes += exports[name].get<std::uintmax_t>();
+            if (exports.count(name)) mapsBytes += exports.at(name);
         const auto cageBytes = std::filesystem::file_size(fit.out / "cage.obj");
         int parameters = 0;
-        for (const auto& [group, count] : report["parameters"].items()) parameters += count.get<int>();
+        for (const auto& [group, count] : report.parameters) parameters += count;
         std::printf("%-22s %6s %8.1f %10.2f %12.2f %10ju %10ju %11ju\n", run.maps.c_str(), run.draco ? "yes" : "no",
-                    report["fit_seconds"].get<double>(), report["psnr_holdout_initial"].get<double>(),
-                    report["psnr_holdout"].get<double>(), cageBytes, mapsBytes,
-                    exports["fitted.glb"].get<std::uintmax_t>());
-        rows.push_back({run.maps, run.draco ? "1" : "0", std::to_string(report["steps"].get<int>()),
-                        std::to_string(report["fit_seconds"].get<double>()),
-                        std::to_string(report["psnr_holdout_initial"].get<double>()),
-                        std::to_string(report["psnr_holdout"].get<double>()), std::to_string(cageBytes),
-                        std::to_string(mapsBytes), std::to_string(exports["fitted.glb"].get<std::uintmax_t>()),
+                    report.fitSeconds, report.holdoutBefore.psnr,
+                    report.holdoutAfter.psnr, cageBytes, mapsBytes,
+                    exports.at("fitted.glb"));
+        rows.push_back({run.maps, run.draco ? "1" : "0", std::to_string(report.steps),
+                        std::to_string(report.fitSeconds),
+                        std::to_string(report.holdoutBefore.psnr),
+                        std::to_string(report.holdoutAfter.psnr), std::to_string(cageBytes),
+                        std::to_string(mapsBytes), std::to_string(exports.at("fitted.glb")),
                         std::to_string(parameters)});
     }
     writeCsv(o.out / "maps_gain.csv", rows);

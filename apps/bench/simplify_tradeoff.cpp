@@ -36,18 +36,16 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
             if (maps != "none") s.fit.mapResolution = std::stoi(maps);
             const auto report = simplify::runSimplify(s);
             const std::string ours = maps == "none" ? "subdfit, no maps" : "subdfit, maps T=" + maps;
-            const std::pair<std::string, const nlohmann::json*> methods[] = {
-                {ours, &report},
-                {"decimation", &report["baselines"]["decimation"]},
-                {"bake", &report["baselines"]["bake"]}};
+            const std::pair<std::string, const simplify::Quality*> methods[] = {
+                {ours, &report.subdfit}, {"decimation", &report.decimation}, {"bake", &report.bake}};
             for (const auto& [name, q] : methods) {
-                const double bytes = double((*q)["bytes"].get<std::uintmax_t>());
-                const double p = (*q)["psnr_holdout"].get<double>(), c = (*q)["chamfer"].get<double>();
-                const double seconds = name == ours ? report["seconds"].get<double>() : 0.0;
+                const double bytes = double(q->bytes);
+                const double p = q->psnrHoldout, c = q->distance.chamferL2Squared;
+                const double seconds = name == ours ? report.fit.seconds : 0.0;
                 std::printf("%6d %5s  %-11.11s %10.0f %10.2f %12.4e %9.1f\n", faces, maps.c_str(), name.c_str(), bytes,
                             p, c, seconds);
                 rows.push_back({std::to_string(faces), maps, name, std::to_string(bytes), std::to_string(p),
-                                std::to_string(c), std::to_string((*q)["hausdorff"].get<double>()),
+                                std::to_string(c), std::to_string(q->distance.hausdorff),
                                 std::to_string(seconds)});
                 // A decimation that fits the whole reference in the budget is lossless (PSNR capped
                 // at 120 dB): in the CSV, but off the plots, whose scale it would flatten.

@@ -16,21 +16,20 @@
 
 namespace {
 
-void printSummary(const nlohmann::json& report) {
-    std::fprintf(stderr, "done: %d steps in %.1f s, loss %.4e -> %.4e, held-out PSNR %.2f -> %.2f dB\n",
-                 report["steps"].get<int>(), report["seconds"].get<double>(), report["loss_initial"].get<double>(),
-                 report["loss_final"].get<double>(), report["psnr_holdout_initial"].get<double>(),
-                 report["psnr_holdout"].get<double>());
+void printSummary(const subdfit::fit::FitReport& r) {
+    std::fprintf(stderr, "done: %d steps in %.1f s, loss %.4e -> %.4e, held-out PSNR %.2f -> %.2f dB\n", r.steps,
+                 r.seconds, r.trainBefore.loss, r.trainAfter.loss, r.holdoutBefore.psnr, r.holdoutAfter.psnr);
 }
 
-void printComparison(const nlohmann::json& report) {
+void printComparison(const subdfit::simplify::SimplifyReport& r) {
     std::fprintf(stderr, "%-11s %10s %12s %12s\n", "", "bytes", "PSNR (dB)", "Chamfer");
-    auto row = [](const char* name, const nlohmann::json& q) {
-        std::fprintf(stderr, "%-11s %10llu %12.2f %12.4e\n", name, (unsigned long long)q["bytes"].get<std::uint64_t>(),
-                     q["psnr_holdout"].get<double>(), q["chamfer"].get<double>());
+    auto row = [](const char* name, const subdfit::simplify::Quality& q) {
+        std::fprintf(stderr, "%-11s %10llu %12.2f %12.4e\n", name, (unsigned long long)q.bytes, q.psnrHoldout,
+                     q.distance.chamferL2Squared);
     };
-    row("subdfit", report);
-    for (const char* name : {"decimation", "bake"}) row(name, report["baselines"][name]);
+    row("subdfit", r.subdfit);
+    row("decimation", r.decimation);
+    row("bake", r.bake);
 }
 
 void printProgress(const subdfit::fit::Progress& p) {
@@ -80,7 +79,7 @@ int main(int argc, char** argv) {
         }
         if (simplifyCommand->parsed()) {
             const auto report = subdfit::simplify::runSimplify(simplify, hooks);
-            printSummary(report);
+            printSummary(report.fit);
             printComparison(report);
             std::cout << (simplify.fit.out / "report.json").string() << "\n";
         }

@@ -1,12 +1,11 @@
 #pragma once
-// One fit as the viewer runs it: the scene and fitter of `subdfit fit`, stepped one step at a
-// time (the same steps, views and samples as runFit), with the loss of every step kept for the
-// curve. Needs a current GL context; every GL object it holds dies with it.
-#include <chrono>
+// One fit as the viewer runs it: a FitRun (the scene and fitter of `subdfit fit`, the same steps,
+// views and samples) stepped one step at a time, with the loss of every step kept for the curve.
+// Needs a current GL context; every GL object it holds dies with it.
 #include <memory>
 #include <vector>
 
-#include "fit/fit_job.h"
+#include "fit/fit_run.h"
 #include "mesh/polygon_mesh.h"
 
 namespace subdfit::view {
@@ -24,31 +23,28 @@ public:
     // Throws subdfit::Error for bad options, inputs or a checkpoint that does not fit (--resume).
     FitSession(const fit::FitOptions& options, FitInputs inputs);
 
-    const fit::FitOptions& options() const { return options_; }
+    const fit::FitOptions& options() const { return run_->options(); }
     fit::FitScene& scene() { return *scene_; }
-    fit::CageFitter& fitter() { return *fitter_; }
+    fit::CageFitter& fitter() { return run_->fitter(); }
     gl::ProgramCache& programs() { return programs_; }
 
-    // One step of runFit's loop, its mean loss measured and kept; none while no group is optimised.
+    // One step, its mean loss measured and kept; none while no group is optimised.
     void step();
-    int stepsTaken() const { return fitter_->stepsTaken(); }
+    int stepsTaken() const { return run_->step(); }
     const std::vector<float>& losses() const { return losses_; }
     bool anythingOptimised();
 
     // Rebuilds the fitter for another tessellation level, keeping its state and knobs.
-    void setTessLevel(int level);
+    void setTessLevel(int level) { run_->setTessLevel(level); }
 
     // The outputs of `subdfit fit` (and checkpoint.bin, so `subdfit fit --resume` can go on)
-    // into `out`. Returns the report.
+    // into `out`. Returns report.json's contents.
     nlohmann::json save(const context::GlContext& context, const std::filesystem::path& out);
 
 private:
-    fit::FitOptions options_;
     gl::ProgramCache programs_;
     std::unique_ptr<fit::FitScene> scene_;
-    std::unique_ptr<fit::CageFitter> fitter_;
-    fit::FitHistory history_;
-    std::chrono::steady_clock::time_point started_;
+    std::unique_ptr<fit::FitRun> run_;
     std::vector<float> losses_;
 };
 

@@ -4,6 +4,7 @@
 // renderer, and the training and held-out target images. Needs a current GL context.
 #include "fit/cage_fitter.h"
 #include "fit/fit_options.h"
+#include "fit/fit_report.h"
 #include "render/mesh_renderer.h"
 #include "scene/scene_frame.h"
 #include "scene/target_set.h"
@@ -31,9 +32,6 @@ public:
 // The fitter settings `options` ask for.
 CageFitSettings fitSettings(const FitOptions& options);
 
-struct ViewSetScore {
-    double loss = 0.0, psnr = 0.0;
-};
 // Mean loss and PSNR of the fitter's current scene over every view of `targets`.
 ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets);
 

@@ -200,7 +200,7 @@ BatchSummary runBatch(const std::vector<BatchItem>& items, const fs::path& out, 
             try {
                 const auto report = runSimplify(options, hooks);
                 nlohmann::json details = identity;
-                details.update({{"psnr_holdout", report["psnr_holdout"]}, {"bytes", report["bytes"]}});
+                details.update({{"psnr_holdout", report.fit.holdoutAfter.psnr}, {"bytes", report.subdfit.bytes}});
                 writeStatus(paths.partial, "done", details);
                 fs::remove_all(paths.finished);  // a stale folder: not done, or from another input
                 fs::rename(paths.partial, paths.finished);

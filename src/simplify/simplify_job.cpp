@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "gl/platform_defines.h"
+#include "io/atomic_file.h"
 #include "io/output_folder.h"
 #include "io/staged_folder.h"
 #include "mesh/mesh_loader.h"
@@ -37,48 +38,62 @@ exporter::FittedMaps fittedMaps(fit::CageFitter& fitter, const mesh::PolygonMesh
 
 // subdfit's shipped files: the cage GLB and the map files (fitted.glb is a convenience preview
 // of the same asset for viewers without subdivision, not part of what the budget counts).
-nlohmann::json shippedFiles(const nlohmann::json& exports, const nlohmann::json& cageFile) {
+nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports, const nlohmann::json& cageFile) {
     nlohmann::json files = cageFile;
-    for (const auto& [name, bytes] : exports.items())
+    for (const auto& [name, bytes] : exports)
         if (name != "fitted.glb") files[name] = bytes;
     return files;
 }
 
-// Evaluates the fitted scene and both baselines; writes cage.glb, baselines/ and comparison.png.
-nlohmann::json evaluate(const SimplifyOptions& o, gl::ProgramCache& programs, const mesh::PolygonMesh& initialCage,
-                        fit::CageFitter& fitter, fit::FitScene& scene, const nlohmann::json& exports) {
-    const auto& out = o.fit.out;
-    mesh::PolygonMesh fitted = scene.cage;
-    fitted.positions = fitter.vertices();
-    mesh::PolygonMesh fittedWorld = fitted;
-    fittedWorld.positions = scene.frame.toWorld(fitted.positions);
+// Scores the fitted scene and both baselines; writes cage.glb, baselines/ and comparison.png
+// into `out`.
+void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::ProgramCache& programs,
+              const mesh::PolygonMesh& initialCage, fit::FitRun& run, const fit::FitReport& fitted,
+              SimplifyReport& report) {
+    fit::CageFitter& fitter = run.fitter();
+    fit::FitScene& scene = run.scene();
+    mesh::PolygonMesh cage = scene.cage;
+    cage.positions = fitter.vertices();
+    mesh::PolygonMesh cageWorld = cage;
+    cageWorld.positions = scene.frame.toWorld(cage.positions);
     const int segments = fitter.renderer().tessLevel();
 
-    Quality ours;
-    ours.files = shippedFiles(exports, shipCage(out / "cage.glb", fittedWorld, o.fit.draco));
+    Quality& ours = report.subdfit;
+    ours.files = shippedFiles(fitted.exports, shipCage(out / "cage.glb", cageWorld, o.fit.draco));
     ours.bytes = totalBytes(ours.files);
     scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
         fitter.render(camera, target);
     }, ours);
-    ours.distance = worldDistance(limitSurfaceTriangles(fitted, fittedMaps(fitter, fitted), segments),
-                                  scene.reference, scene.frame, o.surfaceSamples);
+    ours.distance = worldDistance(limitSurfaceTriangles(cage, fittedMaps(fitter, cage), segments), scene.reference,
+                                  scene.frame, o.surfaceSamples);
 
     const BaselineSettings settings{.dir = out / "baselines", .draco = o.fit.draco,
                                     .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments};
     std::filesystem::create_directories(settings.dir);
-    const Quality decimation = decimationBaseline(programs, scene, ours.bytes, settings);
-    const Quality bake = bakeBaseline(programs, scene, initialCage, maps::parseMapEffects(o.fit.maps),
-                                      o.fit.mapResolution, settings);
+    report.decimation = decimationBaseline(programs, scene, ours.bytes, settings);
+    report.bake = bakeBaseline(programs, scene, initialCage, maps::parseMapEffects(o.fit.maps), o.fit.mapResolution,
+                               settings);
     writeComparison(out / "comparison.png", o.fit.resolution, scene.holdout.readColor(0),
-                    {&ours.view, &decimation.view, &bake.view});
+                    {&ours.view, &report.decimation.view, &report.bake.view});
+}
 
-    nlohmann::json report = toJson(ours);
-    report.erase("psnr_holdout");  // the fit's own report has it already, from the same views
-    report["baselines"] = {{"decimation", toJson(decimation)}, {"bake", toJson(bake)}};
-    report["margin_db"] = {{"decimation", ours.psnrHoldout - decimation.psnrHoldout},
-                           {"bake", ours.psnrHoldout - bake.psnrHoldout}};
-    report["comparison_columns"] = {"reference", "subdfit", "decimation", "bake"};
-    return report;
+// The maps join the fit at `bakeStep`: baked onto the cage as fitted so far (what the bake route
+// would ship for this cage), then only refined, with the cage frozen. A run resumed past that
+// step has the maps from its checkpoint (`baked` false) but must freeze and slow them again.
+void startMaps(fit::FitRun& run, bool bake) {
+    fit::CageFitter& fitter = run.fitter();
+    auto* parameters = fitter.maps();
+    if (bake) {
+        mesh::PolygonMesh current = run.scene().cage;
+        current.positions = fitter.vertices();
+        const auto baked = bakeMaps(current, run.scene().reference,
+                                    {.effects = parameters->effects(), .resolution = parameters->layout().resolution});
+        if (auto* g = parameters->displacement()) g->write(baked.displacement);
+        if (auto* g = parameters->normalMap()) g->write(baked.normal);
+    }
+    // The bake fits this cage: moving it now would slide the maps off the detail they hold.
+    fitter.setOptimised(fitter.vertexGroup(), false);
+    for (auto* g : parameters->groups()) fitter.setRates(*g, g->settings().epsilon, kRefineRate * fitter.baseLearningRate(*g));
 }
 
 }  // namespace
@@ -97,59 +112,59 @@ nlohmann::json settingsJson(const SimplifyOptions& o) {
     return settings;
 }
 
-nlohmann::json runSimplify(const SimplifyOptions& options, const fit::FitHooks& hooks) {
+nlohmann::json toJson(const SimplifyReport& r) {
+    nlohmann::json report = fit::toJson(r.fit);
+    nlohmann::json ours = toJson(r.subdfit);
+    ours.erase("psnr_holdout");  // the fit's report has it already, from the same views
+    report.update(ours);
+    report["baselines"] = {{"decimation", toJson(r.decimation)}, {"bake", toJson(r.bake)}};
+    report["margin_db"] = {{"decimation", r.subdfit.psnrHoldout - r.decimation.psnrHoldout},
+                           {"bake", r.subdfit.psnrHoldout - r.bake.psnrHoldout}};
+    report["comparison_columns"] = {"reference", "subdfit", "decimation", "bake"};
+    report["simplify"] = {{"faces_requested", r.facesRequested}, {"reference_triangles", r.fit.referenceTriangles}};
+    return report;
+}
+
+SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& hooks) {
     validate(options);
     io::checkOutputFolder(options.fit.out, {.ownMarkers = fit::kFitResultMarkers, .force = options.fit.force});
     const auto started = std::chrono::steady_clock::now();
-    SimplifyOptions o = options;
+    const SimplifyOptions& o = options;
     const mesh::PolygonMesh reference = mesh::loadMesh(o.fit.reference);
     const mesh::PolygonMesh cage = initialCage(reference, {.faces = o.faces});
 
     auto context = context::createHeadlessContext(o.fit.glProvider);
     gl::ProgramCache programs(gl::platformDefines());
-    fit::FitScene scene(o.fit, programs, cage, reference);
-    fit::CageFitter fitter(programs, scene.cage, fit::fitSettings(o.fit));
-
-    fit::FitHooks withBake = hooks;
-    // Coarse to fine: the maps start from a bake onto the cage as fitted so far (what the bake
-    // route would ship for this cage), and the fit only refines them from there.
-    withBake.onMapsStart = [&](fit::CageFitter& fitter, fit::FitScene& fitted, bool restored) {
-        auto* parameters = fitter.maps();
-        if (!restored) {
-            mesh::PolygonMesh current = fitted.cage;
-            current.positions = fitter.vertices();
-            const auto baked = bakeMaps(current, fitted.reference,
-                                        {.effects = parameters->effects(), .resolution = parameters->layout().resolution});
-            if (auto* g = parameters->displacement()) g->write(baked.displacement);
-            if (auto* g = parameters->normalMap()) g->write(baked.normal);
-        }
-        // The bake fits this cage: moving it now would slide the maps off the detail they hold.
-        fitter.setOptimised(fitter.vertexGroup(), false);
-        for (auto* g : parameters->groups()) fitter.setRates(*g, g->settings().epsilon, kRefineRate * fitter.baseLearningRate(*g));
-    };
+    fit::FitOptions fitOptions = o.fit;
+    fitOptions.cage = o.fit.out / "initial_cage.obj";  // where the report says the cage came from
+    fit::FitScene scene(fitOptions, programs, cage, reference);
+    fit::FitRun run(fitOptions, programs, scene);
     const auto checkpoint = o.fit.out / "checkpoint.bin";
-    fit::FitHistory history = fit::fitSteps(o.fit, scene, fitter, checkpoint, withBake);
+    if (o.fit.resume && !run.resume(checkpoint) && hooks.note)
+        hooks.note("no checkpoint at " + checkpoint.string() + " to resume: starting from step 0");
+
+    // Stages: the cage alone; the maps baked onto it; the maps refined on the frozen cage.
     // Unlike `fit`, an interrupted simplify writes no results: they would cost the baselines'
     // time after the user asked to stop, and the checkpoint keeps the steps taken.
-    if (history.interrupted(o.fit))
-        throw Interrupted("interrupted at step " + std::to_string(history.steps) + " of " + std::to_string(o.fit.steps) +
-                          ", checkpointed in " + checkpoint.string());
+    auto interrupted = [&] {
+        return Interrupted("interrupted at step " + std::to_string(run.step()) + " of " + std::to_string(o.fit.steps) +
+                           ", checkpointed in " + checkpoint.string());
+    };
+    if (run.fitter().maps()) {
+        const int bakeStep = run.fitter().mapsStartStep();
+        const bool pastBake = run.step() > bakeStep;
+        if (!run.runTo(bakeStep, checkpoint, hooks)) throw interrupted();
+        startMaps(run, !pastBake);
+    }
+    if (!run.runTo(o.fit.steps, checkpoint, hooks)) throw interrupted();
 
     // Every result lands in one commit, or none does.
     io::StagedFolder staged(o.fit.out);
-    fit::FitOptions results = o.fit;
-    results.out = staged.path();
-    results.cage = o.fit.out / "initial_cage.obj";
     mesh::writeObj(staged.path() / "initial_cage.obj", cage);
-    history.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    SimplifyOptions stagedOptions = o;
-    stagedOptions.fit = results;
-    auto report = fit::writeFitResults(results, programs, *context, scene, fitter, history,
-                                       [&](fit::CageFitter& fitted, fit::FitScene& fittedScene, const nlohmann::json& exports) {
-        auto extra = evaluate(stagedOptions, programs, scene.cage, fitted, fittedScene, exports);
-        extra["simplify"] = {{"faces_requested", o.faces}, {"reference_triangles", fittedScene.reference.faceCount()}};
-        return extra;
-    });
+    SimplifyReport report{.fit = run.writeResults(staged.path(), *context), .facesRequested = o.faces};
+    evaluate(o, staged.path(), programs, scene.cage, run, report.fit, report);
+    report.fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    io::writeTextAtomically(staged.path() / "report.json", toJson(report).dump(2) + "\n");
     staged.commit();
     return report;
 }

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fit/fit_job.h"
+#include "simplify/quality.h"
 
 namespace subdfit::simplify {
 
@@ -36,10 +37,22 @@ void validate(const SimplifyOptions& options);
 // The fit's settings and simplify's own (see fit::settingsJson).
 nlohmann::json settingsJson(const SimplifyOptions& options);
 
+// What a simplify did: the fit's report, and subdfit's asset and each baseline measured the
+// same way at the same byte budget.
+struct SimplifyReport {
+    fit::FitReport fit;
+    Quality subdfit, decimation, bake;
+    int facesRequested = 0;
+};
+
+// report.json: the fit's keys, subdfit's bytes / files / chamfer / hausdorff / mean_distance,
+// `baselines`, `margin_db` (subdfit's held-out PSNR minus each baseline's) and `simplify`.
+nlohmann::json toJson(const SimplifyReport& report);
+
 // Checks DIR (io::checkOutputFolder), loads, fits with DIR/checkpoint.bin as its checkpoint
 // (resumed with options.fit.resume), and writes every result through DIR/.staging-PID/ in one
 // commit. Throws subdfit::Error for bad options or inputs before anything is written, and
 // Interrupted (no results, the checkpoint kept) when hooks.cancel or a stop request ends the fit.
-nlohmann::json runSimplify(const SimplifyOptions& options, const fit::FitHooks& hooks = {});
+SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& hooks = {});
 
 }  // namespace subdfit::simplify

@@ -35,23 +35,23 @@ TEST(FitResume, InterruptedRunContinuesToTheSameResult) {
     mesh::writeObj(dir / "reference.obj", mesh::makeLumpySphere(3, 0.2f, 5));
 
     const auto straight = fit::runFit(smallFit(dir, "straight"));
-    EXPECT_EQ(straight["steps"], 40);
-    EXPECT_FALSE(straight["interrupted"].get<bool>());
+    EXPECT_EQ(straight.steps, 40);
+    EXPECT_FALSE(straight.interrupted());
 
     // Stop after 20 steps, as Ctrl-C would: results of the steps taken are written.
     std::atomic<bool> cancel{false};
     auto interruptedOptions = smallFit(dir, "resumed");
     const auto interrupted = fit::runFit(
         interruptedOptions, {.progress = [&](const fit::Progress& p) { cancel = cancel || p.step >= 20; }, .cancel = &cancel});
-    EXPECT_TRUE(interrupted["interrupted"].get<bool>());
-    EXPECT_EQ(interrupted["steps"], 20);
+    EXPECT_TRUE(interrupted.interrupted());
+    EXPECT_EQ(interrupted.steps, 20);
     EXPECT_TRUE(std::filesystem::exists(interruptedOptions.out / "cage.obj"));
     EXPECT_TRUE(std::filesystem::exists(interruptedOptions.out / "checkpoint.bin"));
 
     interruptedOptions.resume = true;
     const auto resumed = fit::runFit(interruptedOptions);
-    EXPECT_EQ(resumed["resumed_from_step"], 20);
-    EXPECT_EQ(resumed["steps"], 40);
+    EXPECT_EQ(resumed.resumedFromStep, 20);
+    EXPECT_EQ(resumed.steps, 40);
 
     // G sums in fixed point, so a run repeats exactly: the resumed run must end on the very
     // same vertices (a restart from scratch or a skipped view order would differ by ~1e-3).

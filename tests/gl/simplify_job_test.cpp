@@ -52,7 +52,7 @@ nlohmann::json readJson(const fs::path& path) {
 TEST(SimplifyJob, ReportMatchesTheFilesAndComparesAtEqualBytes) {
     const auto dir = scratchDir("simplify_job");
     mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 4));
-    const auto report = simplify::runSimplify(smallSimplify(dir / "lumpy.obj", dir / "out"));
+    const auto report = simplify::toJson(simplify::runSimplify(smallSimplify(dir / "lumpy.obj", dir / "out")));
 
     // bytes: exactly what the shipped files weigh on disk.
     std::uintmax_t onDisk = 0;
@@ -95,7 +95,7 @@ TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
     auto options = smallSimplify(dir / "lumpy.obj", dir / "straight");
     options.fit.steps = 20;
     options.fit.mapsStart = 0.5f;  // bake at step 10
-    const auto straight = simplify::runSimplify(options);
+    const auto straight = simplify::runSimplify(options).fit;
 
     options.fit.out = dir / "resumed";
     std::atomic<bool> cancel{false};
@@ -107,14 +107,14 @@ TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
     EXPECT_FALSE(fs::exists(dir / "resumed" / "report.json"));
     EXPECT_FALSE(fs::exists(dir / "resumed" / "initial_cage.obj"));
     options.fit.resume = true;
-    const auto resumed = simplify::runSimplify(options);
-    EXPECT_EQ(resumed["resumed_from_step"], 14);
+    const auto resumed = simplify::runSimplify(options).fit;
+    EXPECT_EQ(resumed.resumedFromStep, 14);
 
     const auto a = mesh::loadMesh(dir / "straight" / "cage.obj").positions;
     const auto b = mesh::loadMesh(dir / "resumed" / "cage.obj").positions;
     ASSERT_EQ(a.size(), b.size());
     EXPECT_EQ(a, b) << "largest vertex difference " << maxDistance(a, b);
-    EXPECT_EQ(resumed["psnr_holdout"].get<double>(), straight["psnr_holdout"].get<double>());
+    EXPECT_EQ(resumed.holdoutAfter.psnr, straight.holdoutAfter.psnr);
     for (const char* map : {"displacement.exr", "normal.png"})
         EXPECT_EQ(readBytes(dir / "straight" / map), readBytes(dir / "resumed" / map)) << map;
 }
@@ -124,8 +124,8 @@ TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
 TEST(SimplifyJob, TwoRunsOfOneSeedWriteTheSameFiles) {
     const auto dir = scratchDir("simplify_repeat");
     mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 4));
-    const auto first = simplify::runSimplify(smallSimplify(dir / "lumpy.obj", dir / "first"));
-    const auto second = simplify::runSimplify(smallSimplify(dir / "lumpy.obj", dir / "second"));
+    const auto first = simplify::toJson(simplify::runSimplify(smallSimplify(dir / "lumpy.obj", dir / "first")));
+    const auto second = simplify::toJson(simplify::runSimplify(smallSimplify(dir / "lumpy.obj", dir / "second")));
     for (const auto& [name, bytes] : first["files"].items())
         EXPECT_EQ(readBytes(dir / "first" / name), readBytes(dir / "second" / name)) << name;
     for (const char* name : {"cage.obj", "fitted.glb", "initial_cage.obj"})

@@ -1,0 +1,50 @@
+#include "fit/fit_report.h"
+
+namespace subdfit::fit {
+
+nlohmann::json toJson(const FitReport& r) {
+    auto effects = nlohmann::json::array({"subdivision"});
+    if (r.effects.displacement) effects.push_back("displacement");
+    if (r.effects.normalMap) effects.push_back("normal_map");
+    nlohmann::json parameters = nlohmann::json::object();
+    for (const auto& [group, count] : r.parameters) parameters[group] = count;
+    auto variants = nlohmann::json::array();
+    for (const auto& variant : r.shaderVariants) {
+        nlohmann::json defines = nlohmann::json::object();
+        for (const auto& [name, value] : variant.defines) defines[name] = value;
+        variants.push_back({{"name", variant.name}, {"files", variant.files}, {"defines", defines}});
+    }
+    nlohmann::json settings = settingsJson(r.options);
+    settings["tess_level"] = r.tessLevel;
+    nlohmann::json exports = nlohmann::json::object();
+    for (const auto& [file, bytes] : r.exports) exports[file] = bytes;
+    return {
+        {"steps", r.steps},
+        {"steps_requested", r.options.steps},
+        {"resumed_from_step", r.resumedFromStep},
+        {"interrupted", r.interrupted()},
+        {"seconds", r.seconds},
+        {"fit_seconds", r.fitSeconds},
+        {"loss_initial", r.trainBefore.loss},
+        {"loss_final", r.trainAfter.loss},
+        {"psnr_train_initial", r.trainBefore.psnr},
+        {"psnr_train", r.trainAfter.psnr},
+        {"psnr_holdout_initial", r.holdoutBefore.psnr},
+        {"psnr_holdout", r.holdoutAfter.psnr},
+        {"finite", r.finite},
+        {"effects", effects},
+        {"parameters", parameters},
+        {"renderer", r.gl.renderer},
+        {"gl_version", r.gl.version},
+        {"gl_provider", r.glProvider},
+        {"atomic_float", r.gl.hasAtomicFloat},
+        {"shader_variants", variants},
+        {"settings", settings},
+        {"cage", {{"path", r.options.cage.string()}, {"vertices", r.cageVertices}, {"faces", r.cageFaces},
+                  {"patches", r.patches}}},
+        {"reference", {{"path", r.options.reference.string()}, {"triangles", r.referenceTriangles}}},
+        {"exports", exports},
+    };
+}
+
+}  // namespace subdfit::fit

@@ -1,0 +1,49 @@
+#pragma once
+// What one fit did and how well it did, typed: apps and benchmarks read fields, and report.json
+// is made from it in one place (toJson).
+#include <cstdint>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "context/gl_context.h"
+#include "fit/fit_options.h"
+#include "gl/program_cache.h"
+#include "maps/map_parameters.h"
+
+namespace subdfit::fit {
+
+struct ViewSetScore {
+    double loss = 0.0, psnr = 0.0;
+};
+
+struct FitReport {
+    FitOptions options;          // as run: settings and paths
+    int steps = 0;               // steps taken in all, those before a resume included
+    int resumedFromStep = 0;     // 0 when not resumed
+    double seconds = 0.0;        // the whole run: scene, fit, scoring
+    double fitSeconds = 0.0;     // the steps alone
+    ViewSetScore trainBefore, trainAfter, holdoutBefore, holdoutAfter;
+    bool finite = true;          // every parameter of every group
+    maps::MapEffects effects;
+    std::vector<std::pair<std::string, int>> parameters;  // per group: name, count
+    int tessLevel = 0;           // as rendered (a crack-free power of two)
+    int cageVertices = 0, cageFaces = 0, patches = 0, referenceTriangles = 0;
+    context::GlInfo gl;
+    std::string glProvider;
+    std::vector<gl::ProgramVariant> shaderVariants;  // every program the run compiled
+    std::map<std::string, std::uintmax_t> exports;   // file name -> bytes
+
+    bool interrupted() const { return steps < options.steps; }
+};
+
+// report.json's keys: steps, steps_requested, resumed_from_step, interrupted, seconds,
+// fit_seconds, loss_initial, loss_final, psnr_train[_initial], psnr_holdout[_initial], finite,
+// effects, parameters, renderer, gl_version, gl_provider, atomic_float, shader_variants,
+// settings, cage, reference, exports.
+nlohmann::json toJson(const FitReport& report);
+
+}  // namespace subdfit::fit

@@ -1,0 +1,150 @@
+#include "fit/fit_run.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "fit/asset_export.h"
+#include "fit/checkpoint.h"
+#include "io/image_io.h"
+#include "mesh/obj_writer.h"
+#include "util/error.h"
+
+namespace subdfit::fit {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+std::vector<glm::vec4> renderHoldout(CageFitter& fitter, const FitScene& scene) {
+    render::RenderTarget image(scene.holdout.resolution(), scene.holdout.resolution());
+    fitter.render(scene.holdout.camera(0), image);
+    return image.readColor();
+}
+
+// Every parameter of every group, maps included.
+bool allFinite(CageFitter& fitter) {
+    for (auto* group : fitter.groups())
+        for (float value : group->read())
+            if (!std::isfinite(value)) return false;
+    return true;
+}
+
+}  // namespace
+
+FitRun::FitRun(const FitOptions& options, gl::ProgramCache& programs, FitScene& scene)
+    : options_(options),
+      programs_(programs),
+      scene_(scene),
+      fitter_(std::make_unique<CageFitter>(programs, scene.cage, fitSettings(options))),
+      fingerprint_(checkpointFingerprint(options, scene.cage, scene.reference)),
+      started_(Clock::now()) {
+    validate(options_);
+    beforeImage_ = renderHoldout(*fitter_, scene_);
+    trainBefore_ = score(*fitter_, scene_.training);
+    holdoutBefore_ = score(*fitter_, scene_.holdout);
+}
+
+bool FitRun::resume(const std::filesystem::path& checkpoint) {
+    const auto saved = readCheckpoint(checkpoint, fingerprint_);
+    if (!saved) return false;
+    try {
+        fitter_->restore(*saved);
+    } catch (const Error& e) {
+        throw fileError(checkpoint.string(), e.what());
+    }
+    resumedFromStep_ = saved->steps;
+    return true;
+}
+
+void FitRun::saveCheckpoint(const std::filesystem::path& checkpoint) {
+    std::filesystem::create_directories(checkpoint.parent_path());
+    writeCheckpoint(checkpoint, fingerprint_, fitter_->state());
+}
+
+void FitRun::advance(bool measureLoss) {
+    const auto began = Clock::now();
+    const auto views = viewsForStep(options_, step());
+    for (int sample = 0; sample < options_.samplesPerStep; ++sample) fitter_->accumulate(scene_.training, views, measureLoss);
+    fitter_->update();
+    fitSeconds_ += secondsSince(began);
+}
+
+bool FitRun::runTo(int until, const std::filesystem::path& checkpoint, const FitHooks& hooks) {
+    until = std::min(until, options_.steps);
+    const int first = step();
+    const auto began = Clock::now();
+    const int reportEvery = std::max(1, options_.steps / 50);
+    while (step() < until) {
+        if (hooks.cancel && hooks.cancel->load()) break;
+        // The loss is only read for progress, so about eight steps per report measure it.
+        advance(step() % std::max(1, reportEvery / 8) == 0);
+        const int taken = step();
+        if (hooks.progress && (taken % reportEvery == 0 || taken == options_.steps)) {
+            const double seconds = secondsSince(began);
+            const double eta = seconds / double(taken - first) * double(options_.steps - taken);
+            hooks.progress({taken, options_.steps, fitter_->takeMeanLoss(), seconds, eta});
+        }
+        if (taken % options_.checkpointEvery == 0) saveCheckpoint(checkpoint);
+    }
+    saveCheckpoint(checkpoint);
+    return step() >= until;
+}
+
+FitReport FitRun::writeResults(const std::filesystem::path& out, const context::GlContext& context) {
+    FitReport r;
+    r.options = options_;
+    r.steps = step();
+    r.resumedFromStep = resumedFromStep_;
+    r.fitSeconds = fitSeconds_;
+    r.trainBefore = trainBefore_;
+    r.holdoutBefore = holdoutBefore_;
+    const auto afterImage = renderHoldout(*fitter_, scene_);
+    r.trainAfter = score(*fitter_, scene_.training);
+    r.holdoutAfter = score(*fitter_, scene_.holdout);
+    r.finite = allFinite(*fitter_);
+    r.effects = fitter_->maps() ? fitter_->maps()->effects() : maps::MapEffects{};
+    for (auto* group : fitter_->groups()) r.parameters.emplace_back(group->name(), group->count());
+    r.tessLevel = fitter_->renderer().tessLevel();
+    r.cageVertices = scene_.cage.vertexCount();
+    r.cageFaces = scene_.cage.faceCount();
+    r.patches = fitter_->renderer().patchCount();
+    r.referenceTriangles = scene_.reference.faceCount();
+    r.gl = context::currentGlInfo();
+    r.glProvider = context.providerName();
+    r.shaderVariants = programs_.variants();
+
+    // Outputs only now that everything has worked; each file appears whole or not at all.
+    std::filesystem::create_directories(out);
+    mesh::PolygonMesh fittedWorld = scene_.cageWorld;
+    fittedWorld.positions = scene_.frame.toWorld(fitter_->vertices());
+    mesh::writeObj(out / "cage.obj", fittedWorld);
+    FitOptions exportOptions = options_;
+    exportOptions.out = out;
+    const nlohmann::json exports = exportAsset(exportOptions, *fitter_, scene_.frame, fittedWorld);
+    for (const auto& [file, bytes] : exports.items()) r.exports[file] = bytes.get<std::uintmax_t>();
+    const int res = options_.resolution;
+    io::writeImage(out / "before.png", beforeImage_, res, res);
+    io::writeImage(out / "after.png", afterImage, res, res);
+    io::writeImage(out / "target.png", scene_.holdout.readColor(0), res, res);
+    r.seconds = secondsSince(started_);
+    return r;
+}
+
+void FitRun::setTessLevel(int level) {
+    FitOptions options = options_;
+    options.tessLevel = level;
+    validate(options);
+    auto rebuilt = std::make_unique<CageFitter>(programs_, scene_.cage, fitSettings(options));
+    rebuilt->restore(fitter_->state());
+    // The rates and switches someone set by hand stay as they were.
+    const auto before = fitter_->groups(), after = rebuilt->groups();
+    for (size_t k = 0; k < before.size(); ++k) {
+        rebuilt->setRates(*after[k], before[k]->settings().epsilon, fitter_->baseLearningRate(*before[k]));
+        rebuilt->setOptimised(*after[k], fitter_->optimised(*before[k]));
+    }
+    fitter_ = std::move(rebuilt);
+    options_ = options;
+}
+
+}  // namespace subdfit::fit
