@@ -78,7 +78,7 @@ int runAccuracy(const AccuracyOptions& o) {
                 fit::FitOptions fit;
                 fit.cage = cagePath;
                 fit.reference = referencePath;
-                fit.maps = asset.maps;
+                fit.maps = maps::parseMapEffects(asset.maps);
                 fit.steps = o.baseSteps;
                 fit.glProvider = o.glProvider;
                 knob.apply(fit, value);

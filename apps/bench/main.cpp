@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
         if (accuracyCommand->parsed()) return subdfit::bench::runAccuracy(accuracy);
         if (soupCommand->parsed()) return subdfit::bench::runSoup(soup);
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "subdfit-bench: error: %s\n", e.what());
+        std::fprintf(stderr, "subdfit-bench: error: %s\n", subdfit::apps::describeError(e).c_str());
         return 1;
     }
     return 0;

@@ -33,7 +33,7 @@ int runMapsGain(const MapsGainOptions& o) {
         fit.reference = o.out / "bumpy_sphere.obj";
         fit.out = o.out / (run.maps + (run.draco ? "_draco" : ""));
         fit.steps = o.steps;
-        fit.maps = run.maps;
+        fit.maps = maps::parseMapEffects(run.maps);
         fit.mapResolution = o.mapResolution;
         fit.draco = run.draco;
         fit.glProvider = o.glProvider;

@@ -32,7 +32,7 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
             s.fit.steps = o.steps;
             s.fit.resolution = o.resolution;
             s.fit.glProvider = o.glProvider;
-            s.fit.maps = maps == "none" ? "none" : "displacement,normal";
+            s.fit.maps = maps::parseMapEffects(maps == "none" ? "none" : "displacement,normal");
             if (maps != "none") s.fit.mapResolution = std::stoi(maps);
             const auto report = simplify::runSimplify(s);
             const std::string ours = maps == "none" ? "subdfit, no maps" : "subdfit, maps T=" + maps;

@@ -105,8 +105,8 @@ public:
         : programs_(programs),
           triangles_(int(soup.colors.size() / 3)),
           fullImage_(fullImage),
-          positions_("soup_positions", soup.positions, positionSettings(resolution), SUBDFIT_SOUP_SEED_POSITIONS),
-          colors_("soup_colors", soup.colors, colorSettings(), SUBDFIT_SOUP_SEED_COLORS),
+          positions_(optim::GroupKind::Other, "soup_positions", soup.positions, positionSettings(resolution), SUBDFIT_SOUP_SEED_POSITIONS),
+          colors_(optim::GroupKind::Other, "soup_colors", soup.colors, colorSettings(), SUBDFIT_SOUP_SEED_COLORS),
           triangleDelta_(GLsizeiptr(std::max(triangles_, 256)) * GLsizeiptr(sizeof(float))),
           plus_(resolution, resolution),
           minus_(resolution, resolution),
@@ -192,8 +192,8 @@ public:
         glDispatchCompute(groupsOf(triangles_, 256), 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
-        optim::adamStep(programs_, positions_, positions_.gradient);
-        optim::adamStep(programs_, colors_, colors_.gradient);
+        optim::adamStep(programs_, positions_, positions_.gradient, positions_.settings().learningRate);
+        optim::adamStep(programs_, colors_, colors_.gradient, colors_.settings().learningRate);
     }
 
     // Checks on the CPU that the id buffer names the triangle that drew each pixel (llvmpipe has

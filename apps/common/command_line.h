@@ -5,6 +5,9 @@
 
 #include <cstdio>
 #include <optional>
+#include <string>
+
+#include "fit/fit_options.h"
 
 namespace subdfit::apps {
 
@@ -18,6 +21,16 @@ inline std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv,
         return 2;
     }
     return std::nullopt;
+}
+
+// What an error says on the command line: the core names an option by its key in report.json
+// ("map_resolution"); a user typed its flag ("--map-res").
+inline std::string describeError(const std::exception& error) {
+    if (const auto* option = dynamic_cast<const fit::OptionError*>(&error)) {
+        const std::string flag = fit::optionFlag(option->key());
+        return "invalid option: " + (flag.empty() ? option->key() : flag) + " " + option->problem();
+    }
+    return error.what();
 }
 
 }  // namespace subdfit::apps

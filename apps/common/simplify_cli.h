@@ -12,7 +12,6 @@ namespace subdfit::apps {
 inline void addSimplifySettings(CLI::App& app, simplify::SimplifyOptions& options) {
     app.add_option("--faces", options.faces, "triangles of the cage")->capture_default_str();
     addFitSettings(app, options.fit);
-    app.add_option("--gl", options.fit.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
 }
 
 }  // namespace subdfit::apps

@@ -47,7 +47,6 @@ int main(int argc, char** argv) {
     auto* fitCommand = app.add_subcommand("fit", "fit the control vertices of a cage to a reference mesh");
     subdfit::apps::addFitOptions(*fitCommand, fit);
     fitCommand->add_option("--out", fit.out, "output folder")->required();
-    fitCommand->add_option("--gl", fit.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
 
     subdfit::simplify::SimplifyOptions simplify;
     auto* simplifyCommand = app.add_subcommand("simplify", "simplify a dense asset into a light cage and maps, with a quality report");
@@ -101,7 +100,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "subdfit: error: out of memory\n");
         return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "subdfit: error: %s\n", e.what());
+        std::fprintf(stderr, "subdfit: error: %s\n", subdfit::apps::describeError(e).c_str());
         return 1;
     }
     return subdfit::stopRequested() ? 130 : 0;

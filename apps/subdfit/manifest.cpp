@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "common/command_line.h"
 #include "common/simplify_cli.h"
 #include "simplify/manifest.h"
 #include "util/error.h"
@@ -22,7 +23,7 @@ std::vector<simplify::BatchItem> readManifest(const std::filesystem::path& manif
             parser.parse(args);
             simplify::validate(options);
         } catch (const std::exception& e) {
-            throw fileError(manifest.string() + ":" + std::to_string(line.number), e.what());
+            throw fileError(manifest.string() + ":" + std::to_string(line.number), describeError(e));
         }
         options.fit.reference = line.resolved;
         items.push_back({.options = std::move(options), .line = line.number});

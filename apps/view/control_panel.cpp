@@ -57,11 +57,11 @@ void groupControls(FitSession& session) {
         const std::string label = "optimise " + group->name() + " (" + std::to_string(group->count()) + ")";
         if (ImGui::Checkbox(label.c_str(), &on)) fitter.setOptimised(*group, on);
         float epsilon = group->settings().epsilon;
-        float learningRate = fitter.baseLearningRate(*group);
+        float learningRate = group->settings().learningRate;
         bool changed = ImGui::SliderFloat("epsilon", &epsilon, 1e-5f, 0.5f, "%.2e", ImGuiSliderFlags_Logarithmic);
         changed |= ImGui::SliderFloat("learning rate", &learningRate, 1e-5f, 0.5f, "%.2e", ImGuiSliderFlags_Logarithmic);
         if (changed) fitter.setRates(*group, std::clamp(epsilon, 1e-6f, 0.99f), std::clamp(learningRate, 1e-6f, 0.99f));
-        ImGui::TextDisabled("annealed learning rate now %.2e", double(group->settings().learningRate));
+        ImGui::TextDisabled("annealed learning rate now %.2e", double(group->settings().learningRate * fitter.learningRateScale()));
         ImGui::PopID();
     }
 }

@@ -35,7 +35,7 @@ nlohmann::json FitSession::save(const context::GlContext& context, const std::fi
     fit::FitOptions& options = run_->options();
     auto& vertices = fitter().vertexGroup();
     options.epsilon = vertices.settings().epsilon;
-    options.learningRate = fitter().baseLearningRate(vertices);
+    options.learningRate = vertices.settings().learningRate;
     fit::validate(options);
     const auto report = fit::toJson(run_->writeResults(out, context));
     io::writeTextAtomically(out / "report.json", report.dump(2) + "\n");

@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
         auto inputs = subdfit::view::loadFitInputs(options.fit);
         subdfit::view::runViewer(options, std::move(inputs));
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "subdfit-view: error: %s\n", e.what());
+        std::fprintf(stderr, "subdfit-view: error: %s\n", subdfit::apps::describeError(e).c_str());
         return 1;
     }
     return 0;

@@ -181,7 +181,7 @@ private:
 }  // namespace
 
 void runViewer(const ViewerOptions& options, FitInputs inputs) {
-    if (!viewModeAvailable(options.mode, maps::parseMapEffects(options.fit.maps)))
+    if (!viewModeAvailable(options.mode, options.fit.maps))
         throw Error(std::string("invalid option: --mode: the ") + viewModeName(options.mode) + " view needs --maps with that map");
     Viewer(options, std::move(inputs)).run();
 }

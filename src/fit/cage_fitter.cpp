@@ -36,7 +36,7 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
       patches_(subdiv::buildPatchSet(cage)),
       stencils_(patches_),
       renderer_(patches_, tessLevelFor(settings)),
-      vertices_("vertices", flatten(cage.positions), settings.vertices),
+      vertices_(optim::GroupKind::Vertices, "vertices", flatten(cage.positions), settings.vertices),
       maps_(settings.mapEffects.any() ? std::make_unique<maps::MapParameters>(cage, settings.mapEffects, settings.maps)
                                       : nullptr),
       faceVertices_(patches_.faceVertexOffsets, patches_.faceVertexIndices, cage.vertexCount()),
@@ -83,7 +83,7 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     optim::perturb(programs_, *perturbed, counter, settings_.seed);
     if (std::find(pendingUpdate_.begin(), pendingUpdate_.end(), perturbed) == pendingUpdate_.end())
         pendingUpdate_.push_back(perturbed);
-    const bool verticesPerturbed = perturbed == &vertices_;
+    const bool verticesPerturbed = perturbed->kind() == optim::GroupKind::Vertices;
     stencils_.evaluate(programs_, verticesPerturbed ? vertices_.thetaPlus : vertices_.theta, pointsPlus_);
     if (verticesPerturbed) stencils_.evaluate(programs_, vertices_.thetaMinus, pointsMinus_);
     const gl::Buffer& minusPoints = verticesPerturbed ? pointsMinus_ : pointsPlus_;
@@ -104,22 +104,23 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     if (measureLoss) ++samplesSinceLoss_;
 }
 
-void CageFitter::update() {
+float CageFitter::learningRateScale() const {
     // Exponential annealing to a tenth: large moves first, then settle within the noise.
-    const float decay = settings_.plannedSteps > 0
-                            ? std::pow(0.1f, std::min(1.0f, float(steps_) / float(settings_.plannedSteps)))
-                            : 1.0f;
+    return settings_.plannedSteps > 0 ? std::pow(0.1f, std::min(1.0f, float(steps_) / float(settings_.plannedSteps)))
+                                      : 1.0f;
+}
+
+void CageFitter::update() {
+    const float scale = learningRateScale();
     for (auto* g : pendingUpdate_) {
         optim::resolveGradient(programs_, *g);
-        if (g == &vertices_) {
-            vertices_.settings().learningRate = settings_.vertices.learningRate * decay;
+        const float learningRate = g->settings().learningRate * scale;
+        if (g->kind() == optim::GroupKind::Vertices) {
             optim::precondition(programs_, vertices_, adjacency_, settings_.smoothingLambda,
-                              settings_.smoothingIterations, smoothScratch_);
-            optim::adamStep(programs_, vertices_, vertices_.gradientSmooth);
+                                settings_.smoothingIterations, smoothScratch_);
+            optim::adamStep(programs_, vertices_, vertices_.gradientSmooth, learningRate);
         } else {
-            const bool isDisplacement = g == maps_->displacement();
-            maps_->update(programs_, *g,
-                          (isDisplacement ? settings_.maps.displacement : settings_.maps.normalMap).learningRate * decay);
+            maps_->update(programs_, *g, learningRate);
         }
     }
     pendingUpdate_.clear();
@@ -129,20 +130,9 @@ void CageFitter::update() {
     ++steps_;
 }
 
-float CageFitter::baseLearningRate(const optim::ParameterGroup& group) const {
-    if (maps_ && &group == maps_->displacement()) return settings_.maps.displacement.learningRate;
-    if (maps_ && &group == maps_->normalMap()) return settings_.maps.normalMap.learningRate;
-    SUBDFIT_CHECK(&group == &vertices_);
-    return settings_.vertices.learningRate;
-}
-
-void CageFitter::setRates(optim::ParameterGroup& group, float epsilon, float baseLearningRate) {
-    optim::GroupSettings* base = &settings_.vertices;
-    if (maps_ && &group == maps_->displacement()) base = &settings_.maps.displacement;
-    if (maps_ && &group == maps_->normalMap()) base = &settings_.maps.normalMap;
-    SUBDFIT_CHECK(base != &settings_.vertices || &group == &vertices_);
-    base->epsilon = group.settings().epsilon = epsilon;
-    base->learningRate = baseLearningRate;
+void CageFitter::setRates(optim::ParameterGroup& group, float epsilon, float learningRate) {
+    group.settings().epsilon = epsilon;
+    group.settings().learningRate = learningRate;
 }
 
 bool CageFitter::optimised(const optim::ParameterGroup& group) const {

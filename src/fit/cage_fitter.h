@@ -77,10 +77,11 @@ public:
     // Every optimised group, vertices first.
     std::vector<optim::ParameterGroup*> groups();
 
-    // Knobs for an interactive run (the viewer), between steps. The base learning rate is the
-    // un-annealed one that update() anneals; ε applies from the next sample on.
-    float baseLearningRate(const optim::ParameterGroup& group) const;
-    void setRates(optim::ParameterGroup& group, float epsilon, float baseLearningRate);
+    // Knobs for an interactive run (the viewer) and for simplify's stages, between steps: the
+    // group's settings hold its ε (from the next sample on) and its learning rate before
+    // annealing; update() multiplies the latter by learningRateScale().
+    void setRates(optim::ParameterGroup& group, float epsilon, float learningRate);
+    float learningRateScale() const;
     // A group left out of the turns keeps its θ and Adam moments until it is optimised again.
     // With the vertices left out, the map groups take every turn, even before their start.
     bool optimised(const optim::ParameterGroup& group) const;

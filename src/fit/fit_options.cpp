@@ -4,50 +4,88 @@
 #include <cmath>
 #include <numeric>
 #include <random>
-
-#include <nlohmann/json.hpp>
-
-#include "maps/map_parameters.h"
-#include "util/error.h"
+#include <sstream>
 
 namespace subdfit::fit {
+namespace detail {
+
+const std::vector<OptionRow>& optionTable() {
+    using F = FitOptions;
+    // key, flag, help, range, resumable, setting
+    static const std::vector<OptionRow> rows = {
+        {{"views", "--views", "training views on a sphere", 1, 1024, false, true, true}, &F::views},
+        {{"holdout_views", "--holdout-views", "held-out evaluation views", 1, 256, false, true, true}, &F::holdoutViews},
+        {{"resolution", "--res", "render resolution in pixels", 16, 4096, false, true, true}, &F::resolution},
+        {{"steps", "--steps", "optimisation steps", 0, 1e9, false, false, true}, &F::steps},
+        {{"views_per_step", "--views-per-step", "views rendered per step", 1, 1024, false, true, true}, &F::viewsPerStep},
+        {{"samples_per_step", "--samples-per-step", "perturbations averaged per step", 1, 64, false, true, true},
+         &F::samplesPerStep},
+        {{"tess_level", "--tess", "tessellation segments per face edge", 1, 64, false, true, true}, &F::tessLevel},
+        {{"seed", "--seed", "random seed (views, perturbations)", 1, 0, false, true, true}, &F::seed},
+        {{"epsilon", "--epsilon", "vertex perturbation (scene radius = 1)", 0, 1, true, true, true}, &F::epsilon},
+        {{"learning_rate", "--lr", "vertex learning rate (scene radius = 1)", 0, 1, true, true, true}, &F::learningRate},
+        {{"smoothing", "--smoothing", "Laplacian preconditioner strength (0 = off)", 0, 1e6, false, true, true},
+         &F::smoothing},
+        {{"maps", "--maps", "maps to fit: none, displacement, normal, displacement,normal", 1, 0, false, true, true},
+         &F::maps},
+        {{"map_resolution", "--map-res", "map cells per face edge", 1, 64, false, true, true}, &F::mapResolution},
+        {{"maps_start", "--maps-start", "fraction of the steps before the maps join", 0, 1, false, true, true},
+         &F::mapsStart},
+        {{"draco", "--draco", "compress the exported meshes with Draco", 1, 0, false, false, true}, &F::draco},
+        {{"compact_maps", "", "ship maps as HALF EXR and 8-bit PNG", 1, 0, false, false, true}, &F::compactMaps},
+        {{"resume", "--resume", "continue from DIR/checkpoint.bin (same inputs and settings)"}, &F::resume},
+        {{"force", "--force", "write into --out even if it holds other files"}, &F::force},
+        {{"checkpoint_every", "--checkpoint-every", "steps between checkpoints", 1, 1e9}, &F::checkpointEvery},
+        {{"gl", "--gl", "GL provider: auto, osmesa, egl"}, &F::glProvider},
+    };
+    return rows;
+}
+
+}  // namespace detail
+
 namespace {
 
-void require(bool ok, const std::string& what) {
-    if (!ok) throw Error("invalid option: " + what);
+template <class T>
+void checkRange(const OptionInfo& info, T value) {
+    if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+        if (info.min > info.max) return;
+        const double v = double(value);
+        const bool inside = std::isfinite(v) && (info.openRange ? v > info.min && v < info.max : v >= info.min && v <= info.max);
+        if (!inside) {
+            std::ostringstream problem;  // (streams: GCC 12 misreads the string concatenations, -Wrestrict)
+            problem << "must be in " << (info.openRange ? "(" : "") << info.min << (info.openRange ? ", " : "..")
+                    << info.max << (info.openRange ? ")" : "") << ", got " << v;
+            throw OptionError(info.key, problem.str());
+        }
+    }
+}
+
+template <class T>
+nlohmann::json toJson(const T& value) {
+    if constexpr (std::is_same_v<T, maps::MapEffects>) return maps::toString(value);
+    else return value;
 }
 
 }  // namespace
 
+std::string optionFlag(const std::string& key) {
+    for (const auto& row : detail::optionTable())
+        if (key == row.info.key) return row.info.flag;
+    return "";
+}
+
 void validate(const FitOptions& o) {
-    require(o.views >= 1 && o.views <= 1024, "--views must be in 1..1024, got " + std::to_string(o.views));
-    require(o.holdoutViews >= 1 && o.holdoutViews <= 256, "held-out views must be in 1..256");
-    require(o.resolution >= 16 && o.resolution <= 4096,
-            "--res must be in 16..4096 pixels, got " + std::to_string(o.resolution));
-    require(o.steps >= 0, "--steps must be >= 0, got " + std::to_string(o.steps));
-    require(o.viewsPerStep >= 1 && o.viewsPerStep <= o.views, "--views-per-step must be in 1..--views");
-    require(o.samplesPerStep >= 1 && o.samplesPerStep <= 64, "--samples-per-step must be in 1..64");
-    require(o.tessLevel >= 1 && o.tessLevel <= 64, "--tess must be in 1..64");
-    require(std::isfinite(o.epsilon) && o.epsilon > 0.0f && o.epsilon < 1.0f, "--epsilon must be in (0, 1)");
-    require(std::isfinite(o.learningRate) && o.learningRate > 0.0f && o.learningRate < 1.0f,
-            "--lr must be in (0, 1)");
-    require(std::isfinite(o.smoothing) && o.smoothing >= 0.0f, "--smoothing must be >= 0");
-    require(!o.out.empty(), "--out is required");
-    require(o.checkpointEvery >= 1, "checkpoint interval must be >= 1 step");
-    require(o.mapResolution >= 1 && o.mapResolution <= 64, "--map-res must be in 1..64, got " + std::to_string(o.mapResolution));
-    require(o.mapsStart >= 0.0f && o.mapsStart <= 1.0f, "--maps-start must be in 0..1");
-    maps::parseMapEffects(o.maps);
-    if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out))
-        throw fileError(o.out.string(), "exists and is not a folder");
+    forEachOption(o, [](const OptionInfo& info, const auto& value) { checkRange(info, value); });
+    if (o.viewsPerStep > o.views) throw OptionError("views_per_step", "must be at most views (" + std::to_string(o.views) + ")");
+    if (o.out.empty()) throw OptionError("out", "is required");
 }
 
 nlohmann::json settingsJson(const FitOptions& o) {
-    return {{"views", o.views},           {"holdout_views", o.holdoutViews},     {"resolution", o.resolution},
-            {"steps", o.steps},           {"views_per_step", o.viewsPerStep},    {"samples_per_step", o.samplesPerStep},
-            {"tess_level", o.tessLevel},  {"seed", o.seed},                      {"epsilon", o.epsilon},
-            {"learning_rate", o.learningRate}, {"smoothing", o.smoothing},       {"maps", o.maps},
-            {"map_resolution", o.mapResolution}, {"maps_start", o.mapsStart},    {"draco", o.draco},
-            {"compact_maps", o.compactMaps}};
+    nlohmann::json settings = nlohmann::json::object();
+    forEachOption(o, [&](const OptionInfo& info, const auto& value) {
+        if (info.setting) settings[info.key] = toJson(value);
+    });
+    return settings;
 }
 
 std::vector<int> viewsForStep(const FitOptions& o, int step) {
@@ -73,13 +111,11 @@ std::string checkpointFingerprint(const FitOptions& o, const mesh::PolygonMesh& 
         mix(m->positions.data(), m->positions.size() * sizeof(glm::vec3));
         mix(m->faceIndices.data(), m->faceIndices.size() * sizeof(int));
     }
-    return nlohmann::json{{"inputs", hash}, {"views", o.views}, {"holdout_views", o.holdoutViews},
-                          {"resolution", o.resolution}, {"views_per_step", o.viewsPerStep}, {"samples_per_step", o.samplesPerStep},
-                          {"tess", o.tessLevel},
-                          {"seed", o.seed}, {"epsilon", o.epsilon}, {"lr", o.learningRate},
-                          {"smoothing", o.smoothing}, {"maps", o.maps}, {"map_res", o.mapResolution},
-                          {"maps_start", o.mapsStart}}
-        .dump();
+    nlohmann::json fingerprint = {{"inputs", hash}};
+    forEachOption(o, [&](const OptionInfo& info, const auto& value) {
+        if (info.resumable) fingerprint[info.key] = toJson(value);
+    });
+    return fingerprint.dump();
 }
 
 }  // namespace subdfit::fit

@@ -1,14 +1,21 @@
 #pragma once
-// What a user asks of `subdfit fit`, checked; and the pure functions of those options that a
-// resumed run must reproduce exactly (the view schedule, the checkpoint fingerprint).
+// What a user asks of a fit, described once. Every option is a row of one table (its key in
+// report.json's `settings` and in the checkpoint fingerprint, its command-line flag and help,
+// its range, which runs it tells apart); the command line registers flags from the table
+// (apps/common/fit_cli.h), validate() checks the ranges, settingsJson() and
+// checkpointFingerprint() read it. Plus the pure functions of the options that a resumed run
+// must reproduce exactly (the view schedule).
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "maps/map_effects.h"
 #include "mesh/polygon_mesh.h"
+#include "util/error.h"
 
 namespace subdfit::fit {
 
@@ -26,7 +33,7 @@ struct FitOptions {
     float learningRate = 0.004f;  // Adam step, same units; annealed ×0.1 over the run
     float smoothing = 4.0f;       // λ of the Laplacian preconditioner (0: off)
     std::string glProvider = "auto";
-    std::string maps = "none";    // none | displacement | normal | displacement,normal
+    maps::MapEffects maps;        // none by default
     int mapResolution = 8;        // cells per ptex-face edge of each map tile
     float mapsStart = 0.4f;       // fraction of the steps fitted by the cage alone before maps join
     bool draco = false;           // fitted.glb with KHR_draco_mesh_compression
@@ -36,19 +43,64 @@ struct FitOptions {
     int checkpointEvery = 100;    // steps between checkpoints (also written on interrupt and at the end)
 };
 
-// Throws subdfit::Error ("invalid option: ...") for anything impossible, before any work.
+// One row of the table.
+struct OptionInfo {
+    const char* key;   // report.json's name, e.g. "map_resolution"
+    const char* flag;  // the command line's, e.g. "--map-res"; "" for options set by code only
+    const char* help;
+    double min = 1.0, max = 0.0;  // inclusive range of a number; min > max: none
+    bool openRange = false;       // the range excludes its ends
+    bool resumable = false;       // must match for a checkpoint to continue
+    bool setting = false;         // shapes the result: report.json's settings, a batch asset's identity
+};
+
+// An option out of its range. The message names the option by its key; the command line names
+// it by its flag (optionFlag).
+class OptionError : public Error {
+public:
+    OptionError(std::string key, const std::string& problem)
+        : Error("invalid option: " + key + " " + problem), key_(std::move(key)), problem_(problem) {}
+    const std::string& key() const { return key_; }
+    const std::string& problem() const { return problem_; }
+
+private:
+    std::string key_, problem_;
+};
+
+namespace detail {
+using OptionMember = std::variant<int FitOptions::*, std::uint32_t FitOptions::*, float FitOptions::*,
+                                  bool FitOptions::*, std::string FitOptions::*, maps::MapEffects FitOptions::*>;
+struct OptionRow {
+    OptionInfo info;
+    OptionMember member;
+};
+const std::vector<OptionRow>& optionTable();
+}  // namespace detail
+
+// Calls visit(info, field) for every option, `field` a reference to the member of `options` the
+// row describes (int, std::uint32_t, float, bool, std::string or maps::MapEffects).
+template <class Options, class Visitor>
+void forEachOption(Options& options, Visitor&& visit) {
+    for (const auto& row : detail::optionTable())
+        std::visit([&](auto member) { visit(row.info, options.*member); }, row.member);
+}
+
+// The flag of an option key ("" when it has none).
+std::string optionFlag(const std::string& key);
+
+// Throws OptionError for anything out of range, before any work.
 void validate(const FitOptions& options);
 
-// The settings that shape the result (not where it goes, not how often it is checkpointed, not
-// which GL provider runs it), for the report and for telling one run's output from another's.
+// The options whose rows say `setting`, by key: what report.json's settings record and what
+// tells one run's output from another's.
 nlohmann::json settingsJson(const FitOptions& options);
 
 // The training views of step `step`: shuffled rounds over all views, every view equally often.
 // A pure function of (seed, step), so a resumed run visits exactly what the first would have.
 std::vector<int> viewsForStep(const FitOptions& options, int step);
 
-// What must match for a checkpoint to be resumed: the inputs' geometry and the settings that
-// shape the optimisation (not the step count, so a finished run can be extended).
+// What must match for a checkpoint to be resumed: the inputs' geometry and the options whose
+// rows say `resumable` (not the step count, so a finished run can be extended).
 std::string checkpointFingerprint(const FitOptions& options, const mesh::PolygonMesh& cage,
                                   const mesh::PolygonMesh& reference);
 

@@ -140,7 +140,7 @@ void FitRun::setTessLevel(int level) {
     // The rates and switches someone set by hand stay as they were.
     const auto before = fitter_->groups(), after = rebuilt->groups();
     for (size_t k = 0; k < before.size(); ++k) {
-        rebuilt->setRates(*after[k], before[k]->settings().epsilon, fitter_->baseLearningRate(*before[k]));
+        rebuilt->setRates(*after[k], before[k]->settings().epsilon, before[k]->settings().learningRate);
         rebuilt->setOptimised(*after[k], fitter_->optimised(*before[k]));
     }
     fitter_ = std::move(rebuilt);

@@ -52,7 +52,7 @@ CageFitSettings fitSettings(const FitOptions& o) {
     settings.resolution = o.resolution;
     settings.seed = o.seed;
     settings.plannedSteps = o.steps;
-    settings.mapEffects = maps::parseMapEffects(o.maps);
+    settings.mapEffects = o.maps;
     settings.maps.resolution = o.mapResolution;
     settings.mapsStartFraction = o.mapsStart;
     return settings;

@@ -8,18 +8,6 @@
 
 namespace subdfit::maps {
 
-MapEffects parseMapEffects(const std::string& text) {
-    MapEffects effects;
-    if (text == "none" || text.empty()) return effects;
-    std::istringstream items(text);
-    for (std::string item; std::getline(items, item, ',');) {
-        if (item == "displacement") effects.displacement = true;
-        else if (item == "normal") effects.normalMap = true;
-        else throw Error("invalid option: --maps takes none, displacement, normal or displacement,normal; got '" + text + "'");
-    }
-    return effects;
-}
-
 namespace {
 
 optim::Adjacency uploadAdjacency(const TexelLayout& layout) {
@@ -37,11 +25,11 @@ MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, 
       adjacency_(uploadAdjacency(layout_)),
       scratch_(GLsizeiptr(std::max(1, layout_.nodeCount)) * 2 * GLsizeiptr(sizeof(float))) {
     if (effects.displacement)
-        displacement_ = std::make_unique<optim::ParameterGroup>(
+        displacement_ = std::make_unique<optim::ParameterGroup>(optim::GroupKind::Displacement,
             "displacement", std::vector<float>(size_t(layout_.nodeCount), 0.0f), settings.displacement,
             SUBDFIT_SEED_DISPLACEMENT);
     if (effects.normalMap)
-        normalMap_ = std::make_unique<optim::ParameterGroup>(
+        normalMap_ = std::make_unique<optim::ParameterGroup>(optim::GroupKind::NormalMap,
             "normal_map", std::vector<float>(size_t(layout_.nodeCount) * 2, 0.0f), settings.normalMap,
             SUBDFIT_SEED_NORMAL_MAP);
 }
@@ -86,9 +74,8 @@ void MapParameters::bindForGradient() const {
 }
 
 void MapParameters::update(gl::ProgramCache& programs, optim::ParameterGroup& group, float learningRate) {
-    group.settings().learningRate = learningRate;
     optim::precondition(programs, group, adjacency_, settings_.smoothing, settings_.smoothingIterations, scratch_);
-    optim::adamStep(programs, group, group.gradientSmooth);
+    optim::adamStep(programs, group, group.gradientSmooth, learningRate);
 }
 
 }  // namespace subdfit::maps

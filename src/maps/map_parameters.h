@@ -7,21 +7,13 @@
 #include <vector>
 
 #include "gl/program.h"
+#include "maps/map_effects.h"
 #include "maps/texel_layout.h"
 #include "optim/parameter_group.h"
 #include "optim/updates.h"
 #include "render/patch_renderer.h"
 
 namespace subdfit::maps {
-
-struct MapEffects {
-    bool displacement = false;
-    bool normalMap = false;
-    bool any() const { return displacement || normalMap; }
-};
-
-// "none", "displacement", "normal", "displacement,normal" (any order). Throws subdfit::Error.
-MapEffects parseMapEffects(const std::string& text);
 
 struct MapSettings {
     int resolution = 8;  // cells per ptex-face edge
@@ -53,7 +45,7 @@ public:
     render::PatchMaps forRaster(ParameterVersion version, const optim::ParameterGroup* perturbed = nullptr) const;
     void bindForGradient() const;
 
-    // Preconditions `group`'s gradient on the node graph and applies Adam to it.
+    // Preconditions `group`'s gradient on the node graph and applies Adam to it at `learningRate`.
     void update(gl::ProgramCache& programs, optim::ParameterGroup& group, float learningRate);
 
 private:

@@ -3,8 +3,8 @@
 
 namespace subdfit::optim {
 
-ParameterGroup::ParameterGroup(std::string name, const std::vector<float>& initial, GroupSettings settings,
-                               std::uint32_t seedSalt)
+ParameterGroup::ParameterGroup(GroupKind kind, std::string name, const std::vector<float>& initial,
+                               GroupSettings settings, std::uint32_t seedSalt)
     : theta(gl::Buffer::fromVector(initial)),
       thetaPlus(theta.bytes()),
       thetaMinus(theta.bytes()),
@@ -13,6 +13,7 @@ ParameterGroup::ParameterGroup(std::string name, const std::vector<float>& initi
       moment1(theta.bytes()),
       moment2(theta.bytes()),
       gradientSum(2 * theta.bytes()),
+      kind_(kind),
       name_(std::move(name)),
       count_(int(initial.size())),
       settings_(settings),

@@ -10,9 +10,12 @@
 
 namespace subdfit::optim {
 
+// What a group's parameters are. The fit tells its groups apart by this, never by address.
+enum class GroupKind { Vertices, Displacement, NormalMap, Other };
+
 struct GroupSettings {
     float epsilon = 0.01f;        // perturbation magnitude, in the group's units
-    float learningRate = 0.002f;  // Adam step size, same units
+    float learningRate = 0.002f;  // Adam step size before annealing, same units (the one source)
     float beta1 = 0.9f;
     float beta2 = 0.99f;
     // One Adam second moment for the whole group instead of one per parameter: keeps a
@@ -23,9 +26,10 @@ struct GroupSettings {
 class ParameterGroup {
 public:
     // `seedSalt` (SUBDFIT_SEED_* in bindings.h) gives each group its own stream of signs.
-    ParameterGroup(std::string name, const std::vector<float>& initial, GroupSettings settings,
+    ParameterGroup(GroupKind kind, std::string name, const std::vector<float>& initial, GroupSettings settings,
                    std::uint32_t seedSalt = 0);
 
+    GroupKind kind() const { return kind_; }
     const std::string& name() const { return name_; }
     std::uint32_t seedSalt() const { return seedSalt_; }
     int count() const { return count_; }
@@ -43,6 +47,7 @@ public:
     void write(const std::vector<float>& values);
 
 private:
+    GroupKind kind_;
     std::string name_;
     int count_;
     GroupSettings settings_;

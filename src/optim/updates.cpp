@@ -63,7 +63,7 @@ void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjac
     }
 }
 
-void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffer& gradient) {
+void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffer& gradient, float learningRate) {
     const auto& s = group.settings();
     ++group.adamSteps;
     gl::Defines defines;
@@ -81,7 +81,7 @@ void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffe
     const auto& program = programs.get("adam", {{GL_COMPUTE_SHADER, "adam.comp"}}, defines);
     program.use();
     program.set("uCount", unsigned(group.count()));
-    program.set("uLearningRate", s.learningRate);
+    program.set("uLearningRate", learningRate);
     program.set("uBeta1", s.beta1);
     program.set("uBeta2", s.beta2);
     program.set("uBiasCorrection1", 1.0f - std::pow(s.beta1, float(group.adamSteps)));

@@ -28,8 +28,9 @@ struct Adjacency {
 void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency,
                   float lambda, int iterations, gl::Buffer& scratch);
 
-// Adam on θ from `gradient` (group.gradient, or group.gradientSmooth after preconditioning);
-// then clears the raw gradient for the next step.
-void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffer& gradient);
+// Adam on θ from `gradient` (group.gradient, or group.gradientSmooth after preconditioning),
+// with step size `learningRate` (the group's, annealed by the caller); then clears the raw
+// gradient for the next step.
+void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffer& gradient, float learningRate);
 
 }  // namespace subdfit::optim

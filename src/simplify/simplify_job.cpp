@@ -71,7 +71,7 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
                                     .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments};
     std::filesystem::create_directories(settings.dir);
     report.decimation = decimationBaseline(programs, scene, ours.bytes, settings);
-    report.bake = bakeBaseline(programs, scene, initialCage, maps::parseMapEffects(o.fit.maps), o.fit.mapResolution,
+    report.bake = bakeBaseline(programs, scene, initialCage, o.fit.maps, o.fit.mapResolution,
                                settings);
     writeComparison(out / "comparison.png", o.fit.resolution, scene.holdout.readColor(0),
                     {&ours.view, &report.decimation.view, &report.bake.view});
@@ -93,7 +93,7 @@ void startMaps(fit::FitRun& run, bool bake) {
     }
     // The bake fits this cage: moving it now would slide the maps off the detail they hold.
     fitter.setOptimised(fitter.vertexGroup(), false);
-    for (auto* g : parameters->groups()) fitter.setRates(*g, g->settings().epsilon, kRefineRate * fitter.baseLearningRate(*g));
+    for (auto* g : parameters->groups()) fitter.setRates(*g, g->settings().epsilon, kRefineRate * g->settings().learningRate);
 }
 
 }  // namespace

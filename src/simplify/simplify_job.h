@@ -18,7 +18,7 @@ namespace subdfit::simplify {
 // baked onto it and only refined (see simplify_job.cpp).
 inline fit::FitOptions simplifyFitDefaults() {
     fit::FitOptions o;
-    o.maps = "displacement,normal";
+    o.maps = {.displacement = true, .normalMap = true};
     o.mapResolution = 4;
     o.mapsStart = 0.8f;
     o.compactMaps = true;

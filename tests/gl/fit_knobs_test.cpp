@@ -56,13 +56,16 @@ TEST(FitKnobs, RatesSetByHandAreUsed) {
     fitter.setRates(vertices, 0.02f, 0.01f);
     fitter.setRates(displacement, 0.003f, 0.002f);
     EXPECT_EQ(vertices.settings().epsilon, 0.02f);
-    EXPECT_EQ(fitter.baseLearningRate(vertices), 0.01f);
+    EXPECT_EQ(vertices.settings().learningRate, 0.01f);
     EXPECT_EQ(displacement.settings().epsilon, 0.003f);
-    EXPECT_EQ(fitter.baseLearningRate(displacement), 0.002f);
-    // No planned steps, no annealing: the rate Adam is given is the one set.
+    EXPECT_EQ(displacement.settings().learningRate, 0.002f);
+    // No planned steps, no annealing: the rate Adam is given is the one set, and a step leaves
+    // the group's settings (the one source of its rates) as they were.
+    EXPECT_EQ(fitter.learningRateScale(), 1.0f);
     const int views[] = {0};
     fitter.step(*scene.targets, views);
     EXPECT_EQ(vertices.settings().learningRate, 0.01f);
+    EXPECT_EQ(displacement.settings().learningRate, 0.002f);
 }
 
 }  // namespace

@@ -25,7 +25,7 @@ struct GpuSigns {
 };
 
 GpuSigns gpuSigns(std::uint32_t counter, std::uint32_t seed) {
-    ParameterGroup group("x", std::vector<float>(kParameters, 0.0f), GroupSettings{1.0f});
+    ParameterGroup group(GroupKind::Other, "x", std::vector<float>(kParameters, 0.0f), GroupSettings{1.0f});
     perturb(test::programs(), group, counter, seed);
     return {group.thetaPlus.read<float>(), group.thetaMinus.read<float>()};
 }

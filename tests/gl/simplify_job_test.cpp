@@ -141,7 +141,7 @@ TEST(SimplifyBatch, SkipsFinishedResumesInterruptedAndRecordsFailures) {
     for (const char* name : {"lumpy", "missing", "ball"}) {
         auto o = smallSimplify(dir / (std::string(name) + ".obj"), {});
         o.fit.steps = 20;
-        o.fit.maps = "none";
+        o.fit.maps = {};
         items.push_back({name, o});
     }
     const fs::path out = dir / "out";

@@ -103,8 +103,8 @@ TEST_F(HostileGltf, TheCurrentFolderIsNeverSearched) {
     const std::string message = refusal(gltfWith("secret.bin"));
     fs::current_path(previous);
     EXPECT_NE(message.find("scene.gltf"), std::string::npos) << message;
-    EXPECT_EQ(message.find("36"), std::string::npos) << "the message tells the outside file's size: " << message;
-    EXPECT_FALSE(message.empty());
+    EXPECT_NE(message.find("not found"), std::string::npos) << message;
+    EXPECT_EQ(message.find("size mismatch"), std::string::npos) << "the message tells the outside file's size: " << message;
 }
 
 TEST_F(HostileGltf, AFifoIsNotOpened) {
