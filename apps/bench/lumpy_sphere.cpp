@@ -6,7 +6,7 @@
 #include "bench_commands.h"
 #include "bench_common.h"
 #include "fit/fit_job.h"
-#include "geometry/limit_mesh.h"
+#include "surface/tessellation.h"
 #include "geometry/surface_distance.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
@@ -21,7 +21,7 @@ int runLumpySphere(const LumpySphereOptions& o) {
     mesh::writeObj(o.out / "lumpy_sphere.obj", reference);
     mesh::writeObj(o.out / "quad_sphere_cage.obj", cage);
 
-    const auto before = geometry::surfaceDistance(geometry::limitMesh(cage, 8), reference);
+    const auto before = geometry::surfaceDistance(surface::limitMesh(cage, 8), reference);
     fit::FitOptions fit;
     fit.cage = o.out / "quad_sphere_cage.obj";
     fit.reference = o.out / "lumpy_sphere.obj";
@@ -35,7 +35,7 @@ int runLumpySphere(const LumpySphereOptions& o) {
                      p.etaSeconds);
     }});
     const auto fitted = mesh::loadMesh(fit.out / "cage.obj");
-    const auto after = geometry::surfaceDistance(geometry::limitMesh(fitted, 8), reference);
+    const auto after = geometry::surfaceDistance(surface::limitMesh(fitted, 8), reference);
 
     std::printf("lumpy sphere: %d-face cage, %d-triangle reference, %d views at %d^2, %d steps\n", cage.faceCount(),
                 reference.faceCount(), o.views, o.resolution, report.steps);

@@ -38,7 +38,7 @@ int texcoordBits(const glm::ivec2& atlasSize) {
 }
 
 // draco::Mesh can be neither copied nor moved.
-std::unique_ptr<draco::Mesh> toDraco(const LimitTessellation& tess, DracoEncodedMesh& ids) {
+std::unique_ptr<draco::Mesh> toDraco(const GltfMesh& tess, DracoEncodedMesh& ids) {
     auto owned = std::make_unique<draco::Mesh>();
     draco::Mesh& mesh = *owned;
     mesh.set_num_points(uint32_t(tess.vertexCount()));
@@ -80,7 +80,7 @@ void describeDecoded(DracoEncodedMesh& encoded) {
 
 }  // namespace
 
-DracoEncodedMesh encodeDraco(const LimitTessellation& tess) {
+DracoEncodedMesh encodeDraco(const GltfMesh& tess) {
     SUBDFIT_CHECK(tess.vertexCount() > 0 && tess.triangleCount() > 0);
     SUBDFIT_CHECK(tess.attributesConsistent());
     DracoEncodedMesh encoded;

@@ -1,11 +1,11 @@
 #pragma once
-// A LimitTessellation as a Draco bitstream for glTF's KHR_draco_mesh_compression.
+// A GltfMesh as a Draco bitstream for glTF's KHR_draco_mesh_compression.
 #include <cstddef>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
-#include "export/limit_tessellation.h"
+#include "export/gltf_mesh.h"
 
 namespace subdfit::exporter {
 
@@ -22,6 +22,6 @@ struct DracoEncodedMesh {
 // more -- enough that the texcoord error stays below 1/64 texel of tess.atlasSize, since half
 // a texel would already sample the neighbouring tile. Speed 5. Throws subdfit::Error when
 // Draco fails.
-DracoEncodedMesh encodeDraco(const LimitTessellation& tess);
+DracoEncodedMesh encodeDraco(const GltfMesh& tess);
 
 }  // namespace subdfit::exporter

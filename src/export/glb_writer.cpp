@@ -56,7 +56,7 @@ json accessor(int view, int componentType, size_t count, const char* type) {
 
 json vec3Json(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
 
-void checkTessellation(const LimitTessellation& tess) {
+void checkTessellation(const GltfMesh& tess) {
     SUBDFIT_CHECK(tess.attributesConsistent());
     if (tess.vertexCount() == 0 || tess.indices.empty()) throw Error("nothing to export: the mesh has no triangles");
 }
@@ -76,7 +76,7 @@ struct AttributeSlot {
     int dracoId;
 };
 
-std::vector<AttributeSlot> presentAttributes(const LimitTessellation& tess, const DracoEncodedMesh& ids) {
+std::vector<AttributeSlot> presentAttributes(const GltfMesh& tess, const DracoEncodedMesh& ids) {
     std::vector<AttributeSlot> slots{{"POSITION", "VEC3", ids.position}};
     if (tess.hasNormals()) slots.push_back({"NORMAL", "VEC3", ids.normal});
     if (tess.hasTangents()) slots.push_back({"TANGENT", "VEC4", ids.tangent});
@@ -84,7 +84,7 @@ std::vector<AttributeSlot> presentAttributes(const LimitTessellation& tess, cons
     return slots;
 }
 
-json document(const LimitTessellation& tess, std::span<const unsigned char> normalPng, bool draco,
+json document(const GltfMesh& tess, std::span<const unsigned char> normalPng, bool draco,
               const json& meshExtras, BinaryBuilder& binary) {
     const DracoEncodedMesh encoded = draco ? encodeDraco(tess) : DracoEncodedMesh{};
     const auto slots = presentAttributes(tess, encoded);
@@ -143,7 +143,7 @@ json document(const LimitTessellation& tess, std::span<const unsigned char> norm
     return doc;
 }
 
-WrittenFile writeGlb(const std::filesystem::path& path, const LimitTessellation& tess,
+WrittenFile writeGlb(const std::filesystem::path& path, const GltfMesh& tess,
                      std::span<const unsigned char> normalPng, bool draco, const json& meshExtras) {
     std::vector<unsigned char> bytes;
     try {
@@ -159,7 +159,7 @@ WrittenFile writeGlb(const std::filesystem::path& path, const LimitTessellation&
 
 }  // namespace
 
-WrittenFile writeFittedGlb(const std::filesystem::path& path, const LimitTessellation& tess,
+WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess,
                            std::span<const unsigned char> normalPng, bool draco) {
     return writeGlb(path, tess, normalPng, draco, json::object());
 }
@@ -167,7 +167,7 @@ WrittenFile writeFittedGlb(const std::filesystem::path& path, const LimitTessell
 WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
                          const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices,
                          bool draco, const nlohmann::json& extras) {
-    LimitTessellation mesh;
+    GltfMesh mesh;
     mesh.positions = positions;
     mesh.normals = normals;
     mesh.indices = indices;

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "export/limit_tessellation.h"
+#include "export/gltf_mesh.h"
 #include "export/output_file.h"
 
 namespace subdfit::exporter {
@@ -18,7 +18,7 @@ namespace subdfit::exporter {
 // sampled LINEAR without mipmaps and clamped, as the atlas requires). With `draco`,
 // the primitive is KHR_draco_mesh_compression-encoded (export/draco_encoding.h) and the
 // extension is required. Written atomically; throws subdfit::Error "path: problem".
-WrittenFile writeFittedGlb(const std::filesystem::path& path, const LimitTessellation& tess,
+WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess,
                            std::span<const unsigned char> normalPng, bool draco);
 
 // A plain triangle mesh (a cage, a decimated mesh): positions, optional normals, indices;

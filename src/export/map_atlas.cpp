@@ -16,7 +16,7 @@ constexpr const char* kDisplacementFile = "displacement.exr";
 constexpr const char* kNormalFile = "normal.png";
 constexpr const char* kManifestFile = "maps.json";
 
-void checkMaps(const maps::TexelLayout& layout, const FittedMaps& maps) {
+void checkMaps(const surface::TexelLayout& layout, const surface::SurfaceMaps& maps) {
     SUBDFIT_CHECK(layout.resolution >= 1 && layout.ptexFaceCount >= 1);
     SUBDFIT_CHECK(layout.faceNodes.size() == size_t(layout.ptexFaceCount) * size_t(layout.nodesPerFace()));
     SUBDFIT_CHECK(maps.displacement.empty() || maps.displacement.size() == size_t(layout.nodeCount));
@@ -25,7 +25,7 @@ void checkMaps(const maps::TexelLayout& layout, const FittedMaps& maps) {
 
 // Visits every tile pixel as (pixel index, node).
 template <typename Visit>
-void forEachTilePixel(const AtlasLayout& atlas, const maps::TexelLayout& layout, Visit visit) {
+void forEachTilePixel(const AtlasLayout& atlas, const surface::TexelLayout& layout, Visit visit) {
     for (int face = 0; face < layout.ptexFaceCount; ++face) {
         const glm::ivec2 origin = atlas.tileOrigins[size_t(face)];
         for (int j = 0; j <= layout.resolution; ++j)
@@ -39,7 +39,7 @@ std::uint16_t unorm16(float value) {
 }
 
 WrittenFile writeDisplacementExr(const std::filesystem::path& path, const AtlasLayout& atlas,
-                                 const FittedMaps& maps, bool half) {
+                                 const surface::SurfaceMaps& maps, bool half) {
     const std::vector<float> pixels = displacementAtlas(atlas, maps);
     return writeOutput(path, [&](const std::filesystem::path& temporary) {
         auto out = OIIO::ImageOutput::create(temporary.string());
@@ -54,7 +54,7 @@ WrittenFile writeDisplacementExr(const std::filesystem::path& path, const AtlasL
     });
 }
 
-nlohmann::json manifest(const AtlasLayout& atlas, const FittedMaps& maps, const AtlasOutputs& outputs) {
+nlohmann::json manifest(const AtlasLayout& atlas, const surface::SurfaceMaps& maps, const AtlasOutputs& outputs) {
     nlohmann::json doc = {
         {"generator", "subdfit"},
         {"resolution", atlas.resolution},
@@ -86,7 +86,7 @@ nlohmann::json manifest(const AtlasLayout& atlas, const FittedMaps& maps, const 
 
 }  // namespace
 
-AtlasLayout atlasLayout(const maps::TexelLayout& layout) {
+AtlasLayout atlasLayout(const surface::TexelLayout& layout) {
     SUBDFIT_CHECK(layout.resolution >= 1 && layout.ptexFaceCount >= 1);
     AtlasLayout atlas;
     atlas.resolution = layout.resolution;
@@ -108,7 +108,7 @@ glm::vec2 atlasUv(const AtlasLayout& atlas, int face, float u, float v) {
     return {(float(origin.x) + 0.5f + u * t) / float(atlas.width), (float(origin.y) + 0.5f + v * t) / float(atlas.height)};
 }
 
-std::vector<float> displacementAtlas(const AtlasLayout& atlas, const FittedMaps& maps) {
+std::vector<float> displacementAtlas(const AtlasLayout& atlas, const surface::SurfaceMaps& maps) {
     checkMaps(maps.layout, maps);
     SUBDFIT_CHECK(maps.hasDisplacement());
     std::vector<float> pixels(size_t(atlas.width) * size_t(atlas.height), 0.0f);
@@ -116,7 +116,7 @@ std::vector<float> displacementAtlas(const AtlasLayout& atlas, const FittedMaps&
     return pixels;
 }
 
-std::vector<std::uint16_t> normalAtlas(const AtlasLayout& atlas, const FittedMaps& maps) {
+std::vector<std::uint16_t> normalAtlas(const AtlasLayout& atlas, const surface::SurfaceMaps& maps) {
     checkMaps(maps.layout, maps);
     SUBDFIT_CHECK(maps.hasNormal());
     const std::uint16_t half = unorm16(0.5f), one = unorm16(1.0f);
@@ -132,7 +132,7 @@ std::vector<std::uint16_t> normalAtlas(const AtlasLayout& atlas, const FittedMap
     return pixels;
 }
 
-std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const FittedMaps& maps, bool eightBit) {
+std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps, bool eightBit) {
     const std::vector<std::uint16_t> pixels = normalAtlas(atlas, maps);
     std::vector<std::uint8_t> pixels8;
     if (eightBit)
@@ -149,7 +149,7 @@ std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const Fitte
     return bytes;
 }
 
-std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const FittedMaps& maps,
+std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const surface::SurfaceMaps& maps,
                                          const AtlasOutputs& outputs) {
     const AtlasLayout atlas = atlasLayout(maps.layout);
     checkMaps(maps.layout, maps);

@@ -4,7 +4,7 @@
 //
 // Why (T+1) and not T: with the nodes *on* pixel centres, GPU bilinear filtering at
 //   UV = ((x0 + 0.5 + u·T) / W, (y0 + 0.5 + v·T) / H)      (glTF convention, v down the image)
-// interpolates exactly the four nodes maps::sampleBilinear would, and never reaches a
+// interpolates exactly the four nodes surface::sampleBilinear would, and never reaches a
 // neighbouring tile (no mips: each tile is a separate chart). Shared border nodes are simply
 // written into every tile that uses them.
 #include <cstdint>
@@ -13,9 +13,9 @@
 
 #include <glm/vec2.hpp>
 
-#include "export/fitted_asset.h"
+#include "surface/surface_maps.h"
 #include "export/output_file.h"
-#include "maps/texel_layout.h"
+#include "surface/texel_layout.h"
 
 namespace subdfit::exporter {
 
@@ -28,20 +28,20 @@ struct AtlasLayout {
 };
 
 // ceil(sqrt(F)) columns, tiles row-major from the top-left, image row 0 at the top.
-AtlasLayout atlasLayout(const maps::TexelLayout& layout);
+AtlasLayout atlasLayout(const surface::TexelLayout& layout);
 
 // The glTF TEXCOORD of ptex (u, v) on `face`, per the formula above.
 glm::vec2 atlasUv(const AtlasLayout& atlas, int face, float u, float v);
 
 // Row-major from the top, width × height values; pixels outside every tile are 0.
-std::vector<float> displacementAtlas(const AtlasLayout& atlas, const FittedMaps& maps);
+std::vector<float> displacementAtlas(const AtlasLayout& atlas, const surface::SurfaceMaps& maps);
 // Row-major from the top, width × height × 3 values, rgb = n·0.5 + 0.5 in 16-bit units with
 // n = normalize(x, y, 1); pixels outside every tile hold the flat normal (0, 0, 1).
-std::vector<std::uint16_t> normalAtlas(const AtlasLayout& atlas, const FittedMaps& maps);
+std::vector<std::uint16_t> normalAtlas(const AtlasLayout& atlas, const surface::SurfaceMaps& maps);
 
 // normal.png's bytes (16-bit RGB, or 8-bit with `eightBit`), for writing and for embedding in a
 // GLB. Requires a normal map.
-std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const FittedMaps& maps, bool eightBit = false);
+std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps, bool eightBit = false);
 
 // Which files writeMapAtlases may write; a map that is absent is skipped either way.
 struct AtlasOutputs {
@@ -55,7 +55,7 @@ struct AtlasOutputs {
 
 // Writes into the existing folder `dir`, each file atomically. Throws subdfit::Error naming the
 // file that could not be written.
-std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const FittedMaps& maps,
+std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const surface::SurfaceMaps& maps,
                                          const AtlasOutputs& outputs = {});
 
 }  // namespace subdfit::exporter

@@ -165,6 +165,15 @@ float CageFitter::takeMeanLoss() {
     return mean;
 }
 
+surface::SurfaceMaps CageFitter::surfaceMaps() {
+    surface::SurfaceMaps maps;
+    if (!maps_) return maps;
+    maps.layout = maps_->layout();
+    if (auto* g = maps_->displacement()) maps.displacement = g->read();
+    if (auto* g = maps_->normalMap()) maps.normal = g->read();
+    return maps;
+}
+
 std::vector<glm::vec3> CageFitter::vertices() const {
     const auto values = vertices_.read();
     std::vector<glm::vec3> points(values.size() / 3);

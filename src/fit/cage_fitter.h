@@ -22,6 +22,7 @@
 #include "scene/target_set.h"
 #include "sge/passes.h"
 #include "subdiv/patch_set.h"
+#include "surface/surface_maps.h"
 
 namespace subdfit::fit {
 
@@ -74,6 +75,9 @@ public:
     optim::ParameterGroup& vertexGroup() { return vertices_; }
     // Null when the scene has no maps.
     maps::MapParameters* maps() { return maps_.get(); }
+    // The maps' current values on the CPU (normalised units), for the CPU twin of the surface
+    // (surface/displaced_surface.h); no layout and no values when the scene has no maps.
+    surface::SurfaceMaps surfaceMaps();
     // Every optimised group, vertices first.
     std::vector<optim::ParameterGroup*> groups();
 

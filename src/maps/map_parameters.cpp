@@ -10,8 +10,8 @@ namespace subdfit::maps {
 
 namespace {
 
-optim::Adjacency uploadAdjacency(const TexelLayout& layout) {
-    const auto graph = nodeAdjacency(layout);
+optim::Adjacency uploadAdjacency(const surface::TexelLayout& layout) {
+    const auto graph = surface::nodeAdjacency(layout);
     return {gl::Buffer::fromVector(graph.offsets), gl::Buffer::fromVector(graph.neighbors), layout.nodeCount};
 }
 
@@ -19,7 +19,7 @@ optim::Adjacency uploadAdjacency(const TexelLayout& layout) {
 
 MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, const MapSettings& settings)
     : effects_(effects),
-      layout_(buildTexelLayout(cage, settings.resolution)),
+      layout_(surface::buildTexelLayout(cage, settings.resolution)),
       settings_(settings),
       faceNodes_(gl::Buffer::fromVector(layout_.faceNodes)),
       adjacency_(uploadAdjacency(layout_)),

@@ -1,6 +1,6 @@
 #pragma once
 // The optional texel parameter groups of a scene: a displacement map (one height per node) and
-// a normal map (tangent-space x, y per node), on one TexelLayout. Only the groups the scene
+// a normal map (tangent-space x, y per node), on one surface::TexelLayout. Only the groups the scene
 // asks for exist: a run without maps has no buffers, no shader defines and no passes for them.
 #include <memory>
 #include <string>
@@ -8,7 +8,7 @@
 
 #include "gl/program.h"
 #include "maps/map_effects.h"
-#include "maps/texel_layout.h"
+#include "surface/texel_layout.h"
 #include "optim/parameter_group.h"
 #include "optim/updates.h"
 #include "render/patch_renderer.h"
@@ -32,7 +32,7 @@ class MapParameters {
 public:
     MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, const MapSettings& settings);
 
-    const TexelLayout& layout() const { return layout_; }
+    const surface::TexelLayout& layout() const { return layout_; }
     MapEffects effects() const { return effects_; }
     optim::ParameterGroup* displacement() { return displacement_.get(); }
     optim::ParameterGroup* normalMap() { return normalMap_.get(); }
@@ -50,7 +50,7 @@ public:
 
 private:
     MapEffects effects_;
-    TexelLayout layout_;
+    surface::TexelLayout layout_;
     MapSettings settings_;
     gl::Buffer faceNodes_;
     optim::Adjacency adjacency_;

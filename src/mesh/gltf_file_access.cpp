@@ -34,6 +34,8 @@ std::string FileAccess::resolve(const std::string& joinedPath) {
     if (!isInside(path, folder_)) return "";
     std::error_code ec;
     const fs::path resolved = fs::weakly_canonical(path, ec);
+    // A missing file is tinygltf's to report ("File not found"), and only a buffer must exist.
+    if (!ec && !fs::exists(fs::symlink_status(resolved, ec))) return "";
     std::string problem;
     if (ec) problem = "cannot be resolved: " + ec.message();
     else if (!isInside(resolved, folder_)) problem = "resolves outside the glTF file's folder";

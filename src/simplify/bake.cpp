@@ -18,7 +18,7 @@ struct NodeSite {
     int face = -1, i = 0, j = 0;
 };
 
-std::vector<NodeSite> nodeSites(const maps::TexelLayout& layout) {
+std::vector<NodeSite> nodeSites(const surface::TexelLayout& layout) {
     std::vector<NodeSite> sites(size_t(layout.nodeCount));
     for (int f = 0; f < layout.ptexFaceCount; ++f)
         for (int j = 0; j <= layout.resolution; ++j)
@@ -50,7 +50,7 @@ glm::vec3 unitNormal(const glm::vec3& dPdu, const glm::vec3& dPdv, const glm::ve
 }
 
 // ∂d/∂u at a node from its tile's neighbours (central where it can, one-sided at the tile edge).
-glm::vec2 heightGradient(const maps::TexelLayout& layout, const std::vector<float>& d, const NodeSite& s) {
+glm::vec2 heightGradient(const surface::TexelLayout& layout, const std::vector<float>& d, const NodeSite& s) {
     const int t = layout.resolution;
     auto at = [&](int i, int j) { return d[size_t(layout.node(s.face, i, j))]; };
     const int i0 = std::max(s.i - 1, 0), i1 = std::min(s.i + 1, t);
@@ -74,10 +74,10 @@ float meanEdgeLength(const mesh::PolygonMesh& m) {
 
 }  // namespace
 
-exporter::FittedMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
+surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
                               const BakeOptions& options) {
-    exporter::FittedMaps maps;
-    maps.layout = maps::buildTexelLayout(cage, options.resolution);
+    surface::SurfaceMaps maps;
+    maps.layout = surface::buildTexelLayout(cage, options.resolution);
     const auto sites = nodeSites(maps.layout);
     const size_t nodes = sites.size();
     const subdiv::LimitEvaluator limit(cage);

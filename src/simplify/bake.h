@@ -4,7 +4,7 @@
 // Each map node casts along the limit normal both ways; the nearer hit gives its height, and
 // the reference's interpolated normal there, expressed in the displaced surface's tangent frame
 // (the frame the renderer and the exported TANGENT use), gives its normal-map value.
-#include "export/fitted_asset.h"
+#include "surface/surface_maps.h"
 #include "maps/map_parameters.h"
 #include "mesh/polygon_mesh.h"
 
@@ -12,7 +12,7 @@ namespace subdfit::simplify {
 
 struct BakeOptions {
     maps::MapEffects effects{.displacement = true, .normalMap = true};
-    int resolution = 8;          // cells per ptex-face edge, as maps::TexelLayout
+    int resolution = 8;          // cells per ptex-face edge, as surface::TexelLayout
     // Farthest hit taken, in the meshes' units (none: height 0, flat normal); 0 = the cage's
     // mean edge length, since a surface farther than a cage edge is a different part of the
     // reference (the far wall of a hole, the other ear), not the one this face stands for.
@@ -20,8 +20,8 @@ struct BakeOptions {
 };
 
 // `cage` and `reference` (triangulated) in the same units. Only the maps in options.effects
-// are filled; the layout is maps::buildTexelLayout(cage, resolution).
-exporter::FittedMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
+// are filled; the layout is surface::buildTexelLayout(cage, resolution).
+surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
                               const BakeOptions& options);
 
 }  // namespace subdfit::simplify

@@ -8,6 +8,7 @@
 #include "render/mesh_renderer.h"
 #include "simplify/bake.h"
 #include "simplify/decimate.h"
+#include "surface/tessellation.h"
 #include "util/interrupt.h"
 
 namespace subdfit::simplify {
@@ -70,7 +71,7 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
 Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& cage,
                      maps::MapEffects effects, int mapResolution, const BaselineSettings& settings) {
     if (!effects.any()) effects = {.displacement = true, .normalMap = true};
-    const exporter::FittedMaps baked =
+    const surface::SurfaceMaps baked =
         bakeMaps(cage, scene.reference, {.effects = effects, .resolution = mapResolution});
 
     // Shipped exactly as subdfit ships: cage.glb and the map atlases, in world units.
@@ -78,7 +79,7 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     std::filesystem::create_directories(dir);
     mesh::PolygonMesh cageWorld = cage;
     cageWorld.positions = scene.frame.toWorld(cage.positions);
-    exporter::FittedMaps bakedWorld = baked;
+    surface::SurfaceMaps bakedWorld = baked;
     for (float& d : bakedWorld.displacement) d /= scene.frame.scale;
     Quality q;
     q.files = shipCage(dir / "cage.glb", cageWorld, settings.draco);
@@ -97,7 +98,7 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
         bakedScene.render(camera, target);
     }, q);
-    q.distance = worldDistance(limitSurfaceTriangles(cage, baked, settings.segments), scene.reference, scene.frame,
+    q.distance = worldDistance(surface::triangleMesh(surface::tessellate(cage, baked, settings.segments)), scene.reference, scene.frame,
                                settings.surfaceSamples);
     return q;
 }

@@ -1,6 +1,5 @@
 #include "simplify/quality.h"
 
-#include "export/limit_tessellation.h"
 #include "fit/image_metrics.h"
 
 namespace subdfit::simplify {
@@ -43,16 +42,5 @@ geometry::SurfaceDistance worldDistance(const mesh::PolygonMesh& candidate, cons
     return d;
 }
 
-mesh::PolygonMesh limitSurfaceTriangles(const mesh::PolygonMesh& cage, const exporter::FittedMaps& maps,
-                                        int segments) {
-    exporter::FittedMaps layoutOnly = maps;
-    if (layoutOnly.layout.resolution == 0) layoutOnly.layout = maps::buildTexelLayout(cage, 1);
-    const auto tess = exporter::tessellateLimitSurface(cage, layoutOnly, segments);
-    mesh::PolygonMesh triangles;
-    triangles.positions = tess.positions;
-    triangles.faceSizes.assign(tess.triangleCount(), 3);
-    triangles.faceIndices.assign(tess.indices.begin(), tess.indices.end());
-    return triangles;
-}
 
 }  // namespace subdfit::simplify

@@ -8,12 +8,12 @@
 #include <glm/vec4.hpp>
 #include <nlohmann/json.hpp>
 
-#include "export/fitted_asset.h"
 #include "geometry/surface_distance.h"
 #include "render/camera.h"
 #include "render/render_target.h"
 #include "scene/scene_frame.h"
 #include "scene/target_set.h"
+#include "surface/surface_maps.h"
 
 namespace subdfit::simplify {
 
@@ -42,8 +42,5 @@ void scoreHoldout(const scene::TargetSet& holdout, const DrawFunction& draw, Qua
 geometry::SurfaceDistance worldDistance(const mesh::PolygonMesh& candidate, const mesh::PolygonMesh& reference,
                                         const scene::SceneFrame& frame, int samples);
 
-// The triangles of a cage's limit surface, displaced by `maps` (any units, as the cage).
-mesh::PolygonMesh limitSurfaceTriangles(const mesh::PolygonMesh& cage, const exporter::FittedMaps& maps,
-                                        int segments);
 
 }  // namespace subdfit::simplify

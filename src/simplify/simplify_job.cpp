@@ -12,6 +12,7 @@
 #include "simplify/baselines.h"
 #include "simplify/comparison_image.h"
 #include "simplify/initial_cage.h"
+#include "surface/tessellation.h"
 #include "util/error.h"
 #include "util/interrupt.h"
 
@@ -23,18 +24,6 @@ namespace {
 // with the signal). Measured on Spot (300 faces, T = 4): 0.1 and 0.02 both end within 0.1 dB
 // of the bake itself, 1 loses 5 dB to noise.
 constexpr float kRefineRate = 0.02f;
-
-exporter::FittedMaps fittedMaps(fit::CageFitter& fitter, const mesh::PolygonMesh& cage) {
-    exporter::FittedMaps maps;
-    if (auto* parameters = fitter.maps()) {
-        maps.layout = parameters->layout();
-        if (auto* g = parameters->displacement()) maps.displacement = g->read();
-        if (auto* g = parameters->normalMap()) maps.normal = g->read();
-    } else {
-        maps.layout = maps::buildTexelLayout(cage, 1);
-    }
-    return maps;
-}
 
 // subdfit's shipped files: the cage GLB and the map files (fitted.glb is a convenience preview
 // of the same asset for viewers without subdivision, not part of what the budget counts).
@@ -64,7 +53,7 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
     scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
         fitter.render(camera, target);
     }, ours);
-    ours.distance = worldDistance(limitSurfaceTriangles(cage, fittedMaps(fitter, cage), segments), scene.reference,
+    ours.distance = worldDistance(surface::triangleMesh(surface::tessellate(cage, fitter.surfaceMaps(), segments)), scene.reference,
                                   scene.frame, o.surfaceSamples);
 
     const BaselineSettings settings{.dir = out / "baselines", .draco = o.fit.draco,

@@ -2,7 +2,7 @@
 // true cage, the start is that cage with every vertex jittered.
 #include <gtest/gtest.h>
 
-#include "geometry/limit_mesh.h"
+#include "surface/tessellation.h"
 #include "gl_test_context.h"
 #include "mesh/obj_reader.h"
 #include "scene_fixture.h"
@@ -17,7 +17,7 @@ struct Recovery {
 
 Recovery recover(const std::string& shape, float sigma, int steps) {
     const auto truth = mesh::readObj(assetPath("osd-shapes/" + shape));
-    auto scene = makeFitScene(programs(), truth, geometry::limitMesh(truth, 8), 16, 128);
+    auto scene = makeFitScene(programs(), truth, surface::limitMesh(truth, 8), 16, 128);
     const auto truePositions = scene.cage.positions;  // normalised frame
     scene.cage.positions = noised(truePositions, sigma, 11);
 

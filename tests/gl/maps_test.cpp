@@ -6,7 +6,7 @@
 #include <numeric>
 
 #include "gl_test_context.h"
-#include "maps/texel_layout.h"
+#include "surface/texel_layout.h"
 #include "mesh/procedural.h"
 #include "scene_fixture.h"
 #include "optim/updates.h"
@@ -94,7 +94,7 @@ TEST(MapsBump, FlatCageRecoversABumpInTheDisplacementMap) {
             for (float v : {0.25f, 0.5f, 0.75f}) {
                 const auto s = evaluator.evaluate(face, u, v, cage);
                 const glm::vec3 n = glm::normalize(glm::cross(s.dPdu, s.dPdv));
-                const glm::vec3 p = s.position + maps::sampleBilinear(layout, heights, 1, 0, face, u, v) * n;
+                const glm::vec3 p = s.position + surface::sampleBilinear(layout, heights, 1, 0, face, u, v) * n;
                 const glm::vec3 world = frame.toWorld(p);
                 const float truth = frame.toNormalized(glm::vec3(world.x, world.y, bump(world.x, world.y))).z;
                 errorFitted += std::pow(double(p.z - truth), 2);
@@ -115,7 +115,7 @@ TEST(MapsWatertight, ConstantDisplacementLeavesNoCrackAcrossTiles) {
     auto cage = mesh::loadMesh(assetPath("spot/spot_control_mesh.obj"));
     const auto frame = scene::frameAround(cage.positions);
     cage.positions = frame.toNormalized(cage.positions);
-    const auto layout = maps::buildTexelLayout(cage, 4);
+    const auto layout = surface::buildTexelLayout(cage, 4);
     const std::vector<float> heights(size_t(layout.nodeCount), 0.03f);
 
     // Model: every welded border node lands on one point, whichever face evaluates it.

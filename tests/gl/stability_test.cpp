@@ -7,7 +7,7 @@
 
 #include <filesystem>
 
-#include "geometry/limit_mesh.h"
+#include "surface/tessellation.h"
 #include "gl_test_context.h"
 #include "mesh/obj_reader.h"
 #include "mesh/procedural.h"
@@ -49,7 +49,7 @@ class ShapeFit : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ShapeFit, ShortFitStaysFiniteAndDoesNotDiverge) {
     const auto truth = mesh::readObj(assetPath("osd-shapes/" + GetParam() + ".obj"));
-    const auto reference = geometry::limitMesh(truth, 4);
+    const auto reference = surface::limitMesh(truth, 4);
     if (reference.faceCount() == 0) GTEST_SKIP() << GetParam() << " has no limit surface (every face a hole or dropped)";
     auto scene = makeFitScene(programs(), truth, reference, 4, 64);
     scene.cage.positions = noised(scene.cage.positions, 0.02f, 5);

@@ -1,5 +1,5 @@
 // Map atlases: the tile layout, the EXR / PNG / JSON files, and the promise that a GPU bilinear
-// sample at the atlas UV reproduces maps::sampleBilinear.
+// sample at the atlas UV reproduces surface::sampleBilinear.
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
@@ -12,7 +12,7 @@
 #include <set>
 
 #include "export/map_atlas.h"
-#include "maps/texel_layout.h"
+#include "surface/texel_layout.h"
 #include "mesh/procedural.h"
 #include "test_paths.h"
 #include "util/error.h"
@@ -23,9 +23,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // Distinct values per node, so a pixel holding the wrong node shows.
-FittedMaps distinctMaps(int resolution) {
-    FittedMaps maps;
-    maps.layout = maps::buildTexelLayout(mesh::makeQuadSphere(4), resolution);
+surface::SurfaceMaps distinctMaps(int resolution) {
+    surface::SurfaceMaps maps;
+    maps.layout = surface::buildTexelLayout(mesh::makeQuadSphere(4), resolution);
     for (int n = 0; n < maps.layout.nodeCount; ++n) {
         maps.displacement.push_back(0.001f * float(n) - 0.2f);
         maps.normal.push_back(0.6f * std::sin(0.37f * float(n)));
@@ -62,7 +62,7 @@ float gpuBilinear(const std::vector<float>& image, int width, int height, glm::v
 }
 
 TEST(ExportAtlas, TilesFormASquareishGridWithoutOverlap) {
-    const FittedMaps maps = distinctMaps(4);
+    const surface::SurfaceMaps maps = distinctMaps(4);
     const AtlasLayout atlas = atlasLayout(maps.layout);
     ASSERT_EQ(maps.layout.ptexFaceCount, 96);
     EXPECT_EQ(atlas.tileSize, 5);
@@ -82,7 +82,7 @@ TEST(ExportAtlas, TilesFormASquareishGridWithoutOverlap) {
     EXPECT_EQ(atlas.tileOrigins[1], glm::ivec2(5, 0));  // row-major from the top-left
     EXPECT_EQ(atlas.tileOrigins[10], glm::ivec2(0, 5));
 
-    maps::TexelLayout nine = maps.layout;
+    surface::TexelLayout nine = maps.layout;
     nine.ptexFaceCount = 9;
     EXPECT_EQ(atlasLayout(nine).columns, 3);  // an exact square stays exact
     nine.ptexFaceCount = 10;
@@ -91,7 +91,7 @@ TEST(ExportAtlas, TilesFormASquareishGridWithoutOverlap) {
 }
 
 TEST(ExportAtlas, GpuBilinearAtTheAtlasUvReproducesTheNodeInterpolation) {
-    const FittedMaps maps = distinctMaps(4);
+    const surface::SurfaceMaps maps = distinctMaps(4);
     const AtlasLayout atlas = atlasLayout(maps.layout);
     const std::vector<float> image = displacementAtlas(atlas, maps);
     std::mt19937 rng(7);
@@ -100,14 +100,14 @@ TEST(ExportAtlas, GpuBilinearAtTheAtlasUvReproducesTheNodeInterpolation) {
         for (int k = 0; k < 20; ++k) {
             // Include the tile borders, where a wrong half-texel would reach the next tile.
             const float u = k < 4 ? float(k & 1) : unit(rng), v = k < 4 ? float(k >> 1) : unit(rng);
-            const float expected = maps::sampleBilinear(maps.layout, maps.displacement, 1, 0, face, u, v);
+            const float expected = surface::sampleBilinear(maps.layout, maps.displacement, 1, 0, face, u, v);
             EXPECT_NEAR(gpuBilinear(image, atlas.width, atlas.height, atlasUv(atlas, face, u, v)), expected, 1e-5f)
                 << "face " << face << " (" << u << ", " << v << ")";
         }
 }
 
 TEST(ExportAtlas, FilesReadBackWithTheNodeValuesAtTheirPixels) {
-    const FittedMaps maps = distinctMaps(4);
+    const surface::SurfaceMaps maps = distinctMaps(4);
     const AtlasLayout atlas = atlasLayout(maps.layout);
     const fs::path dir = test::scratchDir("export_atlas_files");
     const std::vector<WrittenFile> written = writeMapAtlases(dir, maps);
@@ -160,7 +160,7 @@ TEST(ExportAtlas, FilesReadBackWithTheNodeValuesAtTheirPixels) {
 }
 
 TEST(ExportAtlas, AbsentMapsWriteOnlyTheManifest) {
-    FittedMaps maps = distinctMaps(2);
+    surface::SurfaceMaps maps = distinctMaps(2);
     maps.displacement.clear();
     maps.normal.clear();
     const fs::path dir = test::scratchDir("export_atlas_absent");
@@ -174,7 +174,7 @@ TEST(ExportAtlas, AbsentMapsWriteOnlyTheManifest) {
 }
 
 TEST(ExportAtlas, UnwritableFolderThrowsAndLeavesNothing) {
-    const FittedMaps maps = distinctMaps(2);
+    const surface::SurfaceMaps maps = distinctMaps(2);
     const fs::path dir = test::scratchDir("export_atlas_unwritable");
     std::ofstream(dir / "file") << "not a folder";
     try {

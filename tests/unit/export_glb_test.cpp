@@ -13,13 +13,13 @@
 #include <nlohmann/json.hpp>
 
 #include "export/glb_writer.h"
-#include "export/limit_tessellation.h"
+#include "export/gltf_mesh.h"
 #include "export/map_atlas.h"
-#include "maps/texel_layout.h"
 #include "io/input_file.h"
 #include "mesh/gltf_reader.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/procedural.h"
+#include "surface/tessellation.h"
 #include "test_paths.h"
 #include "util/error.h"
 
@@ -34,10 +34,10 @@ constexpr float kHeight = 0.1f;
 // A quad-sphere cage, T = 4, a constant displacement and a normal map that varies per node.
 struct Asset {
     mesh::PolygonMesh cage = mesh::makeQuadSphere(4);
-    FittedMaps maps;
+    surface::SurfaceMaps maps;
 
     Asset() {
-        maps.layout = maps::buildTexelLayout(cage, 4);
+        maps.layout = surface::buildTexelLayout(cage, 4);
         maps.displacement.assign(size_t(maps.layout.nodeCount), kHeight);
         for (int n = 0; n < maps.layout.nodeCount; ++n) {
             maps.normal.push_back(0.5f * std::sin(0.37f * float(n)));
@@ -67,7 +67,12 @@ std::span<const float> floats(const std::vector<Vec>& v) {
     return {&v[0][0], v.size() * sizeof(Vec) / sizeof(float)};
 }
 
-void expectWellFormed(const LimitTessellation& tess) {
+// What fitted.glb encodes: the displaced limit surface's tessellation with atlas texcoords.
+GltfMesh fittedMesh(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps, int segments) {
+    return gltfMesh(surface::tessellate(cage, maps, segments), atlasLayout(maps.layout));
+}
+
+void expectWellFormed(const GltfMesh& tess) {
     ASSERT_GT(tess.vertexCount(), 0u);
     EXPECT_TRUE(finite(floats(tess.positions)));
     EXPECT_TRUE(finite(floats(tess.normals)));
@@ -85,7 +90,7 @@ void expectWellFormed(const LimitTessellation& tess) {
 }
 
 // Every triangle of a closed surface around the origin faces away from it.
-void expectOutward(const LimitTessellation& tess) {
+void expectOutward(const GltfMesh& tess) {
     for (size_t t = 0; t < tess.triangleCount(); ++t) {
         const glm::vec3 a = tess.positions[tess.indices[3 * t]], b = tess.positions[tess.indices[3 * t + 1]],
                         c = tess.positions[tess.indices[3 * t + 2]];
@@ -134,7 +139,7 @@ class ExportGlb : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
         asset_ = new Asset;
-        tess_ = new LimitTessellation(tessellateLimitSurface(asset_->cage, asset_->maps, 8));
+        tess_ = new GltfMesh(fittedMesh(asset_->cage, asset_->maps, 8));
         png_ = new std::vector<unsigned char>(encodeNormalPng(atlasLayout(asset_->maps.layout), asset_->maps));
         dir_ = new fs::path(test::scratchDir("export_glb"));
         plain_ = new WrittenFile(writeFittedGlb(*dir_ / "fitted.glb", *tess_, *png_, false));
@@ -144,7 +149,7 @@ protected:
         delete asset_, delete tess_, delete png_, delete dir_, delete plain_, delete draco_;
     }
     static inline Asset* asset_ = nullptr;
-    static inline LimitTessellation* tess_ = nullptr;
+    static inline GltfMesh* tess_ = nullptr;
     static inline std::vector<unsigned char>* png_ = nullptr;
     static inline fs::path* dir_ = nullptr;
     static inline WrittenFile *plain_ = nullptr, *draco_ = nullptr;
@@ -161,9 +166,9 @@ TEST_F(ExportGlb, TessellationIsFiniteUnitAndOutward) {
 }
 
 TEST_F(ExportGlb, ConstantDisplacementMovesTheLimitSurfaceOutByTheHeight) {
-    FittedMaps flat = asset_->maps;
+    surface::SurfaceMaps flat = asset_->maps;
     flat.displacement.clear();
-    const LimitTessellation limit = tessellateLimitSurface(asset_->cage, flat, 8);
+    const GltfMesh limit = fittedMesh(asset_->cage, flat, 8);
     expectWellFormed(limit);
     const Bounds before = bounds(limit.positions), after = bounds(tess_->positions);
     for (int axis = 0; axis < 3; ++axis) {
@@ -333,10 +338,10 @@ TEST_F(ExportGlb, UnwritableDestinationThrowsAndLeavesNoTemporary) {
 TEST(ExportTessellation, TriangleCageIsWoundOutwards) {
     // An icosahedron: every ptex face is a sub-quad of a triangle.
     const mesh::PolygonMesh cage = mesh::makeLumpySphere(0, 0.0f, 1);
-    FittedMaps maps;
-    maps.layout = maps::buildTexelLayout(cage, 2);
+    surface::SurfaceMaps maps;
+    maps.layout = surface::buildTexelLayout(cage, 2);
     maps.displacement.assign(size_t(maps.layout.nodeCount), 0.05f);
-    const LimitTessellation tess = tessellateLimitSurface(cage, maps, 4);
+    const GltfMesh tess = fittedMesh(cage, maps, 4);
     EXPECT_EQ(tess.vertexCount(), 60u * 25);
     expectWellFormed(tess);
     expectOutward(tess);
@@ -354,37 +359,37 @@ TEST(ExportTessellation, CollapsedDerivativesStayFinite) {
         if (std::find(quad.begin(), quad.end(), centre) != quad.end()) ring.insert(ring.end(), quad.begin(), quad.end());
     }
     for (int v : ring) cage.positions[size_t(v)] = cage.positions[size_t(centre)];
-    FittedMaps maps;
-    maps.layout = maps::buildTexelLayout(cage, 3);
+    surface::SurfaceMaps maps;
+    maps.layout = surface::buildTexelLayout(cage, 3);
     for (int n = 0; n < maps.layout.nodeCount; ++n) maps.displacement.push_back(0.02f * std::sin(float(n)));
-    const LimitTessellation tess = tessellateLimitSurface(cage, maps, 6);
+    const GltfMesh tess = fittedMesh(cage, maps, 6);
     expectWellFormed(tess);
 }
 
 TEST(ExportTessellation, CageCollapsedToAPointStaysFinite) {
     mesh::PolygonMesh cage = mesh::makeQuadSphere(2);
     for (glm::vec3& p : cage.positions) p = glm::vec3(0.5f);
-    FittedMaps maps;
-    maps.layout = maps::buildTexelLayout(cage, 2);
+    surface::SurfaceMaps maps;
+    maps.layout = surface::buildTexelLayout(cage, 2);
     maps.displacement.assign(size_t(maps.layout.nodeCount), 0.1f);
-    const LimitTessellation tess = tessellateLimitSurface(cage, maps, 2);
+    const GltfMesh tess = fittedMesh(cage, maps, 2);
     expectWellFormed(tess);
 }
 
 TEST(ExportTessellation, HolesAreSkipped) {
     mesh::PolygonMesh cage = mesh::makeQuadSphere(3);
     cage.tags.holes = {0, 5};
-    FittedMaps maps;
-    maps.layout = maps::buildTexelLayout(cage, 2);
-    const LimitTessellation tess = tessellateLimitSurface(cage, maps, 2);
+    surface::SurfaceMaps maps;
+    maps.layout = surface::buildTexelLayout(cage, 2);
+    const GltfMesh tess = fittedMesh(cage, maps, 2);
     EXPECT_EQ(tess.vertexCount(), (54u - 2u) * 9u);
     expectWellFormed(tess);
 }
 
 TEST(ExportTessellation, SegmentCountIsValidated) {
     const Asset asset;
-    EXPECT_THROW(tessellateLimitSurface(asset.cage, asset.maps, 0), Error);
-    EXPECT_THROW(tessellateLimitSurface(asset.cage, asset.maps, 1025), Error);
+    EXPECT_THROW(fittedMesh(asset.cage, asset.maps, 0), Error);
+    EXPECT_THROW(fittedMesh(asset.cage, asset.maps, 1025), Error);
 }
 
 }  // namespace

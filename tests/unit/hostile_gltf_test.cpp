@@ -113,6 +113,13 @@ TEST_F(HostileGltf, AFifoIsNotOpened) {
     EXPECT_NE(message.find("not a regular file"), std::string::npos) << message;
 }
 
+TEST_F(HostileGltf, AMissingImageIsNoReasonToRefuseTheGeometry) {
+    json doc = triangleGltf("ok.bin");
+    doc["images"] = {{{"uri", "textures/missing.png"}}};
+    write(dir_ / "asset" / "scene.gltf", doc.dump());
+    EXPECT_EQ(loadMesh(dir_ / "asset" / "scene.gltf").faceCount(), 1);
+}
+
 TEST_F(HostileGltf, AnImageOutsideTheFolderIsRefusedToo) {
     json doc = triangleGltf("ok.bin");
     doc["images"] = {{{"uri", "../../etc/passwd"}}};

@@ -1,7 +1,7 @@
 #pragma once
-// The fitted surface as triangles: the cage's limit surface, displaced along its normal by the
-// displacement map, sampled on a regular grid per ptex face. This is what a viewer without
-// subdivision or displacement support gets; the normal map then adds the finer detail.
+// A triangle mesh with the attributes glTF carries: what the GLB and Draco writers encode. The
+// fitted surface comes here from its tessellation (surface/tessellation.h) with atlas texcoords;
+// a cage or a decimated mesh with positions and indices alone.
 #include <cstdint>
 #include <vector>
 
@@ -9,12 +9,12 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "export/fitted_asset.h"
-#include "mesh/polygon_mesh.h"
+#include "export/map_atlas.h"
+#include "surface/tessellation.h"
 
 namespace subdfit::exporter {
 
-struct LimitTessellation {
+struct GltfMesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;  // unit normals of the displaced surface
     // xyz: unit, orthogonal to the normal, along dP/du; w = ±1 so that cross(normal, xyz) · w
@@ -41,11 +41,7 @@ struct LimitTessellation {
     std::size_t triangleCount() const { return indices.size() / 3; }
 };
 
-// `segments` × `segments` quads per ptex face that has a surface (holes are skipped); each face
-// gets its own (segments+1)² vertices, as its texcoords differ from its neighbours'. A multiple
-// of maps.layout.resolution puts vertices on every map node. Every output is finite, also
-// where the limit derivatives collapse. Throws subdfit::Error for segments outside 1..1024 or
-// more than 2³² vertices.
-LimitTessellation tessellateLimitSurface(const mesh::PolygonMesh& cage, const FittedMaps& maps, int segments);
+// The tessellation with each vertex's ptex (face, u, v) turned into texcoords of `atlas`.
+GltfMesh gltfMesh(const surface::Tessellation& tessellation, const AtlasLayout& atlas);
 
 }  // namespace subdfit::exporter

@@ -1,14 +1,14 @@
 #pragma once
-// The maps a fit produces beside its cage, in the form every exporter reads: node values on the
-// shared texel layout (maps/texel_layout.h), before any packing into images.
+// A cage's maps as CPU values: node values on the shared texel layout, before any packing into
+// images. What the displaced surface is evaluated from, what a bake produces, what exporters read.
 #include <vector>
 
-#include "maps/texel_layout.h"
+#include "surface/texel_layout.h"
 
-namespace subdfit::exporter {
+namespace subdfit::surface {
 
-struct FittedMaps {
-    maps::TexelLayout layout;
+struct SurfaceMaps {
+    TexelLayout layout;  // resolution 0: no maps at all
     // layout.nodeCount heights along the limit normal, in the cage's units; empty = no
     // displacement map.
     std::vector<float> displacement;
@@ -20,4 +20,4 @@ struct FittedMaps {
     bool hasNormal() const { return !normal.empty(); }
 };
 
-}  // namespace subdfit::exporter
+}  // namespace subdfit::surface

@@ -1,49 +1,19 @@
-#include "maps/texel_layout.h"
+#include "surface/texel_layout.h"
 
 #include <glm/geometric.hpp>
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
+#include "mesh/point_welder.h"
 #include "subdiv/limit_evaluator.h"
 #include "util/error.h"
 
-namespace subdfit::maps {
-namespace {
+namespace subdfit::surface {
 
-// Welds points closer than `tolerance` into one index: a hash grid of cell = tolerance, each
-// query checking the 27 cells around it, so points straddling a cell border still meet.
-class PointWelder {
-public:
-    explicit PointWelder(float tolerance) : cell_(tolerance) {}
-
-    int indexOf(const glm::vec3& p, int& nextIndex) {
-        const long long cx = std::llround(p.x / cell_), cy = std::llround(p.y / cell_), cz = std::llround(p.z / cell_);
-        for (long long dx = -1; dx <= 1; ++dx)
-            for (long long dy = -1; dy <= 1; ++dy)
-                for (long long dz = -1; dz <= 1; ++dz) {
-                    const auto it = cells_.find(key(cx + dx, cy + dy, cz + dz));
-                    if (it == cells_.end()) continue;
-                    for (const auto& [q, index] : it->second)
-                        if (glm::length(p - q) <= cell_) return index;
-                }
-        cells_[key(cx, cy, cz)].push_back({p, nextIndex});
-        return nextIndex++;
-    }
-
-private:
-    static long long key(long long x, long long y, long long z) {
-        return (x * 73856093LL) ^ (y * 19349663LL) ^ (z * 83492791LL);
-    }
-    float cell_;
-    std::unordered_map<long long, std::vector<std::pair<glm::vec3, int>>> cells_;
-};
-
-}  // namespace
 
 TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution) {
-    if (resolution < 1 || resolution > 256)
-        throw Error("invalid option: --map-res must be in 1..256, got " + std::to_string(resolution));
+    SUBDFIT_CHECK(resolution >= 1 && resolution <= 256);
     const subdiv::LimitEvaluator evaluator(cage);
     TexelLayout layout;
     layout.resolution = resolution;
@@ -53,7 +23,7 @@ TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution) {
     float extent = 0.0f;
     for (const auto& p : cage.positions) extent = std::max({extent, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
     // Far below the node spacing of any sane map, far above float rounding of one limit point.
-    PointWelder welder(std::max(extent, 1e-30f) * 1e-5f);
+    mesh::PointWelder welder(std::max(extent, 1e-30f) * 1e-5f);
     int next = 0;
     const int n = resolution;
     for (int face = 0; face < layout.ptexFaceCount; ++face) {
@@ -117,4 +87,4 @@ float sampleBilinear(const TexelLayout& layout, std::span<const float> values, i
            fx * fy * value(i + 1, j + 1);
 }
 
-}  // namespace subdfit::maps
+}  // namespace subdfit::surface

@@ -9,7 +9,7 @@
 
 #include "mesh/polygon_mesh.h"
 
-namespace subdfit::maps {
+namespace subdfit::surface {
 
 struct TexelLayout {
     int resolution = 0;     // T: cells per ptex-face edge
@@ -30,7 +30,7 @@ struct NodeAdjacency {
 };
 NodeAdjacency nodeAdjacency(const TexelLayout& layout);
 
-// Throws subdfit::Error for a resolution outside 1..256.
+// `resolution` in 1..256 (the options allow up to 64).
 TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution);
 
 // Bilinear sample of channel `channel` of node values stored `stride` floats per node, at ptex
@@ -38,4 +38,4 @@ TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution);
 float sampleBilinear(const TexelLayout& layout, std::span<const float> values, int stride, int channel, int face,
                      float u, float v);
 
-}  // namespace subdfit::maps
+}  // namespace subdfit::surface

@@ -1,0 +1,47 @@
+#pragma once
+// The CPU twin of the GPU surface: a cage's Catmull-Clark limit surface (OpenSubdiv), displaced
+// along its normal by the displacement map, with a unit normal and a tangent frame everywhere
+// (also where the limit derivatives collapse). Exports tessellate it, measurements sample it.
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "mesh/polygon_mesh.h"
+#include "subdiv/limit_evaluator.h"
+#include "surface/surface_maps.h"
+
+namespace subdfit::surface {
+
+struct SurfaceVertex {
+    glm::vec3 position;
+    glm::vec3 normal;   // unit, of the displaced surface
+    // xyz: unit, orthogonal to the normal, along dP/du; w = ±1 so that cross(normal, xyz) · w
+    // points along dP/dv: the frame the normal map's (x, y) is expressed in.
+    glm::vec4 tangent;
+};
+
+class DisplacedSurface {
+public:
+    // Both must outlive the surface; `maps` without a displacement gives the limit surface.
+    DisplacedSurface(const mesh::PolygonMesh& cage, const SurfaceMaps& maps);
+
+    int ptexFaceCount() const { return evaluator_.ptexFaceCount(); }
+    bool hasSurface(int face) const { return evaluator_.hasSurface(face, 0.5f, 0.5f); }
+
+    // Every output finite.
+    SurfaceVertex at(int face, float u, float v) const;
+
+private:
+    struct LimitPoint {
+        glm::vec3 position, dPdu, dPdv, normal;
+    };
+    LimitPoint limitPoint(int face, float u, float v) const;
+    float height(int face, float u, float v) const;
+    glm::vec2 heightGradient(int face, float u, float v) const;
+
+    const mesh::PolygonMesh& cage_;
+    const SurfaceMaps& maps_;
+    subdiv::LimitEvaluator evaluator_;
+};
+
+}  // namespace subdfit::surface
