@@ -23,6 +23,8 @@
 #include "context/gl_context.h"
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
+#include "gl/raster_state.h"
+#include "gl/vertex_array.h"
 #include "io/image_io.h"
 #include "plot.h"
 #include "bindings.h"
@@ -99,6 +101,12 @@ Soup makeInitialSoup(int triangles) {
     return soup;
 }
 
+const gl::ProgramSpec kSoupRaster{"soup_raster",
+                                  {{GL_VERTEX_SHADER, "soup_raster.vert"}, {GL_FRAGMENT_SHADER, "soup_raster.frag"}}};
+const gl::ProgramSpec kSoupGradient{"soup_gradient", {{GL_COMPUTE_SHADER, "soup_gradient.comp"}}, {"SUBDFIT_SOUP_FULL_IMAGE"}};
+const gl::ProgramSpec kSoupScatter{"soup_scatter", {{GL_COMPUTE_SHADER, "soup_scatter.comp"}}, {"SUBDFIT_SOUP_FULL_IMAGE"}};
+enum SoupVariant : gl::VariantBits { kSoupFullImage = 1u << 0 };
+
 class SoupFitter {
 public:
     SoupFitter(gl::ProgramCache& programs, const Soup& soup, int resolution, bool fullImage)
@@ -110,11 +118,7 @@ public:
           triangleDelta_(GLsizeiptr(std::max(triangles_, 256)) * GLsizeiptr(sizeof(float))),
           plus_(resolution, resolution),
           minus_(resolution, resolution),
-          image_(resolution, resolution) {
-        GLuint vao = 0;
-        glCreateVertexArrays(1, &vao);
-        vertexArray_ = gl::GlHandle<gl::VertexArrayTraits>(vao);
-    }
+          image_(resolution, resolution) {}
 
     // Positions in clip units: ε = half a pixel, step a quarter pixel. Colours: ε = 0.05.
     static optim::GroupSettings positionSettings(int resolution) {
@@ -134,19 +138,14 @@ public:
     int parameters() const { return positions_.count() + colors_.count(); }
 
     void render(const gl::Buffer& positions, const gl::Buffer& colors, const SoupTarget& target) const {
-        const auto& program = programs_.get(
-            "soup_raster", {{GL_VERTEX_SHADER, "soup_raster.vert"}, {GL_FRAGMENT_SHADER, "soup_raster.frag"}});
+        const auto& program = programs_.get(kSoupRaster);
         program.use();
         target.bindAndClear();
-        // Random windings, so no culling; depth clamp keeps triangles whose z drifts past ±1 visible.
-        glDisable(GL_CULL_FACE);
-        glDisable(GL_BLEND);
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        glEnable(GL_DEPTH_CLAMP);
+        // Random windings (never culled); depth clamp keeps triangles whose z drifts past ±1 visible.
+        gl::RasterState{.depthClamp = true}.apply();
         positions.bindStorage(SUBDFIT_SOUP_SSBO_POSITIONS);
         colors.bindStorage(SUBDFIT_SOUP_SSBO_COLORS);
-        glBindVertexArray(vertexArray_.id());
+        vertexArray_.bind();
         glDrawArrays(GL_TRIANGLES, 0, 3 * triangles_);
         glBindVertexArray(0);
     }
@@ -164,10 +163,9 @@ public:
         render(positions_.thetaPlus, colors_.thetaPlus, plus_);
         render(positions_.thetaMinus, colors_.thetaMinus, minus_);
 
-        const gl::Defines estimator =
-            fullImage_ ? gl::Defines{{"SUBDFIT_SOUP_FULL_IMAGE", ""}} : gl::Defines{};
+        const gl::VariantBits estimator = fullImage_ ? kSoupFullImage : 0;
         triangleDelta_.clearToZero();
-        const auto& gradient = programs_.get("soup_gradient", {{GL_COMPUTE_SHADER, "soup_gradient.comp"}}, estimator);
+        const auto& gradient = programs_.get(kSoupGradient, estimator);
         gradient.use();
         glBindTextureUnit(SUBDFIT_SOUP_UNIT_COLOR_PLUS, plus_.color().id());
         glBindTextureUnit(SUBDFIT_SOUP_UNIT_COLOR_MINUS, minus_.color().id());
@@ -179,7 +177,7 @@ public:
         glDispatchCompute(groupsOf(plus_.width(), 16), groupsOf(plus_.height(), 16), 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
-        const auto& scatter = programs_.get("soup_scatter", {{GL_COMPUTE_SHADER, "soup_scatter.comp"}}, estimator);
+        const auto& scatter = programs_.get(kSoupScatter, estimator);
         scatter.use();
         scatter.set("uTriangleCount", unsigned(triangles_));
         scatter.set("uCounter", counter);
@@ -230,7 +228,7 @@ private:
     optim::ParameterGroup positions_, colors_;
     gl::Buffer triangleDelta_;
     SoupTarget plus_, minus_, image_;
-    gl::GlHandle<gl::VertexArrayTraits> vertexArray_;
+    gl::VertexArray vertexArray_;
 };
 
 // Mean over pixels of ‖I_p − T_p‖² (RGB).

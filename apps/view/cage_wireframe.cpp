@@ -1,6 +1,7 @@
 #include "cage_wireframe.h"
 
 #include "bindings.h"
+#include "gl/raster_state.h"
 #include "mesh/mesh_adjacency.h"
 
 namespace subdfit::view {
@@ -16,32 +17,29 @@ std::vector<unsigned> edgeIndices(const mesh::PolygonMesh& cage) {
     return indices;
 }
 
+const gl::ProgramSpec kCage{"view_cage", {{GL_VERTEX_SHADER, "view_cage.vert"}, {GL_FRAGMENT_SHADER, "view_cage.frag"}}};
+
 }  // namespace
 
 CageWireframe::CageWireframe(const mesh::PolygonMesh& cage) {
     const auto indices = edgeIndices(cage);
     indexCount_ = GLsizei(indices.size());
     edges_ = gl::Buffer::fromVector(indices);
-    GLuint id = 0;
-    glCreateVertexArrays(1, &id);
-    vertexArray_ = gl::GlHandle<gl::VertexArrayTraits>(id);
-    glVertexArrayElementBuffer(id, edges_.id());
+    vertexArray_.elements(edges_);
 }
 
 void CageWireframe::draw(gl::ProgramCache& programs, const gl::Buffer& vertices, const render::Camera& camera) const {
-    const auto& program = programs.get("view_cage", {{GL_VERTEX_SHADER, "view_cage.vert"},
-                                                     {GL_FRAGMENT_SHADER, "view_cage.frag"}});
+    const auto& program = programs.get(kCage);
     program.use();
     program.set("uViewProjection", camera.viewProjection());
-    glUniform4f(program.location("uColor"), 1.0f, 0.85f, 0.25f, 0.75f);
+    program.set("uColor", glm::vec4(1.0f, 0.85f, 0.25f, 0.75f));
     vertices.bindStorage(SUBDFIT_SSBO_THETA);
-    glDisable(GL_DEPTH_TEST);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    glBindVertexArray(vertexArray_.id());
+    // Over the composite, never hidden by it: the cage is the thing being edited.
+    gl::RasterState{.depthTest = false, .alphaBlend = true}.apply();
+    vertexArray_.bind();
     glDrawElements(GL_LINES, indexCount_, GL_UNSIGNED_INT, nullptr);
     glBindVertexArray(0);
-    glDisable(GL_BLEND);
+    gl::RasterState{}.apply();
 }
 
 }  // namespace subdfit::view

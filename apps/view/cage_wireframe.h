@@ -3,6 +3,7 @@
 // (no readback per frame).
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
+#include "gl/vertex_array.h"
 #include "mesh/polygon_mesh.h"
 #include "render/camera.h"
 
@@ -19,7 +20,7 @@ public:
 private:
     GLsizei indexCount_;
     gl::Buffer edges_;
-    gl::GlHandle<gl::VertexArrayTraits> vertexArray_;
+    gl::VertexArray vertexArray_;
 };
 
 }  // namespace subdfit::view

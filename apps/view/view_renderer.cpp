@@ -1,6 +1,16 @@
 #include "view_renderer.h"
 
+#include "gl/raster_state.h"
+
 namespace subdfit::view {
+namespace {
+
+const gl::ProgramSpec kComposite{"view_composite",
+                                 {{GL_VERTEX_SHADER, "view_fullscreen.vert"}, {GL_FRAGMENT_SHADER, "view_composite.frag"}},
+                                 {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP"}};
+enum CompositeVariant : gl::VariantBits { kCompositeDisplacement = 1u << 0, kCompositeNormalMap = 1u << 1 };
+
+}  // namespace
 
 void ViewRenderer::draw(FitSession& session, const CageWireframe& wireframe, const render::Camera& camera,
                         const ViewSettings& settings, glm::ivec2 origin, glm::ivec2 size) {
@@ -9,11 +19,7 @@ void ViewRenderer::draw(FitSession& session, const CageWireframe& wireframe, con
         fit_ = std::make_unique<render::RenderTarget>(size.x, size.y);
         target_ = std::make_unique<render::RenderTarget>(size.x, size.y);
     }
-    if (!emptyVertexArray_) {
-        GLuint id = 0;
-        glCreateVertexArrays(1, &id);  // core profile draws need a vertex array, even an empty one
-        emptyVertexArray_ = gl::GlHandle<gl::VertexArrayTraits>(id);
-    }
+    if (!emptyVertexArray_) emptyVertexArray_.emplace();
 
     auto& fitter = session.fitter();
     // A mode that does not read a buffer leaves it cleared, so the composite sees background there.
@@ -23,13 +29,12 @@ void ViewRenderer::draw(FitSession& session, const CageWireframe& wireframe, con
     else target_->bindAndClear();
 
     const maps::MapParameters* maps = fitter.maps();
-    const auto& program = programs_.get("view_composite",
-                                        {{GL_VERTEX_SHADER, "view_fullscreen.vert"},
-                                         {GL_FRAGMENT_SHADER, "view_composite.frag"}},
-                                        maps ? maps->defines() : gl::Defines{});
+    const maps::MapEffects effects = maps ? maps->effects() : maps::MapEffects{};
+    const auto& program = programs_.get(kComposite, (effects.displacement ? kCompositeDisplacement : 0) |
+                                                        (effects.normalMap ? kCompositeNormalMap : 0));
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(origin.x, origin.y, size.x, size.y);
-    glDisable(GL_DEPTH_TEST);
+    gl::RasterState{.depthTest = false}.apply();
     program.use();
     program.set("uMode", int(settings.mode));
     glUniform2i(program.location("uOrigin"), origin.x, origin.y);
@@ -42,7 +47,7 @@ void ViewRenderer::draw(FitSession& session, const CageWireframe& wireframe, con
     glBindTextureUnit(1, fit_->faceId().id());
     glBindTextureUnit(2, fit_->patchUv().id());
     glBindTextureUnit(3, target_->color().id());
-    glBindVertexArray(emptyVertexArray_.id());
+    emptyVertexArray_->bind();
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
 

@@ -3,10 +3,12 @@
 // RenderTarget at the view's size, then composites the mode's picture into the window with one
 // fullscreen triangle (and the cage's edges on top when asked).
 #include <memory>
+#include <optional>
 
 #include <glm/vec2.hpp>
 
 #include "cage_wireframe.h"
+#include "gl/vertex_array.h"
 #include "fit_session.h"
 #include "view_mode.h"
 
@@ -29,7 +31,7 @@ public:
 private:
     gl::ProgramCache programs_;  // the viewer's own, so a saved report lists only the fit's programs
     std::unique_ptr<render::RenderTarget> fit_, target_;
-    gl::GlHandle<gl::VertexArrayTraits> emptyVertexArray_;
+    std::optional<gl::VertexArray> emptyVertexArray_;  // made on the first draw, with the context current
 };
 
 }  // namespace subdfit::view

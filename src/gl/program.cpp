@@ -61,6 +61,12 @@ Program::Program(const std::vector<ShaderStage>& stages, const Defines& defines)
     }
 }
 
+GLint Program::location(const char* name) const {
+    const auto [it, fresh] = locations_.try_emplace(name, -1);
+    if (fresh) it->second = glGetUniformLocation(id(), name);
+    return it->second;
+}
+
 void Program::set(const char* name, int value) const {
     glProgramUniform1i(id(), location(name), value);
 }
@@ -75,6 +81,9 @@ void Program::set(const char* name, const glm::vec2& value) const {
 }
 void Program::set(const char* name, const glm::vec3& value) const {
     glProgramUniform3fv(id(), location(name), 1, glm::value_ptr(value));
+}
+void Program::set(const char* name, const glm::vec4& value) const {
+    glProgramUniform4fv(id(), location(name), 1, glm::value_ptr(value));
 }
 void Program::set(const char* name, const glm::mat4& value) const {
     glProgramUniformMatrix4fv(id(), location(name), 1, GL_FALSE, glm::value_ptr(value));

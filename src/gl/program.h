@@ -5,8 +5,10 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 #include <map>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "gl/gl_handle.h"
@@ -28,7 +30,8 @@ public:
 
     GLuint id() const { return handle_.id(); }
     void use() const { glUseProgram(id()); }
-    GLint location(const char* name) const { return glGetUniformLocation(id(), name); }
+    // Looked up once per name: the fit sets a dozen uniforms a pass, thousands of passes a run.
+    GLint location(const char* name) const;
 
     void set(const char* name, int value) const;
     void set(const char* name, unsigned value) const;
@@ -37,8 +40,11 @@ public:
     void set(const char* name, const glm::vec3& value) const;
     void set(const char* name, const glm::mat4& value) const;
 
+    void set(const char* name, const glm::vec4& value) const;
+
 private:
     GlHandle<ProgramTraits> handle_;
+    mutable std::unordered_map<std::string, GLint> locations_;
 };
 
 std::string defineBlock(const Defines& defines);

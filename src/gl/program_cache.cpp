@@ -1,20 +1,21 @@
 #include "gl/program_cache.h"
 
+#include "util/error.h"
+
 namespace subdfit::gl {
 
-const Program& ProgramCache::get(const std::string& name, const std::vector<ShaderStage>& stages,
-                                 const Defines& defines) {
-    Defines all = global_;
-    all.insert(defines.begin(), defines.end());
-    std::string key = name;
-    for (const auto& stage : stages) key += "|" + stage.file;
-    key += "|" + defineBlock(all);
-    auto& slot = programs_[key];
+const Program& ProgramCache::get(const ProgramSpec& spec, VariantBits variant, const Defines& values) {
+    auto& slot = programs_[{spec.name, variant, values}];
     if (!slot) {
-        slot = std::make_unique<Program>(stages, all);
-        ProgramVariant variant{name, {}, all};
-        for (const auto& stage : stages) variant.files.push_back(stage.file);
-        variants_.push_back(std::move(variant));
+        SUBDFIT_CHECK(spec.flagDefines.size() >= 32 || (variant >> spec.flagDefines.size()) == 0);
+        Defines all = global_;
+        all.insert(values.begin(), values.end());
+        for (size_t bit = 0; bit < spec.flagDefines.size(); ++bit)
+            if (variant & (VariantBits(1) << bit)) all[spec.flagDefines[bit]] = "";
+        slot = std::make_unique<Program>(spec.stages, all);
+        ProgramVariant described{spec.name, {}, all};
+        for (const auto& stage : spec.stages) described.files.push_back(stage.file);
+        variants_.push_back(std::move(described));
     }
     return *slot;
 }

@@ -41,13 +41,6 @@ std::vector<optim::ParameterGroup*> MapParameters::groups() {
     return out;
 }
 
-gl::Defines MapParameters::defines() const {
-    gl::Defines defines;
-    if (effects_.displacement) defines["SUBDFIT_DISPLACEMENT"] = "";
-    if (effects_.normalMap) defines["SUBDFIT_NORMAL_MAP"] = "";
-    return defines;
-}
-
 namespace {
 
 const gl::Buffer& version(const optim::ParameterGroup& group, ParameterVersion v) {

@@ -38,8 +38,6 @@ public:
     optim::ParameterGroup* normalMap() { return normalMap_.get(); }
     std::vector<optim::ParameterGroup*> groups();
 
-    // SUBDFIT_DISPLACEMENT / SUBDFIT_NORMAL_MAP for the effects present.
-    gl::Defines defines() const;
     // The patch pass's maps: θ± of the group being perturbed (`perturbed`, may be null) and θ of
     // the others. Valid while this object lives.
     render::PatchMaps forRaster(ParameterVersion version, const optim::ParameterGroup* perturbed = nullptr) const;

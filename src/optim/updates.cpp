@@ -9,10 +9,17 @@ namespace {
 
 GLuint groupsOf(int count, int size) { return GLuint((count + size - 1) / size); }
 
+const gl::ProgramSpec kPerturb{"perturb", {{GL_COMPUTE_SHADER, "perturb.comp"}}};
+const gl::ProgramSpec kResolve{"resolve_gradient", {{GL_COMPUTE_SHADER, "resolve_gradient.comp"}}};
+const gl::ProgramSpec kPrecondition{"precondition", {{GL_COMPUTE_SHADER, "precondition.comp"}}};
+const gl::ProgramSpec kSharedMoment{"shared_moment", {{GL_COMPUTE_SHADER, "shared_moment.comp"}}};
+const gl::ProgramSpec kAdam{"adam", {{GL_COMPUTE_SHADER, "adam.comp"}}, {"SUBDFIT_ADAM_SHARED_MOMENT"}};
+enum AdamVariant : gl::VariantBits { kAdamSharedMoment = 1u << 0 };
+
 }  // namespace
 
 void perturb(gl::ProgramCache& programs, ParameterGroup& group, std::uint32_t counter, std::uint32_t seed) {
-    const auto& program = programs.get("perturb", {{GL_COMPUTE_SHADER, "perturb.comp"}});
+    const auto& program = programs.get(kPerturb);
     program.use();
     program.set("uCount", unsigned(group.count()));
     program.set("uCounter", counter);
@@ -26,7 +33,7 @@ void perturb(gl::ProgramCache& programs, ParameterGroup& group, std::uint32_t co
 }
 
 void resolveGradient(gl::ProgramCache& programs, ParameterGroup& group) {
-    const auto& program = programs.get("resolve_gradient", {{GL_COMPUTE_SHADER, "resolve_gradient.comp"}});
+    const auto& program = programs.get(kResolve);
     program.use();
     program.set("uCount", unsigned(group.count()));
     group.gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_SUM);
@@ -42,8 +49,7 @@ void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjac
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         return;
     }
-    const auto& program = programs.get("precondition", {{GL_COMPUTE_SHADER, "precondition.comp"}},
-                                       {{"SUBDFIT_CHANNELS", std::to_string(group.count() / adjacency.vertexCount)}});
+    const auto& program = programs.get(kPrecondition, 0, {{"SUBDFIT_CHANNELS", std::to_string(group.count() / adjacency.vertexCount)}});
     program.use();
     program.set("uVertexCount", adjacency.vertexCount);
     program.set("uLambda", lambda);
@@ -66,10 +72,8 @@ void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjac
 void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffer& gradient, float learningRate) {
     const auto& s = group.settings();
     ++group.adamSteps;
-    gl::Defines defines;
     if (s.sharedMoment) {
-        defines["SUBDFIT_ADAM_SHARED_MOMENT"] = "";
-        const auto& reduce = programs.get("shared_moment", {{GL_COMPUTE_SHADER, "shared_moment.comp"}});
+        const auto& reduce = programs.get(kSharedMoment);
         reduce.use();
         reduce.set("uCount", unsigned(group.count()));
         reduce.set("uBeta2", s.beta2);
@@ -78,7 +82,7 @@ void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffe
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
-    const auto& program = programs.get("adam", {{GL_COMPUTE_SHADER, "adam.comp"}}, defines);
+    const auto& program = programs.get(kAdam, s.sharedMoment ? kAdamSharedMoment : 0);
     program.use();
     program.set("uCount", unsigned(group.count()));
     program.set("uLearningRate", learningRate);

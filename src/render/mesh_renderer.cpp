@@ -3,6 +3,9 @@
 #include "render/raster_pass.h"
 
 namespace subdfit::render {
+namespace {
+const gl::ProgramSpec kMeshRaster{"mesh_raster", {{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "mesh.frag"}}};
+}  // namespace
 
 MeshRenderer::MeshRenderer(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals,
                            const std::vector<unsigned>& triangleIndices)
@@ -10,24 +13,15 @@ MeshRenderer::MeshRenderer(const std::vector<glm::vec3>& positions, const std::v
       positions_(gl::Buffer::fromVector(positions)),
       normals_(gl::Buffer::fromVector(normals)),
       indices_(gl::Buffer::fromVector(triangleIndices)) {
-    GLuint id = 0;
-    glCreateVertexArrays(1, &id);
-    vertexArray_ = gl::GlHandle<gl::VertexArrayTraits>(id);
-    glVertexArrayVertexBuffer(id, 0, positions_.id(), 0, sizeof(glm::vec3));
-    glVertexArrayVertexBuffer(id, 1, normals_.id(), 0, sizeof(glm::vec3));
-    for (GLuint a = 0; a < 2; ++a) {
-        glEnableVertexArrayAttrib(id, a);
-        glVertexArrayAttribFormat(id, a, 3, GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribBinding(id, a, a);
-    }
-    glVertexArrayElementBuffer(id, indices_.id());
+    vertexArray_.attribute(0, positions_, 3);
+    vertexArray_.attribute(1, normals_, 3);
+    vertexArray_.elements(indices_);
 }
 
 void MeshRenderer::draw(gl::ProgramCache& programs, const Camera& camera, const RenderTarget& target) const {
-    const auto& program = programs.get("mesh_raster", {{GL_VERTEX_SHADER, "mesh.vert"},
-                                                       {GL_FRAGMENT_SHADER, "mesh.frag"}});
+    const auto& program = programs.get(kMeshRaster);
     beginRasterPass(program, camera, target);
-    glBindVertexArray(vertexArray_.id());
+    vertexArray_.bind();
     glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
     glBindVertexArray(0);
 }

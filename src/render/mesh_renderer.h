@@ -5,6 +5,7 @@
 
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
+#include "gl/vertex_array.h"
 #include "render/camera.h"
 #include "render/render_target.h"
 
@@ -20,7 +21,7 @@ public:
 private:
     GLsizei indexCount_;
     gl::Buffer positions_, normals_, indices_;
-    gl::GlHandle<gl::VertexArrayTraits> vertexArray_;
+    gl::VertexArray vertexArray_;
 };
 
 }  // namespace subdfit::render

@@ -7,7 +7,17 @@
 
 namespace subdfit::render {
 namespace {
+
 constexpr int kPatchesPerDraw = 64;
+
+const gl::ProgramSpec kPatchRaster{"patch_raster",
+                                   {{GL_VERTEX_SHADER, "patch.vert"},
+                                    {GL_TESS_CONTROL_SHADER, "patch.tesc"},
+                                    {GL_TESS_EVALUATION_SHADER, "patch.tese"},
+                                    {GL_FRAGMENT_SHADER, "patch.frag"}},
+                                   {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP"}};
+enum PatchVariant : gl::VariantBits { kPatchDisplacement = 1u << 0, kPatchNormalMap = 1u << 1 };
+
 }  // namespace
 
 int crackFreeTessLevel(int requested, int maxPatchDepth) {
@@ -20,24 +30,14 @@ PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel)
     : patchCount_(int(patches.patchInfo.size())),
       tessLevel_(crackFreeTessLevel(tessLevel, patches.maxPatchDepth)),
       patchInfo_(gl::Buffer::fromVector(patches.patchInfo)),
-      patchCvs_(gl::Buffer::fromVector(patches.patchCvIndices)) {
-    GLuint id = 0;
-    glCreateVertexArrays(1, &id);  // core profile needs one bound, even with no attributes
-    vertexArray_ = gl::GlHandle<gl::VertexArrayTraits>(id);
-}
+      patchCvs_(gl::Buffer::fromVector(patches.patchCvIndices)) {}
 
 void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera,
                          const RenderTarget& target, const PatchMaps* maps) const {
-    const bool withMaps = maps && (maps->displacement || maps->normalMap);
-    gl::Defines defines;
-    if (withMaps && maps->displacement) defines["SUBDFIT_DISPLACEMENT"] = "";
-    if (withMaps && maps->normalMap) defines["SUBDFIT_NORMAL_MAP"] = "";
-    const auto& program = programs.get("patch_raster",
-                                       {{GL_VERTEX_SHADER, "patch.vert"},
-                                        {GL_TESS_CONTROL_SHADER, "patch.tesc"},
-                                        {GL_TESS_EVALUATION_SHADER, "patch.tese"},
-                                        {GL_FRAGMENT_SHADER, "patch.frag"}},
-                                       defines);
+    const gl::VariantBits variant =
+        maps ? (maps->displacement ? kPatchDisplacement : 0) | (maps->normalMap ? kPatchNormalMap : 0) : 0;
+    const bool withMaps = variant != 0;
+    const auto& program = programs.get(kPatchRaster, variant);
     beginRasterPass(program, camera, target);
     program.set("uTessLevel", float(tessLevel_));
     points.bindStorage(SUBDFIT_SSBO_POINTS);
@@ -47,7 +47,7 @@ void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, c
     }
     patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);
     patchCvs_.bindStorage(SUBDFIT_SSBO_PATCH_CVS);
-    glBindVertexArray(vertexArray_.id());
+    vertexArray_.bind();
     glPatchParameteri(GL_PATCH_VERTICES, 1);
     // llvmpipe's draw module slows down superlinearly on one long patch draw; short draws of a
     // few hundred patches keep the cost linear in the patch count (measured by step-cost).

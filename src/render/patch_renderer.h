@@ -5,6 +5,7 @@
 
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
+#include "gl/vertex_array.h"
 #include "render/camera.h"
 #include "render/render_target.h"
 #include "subdiv/patch_set.h"
@@ -36,7 +37,7 @@ public:
 private:
     int patchCount_, tessLevel_;
     gl::Buffer patchInfo_, patchCvs_;
-    gl::GlHandle<gl::VertexArrayTraits> vertexArray_;
+    gl::VertexArray vertexArray_;
 };
 
 // The smallest power of two >= max(requested, 2^maxPatchDepth), capped at the GL limit of 64.

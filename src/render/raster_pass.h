@@ -1,16 +1,17 @@
 #pragma once
-// What every raster pass of subdfit starts with: its target bound and cleared, depth test on,
-// no culling (open surfaces are seen from both sides), the camera's uniforms set.
+// What every raster pass of subdfit starts with: its target bound and cleared, its raster state
+// set whole (by default depth-tested, never culled), the camera's uniforms set.
 #include "gl/program.h"
+#include "gl/raster_state.h"
 #include "render/camera.h"
 #include "render/render_target.h"
 
 namespace subdfit::render {
 
-inline void beginRasterPass(const gl::Program& program, const Camera& camera, const RenderTarget& target) {
+inline void beginRasterPass(const gl::Program& program, const Camera& camera, const RenderTarget& target,
+                            const gl::RasterState& state = {}) {
     target.bindAndClear();
-    glEnable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
+    state.apply();
     program.use();
     program.set("uViewProjection", camera.viewProjection());
     program.set("uView", camera.view);

@@ -12,22 +12,18 @@ RenderTarget::RenderTarget(int width, int height)
       faceId_(GL_R32I, width, height),
       patchUv_(GL_RG32F, width, height),
       depth_(GL_DEPTH_COMPONENT32F, width, height) {
-    GLuint id = 0;
-    glCreateFramebuffers(1, &id);
-    framebuffer_ = gl::GlHandle<gl::FramebufferTraits>(id);
-    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0 + SUBDFIT_ATTACHMENT_COLOR, color_.id(), 0);
-    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0 + SUBDFIT_ATTACHMENT_FACE_ID, faceId_.id(), 0);
-    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0 + SUBDFIT_ATTACHMENT_PATCH_UV, patchUv_.id(), 0);
-    glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth_.id(), 0);
-    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    glNamedFramebufferDrawBuffers(id, 3, buffers);
-    if (glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    framebuffer_.attach(GL_COLOR_ATTACHMENT0 + SUBDFIT_ATTACHMENT_COLOR, color_);
+    framebuffer_.attach(GL_COLOR_ATTACHMENT0 + SUBDFIT_ATTACHMENT_FACE_ID, faceId_);
+    framebuffer_.attach(GL_COLOR_ATTACHMENT0 + SUBDFIT_ATTACHMENT_PATCH_UV, patchUv_);
+    framebuffer_.attach(GL_DEPTH_ATTACHMENT, depth_);
+    framebuffer_.drawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2});
+    if (!framebuffer_.complete())
         throw Error("render target " + std::to_string(width) + "x" + std::to_string(height) +
                     " is not complete on this GL implementation");
 }
 
 void RenderTarget::bindAndClear() const {
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+    framebuffer_.bind();
     glViewport(0, 0, width_, height_);
     const float black[] = {0, 0, 0, 0};
     const int noFace[] = {-1, -1, -1, -1};

@@ -5,6 +5,7 @@
 #include <glm/vec4.hpp>
 #include <vector>
 
+#include "gl/framebuffer.h"
 #include "gl/texture.h"
 
 namespace subdfit::render {
@@ -28,7 +29,7 @@ public:
 private:
     int width_, height_;
     gl::Texture color_, faceId_, patchUv_, depth_;
-    gl::GlHandle<gl::FramebufferTraits> framebuffer_;
+    gl::Framebuffer framebuffer_;
 };
 
 }  // namespace subdfit::render

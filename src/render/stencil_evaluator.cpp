@@ -4,6 +4,10 @@
 
 namespace subdfit::render {
 
+namespace {
+const gl::ProgramSpec kStencilEval{"stencil_eval", {{GL_COMPUTE_SHADER, "stencil_eval.comp"}}};
+}  // namespace
+
 StencilEvaluator::StencilEvaluator(const subdiv::PatchSet& patches)
     : baseCount_(patches.baseVertexCount),
       pointCount_(patches.pointCount),
@@ -13,7 +17,7 @@ StencilEvaluator::StencilEvaluator(const subdiv::PatchSet& patches)
 
 void StencilEvaluator::evaluate(gl::ProgramCache& programs, const gl::Buffer& controlPoints,
                                 const gl::Buffer& points) const {
-    const auto& program = programs.get("stencil_eval", {{GL_COMPUTE_SHADER, "stencil_eval.comp"}});
+    const auto& program = programs.get(kStencilEval);
     program.use();
     program.set("uBaseCount", baseCount_);
     program.set("uPointCount", pointCount_);

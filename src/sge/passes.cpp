@@ -13,6 +13,16 @@ namespace {
 
 GLuint groupsOf(int count, int size) { return GLuint((count + size - 1) / size); }
 
+const gl::ProgramSpec kGradient{"gradient",
+                                {{GL_COMPUTE_SHADER, "gradient.comp"}},
+                                {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP", "SUBDFIT_FULL_IMAGE"}};
+enum GradientVariant : gl::VariantBits {
+    kGradientDisplacement = 1u << 0,
+    kGradientNormalMap = 1u << 1,
+    kGradientFullImage = 1u << 2,
+};
+const gl::ProgramSpec kScatterFaces{"scatter_faces", {{GL_COMPUTE_SHADER, "scatter_faces.comp"}}, {"SUBDFIT_FULL_IMAGE"}};
+
 std::vector<int> transposeOffsets(const std::vector<int>& offsets, const std::vector<int>& indices, int columns,
                                   std::vector<int>& transposed) {
     std::vector<int> counts(size_t(columns) + 1, 0);
@@ -41,9 +51,10 @@ FaceVertexTable::FaceVertexTable(const std::vector<int>& faceOffsets, const std:
 
 void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group, const FaceVertexTable& faces,
                         const GradientInputs& in, const gl::Buffer& loss) {
-    gl::Defines effects = in.maps ? in.maps->defines() : gl::Defines{};
-    if (in.fullImage) effects["SUBDFIT_FULL_IMAGE"] = "";
-    const auto& program = programs.get("gradient", {{GL_COMPUTE_SHADER, "gradient.comp"}}, effects);
+    const maps::MapEffects effects = in.maps ? in.maps->effects() : maps::MapEffects{};
+    const gl::VariantBits variant = (effects.displacement ? kGradientDisplacement : 0) |
+                                    (effects.normalMap ? kGradientNormalMap : 0) | (in.fullImage ? kGradientFullImage : 0);
+    const auto& program = programs.get(kGradient, variant);
     program.use();
     program.set("uTargetLayer", in.targetLayer);
     program.set("uCounter", in.counter);
@@ -76,8 +87,7 @@ void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group
 
 void scatterFaceDeltas(gl::ProgramCache& programs, optim::ParameterGroup& group, FaceVertexTable& faces,
                        std::uint32_t counter, std::uint32_t seed, bool fullImage) {
-    const auto& program = programs.get("scatter_faces", {{GL_COMPUTE_SHADER, "scatter_faces.comp"}},
-                                       fullImage ? gl::Defines{{"SUBDFIT_FULL_IMAGE", ""}} : gl::Defines{});
+    const auto& program = programs.get(kScatterFaces, fullImage ? 1u : 0u);
     program.use();
     program.set("uVertexCount", faces.vertexCount);
     program.set("uCounter", counter);

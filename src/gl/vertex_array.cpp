@@ -1,0 +1,20 @@
+#include "gl/vertex_array.h"
+
+namespace subdfit::gl {
+
+VertexArray::VertexArray() {
+    GLuint id = 0;
+    glCreateVertexArrays(1, &id);
+    handle_ = GlHandle<VertexArrayTraits>(id);
+}
+
+void VertexArray::attribute(GLuint index, const Buffer& buffer, int components) {
+    glVertexArrayVertexBuffer(id(), index, buffer.id(), 0, GLsizei(components * sizeof(float)));
+    glEnableVertexArrayAttrib(id(), index);
+    glVertexArrayAttribFormat(id(), index, components, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(id(), index, index);
+}
+
+void VertexArray::elements(const Buffer& indices) { glVertexArrayElementBuffer(id(), indices.id()); }
+
+}  // namespace subdfit::gl
