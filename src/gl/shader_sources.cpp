@@ -10,13 +10,20 @@
 namespace subdfit::gl {
 namespace {
 
+// The core's shaders and whatever the running app added (static initialisers may add before
+// main, so the registry is built on first use).
+std::map<std::string, std::string>& registry() {
+    static std::map<std::string, std::string> sources = embeddedShaderSources();
+    return sources;
+}
+
 std::string rawSource(const std::string& name) {
     if (name == "osd_patch_basis")
         return "#define OSD_PATCH_BASIS_GLSL\n" +
                OpenSubdiv::Osd::GLSLPatchShaderSource::GetPatchBasisShaderSource();
-    const auto& sources = embeddedShaderSources();
+    const auto& sources = registry();
     auto it = sources.find(name);
-    if (it == sources.end()) throw Error("shader '" + name + "' is not in glsl/");
+    if (it == sources.end()) throw Error("shader '" + name + "' is not in glsl/ nor among this program's own");
     return it->second;
 }
 
@@ -36,6 +43,11 @@ void expandInto(const std::string& name, std::set<std::string>& seen, std::strin
 }
 
 }  // namespace
+
+bool addShaderSources(const std::map<std::string, std::string>& sources) {
+    for (const auto& [name, text] : sources) SUBDFIT_CHECK(registry().emplace(name, text).second);  // names are unique
+    return true;
+}
 
 std::string expandedShaderSource(const std::string& name) {
     std::set<std::string> seen;
