@@ -1,8 +1,7 @@
 #pragma once
-// Minimal PNG line/scatter plots for the benchmarks, drawn with OpenImageIO alone: white
-// background, framed axes with "nice" ticks (1/2/5 steps, decades on log axes), light grid,
-// title, axis labels and a legend to the right of the axes. Not a general plotting library:
-// just enough for a person to read a benchmark result without other tools.
+// PNG line and scatter plots for the benchmarks, drawn by PLplot (Debian's libplplot-dev, cairo
+// driver): framed axes with a light grid, decades on log axes, title, axis labels and a legend
+// to the right. The benchmarks describe what to plot; PLplot draws it.
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -28,9 +27,8 @@ struct PlotSpec {
 };
 
 // Writes `spec` as a PNG, atomically. Points with a NaN/Inf coordinate, or a non-positive one on a
-// log axis, are skipped (lines break there). Text needs a TrueType font (DejaVu Sans from Debian's
-// fonts-dejavu-core, else whatever OpenImageIO finds); without one the plot is drawn without text.
-// Throws subdfit::Error "png: problem" when the image cannot be made or written.
+// log axis, are skipped (lines break there). Throws subdfit::Error "png: problem" when the image
+// cannot be made or written.
 void writePlot(const std::filesystem::path& png, const PlotSpec& spec);
 
 }  // namespace subdfit::bench
