@@ -11,7 +11,7 @@ namespace subdfit::bench {
 
 struct Series {
     std::string label;
-    std::vector<double> x, y;  // same length; extra entries of the longer one are ignored
+    std::vector<double> x{}, y{};  // same length; extra entries of the longer one are ignored
     bool markersOnly = false;  // scatter: markers without connecting lines
 };
 

@@ -105,7 +105,7 @@ const gl::ProgramSpec kSoupRaster{"soup_raster",
                                   {{GL_VERTEX_SHADER, "soup_raster.vert"}, {GL_FRAGMENT_SHADER, "soup_raster.frag"}}};
 const gl::ProgramSpec kSoupGradient{"soup_gradient", {{GL_COMPUTE_SHADER, "soup_gradient.comp"}}, {"SUBDFIT_SOUP_FULL_IMAGE"}};
 const gl::ProgramSpec kSoupScatter{"soup_scatter", {{GL_COMPUTE_SHADER, "soup_scatter.comp"}}, {"SUBDFIT_SOUP_FULL_IMAGE"}};
-enum SoupVariant : gl::VariantBits { kSoupFullImage = 1u << 0 };
+constexpr gl::VariantBits kSoupFullImage = 1u << 0;
 
 class SoupFitter {
 public:

@@ -3,6 +3,7 @@
 // parser refuses is one line on stderr, "PROGRAM: error: ... (see --help)", and exit code 2.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -26,9 +27,13 @@ inline std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv,
 // What an error says on the command line: the core names an option by its key in report.json
 // ("map_resolution"); a user typed its flag ("--map-res").
 inline std::string describeError(const std::exception& error) {
-    if (const auto* option = dynamic_cast<const fit::OptionError*>(&error)) {
-        const std::string flag = fit::optionFlag(option->key());
-        return "invalid option: " + (flag.empty() ? option->key() : flag) + " " + option->problem();
+    if (const auto* option = dynamic_cast<const OptionError*>(&error)) {
+        std::string flag = fit::optionFlag(option->key());
+        if (flag.empty()) {  // options outside the fit's table (--faces, --shard, --out) are spelled alike
+            flag = "--" + option->key();
+            std::replace(flag.begin(), flag.end(), '_', '-');
+        }
+        return "invalid option: " + flag + " " + option->problem();
     }
     return error.what();
 }

@@ -8,7 +8,7 @@ namespace {
 const gl::ProgramSpec kComposite{"view_composite",
                                  {{GL_VERTEX_SHADER, "view_fullscreen.vert"}, {GL_FRAGMENT_SHADER, "view_composite.frag"}},
                                  {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP"}};
-enum CompositeVariant : gl::VariantBits { kCompositeDisplacement = 1u << 0, kCompositeNormalMap = 1u << 1 };
+constexpr gl::VariantBits kCompositeDisplacement = 1u << 0, kCompositeNormalMap = 1u << 1;
 
 }  // namespace
 

@@ -54,19 +54,6 @@ struct OptionInfo {
     bool setting = false;         // shapes the result: report.json's settings, a batch asset's identity
 };
 
-// An option out of its range. The message names the option by its key; the command line names
-// it by its flag (optionFlag).
-class OptionError : public Error {
-public:
-    OptionError(std::string key, const std::string& problem)
-        : Error("invalid option: " + key + " " + problem), key_(std::move(key)), problem_(problem) {}
-    const std::string& key() const { return key_; }
-    const std::string& problem() const { return problem_; }
-
-private:
-    std::string key_, problem_;
-};
-
 namespace detail {
 using OptionMember = std::variant<int FitOptions::*, std::uint32_t FitOptions::*, float FitOptions::*,
                                   bool FitOptions::*, std::string FitOptions::*, maps::MapEffects FitOptions::*>;

@@ -7,14 +7,14 @@
 namespace subdfit::fit {
 
 struct GroupState {
-    std::vector<float> theta, moment1, moment2;
+    std::vector<float> theta{}, moment1{}, moment2{};
     int adamSteps = 0;
 };
 
 struct FitState {
     int steps = 0;
     std::uint32_t samples = 0;
-    std::vector<GroupState> groups;  // in CageFitter::groups() order
+    std::vector<GroupState> groups{};  // in CageFitter::groups() order
 };
 
 }  // namespace subdfit::fit

@@ -19,9 +19,9 @@ namespace subdfit::gl {
 using VariantBits = std::uint32_t;
 
 struct ProgramSpec {
-    std::string name;  // e.g. "patch_raster"
-    std::vector<ShaderStage> stages;
-    std::vector<std::string> flagDefines;
+    std::string name{};  // e.g. "patch_raster"
+    std::vector<ShaderStage> stages{};
+    std::vector<std::string> flagDefines{};
 };
 
 struct ProgramVariant {

@@ -18,8 +18,11 @@ namespace {
 // ".NAME.tmpPID_N.EXT" beside the destination: hidden, unique, and with the real extension last.
 fs::path temporaryName(const fs::path& destination) {
     static std::atomic<unsigned> counter{0};
-    return destination.parent_path() / ("." + destination.stem().string() + ".tmp" + std::to_string(::getpid()) + "_" +
-                                        std::to_string(counter++) + destination.extension().string());
+    std::string name(1, '.');  // appended piece by piece: GCC 12 misreads "." + string (-Wrestrict)
+    name += destination.stem().string();
+    name += ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+    name += destination.extension().string();
+    return destination.parent_path() / name;
 }
 
 bool syncPath(const fs::path& path, int flags) {

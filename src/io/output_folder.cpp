@@ -19,12 +19,12 @@ fs::path absoluteNormal(const fs::path& path) { return fs::absolute(path).lexica
 
 void checkOutputFolder(const fs::path& dir, const OutputFolderRule& rule) {
     const std::string name = dir.string();
-    if (dir.empty()) throw Error("invalid option: --out is empty");
+    if (dir.empty()) throw OptionError("out", "is empty");
     std::error_code ec;
     const fs::path absolute = absoluteNormal(dir);
     const fs::path resolved = fs::weakly_canonical(absolute, ec);
     if (absolute == absolute.root_path() || (!ec && resolved == resolved.root_path()))
-        throw fileError(name, "is the filesystem root; give --out a folder of its own");
+        throw fileError(name, "is the filesystem root; choose a folder of its own");
 
     const fs::file_status status = fs::status(dir, ec);
     if (fs::exists(status) && !fs::is_directory(status)) throw fileError(name, "exists and is not a folder");

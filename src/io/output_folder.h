@@ -11,7 +11,7 @@ namespace subdfit::io {
 struct OutputFolderRule {
     // Names whose presence marks a non-empty folder as subdfit's own (a previous run's
     // report.json or checkpoint.bin, a batch's bookkeeping folder).
-    std::vector<std::string> ownMarkers;
+    std::vector<std::string> ownMarkers{};
     bool force = false;  // write into any folder (still never the root)
 };
 

@@ -107,7 +107,9 @@ int hexValue(char c) {
 
 std::string uriProblem(const std::string& uri) {
     if (uri.rfind("data:", 0) == 0) return "";
-    const std::string shown = "'" + uri.substr(0, 200) + "'";
+    std::string shown(1, '\'');  // appended piece by piece: GCC 12 misreads "'" + string (-Wrestrict)
+    shown += uri.substr(0, 200);
+    shown += '\'';
     // Percent-decoded as tinygltf will before it opens the file.
     std::string decoded;
     for (size_t i = 0; i < uri.size(); ++i) {

@@ -14,7 +14,7 @@ const gl::ProgramSpec kResolve{"resolve_gradient", {{GL_COMPUTE_SHADER, "resolve
 const gl::ProgramSpec kPrecondition{"precondition", {{GL_COMPUTE_SHADER, "precondition.comp"}}};
 const gl::ProgramSpec kSharedMoment{"shared_moment", {{GL_COMPUTE_SHADER, "shared_moment.comp"}}};
 const gl::ProgramSpec kAdam{"adam", {{GL_COMPUTE_SHADER, "adam.comp"}}, {"SUBDFIT_ADAM_SHARED_MOMENT"}};
-enum AdamVariant : gl::VariantBits { kAdamSharedMoment = 1u << 0 };
+constexpr gl::VariantBits kAdamSharedMoment = 1u << 0;
 
 }  // namespace
 

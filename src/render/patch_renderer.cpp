@@ -16,7 +16,7 @@ const gl::ProgramSpec kPatchRaster{"patch_raster",
                                     {GL_TESS_EVALUATION_SHADER, "patch.tese"},
                                     {GL_FRAGMENT_SHADER, "patch.frag"}},
                                    {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP"}};
-enum PatchVariant : gl::VariantBits { kPatchDisplacement = 1u << 0, kPatchNormalMap = 1u << 1 };
+constexpr gl::VariantBits kPatchDisplacement = 1u << 0, kPatchNormalMap = 1u << 1;
 
 }  // namespace
 

@@ -16,11 +16,7 @@ GLuint groupsOf(int count, int size) { return GLuint((count + size - 1) / size);
 const gl::ProgramSpec kGradient{"gradient",
                                 {{GL_COMPUTE_SHADER, "gradient.comp"}},
                                 {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP", "SUBDFIT_FULL_IMAGE"}};
-enum GradientVariant : gl::VariantBits {
-    kGradientDisplacement = 1u << 0,
-    kGradientNormalMap = 1u << 1,
-    kGradientFullImage = 1u << 2,
-};
+constexpr gl::VariantBits kGradientDisplacement = 1u << 0, kGradientNormalMap = 1u << 1, kGradientFullImage = 1u << 2;
 const gl::ProgramSpec kScatterFaces{"scatter_faces", {{GL_COMPUTE_SHADER, "scatter_faces.comp"}}, {"SUBDFIT_FULL_IMAGE"}};
 
 std::vector<int> transposeOffsets(const std::vector<int>& offsets, const std::vector<int>& indices, int columns,

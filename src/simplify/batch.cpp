@@ -65,7 +65,7 @@ struct AssetPaths {
     AssetPaths(const fs::path& out, const std::string& name)
         : finished(out / name), partial(out / (name + ".partial")), lock(out / kBatchFolder / "locks" / (name + ".lock")) {
         for (const fs::path* p : {&finished, &partial, &lock}) {
-            if (!io::isStrictlyInside(*p, out)) throw fileError(p->string(), "lies outside the batch's --out folder");
+            if (!io::isStrictlyInside(*p, out)) throw fileError(p->string(), "lies outside the batch's output folder");
             std::error_code ec;
             if (fs::is_symlink(fs::symlink_status(*p, ec)))
                 throw fileError(p->string(), "is a symbolic link; the batch will not follow it");
@@ -94,7 +94,7 @@ Shard parseShard(const std::string& text) {
                     std::from_chars(text.data(), text.data() + slash, shard.index).ptr == text.data() + slash &&
                     std::from_chars(text.data() + slash + 1, end, shard.count).ptr == end;
     if (!ok || shard.count < 1 || shard.index < 0 || shard.index >= shard.count)
-        throw Error("invalid option: --shard must be i/N with 0 <= i < N, got '" + text + "'");
+        throw OptionError("shard", "must be i/N with 0 <= i < N, got '" + text + "'");
     return shard;
 }
 

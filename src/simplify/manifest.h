@@ -14,9 +14,9 @@ namespace subdfit::simplify {
 
 struct ManifestLine {
     int number = 0;                      // 1-based
-    std::filesystem::path reference;     // as written
-    std::filesystem::path resolved;      // relative ones from the manifest's folder
-    std::vector<std::string> options;
+    std::filesystem::path reference{};   // as written
+    std::filesystem::path resolved{};    // relative ones from the manifest's folder
+    std::vector<std::string> options{};
 };
 
 // The manifest is read as any input (a regular file, at most 64 MiB). Throws subdfit::Error

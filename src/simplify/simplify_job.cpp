@@ -89,8 +89,8 @@ void startMaps(fit::FitRun& run, bool bake) {
 
 void validate(const SimplifyOptions& o) {
     if (o.faces < 4 || o.faces > 1000000)
-        throw Error("invalid option: --faces must be in 4..1000000, got " + std::to_string(o.faces));
-    if (o.surfaceSamples < 1000) throw Error("invalid option: surface samples must be >= 1000");
+        throw OptionError("faces", "must be in 4..1000000, got " + std::to_string(o.faces));
+    if (o.surfaceSamples < 1000) throw OptionError("surface_samples", "must be >= 1000");
     fit::validate(o.fit);
 }
 

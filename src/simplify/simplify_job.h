@@ -41,7 +41,7 @@ nlohmann::json settingsJson(const SimplifyOptions& options);
 // same way at the same byte budget.
 struct SimplifyReport {
     fit::FitReport fit;
-    Quality subdfit, decimation, bake;
+    Quality subdfit{}, decimation{}, bake{};
     int facesRequested = 0;
 };
 

@@ -12,6 +12,19 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// An option out of its range. The core names the option by its key (report.json's, e.g.
+// "map_resolution"); the command line turns the key into the flag a user typed.
+class OptionError : public Error {
+public:
+    OptionError(std::string key, const std::string& problem)
+        : Error("invalid option: " + key + " " + problem), key_(std::move(key)), problem_(problem) {}
+    const std::string& key() const { return key_; }
+    const std::string& problem() const { return problem_; }
+
+private:
+    std::string key_, problem_;
+};
+
 // "path: problem" -- every input error names the file it is about.
 inline Error fileError(const std::string& path, const std::string& problem) {
     return Error(path + ": " + problem);
