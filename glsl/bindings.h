@@ -39,6 +39,11 @@
 // Any group's fixed-point gradient sums (glsl/fixed_point.glsl), two uints per parameter.
 #define SUBDFIT_SSBO_GRADIENT_SUM 28
 
+// The cage's tangential relaxation (fit/cage_relaxation.h).
+#define SUBDFIT_SSBO_RELAX_MODES 29           // per vertex: surface, crease or fixed
+#define SUBDFIT_SSBO_RELAX_CORNER_OFFSETS 30  // vertex -> its face corners (CSR)
+#define SUBDFIT_SSBO_RELAX_CORNERS 31         // (previous, next) vertex of each corner
+
 // Texture units of the gradient pass.
 #define SUBDFIT_UNIT_COLOR_PLUS 0
 #define SUBDFIT_UNIT_COLOR_MINUS 1

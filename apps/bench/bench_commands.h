@@ -1,7 +1,10 @@
 #pragma once
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "fit/fit_options.h"
 
 namespace subdfit::bench {
 
@@ -20,6 +23,38 @@ struct LumpySphereOptions {
     std::string glProvider = "auto";
 };
 int runLumpySphere(const LumpySphereOptions& options);
+
+struct ConvergenceOptions {
+    std::filesystem::path out = "bench-convergence";
+    fit::FitOptions fit;         // the fit's defaults unless told otherwise
+    float startScale = 0.7f;     // the cage's size against the reference's
+    // The lumpy sphere: its bumps, their height (radius 1) and the seed placing them.
+    int bumps = 12;
+    float amplitude = 0.15f;
+    std::uint32_t seed = 1;
+    int every = 25;              // steps between Chamfer measurements
+    double peerChamfer = 7.07e-4;
+};
+int runConvergence(const ConvergenceOptions& options);
+
+struct RecoveryOptions {
+    std::filesystem::path out = "bench-recovery";
+    std::vector<std::filesystem::path> shapes{"assets/osd-shapes/catmark_cube_creases1.obj",
+                                              "assets/osd-shapes/catmark_pyramid_creases0.obj",
+                                              "assets/osd-shapes/catmark_single_crease.obj",
+                                              "assets/osd-shapes/catmark_chaikin0.obj",
+                                              "assets/osd-shapes/catmark_helmet.obj",
+                                              "assets/osd-shapes/catmark_bishop.obj"};
+    fit::FitOptions fit = [] {
+        fit::FitOptions f;
+        f.views = 8;
+        f.steps = 400;
+        return f;
+    }();
+    float sigma = 0.03f;  // noise, a fraction of the scene radius
+    std::uint32_t noiseSeed = 11;
+};
+int runRecovery(const RecoveryOptions& options);
 
 struct MapsGainOptions {
     std::filesystem::path out = "bench-maps";

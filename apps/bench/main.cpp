@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "common/command_line.h"
+#include "common/fit_cli.h"
 #include "bench_commands.h"
 #include "io/output_folder.h"
 #include "util/error.h"
@@ -36,6 +37,25 @@ int main(int argc, char** argv) {
     simplifyCommand->add_option("--steps", tradeoff.steps, "optimisation steps per run")->capture_default_str();
     simplifyCommand->add_option("--res", tradeoff.resolution, "render resolution")->capture_default_str();
     simplifyCommand->add_option("--gl", tradeoff.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+
+    subdfit::bench::ConvergenceOptions convergence;
+    auto* convergenceCommand =
+        app.add_subcommand("convergence", "a sphere cage 30 % small fitted to a lumpy sphere: Chamfer against time");
+    convergenceCommand->add_option("--out", convergence.out, "output folder")->capture_default_str();
+    convergenceCommand->add_option("--start-scale", convergence.startScale, "the cage's size against the reference's")
+        ->capture_default_str();
+    convergenceCommand->add_option("--every", convergence.every, "steps between Chamfer measurements")->capture_default_str();
+    convergenceCommand->add_option("--bumps", convergence.bumps, "bumps of the lumpy sphere")->capture_default_str();
+    convergenceCommand->add_option("--amplitude", convergence.amplitude, "their height (sphere radius 1)")->capture_default_str();
+    convergenceCommand->add_option("--lumps-seed", convergence.seed, "the seed placing them")->capture_default_str();
+    subdfit::apps::addFitSettings(*convergenceCommand, convergence.fit);
+
+    subdfit::bench::RecoveryOptions recovery;
+    auto* recoveryCommand = app.add_subcommand("recovery", "noised (creased) cages fitted back to their own limit surface");
+    recoveryCommand->add_option("--out", recovery.out, "output folder")->capture_default_str();
+    recoveryCommand->add_option("--shapes", recovery.shapes, "cages (OBJ with OpenSubdiv tags)")->capture_default_str();
+    recoveryCommand->add_option("--sigma", recovery.sigma, "noise, a fraction of the scene radius")->capture_default_str();
+    subdfit::apps::addFitSettings(*recoveryCommand, recovery.fit);
 
     subdfit::bench::MapsGainOptions mapsGain;
     auto* mapsCommand = app.add_subcommand("maps", "held-out PSNR, time and bytes with and without maps");
@@ -71,7 +91,7 @@ int main(int argc, char** argv) {
         const std::pair<CLI::App*, const std::filesystem::path*> outputs[] = {
             {stepCostCommand, &stepCost.out}, {lumpyCommand, &lumpy.out},       {mapsCommand, &mapsGain.out},
             {simplifyCommand, &tradeoff.out}, {gradientCommand, &gradient.out}, {accuracyCommand, &accuracy.out},
-            {soupCommand, &soup.out}};
+            {soupCommand, &soup.out}, {convergenceCommand, &convergence.out}, {recoveryCommand, &recovery.out}};
         for (const auto& [command, out] : outputs)
             if (command->parsed() && !out->empty()) subdfit::io::checkOutputFolder(*out, {.force = true});
         if (stepCostCommand->parsed()) return subdfit::bench::runStepCost(stepCost);
@@ -81,6 +101,8 @@ int main(int argc, char** argv) {
         if (gradientCommand->parsed()) return subdfit::bench::runGradientQuality(gradient);
         if (accuracyCommand->parsed()) return subdfit::bench::runAccuracy(accuracy);
         if (soupCommand->parsed()) return subdfit::bench::runSoup(soup);
+        if (convergenceCommand->parsed()) return subdfit::bench::runConvergence(convergence);
+        if (recoveryCommand->parsed()) return subdfit::bench::runRecovery(recovery);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "subdfit-bench: error: %s\n", subdfit::apps::describeError(e).c_str());
         return 1;

@@ -18,9 +18,9 @@ struct Series {
 struct PlotSpec {
     std::string title, xLabel, yLabel;
     bool logX = false, logY = false;
-    std::vector<Series> series;
+    std::vector<Series> series{};
     // Drawn last as a thick black polyline in the given order, e.g. a Pareto front.
-    std::vector<std::pair<double, double>> highlight;
+    std::vector<std::pair<double, double>> highlight{};
     int width = 900, height = 600;
     // Legend entry for `highlight` (empty: no entry).
     std::string highlightLabel = "Pareto front";

@@ -41,6 +41,7 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
                                       : nullptr),
       faceVertices_(patches_.faceVertexOffsets, patches_.faceVertexIndices, cage.vertexCount()),
       adjacency_(uploadAdjacency(cage)),
+      relaxation_(cage),
       pointsPlus_(stencils_.makePointBuffer()),
       pointsMinus_(stencils_.makePointBuffer()),
       smoothScratch_(vertices_.gradient.bytes()),
@@ -105,6 +106,7 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
 }
 
 float CageFitter::learningRateScale() const {
+    if (scaleOverride_) return *scaleOverride_;
     // Exponential annealing to a tenth: large moves first, then settle within the noise.
     return settings_.plannedSteps > 0 ? std::pow(0.1f, std::min(1.0f, float(steps_) / float(settings_.plannedSteps)))
                                       : 1.0f;
@@ -118,7 +120,9 @@ void CageFitter::update() {
         if (g->kind() == optim::GroupKind::Vertices) {
             optim::precondition(programs_, vertices_, adjacency_, settings_.smoothingLambda,
                                 settings_.smoothingIterations, smoothScratch_);
+            relaxation_.projectGradient(programs_, vertices_.theta, vertices_.gradientSmooth, settings_.tangentialGradient);
             optim::adamStep(programs_, vertices_, vertices_.gradientSmooth, learningRate);
+            relaxation_.apply(programs_, vertices_.theta, settings_.relaxation);
         } else {
             maps_->update(programs_, *g, learningRate);
         }
@@ -182,6 +186,7 @@ std::vector<glm::vec3> CageFitter::vertices() const {
 }
 
 int CageFitter::mapsStartStep() const {
+    if (mapsStartOverride_) return *mapsStartOverride_;
     if (settings_.plannedSteps <= 0) return 0;
     return int(std::ceil(settings_.mapsStartFraction * float(settings_.plannedSteps)));
 }
@@ -192,9 +197,11 @@ void CageFitter::setVertices(const std::vector<glm::vec3>& positions) {
 }
 
 CageFitter::State CageFitter::state() {
-    State state{steps_, samples_, {}};
+    State state{.steps = steps_, .samples = samples_};
     for (auto* g : groups())
         state.groups.push_back({g->theta.read<float>(), g->moment1.read<float>(), g->moment2.read<float>(), g->adamSteps});
+    state.learningRateScale = scaleOverride_.value_or(-1.0f);
+    state.mapsStartStep = mapsStartOverride_.value_or(-1);
     return state;
 }
 
@@ -218,6 +225,8 @@ void CageFitter::restore(const State& state) {
     }
     steps_ = state.steps;
     samples_ = state.samples;
+    scaleOverride_ = state.learningRateScale >= 0.0f ? std::optional<float>(state.learningRateScale) : std::nullopt;
+    mapsStartOverride_ = state.mapsStartStep >= 0 ? std::optional<int>(state.mapsStartStep) : std::nullopt;
 }
 
 void CageFitter::render(const render::Camera& camera, const render::RenderTarget& target) {

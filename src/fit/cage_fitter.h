@@ -10,9 +10,11 @@
 // Everything stays on the GPU; only takeMeanLoss(), state() and the readers read back.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
+#include "fit/cage_relaxation.h"
 #include "fit/fit_state.h"
 #include "gl/program_cache.h"
 #include "maps/map_parameters.h"
@@ -30,6 +32,11 @@ struct CageFitSettings {
     optim::GroupSettings vertices{.sharedMoment = true};
     float smoothingLambda = 4.0f;   // λ of the (I + λL)⁻¹ vertex-gradient preconditioner
     int smoothingIterations = 8;    // damped Jacobi sweeps approximating that inverse
+    // Per vertex update, the fraction of the way each vertex slides within its tangent plane
+    // towards its neighbours (fit/cage_relaxation.h); 0: off.
+    float relaxation = 0.0f;
+    // The fraction of the vertex gradient's tangential part kept (1: all of it).
+    float tangentialGradient = 1.0f;
     int plannedSteps = 0;           // > 0: anneal every learning rate ×0.1 over this many steps
     int tessLevel = 8;              // segments per base-face edge (at least the map resolution)
     int resolution = 256;
@@ -85,7 +92,12 @@ public:
     // group's settings hold its ε (from the next sample on) and its learning rate before
     // annealing; update() multiplies the latter by learningRateScale().
     void setRates(optim::ParameterGroup& group, float epsilon, float learningRate);
+    // The factor update() applies to every learning rate: a schedule's when one set it, else
+    // exponential annealing to a tenth over the planned steps.
     float learningRateScale() const;
+    void setLearningRateScale(float scale) { scaleOverride_ = scale; }
+    // The maps join from the next step on (a stage that converged before their planned start).
+    void startMapsNow() { mapsStartOverride_ = steps_; }
     // A group left out of the turns keeps its θ and Adam moments until it is optimised again.
     // With the vertices left out, the map groups take every turn, even before their start.
     bool optimised(const optim::ParameterGroup& group) const;
@@ -101,6 +113,9 @@ public:
     void restore(const State& state);  // throws subdfit::Error if it does not fit this scene
 
 private:
+    std::optional<float> scaleOverride_;
+    std::optional<int> mapsStartOverride_;
+
     gl::ProgramCache& programs_;
     CageFitSettings settings_;
     subdiv::PatchSet patches_;
@@ -110,6 +125,7 @@ private:
     std::unique_ptr<maps::MapParameters> maps_;
     sge::FaceVertexTable faceVertices_;
     optim::Adjacency adjacency_;
+    CageRelaxation relaxation_;
     gl::Buffer pointsPlus_, pointsMinus_, smoothScratch_, loss_;
     render::RenderTarget plus_, minus_;
     int steps_ = 0, samplesSinceLoss_ = 0;

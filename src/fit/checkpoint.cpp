@@ -13,7 +13,7 @@ namespace subdfit::fit {
 namespace {
 
 // The last byte is the format version: a reader refuses any other.
-constexpr std::string_view kMagic{"SDFTCKP3", 8};
+constexpr std::string_view kMagic{"SDFTCKP4", 8};
 constexpr std::string_view kMagicFamily{"SDFTCKP", 7};
 
 class Writer {
@@ -91,6 +91,15 @@ void writeCheckpoint(const std::filesystem::path& path, const std::string& finge
         out.putFloats(group.moment1);
         out.putFloats(group.moment2);
     }
+    out.put<float>(state.learningRateScale);
+    out.put<std::int32_t>(state.mapsStartStep);
+    const ScheduleState& schedule = state.schedule;
+    out.put<double>(schedule.bestLoss);
+    out.put<std::int32_t>(schedule.bestStep);
+    out.put<std::int32_t>(schedule.sinceImprovement);
+    out.put<std::int32_t>(schedule.halvings);
+    out.put<std::uint32_t>(std::uint32_t(schedule.bestTheta.size()));
+    for (const auto& theta : schedule.bestTheta) out.putFloats(theta);
     io::writeTextAtomically(path, std::move(out).finish());
 }
 
@@ -127,7 +136,17 @@ std::optional<FitState> readCheckpoint(const std::filesystem::path& path, const 
         group.moment2 = in.getFloats();
         state.groups.push_back(std::move(group));
     }
-    if (!in.atEnd()) in.damaged("bytes after the last group");
+    state.learningRateScale = in.get<float>();
+    state.mapsStartStep = in.get<std::int32_t>();
+    ScheduleState& schedule = state.schedule;
+    schedule.bestLoss = in.get<double>();
+    schedule.bestStep = in.get<std::int32_t>();
+    schedule.sinceImprovement = in.get<std::int32_t>();
+    schedule.halvings = in.get<std::int32_t>();
+    const auto bestGroups = in.get<std::uint32_t>();
+    if (bestGroups > groups) in.damaged("bad best-state group count");
+    for (std::uint32_t k = 0; k < bestGroups; ++k) schedule.bestTheta.push_back(in.getFloats());
+    if (!in.atEnd()) in.damaged("bytes after the schedule");
     return state;
 }
 

@@ -19,7 +19,7 @@ FitReport runFit(const FitOptions& o, const FitHooks& hooks) {
     const auto checkpoint = o.out / "checkpoint.bin";
     if (o.resume && !run.resume(checkpoint) && hooks.note)
         hooks.note("no checkpoint at " + checkpoint.string() + " to resume: starting from step 0");
-    run.runTo(o.steps, checkpoint, hooks);
+    run.run(checkpoint, hooks);
     FitReport report = run.writeResults(o.out, *context);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     io::writeTextAtomically(o.out / "report.json", toJson(report).dump(2) + "\n");

@@ -22,10 +22,17 @@ const std::vector<OptionRow>& optionTable() {
          &F::samplesPerStep},
         {{"tess_level", "--tess", "tessellation segments per face edge", 1, 64, false, true, true}, &F::tessLevel},
         {{"seed", "--seed", "random seed (views, perturbations)", 1, 0, false, true, true}, &F::seed},
-        {{"epsilon", "--epsilon", "vertex perturbation (scene radius = 1)", 0, 1, true, true, true}, &F::epsilon},
-        {{"learning_rate", "--lr", "vertex learning rate (scene radius = 1)", 0, 1, true, true, true}, &F::learningRate},
+        {{"epsilon", "--epsilon", "vertex perturbation, a fraction of the cage's mean edge (at most ~1 pixel)", 0, 1, true, true, true},
+         &F::epsilon},
+        {{"learning_rate", "--lr", "vertex learning rate, a fraction of the cage's mean edge (at most ~0.5 pixel)", 0, 1, true, true, true},
+         &F::learningRate},
         {{"smoothing", "--smoothing", "Laplacian preconditioner strength (0 = off)", 0, 1e6, false, true, true},
          &F::smoothing},
+        {{"relaxation", "--relax", "tangential relaxation of the cage per step (0 = off)", 0, 1, false, true, true},
+         &F::relaxation},
+        {{"tangential", "--tangential", "fraction of the vertex gradient along the surface kept (1 = all)", 0, 1,
+          false, true, true},
+         &F::tangential},
         {{"maps", "--maps", "maps to fit: none, displacement, normal, displacement,normal", 1, 0, false, true, true},
          &F::maps},
         {{"map_resolution", "--map-res", "map cells per face edge", 1, 64, false, true, true}, &F::mapResolution},
@@ -37,6 +44,10 @@ const std::vector<OptionRow>& optionTable() {
         {{"force", "--force", "write into --out even if it holds other files"}, &F::force},
         {{"checkpoint_every", "--checkpoint-every", "steps between checkpoints", 1, 1e9}, &F::checkpointEvery},
         {{"gl", "--gl", "GL provider: auto, osmesa, egl"}, &F::glProvider},
+        {{"schedule", "--schedule",
+          "plateau: halve the step when the fit stalls, stop when converged (steps: the most); anneal: x0.1 over the steps",
+          1, 0, false, true, true},
+         &F::schedule},
     };
     return rows;
 }
@@ -78,6 +89,8 @@ void validate(const FitOptions& o) {
     forEachOption(o, [](const OptionInfo& info, const auto& value) { checkRange(info, value); });
     if (o.viewsPerStep > o.views) throw OptionError("views_per_step", "must be at most views (" + std::to_string(o.views) + ")");
     if (o.out.empty()) throw OptionError("out", "is required");
+    if (o.schedule != "plateau" && o.schedule != "anneal")
+        throw OptionError("schedule", "must be plateau or anneal, got '" + o.schedule + "'");
 }
 
 nlohmann::json settingsJson(const FitOptions& o) {

@@ -29,9 +29,14 @@ struct FitOptions {
     int samplesPerStep = 1;       // perturbations averaged per Adam step
     int tessLevel = 8;
     std::uint32_t seed = 1;
-    float epsilon = 0.008f;       // vertex perturbation, in units of the normalised scene (radius 1)
-    float learningRate = 0.004f;  // Adam step, same units; annealed ×0.1 over the run
+    // The vertex perturbation and Adam step, as fractions of the cage's mean edge length (at most
+    // about a pixel and half a pixel): the same defaults then serve a 100-face and a 10 000-face
+    // cage. The step shrinks as the schedule says.
+    float epsilon = 0.08f;
+    float learningRate = 0.04f;
     float smoothing = 4.0f;       // λ of the Laplacian preconditioner (0: off)
+    float relaxation = 0.0f;      // tangential relaxation of the cage per vertex update (0: off)
+    float tangential = 1.0f;      // fraction of the vertex gradient's tangential part kept
     std::string glProvider = "auto";
     maps::MapEffects maps;        // none by default
     int mapResolution = 8;        // cells per ptex-face edge of each map tile
@@ -41,6 +46,10 @@ struct FitOptions {
     bool resume = false;          // continue from out/checkpoint.bin when it exists
     bool force = false;           // write into a non-empty folder that holds no subdfit results
     int checkpointEvery = 100;    // steps between checkpoints (also written on interrupt and at the end)
+    // "plateau": halve the step when the monitored loss stalls, stop when it has converged
+    // (fit/step_schedule.h), `steps` being the most it may take; "anneal": exactly `steps`
+    // steps, the step annealed ×0.1 over them.
+    std::string schedule = "plateau";
 };
 
 // One row of the table.

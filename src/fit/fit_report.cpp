@@ -44,6 +44,8 @@ nlohmann::json toJson(const FitReport& r) {
                   {"patches", r.patches}}},
         {"reference", {{"path", r.options.reference.string()}, {"triangles", r.referenceTriangles}}},
         {"exports", exports},
+        {"stop_reason", r.stopReason},
+        {"best_step", r.bestStep},
     };
 }
 

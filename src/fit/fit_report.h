@@ -36,8 +36,10 @@ struct FitReport {
     std::string glProvider;
     std::vector<gl::ProgramVariant> shaderVariants;  // every program the run compiled
     std::map<std::string, std::uintmax_t> exports;   // file name -> bytes
+    std::string stopReason = "steps";  // steps, converged or interrupted
+    int bestStep = -1;                 // the step whose parameters were kept (plateau schedule)
 
-    bool interrupted() const { return steps < options.steps; }
+    bool interrupted() const { return stopReason == "interrupted"; }
 };
 
 // report.json's keys: steps, steps_requested, resumed_from_step, interrupted, seconds,

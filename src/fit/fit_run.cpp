@@ -30,14 +30,31 @@ bool allFinite(CageFitter& fitter) {
     return true;
 }
 
+// Parameters only: what a best state needs to be returned to.
+std::vector<std::vector<float>> readTheta(CageFitter& fitter) {
+    std::vector<std::vector<float>> theta;
+    for (auto* group : fitter.groups()) theta.push_back(group->read());
+    return theta;
+}
+
 }  // namespace
+
+const char* toString(StopReason reason) {
+    switch (reason) {
+        case StopReason::Reached: return "steps";
+        case StopReason::Converged: return "converged";
+        case StopReason::Cancelled: return "interrupted";
+    }
+    return "steps";
+}
 
 FitRun::FitRun(const FitOptions& options, gl::ProgramCache& programs, FitScene& scene)
     : options_(options),
       programs_(programs),
       scene_(scene),
-      fitter_(std::make_unique<CageFitter>(programs, scene.cage, fitSettings(options))),
+      fitter_(std::make_unique<CageFitter>(programs, scene.cage, fitSettings(options, scene.cage))),
       fingerprint_(checkpointFingerprint(options, scene.cage, scene.reference)),
+      monitorEvery_(std::max(5, options.steps / 50)),
       started_(Clock::now()) {
     validate(options_);
     beforeImage_ = renderHoldout(*fitter_, scene_);
@@ -54,12 +71,15 @@ bool FitRun::resume(const std::filesystem::path& checkpoint) {
         throw fileError(checkpoint.string(), e.what());
     }
     resumedFromStep_ = saved->steps;
+    schedule_ = saved->schedule;
     return true;
 }
 
 void FitRun::saveCheckpoint(const std::filesystem::path& checkpoint) {
     std::filesystem::create_directories(checkpoint.parent_path());
-    writeCheckpoint(checkpoint, fingerprint_, fitter_->state());
+    FitState state = fitter_->state();
+    state.schedule = schedule_;
+    writeCheckpoint(checkpoint, fingerprint_, state);
 }
 
 void FitRun::advance(bool measureLoss) {
@@ -70,13 +90,31 @@ void FitRun::advance(bool measureLoss) {
     fitSeconds_ += secondsSince(began);
 }
 
-bool FitRun::runTo(int until, const std::filesystem::path& checkpoint, const FitHooks& hooks) {
+StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, const FitHooks& hooks) {
     until = std::min(until, options_.steps);
     const int first = step();
     const auto began = Clock::now();
     const int reportEvery = std::max(1, options_.steps / 50);
+    const bool plateau = options_.schedule == "plateau";
+    StepSchedule schedule(schedule_);
+    // The schedule judges a step by its loss on the monitor views, the start included: the
+    // kept state is never worse than where the stage began.
+    auto monitor = [&] {
+        const StepSchedule::Decision decision = schedule.record(score(*fitter_, scene_.monitor).loss, step());
+        if (decision.best) schedule_.bestTheta = readTheta(*fitter_);
+        if (decision.action == StepSchedule::Action::Halve) fitter_->setLearningRateScale(schedule.learningRateScale());
+        return decision.action;
+    };
+    if (plateau && schedule_.bestStep < 0) {
+        fitter_->setLearningRateScale(schedule.learningRateScale());
+        monitor();
+    }
+    stopReason_ = StopReason::Reached;
     while (step() < until) {
-        if (hooks.cancel && hooks.cancel->load()) break;
+        if (hooks.cancel && hooks.cancel->load()) {
+            stopReason_ = StopReason::Cancelled;
+            break;
+        }
         // The loss is only read for progress, so about eight steps per report measure it.
         advance(step() % std::max(1, reportEvery / 8) == 0);
         const int taken = step();
@@ -85,10 +123,42 @@ bool FitRun::runTo(int until, const std::filesystem::path& checkpoint, const Fit
             const double eta = seconds / double(taken - first) * double(options_.steps - taken);
             hooks.progress({taken, options_.steps, fitter_->takeMeanLoss(), seconds, eta});
         }
+        if (plateau && taken % monitorEvery_ == 0 && monitor() == StepSchedule::Action::Converged) {
+            stopReason_ = StopReason::Converged;
+            break;
+        }
         if (taken % options_.checkpointEvery == 0) saveCheckpoint(checkpoint);
     }
     saveCheckpoint(checkpoint);
-    return step() >= until;
+    return stopReason_;
+}
+
+StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& hooks, const MapsStart& startMaps) {
+    if (fitter_->maps()) {
+        const bool pastStart = step() > fitter_->mapsStartStep();
+        const StopReason cage = runTo(fitter_->mapsStartStep(), checkpoint, hooks);
+        if (cage == StopReason::Cancelled) return cage;
+        if (!pastStart) {
+            endStage();
+            if (step() < fitter_->mapsStartStep()) fitter_->startMapsNow();  // the cage converged early
+        }
+        if (startMaps) startMaps(!pastStart);
+    }
+    const StopReason last = runTo(options_.steps, checkpoint, hooks);
+    if (last != StopReason::Cancelled) endStage();
+    return last;
+}
+
+void FitRun::endStage() {
+    if (options_.schedule != "plateau" || schedule_.bestTheta.empty()) return;
+    // Measured once more: the last steps may have been better than any monitored before.
+    const double last = score(*fitter_, scene_.monitor).loss;
+    if (!(last <= schedule_.bestLoss)) {
+        const auto groups = fitter_->groups();
+        for (size_t k = 0; k < groups.size() && k < schedule_.bestTheta.size(); ++k) groups[k]->write(schedule_.bestTheta[k]);
+    }
+    StepSchedule(schedule_).restart();
+    fitter_->setLearningRateScale(1.0f);
 }
 
 FitReport FitRun::writeResults(const std::filesystem::path& out, const context::GlContext& context) {
@@ -113,6 +183,8 @@ FitReport FitRun::writeResults(const std::filesystem::path& out, const context::
     r.gl = context::currentGlInfo();
     r.glProvider = context.providerName();
     r.shaderVariants = programs_.variants();
+    r.stopReason = toString(stopReason_);
+    r.bestStep = schedule_.bestStep;
 
     // Outputs only now that everything has worked; each file appears whole or not at all.
     std::filesystem::create_directories(out);
@@ -135,7 +207,7 @@ void FitRun::setTessLevel(int level) {
     FitOptions options = options_;
     options.tessLevel = level;
     validate(options);
-    auto rebuilt = std::make_unique<CageFitter>(programs_, scene_.cage, fitSettings(options));
+    auto rebuilt = std::make_unique<CageFitter>(programs_, scene_.cage, fitSettings(options, scene_.cage));
     rebuilt->restore(fitter_->state());
     // The rates and switches someone set by hand stay as they were.
     const auto before = fitter_->groups(), after = rebuilt->groups();

@@ -15,6 +15,7 @@
 #include "fit/cage_fitter.h"
 #include "fit/fit_report.h"
 #include "fit/fit_scene.h"
+#include "fit/step_schedule.h"
 
 namespace subdfit::fit {
 
@@ -30,6 +31,10 @@ struct FitHooks {
     std::function<void(const std::string& line)> note{};  // news for the user, e.g. "nothing to resume"
 };
 
+// Why a run of steps ended.
+enum class StopReason { Reached, Converged, Cancelled };
+const char* toString(StopReason reason);
+
 class FitRun {
 public:
     // Builds the fitter and scores the starting state (the report's "before"). Needs the
@@ -42,17 +47,29 @@ public:
     void saveCheckpoint(const std::filesystem::path& checkpoint);
 
     int step() const { return fitter_->stepsTaken(); }
-    bool done() const { return step() >= options_.steps; }
+    bool done() const { return step() >= options_.steps || stopReason_ == StopReason::Converged; }
+    StopReason stopReason() const { return stopReason_; }
 
     // One step: its views, its perturbation samples, the update. With `measureLoss` the step also
     // sums the loss, for takeMeanLoss().
     void advance(bool measureLoss);
     float takeMeanLoss() { return fitter_->takeMeanLoss(); }
 
-    // Steps until `until` (clamped to the planned steps) or hooks.cancel: progress about 50
-    // times a run, a checkpoint every options.checkpointEvery steps and at the end. True when
-    // `until` was reached.
-    bool runTo(int until, const std::filesystem::path& checkpoint, const FitHooks& hooks = {});
+    // Steps until `until` (clamped to the planned steps), until the schedule says the stage has
+    // converged (options.schedule "plateau"), or until hooks.cancel: progress about 50 times a
+    // run, a checkpoint every options.checkpointEvery steps and at the end.
+    StopReason runTo(int until, const std::filesystem::path& checkpoint, const FitHooks& hooks = {});
+
+    // The end of a stage: back to the best monitored parameters, if the last are not (so a fit
+    // never ends worse than it started), and a fresh schedule for what follows.
+    void endStage();
+
+    // The whole fit in its stages: the cage alone until the maps' planned start (or until it has
+    // converged), then with the maps, each stage ending at its best state. `startMaps` (if any)
+    // runs when the maps join; `fresh` is false in a run resumed past that point (the maps' θ
+    // came from the checkpoint, but settings changed then must be made again).
+    using MapsStart = std::function<void(bool fresh)>;
+    StopReason run(const std::filesystem::path& checkpoint, const FitHooks& hooks = {}, const MapsStart& startMaps = {});
 
     // Scores the current state and writes cage.obj, the exports (fitted.glb, maps) and the
     // before / after / target PNGs of held-out view 0 into `out`, each atomically. report.json
@@ -75,6 +92,9 @@ private:
     std::unique_ptr<CageFitter> fitter_;
     std::string fingerprint_;  // what a checkpoint must match
     int resumedFromStep_ = 0;
+    ScheduleState schedule_;
+    StopReason stopReason_ = StopReason::Reached;
+    int monitorEvery_;
     std::chrono::steady_clock::time_point started_;
     double fitSeconds_ = 0.0;
     ViewSetScore trainBefore_, holdoutBefore_;

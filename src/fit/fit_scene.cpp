@@ -1,5 +1,7 @@
 #include "fit/fit_scene.h"
 
+#include <algorithm>
+
 #include "fit/image_metrics.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_loader.h"
@@ -7,6 +9,10 @@
 
 namespace subdfit::fit {
 namespace {
+
+constexpr int kMonitorViews = 4;
+constexpr float kFramedWidth = 2.3f;  // normalised units across the rendered view
+constexpr float kEpsilonPixels = 0.9f, kStepPixels = 0.45f;
 
 mesh::PolygonMesh normalized(mesh::PolygonMesh mesh, const scene::SceneFrame& frame) {
     mesh.positions = frame.toNormalized(mesh.positions);
@@ -41,13 +47,22 @@ FitScene::FitScene(const FitOptions& o, gl::ProgramCache& programs, mesh::Polygo
       referenceRenderer(rendererFor(reference)),
       training(programs, referenceRenderer, render::orbitCameras(o.views, o.seed), o.resolution),
       holdout(programs, referenceRenderer, render::orbitCameras(o.holdoutViews, o.seed ^ 0x9e3779b9u),
-              o.resolution) {}
+              o.resolution),
+      monitor(programs, referenceRenderer, render::orbitCameras(kMonitorViews, o.seed ^ 0x85ebca6bu), o.resolution) {}
 
-CageFitSettings fitSettings(const FitOptions& o) {
+CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage) {
     CageFitSettings settings;
-    settings.vertices.epsilon = o.epsilon;
-    settings.vertices.learningRate = o.learningRate;
+    // A dense cage needs steps in proportion to its edges, or neighbours jitter against each
+    // other and the cage crumples; a coarse one is limited by what the images resolve: a
+    // perturbation of about a pixel, steps of about half a pixel, where a pixel spans the
+    // framed view (the unit sphere plus a margin, render/camera.cpp) over the resolution.
+    const float edge = mesh::meanEdgeLength(cage);
+    const float pixel = kFramedWidth / float(o.resolution);
+    settings.vertices.epsilon = std::min(o.epsilon * edge, kEpsilonPixels * pixel);
+    settings.vertices.learningRate = std::min(o.learningRate * edge, kStepPixels * pixel);
     settings.smoothingLambda = o.smoothing;
+    settings.relaxation = o.relaxation;
+    settings.tangentialGradient = o.tangential;
     settings.tessLevel = o.tessLevel;
     settings.resolution = o.resolution;
     settings.seed = o.seed;

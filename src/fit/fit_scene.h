@@ -27,10 +27,14 @@ public:
     scene::TargetSet training;
     // Another rotation of the view lattice, so no held-out view coincides with a training view.
     scene::TargetSet holdout;
+    // A third, for the step schedule (fit/step_schedule.h): when the fit decides on its own
+    // progress, it must not look at the views it is judged on.
+    scene::TargetSet monitor;
 };
 
-// The fitter settings `options` ask for.
-CageFitSettings fitSettings(const FitOptions& options);
+// The fitter settings `options` ask for on `cage` (normalised frame): the vertex ε and learning
+// rate are turned from fractions of its mean edge into scene units.
+CageFitSettings fitSettings(const FitOptions& options, const mesh::PolygonMesh& cage);
 
 // Mean loss and PSNR of the fitter's current scene over every view of `targets`.
 ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets);

@@ -60,4 +60,17 @@ std::vector<glm::vec3> vertexNormals(const PolygonMesh& mesh) {
     return normals;
 }
 
+float meanEdgeLength(const PolygonMesh& m) {
+    double total = 0.0;
+    size_t edges = 0;
+    size_t first = 0;
+    for (int size : m.faceSizes) {
+        for (int k = 0; k < size; ++k, ++edges)
+            total += glm::length(m.positions[size_t(m.faceIndices[first + size_t(k)])] -
+                                 m.positions[size_t(m.faceIndices[first + size_t((k + 1) % size)])]);
+        first += size_t(size);
+    }
+    return edges ? float(total / double(edges)) : 0.0f;
+}
+
 }  // namespace subdfit::mesh

@@ -17,4 +17,8 @@ PolygonMesh triangulated(const PolygonMesh& mesh);
 // whose faces have no area, or that no face uses, gets +Z.
 std::vector<glm::vec3> vertexNormals(const PolygonMesh& mesh);
 
+// The mean length of the faces' edges (an edge shared by two faces counts twice): the scale of
+// a cage, which perturbations, steps and ray reaches are measured against.
+float meanEdgeLength(const PolygonMesh& mesh);
+
 }  // namespace subdfit::mesh

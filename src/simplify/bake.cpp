@@ -59,18 +59,6 @@ glm::vec2 heightGradient(const surface::TexelLayout& layout, const std::vector<f
             (at(s.i, j1) - at(s.i, j0)) * float(t) / float(j1 - j0)};
 }
 
-float meanEdgeLength(const mesh::PolygonMesh& m) {
-    double total = 0.0;
-    size_t edges = 0;
-    int first = 0;
-    for (int size : m.faceSizes) {
-        for (int k = 0; k < size; ++k, ++edges)
-            total += glm::length(m.positions[size_t(m.faceIndices[size_t(first + k)])] -
-                                 m.positions[size_t(m.faceIndices[size_t(first + (k + 1) % size)])]);
-        first += size;
-    }
-    return edges ? float(total / double(edges)) : 0.0f;
-}
 
 }  // namespace
 
@@ -83,7 +71,7 @@ surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
     const subdiv::LimitEvaluator limit(cage);
     const geometry::SurfaceQueries surface(reference);
     const auto referenceNormals = mesh::vertexNormals(reference);
-    const float maxDistance = options.maxDistance > 0.0f ? options.maxDistance : meanEdgeLength(cage);
+    const float maxDistance = options.maxDistance > 0.0f ? options.maxDistance : mesh::meanEdgeLength(cage);
 
     std::vector<subdiv::LimitSample> samples(nodes);
     std::vector<glm::vec3> normals(nodes);

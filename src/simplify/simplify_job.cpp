@@ -139,13 +139,8 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
         return Interrupted("interrupted at step " + std::to_string(run.step()) + " of " + std::to_string(o.fit.steps) +
                            ", checkpointed in " + checkpoint.string());
     };
-    if (run.fitter().maps()) {
-        const int bakeStep = run.fitter().mapsStartStep();
-        const bool pastBake = run.step() > bakeStep;
-        if (!run.runTo(bakeStep, checkpoint, hooks)) throw interrupted();
-        startMaps(run, !pastBake);
-    }
-    if (!run.runTo(o.fit.steps, checkpoint, hooks)) throw interrupted();
+    if (run.run(checkpoint, hooks, [&](bool fresh) { startMaps(run, fresh); }) == fit::StopReason::Cancelled)
+        throw interrupted();
 
     // Every result lands in one commit, or none does.
     io::StagedFolder staged(o.fit.out);

@@ -83,7 +83,7 @@ TEST_F(Checkpoint, EveryFlippedByteIsRefused) {
 TEST_F(Checkpoint, TruncationOtherVersionsAndOtherSettingsAreRefused) {
     writeBytes(path_, bytes_.substr(0, bytes_.size() / 2));
     EXPECT_NE(refusal(path_).find("damaged checkpoint"), std::string::npos);
-    writeBytes(path_, "SDFTCKP2" + bytes_.substr(8));
+    writeBytes(path_, "SDFTCKP3" + bytes_.substr(8));
     EXPECT_NE(refusal(path_).find("another format version"), std::string::npos);
     writeBytes(path_, "not a checkpoint at all");
     EXPECT_NE(refusal(path_).find("not a subdfit checkpoint"), std::string::npos);
@@ -94,7 +94,7 @@ TEST_F(Checkpoint, TruncationOtherVersionsAndOtherSettingsAreRefused) {
 // A count of 2^40 floats behind a valid checksum: the reader must see that the file cannot
 // hold them instead of allocating 4 TB.
 TEST_F(Checkpoint, ACountBeyondTheFileAllocatesNothing) {
-    std::string payload = "SDFTCKP3";
+    std::string payload = "SDFTCKP4";
     auto put = [&](auto value) { payload.append(reinterpret_cast<const char*>(&value), sizeof value); };
     put(std::uint64_t(2));
     payload += "fp";

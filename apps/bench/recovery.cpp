@@ -1,0 +1,117 @@
+// `subdfit-bench recovery`: a noised cage fitted back to renders of its own true limit surface.
+// For cages with creases (OpenSubdiv's shapes) this says whether the fit cleans the cage or
+// only the surface: the cage's vertex error and the limit surface's distance to the truth,
+// before and after, with the image loss beside them.
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "bench_commands.h"
+#include "bench_common.h"
+#include "context/gl_context.h"
+#include "fit/fit_run.h"
+#include "geometry/surface_distance.h"
+#include "gl/platform_defines.h"
+#include "mesh/mesh_loader.h"
+#include "surface/tessellation.h"
+
+namespace subdfit::bench {
+namespace {
+
+double rms(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) sum += double(glm::dot(a[i] - b[i], a[i] - b[i]));
+    return std::sqrt(sum / double(std::max<size_t>(1, a.size())));
+}
+
+struct Measure {
+    double vertexRms, chamfer, loss, normalRms;
+};
+
+// Unit vertex normals of a polygon mesh from its face corners.
+std::vector<glm::vec3> cornerNormals(const mesh::PolygonMesh& m, const std::vector<glm::vec3>& positions) {
+    std::vector<glm::vec3> normals(positions.size(), glm::vec3(0.0f));
+    size_t first = 0;
+    for (int size : m.faceSizes) {
+        for (int k = 0; k < size; ++k) {
+            const int v = m.faceIndices[first + size_t(k)], next = m.faceIndices[first + size_t((k + 1) % size)],
+                      previous = m.faceIndices[first + size_t((k + size - 1) % size)];
+            normals[size_t(v)] += glm::cross(positions[size_t(next)] - positions[size_t(v)],
+                                              positions[size_t(previous)] - positions[size_t(v)]);
+        }
+        first += size_t(size);
+    }
+    for (auto& n : normals) n = glm::length(n) > 0.0f ? glm::normalize(n) : n;
+    return normals;
+}
+
+Measure measure(fit::FitRun& run, const std::vector<glm::vec3>& truth, const mesh::PolygonMesh& truthSurface) {
+    mesh::PolygonMesh cage = run.scene().cage;
+    cage.positions = run.fitter().vertices();
+    const auto normals = cornerNormals(cage, truth);
+    double normalSum = 0.0;
+    for (size_t v = 0; v < truth.size(); ++v) {
+        const double d = glm::dot(cage.positions[v] - truth[v], normals[v]);
+        normalSum += d * d;
+    }
+    return {rms(cage.positions, truth),
+            geometry::surfaceDistance(surface::limitMesh(cage, 6), truthSurface, 30000).chamferL2Squared,
+            fit::score(run.fitter(), run.scene().training).loss, std::sqrt(normalSum / double(std::max<size_t>(1, truth.size())))};
+}
+
+}  // namespace
+
+int runRecovery(const RecoveryOptions& o) {
+    auto context = context::createHeadlessContext(o.fit.glProvider);
+    std::printf("recovery: cages noised by %.1f %% of the scene radius, %d views at %d^2, %d steps\n",
+                100.0 * o.sigma, o.fit.views, o.fit.resolution, o.fit.steps);
+    std::printf("%-28s %9s %9s %7s %9s %11s %11s %7s %8s %6s %5s\n", "shape", "vtx rms", "after", "ratio", "normal",
+                "chamfer", "after", "ratio", "loss x", "s", "steps");
+    std::vector<std::vector<std::string>> rows{
+        {"shape", "vertex_rms_before", "vertex_rms_after", "chamfer_before", "chamfer_after", "loss_ratio", "seconds"}};
+    double worstVertexRatio = 0.0, worstLossRatio = 0.0;
+    for (const auto& shape : o.shapes) {
+        const mesh::PolygonMesh truthWorld = mesh::loadMesh(shape);
+        const mesh::PolygonMesh referenceWorld = surface::limitMesh(truthWorld, 8);
+        fit::FitOptions options = o.fit;
+        options.out = o.out;
+        gl::ProgramCache programs(gl::platformDefines());
+        // Noise in world units, a fraction of the reference's radius.
+        mesh::PolygonMesh noisedWorld = truthWorld;
+        {
+            fit::FitScene probe(options, programs, truthWorld, referenceWorld);
+            std::mt19937 rng(o.noiseSeed);
+            std::normal_distribution<float> normal(0.0f, o.sigma / probe.frame.scale);
+            for (auto& p : noisedWorld.positions) p += glm::vec3(normal(rng), normal(rng), normal(rng));
+        }
+        fit::FitScene scene(options, programs, noisedWorld, referenceWorld);
+        const auto truth = scene.frame.toNormalized(truthWorld.positions);
+        mesh::PolygonMesh truthSurface = referenceWorld;
+        truthSurface.positions = scene.frame.toNormalized(referenceWorld.positions);
+        fit::FitRun run(options, programs, scene);
+        const Measure before = measure(run, truth, truthSurface);
+        const auto start = std::chrono::steady_clock::now();
+        const fit::StopReason reason = run.run(o.out / "checkpoint.bin");
+        glFinish();
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const Measure after = measure(run, truth, truthSurface);
+        const std::string name = shape.stem().string();
+        std::printf("%-28s %9.4f %9.4f %7.2f %9.4f %11.3e %11.3e %7.2f %8.2f %6.1f %5d %s\n", name.c_str(),
+                    before.vertexRms, after.vertexRms, before.vertexRms / after.vertexRms, after.normalRms,
+                    before.chamfer, after.chamfer, before.chamfer / after.chamfer, after.loss / before.loss, seconds,
+                    run.step(), fit::toString(reason));
+        std::fflush(stdout);
+        rows.push_back({name, std::to_string(before.vertexRms), std::to_string(after.vertexRms),
+                        std::to_string(before.chamfer), std::to_string(after.chamfer),
+                        std::to_string(after.loss / before.loss), std::to_string(seconds)});
+        worstVertexRatio = std::max(worstVertexRatio, after.vertexRms / before.vertexRms);
+        worstLossRatio = std::max(worstLossRatio, after.loss / before.loss);
+    }
+    std::filesystem::create_directories(o.out);
+    writeCsv(o.out / "recovery.csv", rows);
+    std::printf("peak_rss_mib=%.0f\n", peakResidentMiB());
+    std::printf("worst_vertex_ratio=%.3f worst_loss_ratio=%.3f\n", worstVertexRatio, worstLossRatio);
+    return 0;
+}
+
+}  // namespace subdfit::bench
