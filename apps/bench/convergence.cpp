@@ -9,6 +9,7 @@
 #include "bench_commands.h"
 #include "bench_common.h"
 #include "context/gl_context.h"
+#include "fit/device_defaults.h"
 #include "fit/fit_run.h"
 #include "geometry/surface_distance.h"
 #include "gl/platform_defines.h"
@@ -37,6 +38,7 @@ int runConvergence(const ConvergenceOptions& o) {
     fit::FitOptions options = o.fit;
     options.out = o.out;
     auto context = context::createHeadlessContext(options.glProvider);
+    if (const std::string chosen = fit::resolveForCurrentDevice(options); !chosen.empty()) std::printf("%s\n", chosen.c_str());
     gl::ProgramCache programs(gl::platformDefines());
     fit::FitScene scene(options, programs, cage, reference);
     fit::FitRun run(options, programs, scene);

@@ -9,6 +9,7 @@
 #include "bench_commands.h"
 #include "bench_common.h"
 #include "context/gl_context.h"
+#include "fit/device_defaults.h"
 #include "fit/fit_run.h"
 #include "geometry/surface_distance.h"
 #include "gl/platform_defines.h"
@@ -61,8 +62,10 @@ Measure measure(fit::FitRun& run, const std::vector<glm::vec3>& truth, const mes
 
 }  // namespace
 
-int runRecovery(const RecoveryOptions& o) {
-    auto context = context::createHeadlessContext(o.fit.glProvider);
+int runRecovery(const RecoveryOptions& given) {
+    auto context = context::createHeadlessContext(given.fit.glProvider);
+    RecoveryOptions o = given;
+    if (const std::string chosen = fit::resolveForCurrentDevice(o.fit); !chosen.empty()) std::printf("%s\n", chosen.c_str());
     std::printf("recovery: cages noised by %.1f %% of the scene radius, %d views at %d^2, %d steps\n",
                 100.0 * o.sigma, o.fit.views, o.fit.resolution, o.fit.steps);
     std::printf("%-28s %9s %9s %7s %9s %11s %11s %7s %8s %6s %5s\n", "shape", "vtx rms", "after", "ratio", "normal",

@@ -33,7 +33,9 @@ inline void addFitSettings(CLI::App& app, fit::FitOptions& fit) {
                    info.help)
                 ->default_str(maps::toString(field));
         } else {
-            app.add_option(flag, field, info.help)->capture_default_str();
+            auto* option = app.add_option(flag, field, info.help);
+            if (!info.byDevice) option->capture_default_str();
+            else option->check(CLI::Range(info.min, info.max));  // the core takes kByDevice as "not given"; a user may not
         }
     });
 }

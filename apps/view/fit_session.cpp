@@ -1,5 +1,8 @@
 #include "fit_session.h"
 
+#include <cstdio>
+
+#include "fit/device_defaults.h"
 #include "gl/platform_defines.h"
 #include "io/atomic_file.h"
 #include "mesh/mesh_loader.h"
@@ -10,8 +13,11 @@ FitInputs loadFitInputs(const fit::FitOptions& options) {
     return {mesh::loadMesh(options.cage), mesh::loadMesh(options.reference)};
 }
 
-FitSession::FitSession(const fit::FitOptions& options, FitInputs inputs) : programs_(gl::platformDefines()) {
-    fit::validate(options);
+FitSession::FitSession(const fit::FitOptions& given, FitInputs inputs) : programs_(gl::platformDefines()) {
+    fit::validate(given);
+    fit::FitOptions options = given;
+    if (const std::string chosen = fit::resolveForCurrentDevice(options); !chosen.empty())
+        std::fprintf(stderr, "subdfit-view: %s\n", chosen.c_str());
     scene_ = std::make_unique<fit::FitScene>(options, programs_, std::move(inputs.cage), inputs.reference);
     run_ = std::make_unique<fit::FitRun>(options, programs_, *scene_);
     if (options.resume) run_->resume(options.out / "checkpoint.bin");

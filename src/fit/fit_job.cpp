@@ -2,20 +2,24 @@
 
 #include <chrono>
 
+#include "fit/device_defaults.h"
 #include "gl/platform_defines.h"
 #include "io/atomic_file.h"
 #include "io/output_folder.h"
 
 namespace subdfit::fit {
 
-FitReport runFit(const FitOptions& o, const FitHooks& hooks) {
-    validate(o);
-    io::checkOutputFolder(o.out, {.ownMarkers = kFitResultMarkers, .force = o.force});
+FitReport runFit(const FitOptions& options, const FitHooks& hooks) {
+    validate(options);
+    io::checkOutputFolder(options.out, {.ownMarkers = kFitResultMarkers, .force = options.force});
     const auto started = std::chrono::steady_clock::now();
-    auto context = context::createHeadlessContext(o.glProvider);
+    auto context = context::createHeadlessContext(options.glProvider);
+    FitOptions o = options;
+    const std::string chosen = resolveForCurrentDevice(o);
     gl::ProgramCache programs(gl::platformDefines());
     FitScene scene(o, programs);
     FitRun run(o, programs, scene);
+    if (!chosen.empty() && hooks.note) hooks.note(chosen);  // once the inputs have loaded: a bad one gets one line
     const auto checkpoint = o.out / "checkpoint.bin";
     if (o.resume && !run.resume(checkpoint) && hooks.note)
         hooks.note("no checkpoint at " + checkpoint.string() + " to resume: starting from step 0");

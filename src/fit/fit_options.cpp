@@ -5,6 +5,7 @@
 #include <numeric>
 #include <random>
 #include <sstream>
+#include <type_traits>
 
 namespace subdfit::fit {
 namespace detail {
@@ -13,10 +14,14 @@ const std::vector<OptionRow>& optionTable() {
     using F = FitOptions;
     // key, flag, help, range, resumable, setting
     static const std::vector<OptionRow> rows = {
-        {{"views", "--views", "training views on a sphere", 1, 1024, false, true, true}, &F::views},
+        {{"views", "--views", "training views on a sphere (default: 24, 48 on a GPU)", 1, 1024, false, true, true, true},
+         &F::views},
         {{"holdout_views", "--holdout-views", "held-out evaluation views", 1, 256, false, true, true}, &F::holdoutViews},
-        {{"resolution", "--res", "render resolution in pixels", 16, 4096, false, true, true}, &F::resolution},
-        {{"steps", "--steps", "optimisation steps", 0, 1e9, false, false, true}, &F::steps},
+        {{"resolution", "--res", "render resolution in pixels (default: 256, 512 on a GPU)", 16, 4096, false, true, true, true},
+         &F::resolution},
+        {{"steps", "--steps", "optimisation steps, the most with --schedule plateau (default: 500, 2000 on a GPU)", 0, 1e9,
+          false, false, true, true},
+         &F::steps},
         {{"views_per_step", "--views-per-step", "views rendered per step", 1, 1024, false, true, true}, &F::viewsPerStep},
         {{"samples_per_step", "--samples-per-step", "perturbations averaged per step", 1, 64, false, true, true},
          &F::samplesPerStep},
@@ -26,7 +31,7 @@ const std::vector<OptionRow>& optionTable() {
          &F::epsilon},
         {{"learning_rate", "--lr", "vertex learning rate, a fraction of the cage's mean edge (at most ~0.5 pixel)", 0, 1, true, true, true},
          &F::learningRate},
-        {{"smoothing", "--smoothing", "Laplacian preconditioner strength (0 = off)", 0, 1e6, false, true, true},
+        {{"smoothing", "--smoothing", "Laplacian preconditioner λ (0 = off); on cages with edges under 1/4 of the scene radius, x (1/4 / edge)^2", 0, 1e6, false, true, true},
          &F::smoothing},
         {{"relaxation", "--relax", "tangential relaxation of the cage per step (0 = off)", 0, 1, false, true, true},
          &F::relaxation},
@@ -60,6 +65,7 @@ template <class T>
 void checkRange(const OptionInfo& info, T value) {
     if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
         if (info.min > info.max) return;
+        if (info.byDevice && value == T(kByDevice)) return;
         const double v = double(value);
         const bool inside = std::isfinite(v) && (info.openRange ? v > info.min && v < info.max : v >= info.min && v <= info.max);
         if (!inside) {
@@ -87,10 +93,19 @@ std::string optionFlag(const std::string& key) {
 
 void validate(const FitOptions& o) {
     forEachOption(o, [](const OptionInfo& info, const auto& value) { checkRange(info, value); });
-    if (o.viewsPerStep > o.views) throw OptionError("views_per_step", "must be at most views (" + std::to_string(o.views) + ")");
+    if (o.views != kByDevice && o.viewsPerStep > o.views) throw OptionError("views_per_step", "must be at most views (" + std::to_string(o.views) + ")");
     if (o.out.empty()) throw OptionError("out", "is required");
     if (o.schedule != "plateau" && o.schedule != "anneal")
         throw OptionError("schedule", "must be plateau or anneal, got '" + o.schedule + "'");
+}
+
+void validateResolved(const FitOptions& o) {
+    validate(o);
+    forEachOption(o, [](const OptionInfo& info, const auto& value) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(value)>, int>)
+            if (info.byDevice && value == kByDevice)
+                throw OptionError(info.key, "left to the device, but no device chose it (resolveDeviceDefaults)");
+    });
 }
 
 nlohmann::json settingsJson(const FitOptions& o) {

@@ -19,12 +19,17 @@
 
 namespace subdfit::fit {
 
+// An option the device chooses unless it was given: see resolveDeviceDefaults().
+inline constexpr int kByDevice = -1;
+
 struct FitOptions {
     std::filesystem::path cage, reference, out;
-    int views = 24;          // training views (held-out views come in addition)
+    // By the device unless given (fit/device_defaults.h): 24 views at 256², at most 500 steps on
+    // a software rasterizer; more of each on a hardware GPU, where a step costs little.
+    int views = kByDevice;   // training views (held-out views come in addition)
     int holdoutViews = 6;
-    int resolution = 256;
-    int steps = 500;
+    int resolution = kByDevice;
+    int steps = kByDevice;
     int viewsPerStep = 1;
     int samplesPerStep = 1;       // perturbations averaged per Adam step
     int tessLevel = 8;
@@ -33,7 +38,7 @@ struct FitOptions {
     // about a pixel and half a pixel): the same defaults then serve a 100-face and a 10 000-face
     // cage. The step shrinks as the schedule says.
     float epsilon = 0.08f;
-    float learningRate = 0.04f;
+    float learningRate = 0.15f;
     float smoothing = 4.0f;       // λ of the Laplacian preconditioner (0: off)
     float relaxation = 0.0f;      // tangential relaxation of the cage per vertex update (0: off)
     float tangential = 1.0f;      // fraction of the vertex gradient's tangential part kept
@@ -61,6 +66,7 @@ struct OptionInfo {
     bool openRange = false;       // the range excludes its ends
     bool resumable = false;       // must match for a checkpoint to continue
     bool setting = false;         // shapes the result: report.json's settings, a batch asset's identity
+    bool byDevice = false;        // kByDevice until resolveDeviceDefaults() (fit/device_defaults.h)
 };
 
 namespace detail {
@@ -84,8 +90,10 @@ void forEachOption(Options& options, Visitor&& visit) {
 // The flag of an option key ("" when it has none).
 std::string optionFlag(const std::string& key);
 
-// Throws OptionError for anything out of range, before any work.
+// Throws OptionError for anything out of range, before any work. Options still kByDevice pass.
 void validate(const FitOptions& options);
+// validate(), and no option left kByDevice: what a fit needs before it is built.
+void validateResolved(const FitOptions& options);
 
 // The options whose rows say `setting`, by key: what report.json's settings record and what
 // tells one run's output from another's.

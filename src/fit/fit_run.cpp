@@ -49,14 +49,13 @@ const char* toString(StopReason reason) {
 }
 
 FitRun::FitRun(const FitOptions& options, gl::ProgramCache& programs, FitScene& scene)
-    : options_(options),
+    : options_((validateResolved(options), options)),
       programs_(programs),
       scene_(scene),
       fitter_(std::make_unique<CageFitter>(programs, scene.cage, fitSettings(options, scene.cage))),
       fingerprint_(checkpointFingerprint(options, scene.cage, scene.reference)),
       monitorEvery_(std::max(5, options.steps / 50)),
       started_(Clock::now()) {
-    validate(options_);
     beforeImage_ = renderHoldout(*fitter_, scene_);
     trainBefore_ = score(*fitter_, scene_.training);
     holdoutBefore_ = score(*fitter_, scene_.holdout);

@@ -1,6 +1,7 @@
 #include "fit/fit_scene.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "fit/image_metrics.h"
 #include "mesh/mesh_geometry.h"
@@ -13,6 +14,12 @@ namespace {
 constexpr int kMonitorViews = 4;
 constexpr float kFramedWidth = 2.3f;  // normalised units across the rendered view
 constexpr float kEpsilonPixels = 0.9f, kStepPixels = 0.45f;
+// And never more than this in the normalised frame, whatever the resolution: beyond it a coarse
+// cage's few vertices each move so much surface per step that the estimate stops pointing
+// downhill (catmark_cube_creases1 at 128² never improved on its noised start).
+constexpr float kEpsilonMax = 0.008f, kStepMax = 0.004f;
+// The cage edge (a quarter of the scene radius) at and above which --smoothing is λ itself.
+constexpr float kReferenceEdge = 0.25f;
 
 mesh::PolygonMesh normalized(mesh::PolygonMesh mesh, const scene::SceneFrame& frame) {
     mesh.positions = frame.toNormalized(mesh.positions);
@@ -40,7 +47,7 @@ FitScene::FitScene(const FitOptions& options, gl::ProgramCache& programs)
 
 FitScene::FitScene(const FitOptions& o, gl::ProgramCache& programs, mesh::PolygonMesh cageWorldIn,
                    const mesh::PolygonMesh& referenceWorld)
-    : frame(frameOf(referenceWorld)),
+    : frame((validateResolved(o), frameOf(referenceWorld))),
       cageWorld(std::move(cageWorldIn)),
       cage(normalized(cageWorld, frame)),
       reference(normalized(mesh::triangulated(referenceWorld), frame)),
@@ -55,12 +62,20 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage) 
     // A dense cage needs steps in proportion to its edges, or neighbours jitter against each
     // other and the cage crumples; a coarse one is limited by what the images resolve: a
     // perturbation of about a pixel, steps of about half a pixel, where a pixel spans the
-    // framed view (the unit sphere plus a margin, render/camera.cpp) over the resolution.
+    // framed view (the unit sphere plus a margin, render/camera.cpp) over the resolution, and
+    // by the absolute caps above.
     const float edge = mesh::meanEdgeLength(cage);
     const float pixel = kFramedWidth / float(o.resolution);
-    settings.vertices.epsilon = std::min(o.epsilon * edge, kEpsilonPixels * pixel);
-    settings.vertices.learningRate = std::min(o.learningRate * edge, kStepPixels * pixel);
-    settings.smoothingLambda = o.smoothing;
+    settings.vertices.epsilon = std::min({o.epsilon * edge, kEpsilonPixels * pixel, kEpsilonMax});
+    settings.vertices.learningRate = std::min({o.learningRate * edge, kStepPixels * pixel, kStepMax});
+    // λ counts in cage edges; what must be pooled is a neighbourhood of the surface (enough
+    // pixels per estimate), so on a cage denser than the reference one λ grows as the square of
+    // the density, and the Jacobi sweeps with its reach (about sqrt(λ) edges). A coarser cage
+    // keeps λ: its few vertices each see plenty of pixels, but need the coupling to move
+    // together rather than jitter apart.
+    const float density = std::max(1.0f, kReferenceEdge / edge);
+    settings.smoothingLambda = o.smoothing * density * density;
+    settings.smoothingIterations = std::clamp(int(std::lround(8.0 * std::sqrt(settings.smoothingLambda / 4.0))), 8, 48);
     settings.relaxation = o.relaxation;
     settings.tangentialGradient = o.tangential;
     settings.tessLevel = o.tessLevel;

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "fit/device_defaults.h"
 #include "gl/platform_defines.h"
 #include "io/atomic_file.h"
 #include "io/output_folder.h"
@@ -118,16 +119,18 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     validate(options);
     io::checkOutputFolder(options.fit.out, {.ownMarkers = fit::kFitResultMarkers, .force = options.fit.force});
     const auto started = std::chrono::steady_clock::now();
-    const SimplifyOptions& o = options;
+    SimplifyOptions o = options;
     const mesh::PolygonMesh reference = mesh::loadMesh(o.fit.reference);
     const mesh::PolygonMesh cage = initialCage(reference, {.faces = o.faces});
 
     auto context = context::createHeadlessContext(o.fit.glProvider);
+    const std::string chosen = fit::resolveForCurrentDevice(o.fit);
     gl::ProgramCache programs(gl::platformDefines());
     fit::FitOptions fitOptions = o.fit;
     fitOptions.cage = o.fit.out / "initial_cage.obj";  // where the report says the cage came from
     fit::FitScene scene(fitOptions, programs, cage, reference);
     fit::FitRun run(fitOptions, programs, scene);
+    if (!chosen.empty() && hooks.note) hooks.note(chosen);
     const auto checkpoint = o.fit.out / "checkpoint.bin";
     if (o.fit.resume && !run.resume(checkpoint) && hooks.note)
         hooks.note("no checkpoint at " + checkpoint.string() + " to resume: starting from step 0");
