@@ -8,6 +8,7 @@
 
 #include "common/command_line.h"
 #include "common/simplify_cli.h"
+#include "export/subd_decode.h"
 #include "fit/fit_job.h"
 #include "manifest.h"
 #include "simplify/simplify_job.h"
@@ -63,6 +64,14 @@ int main(int argc, char** argv) {
     batchCommand->add_option("--shard", shard, "run only assets k with k mod N = i (i/N, 0-based)")->capture_default_str();
     subdfit::apps::addSimplifySettings(*batchCommand, batchDefaults);
 
+    std::filesystem::path decodeInput, decodeOut;
+    int decodeSegments = 0;
+    auto* decodeCommand = app.add_subcommand("decode", "a shipped asset.subd back to triangles: the displaced limit surface as .glb");
+    decodeCommand->add_option("file", decodeInput, "the .subd file")->required();
+    decodeCommand->add_option("--out", decodeOut, "the .glb to write")->required();
+    decodeCommand->add_option("--tess", decodeSegments, "segments per face edge (default: the maps' sample density, 8 without maps)")
+        ->check(CLI::Range(1, 64));
+
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit")) return *exitCode;
 
     subdfit::installStopSignals();
@@ -71,6 +80,10 @@ int main(int argc, char** argv) {
     };
     try {
         const subdfit::fit::FitHooks hooks{.progress = printProgress, .cancel = &subdfit::stopRequest(), .note = say("subdfit")};
+        if (decodeCommand->parsed()) {
+            const auto written = subdfit::exporter::decodeToGlb(decodeInput, decodeOut, decodeSegments);
+            std::cout << written.path.string() << "\n";
+        }
         if (fitCommand->parsed()) {
             const auto report = subdfit::fit::runFit(fit, hooks);
             printSummary(report);

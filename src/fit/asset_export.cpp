@@ -2,8 +2,9 @@
 
 #include "export/glb_writer.h"
 #include "export/gltf_mesh.h"
-#include "surface/tessellation.h"
 #include "export/map_atlas.h"
+#include "export/subd_format.h"
+#include "surface/tessellation.h"
 
 namespace subdfit::fit {
 
@@ -22,6 +23,7 @@ nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene:
     const auto tessellation = surface::tessellate(fittedWorld, maps, fitter.renderer().tessLevel());
     written.push_back(
         exporter::writeFittedGlb(o.out / "fitted.glb", exporter::gltfMesh(tessellation, atlas), normalPng, o.draco));
+    written.push_back(exporter::writeSubd(o.out / "asset.subd", exporter::shippableAsset(fittedWorld, maps)));
     nlohmann::json files = nlohmann::json::object();
     for (const auto& file : written) files[file.path.filename().string()] = file.bytes;
     return files;

@@ -78,6 +78,11 @@ add_test(NAME cli.fit.torus_to_spot
                  -P ${SUBDFIT_CLI_SCRIPTS}/expect_success.cmake)
 set_tests_properties(cli.fit.torus_to_spot PROPERTIES LABELS cli TIMEOUT 600)
 
+# decode: anything but a whole .subd file names the file, and no .glb appears.
+subdfit_cli_command_refuses(decode decode_missing missing.subd ${SUBDFIT_CLI_OUT}/missing.subd)
+subdfit_cli_command_refuses(decode decode_not_subd "truncated.obj: not a .subd file" ${SUBDFIT_CLI_BAD}/truncated.obj)
+subdfit_cli_command_refuses(decode decode_tess_0 --tess ${SUBDFIT_CLI_BAD}/truncated.obj --tess 0)
+
 # simplify: a bad or missing reference names the file; impossible options name the option.
 subdfit_cli_command_refuses(simplify simplify_missing_reference ${SUBDFIT_CLI_OUT}/missing.obj
                             ${SUBDFIT_CLI_OUT}/missing.obj)
