@@ -1,7 +1,10 @@
 #include "simplify/baselines.h"
 
+#include <algorithm>
+
 #include "export/glb_writer.h"
 #include "export/map_atlas.h"
+#include "export/subd_format.h"
 #include "fit/cage_fitter.h"
 #include "fit/fit_scene.h"
 #include "mesh/mesh_geometry.h"
@@ -46,8 +49,11 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
                                                     indicesOf(decimated), settings.draco);
         return std::make_pair(std::move(decimated), written.bytes);
     };
-    // Bytes grow with the triangle count: bisect for the most triangles within the budget.
-    int lo = 1, hi = welded.faceCount();
+    // Bytes grow with the triangle count: bisect for the most triangles within the budget, but
+    // never fewer than a closed shape needs (a .glb's own header and JSON weigh hundreds of bytes,
+    // so a tiny budget may not be met at all: the report then says so).
+    constexpr int kFewestTriangles = 12;
+    int lo = std::min(kFewestTriangles, welded.faceCount()), hi = welded.faceCount();
     while (lo < hi) {
         const int mid = lo + (hi - lo + 1) / 2;
         if (ship(mid).second <= budget) lo = mid;
@@ -58,7 +64,7 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
     Quality q;
     q.bytes = bytes;
     q.files = {{"decimated.glb", bytes}};
-    q.details = {{"triangles", decimated.faceCount()}};
+    q.details = {{"triangles", decimated.faceCount()}, {"over_budget", bytes > budget}};
     const render::MeshRenderer renderer(decimated.positions, mesh::vertexNormals(decimated),
                                         std::vector<unsigned>(decimated.faceIndices.begin(), decimated.faceIndices.end()));
     scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
@@ -74,7 +80,8 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     const surface::SurfaceMaps baked =
         bakeMaps(cage, scene.reference, {.effects = effects, .resolution = mapResolution});
 
-    // Shipped exactly as subdfit ships: cage.glb and the map atlases, in world units.
+    // Shipped exactly as subdfit ships: asset.subd, in world units (the atlases beside it for
+    // DCC tools, not counted).
     const auto dir = settings.dir / "bake";
     std::filesystem::create_directories(dir);
     mesh::PolygonMesh cageWorld = cage;
@@ -82,8 +89,9 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     surface::SurfaceMaps bakedWorld = baked;
     for (float& d : bakedWorld.displacement) d /= scene.frame.scale;
     Quality q;
-    q.files = shipCage(dir / "cage.glb", cageWorld, settings.draco);
-    for (const auto& file : exporter::writeMapAtlases(dir, bakedWorld, {.compact = settings.compactMaps})) q.files[file.path.filename().string()] = file.bytes;
+    shipCage(dir / "cage.glb", cageWorld, settings.draco);
+    exporter::writeMapAtlases(dir, bakedWorld, {.compact = settings.compactMaps});
+    q.files = {{"asset.subd", exporter::writeSubd(dir / "asset.subd", exporter::shippableAsset(cageWorld, bakedWorld)).bytes}};
     q.bytes = totalBytes(q.files);
     q.details = {{"faces", cage.faceCount()}, {"map_resolution", mapResolution}};
 
@@ -98,8 +106,7 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
         bakedScene.render(camera, target);
     }, q);
-    q.distance = worldDistance(surface::triangleMesh(surface::tessellate(cage, baked, settings.segments)), scene.reference, scene.frame,
-                               settings.surfaceSamples);
+    q.distance = shippedDistance(dir / "asset.subd", settings.segments, scene.frame, scene.reference, settings.surfaceSamples);
     return q;
 }
 

@@ -1,6 +1,8 @@
 #include "simplify/quality.h"
 
+#include "export/subd_format.h"
 #include "fit/image_metrics.h"
+#include "surface/tessellation.h"
 
 namespace subdfit::simplify {
 
@@ -42,5 +44,12 @@ geometry::SurfaceDistance worldDistance(const mesh::PolygonMesh& candidate, cons
     return d;
 }
 
+geometry::SurfaceDistance shippedDistance(const std::filesystem::path& subd, int segments, const scene::SceneFrame& frame,
+                                          const mesh::PolygonMesh& reference, int samples) {
+    const exporter::SubdAsset shipped = exporter::readSubd(subd);
+    mesh::PolygonMesh surface = surface::triangleMesh(surface::tessellate(shipped.cage, shipped.maps, segments));
+    surface.positions = frame.toNormalized(surface.positions);
+    return worldDistance(surface, reference, frame, samples);
+}
 
 }  // namespace subdfit::simplify

@@ -2,6 +2,7 @@
 // How good a simplified asset is, measured the same way for subdfit and for each baseline:
 // PSNR over the held-out views, surface distance to the reference, and the bytes a user ships.
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <vector>
 
@@ -41,6 +42,11 @@ void scoreHoldout(const scene::TargetSet& holdout, const DrawFunction& draw, Qua
 // in world units.
 geometry::SurfaceDistance worldDistance(const mesh::PolygonMesh& candidate, const mesh::PolygonMesh& reference,
                                         const scene::SceneFrame& frame, int samples);
+
+// The same for a shipped .subd file as a consumer gets it: decoded, displaced, tessellated with
+// `segments` per face edge; `frame` is the scene's (the file is in world units).
+geometry::SurfaceDistance shippedDistance(const std::filesystem::path& subd, int segments, const scene::SceneFrame& frame,
+                                          const mesh::PolygonMesh& reference, int samples);
 
 
 }  // namespace subdfit::simplify

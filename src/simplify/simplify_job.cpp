@@ -26,13 +26,10 @@ namespace {
 // of the bake itself, 1 loses 5 dB to noise.
 constexpr float kRefineRate = 0.02f;
 
-// subdfit's shipped files: the cage GLB and the map files (fitted.glb is a convenience preview
-// of the same asset for viewers without subdivision, not part of what the budget counts).
-nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports, const nlohmann::json& cageFile) {
-    nlohmann::json files = cageFile;
-    for (const auto& [name, bytes] : exports)
-        if (name != "fitted.glb") files[name] = bytes;
-    return files;
+// What subdfit ships: asset.subd (cage and maps, export/subd_format.h). cage.glb, the map
+// atlases and fitted.glb are conveniences for DCC tools and viewers, not what the budget counts.
+nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports) {
+    return {{"asset.subd", exports.at("asset.subd")}};
 }
 
 // Scores the fitted scene and both baselines; writes cage.glb, baselines/ and comparison.png
@@ -49,13 +46,13 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
     const int segments = fitter.renderer().tessLevel();
 
     Quality& ours = report.subdfit;
-    ours.files = shippedFiles(fitted.exports, shipCage(out / "cage.glb", cageWorld, o.fit.draco));
+    shipCage(out / "cage.glb", cageWorld, o.fit.draco);
+    ours.files = shippedFiles(fitted.exports);
     ours.bytes = totalBytes(ours.files);
     scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
         fitter.render(camera, target);
     }, ours);
-    ours.distance = worldDistance(surface::triangleMesh(surface::tessellate(cage, fitter.surfaceMaps(), segments)), scene.reference,
-                                  scene.frame, o.surfaceSamples);
+    ours.distance = shippedDistance(out / "asset.subd", segments, scene.frame, scene.reference, o.surfaceSamples);
 
     const BaselineSettings settings{.dir = out / "baselines", .draco = o.fit.draco,
                                     .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments};

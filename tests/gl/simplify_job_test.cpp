@@ -61,9 +61,13 @@ TEST(SimplifyJob, ReportMatchesTheFilesAndComparesAtEqualBytes) {
         EXPECT_EQ(fs::file_size(dir / "out" / name), bytes.get<std::uintmax_t>()) << name;
         onDisk += fs::file_size(dir / "out" / name);
     }
-    EXPECT_TRUE(report["files"].contains("cage.glb"));
-    EXPECT_TRUE(report["files"].contains("normal.png"));
-    EXPECT_FALSE(report["files"].contains("fitted.glb"));  // a preview, not what ships
+    // One file ships: asset.subd. The cage .glb, the atlases and fitted.glb are conveniences.
+    EXPECT_EQ(report["files"].size(), 1u);
+    EXPECT_TRUE(report["files"].contains("asset.subd"));
+    for (const char* convenience : {"cage.glb", "normal.png", "fitted.glb"}) {
+        EXPECT_FALSE(report["files"].contains(convenience)) << convenience;
+        EXPECT_TRUE(fs::exists(dir / "out" / convenience)) << convenience;
+    }
     EXPECT_EQ(report["bytes"].get<std::uintmax_t>(), onDisk);
 
     const auto& decimation = report["baselines"]["decimation"];

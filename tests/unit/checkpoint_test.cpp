@@ -29,6 +29,11 @@ FitState sampleState() {
         }
         state.groups.push_back(group);
     }
+    // Where a plateau schedule stands: resumed, it must continue with the same step and best.
+    state.learningRateScale = 0.25f;
+    state.mapsStartStep = 30;
+    state.schedule = {.bestLoss = 0.125, .bestStep = 36, .sinceImprovement = 2, .halvings = 2,
+                      .bestTheta = {state.groups[0].theta, state.groups[1].moment1}};
     return state;
 }
 
@@ -67,6 +72,13 @@ TEST_F(Checkpoint, ReadsBackExactly) {
         EXPECT_EQ(read->groups[g].moment2, expected.groups[g].moment2);
         EXPECT_EQ(read->groups[g].adamSteps, expected.groups[g].adamSteps);
     }
+    EXPECT_EQ(read->learningRateScale, expected.learningRateScale);
+    EXPECT_EQ(read->mapsStartStep, expected.mapsStartStep);
+    EXPECT_EQ(read->schedule.bestLoss, expected.schedule.bestLoss);
+    EXPECT_EQ(read->schedule.bestStep, expected.schedule.bestStep);
+    EXPECT_EQ(read->schedule.sinceImprovement, expected.schedule.sinceImprovement);
+    EXPECT_EQ(read->schedule.halvings, expected.schedule.halvings);
+    EXPECT_EQ(read->schedule.bestTheta, expected.schedule.bestTheta);
     EXPECT_FALSE(readCheckpoint(path_.parent_path() / "none.bin", "fp"));
 }
 
