@@ -242,7 +242,8 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
 }
 
 SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& name) {
-    if (bytes.size() < 20 || std::memcmp(bytes.data(), kMagic, 4) != 0) throw Error(name + ": not a .subd file");
+    if (bytes.size() < 4 || std::memcmp(bytes.data(), kMagic, 4) != 0) throw Error(name + ": not a .subd file");
+    if (bytes.size() < 20) throw Error(name + ": truncated");
     ByteReader header(bytes, name);
     header.take(4);
     const auto version = header.get<std::uint16_t>();

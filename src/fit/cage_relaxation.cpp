@@ -82,6 +82,16 @@ CageRelaxation::CageRelaxation(const mesh::PolygonMesh& cage) : vertexCount_(cag
     scratch_ = gl::Buffer(GLsizeiptr(vertexCount_) * 3 * GLsizeiptr(sizeof(float)));
 }
 
+void CageRelaxation::dispatchOverVertices() {
+    // Both passes read the same topology: modes, neighbours, face corners.
+    modes_.bindStorage(SUBDFIT_SSBO_RELAX_MODES);
+    offsets_.bindStorage(SUBDFIT_SSBO_ADJACENCY_OFFSETS);
+    neighbors_.bindStorage(SUBDFIT_SSBO_ADJACENCY_INDICES);
+    cornerOffsets_.bindStorage(SUBDFIT_SSBO_RELAX_CORNER_OFFSETS);
+    corners_.bindStorage(SUBDFIT_SSBO_RELAX_CORNERS);
+    glDispatchCompute(GLuint((vertexCount_ + 127) / 128), 1, 1);
+}
+
 void CageRelaxation::apply(gl::ProgramCache& programs, gl::Buffer& theta, float rate) {
     if (rate <= 0.0f) return;
     const auto& program = programs.get(kRelax);
@@ -90,12 +100,7 @@ void CageRelaxation::apply(gl::ProgramCache& programs, gl::Buffer& theta, float 
     program.set("uRate", rate);
     theta.bindStorage(SUBDFIT_SSBO_SMOOTH_IN);
     scratch_.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
-    modes_.bindStorage(SUBDFIT_SSBO_RELAX_MODES);
-    offsets_.bindStorage(SUBDFIT_SSBO_ADJACENCY_OFFSETS);
-    neighbors_.bindStorage(SUBDFIT_SSBO_ADJACENCY_INDICES);
-    cornerOffsets_.bindStorage(SUBDFIT_SSBO_RELAX_CORNER_OFFSETS);
-    corners_.bindStorage(SUBDFIT_SSBO_RELAX_CORNERS);
-    glDispatchCompute(GLuint((vertexCount_ + 127) / 128), 1, 1);
+    dispatchOverVertices();
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     theta.copyFrom(scratch_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -110,12 +115,7 @@ void CageRelaxation::projectGradient(gl::ProgramCache& programs, const gl::Buffe
     program.set("uKeep", keep);
     theta.bindStorage(SUBDFIT_SSBO_THETA);
     gradient.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
-    modes_.bindStorage(SUBDFIT_SSBO_RELAX_MODES);
-    offsets_.bindStorage(SUBDFIT_SSBO_ADJACENCY_OFFSETS);
-    neighbors_.bindStorage(SUBDFIT_SSBO_ADJACENCY_INDICES);
-    cornerOffsets_.bindStorage(SUBDFIT_SSBO_RELAX_CORNER_OFFSETS);
-    corners_.bindStorage(SUBDFIT_SSBO_RELAX_CORNERS);
-    glDispatchCompute(GLuint((vertexCount_ + 127) / 128), 1, 1);
+    dispatchOverVertices();
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

@@ -32,6 +32,8 @@ public:
     void projectGradient(gl::ProgramCache& programs, const gl::Buffer& theta, gl::Buffer& gradient, float keep);
 
 private:
+    void dispatchOverVertices();  // binds the topology, one thread per vertex
+
     int vertexCount_;
     gl::Buffer modes_, offsets_, neighbors_, cornerOffsets_, corners_, scratch_;
 };

@@ -37,6 +37,9 @@ std::vector<std::vector<float>> readTheta(CageFitter& fitter) {
     return theta;
 }
 
+// How much worse than the best the monitored loss must be for a halving to return to the best.
+constexpr double kRestoreAbove = 1.5;
+
 }  // namespace
 
 const char* toString(StopReason reason) {
@@ -99,9 +102,17 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
     // The schedule judges a step by its loss on the monitor views, the start included: the
     // kept state is never worse than where the stage began.
     auto monitor = [&] {
-        const StepSchedule::Decision decision = schedule.record(score(*fitter_, scene_.monitor).loss, step());
+        const double monitorLoss = score(*fitter_, scene_.monitor).loss;
+        const StepSchedule::Decision decision = schedule.record(monitorLoss, step());
         if (decision.best) schedule_.bestTheta = readTheta(*fitter_);
-        if (decision.action == StepSchedule::Action::Halve) fitter_->setLearningRateScale(schedule.learningRateScale());
+        if (decision.action == StepSchedule::Action::Halve) {
+            // Clearly worse than the best (not only noisier): back to the best state, with the
+            // smaller step. A start that was already close (a limit-interpolated cage, baked
+            // maps) is not left where too large a step took it: a 1 000-face bunny cage's loss
+            // doubled in its first 10 steps and took 300 to come back.
+            if (monitorLoss > kRestoreAbove * schedule_.bestLoss) restoreBest();
+            fitter_->setLearningRateScale(schedule.learningRateScale());
+        }
         return decision.action;
     };
     if (plateau && schedule_.bestStep < 0) {
@@ -148,14 +159,17 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
     return last;
 }
 
+void FitRun::restoreBest() {
+    const auto groups = fitter_->groups();
+    for (size_t k = 0; k < groups.size() && k < schedule_.bestTheta.size(); ++k) groups[k]->write(schedule_.bestTheta[k]);
+}
+
 void FitRun::endStage() {
     if (options_.schedule != "plateau" || schedule_.bestTheta.empty()) return;
     // Measured once more: the last steps may have been better than any monitored before.
     const double last = score(*fitter_, scene_.monitor).loss;
-    if (!(last <= schedule_.bestLoss)) {
-        const auto groups = fitter_->groups();
-        for (size_t k = 0; k < groups.size() && k < schedule_.bestTheta.size(); ++k) groups[k]->write(schedule_.bestTheta[k]);
-    }
+    if (!(last <= schedule_.bestLoss)) restoreBest();
+    bestStep_ = schedule_.bestStep;
     StepSchedule(schedule_).restart();
     fitter_->setLearningRateScale(1.0f);
 }
@@ -183,7 +197,7 @@ FitReport FitRun::writeResults(const std::filesystem::path& out, const context::
     r.glProvider = context.providerName();
     r.shaderVariants = programs_.variants();
     r.stopReason = toString(stopReason_);
-    r.bestStep = schedule_.bestStep;
+    r.bestStep = schedule_.bestStep >= 0 ? schedule_.bestStep : bestStep_;
 
     // Outputs only now that everything has worked; each file appears whole or not at all.
     std::filesystem::create_directories(out);

@@ -93,6 +93,8 @@ private:
     std::string fingerprint_;  // what a checkpoint must match
     int resumedFromStep_ = 0;
     ScheduleState schedule_;
+    int bestStep_ = -1;  // of the last stage ended
+    void restoreBest();  // θ of every group back to the best monitored state
     StopReason stopReason_ = StopReason::Reached;
     int monitorEvery_;
     std::chrono::steady_clock::time_point started_;

@@ -5,6 +5,7 @@
 // kMinImprovement for kPatience measurements, the step is halved; after kMaxHalvings halvings
 // (1/8 of the step, about where the old ×0.1 annealing ended) a further plateau ends the stage:
 // it has converged. A poor start keeps the full step as long as it pays; a good one stops early.
+// (FitRun returns to the best state at each halving.)
 #include <cmath>
 
 #include "fit/fit_state.h"

@@ -127,6 +127,7 @@ TEST(SubdFormat, AnythingButAWholeVersionOneFileIsRefusedInOneLine) {
         EXPECT_NE(message.find(expected), std::string::npos) << "expected '" << expected << "' in: " << message;
     };
     expectRefused({}, "not a .subd file");
+    expectRefused({'S', 'U', 'B', 'D', 1}, "truncated");
     expectRefused({good.begin(), good.begin() + good.size() / 2}, "checksum");
     auto version = good;
     version[4] = 9;
