@@ -13,6 +13,7 @@
 #include "fit/fit_run.h"
 #include "geometry/surface_distance.h"
 #include "gl/platform_defines.h"
+#include "mesh/mesh_geometry.h"
 #include "mesh/mesh_loader.h"
 #include "surface/tessellation.h"
 
@@ -29,27 +30,12 @@ struct Measure {
     double vertexRms, chamfer, loss, normalRms;
 };
 
-// Unit vertex normals of a polygon mesh from its face corners.
-std::vector<glm::vec3> cornerNormals(const mesh::PolygonMesh& m, const std::vector<glm::vec3>& positions) {
-    std::vector<glm::vec3> normals(positions.size(), glm::vec3(0.0f));
-    size_t first = 0;
-    for (int size : m.faceSizes) {
-        for (int k = 0; k < size; ++k) {
-            const int v = m.faceIndices[first + size_t(k)], next = m.faceIndices[first + size_t((k + 1) % size)],
-                      previous = m.faceIndices[first + size_t((k + size - 1) % size)];
-            normals[size_t(v)] += glm::cross(positions[size_t(next)] - positions[size_t(v)],
-                                              positions[size_t(previous)] - positions[size_t(v)]);
-        }
-        first += size_t(size);
-    }
-    for (auto& n : normals) n = glm::length(n) > 0.0f ? glm::normalize(n) : n;
-    return normals;
-}
-
 Measure measure(fit::FitRun& run, const std::vector<glm::vec3>& truth, const mesh::PolygonMesh& truthSurface) {
     mesh::PolygonMesh cage = run.scene().cage;
     cage.positions = run.fitter().vertices();
-    const auto normals = cornerNormals(cage, truth);
+    mesh::PolygonMesh truthCage = cage;
+    truthCage.positions = truth;
+    const auto normals = mesh::vertexNormals(truthCage);
     double normalSum = 0.0;
     for (size_t v = 0; v < truth.size(); ++v) {
         const double d = glm::dot(cage.positions[v] - truth[v], normals[v]);

@@ -41,7 +41,9 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
                                       : nullptr),
       faceVertices_(patches_.faceVertexOffsets, patches_.faceVertexIndices, cage.vertexCount()),
       adjacency_(uploadAdjacency(cage)),
-      relaxation_(cage),
+      // Only a fit that uses it pays for the relaxation's topology.
+      relaxation_(settings.relaxation > 0.0f || settings.tangentialGradient < 1.0f ? std::make_optional<CageRelaxation>(cage)
+                                                                                  : std::nullopt),
       pointsPlus_(stencils_.makePointBuffer()),
       pointsMinus_(stencils_.makePointBuffer()),
       smoothScratch_(vertices_.gradient.bytes()),
@@ -120,9 +122,10 @@ void CageFitter::update() {
         if (g->kind() == optim::GroupKind::Vertices) {
             optim::precondition(programs_, vertices_, adjacency_, settings_.smoothingLambda,
                                 settings_.smoothingIterations, smoothScratch_);
-            relaxation_.projectGradient(programs_, vertices_.theta, vertices_.gradientSmooth, settings_.tangentialGradient);
+            if (relaxation_)
+                relaxation_->projectGradient(programs_, vertices_.theta, vertices_.gradientSmooth, settings_.tangentialGradient);
             optim::adamStep(programs_, vertices_, vertices_.gradientSmooth, learningRate);
-            relaxation_.apply(programs_, vertices_.theta, settings_.relaxation);
+            if (relaxation_) relaxation_->apply(programs_, vertices_.theta, settings_.relaxation);
         } else {
             maps_->update(programs_, *g, learningRate);
         }

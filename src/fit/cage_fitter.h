@@ -125,7 +125,7 @@ private:
     std::unique_ptr<maps::MapParameters> maps_;
     sge::FaceVertexTable faceVertices_;
     optim::Adjacency adjacency_;
-    CageRelaxation relaxation_;
+    std::optional<CageRelaxation> relaxation_;  // with --relax or --tangential only
     gl::Buffer pointsPlus_, pointsMinus_, smoothScratch_, loss_;
     render::RenderTarget plus_, minus_;
     int steps_ = 0, samplesSinceLoss_ = 0;

@@ -47,6 +47,7 @@ FitScene::FitScene(const FitOptions& options, gl::ProgramCache& programs)
 
 FitScene::FitScene(const FitOptions& o, gl::ProgramCache& programs, mesh::PolygonMesh cageWorldIn,
                    const mesh::PolygonMesh& referenceWorld)
+    // Checked before any member reads views or resolution (they may still be left to the device).
     : frame((validateResolved(o), frameOf(referenceWorld))),
       cageWorld(std::move(cageWorldIn)),
       cage(normalized(cageWorld, frame)),

@@ -1,0 +1,17 @@
+#pragma once
+// The displaced limit surface of a cage and its maps as one .glb: what `fit` writes as its
+// fitted.glb preview and what `subdfit decode` writes from a shipped asset.subd.
+#include <filesystem>
+
+#include "export/output_file.h"
+#include "mesh/polygon_mesh.h"
+#include "surface/surface_maps.h"
+
+namespace subdfit::exporter {
+
+// `segments` per ptex-face edge; texcoords on the maps' atlas (a one-cell layout without maps,
+// so they still name each face's tile); the normal map, if any, as the normalTexture.
+WrittenFile writeSurfaceGlb(const std::filesystem::path& path, const mesh::PolygonMesh& cage,
+                            const surface::SurfaceMaps& maps, int segments, bool draco);
+
+}  // namespace subdfit::exporter
