@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "export/byte_stream.h"
+#include "export/cage_coding.h"
 #include "export/node_coding.h"
 #include "io/input_file.h"
 #include "mesh/input_limits.h"
@@ -29,111 +30,70 @@ constexpr std::uint32_t kMaxRawSection = 1u << 30;
 
 std::string tagName(const Tag& tag) { return std::string(tag.begin(), tag.end()); }
 
-// The cage's bounding cube: origin and edge length (1 for a single point).
-std::pair<glm::vec3, float> boundingCube(const std::vector<glm::vec3>& positions) {
-    glm::vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
-    for (const auto& p : positions) {
-        low = glm::min(low, p);
-        high = glm::max(high, p);
-    }
-    const float extent = std::max({high.x - low.x, high.y - low.y, high.z - low.z});
-    return {low, extent > 0.0f ? extent : 1.0f};
-}
-
-float levels(int bits) { return float((1u << bits) - 1u); }
-
-void writeCage(const mesh::PolygonMesh& cage, int bits, ByteWriter& out) {
-    out.putVarint(std::uint64_t(cage.vertexCount()));
-    out.putVarint(std::uint64_t(cage.faceCount()));
-    const auto [origin, extent] = boundingCube(cage.positions);
-    for (float c : {origin.x, origin.y, origin.z, extent}) out.put<float>(c);
-    out.put<std::uint8_t>(std::uint8_t(bits));
-    for (int axis = 0; axis < 3; ++axis)
-        for (const auto& p : cage.positions)
-            out.put<std::uint16_t>(std::uint16_t(std::lround(std::clamp((p[axis] - origin[axis]) / extent, 0.0f, 1.0f) * levels(bits))));
-    for (int size : cage.faceSizes) out.putVarint(std::uint64_t(size));
-    int previous = 0;
-    for (int index : cage.faceIndices) {
-        out.putSigned(std::int64_t(index) - previous);
-        previous = index;
-    }
-    const auto& t = cage.tags;
-    for (int value : {int(t.boundary), t.faceVaryingBoundary, int(t.creaseMethod), int(t.triangles)})
-        out.put<std::uint8_t>(std::uint8_t(value));
-    out.putVarint(t.creases.size());
-    for (const auto& c : t.creases) {
-        out.putVarint(std::uint64_t(c.v0));
-        out.putVarint(std::uint64_t(c.v1));
-        out.put<float>(c.sharpness);
-    }
-    out.putVarint(t.corners.size());
-    for (const auto& c : t.corners) {
-        out.putVarint(std::uint64_t(c.vertex));
-        out.put<float>(c.sharpness);
-    }
-    out.putVarint(t.holes.size());
-    for (int face : t.holes) out.putVarint(std::uint64_t(face));
-}
-
 int readIndex(ByteReader& in, std::uint64_t limit, const char* what) {
     const std::uint64_t v = in.getVarint();
     if (v >= limit) throw Error(in.what() + ": " + what + " " + std::to_string(v) + " out of range");
     return int(v);
 }
 
-mesh::PolygonMesh readCage(ByteReader& in, const std::string& name) {
-    mesh::PolygonMesh cage;
-    cage.sourcePath = name;
-    const std::size_t vertices = in.getCount(6, "vertex"), faces = in.getCount(1, "face");
-    if (vertices > std::size_t(mesh::kMaxVertices) || faces > std::size_t(mesh::kMaxTriangles))
-        throw Error(in.what() + ": more vertices or faces than subdfit reads");
-    glm::vec3 origin;
-    for (int axis = 0; axis < 3; ++axis) origin[axis] = in.get<float>();
-    const float extent = in.get<float>();
-    const int bits = in.get<std::uint8_t>();
-    if (bits < 1 || bits > 16 || !(extent > 0.0f) || !std::isfinite(extent) || !std::isfinite(origin.x + origin.y + origin.z))
-        throw Error(in.what() + ": bad position quantisation");
-    cage.positions.resize(vertices);
-    for (int axis = 0; axis < 3; ++axis)
-        for (auto& p : cage.positions) p[axis] = origin[axis] + float(in.get<std::uint16_t>()) / levels(bits) * extent;
-    cage.faceSizes.resize(faces);
-    std::uint64_t corners = 0;
-    for (int& size : cage.faceSizes) {
-        size = readIndex(in, std::uint64_t(mesh::kMaxCageFaceSize) + 1, "face size");
-        corners += std::uint64_t(size);
+// The first ptex face of every face: a quad has one, an n-gon n (Far::PtexIndices).
+std::vector<int> firstPtexFaces(const mesh::PolygonMesh& cage) {
+    std::vector<int> first;
+    int ptex = 0;
+    for (int n : cage.faceSizes) {
+        first.push_back(ptex);
+        ptex += n == 4 ? 1 : n;
     }
-    if (corners > in.remaining()) throw Error(in.what() + ": truncated face indices");
-    cage.faceIndices.resize(corners);
-    std::int64_t previous = 0;
-    for (int& index : cage.faceIndices) {
-        previous += in.getSigned();
-        if (previous < 0 || previous >= std::int64_t(vertices)) throw Error(in.what() + ": face index out of range");
-        index = int(previous);
-    }
-    auto& t = cage.tags;
-    const int boundary = in.get<std::uint8_t>(), faceVarying = in.get<std::uint8_t>(), method = in.get<std::uint8_t>(),
-              triangles = in.get<std::uint8_t>();
-    if (boundary > 2 || faceVarying > 5 || method > 1 || triangles > 1) throw Error(in.what() + ": unknown subdivision rule");
-    t.boundary = mesh::BoundaryInterpolation(boundary);
-    t.faceVaryingBoundary = faceVarying;
-    t.creaseMethod = mesh::CreaseMethod(method);
-    t.triangles = mesh::TriangleSubdivision(triangles);
-    t.hasBoundary = t.hasFaceVaryingBoundary = t.hasCreaseMethod = t.hasTriangles = true;
-    t.creases.resize(in.getCount(6, "crease"));
-    for (auto& c : t.creases) {
-        c.v0 = readIndex(in, vertices, "crease vertex");
-        c.v1 = readIndex(in, vertices, "crease vertex");
-        c.sharpness = in.get<float>();
-    }
-    t.corners.resize(in.getCount(5, "corner"));
-    for (auto& c : t.corners) {
-        c.vertex = readIndex(in, vertices, "corner vertex");
-        c.sharpness = in.get<float>();
-    }
-    t.holes.resize(in.getCount(1, "hole"));
-    for (int& face : t.holes) face = readIndex(in, faces, "hole face");
-    mesh::validateMesh(cage);
-    return cage;
+    return first;
+}
+
+int ptexFaceCount(const mesh::PolygonMesh& cage) {
+    int count = 0;
+    for (int n : cage.faceSizes) count += n == 4 ? 1 : n;
+    return count;
+}
+
+// Node values of `maps` carried onto the decoded cage's layout: each decoded tile takes the
+// values of the tile it came from, turned by the face's rotation (a quad's (i, j) rotates; an
+// n-gon's per-corner tiles are renumbered).
+surface::SurfaceMaps carriedMaps(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps,
+                                 const mesh::PolygonMesh& decoded, const CageCorrespondence& to) {
+    const int T = maps.layout.resolution;
+    surface::SurfaceMaps out;
+    out.layout = surface::buildTexelLayout(decoded, T);
+    const auto fromPtex = firstPtexFaces(cage), toPtex = firstPtexFaces(decoded);
+    // A quad's corners in its own (i, j), counter-clockwise from corner 0.
+    constexpr int kCornerI[4] = {0, 1, 1, 0}, kCornerJ[4] = {0, 0, 1, 1};
+    auto carry = [&](const std::vector<float>& from, int channels) {
+        std::vector<float> values(size_t(out.layout.nodeCount) * size_t(channels), 0.0f);
+        auto copy = [&](int fromFace, int i, int j, int toFace, int ti, int tj) {
+            const size_t a = size_t(maps.layout.node(fromFace, i, j)), b = size_t(out.layout.node(toFace, ti, tj));
+            for (int c = 0; c < channels; ++c) values[b * size_t(channels) + size_t(c)] = from[a * size_t(channels) + size_t(c)];
+        };
+        for (int f = 0; f < cage.faceCount(); ++f) {
+            const int n = cage.faceSizes[size_t(f)], r = to.rotation[size_t(f)];
+            const int g = to.face[size_t(f)];
+            for (int j = 0; j <= T; ++j)
+                for (int i = 0; i <= T; ++i) {
+                    if (n != 4) {
+                        for (int k = 0; k < n; ++k) copy(fromPtex[size_t(f)] + (k + r) % n, i, j, toPtex[size_t(g)] + k, i, j);
+                        continue;
+                    }
+                    // Decoded corner k is the cage's corner k + r: bilinear in the corners' (i, j).
+                    const int w[4] = {(T - i) * (T - j), i * (T - j), i * j, (T - i) * j};
+                    int si = 0, sj = 0;
+                    for (int k = 0; k < 4; ++k) {
+                        si += w[k] * kCornerI[(k + r) % 4];
+                        sj += w[k] * kCornerJ[(k + r) % 4];
+                    }
+                    copy(fromPtex[size_t(f)], si / T, sj / T, toPtex[size_t(g)], i, j);
+                }
+        }
+        return values;
+    };
+    if (maps.hasDisplacement()) out.displacement = carry(maps.displacement, 1);
+    if (maps.hasNormal()) out.normal = carry(maps.normal, 2);
+    return out;
 }
 
 void writeMaps(const surface::SurfaceMaps& maps, const std::vector<float>& values, int channels, int bits, ByteWriter& out) {
@@ -179,46 +139,20 @@ void putSection(ByteWriter& file, const Tag& tag, const std::vector<unsigned cha
 
 }  // namespace
 
-mesh::PolygonMesh quantisedCage(const mesh::PolygonMesh& cage, int positionBits) {
-    ByteWriter out;
-    writeCage(cage, positionBits, out);
-    ByteReader in(out.bytes(), "quantised cage");
-    mesh::PolygonMesh result = readCage(in, cage.sourcePath);
-    result.tags = cage.tags;  // as given, passthrough tags and which were explicit included
-    return result;
-}
-
 SubdAsset shippableAsset(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps, int positionBits) {
+    const CodedCage coded = encodeCage(cage, positionBits);
     SubdAsset asset{.cage = cage, .maps = {}};
-    const int T = maps.layout.resolution;
-    if (T == 0 || (!maps.hasDisplacement() && !maps.hasNormal())) return asset;
-    surface::SurfaceMaps& out = asset.maps;
-    out.layout = surface::buildTexelLayout(quantisedCage(cage, positionBits), T);
-    if (out.layout.faceNodes == maps.layout.faceNodes) {
-        out = maps;
-        return asset;
-    }
-    auto carry = [&](const std::vector<float>& from, int channels) {
-        std::vector<float> to(size_t(out.layout.nodeCount) * size_t(channels), 0.0f);
-        for (int face = 0; face < out.layout.ptexFaceCount; ++face)
-            for (int j = 0; j <= T; ++j)
-                for (int i = 0; i <= T; ++i)
-                    for (int c = 0; c < channels; ++c)
-                        to[size_t(out.layout.node(face, i, j)) * size_t(channels) + size_t(c)] =
-                            from[size_t(maps.layout.node(face, i, j)) * size_t(channels) + size_t(c)];
-        return to;
-    };
-    if (maps.hasDisplacement()) out.displacement = carry(maps.displacement, 1);
-    if (maps.hasNormal()) out.normal = carry(maps.normal, 2);
+    if (maps.layout.resolution > 0 && (maps.hasDisplacement() || maps.hasNormal()))
+        asset.maps = carriedMaps(cage, maps, coded.decoded, coded.correspondence);
     return asset;
 }
 
 std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecision& precision) {
     SUBDFIT_CHECK(precision.positionBits >= 8 && precision.positionBits <= 16);
     std::vector<std::pair<Tag, std::vector<unsigned char>>> sections;
-    ByteWriter cage;
-    writeCage(asset.cage, precision.positionBits, cage);
-    sections.emplace_back(kCage, std::move(cage.bytes()));
+    CodedCage cage = encodeCage(asset.cage, precision.positionBits);
+    SUBDFIT_CHECK(asset.maps.layout.resolution == 0 || asset.maps.layout.ptexFaceCount == ptexFaceCount(cage.decoded));
+    sections.emplace_back(kCage, std::move(cage.bytes));
     const auto& maps = asset.maps;
     if (maps.layout.resolution > 0 && maps.hasDisplacement()) {
         ByteWriter section;
@@ -279,7 +213,7 @@ SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& na
         if (first != (tag == kCage) || std::find(seen.begin(), seen.end(), tag) != seen.end())
             throw Error(name + ": section " + tagName(tag) + " out of place");
         seen.push_back(tag);
-        if (tag == kCage) asset.cage = readCage(section, name);
+        if (tag == kCage) asset.cage = decodeCage(section);
         else if (tag == kDisplacement) asset.maps.displacement = readMaps(section, asset.cage, 1, asset.maps.layout);
         else if (tag == kNormal) asset.maps.normal = readMaps(section, asset.cage, 2, asset.maps.layout);
         else throw Error(name + ": unknown section " + tagName(tag));

@@ -1,0 +1,422 @@
+#include "export/cage_coding.h"
+
+#include <draco/compression/decode.h>
+#include <draco/compression/encode.h>
+#include <draco/mesh/mesh.h>
+
+#include <glm/common.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <optional>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "mesh/input_limits.h"
+#include "mesh/mesh_validation.h"
+#include "util/error.h"
+
+namespace subdfit::exporter {
+namespace {
+
+enum Coding : std::uint8_t { kPlain = 0, kDraco = 1 };
+constexpr int kDracoSpeed = 5;
+
+using Cell = std::array<std::int32_t, 3>;  // a quantised position
+
+std::uint64_t cellKey(const Cell& c) {
+    return std::uint64_t(std::uint32_t(c[0])) | std::uint64_t(std::uint32_t(c[1])) << 21 |
+           std::uint64_t(std::uint32_t(c[2])) << 42;
+}
+
+std::uint64_t edgeKey(int from, int to) { return std::uint64_t(std::uint32_t(from)) << 32 | std::uint32_t(to); }
+
+// Positions on a grid of 2^bits − 1 steps over the cage's bounding cube.
+struct Grid {
+    glm::vec3 origin{0.0f};
+    float extent = 1.0f;
+    int bits = 16;
+
+    float levels() const { return float((1u << bits) - 1u); }
+    Cell cell(const glm::vec3& p) const {
+        Cell c;
+        for (int a = 0; a < 3; ++a)
+            c[size_t(a)] = std::int32_t(std::lround(std::clamp((p[a] - origin[a]) / extent, 0.0f, 1.0f) * levels()));
+        return c;
+    }
+    glm::vec3 position(const Cell& c) const {
+        glm::vec3 p;
+        for (int a = 0; a < 3; ++a) p[a] = origin[a] + float(c[size_t(a)]) / levels() * extent;
+        return p;
+    }
+};
+
+Grid gridFor(const std::vector<glm::vec3>& positions, int bits) {
+    glm::vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
+    for (const auto& p : positions) {
+        low = glm::min(low, p);
+        high = glm::max(high, p);
+    }
+    const float extent = std::max({high.x - low.x, high.y - low.y, high.z - low.z});
+    return {.origin = positions.empty() ? glm::vec3(0.0f) : low, .extent = extent > 0.0f ? extent : 1.0f, .bits = bits};
+}
+
+void writeGrid(const Grid& grid, ByteWriter& out) {
+    for (float c : {grid.origin.x, grid.origin.y, grid.origin.z, grid.extent}) out.put<float>(c);
+    out.put<std::uint8_t>(std::uint8_t(grid.bits));
+}
+
+Grid readGrid(ByteReader& in) {
+    Grid grid;
+    for (int a = 0; a < 3; ++a) grid.origin[a] = in.get<float>();
+    grid.extent = in.get<float>();
+    grid.bits = in.get<std::uint8_t>();
+    if (grid.bits < 1 || grid.bits > 16 || !(grid.extent > 0.0f) || !std::isfinite(grid.extent) ||
+        !std::isfinite(grid.origin.x + grid.origin.y + grid.origin.z))
+        throw Error(in.what() + ": bad position quantisation");
+    return grid;
+}
+
+int readIndex(ByteReader& in, std::uint64_t limit, const char* what) {
+    const std::uint64_t v = in.getVarint();
+    if (v >= limit) throw Error(in.what() + ": " + what + " " + std::to_string(v) + " out of range");
+    return int(v);
+}
+
+// --- OpenSubdiv tags, in the decoded numbering --------------------------------------------
+
+void writeTags(const mesh::SubdivisionTags& t, const CageCorrespondence& to, ByteWriter& out) {
+    for (int value : {int(t.boundary), t.faceVaryingBoundary, int(t.creaseMethod), int(t.triangles)})
+        out.put<std::uint8_t>(std::uint8_t(value));
+    out.putVarint(t.creases.size());
+    for (const auto& c : t.creases) {
+        out.putVarint(std::uint64_t(to.vertex[size_t(c.v0)]));
+        out.putVarint(std::uint64_t(to.vertex[size_t(c.v1)]));
+        out.put<float>(c.sharpness);
+    }
+    out.putVarint(t.corners.size());
+    for (const auto& c : t.corners) {
+        out.putVarint(std::uint64_t(to.vertex[size_t(c.vertex)]));
+        out.put<float>(c.sharpness);
+    }
+    out.putVarint(t.holes.size());
+    for (int face : t.holes) out.putVarint(std::uint64_t(to.face[size_t(face)]));
+}
+
+void readTags(ByteReader& in, mesh::PolygonMesh& cage) {
+    const std::size_t vertices = cage.positions.size(), faces = cage.faceSizes.size();
+    auto& t = cage.tags;
+    const int boundary = in.get<std::uint8_t>(), faceVarying = in.get<std::uint8_t>(), method = in.get<std::uint8_t>(),
+              triangles = in.get<std::uint8_t>();
+    if (boundary > 2 || faceVarying > 5 || method > 1 || triangles > 1) throw Error(in.what() + ": unknown subdivision rule");
+    t.boundary = mesh::BoundaryInterpolation(boundary);
+    t.faceVaryingBoundary = faceVarying;
+    t.creaseMethod = mesh::CreaseMethod(method);
+    t.triangles = mesh::TriangleSubdivision(triangles);
+    t.hasBoundary = t.hasFaceVaryingBoundary = t.hasCreaseMethod = t.hasTriangles = true;
+    t.creases.resize(in.getCount(6, "crease"));
+    for (auto& c : t.creases) {
+        c.v0 = readIndex(in, vertices, "crease vertex");
+        c.v1 = readIndex(in, vertices, "crease vertex");
+        c.sharpness = in.get<float>();
+    }
+    t.corners.resize(in.getCount(5, "corner"));
+    for (auto& c : t.corners) {
+        c.vertex = readIndex(in, vertices, "corner vertex");
+        c.sharpness = in.get<float>();
+    }
+    t.holes.resize(in.getCount(1, "hole"));
+    for (int& face : t.holes) face = readIndex(in, faces, "hole face");
+}
+
+// --- plain: positions as they are, indices as deltas ---------------------------------------
+
+void writePlain(const mesh::PolygonMesh& cage, const Grid& grid, ByteWriter& out) {
+    std::vector<Cell> cells;
+    for (const auto& p : cage.positions) cells.push_back(grid.cell(p));
+    for (int axis = 0; axis < 3; ++axis)
+        for (const Cell& c : cells) out.put<std::uint16_t>(std::uint16_t(c[size_t(axis)]));
+    for (int size : cage.faceSizes) out.putVarint(std::uint64_t(size));
+    int previous = 0;
+    for (int index : cage.faceIndices) {
+        out.putSigned(std::int64_t(index) - previous);
+        previous = index;
+    }
+}
+
+void readPlain(ByteReader& in, const Grid& grid, std::size_t vertices, std::size_t faces, mesh::PolygonMesh& cage) {
+    std::vector<Cell> cells(vertices);
+    for (int axis = 0; axis < 3; ++axis)
+        for (Cell& c : cells) c[size_t(axis)] = in.get<std::uint16_t>();
+    for (const Cell& c : cells) cage.positions.push_back(grid.position(c));
+    cage.faceSizes.resize(faces);
+    std::uint64_t corners = 0;
+    for (int& size : cage.faceSizes) {
+        size = readIndex(in, std::uint64_t(mesh::kMaxCageFaceSize) + 1, "face size");
+        corners += std::uint64_t(size);
+    }
+    if (corners > in.remaining()) throw Error(in.what() + ": truncated face indices");
+    cage.faceIndices.resize(corners);
+    std::int64_t previous = 0;
+    for (int& index : cage.faceIndices) {
+        previous += in.getSigned();
+        if (previous < 0 || previous >= std::int64_t(vertices)) throw Error(in.what() + ": face index out of range");
+        index = int(previous);
+    }
+}
+
+// --- Draco: fan triangles, edgebreaker-coded ------------------------------------------------
+
+// Triangles over distinct quantised positions, as the decoder sees them.
+struct CellTriangles {
+    std::vector<Cell> cells;    // one per vertex, in Draco's point order (equal cells merged)
+    std::vector<int> corners;   // 3 per triangle
+};
+
+std::vector<unsigned char> encodeDracoTriangles(const std::vector<Cell>& cells, const std::vector<int>& corners) {
+    draco::Mesh mesh;
+    mesh.set_num_points(std::uint32_t(cells.size()));
+    mesh.SetNumFaces(corners.size() / 3);
+    for (size_t t = 0; t < corners.size() / 3; ++t)
+        mesh.SetFace(draco::FaceIndex(std::uint32_t(t)),
+                     {draco::PointIndex(std::uint32_t(corners[3 * t])), draco::PointIndex(std::uint32_t(corners[3 * t + 1])),
+                      draco::PointIndex(std::uint32_t(corners[3 * t + 2]))});
+    draco::GeometryAttribute attribute;
+    attribute.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_INT32, false, sizeof(Cell), 0);
+    const int id = mesh.AddAttribute(attribute, true, mesh.num_points());
+    for (std::uint32_t p = 0; p < mesh.num_points(); ++p)
+        mesh.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(p), cells[p].data());
+    draco::Encoder encoder;
+    encoder.SetSpeedOptions(kDracoSpeed, kDracoSpeed);
+    encoder.SetEncodingMethod(draco::MESH_EDGEBREAKER_ENCODING);
+    draco::EncoderBuffer buffer;
+    const draco::Status status = encoder.EncodeMeshToBuffer(mesh, &buffer);
+    if (!status.ok()) throw Error("Draco could not encode the cage: " + status.error_msg_string());
+    return {buffer.data(), buffer.data() + buffer.size()};
+}
+
+CellTriangles decodeDracoTriangles(std::span<const unsigned char> bytes, const Grid& grid, const std::string& what) {
+    draco::DecoderBuffer buffer;
+    buffer.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    draco::Decoder decoder;
+    auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+    if (!decoded.ok()) throw Error(what + ": corrupt Draco cage: " + decoded.status().error_msg_string());
+    const draco::Mesh& mesh = *decoded.value();
+    if (std::int64_t(mesh.num_points()) > mesh::kMaxVertices || std::int64_t(mesh.num_faces()) > mesh::kMaxTriangles)
+        throw Error(what + ": more vertices or faces than subdfit reads");
+    const draco::PointAttribute* positions = mesh.GetNamedAttribute(draco::GeometryAttribute::POSITION);
+    if (!positions || positions->num_components() != 3) throw Error(what + ": the Draco cage has no positions");
+    CellTriangles out;
+    std::vector<int> vertexOfPoint(mesh.num_points());
+    std::unordered_map<std::uint64_t, int> vertexOfCell;
+    const auto top = std::int32_t(grid.levels());
+    for (draco::PointIndex p(0); p < mesh.num_points(); ++p) {
+        Cell c;
+        if (!positions->ConvertValue<std::int32_t>(positions->mapped_index(p), 3, c.data()))
+            throw Error(what + ": unreadable Draco positions");
+        if (std::any_of(c.begin(), c.end(), [&](std::int32_t v) { return v < 0 || v > top; }))
+            throw Error(what + ": a Draco position off the quantisation grid");
+        // Edgebreaker splits a vertex it cannot walk around into several points: one again here.
+        const auto [at, added] = vertexOfCell.emplace(cellKey(c), int(out.cells.size()));
+        if (added) out.cells.push_back(c);
+        vertexOfPoint[p.value()] = at->second;
+    }
+    for (draco::FaceIndex f(0); f < mesh.num_faces(); ++f)
+        for (int k = 0; k < 3; ++k) out.corners.push_back(vertexOfPoint[mesh.face(f)[k].value()]);
+    return out;
+}
+
+// Polygons from triangles joined across the edges `interior` marks (bit k: the edge from corner
+// k to k + 1). Polygons come in the order of their first triangle and start at the first
+// corner of that triangle whose edge is on the polygon's boundary.
+void polygonsFromTriangles(const std::vector<int>& corners, std::span<const unsigned char> interior,
+                           mesh::PolygonMesh& cage, const std::string& what) {
+    const size_t triangles = corners.size() / 3;
+    auto isInterior = [&](size_t t, int k) { return (interior[t] >> k) & 1; };
+    auto from = [&](size_t t, int k) { return corners[3 * t + size_t(k)]; };
+    auto to = [&](size_t t, int k) { return corners[3 * t + size_t((k + 1) % 3)]; };
+
+    std::vector<int> root(triangles);
+    std::iota(root.begin(), root.end(), 0);
+    auto find = [&](int t) {
+        while (root[size_t(t)] != t) t = root[size_t(t)] = root[size_t(root[size_t(t)])];
+        return t;
+    };
+    std::unordered_map<std::uint64_t, int> interiorEdges;
+    for (size_t t = 0; t < triangles; ++t) {
+        if (interior[t] >= 7) throw Error(what + ": bad polygon mark");
+        for (int k = 0; k < 3; ++k)
+            if (isInterior(t, k) && !interiorEdges.emplace(edgeKey(from(t, k), to(t, k)), int(t)).second)
+                throw Error(what + ": an interior edge twice");
+    }
+    for (const auto& [key, t] : interiorEdges) {
+        const auto twin = interiorEdges.find(edgeKey(int(key & 0xffffffffu), int(key >> 32)));
+        if (twin == interiorEdges.end()) throw Error(what + ": an interior edge without its twin");
+        const int a = find(t), b = find(twin->second);
+        root[size_t(std::max(a, b))] = std::min(a, b);  // a polygon's root is its first triangle
+    }
+    // Each polygon's boundary as vertex -> next vertex, then walked from its start.
+    std::vector<std::vector<size_t>> members(triangles);
+    for (size_t t = 0; t < triangles; ++t) members[size_t(find(int(t)))].push_back(t);
+    std::unordered_map<int, int> next;
+    for (size_t first = 0; first < triangles; ++first) {
+        if (members[first].empty()) continue;
+        next.clear();
+        int start = -1;
+        size_t edges = 0;
+        for (size_t t : members[first])
+            for (int k = 0; k < 3; ++k) {
+                if (isInterior(t, k)) continue;
+                if (!next.emplace(from(t, k), to(t, k)).second) throw Error(what + ": a polygon visits a vertex twice");
+                if (start < 0) start = from(t, k);
+                ++edges;
+            }
+        if (edges > size_t(mesh::kMaxCageFaceSize)) throw Error(what + ": a polygon too large");
+        int v = start;
+        for (size_t k = 0; k < edges; ++k) {
+            cage.faceIndices.push_back(v);
+            const auto it = next.find(v);
+            if (it == next.end()) throw Error(what + ": a polygon's boundary is not a loop");
+            v = it->second;
+        }
+        if (v != start) throw Error(what + ": a polygon's boundary is not one loop");
+        cage.faceSizes.push_back(int(edges));
+    }
+}
+
+// The Draco body and the correspondence it gives, or nothing when Draco cannot carry this cage
+// as it is (repeated or unused vertices, non-manifold pieces it would cut, ...).
+std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBody(const mesh::PolygonMesh& cage,
+                                                                                  const Grid& grid) {
+    std::vector<Cell> cells;
+    std::unordered_map<std::uint64_t, int> vertexOfCell;
+    for (const auto& p : cage.positions) {
+        cells.push_back(grid.cell(p));
+        if (!vertexOfCell.emplace(cellKey(cells.back()), int(cells.size()) - 1).second) return std::nullopt;
+    }
+    // Fan triangles (v0, v_k, v_k+1); the diagonals from v0 are the polygon's interior edges.
+    std::vector<int> corners;
+    std::unordered_set<std::uint64_t> diagonals;
+    std::unordered_map<std::uint64_t, std::pair<int, int>> faceOfEdge;  // directed edge -> (face, corner)
+    for (int f = 0, first = 0; f < cage.faceCount(); first += cage.faceSizes[size_t(f)], ++f) {
+        const int n = cage.faceSizes[size_t(f)];
+        const int* v = &cage.faceIndices[size_t(first)];
+        for (int k = 0; k < n; ++k)
+            if (!faceOfEdge.emplace(edgeKey(v[k], v[(k + 1) % n]), std::pair{f, k}).second) return std::nullopt;
+        for (int k = 1; k + 1 < n; ++k) corners.insert(corners.end(), {v[0], v[k], v[k + 1]});
+        for (int k = 2; k + 1 < n; ++k) diagonals.insert({edgeKey(v[0], v[k]), edgeKey(v[k], v[0])});
+    }
+
+    std::vector<unsigned char> draco;
+    CellTriangles decoded;
+    try {
+        draco = encodeDracoTriangles(cells, corners);
+        decoded = decodeDracoTriangles(draco, grid, "Draco cage");
+    } catch (const Error&) {
+        return std::nullopt;
+    }
+    if (decoded.cells.size() != cells.size()) return std::nullopt;
+    CageCorrespondence to{.vertex = std::vector<int>(cells.size(), -1), .face = std::vector<int>(size_t(cage.faceCount()), -1),
+                          .rotation = std::vector<int>(size_t(cage.faceCount()), 0)};
+    std::vector<int> original(cells.size());
+    for (size_t d = 0; d < decoded.cells.size(); ++d) {
+        const auto it = vertexOfCell.find(cellKey(decoded.cells[d]));
+        if (it == vertexOfCell.end()) return std::nullopt;
+        original[d] = it->second;
+        to.vertex[size_t(it->second)] = int(d);
+    }
+    std::vector<unsigned char> interior(decoded.corners.size() / 3, 0);
+    for (size_t t = 0; t < interior.size(); ++t)
+        for (int k = 0; k < 3; ++k)
+            if (diagonals.count(edgeKey(original[size_t(decoded.corners[3 * t + size_t(k)])],
+                                        original[size_t(decoded.corners[3 * t + size_t((k + 1) % 3)])])))
+                interior[t] |= std::uint8_t(1u << k);
+    mesh::PolygonMesh polygons;
+    try {
+        polygonsFromTriangles(decoded.corners, interior, polygons, "Draco cage");
+    } catch (const Error&) {
+        return std::nullopt;
+    }
+    if (polygons.faceCount() != cage.faceCount()) return std::nullopt;
+    for (int f = 0, first = 0; f < polygons.faceCount(); first += polygons.faceSizes[size_t(f)], ++f) {
+        const int n = polygons.faceSizes[size_t(f)];
+        const int* v = &polygons.faceIndices[size_t(first)];
+        const auto it = faceOfEdge.find(edgeKey(original[size_t(v[0])], original[size_t(v[1 % n])]));
+        if (it == faceOfEdge.end()) return std::nullopt;
+        const auto [face, corner] = it->second;
+        if (cage.faceSizes[size_t(face)] != n || to.face[size_t(face)] >= 0) return std::nullopt;
+        to.face[size_t(face)] = f;
+        to.rotation[size_t(face)] = corner;
+    }
+    ByteWriter body;
+    body.putVarint(draco.size());
+    body.putBytes(draco);
+    body.putBytes(interior);
+    return std::pair{std::move(body.bytes()), std::move(to)};
+}
+
+void readDraco(ByteReader& in, const Grid& grid, std::size_t vertices, std::size_t faces, mesh::PolygonMesh& cage) {
+    const auto draco = in.take(in.getCount(1, "Draco byte"));
+    CellTriangles triangles = decodeDracoTriangles(draco, grid, in.what());
+    if (triangles.cells.size() != vertices) throw Error(in.what() + ": the Draco cage has the wrong vertex count");
+    for (const Cell& c : triangles.cells) cage.positions.push_back(grid.position(c));
+    polygonsFromTriangles(triangles.corners, in.take(triangles.corners.size() / 3), cage, in.what());
+    if (cage.faceSizes.size() != faces) throw Error(in.what() + ": the Draco cage has the wrong face count");
+}
+
+CageCorrespondence identity(const mesh::PolygonMesh& cage) {
+    CageCorrespondence same{.vertex = std::vector<int>(size_t(cage.vertexCount())),
+                            .face = std::vector<int>(size_t(cage.faceCount())),
+                            .rotation = std::vector<int>(size_t(cage.faceCount()), 0)};
+    std::iota(same.vertex.begin(), same.vertex.end(), 0);
+    std::iota(same.face.begin(), same.face.end(), 0);
+    return same;
+}
+
+}  // namespace
+
+CodedCage encodeCage(const mesh::PolygonMesh& cage, int positionBits) {
+    SUBDFIT_CHECK(positionBits >= 8 && positionBits <= 16);
+    const Grid grid = gridFor(cage.positions, positionBits);
+    auto draco = dracoBody(cage, grid);
+    ByteWriter plain;
+    writePlain(cage, grid, plain);
+    // A cage of a few faces is smaller plain (Draco's header alone is ~40 bytes); zstd is left
+    // out of the comparison, it shrinks both.
+    if (draco && draco->first.size() >= plain.bytes().size()) draco.reset();
+    CodedCage coded;
+    coded.correspondence = draco ? std::move(draco->second) : identity(cage);
+    ByteWriter out;
+    out.put<std::uint8_t>(draco ? kDraco : kPlain);
+    out.putVarint(std::uint64_t(cage.vertexCount()));
+    out.putVarint(std::uint64_t(cage.faceCount()));
+    writeGrid(grid, out);
+    out.putBytes(draco ? draco->first : plain.bytes());
+    writeTags(cage.tags, coded.correspondence, out);
+    coded.bytes = std::move(out.bytes());
+    ByteReader in(coded.bytes, "encoded cage");
+    coded.decoded = decodeCage(in);
+    coded.decoded.sourcePath = cage.sourcePath;
+    coded.decoded.tags.passthrough = cage.tags.passthrough;
+    return coded;
+}
+
+mesh::PolygonMesh decodeCage(ByteReader& in) {
+    const int coding = in.get<std::uint8_t>();
+    if (coding != kPlain && coding != kDraco) throw Error(in.what() + ": unknown cage coding " + std::to_string(coding));
+    const std::size_t vertices = in.getCount(coding == kPlain ? 6 : 0, "vertex"), faces = in.getCount(1, "face");
+    if (vertices > std::size_t(mesh::kMaxVertices) || faces > std::size_t(mesh::kMaxTriangles))
+        throw Error(in.what() + ": more vertices or faces than subdfit reads");
+    const Grid grid = readGrid(in);
+    mesh::PolygonMesh cage;
+    if (coding == kPlain) readPlain(in, grid, vertices, faces, cage);
+    else readDraco(in, grid, vertices, faces, cage);
+    readTags(in, cage);
+    mesh::validateMesh(cage);
+    return cage;
+}
+
+}  // namespace subdfit::exporter

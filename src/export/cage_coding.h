@@ -1,0 +1,40 @@
+#pragma once
+// The control cage inside a .subd file (its CAGE section, export/subd_format.h): positions
+// quantised over the cage's bounding cube, and the connectivity either
+//  - through Draco (coding 1): the cage fan-triangulated, edgebreaker-coded with the quantised
+//    positions as an integer attribute (parallelogram prediction), plus one byte per triangle
+//    saying which of its edges lie inside a polygon; or
+//  - plain (coding 0): the positions as they are and the face indices as deltas,
+// whichever the encoder can use: Draco is taken only when the decoded cage is the same cage
+// (a manifold one with distinct quantised positions); it is 2-3x smaller on a decimated
+// cage, whose vertex order the plain deltas cannot exploit. Draco renumbers vertices and faces
+// and may start a polygon at another corner, so the encoder reports where everything went.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "export/byte_stream.h"
+#include "mesh/polygon_mesh.h"
+
+namespace subdfit::exporter {
+
+// Where each vertex and face of the encoded cage is in the decoded one: decoded face face[f]'s
+// corner k is decoded vertex vertex[cage corner (k + rotation[f]) mod n of face f].
+struct CageCorrespondence {
+    std::vector<int> vertex, face, rotation;
+};
+
+struct CodedCage {
+    std::vector<unsigned char> bytes;  // the CAGE section's raw contents
+    mesh::PolygonMesh decoded;         // what decodeCage will return
+    CageCorrespondence correspondence;
+};
+
+// `positionBits` in 8..16.
+CodedCage encodeCage(const mesh::PolygonMesh& cage, int positionBits);
+
+// Reads a CAGE section. Throws subdfit::Error (in.what(): problem) for anything that is not a
+// sound cage.
+mesh::PolygonMesh decodeCage(ByteReader& in);
+
+}  // namespace subdfit::exporter
