@@ -34,6 +34,14 @@ std::uint64_t cellKey(const Cell& c) {
 
 std::uint64_t edgeKey(int from, int to) { return std::uint64_t(std::uint32_t(from)) << 32 | std::uint32_t(to); }
 
+// Three consecutive corners of a face: which face (and where in it) they are, even where two
+// faces share a directed edge (a flipped neighbour, a non-manifold edge).
+std::uint64_t cornerKey(int a, int b, int c) {
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (int v : {a, b, c}) h = (h ^ std::uint64_t(std::uint32_t(v))) * 0xff51afd7ed558ccdull;
+    return h;
+}
+
 // Positions on a grid of 2^bits − 1 steps over the cage's bounding cube.
 struct Grid {
     glm::vec3 origin{0.0f};
@@ -298,14 +306,16 @@ std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBo
         if (!vertexOfCell.emplace(cellKey(cells.back()), int(cells.size()) - 1).second) return std::nullopt;
     }
     // Fan triangles (v0, v_k, v_k+1); the diagonals from v0 are the polygon's interior edges.
-    std::vector<int> corners;
+    std::vector<int> corners, firstCorner;
     std::unordered_set<std::uint64_t> diagonals;
-    std::unordered_map<std::uint64_t, std::pair<int, int>> faceOfEdge;  // directed edge -> (face, corner)
+    std::unordered_map<std::uint64_t, std::pair<int, int>> faceOfCorners;  // cornerKey -> (face, corner)
     for (int f = 0, first = 0; f < cage.faceCount(); first += cage.faceSizes[size_t(f)], ++f) {
         const int n = cage.faceSizes[size_t(f)];
         const int* v = &cage.faceIndices[size_t(first)];
+        firstCorner.push_back(first);
         for (int k = 0; k < n; ++k)
-            if (!faceOfEdge.emplace(edgeKey(v[k], v[(k + 1) % n]), std::pair{f, k}).second) return std::nullopt;
+            if (!faceOfCorners.emplace(cornerKey(v[k], v[(k + 1) % n], v[(k + 2) % n]), std::pair{f, k}).second)
+                return std::nullopt;
         for (int k = 1; k + 1 < n; ++k) corners.insert(corners.end(), {v[0], v[k], v[k + 1]});
         for (int k = 2; k + 1 < n; ++k) diagonals.insert({edgeKey(v[0], v[k]), edgeKey(v[k], v[0])});
     }
@@ -344,10 +354,14 @@ std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBo
     for (int f = 0, first = 0; f < polygons.faceCount(); first += polygons.faceSizes[size_t(f)], ++f) {
         const int n = polygons.faceSizes[size_t(f)];
         const int* v = &polygons.faceIndices[size_t(first)];
-        const auto it = faceOfEdge.find(edgeKey(original[size_t(v[0])], original[size_t(v[1 % n])]));
-        if (it == faceOfEdge.end()) return std::nullopt;
+        const auto it =
+            faceOfCorners.find(cornerKey(original[size_t(v[0])], original[size_t(v[1 % n])], original[size_t(v[2 % n])]));
+        if (it == faceOfCorners.end()) return std::nullopt;
         const auto [face, corner] = it->second;
         if (cage.faceSizes[size_t(face)] != n || to.face[size_t(face)] >= 0) return std::nullopt;
+        const int* c = &cage.faceIndices[size_t(firstCorner[size_t(face)])];
+        for (int k = 0; k < n; ++k)
+            if (original[size_t(v[k])] != c[(k + corner) % n]) return std::nullopt;
         to.face[size_t(face)] = f;
         to.rotation[size_t(face)] = corner;
     }

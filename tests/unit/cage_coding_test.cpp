@@ -1,0 +1,71 @@
+// The cage inside a .subd: Draco where it gives back the same cage and is smaller, plain
+// otherwise, and always the same faces (renumbered, maybe rotated) as the correspondence says.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "export/cage_coding.h"
+#include "mesh/mesh_loader.h"
+#include "test_paths.h"
+
+namespace subdfit::exporter {
+namespace {
+
+constexpr int kBits = 14;
+
+bool usesDraco(const CodedCage& coded) { return coded.bytes.at(0) == 1; }
+
+// Every face of `cage` is the decoded face the correspondence names, corner for corner.
+void expectSameFaces(const mesh::PolygonMesh& cage, const CodedCage& coded) {
+    const auto& to = coded.correspondence;
+    const auto& decoded = coded.decoded;
+    ASSERT_EQ(decoded.faceCount(), cage.faceCount());
+    ASSERT_EQ(decoded.vertexCount(), cage.vertexCount());
+    std::vector<int> first(1, 0);
+    for (int n : decoded.faceSizes) first.push_back(first.back() + n);
+    for (int f = 0, at = 0; f < cage.faceCount(); at += cage.faceSizes[size_t(f)], ++f) {
+        const int n = cage.faceSizes[size_t(f)], g = to.face[size_t(f)];
+        ASSERT_EQ(decoded.faceSizes[size_t(g)], n);
+        for (int k = 0; k < n; ++k)
+            ASSERT_EQ(decoded.faceIndices[size_t(first[size_t(g)] + k)],
+                      to.vertex[size_t(cage.faceIndices[size_t(at + (k + to.rotation[size_t(f)]) % n)])]);
+    }
+}
+
+mesh::PolygonMesh shape(const char* name) { return mesh::loadMesh(test::assetPath(std::string("osd-shapes/") + name)); }
+
+TEST(CageCoding, AnArtistCageGoesThroughDraco) {
+    const auto cage = shape("catmark_pawn.obj");
+    const auto coded = encodeCage(cage, kBits);
+    EXPECT_TRUE(usesDraco(coded));
+    expectSameFaces(cage, coded);
+}
+
+// A decimator can leave a face wound against its neighbours: two faces then share a directed
+// edge, which must not send the cage down the plain path.
+TEST(CageCoding, AFaceWoundTheOtherWayStillGoesThroughDraco) {
+    auto cage = shape("catmark_bishop.obj");
+    std::reverse(cage.faceIndices.begin(), cage.faceIndices.begin() + cage.faceSizes[0]);
+    const auto coded = encodeCage(cage, kBits);
+    EXPECT_TRUE(usesDraco(coded));
+    expectSameFaces(cage, coded);
+}
+
+TEST(CageCoding, ACageOfAFewFacesStaysPlain) {
+    const auto cage = shape("catmark_cube_creases1.obj");
+    const auto coded = encodeCage(cage, kBits);
+    EXPECT_FALSE(usesDraco(coded));
+    expectSameFaces(cage, coded);
+    EXPECT_EQ(coded.decoded.faceIndices, cage.faceIndices);
+}
+
+// Edgebreaker would cut a non-manifold edge apart; where the cut cannot be undone the plain
+// coding keeps the cage as it is.
+TEST(CageCoding, ANonManifoldCageKeepsItsFaces) {
+    const auto cage = shape("catmark_nonman_edges.obj");
+    const auto coded = encodeCage(cage, kBits);
+    expectSameFaces(cage, coded);
+}
+
+}  // namespace
+}  // namespace subdfit::exporter
