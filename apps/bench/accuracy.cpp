@@ -2,14 +2,15 @@
 // render resolution, views and perturbation samples per step, tessellation level, map
 // resolution) one at a time around a base setting, on two assets: a lumpy sphere (cage only)
 // and a bumpy sphere (cage + displacement map), both over the ~200-quad sphere cage. Each run
-// reports held-out PSNR and the symmetric Chamfer distance of what it ships (fitted.glb, read
-// back) to the reference, against its wall time; plots mark the Pareto front.
+// reports held-out PSNR and the symmetric Chamfer distance of what it ships (asset.subd,
+// decoded) to the reference, against its wall time; plots mark the Pareto front.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
 
+#include "export/subd_decode.h"
 #include "bench_commands.h"
 #include "bench_common.h"
 #include "fit/fit_job.h"
@@ -84,7 +85,8 @@ int runAccuracy(const AccuracyOptions& o) {
                 knob.apply(fit, value);
                 fit.out = o.out / "runs" / (asset.name + "_" + knob.name + "_" + std::to_string(value));
                 const auto report = fit::runFit(fit);
-                const auto shipped = mesh::triangulated(mesh::loadMesh(fit.out / "fitted.glb"));
+                const auto decoded = exporter::decodeToGlb(fit.out / "asset.subd", fit.out / "decoded.glb", fit.tessLevel);
+                const auto shipped = mesh::triangulated(mesh::loadMesh(decoded.path));
                 const double chamfer = geometry::surfaceDistance(shipped, asset.reference, 50000).chamferL2Squared;
                 const Result r{asset.name, knob.name, value, report.fitSeconds,
                                report.holdoutAfter.psnr, chamfer};

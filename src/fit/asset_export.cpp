@@ -1,5 +1,7 @@
 #include "fit/asset_export.h"
 
+#include <algorithm>
+
 #include "export/map_atlas.h"
 #include "export/subd_format.h"
 #include "export/surface_glb.h"
@@ -12,8 +14,11 @@ nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene:
     for (float& d : maps.displacement) d /= frame.scale;  // heights back to world units
     std::vector<exporter::WrittenFile> written;
     if (fitter.maps()) written = exporter::writeMapAtlases(o.out, maps, {.compact = o.compactMaps});
-    written.push_back(exporter::writeSurfaceGlb(o.out / "fitted.glb", fittedWorld, maps, fitter.renderer().tessLevel(), o.draco));
-    written.push_back(exporter::writeSubd(o.out / "asset.subd", exporter::shippableAsset(fittedWorld, maps)));
+    if (o.preview)
+        written.push_back(exporter::writeSurfaceGlb(o.out / "fitted.glb", fittedWorld, maps, fitter.renderer().tessLevel(), o.draco));
+    const exporter::SubdPrecision precision{.displacementBits = o.mapBits, .normalBits = std::min(o.mapBits, 10)};
+    written.push_back(exporter::writeSubd(o.out / "asset.subd", exporter::shippableAsset(fittedWorld, maps, precision.positionBits),
+                                          precision));
     nlohmann::json files = nlohmann::json::object();
     for (const auto& file : written) files[file.path.filename().string()] = file.bytes;
     return files;

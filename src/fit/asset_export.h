@@ -1,8 +1,9 @@
 #pragma once
-// What a fit ships besides cage.obj: displacement.exr, normal.png and maps.json when the scene
-// has maps, and fitted.glb -- the cage's limit surface tessellated as rendered, displaced, with
-// the normal map, in world units (--draco: Draco-compressed) -- and asset.subd, the cage and
-// maps in one compact file (export/subd_format.h) that `subdfit decode` turns into triangles.
+// What a fit ships besides cage.obj: asset.subd, the cage and maps in one compact file
+// (export/subd_format.h, the maps at --map-bits) that `subdfit decode` turns into triangles;
+// displacement.exr, normal.png and maps.json when the scene has maps (for DCC tools); and with
+// --preview fitted.glb -- the cage's limit surface tessellated as rendered, displaced, with the
+// normal map, in world units (--draco: Draco-compressed).
 #include <nlohmann/json.hpp>
 
 #include "fit/cage_fitter.h"

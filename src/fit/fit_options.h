@@ -46,6 +46,8 @@ struct FitOptions {
     maps::MapEffects maps;        // none by default
     int mapResolution = 8;        // cells per ptex-face edge of each map tile
     float mapsStart = 0.4f;       // fraction of the steps fitted by the cage alone before maps join
+    int mapBits = 12;             // bits per map value in asset.subd (over each channel's range)
+    bool preview = false;         // also write fitted.glb: the displaced limit surface, tessLevel per face edge
     bool draco = false;           // fitted.glb with KHR_draco_mesh_compression
     bool compactMaps = false;     // ship maps as HALF EXR and 8-bit PNG (export/map_atlas.h)
     bool resume = false;          // continue from out/checkpoint.bin when it exists

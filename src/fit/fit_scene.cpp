@@ -58,6 +58,11 @@ FitScene::FitScene(const FitOptions& o, gl::ProgramCache& programs, mesh::Polygo
               o.resolution),
       monitor(programs, referenceRenderer, render::orbitCameras(kMonitorViews, o.seed ^ 0x85ebca6bu), o.resolution) {}
 
+void FitScene::setCage(mesh::PolygonMesh cageWorldIn) {
+    cageWorld = std::move(cageWorldIn);
+    cage = normalized(cageWorld, frame);
+}
+
 CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage) {
     CageFitSettings settings;
     // A dense cage needs steps in proportion to its edges, or neighbours jitter against each

@@ -19,6 +19,10 @@ public:
     FitScene(const FitOptions& options, gl::ProgramCache& programs, mesh::PolygonMesh cageWorld,
              const mesh::PolygonMesh& referenceWorld);
 
+    // Another cage (world units) on the same reference and targets: `simplify` renders its
+    // targets once and then tries several cages.
+    void setCage(mesh::PolygonMesh cageWorld);
+
     scene::SceneFrame frame;      // around the reference
     mesh::PolygonMesh cageWorld;  // as given, for writing results back with its tags and order
     mesh::PolygonMesh cage;       // normalised

@@ -59,6 +59,37 @@ glm::vec2 heightGradient(const surface::TexelLayout& layout, const std::vector<f
             (at(s.i, j1) - at(s.i, j0)) * float(t) / float(j1 - j0)};
 }
 
+glm::vec3 triangleNormal(const mesh::PolygonMesh& triangles, int t) {
+    auto p = [&](int k) { return triangles.positions[size_t(triangles.faceIndices[size_t(3 * t + k)])]; };
+    return glm::cross(p(1) - p(0), p(2) - p(0));
+}
+
+// The nearest hit along ±direction within maxDistance on a triangle that faces the way
+// `facing` says (+1: along direction, as the limit surface there). A limit surface inside a
+// thin part (an ear, a fin) lies between two sheets of the reference; the nearer one may be
+// the far side, whose height would fold the displaced surface through itself.
+std::optional<geometry::RayHit> castFacing(const geometry::SurfaceQueries& surface, const glm::vec3& origin,
+                                           const glm::vec3& direction, float maxDistance, float facing) {
+    constexpr int kSheets = 4;  // sheets passed through per direction before giving up
+    std::optional<geometry::RayHit> best;
+    for (const float way : {1.0f, -1.0f}) {
+        float travelled = 0.0f;
+        for (int sheet = 0; sheet < kSheets; ++sheet) {
+            const float reach = (best ? std::abs(best->distance) : maxDistance) - travelled;
+            if (reach <= 0.0f) break;
+            auto hit = surface.cast(origin + way * travelled * direction, way * direction, reach);
+            if (!hit) break;
+            travelled += hit->distance;
+            if (facing * glm::dot(triangleNormal(surface.mesh(), hit->triangle), direction) > 0.0f) {
+                hit->distance = way * travelled;
+                best = hit;
+                break;
+            }
+            travelled += 1e-6f * maxDistance;  // past the sheet
+        }
+    }
+    return best;
+}
 
 }  // namespace
 
@@ -83,6 +114,21 @@ surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
         samples[n] = sampleAt(limit, sites[n], options.resolution, cage.positions);
         normals[n] = unitNormal(samples[n].dPdu, samples[n].dPdv, glm::vec3(0.0f, 0.0f, 1.0f));
         hits[n] = surface.castBothWays(samples[n].position, normals[n], maxDistance);
+    }
+    // Which way the reference faces the cage's normals (it may wind the other way): as most
+    // nearest hits say. Hits that face against it are passed through to the sheet behind.
+    double agreement = 0.0;
+    for (size_t n = 0; n < nodes; ++n) {
+        if (!hits[n]) continue;
+        const glm::vec3 faced = triangleNormal(reference, hits[n]->triangle);
+        const float area = glm::length(faced);
+        if (area > 0.0f) agreement += glm::dot(faced / area, normals[n]);
+    }
+    const float facing = agreement >= 0.0 ? 1.0f : -1.0f;
+    for (size_t n = 0; n < nodes; ++n) {
+        if (!hits[n]) continue;
+        if (facing * glm::dot(triangleNormal(reference, hits[n]->triangle), normals[n]) <= 0.0f)
+            hits[n] = castFacing(surface, samples[n].position, normals[n], maxDistance, facing);
         if (hits[n]) heights[n] = hits[n]->distance;
     }
     if (options.effects.displacement) maps.displacement = heights;

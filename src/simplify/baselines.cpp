@@ -46,7 +46,7 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
         mesh::PolygonMesh decimated = decimate(welded, triangles);
         const auto normals = mesh::vertexNormals(decimated);  // normalised or not, the same unit normals
         const auto written = exporter::writeMeshGlb(path, scene.frame.toWorld(decimated.positions), normals,
-                                                    indicesOf(decimated), settings.draco);
+                                                    indicesOf(decimated), /*draco=*/true);
         return std::make_pair(std::move(decimated), written.bytes);
     };
     // Bytes grow with the triangle count: bisect for the most triangles within the budget, but
@@ -91,9 +91,13 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     Quality q;
     shipCage(dir / "cage.glb", cageWorld, settings.draco);
     exporter::writeMapAtlases(dir, bakedWorld, {.compact = settings.compactMaps});
-    q.files = {{"asset.subd", exporter::writeSubd(dir / "asset.subd", exporter::shippableAsset(cageWorld, bakedWorld)).bytes}};
+    const exporter::SubdPrecision precision{.displacementBits = settings.mapBits, .normalBits = std::min(settings.mapBits, 10)};
+    q.files = {{"asset.subd", exporter::writeSubd(dir / "asset.subd",
+                                                  exporter::shippableAsset(cageWorld, bakedWorld, precision.positionBits),
+                                                  precision)
+                                  .bytes}};
     q.bytes = totalBytes(q.files);
-    q.details = {{"faces", cage.faceCount()}, {"map_resolution", mapResolution}};
+    q.details = {{"faces", cage.faceCount()}, {"map_resolution", mapResolution}, {"map_bits", settings.mapBits}};
 
     // Rendered by the fitter's own renderer with the baked values in its map groups.
     fit::CageFitSettings rendering;

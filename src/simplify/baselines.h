@@ -1,8 +1,9 @@
 #pragma once
 // The two ways a technical artist would simplify an asset without subdfit, at the byte budget
 // subdfit's result ships in:
-//  (a) plain decimation: the reference decimated to as many triangles as fit the budget,
-//      shipped as a GLB with smooth normals;
+//  (a) decimation + Draco: the reference decimated (meshoptimizer) to as many triangles as fit
+//      the budget, shipped as a Draco-compressed GLB with smooth normals (14-bit positions,
+//      10-bit normals), which is what a web or game pipeline would run;
 //  (b) the bake route: the initial cage (same faces as subdfit's) with maps ray-cast from the
 //      reference onto its limit surface, no optimisation, shipped in subdfit's own format.
 #include <cstdint>
@@ -20,13 +21,14 @@ namespace subdfit::simplify {
 
 struct BaselineSettings {
     std::filesystem::path dir;   // where the baselines' shipped files go
-    bool draco = false;          // compress meshes as subdfit's are
+    bool draco = false;          // the convenience cage.glb with Draco (the decimation always has it)
     bool compactMaps = true;     // and maps
     int surfaceSamples = 100000; // per side, for the surface distance
     int segments = 8;            // tessellation of limit surfaces for the surface distance
+    int mapBits = 12;            // per map value in the bake's asset.subd, as subdfit's
 };
 
-// Writes dir/decimated.glb.
+// Writes dir/decimated.glb (Draco).
 Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
                            const BaselineSettings& settings);
 

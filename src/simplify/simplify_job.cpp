@@ -9,8 +9,10 @@
 #include "io/staged_folder.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
+#include "export/subd_format.h"
 #include "simplify/bake.h"
 #include "simplify/baselines.h"
+#include "simplify/budget_search.h"
 #include "simplify/comparison_image.h"
 #include "simplify/initial_cage.h"
 #include "surface/tessellation.h"
@@ -30,6 +32,28 @@ constexpr float kRefineRate = 0.02f;
 // atlases and fitted.glb are conveniences for DCC tools and viewers, not what the budget counts.
 nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports) {
     return {{"asset.subd", exports.at("asset.subd")}};
+}
+
+// The fitted maps code differently from the baked ones the budget search measured: when the
+// file comes out over, the heights and normals get fewer bits until it fits. Returns the bits
+// shipped (mapBits when the file fitted as written).
+int shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t budget, int mapBits, fit::FitReport& fitted) {
+    std::uintmax_t& bytes = fitted.exports.at("asset.subd");
+    exporter::SubdPrecision precision{.displacementBits = mapBits, .normalBits = std::min(mapBits, 10)};
+    if (bytes <= budget) return precision.displacementBits;
+    const exporter::SubdAsset decoded = exporter::readSubd(subd);
+    constexpr int kFewestBits = 6;
+    for (int bits = precision.displacementBits - 1; bits >= kFewestBits; --bits) {
+        precision.displacementBits = bits;
+        precision.normalBits = std::min(bits, precision.normalBits);
+        const auto encoded =
+            exporter::encodeSubd(exporter::shippableAsset(decoded.cage, decoded.maps, precision.positionBits), precision);
+        if (encoded.size() <= budget || bits == kFewestBits) {
+            bytes = exporter::writeBytes(subd, encoded).bytes;
+            if (bytes <= budget) return bits;
+        }
+    }
+    return kFewestBits;
 }
 
 // Scores the fitted scene and both baselines; writes cage.glb, baselines/ and comparison.png
@@ -55,7 +79,8 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
     ours.distance = shippedDistance(out / "asset.subd", segments, scene.frame, scene.reference, o.surfaceSamples);
 
     const BaselineSettings settings{.dir = out / "baselines", .draco = o.fit.draco,
-                                    .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments};
+                                    .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments,
+                                    .mapBits = o.fit.mapBits};
     std::filesystem::create_directories(settings.dir);
     report.decimation = decimationBaseline(programs, scene, ours.bytes, settings);
     report.bake = bakeBaseline(programs, scene, initialCage, o.fit.maps, o.fit.mapResolution,
@@ -86,8 +111,9 @@ void startMaps(fit::FitRun& run, bool bake) {
 }  // namespace
 
 void validate(const SimplifyOptions& o) {
-    if (o.faces < 4 || o.faces > 1000000)
+    if (o.faces != 0 && (o.faces < 4 || o.faces > 1000000))
         throw OptionError("faces", "must be in 4..1000000, got " + std::to_string(o.faces));
+    if (o.budget != 0 && o.budget < 100) throw OptionError("budget", "must be at least 100 bytes");
     if (o.surfaceSamples < 1000) throw OptionError("surface_samples", "must be >= 1000");
     fit::validate(o.fit);
 }
@@ -95,6 +121,7 @@ void validate(const SimplifyOptions& o) {
 nlohmann::json settingsJson(const SimplifyOptions& o) {
     nlohmann::json settings = fit::settingsJson(o.fit);
     settings["faces"] = o.faces;
+    settings["budget"] = o.budget;
     settings["surface_samples"] = o.surfaceSamples;
     return settings;
 }
@@ -109,6 +136,10 @@ nlohmann::json toJson(const SimplifyReport& r) {
                            {"bake", r.subdfit.psnrHoldout - r.bake.psnrHoldout}};
     report["comparison_columns"] = {"reference", "subdfit", "decimation", "bake"};
     report["simplify"] = {{"faces_requested", r.facesRequested}, {"reference_triangles", r.fit.referenceTriangles}};
+    if (!r.budget.is_null()) {
+        report["budget"] = r.budget;
+        report["budget"]["over_budget"] = r.subdfit.bytes > r.budget["bytes"].get<std::uintmax_t>();
+    }
     return report;
 }
 
@@ -118,16 +149,34 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     const auto started = std::chrono::steady_clock::now();
     SimplifyOptions o = options;
     const mesh::PolygonMesh reference = mesh::loadMesh(o.fit.reference);
-    const mesh::PolygonMesh cage = initialCage(reference, {.faces = o.faces});
 
     auto context = context::createHeadlessContext(o.fit.glProvider);
     const std::string chosen = fit::resolveForCurrentDevice(o.fit);
+    if (!chosen.empty() && hooks.note) hooks.note(chosen);
     gl::ProgramCache programs(gl::platformDefines());
     fit::FitOptions fitOptions = o.fit;
     fitOptions.cage = o.fit.out / "initial_cage.obj";  // where the report says the cage came from
-    fit::FitScene scene(fitOptions, programs, cage, reference);
+    fit::FitScene scene(fitOptions, programs, {}, reference);
+    nlohmann::json budgetReport;
+    if (o.budget > 0) {
+        const BudgetSearch search{.budget = o.budget,
+                                  .faceCounts = o.faces > 0 ? std::vector<int>{o.faces}
+                                                            : faceCountsFor(o.budget, scene.reference.faceCount()),
+                                  .allowedMaps = o.fit.maps};
+        if (hooks.note) hooks.note("budget " + std::to_string(o.budget) + " bytes: trying candidates");
+        const BudgetChoice choice = searchBudget(programs, scene, reference, search, hooks.note);
+        fitOptions.maps = o.fit.maps = choice.chosen.maps;
+        if (choice.chosen.mapResolution > 0) {
+            fitOptions.mapResolution = o.fit.mapResolution = choice.chosen.mapResolution;
+            fitOptions.mapBits = o.fit.mapBits = choice.chosen.mapBits;
+        }
+        scene.setCage(choice.cageWorld);
+        budgetReport = toJson(choice, o.budget);
+    } else {
+        scene.setCage(initialCage(reference, {.faces = o.faces > 0 ? o.faces : kDefaultFaces}));
+    }
+    const mesh::PolygonMesh cage = scene.cageWorld;
     fit::FitRun run(fitOptions, programs, scene);
-    if (!chosen.empty() && hooks.note) hooks.note(chosen);
     const auto checkpoint = o.fit.out / "checkpoint.bin";
     if (o.fit.resume && !run.resume(checkpoint) && hooks.note)
         hooks.note("no checkpoint at " + checkpoint.string() + " to resume: starting from step 0");
@@ -145,7 +194,8 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     // Every result lands in one commit, or none does.
     io::StagedFolder staged(o.fit.out);
     mesh::writeObj(staged.path() / "initial_cage.obj", cage);
-    SimplifyReport report{.fit = run.writeResults(staged.path(), *context), .facesRequested = o.faces};
+    SimplifyReport report{.fit = run.writeResults(staged.path(), *context), .facesRequested = o.faces, .budget = budgetReport};
+    if (o.budget > 0) report.budget["map_bits"] = shipWithinBudget(staged.path() / "asset.subd", o.budget, o.fit.mapBits, report.fit);
     evaluate(o, staged.path(), programs, scene.cage, run, report.fit, report);
     report.fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     io::writeTextAtomically(staged.path() / "report.json", toJson(report).dump(2) + "\n");

@@ -27,9 +27,12 @@ inline fit::FitOptions simplifyFitDefaults() {
 
 struct SimplifyOptions {
     fit::FitOptions fit = simplifyFitDefaults();  // fit.reference: the dense asset; fit.cage is set by simplify
-    int faces = 1000;             // triangles of the cage
+    int faces = 0;                // triangles of the cage; 0: kDefaultFaces, or chosen by the budget
+    std::uintmax_t budget = 0;    // bytes asset.subd may take (0: none); simplify/budget_search.h
     int surfaceSamples = 100000;  // per side, for Chamfer and Hausdorff
 };
+
+inline constexpr int kDefaultFaces = 1000;
 
 // Throws subdfit::Error ("invalid option: ...") before any work.
 void validate(const SimplifyOptions& options);
@@ -43,10 +46,12 @@ struct SimplifyReport {
     fit::FitReport fit;
     Quality subdfit{}, decimation{}, bake{};
     int facesRequested = 0;
+    nlohmann::json budget;  // the search (simplify/budget_search.h), null without --budget
 };
 
 // report.json: the fit's keys, subdfit's bytes / files / chamfer / hausdorff / mean_distance,
-// `baselines`, `margin_db` (subdfit's held-out PSNR minus each baseline's) and `simplify`.
+// `baselines`, `margin_db` (subdfit's held-out PSNR minus each baseline's), `simplify` and, with
+// a budget, `budget` (its bytes, the candidates tried, the one chosen, `over_budget`).
 nlohmann::json toJson(const SimplifyReport& report);
 
 // Checks DIR (io::checkOutputFolder), loads, fits with DIR/checkpoint.bin as its checkpoint

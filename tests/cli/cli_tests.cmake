@@ -73,8 +73,8 @@ subdfit_cli_refuses(option_unknown --bogus --cage ${SUBDFIT_CLI_CAGE} --referenc
 # A short fit that works: every result file, nothing temporary left.
 add_test(NAME cli.fit.torus_to_spot
          COMMAND ${CMAKE_COMMAND} -DSUBDFIT=$<TARGET_FILE:subdfit> -DOUT=${SUBDFIT_CLI_OUT}/fit_torus_to_spot
-                 -DSTEPS=3
-                 "-DARGS=fit|--cage|${SUBDFIT_CLI_CAGE}|--reference|${SUBDFIT_CLI_REFERENCE}|--steps|3|--res|64|--views|2"
+                 -DSTEPS=3 -DEXTRA=fitted.glb
+                 "-DARGS=fit|--cage|${SUBDFIT_CLI_CAGE}|--reference|${SUBDFIT_CLI_REFERENCE}|--steps|3|--res|64|--views|2|--preview"
                  -P ${SUBDFIT_CLI_SCRIPTS}/expect_success.cmake)
 set_tests_properties(cli.fit.torus_to_spot PROPERTIES LABELS cli TIMEOUT 600)
 
@@ -88,8 +88,10 @@ subdfit_cli_command_refuses(simplify simplify_missing_reference ${SUBDFIT_CLI_OU
                             ${SUBDFIT_CLI_OUT}/missing.obj)
 subdfit_cli_command_refuses(simplify simplify_nan_reference ${SUBDFIT_CLI_BAD}/nan_coordinate.obj
                             ${SUBDFIT_CLI_BAD}/nan_coordinate.obj)
-subdfit_cli_command_refuses(simplify simplify_faces_0 --faces ${SUBDFIT_CLI_REFERENCE} --faces 0)
+subdfit_cli_command_refuses(simplify simplify_faces_2 --faces ${SUBDFIT_CLI_REFERENCE} --faces 2)
 subdfit_cli_command_refuses(simplify simplify_map_res_0 --map-res ${SUBDFIT_CLI_REFERENCE} --map-res 0)
+subdfit_cli_command_refuses(simplify simplify_budget_unit "--budget: must be bytes" ${SUBDFIT_CLI_REFERENCE} --budget 20parsecs)
+subdfit_cli_command_refuses(simplify simplify_budget_tiny "--budget: must be 100 bytes" ${SUBDFIT_CLI_REFERENCE} --budget 50)
 
 # batch: the manifest is read and checked before any work; a bad line names file and line.
 subdfit_cli_command_refuses(batch batch_missing_manifest ${SUBDFIT_CLI_OUT}/missing.txt ${SUBDFIT_CLI_OUT}/missing.txt)
@@ -99,7 +101,7 @@ subdfit_cli_command_refuses(batch batch_empty_manifest empty.txt ${SUBDFIT_CLI_M
 subdfit_cli_command_refuses(batch batch_bad_shard --shard ${SUBDFIT_CLI_MANIFESTS}/bad_option.txt --shard 2/2)
 
 # A short simplify that works: the fit's files plus the shipped cage, the comparison and the
-# baselines.
+# baselines (its budget behaviour: tests/gl/simplify_budget_test.cpp).
 add_test(NAME cli.simplify.spot
          COMMAND ${CMAKE_COMMAND} -DSUBDFIT=$<TARGET_FILE:subdfit> -DOUT=${SUBDFIT_CLI_OUT}/simplify_spot
                  -DSTEPS=4 "-DEXTRA=cage.glb|comparison.png|initial_cage.obj|baselines/decimated.glb|baselines/bake/cage.glb"

@@ -12,7 +12,7 @@ if(NOT rc EQUAL 0)
 endif()
 
 set(problems "")
-foreach(name cage.obj report.json before.png after.png target.png fitted.glb asset.subd ${extra})
+foreach(name cage.obj report.json before.png after.png target.png asset.subd ${extra})
   if(NOT EXISTS "${OUT}/${name}")
     string(APPEND problems "\n  missing ${name}")
   else()

@@ -34,6 +34,7 @@ simplify::SimplifyOptions smallSimplify(const fs::path& reference, const fs::pat
     o.fit.mapResolution = 2;
     o.fit.checkpointEvery = 5;
     o.fit.glProvider = "osmesa";
+    o.fit.preview = true;
     o.faces = 120;
     o.surfaceSamples = 5000;
     return o;

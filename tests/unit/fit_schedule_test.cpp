@@ -32,7 +32,8 @@ TEST(StepSchedule, HalvesOnAPlateauThenConverges) {
     StepSchedule::Action action = StepSchedule::Action::Continue;
     // A loss that no longer improves (a worse one is never "best").
     while (action != StepSchedule::Action::Converged && measurements < 100) {
-        action = schedule.record(1.0 + 0.01 * (measurements % 3), ++measurements).action;
+        const double loss = 1.0 + 0.01 * (measurements % 3);
+        action = schedule.record(loss, ++measurements).action;
         if (action == StepSchedule::Action::Halve) ++halvings;
     }
     EXPECT_EQ(action, StepSchedule::Action::Converged);

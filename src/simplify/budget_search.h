@@ -1,0 +1,63 @@
+#pragma once
+// `simplify --budget`: which asset to fit so that what ships fits the bytes. A small
+// rate-distortion search: cages of several face counts, each bare and with baked maps at a few
+// resolutions and bit depths; every candidate is encoded exactly as it would ship (asset.subd:
+// its bytes), decoded again and rendered on the monitor views (its loss), and the one with the
+// lowest loss within the budget is fitted. The bake stands in for the fit, which starts from it and only improves on
+// it (the fit keeps its best state).
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "fit/fit_scene.h"
+#include "gl/program_cache.h"
+#include "maps/map_effects.h"
+
+namespace subdfit::simplify {
+
+struct BudgetCandidate {
+    int faces = 0;              // of the cage, as built
+    maps::MapEffects maps;      // none: the bare cage
+    int mapResolution = 0;      // 0 without maps
+    int mapBits = 0;            // per map value in asset.subd; 0 without maps
+    std::uintmax_t bytes = 0;   // of its asset.subd
+    double monitorLoss = 0.0;   // of the decoded asset; 0 when over budget (not rendered)
+};
+
+struct BudgetSearch {
+    std::uintmax_t budget = 0;
+    std::vector<int> faceCounts;  // the cages to try (their triangle budgets), largest first
+    maps::MapEffects allowedMaps{.displacement = true, .normalMap = true};
+    std::vector<int> mapResolutions{2, 4, 8};
+    // Bits per map value: 8 keeps a height's step under ~1/200 of its range, well below a pixel
+    // at the resolutions fitted; 10 where the budget allows.
+    std::vector<int> mapBits{8, 10};
+};
+
+struct BudgetChoice {
+    BudgetCandidate chosen;
+    mesh::PolygonMesh cageWorld;  // the chosen candidate's cage
+    std::vector<BudgetCandidate> tried;
+};
+
+// Face counts worth trying for `budget` bytes on a reference of `referenceTriangles`: from what
+// the budget could hold as a bare cage down to ~1/20 of that, at steps of ~1.6x.
+std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles);
+
+// Runs the search on `scene` (its targets and frame; its cage is not used). `referenceWorld`
+// is what cages are decimated from. `say` reports each candidate. Throws subdfit::Error naming
+// the reference when no candidate fits the budget.
+BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene,
+                          const mesh::PolygonMesh& referenceWorld, const BudgetSearch& search,
+                          const std::function<void(const std::string&)>& say = {});
+
+nlohmann::json toJson(const BudgetChoice& choice, std::uintmax_t budget);
+
+// "20000", "20K", "20KB", "1.5M", "1.5MB" (K = 1000, M = 10^6; KiB / MiB are 1024-based).
+// Throws subdfit::OptionError("budget", ...) for anything else or a budget under 100 bytes.
+std::uintmax_t parseByteSize(const std::string& text);
+
+}  // namespace subdfit::simplify

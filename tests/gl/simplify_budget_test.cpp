@@ -1,0 +1,89 @@
+// `simplify --budget`: what ships fits the bytes, the report says what was tried, and a budget
+// nothing fits is refused before anything is written.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "error_message.h"
+#include "mesh/obj_writer.h"
+#include "mesh/procedural.h"
+#include "simplify/budget_search.h"
+#include "simplify/simplify_job.h"
+#include "test_paths.h"
+#include "util/error.h"
+
+namespace subdfit::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+simplify::SimplifyOptions budgeted(const fs::path& reference, const fs::path& out, std::uintmax_t budget) {
+    simplify::SimplifyOptions o;
+    o.fit.reference = reference;
+    o.fit.out = out;
+    o.fit.steps = 20;
+    o.fit.views = 4;
+    o.fit.holdoutViews = 2;
+    o.fit.resolution = 64;
+    o.fit.checkpointEvery = 10;
+    o.fit.glProvider = "osmesa";
+    o.surfaceSamples = 5000;
+    o.budget = budget;
+    return o;
+}
+
+TEST(SimplifyBudget, ShipsWithinTheBudgetAndListsTheCandidates) {
+    const auto dir = scratchDir("simplify_budget");
+    mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(5, 0.15f, 3, 40, 0.005f, 0.02f));
+    constexpr std::uintmax_t kBudget = 3000;
+    const auto report = simplify::toJson(simplify::runSimplify(budgeted(dir / "lumpy.obj", dir / "out", kBudget)));
+
+    EXPECT_LE(fs::file_size(dir / "out" / "asset.subd"), kBudget);
+    EXPECT_EQ(report["bytes"].get<std::uintmax_t>(), fs::file_size(dir / "out" / "asset.subd"));
+    const auto& budget = report["budget"];
+    EXPECT_EQ(budget["bytes"].get<std::uintmax_t>(), kBudget);
+    EXPECT_FALSE(budget["over_budget"].get<bool>());
+    // Several cages were tried, some over the budget, and the chosen one is the best of those
+    // within it by the monitor views.
+    ASSERT_GE(budget["candidates"].size(), 3u);
+    bool someOver = false;
+    double bestLoss = 1e30;
+    for (const auto& c : budget["candidates"]) {
+        if (c["bytes"].get<std::uintmax_t>() > kBudget) someOver = true;
+        else bestLoss = std::min(bestLoss, c["monitor_loss"].get<double>());
+    }
+    EXPECT_TRUE(someOver);
+    EXPECT_EQ(budget["chosen"]["monitor_loss"].get<double>(), bestLoss);
+    EXPECT_LE(budget["chosen"]["bytes"].get<std::uintmax_t>(), kBudget);
+    // What was chosen is what was fitted.
+    EXPECT_EQ(report["cage"]["faces"], budget["chosen"]["faces"]);
+    EXPECT_EQ(report["settings"]["maps"], budget["chosen"]["maps"]);
+    // The decimation baseline is held to the same bytes.
+    EXPECT_LE(report["baselines"]["decimation"]["bytes"].get<std::uintmax_t>(), report["bytes"].get<std::uintmax_t>());
+}
+
+TEST(SimplifyBudget, ABudgetNoCageFitsIsRefusedNamingTheReference) {
+    const auto dir = scratchDir("simplify_budget_tiny");
+    mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 3));
+    const std::string message =
+        errorMessage([&] { simplify::runSimplify(budgeted(dir / "lumpy.obj", dir / "out", 120)); });
+    EXPECT_NE(message.find("lumpy.obj"), std::string::npos) << message;
+    EXPECT_NE(message.find("--budget"), std::string::npos) << message;
+    EXPECT_FALSE(fs::exists(dir / "out" / "asset.subd"));
+    EXPECT_FALSE(fs::exists(dir / "out" / "report.json"));
+}
+
+TEST(ByteSize, ReadsBytesWithKAndMSuffixes) {
+    EXPECT_EQ(simplify::parseByteSize("20000"), 20000u);
+    EXPECT_EQ(simplify::parseByteSize("20KB"), 20000u);
+    EXPECT_EQ(simplify::parseByteSize("20k"), 20000u);
+    EXPECT_EQ(simplify::parseByteSize("1.5MB"), 1500000u);
+    EXPECT_EQ(simplify::parseByteSize("2KiB"), 2048u);
+    EXPECT_THROW(simplify::parseByteSize("20 parsecs"), OptionError);
+    EXPECT_THROW(simplify::parseByteSize("KB"), OptionError);
+    EXPECT_THROW(simplify::parseByteSize("50"), OptionError);
+    EXPECT_THROW(simplify::parseByteSize("nan"), OptionError);
+}
+
+}  // namespace
+}  // namespace subdfit::test
