@@ -17,6 +17,7 @@
 #include "mesh/draco_reader.h"
 #include "mesh/gltf_accessors.h"
 #include "mesh/gltf_file_access.h"
+#include "mesh/gltf_meshopt.h"
 #include "mesh/gltf_preflight.h"
 #include "mesh/input_limits.h"
 #include "util/error.h"
@@ -56,6 +57,7 @@ tinygltf::Model parseModel(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext == ".glb" && !binary) throw fileError(name, "not a GLB file (it does not start with 'glTF')");
+    gltf::expandMeshopt(bytes, name);
     gltf::preflight(bytes, name);
     if (bytes.size() > UINT32_MAX) throw fileError(name, "larger than 4 GiB, which glTF cannot address");
 

@@ -33,6 +33,7 @@ const BadFile kCorpus[] = {
     {"bad_boundary_rule.obj", "line 5: t interpolateboundary: value 7"},
     {"bad_magic.glb", "not a GLB file"},
     {"truncated_length.glb", "invalid GLB"},
+    {"meshopt_damaged.glb", "EXT_meshopt_compression: bufferViews[0] does not decode"},
     {"json_syntax.gltf", "invalid glTF"},
     {"accessor_out_of_bounds.gltf", "accessor 0 (10 elements"},
     {"index_out_of_range.gltf", "index 7 is out of range"},

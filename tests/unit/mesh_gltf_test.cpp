@@ -108,3 +108,30 @@ TEST(MeshDraco, ReadsADrcMesh) {
 
 }  // namespace
 }  // namespace subdfit::mesh
+
+namespace subdfit::mesh {
+namespace {
+
+double area(const PolygonMesh& triangles) {
+    double sum = 0.0;
+    for (size_t t = 0; t + 2 < triangles.faceIndices.size(); t += 3) {
+        auto p = [&](size_t k) { return triangles.positions[size_t(triangles.faceIndices[t + k])]; };
+        sum += 0.5 * double(glm::length(glm::cross(p(1) - p(0), p(2) - p(0))));
+    }
+    return sum;
+}
+
+// What `gltfpack -cc` writes (EXT_meshopt_compression over KHR_mesh_quantization) reads as the
+// same surface as its uncompressed output: the codecs are lossless.
+TEST(MeshGltf, MeshoptCompressedGlbReadsAsItsUncompressedTwin) {
+    const auto plain = loadMesh(dataPath("spot_gltfpack.glb"));
+    const auto packed = loadMesh(dataPath("spot_gltfpack_cc.glb"));
+    ASSERT_EQ(packed.faceCount(), plain.faceCount());
+    EXPECT_GT(packed.faceCount(), 1000);
+    const Bounds a = bounds(plain), b = bounds(packed);
+    EXPECT_LT(glm::length(a.lo - b.lo) + glm::length(a.hi - b.hi), 1e-4f);
+    EXPECT_NEAR(area(packed), area(plain), 1e-3 * area(plain));
+}
+
+}  // namespace
+}  // namespace subdfit::mesh
