@@ -5,8 +5,16 @@
 #include <vector>
 
 #include "fit/fit_options.h"
+#include "surface/relief_surface.h"
 
 namespace subdfit::bench {
+
+struct ReliefOptions {
+    std::filesystem::path cage = "assets/spot/spot_control_mesh.obj";
+    std::filesystem::path out = "relief_spot.glb";
+    surface::ReliefOptions relief;
+};
+int runRelief(const ReliefOptions& options);
 
 struct StepCostOptions {
     std::filesystem::path out;

@@ -70,6 +70,15 @@ int main(int argc, char** argv) {
     accuracyCommand->add_option("--steps", accuracy.baseSteps, "base step count")->capture_default_str();
     accuracyCommand->add_option("--gl", accuracy.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
 
+    subdfit::bench::ReliefOptions relief;
+    auto* reliefCommand = app.add_subcommand("relief", "write a dense reference: a cage's limit surface with fine procedural relief");
+    reliefCommand->add_option("--cage", relief.cage, "cage whose limit surface is the base")->capture_default_str();
+    reliefCommand->add_option("--out", relief.out, "the .glb to write")->capture_default_str();
+    reliefCommand->add_option("--segments", relief.relief.segments, "tessellation per ptex-face edge")->capture_default_str();
+    reliefCommand->add_option("--amplitude", relief.relief.amplitude, "RMS height, a fraction of the bounding-box diagonal")
+        ->capture_default_str();
+    reliefCommand->add_option("--seed", relief.relief.seed, "seed of the relief's waves")->capture_default_str();
+
     subdfit::bench::GradientOptions gradient;
     auto* gradientCommand = app.add_subcommand("gradient", "SGE gradient quality against cost; per-pixel vs full-image; ε");
     gradientCommand->add_option("--out", gradient.out, "output folder")->capture_default_str();
@@ -94,6 +103,7 @@ int main(int argc, char** argv) {
             {soupCommand, &soup.out}, {convergenceCommand, &convergence.out}, {recoveryCommand, &recovery.out}};
         for (const auto& [command, out] : outputs)
             if (command->parsed() && !out->empty()) subdfit::io::checkOutputFolder(*out, {.force = true});
+        if (reliefCommand->parsed()) return subdfit::bench::runRelief(relief);
         if (stepCostCommand->parsed()) return subdfit::bench::runStepCost(stepCost);
         if (lumpyCommand->parsed()) return subdfit::bench::runLumpySphere(lumpy);
         if (mapsCommand->parsed()) return subdfit::bench::runMapsGain(mapsGain);

@@ -23,13 +23,14 @@ void printSummary(const subdfit::fit::FitReport& r) {
 }
 
 void printComparison(const subdfit::simplify::SimplifyReport& r) {
-    std::fprintf(stderr, "%-11s %10s %12s %12s\n", "", "bytes", "PSNR (dB)", "Chamfer");
+    std::fprintf(stderr, "%-11s %10s %12s %14s %12s\n", "", "bytes", "PSNR (dB)", "mean distance", "Chamfer");
     auto row = [](const char* name, const subdfit::simplify::Quality& q) {
-        std::fprintf(stderr, "%-11s %10llu %12.2f %12.4e\n", name, (unsigned long long)q.bytes, q.psnrHoldout,
-                     q.distance.chamferL2Squared);
+        std::fprintf(stderr, "%-11s %10llu %12.2f %14.4e %12.4e\n", name, (unsigned long long)q.bytes, q.psnrHoldout,
+                     q.distance.meanDistance, q.distance.chamferL2Squared);
     };
     row("subdfit", r.subdfit);
     row("decimation", r.decimation);
+    if (r.gltfpack) row("gltfpack", *r.gltfpack);
     row("bake", r.bake);
 }
 

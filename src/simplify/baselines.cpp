@@ -1,12 +1,16 @@
 #include "simplify/baselines.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <functional>
 
 #include "export/glb_writer.h"
 #include "export/map_atlas.h"
 #include "export/subd_format.h"
 #include "fit/cage_fitter.h"
 #include "fit/fit_scene.h"
+#include "io/external_program.h"
+#include "mesh/mesh_loader.h"
 #include "mesh/mesh_geometry.h"
 #include "render/mesh_renderer.h"
 #include "simplify/bake.h"
@@ -37,40 +41,90 @@ nlohmann::json shipCage(const std::filesystem::path& path, const mesh::PolygonMe
     return {{path.filename().string(), written.bytes}};
 }
 
+namespace {
+
+// The most triangles in [fewest, most] whose shipped file (`ship` writes it, returns its bytes)
+// fits `budget`: bytes grow with triangles. At `fewest` when even that is over (the report then
+// says so: a .glb's own header and JSON weigh hundreds of bytes). The file is left as shipped.
+int mostWithinBudget(int fewest, int most, std::uintmax_t budget, const std::function<std::uintmax_t(int)>& ship) {
+    int lo = std::min(fewest, most), hi = most;
+    while (lo < hi) {
+        const int mid = lo + (hi - lo + 1) / 2;
+        if (ship(mid) <= budget) lo = mid;
+        else hi = mid - 1;
+    }
+    ship(lo);
+    return lo;
+}
+
+// A triangle baseline (normalised frame) scored as every baseline is: rendered with smooth
+// normals on the held-out views, and its surface distance to the reference.
+void scoreTriangles(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& triangles,
+                    const BaselineSettings& settings, Quality& q) {
+    const render::MeshRenderer renderer(triangles.positions, mesh::vertexNormals(triangles),
+                                        std::vector<unsigned>(triangles.faceIndices.begin(), triangles.faceIndices.end()));
+    scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
+        renderer.draw(programs, camera, target);
+    }, q);
+    q.distance = worldDistance(triangles, scene.reference, scene.frame, settings.surfaceSamples);
+}
+
+// Never fewer triangles than a closed shape needs.
+constexpr int kFewestTriangles = 12;
+
+}  // namespace
+
 Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
                            const BaselineSettings& settings) {
     const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
     const auto path = settings.dir / "decimated.glb";
-    auto ship = [&](int triangles) {
+    mesh::PolygonMesh decimated;
+    std::uintmax_t bytes = 0;
+    mostWithinBudget(kFewestTriangles, welded.faceCount(), budget, [&](int triangles) {
         throwIfStopRequested();
-        mesh::PolygonMesh decimated = decimate(welded, triangles);
+        decimated = decimate(welded, triangles);
         const auto normals = mesh::vertexNormals(decimated);  // normalised or not, the same unit normals
-        const auto written = exporter::writeMeshGlb(path, scene.frame.toWorld(decimated.positions), normals,
-                                                    indicesOf(decimated), /*draco=*/true);
-        return std::make_pair(std::move(decimated), written.bytes);
-    };
-    // Bytes grow with the triangle count: bisect for the most triangles within the budget, but
-    // never fewer than a closed shape needs (a .glb's own header and JSON weigh hundreds of bytes,
-    // so a tiny budget may not be met at all: the report then says so).
-    constexpr int kFewestTriangles = 12;
-    int lo = std::min(kFewestTriangles, welded.faceCount()), hi = welded.faceCount();
-    while (lo < hi) {
-        const int mid = lo + (hi - lo + 1) / 2;
-        if (ship(mid).second <= budget) lo = mid;
-        else hi = mid - 1;
-    }
-    auto [decimated, bytes] = ship(lo);
-
+        bytes = exporter::writeMeshGlb(path, scene.frame.toWorld(decimated.positions), normals, indicesOf(decimated),
+                                       /*draco=*/true)
+                    .bytes;
+        return bytes;
+    });
     Quality q;
     q.bytes = bytes;
     q.files = {{"decimated.glb", bytes}};
     q.details = {{"triangles", decimated.faceCount()}, {"over_budget", bytes > budget}};
-    const render::MeshRenderer renderer(decimated.positions, mesh::vertexNormals(decimated),
-                                        std::vector<unsigned>(decimated.faceIndices.begin(), decimated.faceIndices.end()));
-    scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
-        renderer.draw(programs, camera, target);
-    }, q);
-    q.distance = worldDistance(decimated, scene.reference, scene.frame, settings.surfaceSamples);
+    scoreTriangles(programs, scene, decimated, settings, q);
+    return q;
+}
+
+std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
+                                        const BaselineSettings& settings) {
+    const auto gltfpack = io::findProgram("gltfpack");
+    if (!gltfpack) return std::nullopt;
+    // gltfpack gets what the decimation gets: the welded reference with smooth normals.
+    const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
+    const auto input = settings.dir / "gltfpack_input.glb", output = settings.dir / "gltfpack.glb";
+    exporter::writeMeshGlb(input, scene.frame.toWorld(welded.positions), mesh::vertexNormals(welded), indicesOf(welded),
+                           /*draco=*/false);
+    std::uintmax_t bytes = 0;
+    mostWithinBudget(kFewestTriangles, welded.faceCount(), budget, [&](int triangles) {
+        throwIfStopRequested();
+        char ratio[32];
+        std::snprintf(ratio, sizeof ratio, "%.9f", double(triangles) / double(welded.faceCount()));
+        const int status = io::runProgram(*gltfpack, {"-i", input.string(), "-o", output.string(), "-si", ratio, "-cc"});
+        if (status != 0 || !std::filesystem::exists(output))
+            throw Error(gltfpack->string() + " -si " + ratio + " -cc failed (exit " + std::to_string(status) + ")");
+        bytes = std::filesystem::file_size(output);
+        return bytes;
+    });
+    std::filesystem::remove(input);
+    mesh::PolygonMesh packed = mesh::triangulated(mesh::loadMesh(output));
+    packed.positions = scene.frame.toNormalized(packed.positions);
+    Quality q;
+    q.bytes = bytes;
+    q.files = {{"gltfpack.glb", bytes}};
+    q.details = {{"triangles", packed.faceCount()}, {"over_budget", bytes > budget}, {"command", "gltfpack -si R -cc"}};
+    scoreTriangles(programs, scene, packed, settings, q);
     return q;
 }
 

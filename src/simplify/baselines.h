@@ -4,10 +4,13 @@
 //  (a) decimation + Draco: the reference decimated (meshoptimizer) to as many triangles as fit
 //      the budget, shipped as a Draco-compressed GLB with smooth normals (14-bit positions,
 //      10-bit normals), which is what a web or game pipeline would run;
-//  (b) the bake route: the initial cage (same faces as subdfit's) with maps ray-cast from the
+//  (b) gltfpack (Debian's, when on PATH): `gltfpack -si R -cc` at the largest ratio R whose
+//      output fits the budget, which is what a web or game developer would run;
+//  (c) the bake route: the initial cage (same faces as subdfit's) with maps ray-cast from the
 //      reference onto its limit surface, no optimisation, shipped in subdfit's own format.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 
 #include "gl/program_cache.h"
 #include "maps/map_parameters.h"
@@ -31,6 +34,10 @@ struct BaselineSettings {
 // Writes dir/decimated.glb (Draco).
 Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
                            const BaselineSettings& settings);
+
+// Writes dir/gltfpack.glb; nothing (and no file) when gltfpack is not installed.
+std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
+                                        const BaselineSettings& settings);
 
 // `cage`: the initial cage in the scene's normalised frame. Writes dir/bake/{cage.glb, maps}.
 // `effects` none means displacement and normal: a bake route without maps is no bake.

@@ -83,10 +83,13 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
                                     .mapBits = o.fit.mapBits};
     std::filesystem::create_directories(settings.dir);
     report.decimation = decimationBaseline(programs, scene, ours.bytes, settings);
+    report.gltfpack = gltfpackBaseline(programs, scene, ours.bytes, settings);
     report.bake = bakeBaseline(programs, scene, initialCage, o.fit.maps, o.fit.mapResolution,
                                settings);
-    writeComparison(out / "comparison.png", o.fit.resolution, scene.holdout.readColor(0),
-                    {&ours.view, &report.decimation.view, &report.bake.view});
+    std::vector<const std::vector<glm::vec4>*> columns{&ours.view, &report.decimation.view};
+    if (report.gltfpack) columns.push_back(&report.gltfpack->view);
+    columns.push_back(&report.bake.view);
+    writeComparison(out / "comparison.png", o.fit.resolution, scene.holdout.readColor(0), columns);
 }
 
 // The maps join the fit at `bakeStep`: baked onto the cage as fitted so far (what the bake route
@@ -135,6 +138,13 @@ nlohmann::json toJson(const SimplifyReport& r) {
     report["margin_db"] = {{"decimation", r.subdfit.psnrHoldout - r.decimation.psnrHoldout},
                            {"bake", r.subdfit.psnrHoldout - r.bake.psnrHoldout}};
     report["comparison_columns"] = {"reference", "subdfit", "decimation", "bake"};
+    if (r.gltfpack) {
+        report["baselines"]["gltfpack"] = toJson(*r.gltfpack);
+        report["margin_db"]["gltfpack"] = r.subdfit.psnrHoldout - r.gltfpack->psnrHoldout;
+        report["comparison_columns"] = {"reference", "subdfit", "decimation", "gltfpack", "bake"};
+    } else {
+        report["baselines"]["gltfpack"] = {{"skipped", "gltfpack is not on PATH (Debian: apt-get install gltfpack)"}};
+    }
     report["simplify"] = {{"faces_requested", r.facesRequested}, {"reference_triangles", r.fit.referenceTriangles}};
     if (!r.budget.is_null()) {
         report["budget"] = r.budget;
@@ -194,7 +204,8 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     // Every result lands in one commit, or none does.
     io::StagedFolder staged(o.fit.out);
     mesh::writeObj(staged.path() / "initial_cage.obj", cage);
-    SimplifyReport report{.fit = run.writeResults(staged.path(), *context), .facesRequested = o.faces, .budget = budgetReport};
+    SimplifyReport report{.fit = run.writeResults(staged.path(), *context), .gltfpack = std::nullopt, .facesRequested = o.faces,
+                          .budget = budgetReport};
     if (o.budget > 0) report.budget["map_bits"] = shipWithinBudget(staged.path() / "asset.subd", o.budget, o.fit.mapBits, report.fit);
     evaluate(o, staged.path(), programs, scene.cage, run, report.fit, report);
     report.fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -6,6 +6,8 @@
 // initial_cage.obj, cage.glb (the cage as shipped), comparison.png (held-out view: reference |
 // subdfit | decimation | bake, error heat maps below) and baselines/ (each baseline's shipped
 // files). report.json adds `bytes`, `chamfer`, `hausdorff` and `baselines`.
+#include <optional>
+
 #include <nlohmann/json.hpp>
 
 #include "fit/fit_job.h"
@@ -45,6 +47,7 @@ nlohmann::json settingsJson(const SimplifyOptions& options);
 struct SimplifyReport {
     fit::FitReport fit;
     Quality subdfit{}, decimation{}, bake{};
+    std::optional<Quality> gltfpack;  // none when gltfpack is not installed
     int facesRequested = 0;
     nlohmann::json budget;  // the search (simplify/budget_search.h), null without --budget
 };

@@ -1,0 +1,52 @@
+#include "surface/relief_surface.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "mesh/mesh_geometry.h"
+#include "subdiv/uniform_refinement.h"
+#include "surface/tessellation.h"
+
+namespace subdfit::surface {
+
+mesh::PolygonMesh reliefSurface(const mesh::PolygonMesh& cage, const ReliefOptions& o) {
+    // All quads first, so that every ptex tile has the same size and the tessellation no
+    // T-junctions (cracks a decimator would take for borders).
+    mesh::PolygonMesh surface = limitMesh(subdiv::refinedOnce(cage), std::max(1, o.segments / 2));
+    glm::vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
+    for (const auto& p : surface.positions) low = glm::min(low, p), high = glm::max(high, p);
+    const float diagonal = glm::length(high - low);
+
+    // Plane waves of log-uniform wavelengths: isotropic, band-limited detail.
+    struct Wave {
+        glm::vec3 k;
+        float phase;
+    };
+    std::mt19937 rng(o.seed);
+    std::normal_distribution<float> gaussian;
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<Wave> waves;
+    for (int w = 0; w < o.waves; ++w) {
+        const glm::vec3 direction = glm::normalize(glm::vec3(gaussian(rng), gaussian(rng), gaussian(rng)) + 1e-6f);
+        const float wavelength = o.shortestWavelength * std::pow(o.longestWavelength / o.shortestWavelength, unit(rng)) * diagonal;
+        waves.push_back({direction * (2.0f * float(M_PI) / wavelength), 2.0f * float(M_PI) * unit(rng)});
+    }
+    // A sum of N unit sines has RMS sqrt(N / 2).
+    const float scale = o.amplitude * diagonal / std::sqrt(0.5f * float(std::max(o.waves, 1)));
+    const auto normals = mesh::vertexNormals(surface);
+    for (size_t v = 0; v < surface.positions.size(); ++v) {
+        const glm::vec3 p = surface.positions[v];
+        float height = 0.0f;
+        for (const Wave& wave : waves) height += std::sin(glm::dot(wave.k, p) + wave.phase);
+        surface.positions[v] = p + scale * height * normals[v];
+    }
+    surface.sourcePath = cage.sourcePath + " (relief surface)";
+    return surface;
+}
+
+}  // namespace subdfit::surface

@@ -1,0 +1,23 @@
+#pragma once
+// A dense reference with a clear license, made rather than downloaded: the limit surface of a
+// cage (e.g. the bundled CC0 Spot) tessellated finely, with a procedural relief along its
+// normals, like a sculpted asset: a smooth base and fine detail. What `simplify` is for, and
+// what README command 1 and `subdfit-bench simplify` run on.
+#include <cstdint>
+
+#include "mesh/polygon_mesh.h"
+
+namespace subdfit::surface {
+
+struct ReliefOptions {
+    int segments = 24;              // per cage-face edge: Spot's 180 faces (760 quads once refined) give ~290 000 triangles
+    float amplitude = 0.004f;       // RMS height, a fraction of the bounding-box diagonal
+    float shortestWavelength = 0.02f, longestWavelength = 0.06f;  // same units
+    int waves = 16;                 // plane waves summed, random directions and phases
+    std::uint32_t seed = 1;
+};
+
+// Welded triangles, in the cage's units. Deterministic for a given cage and options.
+mesh::PolygonMesh reliefSurface(const mesh::PolygonMesh& cage, const ReliefOptions& options = {});
+
+}  // namespace subdfit::surface
