@@ -100,11 +100,10 @@ int runSoup(const SoupOptions& options);
 
 struct SimplifyTradeoffOptions {
     std::filesystem::path out = "bench-simplify";
-    std::filesystem::path reference = "assets/spot/spot_triangulated.obj";
-    std::vector<int> faces{100, 300, 1000};
-    std::vector<std::string> maps{"none", "2", "4"};  // "none" or a map resolution (both maps)
-    int steps = 300;
-    int resolution = 128;
+    std::vector<std::filesystem::path> references;  // none: the relief Spot, written into out
+    std::vector<std::uintmax_t> budgets{2000, 5000, 10000, 20000, 50000, 100000, 200000};
+    int steps = fit::kByDevice;
+    int resolution = fit::kByDevice;
     std::string glProvider = "auto";
 };
 int runSimplifyTradeoff(const SimplifyTradeoffOptions& options);

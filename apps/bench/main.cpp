@@ -29,13 +29,12 @@ int main(int argc, char** argv) {
     lumpyCommand->add_option("--gl", lumpy.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
 
     subdfit::bench::SimplifyTradeoffOptions tradeoff;
-    auto* simplifyCommand = app.add_subcommand("simplify", "simplify at several budgets: PSNR and Chamfer against bytes, vs baselines");
+    auto* simplifyCommand = app.add_subcommand("simplify", "simplify at byte budgets: PSNR and mean surface distance against bytes, vs the baselines");
     simplifyCommand->add_option("--out", tradeoff.out, "output folder")->capture_default_str();
-    simplifyCommand->add_option("--reference", tradeoff.reference, "dense asset")->capture_default_str();
-    simplifyCommand->add_option("--faces", tradeoff.faces, "cage sizes")->capture_default_str();
-    simplifyCommand->add_option("--maps", tradeoff.maps, "map settings: none or a map resolution")->capture_default_str();
-    simplifyCommand->add_option("--steps", tradeoff.steps, "optimisation steps per run")->capture_default_str();
-    simplifyCommand->add_option("--res", tradeoff.resolution, "render resolution")->capture_default_str();
+    simplifyCommand->add_option("--reference", tradeoff.references, "dense assets (default: the relief Spot)");
+    simplifyCommand->add_option("--budgets", tradeoff.budgets, "byte budgets")->capture_default_str();
+    simplifyCommand->add_option("--steps", tradeoff.steps, "optimisation steps per run (default: the device's)");
+    simplifyCommand->add_option("--res", tradeoff.resolution, "render resolution (default: the device's)");
     simplifyCommand->add_option("--gl", tradeoff.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
 
     subdfit::bench::ConvergenceOptions convergence;

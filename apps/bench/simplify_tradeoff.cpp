@@ -1,70 +1,96 @@
-// `subdfit-bench simplify`: what a simplified asset's bytes buy. For each cage size and map
-// resolution, `subdfit simplify` and its two baselines at the same bytes; plotted as held-out
-// PSNR and Chamfer against bytes, so the crossover with plain decimation is visible.
+// `subdfit-bench simplify`: what a simplified asset's bytes buy. For each dense reference and
+// byte budget, `subdfit simplify --budget` and its baselines at the same bytes (decimation +
+// Draco, gltfpack when installed, the bake route); plotted as held-out PSNR and symmetric mean
+// surface distance against bytes, one pair of plots per reference.
 #include <cstdio>
 #include <map>
 
 #include "bench_commands.h"
 #include "bench_common.h"
+#include "export/glb_writer.h"
+#include "mesh/mesh_geometry.h"
+#include "mesh/mesh_loader.h"
 #include "plot.h"
 #include "simplify/simplify_job.h"
+#include "surface/relief_surface.h"
 
 namespace subdfit::bench {
+namespace {
+
+// The default dense reference: the relief Spot (surface/relief_surface.h), written once.
+std::filesystem::path reliefReference(const std::filesystem::path& out) {
+    const auto path = out / "relief_spot.glb";
+    if (std::filesystem::exists(path)) return path;
+    const auto surface = surface::reliefSurface(mesh::loadMesh("assets/spot/spot_control_mesh.obj"));
+    exporter::writeMeshGlb(path, surface.positions, mesh::vertexNormals(surface),
+                           {surface.faceIndices.begin(), surface.faceIndices.end()}, /*draco=*/false);
+    return path;
+}
+
+}  // namespace
 
 int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
     std::filesystem::create_directories(o.out);
-    std::vector<std::vector<std::string>> rows{{"faces", "maps", "method", "bytes", "psnr_holdout", "chamfer",
-                                                "hausdorff", "seconds"}};
-    std::map<std::string, Series> psnr, chamfer;
-    auto add = [&](const std::string& series, double bytes, double p, double c) {
-        psnr[series].label = chamfer[series].label = series;
-        psnr[series].markersOnly = chamfer[series].markersOnly = series == "decimation" || series == "bake";
-        psnr[series].x.push_back(bytes), psnr[series].y.push_back(p);
-        chamfer[series].x.push_back(bytes), chamfer[series].y.push_back(c);
-    };
-    std::printf("%6s %5s  %-11s %10s %10s %12s %9s\n", "faces", "maps", "method", "bytes", "PSNR dB", "Chamfer", "seconds");
-    for (const std::string& maps : o.maps)
-        for (int faces : o.faces) {
+    std::vector<std::filesystem::path> references = o.references;
+    if (references.empty()) references.push_back(reliefReference(o.out));
+    std::vector<std::vector<std::string>> rows{{"reference", "budget", "method", "bytes", "psnr_holdout", "mean_distance",
+                                                "chamfer", "hausdorff", "seconds", "chosen"}};
+    std::printf("%-18s %8s  %-10s %8s %9s %13s %9s  %s\n", "reference", "budget", "method", "bytes", "PSNR dB",
+                "mean distance", "seconds", "chosen");
+    for (const auto& reference : references) {
+        const std::string name = reference.stem().string();
+        std::map<std::string, Series> psnr, distance;
+        for (const std::uintmax_t budget : o.budgets) {
             simplify::SimplifyOptions s;
-            s.faces = faces;
-            s.fit.reference = o.reference;
-            s.fit.out = o.out / ("faces" + std::to_string(faces) + "_maps" + maps);
+            s.budget = budget;
+            s.fit.reference = reference;
+            s.fit.out = o.out / (name + "_" + std::to_string(budget));
             s.fit.steps = o.steps;
             s.fit.resolution = o.resolution;
             s.fit.glProvider = o.glProvider;
-            s.fit.maps = maps::parseMapEffects(maps == "none" ? "none" : "displacement,normal");
-            if (maps != "none") s.fit.mapResolution = std::stoi(maps);
+            s.fit.force = true;
             const auto report = simplify::runSimplify(s);
-            const std::string ours = maps == "none" ? "subdfit, no maps" : "subdfit, maps T=" + maps;
-            const std::pair<std::string, const simplify::Quality*> methods[] = {
-                {ours, &report.subdfit}, {"decimation", &report.decimation}, {"bake", &report.bake}};
-            for (const auto& [name, q] : methods) {
-                const double bytes = double(q->bytes);
-                const double p = q->psnrHoldout, c = q->distance.chamferL2Squared;
-                const double seconds = name == ours ? report.fit.seconds : 0.0;
-                std::printf("%6d %5s  %-11.11s %10.0f %10.2f %12.4e %9.1f\n", faces, maps.c_str(), name.c_str(), bytes,
-                            p, c, seconds);
-                rows.push_back({std::to_string(faces), maps, name, std::to_string(bytes), std::to_string(p),
-                                std::to_string(c), std::to_string(q->distance.hausdorff),
-                                std::to_string(seconds)});
-                // A decimation that fits the whole reference in the budget is lossless (PSNR capped
-                // at 120 dB): in the CSV, but off the plots, whose scale it would flatten.
-                if (p < 100.0) add(name, bytes, p, c);
+            const auto& chosen = report.budget["chosen"];
+            const std::string choice = std::to_string(chosen["faces"].get<int>()) + " faces, " +
+                                       chosen["maps"].get<std::string>() + " T=" +
+                                       std::to_string(chosen["map_resolution"].get<int>());
+            std::vector<std::pair<std::string, const simplify::Quality*>> methods{
+                {"subdfit", &report.subdfit}, {"decimation", &report.decimation}, {"bake", &report.bake}};
+            if (report.gltfpack) methods.insert(methods.begin() + 2, {"gltfpack", &*report.gltfpack});
+            for (const auto& [method, q] : methods) {
+                const double seconds = method == "subdfit" ? report.fit.seconds : 0.0;
+                const std::string chosenText = method == "subdfit" ? choice : "";
+                std::printf("%-18.18s %8ju  %-10s %8ju %9.2f %13.4e %9.1f  %s\n", name.c_str(), budget, method.c_str(),
+                            q->bytes, q->psnrHoldout, q->distance.meanDistance, seconds, chosenText.c_str());
+                std::fflush(stdout);
+                rows.push_back({name, std::to_string(budget), method, std::to_string(q->bytes), std::to_string(q->psnrHoldout),
+                                std::to_string(q->distance.meanDistance), std::to_string(q->distance.chamferL2Squared),
+                                std::to_string(q->distance.hausdorff), std::to_string(seconds), chosenText});
+                // A decimation that fits the whole reference is lossless (PSNR capped at 120 dB):
+                // in the CSV, off the plots, whose scale it would flatten.
+                if (q->psnrHoldout >= 100.0) continue;
+                for (auto* series : {&psnr, &distance}) {
+                    (*series)[method].label = method;
+                    (*series)[method].x.push_back(double(q->bytes));
+                }
+                psnr[method].y.push_back(q->psnrHoldout);
+                distance[method].y.push_back(q->distance.meanDistance);
             }
+            writeCsv(o.out / "simplify_tradeoff.csv", rows);  // after every run: a long sweep keeps what it did
         }
-    writeCsv(o.out / "simplify_tradeoff.csv", rows);
-    auto plot = [&](const char* file, const char* yLabel, bool logY, std::map<std::string, Series>& series) {
-        PlotSpec spec;
-        spec.title = "simplify: " + o.reference.filename().string() + ", held-out views";
-        spec.xLabel = "bytes shipped";
-        spec.yLabel = yLabel;
-        spec.logX = true;
-        spec.logY = logY;
-        for (auto& [name, s] : series) spec.series.push_back(s);
-        writePlot(o.out / file, spec);
-    };
-    plot("psnr_vs_bytes.png", "PSNR (dB)", false, psnr);
-    plot("chamfer_vs_bytes.png", "Chamfer (reference units^2)", true, chamfer);
+        auto plot = [&](const std::string& file, const char* yLabel, bool logY, std::map<std::string, Series>& series) {
+            PlotSpec spec;
+            spec.title = "simplify " + name + ": held-out views, at equal bytes";
+            spec.xLabel = "bytes shipped";
+            spec.yLabel = yLabel;
+            spec.logX = true;
+            spec.logY = logY;
+            for (auto& [method, s] : series) spec.series.push_back(s);
+            writePlot(o.out / file, spec);
+        };
+        plot(name + "_psnr_vs_bytes.png", "PSNR (dB)", false, psnr);
+        plot(name + "_distance_vs_bytes.png", "mean surface distance (reference units)", true, distance);
+    }
     std::printf("peak_rss_mib=%.0f\n", peakResidentMiB());
     return 0;
 }

@@ -66,8 +66,8 @@ double monitorLoss(gl::ProgramCache& programs, const fit::FitScene& scene, const
 
 }  // namespace
 
-std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles) {
-    const double largest = std::min(double(budget) / kBytesPerCageFace, 0.5 * double(referenceTriangles));
+std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, int mostFaces) {
+    const double largest = std::min({double(budget) / kBytesPerCageFace, 0.5 * double(referenceTriangles), double(mostFaces)});
     std::vector<int> counts;
     for (double f = largest; f >= kFewestFaces && int(counts.size()) < kLadderLength; f /= kLadderStep)
         counts.push_back(int(std::lround(f)));
@@ -83,7 +83,12 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
     auto consider = [&](const BudgetCandidate& c, const mesh::PolygonMesh& cageWorld) {
         choice.tried.push_back(c);
         if (say) say(describe(c) + (c.bytes > search.budget ? " (over budget)" : ""));
-        if (c.bytes > search.budget || (found && c.monitorLoss >= choice.chosen.monitorLoss)) return;
+        if (c.bytes > search.budget) return;
+        if (c.maps.any() && (!choice.bestWithMaps || c.monitorLoss < choice.bestWithMaps->monitorLoss)) {
+            choice.bestWithMaps = c;
+            choice.bestWithMapsCage = cageWorld;
+        }
+        if (found && c.monitorLoss >= choice.chosen.monitorLoss) return;
         choice.chosen = c;
         choice.cageWorld = cageWorld;
         found = true;

@@ -7,6 +7,7 @@
 // it (the fit keeps its best state).
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,12 +41,16 @@ struct BudgetSearch {
 struct BudgetChoice {
     BudgetCandidate chosen;
     mesh::PolygonMesh cageWorld;  // the chosen candidate's cage
+    // The best candidate with maps within the budget (the bake route at these bytes), if any.
+    std::optional<BudgetCandidate> bestWithMaps;
+    mesh::PolygonMesh bestWithMapsCage;
     std::vector<BudgetCandidate> tried;
 };
 
 // Face counts worth trying for `budget` bytes on a reference of `referenceTriangles`: from what
-// the budget could hold as a bare cage down to ~1/20 of that, at steps of ~1.6x.
-std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles);
+// the budget could hold as a bare cage (at most `mostFaces`) down to ~1/20 of that, at steps
+// of ~1.6x.
+std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, int mostFaces);
 
 // Runs the search on `scene` (its targets and frame; its cage is not used). `referenceWorld`
 // is what cages are decimated from. `say` reports each candidate. Throws subdfit::Error naming

@@ -34,6 +34,11 @@ nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports
     return {{"asset.subd", exports.at("asset.subd")}};
 }
 
+// A fit's step costs about its cage's faces (each tessellated alike): the budget search stops at
+// twice the default cage, so that --budget costs at most twice a default run per step. Larger
+// budgets buy finer maps instead, which cost the fit's renders next to nothing.
+constexpr int kMostBudgetFaces = 2 * kDefaultFaces;
+
 // The fitted maps code differently from the baked ones the budget search measured: when the
 // file comes out over, the heights and normals get fewer bits until it fits. Returns the bits
 // shipped (mapBits when the file fitted as written).
@@ -58,9 +63,16 @@ int shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t budget, i
 
 // Scores the fitted scene and both baselines; writes cage.glb, baselines/ and comparison.png
 // into `out`.
+// The bake route's asset: a cage (normalised frame) and the maps baked onto it, unfitted.
+struct BakeRoute {
+    mesh::PolygonMesh cage;
+    maps::MapEffects effects;
+    int resolution = 4;
+    int bits = 12;
+};
+
 void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::ProgramCache& programs,
-              const mesh::PolygonMesh& initialCage, fit::FitRun& run, const fit::FitReport& fitted,
-              SimplifyReport& report) {
+              const BakeRoute& bakeRoute, fit::FitRun& run, const fit::FitReport& fitted, SimplifyReport& report) {
     fit::CageFitter& fitter = run.fitter();
     fit::FitScene& scene = run.scene();
     mesh::PolygonMesh cage = scene.cage;
@@ -80,12 +92,11 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
 
     const BaselineSettings settings{.dir = out / "baselines", .draco = o.fit.draco,
                                     .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments,
-                                    .mapBits = o.fit.mapBits};
+                                    .mapBits = bakeRoute.bits};
     std::filesystem::create_directories(settings.dir);
     report.decimation = decimationBaseline(programs, scene, ours.bytes, settings);
     report.gltfpack = gltfpackBaseline(programs, scene, ours.bytes, settings);
-    report.bake = bakeBaseline(programs, scene, initialCage, o.fit.maps, o.fit.mapResolution,
-                               settings);
+    report.bake = bakeBaseline(programs, scene, bakeRoute.cage, bakeRoute.effects, bakeRoute.resolution, settings);
     std::vector<const std::vector<glm::vec4>*> columns{&ours.view, &report.decimation.view};
     if (report.gltfpack) columns.push_back(&report.gltfpack->view);
     columns.push_back(&report.bake.view);
@@ -168,10 +179,11 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     fitOptions.cage = o.fit.out / "initial_cage.obj";  // where the report says the cage came from
     fit::FitScene scene(fitOptions, programs, {}, reference);
     nlohmann::json budgetReport;
+    std::optional<BakeRoute> bakeRoute;
     if (o.budget > 0) {
         const BudgetSearch search{.budget = o.budget,
                                   .faceCounts = o.faces > 0 ? std::vector<int>{o.faces}
-                                                            : faceCountsFor(o.budget, scene.reference.faceCount()),
+                                                            : faceCountsFor(o.budget, scene.reference.faceCount(), kMostBudgetFaces),
                                   .allowedMaps = o.fit.maps};
         if (hooks.note) hooks.note("budget " + std::to_string(o.budget) + " bytes: trying candidates");
         const BudgetChoice choice = searchBudget(programs, scene, reference, search, hooks.note);
@@ -182,6 +194,13 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
         }
         scene.setCage(choice.cageWorld);
         budgetReport = toJson(choice, o.budget);
+        if (choice.bestWithMaps) {
+            // The bake route at these bytes: the search's best candidate with maps, as it is.
+            mesh::PolygonMesh bakeCage = choice.bestWithMapsCage;
+            bakeCage.positions = scene.frame.toNormalized(bakeCage.positions);
+            bakeRoute = {.cage = std::move(bakeCage), .effects = choice.bestWithMaps->maps,
+                         .resolution = choice.bestWithMaps->mapResolution, .bits = choice.bestWithMaps->mapBits};
+        }
     } else {
         scene.setCage(initialCage(reference, {.faces = o.faces > 0 ? o.faces : kDefaultFaces}));
     }
@@ -207,7 +226,9 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     SimplifyReport report{.fit = run.writeResults(staged.path(), *context), .gltfpack = std::nullopt, .facesRequested = o.faces,
                           .budget = budgetReport};
     if (o.budget > 0) report.budget["map_bits"] = shipWithinBudget(staged.path() / "asset.subd", o.budget, o.fit.mapBits, report.fit);
-    evaluate(o, staged.path(), programs, scene.cage, run, report.fit, report);
+    if (!bakeRoute) bakeRoute = BakeRoute{.cage = scene.cage, .effects = o.fit.maps, .resolution = o.fit.mapResolution,
+                                          .bits = o.fit.mapBits};
+    evaluate(o, staged.path(), programs, *bakeRoute, run, report.fit, report);
     report.fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     io::writeTextAtomically(staged.path() / "report.json", toJson(report).dump(2) + "\n");
     staged.commit();
