@@ -191,6 +191,11 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
         if (choice.chosen.mapResolution > 0) {
             fitOptions.mapResolution = o.fit.mapResolution = choice.chosen.mapResolution;
             fitOptions.mapBits = o.fit.mapBits = choice.chosen.mapBits;
+            // The search judged this cage with maps baked onto it as it is: the fit refines that
+            // (moving the cage first would leave what was judged; measured on the relief Spot at
+            // 20 KB: 3.06e-3 mean distance after 400 cage steps and the bake on the fitted cage,
+            // 2.36e-3 refining the judged bake, in half the time).
+            fitOptions.mapsStart = o.fit.mapsStart = 0.0f;
         }
         scene.setCage(choice.cageWorld);
         budgetReport = toJson(choice, o.budget);
