@@ -15,12 +15,13 @@
 
 namespace subdfit::simplify {
 
-// What `simplify` changes of a fit's defaults: both maps, at a resolution a light asset can
-// afford, shipped compact; and the cage fitted alone for most of the run, since the maps are
-// baked onto it and only refined (see simplify_job.cpp).
+// What `simplify` changes of a fit's defaults: a displacement map (shading normals come from its
+// derivatives: in every budget search so far a normal map cost more than it gave), at a
+// resolution a light asset can afford, shipped compact; and the cage fitted alone for most of
+// the run, since the maps are baked onto it and only refined (see simplify_job.cpp).
 inline fit::FitOptions simplifyFitDefaults() {
     fit::FitOptions o;
-    o.maps = {.displacement = true, .normalMap = true};
+    o.maps = {.displacement = true};
     o.mapResolution = 4;
     o.mapsStart = 0.8f;
     o.compactMaps = true;

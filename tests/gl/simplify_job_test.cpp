@@ -31,6 +31,7 @@ simplify::SimplifyOptions smallSimplify(const fs::path& reference, const fs::pat
     o.fit.views = 4;
     o.fit.holdoutViews = 2;
     o.fit.resolution = 64;
+    o.fit.maps = {.displacement = true, .normalMap = true};  // both, so that both are checked
     o.fit.mapResolution = 2;
     o.fit.checkpointEvery = 5;
     o.fit.glProvider = "osmesa";
