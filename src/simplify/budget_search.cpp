@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "export/subd_format.h"
 #include "simplify/bake.h"
@@ -99,39 +100,63 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
     if (search.allowedMaps.displacement && search.allowedMaps.normalMap)
         mapChoices.push_back({.displacement = true, .normalMap = true});
 
-    for (int faces : search.faceCounts) {
+    // A cage of (about) `faces` triangles, or none when too few faces survive decimation.
+    auto cageOf = [&](int faces) -> std::optional<mesh::PolygonMesh> {
         throwIfStopRequested();
-        mesh::PolygonMesh cageWorld;
         try {
-            cageWorld = initialCage(referenceWorld, {.faces = faces});
+            return initialCage(referenceWorld, {.faces = faces});
         } catch (const Error&) {
-            continue;  // too few faces survive: smaller counts will not do better
+            return std::nullopt;
         }
+    };
+    // One candidate: the cage with `baked` (laid out on it) shipped at `bits`, judged if it fits.
+    auto judge = [&](const mesh::PolygonMesh& cageWorld, const surface::SurfaceMaps& baked, maps::MapEffects effects,
+                     int resolution, int bits) {
+        const Shipped shipped = ship(cageWorld, baked, bits, scene.frame.scale);
+        BudgetCandidate c{.faces = cageWorld.faceCount(), .maps = effects, .mapResolution = resolution,
+                          .mapBits = bits, .bytes = shipped.bytes};
+        if (c.bytes <= search.budget) c.monitorLoss = monitorLoss(programs, scene, shipped.decoded);
+        consider(c, cageWorld);  // over budget, it is listed so the report shows why
+        return c.bytes <= search.budget;
+    };
+    auto normalized = [&](const mesh::PolygonMesh& cageWorld) {
         mesh::PolygonMesh cage = cageWorld;
         cage.positions = scene.frame.toNormalized(cageWorld.positions);
-        const Shipped bareShipped = ship(cageWorld, {}, 0, scene.frame.scale);
-        BudgetCandidate bare{.faces = cage.faceCount(), .maps = {}, .mapResolution = 0, .mapBits = 0, .bytes = bareShipped.bytes};
-        if (bare.bytes <= search.budget) bare.monitorLoss = monitorLoss(programs, scene, bareShipped.decoded);
-        consider(bare, cageWorld);  // over budget, it is listed so the report shows why
-        if (bare.bytes > search.budget) continue;
+        return cage;
+    };
+
+    for (int faces : search.faceCounts) {
+        const auto cageWorld = cageOf(faces);
+        if (!cageWorld) continue;  // smaller counts will not do better
+        if (!judge(*cageWorld, {}, {}, 0, 0)) continue;
+        const mesh::PolygonMesh cage = normalized(*cageWorld);
         for (const maps::MapEffects& effects : mapChoices)
             for (int resolution : search.mapResolutions) {
                 throwIfStopRequested();
                 const auto baked = bakeMaps(cage, scene.reference, {.effects = effects, .resolution = resolution});
                 bool fitted = false;
                 for (int bits : search.mapBits) {
-                    const Shipped shipped = ship(cageWorld, baked, bits, scene.frame.scale);
-                    BudgetCandidate c{.faces = cage.faceCount(), .maps = effects, .mapResolution = resolution,
-                                      .mapBits = bits, .bytes = shipped.bytes};
-                    if (c.bytes <= search.budget) {
-                        c.monitorLoss = monitorLoss(programs, scene, shipped.decoded);
-                        fitted = true;
-                    }
-                    consider(c, cageWorld);
-                    if (c.bytes > search.budget) break;  // more bits only cost more
+                    if (!judge(*cageWorld, baked, effects, resolution, bits)) break;  // more bits only cost more
+                    fitted = true;
                 }
                 if (!fitted) break;  // finer maps only cost more
             }
+    }
+    // The ladder's steps leave bytes unspent: the chosen kind of asset on a cage grown to what the
+    // budget holds (bytes grow about in proportion to the faces), shrinking until it fits.
+    if (found) {
+        const BudgetCandidate best = choice.chosen;
+        double scale = 0.97 * double(search.budget) / double(best.bytes);
+        for (int attempt = 0; attempt < 3 && scale > 1.05; ++attempt, scale = 1.0 + 0.6 * (scale - 1.0)) {
+            const int faces = std::min(int(std::lround(best.faces * scale)), search.faceCounts.front());
+            if (faces <= int(best.faces * 1.05)) break;
+            const auto cageWorld = cageOf(faces);
+            if (!cageWorld) break;
+            const surface::SurfaceMaps baked =
+                best.maps.any() ? bakeMaps(normalized(*cageWorld), scene.reference, {.effects = best.maps, .resolution = best.mapResolution})
+                                : surface::SurfaceMaps{};
+            if (judge(*cageWorld, baked, best.maps, best.mapResolution, best.mapBits)) break;
+        }
     }
     if (!found)
         throw fileError(referenceWorld.sourcePath, "no cage fits in " + std::to_string(search.budget) +
