@@ -186,6 +186,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
                                                             : faceCountsFor(o.budget, scene.reference.faceCount(), kMostBudgetFaces),
                                   .allowedMaps = o.fit.maps};
         if (hooks.note) hooks.note("budget " + std::to_string(o.budget) + " bytes: trying candidates");
+        const auto searchStarted = std::chrono::steady_clock::now();
         const BudgetChoice choice = searchBudget(programs, scene, reference, search, hooks.note);
         fitOptions.maps = o.fit.maps = choice.chosen.maps;
         if (choice.chosen.mapResolution > 0) {
@@ -199,6 +200,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
         }
         scene.setCage(choice.cageWorld);
         budgetReport = toJson(choice, o.budget);
+        budgetReport["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - searchStarted).count();
         if (choice.bestWithMaps) {
             // The bake route at these bytes: the search's best candidate with maps, as it is.
             mesh::PolygonMesh bakeCage = choice.bestWithMapsCage;
