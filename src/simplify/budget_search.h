@@ -32,7 +32,7 @@ struct BudgetSearch {
     std::uintmax_t budget = 0;
     std::vector<int> faceCounts;  // the cages to try (their triangle budgets), largest first
     maps::MapEffects allowedMaps{.displacement = true, .normalMap = true};
-    std::vector<int> mapResolutions{2, 4, 8};
+    std::vector<int> mapResolutions{2, 3, 4, 6, 8};
     // Bits per map value: 8 keeps a height's step under ~1/200 of its range, well below a pixel
     // at the resolutions fitted; 10 where the budget allows.
     std::vector<int> mapBits{8, 10};
