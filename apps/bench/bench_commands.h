@@ -15,6 +15,8 @@ struct ReliefOptions {
     surface::ReliefOptions relief;
 };
 int runRelief(const ReliefOptions& options);
+// Writes options.out; returns its triangles (what runRelief prints, and simplify's default reference).
+int writeReliefReference(const ReliefOptions& options);
 
 struct StepCostOptions {
     std::filesystem::path out;

@@ -7,24 +7,18 @@
 
 #include "bench_commands.h"
 #include "bench_common.h"
-#include "export/glb_writer.h"
-#include "mesh/mesh_geometry.h"
-#include "mesh/mesh_loader.h"
 #include "plot.h"
 #include "simplify/simplify_job.h"
-#include "surface/relief_surface.h"
 
 namespace subdfit::bench {
 namespace {
 
 // The default dense reference: the relief Spot (surface/relief_surface.h), written once.
 std::filesystem::path reliefReference(const std::filesystem::path& out) {
-    const auto path = out / "relief_spot.glb";
-    if (std::filesystem::exists(path)) return path;
-    const auto surface = surface::reliefSurface(mesh::loadMesh("assets/spot/spot_control_mesh.obj"));
-    exporter::writeMeshGlb(path, surface.positions, mesh::vertexNormals(surface),
-                           {surface.faceIndices.begin(), surface.faceIndices.end()}, /*draco=*/false);
-    return path;
+    ReliefOptions relief;
+    relief.out = out / "relief_spot.glb";
+    if (!std::filesystem::exists(relief.out)) writeReliefReference(relief);
+    return relief.out;
 }
 
 }  // namespace

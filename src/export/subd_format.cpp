@@ -36,21 +36,12 @@ int readIndex(ByteReader& in, std::uint64_t limit, const char* what) {
     return int(v);
 }
 
-// The first ptex face of every face: a quad has one, an n-gon n (Far::PtexIndices).
+// The first ptex face of every face, then the count: a quad has one, an n-gon n
+// (Far::PtexIndices).
 std::vector<int> firstPtexFaces(const mesh::PolygonMesh& cage) {
-    std::vector<int> first;
-    int ptex = 0;
-    for (int n : cage.faceSizes) {
-        first.push_back(ptex);
-        ptex += n == 4 ? 1 : n;
-    }
+    std::vector<int> first{0};
+    for (int n : cage.faceSizes) first.push_back(first.back() + (n == 4 ? 1 : n));
     return first;
-}
-
-int ptexFaceCount(const mesh::PolygonMesh& cage) {
-    int count = 0;
-    for (int n : cage.faceSizes) count += n == 4 ? 1 : n;
-    return count;
 }
 
 // Node values of `maps` carried onto the decoded cage's layout: each decoded tile takes the
@@ -151,7 +142,7 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
     SUBDFIT_CHECK(precision.positionBits >= 8 && precision.positionBits <= 16);
     std::vector<std::pair<Tag, std::vector<unsigned char>>> sections;
     CodedCage cage = encodeCage(asset.cage, precision.positionBits);
-    SUBDFIT_CHECK(asset.maps.layout.resolution == 0 || asset.maps.layout.ptexFaceCount == ptexFaceCount(cage.decoded));
+    SUBDFIT_CHECK(asset.maps.layout.resolution == 0 || asset.maps.layout.ptexFaceCount == firstPtexFaces(cage.decoded).back());
     sections.emplace_back(kCage, std::move(cage.bytes));
     const auto& maps = asset.maps;
     if (maps.layout.resolution > 0 && maps.hasDisplacement()) {

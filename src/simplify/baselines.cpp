@@ -74,9 +74,8 @@ constexpr int kFewestTriangles = 12;
 
 }  // namespace
 
-Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
-                           const BaselineSettings& settings) {
-    const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
+Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& welded,
+                           std::uintmax_t budget, const BaselineSettings& settings) {
     const auto path = settings.dir / "decimated.glb";
     mesh::PolygonMesh decimated;
     std::uintmax_t bytes = 0;
@@ -97,12 +96,12 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
     return q;
 }
 
-std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
+std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::FitScene& scene,
+                                        const mesh::PolygonMesh& welded, std::uintmax_t budget,
                                         const BaselineSettings& settings) {
     const auto gltfpack = io::findProgram("gltfpack");
     if (!gltfpack) return std::nullopt;
     // gltfpack gets what the decimation gets: the welded reference with smooth normals.
-    const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
     const auto input = settings.dir / "gltfpack_input.glb", output = settings.dir / "gltfpack.glb";
     exporter::writeMeshGlb(input, scene.frame.toWorld(welded.positions), mesh::vertexNormals(welded), indicesOf(welded),
                            /*draco=*/false);

@@ -31,12 +31,14 @@ struct BaselineSettings {
     int mapBits = 12;            // per map value in the bake's asset.subd, as subdfit's
 };
 
+// Both triangle baselines start from `welded`: weldedTriangles(scene.reference), made once.
 // Writes dir/decimated.glb (Draco).
-Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
-                           const BaselineSettings& settings);
+Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& welded,
+                           std::uintmax_t budget, const BaselineSettings& settings);
 
 // Writes dir/gltfpack.glb; nothing (and no file) when gltfpack is not installed.
-std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
+std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::FitScene& scene,
+                                        const mesh::PolygonMesh& welded, std::uintmax_t budget,
                                         const BaselineSettings& settings);
 
 // `cage`: the initial cage in the scene's normalised frame. Writes dir/bake/{cage.glb, maps}.

@@ -13,6 +13,7 @@
 #include "simplify/bake.h"
 #include "simplify/baselines.h"
 #include "simplify/budget_search.h"
+#include "simplify/decimate.h"
 #include "simplify/comparison_image.h"
 #include "simplify/initial_cage.h"
 #include "surface/tessellation.h"
@@ -94,8 +95,9 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
                                     .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments,
                                     .mapBits = bakeRoute.bits};
     std::filesystem::create_directories(settings.dir);
-    report.decimation = decimationBaseline(programs, scene, ours.bytes, settings);
-    report.gltfpack = gltfpackBaseline(programs, scene, ours.bytes, settings);
+    const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
+    report.decimation = decimationBaseline(programs, scene, welded, ours.bytes, settings);
+    report.gltfpack = gltfpackBaseline(programs, scene, welded, ours.bytes, settings);
     report.bake = bakeBaseline(programs, scene, bakeRoute.cage, bakeRoute.effects, bakeRoute.resolution, settings);
     std::vector<const std::vector<glm::vec4>*> columns{&ours.view, &report.decimation.view};
     if (report.gltfpack) columns.push_back(&report.gltfpack->view);
@@ -120,6 +122,51 @@ void startMaps(fit::FitRun& run, bool bake) {
     // The bake fits this cage: moving it now would slide the maps off the detail they hold.
     fitter.setOptimised(fitter.vertexGroup(), false);
     for (auto* g : parameters->groups()) fitter.setRates(*g, g->settings().epsilon, kRefineRate * g->settings().learningRate);
+}
+
+// Where the fit starts: without a budget, the initial cage of --faces; with one, the budget
+// search's choice (simplify/budget_search.h), whose maps, resolution and bits go into `o` and
+// `fitOptions`, and whose best candidate with maps is the bake route at those bytes.
+struct Start {
+    nlohmann::json budget;              // the search's report, null without a budget
+    std::optional<BakeRoute> bakeRoute;  // none: the initial cage with the run's maps
+};
+
+Start chooseStart(SimplifyOptions& o, fit::FitOptions& fitOptions, gl::ProgramCache& programs, fit::FitScene& scene,
+                  const mesh::PolygonMesh& reference, const fit::FitHooks& hooks) {
+    Start start;
+    if (o.budget <= 0) {
+        scene.setCage(initialCage(reference, {.faces = o.faces > 0 ? o.faces : kDefaultFaces}));
+        return start;
+    }
+    const BudgetSearch search{.budget = o.budget,
+                              .faceCounts = o.faces > 0 ? std::vector<int>{o.faces}
+                                                        : faceCountsFor(o.budget, scene.reference.faceCount(), kMostBudgetFaces),
+                              .allowedMaps = o.fit.maps};
+    if (hooks.note) hooks.note("budget " + std::to_string(o.budget) + " bytes: trying candidates");
+    const auto searchStarted = std::chrono::steady_clock::now();
+    const BudgetChoice choice = searchBudget(programs, scene, reference, search, hooks.note);
+    fitOptions.maps = o.fit.maps = choice.chosen.maps;
+    if (choice.chosen.mapResolution > 0) {
+        fitOptions.mapResolution = o.fit.mapResolution = choice.chosen.mapResolution;
+        fitOptions.mapBits = o.fit.mapBits = choice.chosen.mapBits;
+        // The search judged this cage with maps baked onto it as it is: the fit refines that
+        // (moving the cage first would leave what was judged; measured on the relief Spot at
+        // 20 KB: 3.06e-3 mean distance after 400 cage steps and the bake on the fitted cage,
+        // 2.36e-3 refining the judged bake, in half the time).
+        fitOptions.mapsStart = o.fit.mapsStart = 0.0f;
+    }
+    scene.setCage(choice.cageWorld);
+    start.budget = toJson(choice, o.budget);
+    start.budget["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - searchStarted).count();
+    if (choice.bestWithMaps) {
+        // The bake route at these bytes: the search's best candidate with maps, as it is.
+        mesh::PolygonMesh bakeCage = choice.bestWithMapsCage;
+        bakeCage.positions = scene.frame.toNormalized(bakeCage.positions);
+        start.bakeRoute = BakeRoute{.cage = std::move(bakeCage), .effects = choice.bestWithMaps->maps,
+                                    .resolution = choice.bestWithMaps->mapResolution, .bits = choice.bestWithMaps->mapBits};
+    }
+    return start;
 }
 
 }  // namespace
@@ -178,39 +225,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     fit::FitOptions fitOptions = o.fit;
     fitOptions.cage = o.fit.out / "initial_cage.obj";  // where the report says the cage came from
     fit::FitScene scene(fitOptions, programs, {}, reference);
-    nlohmann::json budgetReport;
-    std::optional<BakeRoute> bakeRoute;
-    if (o.budget > 0) {
-        const BudgetSearch search{.budget = o.budget,
-                                  .faceCounts = o.faces > 0 ? std::vector<int>{o.faces}
-                                                            : faceCountsFor(o.budget, scene.reference.faceCount(), kMostBudgetFaces),
-                                  .allowedMaps = o.fit.maps};
-        if (hooks.note) hooks.note("budget " + std::to_string(o.budget) + " bytes: trying candidates");
-        const auto searchStarted = std::chrono::steady_clock::now();
-        const BudgetChoice choice = searchBudget(programs, scene, reference, search, hooks.note);
-        fitOptions.maps = o.fit.maps = choice.chosen.maps;
-        if (choice.chosen.mapResolution > 0) {
-            fitOptions.mapResolution = o.fit.mapResolution = choice.chosen.mapResolution;
-            fitOptions.mapBits = o.fit.mapBits = choice.chosen.mapBits;
-            // The search judged this cage with maps baked onto it as it is: the fit refines that
-            // (moving the cage first would leave what was judged; measured on the relief Spot at
-            // 20 KB: 3.06e-3 mean distance after 400 cage steps and the bake on the fitted cage,
-            // 2.36e-3 refining the judged bake, in half the time).
-            fitOptions.mapsStart = o.fit.mapsStart = 0.0f;
-        }
-        scene.setCage(choice.cageWorld);
-        budgetReport = toJson(choice, o.budget);
-        budgetReport["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - searchStarted).count();
-        if (choice.bestWithMaps) {
-            // The bake route at these bytes: the search's best candidate with maps, as it is.
-            mesh::PolygonMesh bakeCage = choice.bestWithMapsCage;
-            bakeCage.positions = scene.frame.toNormalized(bakeCage.positions);
-            bakeRoute = {.cage = std::move(bakeCage), .effects = choice.bestWithMaps->maps,
-                         .resolution = choice.bestWithMaps->mapResolution, .bits = choice.bestWithMaps->mapBits};
-        }
-    } else {
-        scene.setCage(initialCage(reference, {.faces = o.faces > 0 ? o.faces : kDefaultFaces}));
-    }
+    const Start start = chooseStart(o, fitOptions, programs, scene, reference, hooks);
     const mesh::PolygonMesh cage = scene.cageWorld;
     fit::FitRun run(fitOptions, programs, scene);
     const auto checkpoint = o.fit.out / "checkpoint.bin";
@@ -231,11 +246,12 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     io::StagedFolder staged(o.fit.out);
     mesh::writeObj(staged.path() / "initial_cage.obj", cage);
     SimplifyReport report{.fit = run.writeResults(staged.path(), *context), .gltfpack = std::nullopt, .facesRequested = o.faces,
-                          .budget = budgetReport};
+                          .budget = start.budget};
     if (o.budget > 0) report.budget["map_bits"] = shipWithinBudget(staged.path() / "asset.subd", o.budget, o.fit.mapBits, report.fit);
-    if (!bakeRoute) bakeRoute = BakeRoute{.cage = scene.cage, .effects = o.fit.maps, .resolution = o.fit.mapResolution,
-                                          .bits = o.fit.mapBits};
-    evaluate(o, staged.path(), programs, *bakeRoute, run, report.fit, report);
+    const BakeRoute bakeRoute = start.bakeRoute ? *start.bakeRoute
+                                                : BakeRoute{.cage = scene.cage, .effects = o.fit.maps,
+                                                            .resolution = o.fit.mapResolution, .bits = o.fit.mapBits};
+    evaluate(o, staged.path(), programs, bakeRoute, run, report.fit, report);
     report.fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     io::writeTextAtomically(staged.path() / "report.json", toJson(report).dump(2) + "\n");
     staged.commit();
