@@ -43,6 +43,9 @@
 #define SUBDFIT_SSBO_RELAX_MODES 29           // per vertex: surface, crease or fixed
 #define SUBDFIT_SSBO_RELAX_CORNER_OFFSETS 30  // vertex -> its face corners (CSR)
 #define SUBDFIT_SSBO_RELAX_CORNERS 31         // (previous, next) vertex of each corner
+// Where each vertex sat among its neighbours in the start cage (low-passed), 3 floats per vertex.
+// Shares g's binding point: the relaxation runs after Adam, which has consumed g.
+#define SUBDFIT_SSBO_RELAX_REST SUBDFIT_SSBO_GRADIENT
 
 // Texture units of the gradient pass.
 #define SUBDFIT_UNIT_COLOR_PLUS 0

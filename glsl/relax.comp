@@ -1,5 +1,6 @@
 // Tangential relaxation of the cage (fit/cage_relaxation.h): one thread per vertex,
-//   x' = x + rate · P (c − x),   c = the centroid of the vertices it averages,
+//   x' = x + rate · P (c + r − x),   c = the centroid of the vertices it averages,
+// r = where the vertex sat relative to that centroid in the start cage, low-passed,
 // with P the projection onto the tangent plane (normal from the face corners at x) for a surface
 // vertex, onto the chain direction for a crease vertex, and 0 for a fixed one. Reads θ, writes
 // the scratch buffer (Jacobi: every vertex sees its neighbours' old positions).
@@ -14,6 +15,7 @@ layout(std430, binding = SUBDFIT_SSBO_ADJACENCY_OFFSETS) readonly buffer Offsets
 layout(std430, binding = SUBDFIT_SSBO_ADJACENCY_INDICES) readonly buffer Neighbours { int neighbours[]; };
 layout(std430, binding = SUBDFIT_SSBO_RELAX_CORNER_OFFSETS) readonly buffer CornerOffsets { int cornerOffsets[]; };
 layout(std430, binding = SUBDFIT_SSBO_RELAX_CORNERS) readonly buffer Corners { int corners[]; };
+layout(std430, binding = SUBDFIT_SSBO_RELAX_REST) readonly buffer Rest { float rest[]; };
 
 uniform int uVertexCount;
 uniform float uRate;
@@ -29,7 +31,7 @@ void main() {
     if (modes[v] != 2 && end > begin) {
         vec3 sum = vec3(0.0);
         for (int k = begin; k < end; ++k) sum += point(neighbours[k]);
-        vec3 d = sum / float(end - begin) - p;
+        vec3 d = sum / float(end - begin) + vec3(rest[3 * v], rest[3 * v + 1], rest[3 * v + 2]) - p;
         if (modes[v] == 1) {
             vec3 along = point(neighbours[end - 1]) - point(neighbours[begin]);
             float l = length(along);

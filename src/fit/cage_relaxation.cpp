@@ -72,8 +72,31 @@ RelaxationTopology relaxationTopology(const mesh::PolygonMesh& cage) {
     return t;
 }
 
-CageRelaxation::CageRelaxation(const mesh::PolygonMesh& cage) : vertexCount_(cage.vertexCount()) {
+std::vector<glm::vec3> restOffsets(const mesh::PolygonMesh& cage, const RelaxationTopology& t, int passes) {
+    const size_t n = cage.positions.size();
+    auto centroidOf = [&](const std::vector<glm::vec3>& values, size_t v) {
+        const int begin = t.offsets[v], end = t.offsets[v + 1];
+        if (end == begin) return values[v];
+        glm::vec3 sum(0.0f);
+        for (int k = begin; k < end; ++k) sum += values[size_t(t.neighbors[size_t(k)])];
+        return sum / float(end - begin);
+    };
+    std::vector<glm::vec3> offsets(n);
+    for (size_t v = 0; v < n; ++v) offsets[v] = cage.positions[v] - centroidOf(cage.positions, v);
+    for (int pass = 0; pass < passes; ++pass) {
+        std::vector<glm::vec3> smoothed(n);
+        for (size_t v = 0; v < n; ++v) smoothed[v] = 0.5f * (offsets[v] + centroidOf(offsets, v));
+        offsets = std::move(smoothed);
+    }
+    return offsets;
+}
+
+CageRelaxation::CageRelaxation(const mesh::PolygonMesh& cage, int restPasses) : vertexCount_(cage.vertexCount()) {
     const RelaxationTopology t = relaxationTopology(cage);
+    std::vector<glm::vec3> rest = restPasses >= 0 ? restOffsets(cage, t, restPasses)
+                                                  : std::vector<glm::vec3>(cage.positions.size(), glm::vec3(0.0f));
+    rest_ = gl::Buffer(GLsizeiptr(rest.size() * sizeof(glm::vec3)));
+    rest_.upload(rest.data(), GLsizeiptr(rest.size() * sizeof(glm::vec3)));
     modes_ = gl::Buffer::fromVector(t.modes);
     offsets_ = gl::Buffer::fromVector(t.offsets);
     neighbors_ = gl::Buffer::fromVector(t.neighbors);
@@ -100,6 +123,7 @@ void CageRelaxation::apply(gl::ProgramCache& programs, gl::Buffer& theta, float 
     program.set("uRate", rate);
     theta.bindStorage(SUBDFIT_SSBO_SMOOTH_IN);
     scratch_.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
+    rest_.bindStorage(SUBDFIT_SSBO_RELAX_REST);
     dispatchOverVertices();
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     theta.copyFrom(scratch_);
