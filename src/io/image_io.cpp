@@ -1,13 +1,73 @@
 #include "io/image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cstring>
+#include <string_view>
 
 #include "io/atomic_file.h"
+#include "io/input_file.h"
 #include "util/error.h"
 
 namespace subdfit::io {
+namespace {
+
+// OpenImageIO picks a reader by file extension; bytes in memory have none, so the signature
+// names the format.
+const char* formatOf(const unsigned char* p, std::size_t n) {
+    auto starts = [&](std::string_view magic, std::size_t at = 0) {
+        return n >= at + magic.size() && std::memcmp(p + at, magic.data(), magic.size()) == 0;
+    };
+    if (starts("\x89PNG\r\n\x1a\n")) return "png";
+    if (starts("\xff\xd8\xff")) return "jpg";
+    if (starts("RIFF") && starts("WEBP", 8)) return "webp";
+    if (starts("BM")) return "bmp";
+    if (starts("GIF8")) return "gif";
+    if (starts("II*") || starts("MM\0*")) return "tif";
+    if (starts("\x76\x2f\x31\x01")) return "exr";
+    return nullptr;
+}
+
+}  // namespace
+
+DecodedImage decodeImage(const void* data, std::size_t size, const std::string& name) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    const char* format = formatOf(bytes, size);
+    if (!format) throw fileError(name, "not an image format subdfit reads (PNG, JPEG, WebP, BMP, GIF, TIFF, EXR)");
+    OIIO::Filesystem::IOMemReader memory(bytes, size);
+    auto in = OIIO::ImageInput::open(std::string("memory.") + format, nullptr, &memory);
+    if (!in) throw fileError(name, "corrupt image: " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1 ||
+        std::int64_t(spec.width) * spec.height > kMaxImagePixels)
+        throw fileError(name, "image of " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                                  " pixels, more than subdfit reads (" + std::to_string(kMaxImagePixels) + ")");
+    const int channels = spec.nchannels;
+    std::vector<std::uint8_t> pixels(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(channels));
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data()))
+        throw fileError(name, "corrupt image: " + in->geterror());
+    in->close();
+    DecodedImage image{spec.width, spec.height, std::vector<std::uint8_t>(std::size_t(spec.width) * spec.height * 4)};
+    for (std::size_t i = 0, n = std::size_t(spec.width) * spec.height; i < n; ++i) {
+        const std::uint8_t* p = pixels.data() + i * std::size_t(channels);
+        std::uint8_t* q = image.rgba.data() + i * 4;
+        if (channels <= 2) {  // grey, grey + alpha
+            q[0] = q[1] = q[2] = p[0];
+            q[3] = channels == 2 ? p[1] : 255;
+        } else {
+            q[0] = p[0], q[1] = p[1], q[2] = p[2];
+            q[3] = channels >= 4 ? p[3] : 255;
+        }
+    }
+    return image;
+}
+
+DecodedImage readImage(const std::filesystem::path& path) {
+    const std::string bytes = readInputFile(path);
+    return decodeImage(bytes.data(), bytes.size(), path.string());
+}
 
 void writeImage(const std::filesystem::path& path, const std::vector<glm::vec4>& pixels, int width, int height) {
     std::vector<unsigned char> rgb(size_t(width) * height * 3);

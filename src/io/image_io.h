@@ -1,6 +1,9 @@
 #pragma once
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <glm/vec4.hpp>
+#include <string>
 #include <vector>
 
 namespace subdfit::io {
@@ -8,5 +11,23 @@ namespace subdfit::io {
 // Writes an RGB image (rows bottom-up, as GL reads them) clamped to [0,1], 8-bit, format by
 // extension (PNG, ...), atomically. Throws subdfit::Error naming the file on failure.
 void writeImage(const std::filesystem::path& path, const std::vector<glm::vec4>& pixels, int width, int height);
+
+// An image as 8-bit RGBA, top row first (as files store them).
+struct DecodedImage {
+    int width = 0, height = 0;
+    std::vector<std::uint8_t> rgba;  // width × height × 4
+};
+
+// The most pixels an input image may have: a 16K × 16K texture.
+inline constexpr std::int64_t kMaxImagePixels = std::int64_t(1) << 28;
+
+// Decodes an image file's bytes (PNG, JPEG, WebP, BMP, TIFF, ...: what OpenImageIO reads, told
+// apart by their first bytes), grey or RGB made RGBA (alpha 1), 16-bit and float made 8-bit.
+// Throws subdfit::Error naming `nameForErrors` for an unknown format, a corrupt or truncated
+// image, or one of more than kMaxImagePixels pixels.
+DecodedImage decodeImage(const void* data, std::size_t size, const std::string& nameForErrors);
+
+// readInputFile, then decodeImage.
+DecodedImage readImage(const std::filesystem::path& path);
 
 }  // namespace subdfit::io

@@ -27,10 +27,34 @@ const draco::PointAttribute* positionAttribute(const draco::Mesh& mesh, int uniq
     return attribute;
 }
 
+// A per-point attribute of N float components (texture coordinates, colours).
+template <int N>
+std::vector<glm::vec<N, float>> pointValues(const draco::Mesh& mesh, int uniqueId, glm::vec<N, float> fill,
+                                            const std::string& path, const char* what) {
+    const draco::PointAttribute* attribute = mesh.GetAttributeByUniqueId(uint32_t(uniqueId));
+    if (!attribute) throw fileError(path, std::string("Draco mesh has no ") + what + " attribute with id " + std::to_string(uniqueId));
+    const int components = attribute->num_components();
+    if (components < 2 || components > N)
+        throw fileError(path, std::string("Draco ") + what + " attribute has " + std::to_string(components) + " components");
+    std::vector<glm::vec<N, float>> values(mesh.num_points(), fill);
+    for (draco::PointIndex p(0); p < mesh.num_points(); ++p) {
+        float v[N];
+        for (int c = 0; c < N; ++c) v[c] = fill[c];  // what the attribute has fewer components for
+        if (!attribute->ConvertValue<float>(attribute->mapped_index(p), int8_t(components), v))
+            throw fileError(path, std::string("Draco ") + what + " cannot be converted to float");
+        for (int c = 0; c < N; ++c) {
+            if (!std::isfinite(v[c])) throw fileError(path, std::string("non-finite Draco ") + what + " at point " + std::to_string(p.value()));
+            values[p.value()][c] = v[c];
+        }
+    }
+    return values;
+}
+
 }  // namespace
 
 PolygonMesh decodeDracoMesh(const char* data, size_t size, const std::string& pathForErrors,
-                            int positionUniqueId) {
+                            const DracoAttributeIds& ids) {
+    const int positionUniqueId = ids.position;
     const std::string& path = pathForErrors;
     draco::DecoderBuffer buffer;
     buffer.Init(data, size);
@@ -68,6 +92,8 @@ PolygonMesh decodeDracoMesh(const char* data, size_t size, const std::string& pa
                 throw fileError(path, "Draco face " + std::to_string(f.value()) + " names a missing point");
             mesh.faceIndices.push_back(int(p.value()));
         }
+    if (ids.texCoord >= 0) mesh.uvs = pointValues<2>(dracoMesh, ids.texCoord, glm::vec2(0.0f), path, "texture coordinate");
+    if (ids.color >= 0) mesh.colors = pointValues<4>(dracoMesh, ids.color, glm::vec4(1.0f), path, "colour");
     return mesh;
 }
 

@@ -9,12 +9,18 @@
 
 namespace subdfit::mesh {
 
-// Decodes a Draco triangle mesh: one vertex per Draco point, one triangle per Draco face.
-// Positions come from the attribute with `positionUniqueId` (the id glTF's extension names),
-// or from the POSITION attribute when it is negative. Throws subdfit::Error naming
-// `pathForErrors` for corrupt data, point clouds and missing or non-3D positions.
+// The Draco attributes glTF's extension names by unique id (-1: position from the POSITION
+// attribute; texture coordinates and colours not read).
+struct DracoAttributeIds {
+    int position = -1, texCoord = -1, color = -1;
+};
+
+// Decodes a Draco triangle mesh: one vertex per Draco point, one triangle per Draco face, with
+// the texture coordinates (mesh.uvs) and colours (mesh.colors) `ids` names. Throws
+// subdfit::Error naming `pathForErrors` for corrupt data, point clouds, missing or non-3D
+// positions and missing or malformed texture coordinates or colours.
 PolygonMesh decodeDracoMesh(const char* data, size_t size, const std::string& pathForErrors,
-                            int positionUniqueId = -1);
+                            const DracoAttributeIds& ids = {});
 
 // Reads a `.drc` file (a mesh; a point cloud is an error).
 PolygonMesh readDraco(const std::filesystem::path& path);

@@ -18,8 +18,18 @@ struct ElementSpan {
     size_t stride = 0;
     size_t count = 0;
     int componentType = 0;
+    size_t components = 0;
     bool normalized = false;
 };
+
+const char* typeName(int type) {
+    switch (type) {
+        case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+        case TINYGLTF_TYPE_VEC2: return "VEC2";
+        case TINYGLTF_TYPE_VEC3: return "VEC3";
+        default: return "VEC3 or VEC4";
+    }
+}
 
 size_t componentSize(int componentType) {
     switch (componentType) {
@@ -39,10 +49,10 @@ ElementSpan resolve(const tinygltf::Model& model, int index, int expectedType, c
         throw fileError(path, name + " does not exist (" + std::to_string(model.accessors.size()) + " accessors)");
     const tinygltf::Accessor& accessor = model.accessors[size_t(index)];
     if (accessor.sparse.isSparse) throw fileError(path, name + ": sparse accessors are not supported");
-    if (accessor.type != expectedType)
-        throw fileError(path, name + " has type " + std::to_string(accessor.type) + ", expected " +
-                                  (expectedType == TINYGLTF_TYPE_VEC3 ? "VEC3" : "SCALAR"));
-    const size_t components = expectedType == TINYGLTF_TYPE_VEC3 ? 3 : 1;
+    const bool colorType = expectedType == TINYGLTF_TYPE_VEC4 && accessor.type == TINYGLTF_TYPE_VEC3;  // COLOR_0
+    if (accessor.type != expectedType && !colorType)
+        throw fileError(path, name + " has type " + std::to_string(accessor.type) + ", expected " + typeName(expectedType));
+    const size_t components = size_t(tinygltf::GetNumComponentsInType(uint32_t(accessor.type)));
     const size_t elementSize = components * componentSize(accessor.componentType);
     if (elementSize == 0)
         throw fileError(path, name + " has unsupported componentType " + std::to_string(accessor.componentType));
@@ -53,6 +63,7 @@ ElementSpan resolve(const tinygltf::Model& model, int index, int expectedType, c
     ElementSpan span;
     span.count = accessor.count;
     span.componentType = accessor.componentType;
+    span.components = components;
     span.normalized = accessor.normalized;
     span.stride = elementSize;
     if (accessor.bufferView < 0 || span.count == 0) return span;
@@ -144,6 +155,47 @@ std::vector<glm::vec3> readPositions(const tinygltf::Model& model, int accessor,
         }
     }
     return positions;
+}
+
+namespace {
+
+// Texture coordinates and colours: float, or normalized unsigned byte / short (spec 3.7.2.1).
+template <int N>
+std::vector<glm::vec<N, float>> readNormalizedAttribute(const tinygltf::Model& model, int accessor, int type,
+                                                        const std::string& path, const char* what) {
+    const ElementSpan span = resolve(model, accessor, type, path);
+    const int t = span.componentType;
+    const bool allowed = t == TINYGLTF_COMPONENT_TYPE_FLOAT || (span.normalized && (t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                                                                    t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+    if (!allowed)
+        throw fileError(path, "accessor " + std::to_string(accessor) + ": " + what +
+                                  " must be float or normalized unsigned byte or short");
+    glm::vec<N, float> fill(0.0f);
+    if constexpr (N == 4) fill.w = 1.0f;  // a VEC3 colour is opaque
+    std::vector<glm::vec<N, float>> values(span.count, fill);
+    if (!span.data) return values;
+    const size_t size = componentSize(t);
+    for (size_t i = 0; i < span.count; ++i) {
+        const unsigned char* element = span.data + i * span.stride;
+        for (size_t c = 0; c < span.components; ++c) {
+            const float v = component(element + c * size, t, span.normalized);
+            if (!std::isfinite(v))
+                throw fileError(path, "accessor " + std::to_string(accessor) + ": non-finite " + what + " at vertex " +
+                                          std::to_string(i));
+            values[i][int(c)] = v;
+        }
+    }
+    return values;
+}
+
+}  // namespace
+
+std::vector<glm::vec2> readTexCoords(const tinygltf::Model& model, int accessor, const std::string& path) {
+    return readNormalizedAttribute<2>(model, accessor, TINYGLTF_TYPE_VEC2, path, "texture coordinates");
+}
+
+std::vector<glm::vec4> readColors(const tinygltf::Model& model, int accessor, const std::string& path) {
+    return readNormalizedAttribute<4>(model, accessor, TINYGLTF_TYPE_VEC4, path, "colours");
 }
 
 std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor, const std::string& path) {

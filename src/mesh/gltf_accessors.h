@@ -9,13 +9,20 @@
 #include <string_view>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 namespace subdfit::mesh::gltf {
 
 // Positions of a VEC3 accessor: float, or (KHR_mesh_quantization) 8/16-bit integers,
 // normalized or not. NaN and Inf are errors.
 std::vector<glm::vec3> readPositions(const tinygltf::Model& model, int accessor, const std::string& path);
+
+// TEXCOORD_n of a VEC2 accessor, and COLOR_n of a VEC3 (alpha 1) or VEC4 accessor: float, or
+// normalized unsigned byte / short. NaN and Inf are errors.
+std::vector<glm::vec2> readTexCoords(const tinygltf::Model& model, int accessor, const std::string& path);
+std::vector<glm::vec4> readColors(const tinygltf::Model& model, int accessor, const std::string& path);
 
 // Indices of a SCALAR unsigned byte/short/int accessor (not yet checked against a vertex count).
 std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor, const std::string& path);

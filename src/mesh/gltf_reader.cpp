@@ -17,6 +17,7 @@
 #include "mesh/draco_reader.h"
 #include "mesh/gltf_accessors.h"
 #include "mesh/gltf_file_access.h"
+#include "mesh/gltf_materials.h"
 #include "mesh/gltf_meshopt.h"
 #include "mesh/gltf_preflight.h"
 #include "mesh/input_limits.h"
@@ -29,7 +30,7 @@ namespace {
 
 constexpr const char* kDraco = "KHR_draco_mesh_compression";
 
-// Geometry is all we take from a glTF; images are not even decoded.
+// A cage (or a reference read for its geometry) does not even decode its images.
 bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
                void*) {
     return true;
@@ -49,7 +50,7 @@ std::string oneLine(const std::string& text) {
     return out.empty() ? "unknown error" : out;
 }
 
-tinygltf::Model parseModel(const std::filesystem::path& path) {
+tinygltf::Model parseModel(const std::filesystem::path& path, bool decodeImages) {
     const std::string name = path.string();
     std::string bytes = io::readInputFile(path);
     // Binary or text by content, not by extension: a .gltf that is really a GLB still loads.
@@ -63,7 +64,10 @@ tinygltf::Model parseModel(const std::filesystem::path& path) {
 
     gltf::FileAccess files(path);
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(&skipImage, nullptr);
+    if (decodeImages)
+        loader.SetImageLoader(&gltf::decodeImageForTinygltf, nullptr);
+    else
+        loader.SetImageLoader(&skipImage, nullptr);
     loader.SetFsCallbacks(files.callbacks());
     tinygltf::Model model;
     std::string err, warn;
@@ -113,6 +117,10 @@ glm::dmat4 localTransform(const tinygltf::Node& node) {
 struct MeshTriangles {
     std::vector<glm::vec3> positions;
     std::vector<uint32_t> indices;  // a triangle list
+    // With appearance: per vertex (zero / white where a primitive has none), per triangle.
+    std::vector<glm::vec2> uvs;
+    std::vector<glm::vec4> colors;
+    std::vector<int> materials;  // the glTF material, -1 for none
 };
 
 // What unfolding part of a scene costs, counting every instance; saturating, so that a DAG of
@@ -132,9 +140,9 @@ struct UnfoldCost {
 // Collects the scene's triangles into one PolygonMesh, after checking what that will cost.
 class SceneMerger {
 public:
-    SceneMerger(const tinygltf::Model& model, std::string path)
-        : model_(model), path_(std::move(path)), meshes_(model.meshes.size()), costs_(model.nodes.size()),
-          visit_(model.nodes.size(), Visit::New) {
+    SceneMerger(const tinygltf::Model& model, std::string path, bool appearance)
+        : model_(model), path_(std::move(path)), appearance_(appearance), meshes_(model.meshes.size()),
+          costs_(model.nodes.size()), visit_(model.nodes.size(), Visit::New) {
         mesh_.sourcePath = path_;
     }
 
@@ -154,6 +162,7 @@ public:
 
     PolygonMesh finish() {
         if (mesh_.faceSizes.empty()) throw fileError(path_, "no triangle primitives in the scene");
+        if (appearance_) finishAppearance();
         return std::move(mesh_);
     }
 
@@ -228,10 +237,14 @@ private:
 
         std::vector<glm::vec3> positions;
         std::vector<uint32_t> indices;
+        std::vector<glm::vec2> uvs;
+        std::vector<glm::vec4> colors;
         if (const auto draco = primitive.extensions.find(kDraco); draco != primitive.extensions.end()) {
             PolygonMesh decoded = decodeDraco(draco->second);
             positions = std::move(decoded.positions);
             indices.assign(decoded.faceIndices.begin(), decoded.faceIndices.end());
+            uvs = std::move(decoded.uvs);
+            colors = std::move(decoded.colors);
         } else {
             const auto position = primitive.attributes.find("POSITION");
             if (position == primitive.attributes.end())
@@ -244,7 +257,15 @@ private:
                 for (size_t i = 0; i < indices.size(); ++i) indices[i] = uint32_t(i);
             }
             if (mode != TINYGLTF_MODE_TRIANGLES) indices = triangleList(indices, mode);
+            if (appearance_) {
+                if (const auto a = primitive.attributes.find("TEXCOORD_0"); a != primitive.attributes.end())
+                    uvs = gltf::readTexCoords(model_, a->second, path_);
+                if (const auto a = primitive.attributes.find("COLOR_0"); a != primitive.attributes.end())
+                    colors = gltf::readColors(model_, a->second, path_);
+            }
         }
+        if ((!uvs.empty() && uvs.size() != positions.size()) || (!colors.empty() && colors.size() != positions.size()))
+            throw fileError(path_, "a primitive's TEXCOORD_0 or COLOR_0 has another count than its POSITION");
         if (indices.size() % 3 != 0)
             throw fileError(path_, "a TRIANGLES primitive has " + std::to_string(indices.size()) +
                                        " indices, not a multiple of 3");
@@ -257,6 +278,15 @@ private:
             throw fileError(path_, "a mesh has more than " + std::to_string(kMaxVertices) + " vertices");
         mesh.positions.insert(mesh.positions.end(), positions.begin(), positions.end());
         for (uint32_t i : indices) mesh.indices.push_back(base + i);
+        if (appearance_) {
+            hasUvs_ = hasUvs_ || !uvs.empty();
+            hasColors_ = hasColors_ || !colors.empty();
+            uvs.resize(positions.size(), glm::vec2(0.0f));
+            colors.resize(positions.size(), glm::vec4(1.0f));
+            mesh.uvs.insert(mesh.uvs.end(), uvs.begin(), uvs.end());
+            mesh.colors.insert(mesh.colors.end(), colors.begin(), colors.end());
+            mesh.materials.insert(mesh.materials.end(), indices.size() / 3, primitive.material);
+        }
     }
 
     PolygonMesh decodeDraco(const tinygltf::Value& extension) {
@@ -265,7 +295,14 @@ private:
         if (!view.IsNumber() || !position.IsNumber())
             throw fileError(path_, std::string(kDraco) + " without bufferView or attributes.POSITION");
         const std::string_view bytes = gltf::bufferViewBytes(model_, view.GetNumberAsInt(), path_);
-        return decodeDracoMesh(bytes.data(), bytes.size(), path_, position.GetNumberAsInt());
+        DracoAttributeIds ids{.position = position.GetNumberAsInt()};
+        if (appearance_) {
+            const tinygltf::Value& texCoord = extension.Get("attributes").Get("TEXCOORD_0");
+            const tinygltf::Value& color = extension.Get("attributes").Get("COLOR_0");
+            if (texCoord.IsNumber()) ids.texCoord = texCoord.GetNumberAsInt();
+            if (color.IsNumber()) ids.color = color.GetNumberAsInt();
+        }
+        return decodeDracoMesh(bytes.data(), bytes.size(), path_, ids);
     }
 
     // Strips and fans as a plain list, keeping glTF's winding (spec 3.7.2.1).
@@ -296,10 +333,43 @@ private:
             mesh_.faceIndices.insert(mesh_.faceIndices.end(), {a, mirrored ? c : b, mirrored ? b : c});
             mesh_.faceSizes.push_back(3);
         }
+        if (appearance_) {
+            mesh_.uvs.insert(mesh_.uvs.end(), triangles.uvs.begin(), triangles.uvs.end());
+            mesh_.colors.insert(mesh_.colors.end(), triangles.colors.begin(), triangles.colors.end());
+            mesh_.faceMaterials.insert(mesh_.faceMaterials.end(), triangles.materials.begin(), triangles.materials.end());
+        }
+    }
+
+    // The materials of the file, a default one for primitives without (glTF's, spec 3.9.6), or,
+    // for a file with vertex colours and no materials at all, one plain material (not metallic)
+    // that shows them: what a scan's exporter means by colours without a material.
+    void finishAppearance() {
+        if (!hasUvs_) mesh_.uvs.clear();
+        if (!hasColors_) mesh_.colors.clear();
+        if (model_.materials.empty() && !hasColors_) {
+            mesh_.faceMaterials.clear();
+            return;
+        }
+        auto set = std::make_shared<MaterialSet>(gltf::readMaterials(model_, path_));
+        int fallback = -1;
+        for (int& m : mesh_.faceMaterials) {
+            if (m >= 0 && size_t(m) < set->materials.size()) continue;
+            if (m >= 0) throw fileError(path_, "a primitive names material " + std::to_string(m) + ", which does not exist");
+            if (fallback < 0) {
+                Material plain = defaultMaterial();
+                if (model_.materials.empty()) plain.metallicFactor = 0.0f;
+                fallback = int(set->materials.size());
+                set->materials.push_back(plain);
+            }
+            m = fallback;
+        }
+        mesh_.materials = std::move(set);
     }
 
     const tinygltf::Model& model_;
     std::string path_;
+    bool appearance_;
+    bool hasUvs_ = false, hasColors_ = false;
     std::vector<std::optional<MeshTriangles>> meshes_;
     std::vector<UnfoldCost> costs_;
     std::vector<Visit> visit_;
@@ -308,12 +378,13 @@ private:
 
 }  // namespace
 
-PolygonMesh readGltf(const std::filesystem::path& path) {
+PolygonMesh readGltf(const std::filesystem::path& path, MeshContent content) {
     const std::string name = path.string();
-    const tinygltf::Model model = parseModel(path);
+    const bool appearance = content == MeshContent::WithAppearance;
+    const tinygltf::Model model = parseModel(path, appearance);
     checkRequiredExtensions(model, name);
 
-    SceneMerger merger(model, name);
+    SceneMerger merger(model, name, appearance);
     if (model.scenes.empty()) {
         merger.addEveryMesh();
     } else {

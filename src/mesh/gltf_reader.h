@@ -12,7 +12,8 @@ namespace subdfit::mesh {
 // scenes), with node transforms applied, merged into one triangle mesh. Point and line
 // primitives are skipped. Throws subdfit::Error naming the file for malformed JSON or GLB,
 // out-of-bounds accessors, bad indices, non-finite positions, unsupported required extensions,
-// or a file without triangles.
-PolygonMesh readGltf(const std::filesystem::path& path);
+// or a file without triangles. With MeshContent::WithAppearance also TEXCOORD_0, COLOR_0, the
+// materials and their images (gltf_materials.h).
+PolygonMesh readGltf(const std::filesystem::path& path, MeshContent content = MeshContent::Geometry);
 
 }  // namespace subdfit::mesh

@@ -13,6 +13,9 @@ PolygonMesh triangulated(const PolygonMesh& mesh) {
     PolygonMesh out;
     out.positions = mesh.positions;
     out.sourcePath = mesh.sourcePath;
+    out.uvs = mesh.uvs;
+    out.colors = mesh.colors;
+    out.materials = mesh.materials;
     std::vector<char> isHole(mesh.faceSizes.size(), 0);
     for (int f : mesh.tags.holes)
         if (f >= 0 && f < mesh.faceCount()) isHole[size_t(f)] = 1;
@@ -25,6 +28,7 @@ PolygonMesh triangulated(const PolygonMesh& mesh) {
             SUBDFIT_CHECK(first + size_t(k) + 1 < mesh.faceIndices.size());
             out.faceIndices.insert(out.faceIndices.end(), {v[0], v[k], v[k + 1]});
             out.faceSizes.push_back(3);
+            if (!mesh.faceMaterials.empty()) out.faceMaterials.push_back(mesh.faceMaterials[f]);
         }
     }
     return out;

@@ -13,4 +13,8 @@ namespace subdfit::mesh {
 // other extension and for every input problem.
 PolygonMesh loadMesh(const std::filesystem::path& path);
 
+// loadMesh for a reference: also its appearance (texture coordinates, colours, materials and
+// their images) where the file has one.
+PolygonMesh loadReference(const std::filesystem::path& path);
+
 }  // namespace subdfit::mesh

@@ -56,6 +56,28 @@ void validateTags(const PolygonMesh& mesh) {
     warnAboutCreasesOffEdges(mesh);
 }
 
+// The readers build these consistently; this is the contract for every other producer.
+void validateAppearance(const PolygonMesh& mesh) {
+    const std::string& path = mesh.sourcePath;
+    const size_t vertices = mesh.positions.size();
+    if ((!mesh.uvs.empty() && mesh.uvs.size() != vertices) || (!mesh.colors.empty() && mesh.colors.size() != vertices))
+        throw fileError(path, "texture coordinates or colours do not match the vertices");
+    if (!mesh.materials) {
+        if (!mesh.faceMaterials.empty()) throw fileError(path, "faces name materials, but there are none");
+        return;
+    }
+    if (mesh.faceMaterials.size() != mesh.faceSizes.size()) throw fileError(path, "not every face has a material");
+    for (int m : mesh.faceMaterials)
+        if (!inRange(m, int(mesh.materials->materials.size())))
+            throw fileError(path, "a face names material " + std::to_string(m) + ", which does not exist");
+    const int images = int(mesh.materials->images.size());
+    for (const Material& m : mesh.materials->materials)
+        for (const TextureRef* t : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
+                                    &m.occlusionTexture, &m.emissiveTexture})
+            if (t->present() && !inRange(t->image, images))
+                throw fileError(path, "material '" + m.name + "' names image " + std::to_string(t->image) +
+                                          ", which does not exist");
+}
 
 }  // namespace
 
@@ -82,6 +104,7 @@ void validateMesh(const PolygonMesh& mesh) {
             throw fileError(path, "face index " + std::to_string(index) + " is out of range (" +
                                       std::to_string(mesh.vertexCount()) + " vertices)");
     validateTags(mesh);
+    validateAppearance(mesh);
 }
 
 }  // namespace subdfit::mesh

@@ -1,6 +1,7 @@
 #pragma once
 // Tokenising and number parsing for the OBJ reader and its `t` tags. Lines are views into the
 // whole-file buffer; numbers go through std::from_chars (no locale, no allocation).
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -41,6 +42,14 @@ public:
 private:
     std::string_view rest_;
 };
+
+// The rest of a line after its keyword, trimmed: names (files, materials) may contain spaces.
+inline std::string_view restOfLine(std::string_view line, std::string_view keyword) {
+    line.remove_prefix(std::min(line.size(), line.find(keyword) + keyword.size()));
+    while (!line.empty() && isSpace(line.front())) line.remove_prefix(1);
+    while (!line.empty() && isSpace(line.back())) line.remove_suffix(1);
+    return line;
+}
 
 // A token quoted for an error message, cut short so that a binary file cannot flood it.
 inline std::string quoted(std::string_view token) {

@@ -1,9 +1,14 @@
 #pragma once
 // A polygon mesh as read from disk: the Catmull-Clark cage, or a reference asset (which is
 // triangulated before rendering). Indices are 0-based; faces are stored concatenated.
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "mesh/material.h"
 
 namespace subdfit::mesh {
 
@@ -42,12 +47,26 @@ struct SubdivisionTags {
     friend bool operator==(const SubdivisionTags&, const SubdivisionTags&) = default;
 };
 
+// What a reader takes from a file: the geometry (and OpenSubdiv tags) only, as a cage needs,
+// or also its appearance, as a reference's renders need.
+enum class MeshContent { Geometry, WithAppearance };
+
 struct PolygonMesh {
     std::vector<glm::vec3> positions;
     std::vector<int> faceSizes;
     std::vector<int> faceIndices;  // concatenated, sum(faceSizes) entries
     SubdivisionTags tags;
     std::string sourcePath;  // for error messages
+
+    // A reference's appearance, read only when asked for (mesh_loader.h's loadReference): per
+    // vertex texture coordinates (TEXCOORD_0; empty when none) and colours (COLOR_0, linear RGBA;
+    // empty when none), and per face its material in `materials` (all empty for a mesh
+    // without materials: a grey surface).
+    std::vector<glm::vec2> uvs;
+    std::vector<glm::vec4> colors;
+    std::vector<int> faceMaterials;
+    std::shared_ptr<const MaterialSet> materials;
+    bool hasAppearance() const { return materials != nullptr || !colors.empty(); }
 
     int vertexCount() const { return int(positions.size()); }
     int faceCount() const { return int(faceSizes.size()); }

@@ -1,0 +1,178 @@
+#include "mesh/gltf_materials.h"
+
+#include <cmath>
+#include <set>
+
+#include "io/image_io.h"
+#include "util/error.h"
+#include "util/warnings.h"
+
+namespace subdfit::mesh::gltf {
+namespace {
+
+constexpr const char* kTextureTransform = "KHR_texture_transform";
+constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
+constexpr const char* kUnlit = "KHR_materials_unlit";
+
+double number(const tinygltf::Value& v, double fallback) { return v.IsNumber() ? v.GetNumberAsDouble() : fallback; }
+
+Wrap wrapOf(int mode) {
+    switch (mode) {
+        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::ClampToEdge;
+        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::MirroredRepeat;
+        default: return Wrap::Repeat;
+    }
+}
+
+// KHR_texture_transform: translation · rotation · scale applied to (u, v, 1). glTF's v points
+// down, so its "counter-clockwise" rotation is clockwise in a y-up frame: the sign the sample
+// implementations and the Khronos sample model use (KhronosGroup/glTF#1563).
+glm::mat3 textureTransform(const tinygltf::Value& t, int& texCoord) {
+    const tinygltf::Value& offset = t.Get("offset");
+    const tinygltf::Value& scale = t.Get("scale");
+    const float r = float(number(t.Get("rotation"), 0.0));
+    const glm::vec2 o(offset.IsArray() && offset.ArrayLen() == 2 ? number(offset.Get(0), 0.0) : 0.0,
+                      offset.IsArray() && offset.ArrayLen() == 2 ? number(offset.Get(1), 0.0) : 0.0);
+    const glm::vec2 s(scale.IsArray() && scale.ArrayLen() == 2 ? number(scale.Get(0), 1.0) : 1.0,
+                      scale.IsArray() && scale.ArrayLen() == 2 ? number(scale.Get(1), 1.0) : 1.0);
+    if (t.Has("texCoord")) texCoord = int(number(t.Get("texCoord"), 0.0));
+    const float c = std::cos(r), sn = std::sin(r);
+    const glm::mat3 translation(1, 0, 0, 0, 1, 0, o.x, o.y, 1);
+    const glm::mat3 rotation(c, -sn, 0, sn, c, 0, 0, 0, 1);
+    const glm::mat3 scaling(s.x, 0, 0, 0, s.y, 0, 0, 0, 1);
+    return translation * rotation * scaling;
+}
+
+class MaterialReader {
+public:
+    MaterialReader(const tinygltf::Model& model, std::string path) : model_(model), path_(std::move(path)) {}
+
+    MaterialSet read() {
+        MaterialSet set;
+        for (const tinygltf::Image& image : model_.images) set.images.push_back(imageOf(image, int(set.images.size())));
+        for (const tinygltf::Material& m : model_.materials) set.materials.push_back(materialOf(m));
+        if (!ignored_.empty()) {
+            std::string list;
+            for (const auto& what : ignored_) list += (list.empty() ? "" : ", ") + what;
+            warn(path_ + ": material features not reproduced (the look may differ): " + list);
+        }
+        return set;
+    }
+
+private:
+    Image imageOf(const tinygltf::Image& image, int index) const {
+        Image out;
+        out.name = image.uri.empty() ? "image " + std::to_string(index) : image.uri;
+        // The decoder always makes 8-bit RGBA; an image tinygltf could not hand it stays empty.
+        if (image.component == 4 && image.bits == 8 && image.width > 0 && image.height > 0 &&
+            image.image.size() == size_t(image.width) * size_t(image.height) * 4) {
+            out.width = image.width;
+            out.height = image.height;
+            out.rgba = image.image;
+        }
+        return out;
+    }
+
+    TextureRef textureOf(int index, int texCoord, const tinygltf::ExtensionMap& extensions, const char* slot) {
+        TextureRef ref;
+        if (index < 0) return ref;
+        if (size_t(index) >= model_.textures.size())
+            throw fileError(path_, std::string(slot) + " names texture " + std::to_string(index) + ", which does not exist");
+        const tinygltf::Texture& texture = model_.textures[size_t(index)];
+        if (texture.source < 0 || size_t(texture.source) >= model_.images.size()) {
+            if (!texture.extensions.empty()) {
+                ignored_.insert("texture source extension " + texture.extensions.begin()->first);
+                return ref;
+            }
+            throw fileError(path_, "texture " + std::to_string(index) + " names image " + std::to_string(texture.source) +
+                                       ", which does not exist");
+        }
+        ref.image = texture.source;
+        if (texture.sampler >= 0) {
+            if (size_t(texture.sampler) >= model_.samplers.size())
+                throw fileError(path_, "texture " + std::to_string(index) + " names sampler " +
+                                           std::to_string(texture.sampler) + ", which does not exist");
+            const tinygltf::Sampler& sampler = model_.samplers[size_t(texture.sampler)];
+            ref.wrapS = wrapOf(sampler.wrapS);
+            ref.wrapT = wrapOf(sampler.wrapT);
+            ref.nearest = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+        }
+        if (const auto t = extensions.find(kTextureTransform); t != extensions.end())
+            ref.uvTransform = textureTransform(t->second, texCoord);
+        if (texCoord != 0) ignored_.insert(std::string(slot) + " on TEXCOORD_" + std::to_string(texCoord));
+        return ref;
+    }
+
+    Material materialOf(const tinygltf::Material& m) {
+        Material out;
+        out.name = m.name;
+        const auto& pbr = m.pbrMetallicRoughness;
+        if (pbr.baseColorFactor.size() == 4)
+            out.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
+                                            pbr.baseColorFactor[3]);
+        out.baseColorTexture = textureOf(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                         pbr.baseColorTexture.extensions, "baseColorTexture");
+        out.metallicFactor = float(pbr.metallicFactor);
+        out.roughnessFactor = float(pbr.roughnessFactor);
+        out.metallicRoughnessTexture =
+            textureOf(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                      pbr.metallicRoughnessTexture.extensions, "metallicRoughnessTexture");
+        out.normalTexture = textureOf(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions,
+                                      "normalTexture");
+        out.normalScale = float(m.normalTexture.scale);
+        out.occlusionTexture = textureOf(m.occlusionTexture.index, m.occlusionTexture.texCoord,
+                                         m.occlusionTexture.extensions, "occlusionTexture");
+        out.occlusionStrength = float(m.occlusionTexture.strength);
+        if (m.emissiveFactor.size() == 3) out.emissiveFactor = glm::vec3(m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]);
+        out.emissiveTexture = textureOf(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions,
+                                        "emissiveTexture");
+        out.alphaMode = m.alphaMode == "MASK" ? AlphaMode::Mask : m.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
+        out.alphaCutoff = float(m.alphaCutoff);
+        out.doubleSided = m.doubleSided;
+        for (const auto& [name, value] : m.extensions) {
+            if (name == kEmissiveStrength)
+                out.emissiveFactor *= float(number(value.Get("emissiveStrength"), 1.0));
+            else if (name == kUnlit)
+                out.unlit = true;
+            else
+                ignored_.insert(name);
+        }
+        if (out.alphaMode == AlphaMode::Blend) ignored_.insert("alphaMode BLEND (rendered opaque)");
+        if (!std::isfinite(out.baseColorFactor.x + out.baseColorFactor.y + out.baseColorFactor.z + out.baseColorFactor.w +
+                           out.metallicFactor + out.roughnessFactor + out.emissiveFactor.x + out.emissiveFactor.y +
+                           out.emissiveFactor.z + out.normalScale + out.occlusionStrength))
+            throw fileError(path_, "material '" + m.name + "' has a non-finite factor");
+        return out;
+    }
+
+    const tinygltf::Model& model_;
+    std::string path_;
+    std::set<std::string> ignored_;
+};
+
+}  // namespace
+
+bool decodeImageForTinygltf(tinygltf::Image* image, int index, std::string* error, std::string*, int, int,
+                            const unsigned char* bytes, int size, void*) {
+    try {
+        // The caller's message names the glTF file; this names the image within it.
+        const std::string name = image->uri.empty() ? "image " + std::to_string(index) : "image '" + image->uri + "'";
+        io::DecodedImage decoded = io::decodeImage(bytes, size_t(std::max(size, 0)), name);
+        image->width = decoded.width;
+        image->height = decoded.height;
+        image->component = 4;
+        image->bits = 8;
+        image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+        image->image = std::move(decoded.rgba);
+        return true;
+    } catch (const Error& e) {
+        if (error) *error = e.what();
+        return false;
+    }
+}
+
+MaterialSet readMaterials(const tinygltf::Model& model, const std::string& path) {
+    return MaterialReader(model, path).read();
+}
+
+}  // namespace subdfit::mesh::gltf
