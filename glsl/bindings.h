@@ -38,6 +38,10 @@
 
 // Any group's fixed-point gradient sums (glsl/fixed_point.glsl), two uints per parameter.
 #define SUBDFIT_SSBO_GRADIENT_SUM 28
+// Appearance maps (on their own lattice, maps::MapParameters): sRGB base colour, 3 per node, and
+// (roughness, metallic), 2 per node.
+#define SUBDFIT_SSBO_BASE_COLOR 32
+#define SUBDFIT_SSBO_METALLIC_ROUGHNESS 33
 
 // The cage's tangential relaxation (fit/cage_relaxation.h).
 #define SUBDFIT_SSBO_RELAX_MODES 29           // per vertex: surface, crease or fixed
@@ -56,6 +60,13 @@
 #define SUBDFIT_UNIT_UV_PLUS 5
 #define SUBDFIT_UNIT_UV_MINUS 6
 
+// Texture units of a reference's material (render/mesh_renderer.h).
+#define SUBDFIT_UNIT_BASE_COLOR 8
+#define SUBDFIT_UNIT_METALLIC_ROUGHNESS 9
+#define SUBDFIT_UNIT_NORMAL 10
+#define SUBDFIT_UNIT_OCCLUSION 11
+#define SUBDFIT_UNIT_EMISSIVE 12
+
 // Render target attachments.
 #define SUBDFIT_ATTACHMENT_COLOR 0
 #define SUBDFIT_ATTACHMENT_FACE_ID 1
@@ -65,5 +76,7 @@
 #define SUBDFIT_SEED_VERTICES 0u
 #define SUBDFIT_SEED_DISPLACEMENT 0x68e31da4u
 #define SUBDFIT_SEED_NORMAL_MAP 0xb5297a4du
+#define SUBDFIT_SEED_BASE_COLOR 0x1b56c4e9u
+#define SUBDFIT_SEED_METALLIC_ROUGHNESS 0x7f4a7c15u
 
 #endif

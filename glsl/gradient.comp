@@ -1,6 +1,7 @@
 // G: one thread per pixel. Δ_p = f_p(θ+) − f_p(θ−) with f_p = ‖I_p − T_p‖², then for every
-// parameter i that produced the pixel in either render (the union of the base vertices reaching
-// the + face and the − face), g_i += Δ_p / (2 s_i ε). Where the two renders saw different faces
+// parameter i of the perturbed group that produced the pixel in either render (the union of the
+// base vertices reaching the + face and the − face; or, in a texel group's turn, of the nodes
+// under the pixel's (u, v) in either render), g_i += Δ_p / (2 s_i ε). Where the two renders saw different faces
 // (silhouettes, occlusion) both faces' vertices get the difference: that is what moves edges.
 //
 // s_i does not depend on the pixel, so for the common case (both renders saw the same face f)
@@ -27,21 +28,15 @@ SUBDFIT_DECLARE_FIXED_ACCUMULATOR(Gradient, SUBDFIT_SSBO_GRADIENT_SUM, gradient,
 SUBDFIT_DECLARE_FIXED_ACCUMULATOR(FaceDelta, SUBDFIT_SSBO_FACE_DELTA, faceDelta, addFaceDelta)
 SUBDFIT_DECLARE_ACCUMULATOR(Loss, SUBDFIT_SSBO_LOSS, loss, addLoss)
 
-#if defined(SUBDFIT_DISPLACEMENT) || defined(SUBDFIT_NORMAL_MAP)
-#define SUBDFIT_MAPS
+#ifdef SUBDFIT_TEXELS
+// A texel group's turn (SUBDFIT_TEXEL_CHANNELS floats per node, on the lattice whose face table
+// starts at uTexelTable): its nodes under the pixel get the difference; no vertex does.
 #include "maps.glsl"
 layout(binding = SUBDFIT_UNIT_UV_PLUS) uniform sampler2D uvPlus;
 layout(binding = SUBDFIT_UNIT_UV_MINUS) uniform sampler2D uvMinus;
-#endif
-#ifdef SUBDFIT_DISPLACEMENT
-SUBDFIT_DECLARE_FIXED_ACCUMULATOR(DisplacementGradient, SUBDFIT_SSBO_GRADIENT_DISPLACEMENT, displacementGradient,
-                            addDisplacementGradient)
-uniform float uEpsilonDisplacement;
-#endif
-#ifdef SUBDFIT_NORMAL_MAP
-SUBDFIT_DECLARE_FIXED_ACCUMULATOR(NormalMapGradient, SUBDFIT_SSBO_GRADIENT_NORMAL_MAP, normalMapGradient,
-                            addNormalMapGradient)
-uniform float uEpsilonNormalMap;
+uniform int uTexelResolution;
+uniform int uTexelTable;
+uniform uint uTexelSeed;
 #endif
 
 uniform int uTargetLayer;
@@ -68,38 +63,31 @@ void addFaceVertices(int face, float scaledDelta, int skipFace) {
     }
 }
 
-#ifdef SUBDFIT_MAPS
-// Texel groups: the nodes under the pixel's (face, u, v) in either render, each once.
-void addMapNode(int node, float delta) {
-#ifdef SUBDFIT_DISPLACEMENT
-    addDisplacementGradient(uint(node), delta / (2.0 * uEpsilonDisplacement) *
-                                            perturbationSign(uint(node), uCounter, uSeed ^ SUBDFIT_SEED_DISPLACEMENT));
-#endif
-#ifdef SUBDFIT_NORMAL_MAP
-    for (uint c = 0u; c < 2u; ++c) {
-        uint i = 2u * uint(node) + c;
-        addNormalMapGradient(i, delta / (2.0 * uEpsilonNormalMap) *
-                                    perturbationSign(i, uCounter, uSeed ^ SUBDFIT_SEED_NORMAL_MAP));
+#ifdef SUBDFIT_TEXELS
+// The nodes under the pixel's (face, u, v) in either render, each once.
+void addTexelNode(int node, float scaledDelta) {
+    for (uint c = 0u; c < uint(SUBDFIT_TEXEL_CHANNELS); ++c) {
+        uint i = uint(SUBDFIT_TEXEL_CHANNELS) * uint(node) + c;
+        addGradient(i, scaledDelta * perturbationSign(i, uCounter, uTexelSeed));
     }
-#endif
 }
 
-void addMapGradients(ivec2 pixel, int fp, int fm, float delta) {
+void addTexelGradients(ivec2 pixel, int fp, int fm, float scaledDelta) {
     ivec4 plusNodes = ivec4(-1);
     if (fp >= 0) {
-        plusNodes = mapFootprint(fp, texelFetch(uvPlus, pixel, 0).rg).nodes;
+        plusNodes = footprint(fp, texelFetch(uvPlus, pixel, 0).rg, uTexelResolution, uTexelTable).nodes;
         for (int k = 0; k < 4; ++k) {
             bool repeated = false;  // nodes are shared along cell and tile borders
             for (int j = 0; j < k; ++j) repeated = repeated || plusNodes[j] == plusNodes[k];
-            if (!repeated) addMapNode(plusNodes[k], delta);
+            if (!repeated) addTexelNode(plusNodes[k], scaledDelta);
         }
     }
     if (fm >= 0) {
-        ivec4 minusNodes = mapFootprint(fm, texelFetch(uvMinus, pixel, 0).rg).nodes;
+        ivec4 minusNodes = footprint(fm, texelFetch(uvMinus, pixel, 0).rg, uTexelResolution, uTexelTable).nodes;
         for (int k = 0; k < 4; ++k) {
             bool repeated = any(equal(plusNodes, ivec4(minusNodes[k])));
             for (int j = 0; j < k; ++j) repeated = repeated || minusNodes[j] == minusNodes[k];
-            if (!repeated) addMapNode(minusNodes[k], delta);
+            if (!repeated) addTexelNode(minusNodes[k], scaledDelta);
         }
     }
 }
@@ -123,7 +111,9 @@ void main() {
     float delta = fPlus - fMinus;
     if (covered && delta != 0.0) {
         float scaledDelta = delta / (2.0 * uEpsilon);
-#ifdef SUBDFIT_FULL_IMAGE
+#if defined(SUBDFIT_TEXELS)
+        addTexelGradients(pixel, fp, fm, scaledDelta);
+#elif defined(SUBDFIT_FULL_IMAGE)
         // The full-image estimator of plain SPSA, for comparison only: every pixel's Δ goes to
         // every parameter (scatter_faces.comp reads this one sum for all vertices).
         addFaceDelta(0u, scaledDelta);
@@ -134,9 +124,6 @@ void main() {
             if (fp >= 0) addFaceVertices(fp, scaledDelta, -1);
             if (fm >= 0) addFaceVertices(fm, scaledDelta, fp);
         }
-#ifdef SUBDFIT_MAPS
-        addMapGradients(pixel, fp, fm, delta);
-#endif
 #endif
     }
     // The loss goes to one of 256 slots by lane: a single float taking every pixel would

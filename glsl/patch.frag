@@ -1,6 +1,6 @@
 #include "bindings.h"
 #include "shading.glsl"
-#ifdef SUBDFIT_NORMAL_MAP
+#if defined(SUBDFIT_NORMAL_MAP) || defined(SUBDFIT_BASE_COLOR_MAP) || defined(SUBDFIT_METALLIC_ROUGHNESS_MAP)
 #include "maps.glsl"
 #endif
 
@@ -34,6 +34,39 @@ vec3 mappedNormal(vec3 N) {
 }
 #endif
 
+#ifdef SUBDFIT_MATERIAL
+#ifdef SUBDFIT_BASE_COLOR_MAP
+layout(std430, binding = SUBDFIT_SSBO_BASE_COLOR) readonly buffer BaseColor { float baseColor[]; };
+#endif
+#ifdef SUBDFIT_METALLIC_ROUGHNESS_MAP
+layout(std430, binding = SUBDFIT_SSBO_METALLIC_ROUGHNESS) readonly buffer MetallicRoughness { float metallicRoughness[]; };
+#endif
+
+// The fitted material: sRGB base colour and (roughness, metallic) bilinear between the nodes of
+// the appearance lattice, clamped to what they mean; white, fully rough, not metallic without.
+SurfacePoint surfacePoint() {
+    SurfacePoint s = SurfacePoint(vec3(1.0), 0.0, 1.0, 1.0, vec3(0.0));
+#if defined(SUBDFIT_BASE_COLOR_MAP) || defined(SUBDFIT_METALLIC_ROUGHNESS_MAP)
+    MapFootprint m = appearanceFootprint(tePtexFace, tePtexUv);
+#endif
+#ifdef SUBDFIT_BASE_COLOR_MAP
+    vec3 c = vec3(0.0);
+    for (int k = 0; k < 4; ++k)
+        c += m.weights[k] * vec3(baseColor[3 * m.nodes[k]], baseColor[3 * m.nodes[k] + 1], baseColor[3 * m.nodes[k] + 2]);
+    s.baseColor = srgbToLinear(clamp(c, 0.0, 1.0));
+#endif
+#ifdef SUBDFIT_METALLIC_ROUGHNESS_MAP
+    vec2 rm = vec2(0.0);
+    for (int k = 0; k < 4; ++k)
+        rm += m.weights[k] * vec2(metallicRoughness[2 * m.nodes[k]], metallicRoughness[2 * m.nodes[k] + 1]);
+    rm = clamp(rm, 0.0, 1.0);
+    s.roughness = rm.x;
+    s.metallic = rm.y;
+#endif
+    return s;
+}
+#endif
+
 uniform mat4 uView;
 uniform vec3 uEye;
 
@@ -43,7 +76,12 @@ void main() {
     n = mappedNormal(n);
 #endif
     if (dot(n, uEye - teWorldPosition) < 0.0) n = -n;  // open surfaces are seen from both sides
+#ifdef SUBDFIT_MATERIAL
+    vec3 v = normalize(uEye - teWorldPosition);
+    outColor = vec4(shadeMaterial(normalize(mat3(uView) * n), normalize(mat3(uView) * v), surfacePoint()), 1.0);
+#else
     outColor = vec4(shadeLambert(normalize(mat3(uView) * n)), 1.0);
+#endif
     outFaceId = tePtexFace;
     outPatchUv = tePtexUv;
 }

@@ -25,7 +25,7 @@ optim::Adjacency uploadAdjacency(const mesh::PolygonMesh& cage) {
 }
 
 int tessLevelFor(const CageFitSettings& s) {
-    return s.mapEffects.any() ? std::max(s.tessLevel, s.maps.resolution) : s.tessLevel;
+    return s.mapEffects.geometric() ? std::max(s.tessLevel, s.maps.resolution) : s.tessLevel;
 }
 
 }  // namespace
@@ -35,7 +35,7 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
       settings_(settings),
       patches_(subdiv::buildPatchSet(cage)),
       stencils_(patches_),
-      renderer_(patches_, tessLevelFor(settings)),
+      renderer_(patches_, tessLevelFor(settings), settings.shading),
       vertices_(optim::GroupKind::Vertices, "vertices", flatten(cage.positions), settings.vertices),
       maps_(settings.mapEffects.any() ? std::make_unique<maps::MapParameters>(cage, settings.mapEffects, settings.maps)
                                       : nullptr),
@@ -97,13 +97,14 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
         const auto& camera = targets.camera(view);
         renderer_.draw(programs_, pointsPlus_, camera, plus_, &mapsPlus);
         renderer_.draw(programs_, minusPoints, camera, minus_, &mapsMinus);
-        sge::accumulateGradient(programs_, vertices_, faceVertices_,
+        sge::accumulateGradient(programs_, *perturbed, faceVertices_,
                                 {&plus_, &minus_, targets.colors().id(), view, counter, settings_.seed,
                                  1.0f / (pixels * float(views.size())), measureLoss, maps_.get(),
                                  settings_.fullImageEstimator},
                                 loss_);
     }
-    sge::scatterFaceDeltas(programs_, vertices_, faceVertices_, counter, settings_.seed, settings_.fullImageEstimator);
+    if (verticesPerturbed)
+        sge::scatterFaceDeltas(programs_, vertices_, faceVertices_, counter, settings_.seed, settings_.fullImageEstimator);
     if (measureLoss) ++samplesSinceLoss_;
 }
 
@@ -131,8 +132,6 @@ void CageFitter::update() {
         }
     }
     pendingUpdate_.clear();
-    // G also wrote into the groups that were not perturbed (their signs against another
-    // group's Δ): noise by construction, dropped.
     for (auto* g : groups()) g->gradientSum.clearToZero();
     ++steps_;
 }

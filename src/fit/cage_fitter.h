@@ -42,6 +42,7 @@ struct CageFitSettings {
     int resolution = 256;
     std::uint32_t seed = 1;
     maps::MapEffects mapEffects{};  // which texel groups exist at all
+    render::ShadingModel shading = render::ShadingModel::Geometry;
     // Coarse to fine: the maps join the turns only after this fraction of plannedSteps, once
     // the cage has its shape (detail fitted on a wrong shape would be undone later).
     float mapsStartFraction = 0.4f;

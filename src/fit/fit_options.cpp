@@ -1,5 +1,7 @@
 #include "fit/fit_options.h"
 
+#include "render/shading_model.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -38,6 +40,9 @@ const std::vector<OptionRow>& optionTable() {
         {{"tangential", "--tangential", "fraction of the vertex gradient along the surface kept (1 = all)", 0, 1,
           false, true, true},
          &F::tangential},
+        {{"shading", "--shading", "auto (what the reference's materials call for), geometry, unlit, lambert, pbr", 1, 0,
+          false, true, true},
+         &F::shading},
         {{"maps", "--maps", "maps to fit: none, displacement, normal, displacement,normal", 1, 0, false, true, true},
          &F::maps},
         {{"map_resolution", "--map-res", "map cells per face edge", 1, 64, false, true, true}, &F::mapResolution},
@@ -100,6 +105,13 @@ void validate(const FitOptions& o) {
     forEachOption(o, [](const OptionInfo& info, const auto& value) { checkRange(info, value); });
     if (o.views != kByDevice && o.viewsPerStep > o.views) throw OptionError("views_per_step", "must be at most views (" + std::to_string(o.views) + ")");
     if (o.out.empty()) throw OptionError("out", "is required");
+    if (o.shading != "auto") {
+        try {
+            render::parseShadingModel(o.shading);
+        } catch (const Error& e) {
+            throw OptionError("shading", e.what());
+        }
+    }
     if (o.schedule != "plateau" && o.schedule != "anneal")
         throw OptionError("schedule", "must be plateau or anneal, got '" + o.schedule + "'");
 }

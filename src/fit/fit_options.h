@@ -43,6 +43,9 @@ struct FitOptions {
     float relaxation = 0.0f;      // tangential relaxation of the cage per vertex update (0: off)
     float tangential = 1.0f;      // fraction of the vertex gradient's tangential part kept
     std::string glProvider = "auto";
+    // How the scene is shaded (render/shading_model.h): "auto" takes what the reference's
+    // materials call for; "geometry", "unlit", "lambert" or "pbr" overrides it.
+    std::string shading = "auto";
     maps::MapEffects maps;        // none by default
     int mapResolution = 8;        // cells per ptex-face edge of each map tile
     float mapsStart = 0.4f;       // fraction of the steps fitted by the cage alone before maps join

@@ -55,7 +55,7 @@ FitRun::FitRun(const FitOptions& options, gl::ProgramCache& programs, FitScene& 
     : options_((validateResolved(options), options)),
       programs_(programs),
       scene_(scene),
-      fitter_(std::make_unique<CageFitter>(programs, scene.cage, fitSettings(options, scene.cage))),
+      fitter_(std::make_unique<CageFitter>(programs, scene.cage, fitSettings(options, scene.cage, scene.shading))),
       fingerprint_(checkpointFingerprint(options, scene.cage, scene.reference)),
       monitorEvery_(std::max(5, options.steps / 50)),
       started_(Clock::now()) {
@@ -220,7 +220,7 @@ void FitRun::setTessLevel(int level) {
     FitOptions options = options_;
     options.tessLevel = level;
     validate(options);
-    auto rebuilt = std::make_unique<CageFitter>(programs_, scene_.cage, fitSettings(options, scene_.cage));
+    auto rebuilt = std::make_unique<CageFitter>(programs_, scene_.cage, fitSettings(options, scene_.cage, scene_.shading));
     rebuilt->restore(fitter_->state());
     // The rates and switches someone set by hand stay as they were.
     const auto before = fitter_->groups(), after = rebuilt->groups();

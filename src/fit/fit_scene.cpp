@@ -35,24 +35,24 @@ scene::SceneFrame frameOf(const mesh::PolygonMesh& reference) {
     }
 }
 
-render::MeshRenderer rendererFor(const mesh::PolygonMesh& triangles) {
-    return {triangles.positions, mesh::vertexNormals(triangles),
-            std::vector<unsigned>(triangles.faceIndices.begin(), triangles.faceIndices.end())};
+render::ShadingModel shadingOf(const FitOptions& o, const mesh::PolygonMesh& reference) {
+    return o.shading == "auto" ? render::shadingFor(reference) : render::parseShadingModel(o.shading);
 }
 
 }  // namespace
 
 FitScene::FitScene(const FitOptions& options, gl::ProgramCache& programs)
-    : FitScene(options, programs, mesh::loadMesh(options.cage), mesh::loadMesh(options.reference)) {}
+    : FitScene(options, programs, mesh::loadMesh(options.cage), mesh::loadReference(options.reference)) {}
 
 FitScene::FitScene(const FitOptions& o, gl::ProgramCache& programs, mesh::PolygonMesh cageWorldIn,
                    const mesh::PolygonMesh& referenceWorld)
     // Checked before any member reads views or resolution (they may still be left to the device).
     : frame((validateResolved(o), frameOf(referenceWorld))),
+      shading(shadingOf(o, referenceWorld)),
       cageWorld(std::move(cageWorldIn)),
       cage(normalized(cageWorld, frame)),
       reference(normalized(mesh::triangulated(referenceWorld), frame)),
-      referenceRenderer(rendererFor(reference)),
+      referenceRenderer(reference, shading),
       training(programs, referenceRenderer, render::orbitCameras(o.views, o.seed), o.resolution),
       holdout(programs, referenceRenderer, render::orbitCameras(o.holdoutViews, o.seed ^ 0x9e3779b9u),
               o.resolution),
@@ -63,7 +63,7 @@ void FitScene::setCage(mesh::PolygonMesh cageWorldIn) {
     cage = normalized(cageWorld, frame);
 }
 
-CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage) {
+CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, render::ShadingModel shading) {
     CageFitSettings settings;
     // A dense cage needs steps in proportion to its edges, or neighbours jitter against each
     // other and the cage crumples; a coarse one is limited by what the images resolve: a
@@ -89,6 +89,9 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage) 
     settings.seed = o.seed;
     settings.plannedSteps = o.steps;
     settings.mapEffects = o.maps;
+    settings.shading = shading;
+    settings.mapEffects.baseColor = shading != render::ShadingModel::Geometry;
+    settings.mapEffects.metallicRoughness = shading == render::ShadingModel::MetallicRoughness;
     settings.maps.resolution = o.mapResolution;
     settings.mapsStartFraction = o.mapsStart;
     return settings;

@@ -24,6 +24,7 @@ public:
     void setCage(mesh::PolygonMesh cageWorld);
 
     scene::SceneFrame frame;      // around the reference
+    render::ShadingModel shading; // options.shading, "auto" resolved from the reference
     mesh::PolygonMesh cageWorld;  // as given, for writing results back with its tags and order
     mesh::PolygonMesh cage;       // normalised
     mesh::PolygonMesh reference;  // normalised, triangulated
@@ -36,9 +37,11 @@ public:
     scene::TargetSet monitor;
 };
 
-// The fitter settings `options` ask for on `cage` (normalised frame): the vertex ε and learning
-// rate are turned from fractions of its mean edge into scene units.
-CageFitSettings fitSettings(const FitOptions& options, const mesh::PolygonMesh& cage);
+// The fitter settings `options` ask for on `cage` (normalised frame) under `shading`: the vertex
+// ε and learning rate are turned from fractions of its mean edge into scene units, and a scene
+// with materials gets the appearance maps its shading reads.
+CageFitSettings fitSettings(const FitOptions& options, const mesh::PolygonMesh& cage,
+                            render::ShadingModel shading = render::ShadingModel::Geometry);
 
 // Mean loss and PSNR of the fitter's current scene over every view of `targets`.
 ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets);

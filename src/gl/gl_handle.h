@@ -37,6 +37,7 @@ private:
 
 struct BufferTraits { static void destroy(GLuint id) noexcept { glDeleteBuffers(1, &id); } };
 struct TextureTraits { static void destroy(GLuint id) noexcept { glDeleteTextures(1, &id); } };
+struct SamplerTraits { static void destroy(GLuint id) noexcept { glDeleteSamplers(1, &id); } };
 struct FramebufferTraits { static void destroy(GLuint id) noexcept { glDeleteFramebuffers(1, &id); } };
 struct VertexArrayTraits { static void destroy(GLuint id) noexcept { glDeleteVertexArrays(1, &id); } };
 struct ProgramTraits { static void destroy(GLuint id) noexcept { glDeleteProgram(id); } };

@@ -85,6 +85,10 @@ void Program::set(const char* name, const glm::vec3& value) const {
 void Program::set(const char* name, const glm::vec4& value) const {
     glProgramUniform4fv(id(), location(name), 1, glm::value_ptr(value));
 }
+void Program::set(const char* name, const glm::mat3& value) const {
+    glProgramUniformMatrix3fv(id(), location(name), 1, GL_FALSE, glm::value_ptr(value));
+}
+
 void Program::set(const char* name, const glm::mat4& value) const {
     glProgramUniformMatrix4fv(id(), location(name), 1, GL_FALSE, glm::value_ptr(value));
 }

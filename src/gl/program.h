@@ -2,6 +2,7 @@
 // GLSL programs built in a fixed order (OpenSubdiv style): `#version 450 core`, the variant's
 // #define block, then the stage file with its includes expanded. Compile errors name the stage
 // file and list the defines, since a variant that fails usually fails because of one.
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -38,6 +39,7 @@ public:
     void set(const char* name, float value) const;
     void set(const char* name, const glm::vec2& value) const;
     void set(const char* name, const glm::vec3& value) const;
+    void set(const char* name, const glm::mat3& value) const;
     void set(const char* name, const glm::mat4& value) const;
 
     void set(const char* name, const glm::vec4& value) const;

@@ -1,5 +1,7 @@
 #include "gl/texture.h"
 
+#include <algorithm>
+
 namespace subdfit::gl {
 
 Texture::Texture(GLenum internalFormat, int width, int height, int layers)
@@ -15,6 +17,33 @@ Texture::Texture(GLenum internalFormat, int width, int height, int layers)
     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+Texture Texture::fromImage(const std::uint8_t* rgba, int width, int height, bool srgb) {
+    Texture t;
+    t.width_ = width;
+    t.height_ = height;
+    t.format_ = srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
+    int levels = 1;
+    while ((std::max(width, height) >> levels) > 0) ++levels;
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    t.handle_ = GlHandle<TextureTraits>(id);
+    glTextureStorage2D(id, levels, t.format_, width, height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(id, 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    glGenerateTextureMipmap(id);
+    return t;
+}
+
+Sampler::Sampler(GLenum wrapS, GLenum wrapT, bool nearest) {
+    GLuint id = 0;
+    glCreateSamplers(1, &id);
+    handle_ = GlHandle<SamplerTraits>(id);
+    glSamplerParameteri(id, GL_TEXTURE_WRAP_S, GLint(wrapS));
+    glSamplerParameteri(id, GL_TEXTURE_WRAP_T, GLint(wrapT));
+    glSamplerParameteri(id, GL_TEXTURE_MIN_FILTER, nearest ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR_MIPMAP_LINEAR);
+    glSamplerParameteri(id, GL_TEXTURE_MAG_FILTER, nearest ? GL_NEAREST : GL_LINEAR);
 }
 
 }  // namespace subdfit::gl

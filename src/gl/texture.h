@@ -1,4 +1,6 @@
 #pragma once
+#include <cstdint>
+
 #include "gl/gl_handle.h"
 
 namespace subdfit::gl {
@@ -10,6 +12,11 @@ public:
     Texture() = default;
     Texture(GLenum internalFormat, int width, int height, int layers = 0);
 
+    // An 8-bit RGBA image (rows top first, as image files store them, so that texture coordinate
+    // v = 0 is its top row, as glTF's is) with a full mip chain, for filtered sampling through a
+    // Sampler. `srgb`: stored as sRGB, so that fetches return linear values.
+    static Texture fromImage(const std::uint8_t* rgba, int width, int height, bool srgb);
+
     GLuint id() const { return handle_.id(); }
     int width() const { return width_; }
     int height() const { return height_; }
@@ -20,6 +27,17 @@ private:
     GlHandle<TextureTraits> handle_;
     int width_ = 0, height_ = 0, layers_ = 0;
     GLenum format_ = 0;
+};
+
+// Sampler state (DSA), move-only: how a texture unit filters and wraps.
+class Sampler {
+public:
+    Sampler(GLenum wrapS, GLenum wrapT, bool nearest);
+    GLuint id() const { return handle_.id(); }
+    void bind(GLuint unit) const { glBindSampler(unit, id()); }
+
+private:
+    GlHandle<SamplerTraits> handle_;
 };
 
 }  // namespace subdfit::gl

@@ -1,53 +1,85 @@
 #include "maps/map_parameters.h"
 
 #include <algorithm>
-#include <sstream>
 
 #include "bindings.h"
 #include "util/error.h"
 
 namespace subdfit::maps {
-
 namespace {
 
 optim::Adjacency uploadAdjacency(const surface::TexelLayout& layout) {
+    if (layout.nodeCount == 0) return {gl::Buffer(sizeof(int)), gl::Buffer(sizeof(int)), 0};
     const auto graph = surface::nodeAdjacency(layout);
     return {gl::Buffer::fromVector(graph.offsets), gl::Buffer::fromVector(graph.neighbors), layout.nodeCount};
+}
+
+std::vector<int> concatenated(const std::vector<int>& a, const std::vector<int>& b) {
+    std::vector<int> out(a);
+    out.insert(out.end(), b.begin(), b.end());
+    return out;
+}
+
+std::unique_ptr<optim::ParameterGroup> makeGroup(bool wanted, optim::GroupKind kind, const char* name,
+                                                 const surface::TexelLayout& layout, int channels, float initial,
+                                                 const optim::GroupSettings& settings, std::uint32_t salt) {
+    if (!wanted) return nullptr;
+    return std::make_unique<optim::ParameterGroup>(
+        kind, name, std::vector<float>(size_t(layout.nodeCount) * size_t(channels), initial), settings, salt);
+}
+
+const gl::Buffer& version(const optim::ParameterGroup& group, ParameterVersion v) {
+    return v == ParameterVersion::Plus ? group.thetaPlus : v == ParameterVersion::Minus ? group.thetaMinus : group.theta;
+}
+
+bool isAppearance(const optim::ParameterGroup& group) {
+    return group.kind() == optim::GroupKind::BaseColor || group.kind() == optim::GroupKind::MetallicRoughness;
 }
 
 }  // namespace
 
 MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, const MapSettings& settings)
     : effects_(effects),
-      layout_(surface::buildTexelLayout(cage, settings.resolution)),
+      layout_(effects.geometric() ? surface::buildTexelLayout(cage, settings.resolution) : surface::TexelLayout{}),
+      appearanceLayout_(effects.appearance() ? surface::buildTexelLayout(cage, settings.appearanceResolution)
+                                             : surface::TexelLayout{}),
       settings_(settings),
-      faceNodes_(gl::Buffer::fromVector(layout_.faceNodes)),
+      faceNodes_(gl::Buffer::fromVector(concatenated(layout_.faceNodes, appearanceLayout_.faceNodes))),
       adjacency_(uploadAdjacency(layout_)),
-      scratch_(GLsizeiptr(std::max(1, layout_.nodeCount)) * 2 * GLsizeiptr(sizeof(float))) {
-    if (effects.displacement)
-        displacement_ = std::make_unique<optim::ParameterGroup>(optim::GroupKind::Displacement,
-            "displacement", std::vector<float>(size_t(layout_.nodeCount), 0.0f), settings.displacement,
-            SUBDFIT_SEED_DISPLACEMENT);
-    if (effects.normalMap)
-        normalMap_ = std::make_unique<optim::ParameterGroup>(optim::GroupKind::NormalMap,
-            "normal_map", std::vector<float>(size_t(layout_.nodeCount) * 2, 0.0f), settings.normalMap,
-            SUBDFIT_SEED_NORMAL_MAP);
+      appearanceAdjacency_(uploadAdjacency(appearanceLayout_)),
+      scratch_(GLsizeiptr(std::max({1, 2 * layout_.nodeCount, 3 * appearanceLayout_.nodeCount})) *
+               GLsizeiptr(sizeof(float))) {
+    using optim::GroupKind;
+    displacement_ = makeGroup(effects.displacement, GroupKind::Displacement, "displacement", layout_, 1, 0.0f,
+                              settings.displacement, SUBDFIT_SEED_DISPLACEMENT);
+    normalMap_ = makeGroup(effects.normalMap, GroupKind::NormalMap, "normal_map", layout_, 2, 0.0f, settings.normalMap,
+                           SUBDFIT_SEED_NORMAL_MAP);
+    // Mid grey and half rough until a bake (or the fit) says otherwise.
+    baseColor_ = makeGroup(effects.baseColor, GroupKind::BaseColor, "base_color", appearanceLayout_, 3, 0.5f,
+                           settings.baseColor, SUBDFIT_SEED_BASE_COLOR);
+    metallicRoughness_ = makeGroup(effects.metallicRoughness, GroupKind::MetallicRoughness, "metallic_roughness",
+                                   appearanceLayout_, 2, 0.0f, settings.metallicRoughness, SUBDFIT_SEED_METALLIC_ROUGHNESS);
+    if (metallicRoughness_) {
+        std::vector<float> values(size_t(metallicRoughness_->count()), 0.0f);
+        for (size_t k = 0; k < values.size(); k += 2) values[k] = 0.5f;  // (roughness, metallic)
+        metallicRoughness_->write(values);
+    }
 }
 
 std::vector<optim::ParameterGroup*> MapParameters::groups() {
     std::vector<optim::ParameterGroup*> out;
-    if (displacement_) out.push_back(displacement_.get());
-    if (normalMap_) out.push_back(normalMap_.get());
+    for (auto* g : {displacement_.get(), normalMap_.get(), baseColor_.get(), metallicRoughness_.get()})
+        if (g) out.push_back(g);
     return out;
 }
 
-namespace {
-
-const gl::Buffer& version(const optim::ParameterGroup& group, ParameterVersion v) {
-    return v == ParameterVersion::Plus ? group.thetaPlus : v == ParameterVersion::Minus ? group.thetaMinus : group.theta;
+const surface::TexelLayout& MapParameters::layoutOf(const optim::ParameterGroup& group) const {
+    return isAppearance(group) ? appearanceLayout_ : layout_;
 }
 
-}  // namespace
+int MapParameters::tableOffsetOf(const optim::ParameterGroup& group) const {
+    return isAppearance(group) ? int(layout_.faceNodes.size()) : 0;
+}
 
 render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::ParameterGroup* perturbed) const {
     auto bind = [this, v, perturbed] {
@@ -55,19 +87,25 @@ render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::Para
         faceNodes_.bindStorage(SUBDFIT_SSBO_FACE_NODES);
         if (displacement_) version(*displacement_, of(*displacement_)).bindStorage(SUBDFIT_SSBO_DISPLACEMENT);
         if (normalMap_) version(*normalMap_, of(*normalMap_)).bindStorage(SUBDFIT_SSBO_NORMAL_MAP);
+        if (baseColor_) version(*baseColor_, of(*baseColor_)).bindStorage(SUBDFIT_SSBO_BASE_COLOR);
+        if (metallicRoughness_)
+            version(*metallicRoughness_, of(*metallicRoughness_)).bindStorage(SUBDFIT_SSBO_METALLIC_ROUGHNESS);
     };
-    return {.displacement = effects_.displacement, .normalMap = effects_.normalMap, .resolution = layout_.resolution,
+    return {.displacement = effects_.displacement,
+            .normalMap = effects_.normalMap,
+            .baseColor = effects_.baseColor,
+            .metallicRoughness = effects_.metallicRoughness,
+            .resolution = std::max(layout_.resolution, 1),
+            .appearanceResolution = std::max(appearanceLayout_.resolution, 1),
+            .appearanceTable = int(layout_.faceNodes.size()),
             .bind = bind};
 }
 
-void MapParameters::bindForGradient() const {
-    faceNodes_.bindStorage(SUBDFIT_SSBO_FACE_NODES);
-    if (displacement_) displacement_->gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_DISPLACEMENT);
-    if (normalMap_) normalMap_->gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_NORMAL_MAP);
-}
+void MapParameters::bindFaceNodes() const { faceNodes_.bindStorage(SUBDFIT_SSBO_FACE_NODES); }
 
 void MapParameters::update(gl::ProgramCache& programs, optim::ParameterGroup& group, float learningRate) {
-    optim::precondition(programs, group, adjacency_, settings_.smoothing, settings_.smoothingIterations, scratch_);
+    optim::precondition(programs, group, isAppearance(group) ? appearanceAdjacency_ : adjacency_, settings_.smoothing,
+                        settings_.smoothingIterations, scratch_);
     optim::adamStep(programs, group, group.gradientSmooth, learningRate);
 }
 

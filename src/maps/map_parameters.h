@@ -1,7 +1,9 @@
 #pragma once
-// The optional texel parameter groups of a scene: a displacement map (one height per node) and
-// a normal map (tangent-space x, y per node), on one surface::TexelLayout. Only the groups the scene
-// asks for exist: a run without maps has no buffers, no shader defines and no passes for them.
+// The optional texel parameter groups of a scene, each on a surface::TexelLayout: the geometric
+// maps (a displacement, one height per node; a normal map, tangent-space x, y per node) on one
+// lattice, and the appearance maps (base colour, sRGB RGB per node; roughness and metallic per
+// node) on a finer one of their own. Only the groups the scene asks for exist: a run without
+// maps has no buffers, no shader defines and no passes for them.
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,10 +18,14 @@
 namespace subdfit::maps {
 
 struct MapSettings {
-    int resolution = 8;  // cells per ptex-face edge
-    // Heights in the normalised frame (scene radius 1); tangent offsets are dimensionless.
+    int resolution = 8;             // cells per ptex-face edge of the geometric maps
+    int appearanceResolution = 16;  // ... of the appearance maps
+    // Heights in the normalised frame (scene radius 1); tangent offsets are dimensionless;
+    // colours are sRGB values and roughness / metallic fractions, all in [0, 1].
     optim::GroupSettings displacement{.epsilon = 0.004f, .learningRate = 0.003f};
     optim::GroupSettings normalMap{.epsilon = 0.05f, .learningRate = 0.01f};
+    optim::GroupSettings baseColor{.epsilon = 0.03f, .learningRate = 0.004f};
+    optim::GroupSettings metallicRoughness{.epsilon = 0.05f, .learningRate = 0.004f};
     // (I + λL)⁻¹ on the node graph, as for the cage: texel estimates are noisy one by one.
     float smoothing = 2.0f;
     int smoothingIterations = 8;
@@ -32,28 +38,37 @@ class MapParameters {
 public:
     MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, const MapSettings& settings);
 
+    // The geometric maps' lattice (resolution 0 when the scene has none), and the appearance
+    // maps' (likewise).
     const surface::TexelLayout& layout() const { return layout_; }
+    const surface::TexelLayout& appearanceLayout() const { return appearanceLayout_; }
+    const surface::TexelLayout& layoutOf(const optim::ParameterGroup& group) const;
+    // Where `group`'s lattice starts in the face-node table the shaders read.
+    int tableOffsetOf(const optim::ParameterGroup& group) const;
     MapEffects effects() const { return effects_; }
     optim::ParameterGroup* displacement() { return displacement_.get(); }
     optim::ParameterGroup* normalMap() { return normalMap_.get(); }
+    optim::ParameterGroup* baseColor() { return baseColor_.get(); }
+    optim::ParameterGroup* metallicRoughness() { return metallicRoughness_.get(); }
     std::vector<optim::ParameterGroup*> groups();
 
     // The patch pass's maps: θ± of the group being perturbed (`perturbed`, may be null) and θ of
     // the others. Valid while this object lives.
     render::PatchMaps forRaster(ParameterVersion version, const optim::ParameterGroup* perturbed = nullptr) const;
-    void bindForGradient() const;
+    // The face-node table, for a pass that looks nodes up (G).
+    void bindFaceNodes() const;
 
-    // Preconditions `group`'s gradient on the node graph and applies Adam to it at `learningRate`.
+    // Preconditions `group`'s gradient on its node graph and applies Adam to it at `learningRate`.
     void update(gl::ProgramCache& programs, optim::ParameterGroup& group, float learningRate);
 
 private:
     MapEffects effects_;
-    surface::TexelLayout layout_;
+    surface::TexelLayout layout_, appearanceLayout_;
     MapSettings settings_;
-    gl::Buffer faceNodes_;
-    optim::Adjacency adjacency_;
+    gl::Buffer faceNodes_;  // layout_'s table, then appearanceLayout_'s
+    optim::Adjacency adjacency_, appearanceAdjacency_;
     gl::Buffer scratch_;  // Jacobi ping-pong partner, sized for the largest group
-    std::unique_ptr<optim::ParameterGroup> displacement_, normalMap_;
+    std::unique_ptr<optim::ParameterGroup> displacement_, normalMap_, baseColor_, metallicRoughness_;
 };
 
 }  // namespace subdfit::maps

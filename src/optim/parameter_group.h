@@ -11,7 +11,7 @@
 namespace subdfit::optim {
 
 // What a group's parameters are. The fit tells its groups apart by this, never by address.
-enum class GroupKind { Vertices, Displacement, NormalMap, Other };
+enum class GroupKind { Vertices, Displacement, NormalMap, BaseColor, MetallicRoughness, Other };
 
 struct GroupSettings {
     float epsilon = 0.01f;        // perturbation magnitude, in the group's units

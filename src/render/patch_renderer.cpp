@@ -15,8 +15,15 @@ const gl::ProgramSpec kPatchRaster{"patch_raster",
                                     {GL_TESS_CONTROL_SHADER, "patch.tesc"},
                                     {GL_TESS_EVALUATION_SHADER, "patch.tese"},
                                     {GL_FRAGMENT_SHADER, "patch.frag"}},
-                                   {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP"}};
-constexpr gl::VariantBits kPatchDisplacement = 1u << 0, kPatchNormalMap = 1u << 1;
+                                   [] {
+                                       std::vector<std::string> defines = kShadingDefines;  // bits 0-2
+                                       defines.insert(defines.end(), {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP",
+                                                                      "SUBDFIT_BASE_COLOR_MAP",
+                                                                      "SUBDFIT_METALLIC_ROUGHNESS_MAP"});
+                                       return defines;
+                                   }()};
+constexpr gl::VariantBits kPatchDisplacement = 1u << 3, kPatchNormalMap = 1u << 4, kPatchBaseColor = 1u << 5,
+                          kPatchMetallicRoughness = 1u << 6;
 
 }  // namespace
 
@@ -26,23 +33,27 @@ int crackFreeTessLevel(int requested, int maxPatchDepth) {
     return std::min(level, 64);
 }
 
-PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel)
+PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel, ShadingModel shading)
     : patchCount_(int(patches.patchInfo.size())),
       tessLevel_(crackFreeTessLevel(tessLevel, patches.maxPatchDepth)),
+      shading_(shading),
       patchInfo_(gl::Buffer::fromVector(patches.patchInfo)),
       patchCvs_(gl::Buffer::fromVector(patches.patchCvIndices)) {}
 
 void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera,
                          const RenderTarget& target, const PatchMaps* maps) const {
-    const gl::VariantBits variant =
-        maps ? (maps->displacement ? kPatchDisplacement : 0) | (maps->normalMap ? kPatchNormalMap : 0) : 0;
-    const bool withMaps = variant != 0;
-    const auto& program = programs.get(kPatchRaster, variant);
+    const gl::VariantBits mapBits =
+        maps ? (maps->displacement ? kPatchDisplacement : 0) | (maps->normalMap ? kPatchNormalMap : 0) |
+                   (maps->baseColor ? kPatchBaseColor : 0) | (maps->metallicRoughness ? kPatchMetallicRoughness : 0)
+             : 0;
+    const auto& program = programs.get(kPatchRaster, shadingBits(shading_) | mapBits);
     beginRasterPass(program, camera, target);
     program.set("uTessLevel", float(tessLevel_));
     points.bindStorage(SUBDFIT_SSBO_POINTS);
-    if (withMaps) {
+    if (mapBits != 0) {
         program.set("uMapResolution", maps->resolution);
+        program.set("uAppearanceResolution", maps->appearanceResolution);
+        program.set("uAppearanceTable", maps->appearanceTable);
         if (maps->bind) maps->bind();
     }
     patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);

@@ -8,6 +8,7 @@
 #include "gl/vertex_array.h"
 #include "render/camera.h"
 #include "render/render_target.h"
+#include "render/shading_model.h"
 #include "subdiv/patch_set.h"
 
 namespace subdfit::render {
@@ -16,8 +17,11 @@ namespace subdfit::render {
 // shader variant; whoever owns the maps binds their buffers.
 struct PatchMaps {
     bool displacement = false, normalMap = false;
-    int resolution = 1;           // cells per ptex-face edge
-    std::function<void()> bind;   // the node table and the map values this pass reads
+    bool baseColor = false, metallicRoughness = false;
+    int resolution = 1;            // cells per ptex-face edge of the geometric maps
+    int appearanceResolution = 1;  // ... of the appearance maps
+    int appearanceTable = 0;       // where their lattice starts in the face-node table
+    std::function<void()> bind;    // the node table and the map values this pass reads
 };
 
 class PatchRenderer {
@@ -25,7 +29,7 @@ public:
     // `tessLevel`: segments per base-face edge, raised to a power of two that keeps adaptive
     // patches of every depth crack-free (callers with maps ask for at least the map resolution,
     // so that the detail of the maps is actually rasterised).
-    PatchRenderer(const subdiv::PatchSet& patches, int tessLevel);
+    PatchRenderer(const subdiv::PatchSet& patches, int tessLevel, ShadingModel shading = ShadingModel::Geometry);
 
     int tessLevel() const { return tessLevel_; }
     int patchCount() const { return patchCount_; }
@@ -36,6 +40,7 @@ public:
 
 private:
     int patchCount_, tessLevel_;
+    ShadingModel shading_;
     gl::Buffer patchInfo_, patchCvs_;
     gl::VertexArray vertexArray_;
 };

@@ -8,14 +8,19 @@
 
 namespace subdfit::render {
 
-inline void beginRasterPass(const gl::Program& program, const Camera& camera, const RenderTarget& target,
-                            const gl::RasterState& state = {}) {
-    target.bindAndClear();
-    state.apply();
+// The program in use with the camera's uniforms (a pass of several draws switches programs).
+inline void useWithCamera(const gl::Program& program, const Camera& camera) {
     program.use();
     program.set("uViewProjection", camera.viewProjection());
     program.set("uView", camera.view);
     program.set("uEye", camera.eye);
+}
+
+inline void beginRasterPass(const gl::Program& program, const Camera& camera, const RenderTarget& target,
+                            const gl::RasterState& state = {}) {
+    target.bindAndClear();
+    state.apply();
+    useWithCamera(program, camera);
 }
 
 }  // namespace subdfit::render

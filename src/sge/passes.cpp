@@ -7,16 +7,16 @@
 #include "bindings.h"
 #include "maps/map_parameters.h"
 #include "optim/updates.h"
+#include "util/error.h"
 
 namespace subdfit::sge {
 namespace {
 
 GLuint groupsOf(int count, int size) { return GLuint((count + size - 1) / size); }
 
-const gl::ProgramSpec kGradient{"gradient",
-                                {{GL_COMPUTE_SHADER, "gradient.comp"}},
-                                {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP", "SUBDFIT_FULL_IMAGE"}};
-constexpr gl::VariantBits kGradientDisplacement = 1u << 0, kGradientNormalMap = 1u << 1, kGradientFullImage = 1u << 2;
+// One variant for the vertices' turns and one per texel group's channel count.
+const gl::ProgramSpec kGradient{"gradient", {{GL_COMPUTE_SHADER, "gradient.comp"}}, {"SUBDFIT_TEXELS", "SUBDFIT_FULL_IMAGE"}};
+constexpr gl::VariantBits kGradientTexels = 1u << 0, kGradientFullImage = 1u << 1;
 const gl::ProgramSpec kScatterFaces{"scatter_faces", {{GL_COMPUTE_SHADER, "scatter_faces.comp"}}, {"SUBDFIT_FULL_IMAGE"}};
 
 std::vector<int> transposeOffsets(const std::vector<int>& offsets, const std::vector<int>& indices, int columns,
@@ -47,10 +47,12 @@ FaceVertexTable::FaceVertexTable(const std::vector<int>& faceOffsets, const std:
 
 void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group, const FaceVertexTable& faces,
                         const GradientInputs& in, const gl::Buffer& loss) {
-    const maps::MapEffects effects = in.maps ? in.maps->effects() : maps::MapEffects{};
-    const gl::VariantBits variant = (effects.displacement ? kGradientDisplacement : 0) |
-                                    (effects.normalMap ? kGradientNormalMap : 0) | (in.fullImage ? kGradientFullImage : 0);
-    const auto& program = programs.get(kGradient, variant);
+    const bool texels = group.kind() != optim::GroupKind::Vertices;
+    SUBDFIT_CHECK(!texels || in.maps);
+    const auto& program =
+        texels ? programs.get(kGradient, kGradientTexels,
+                              {{"SUBDFIT_TEXEL_CHANNELS", std::to_string(group.count() / in.maps->layoutOf(group).nodeCount)}})
+               : programs.get(kGradient, in.fullImage ? kGradientFullImage : 0);
     program.use();
     program.set("uTargetLayer", in.targetLayer);
     program.set("uCounter", in.counter);
@@ -68,13 +70,13 @@ void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group
     group.gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_SUM);
     loss.bindStorage(SUBDFIT_SSBO_LOSS);
     faces.faceDelta.bindStorage(SUBDFIT_SSBO_FACE_DELTA);
-    if (in.maps) {
-        program.set("uMapResolution", in.maps->layout().resolution);
-        if (auto* g = in.maps->displacement()) program.set("uEpsilonDisplacement", g->settings().epsilon);
-        if (auto* g = in.maps->normalMap()) program.set("uEpsilonNormalMap", g->settings().epsilon);
+    if (texels) {
+        program.set("uTexelResolution", in.maps->layoutOf(group).resolution);
+        program.set("uTexelTable", in.maps->tableOffsetOf(group));
+        program.set("uTexelSeed", in.seed ^ group.seedSalt());
         glBindTextureUnit(SUBDFIT_UNIT_UV_PLUS, in.plus->patchUv().id());
         glBindTextureUnit(SUBDFIT_UNIT_UV_MINUS, in.minus->patchUv().id());
-        in.maps->bindForGradient();
+        in.maps->bindFaceNodes();
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     glDispatchCompute(groupsOf(in.plus->width(), 16), groupsOf(in.plus->height(), 16), 1);

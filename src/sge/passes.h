@@ -33,17 +33,18 @@ struct GradientInputs {
     std::uint32_t counter, seed;
     float lossScale;     // weight of each pixel's loss in the reported mean
     bool measureLoss;    // also accumulate the loss (costs a target fetch on background pixels)
-    maps::MapParameters* maps = nullptr;  // texel groups to credit too, when the scene has them
+    maps::MapParameters* maps = nullptr;  // the texel groups' lattices, when the scene has them
     bool fullImage = false;  // plain SPSA (every pixel to every vertex): benchmarks only
 };
 
-// G: accumulates Δ_p / (2 s_i ε) into group.gradientSum (directly where the ± faces differ, via
-// faces.faceDelta where they agree) and the mean loss into the 256 slots of `loss`.
+// G for the perturbed `group`: accumulates Δ_p / (2 s_i ε) into group.gradientSum (vertices:
+// directly where the ± faces differ, via faces.faceDelta where they agree; a texel group: into
+// the nodes under each pixel) and the mean loss into the 256 slots of `loss`.
 void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group, const FaceVertexTable& faces,
                         const GradientInputs& inputs, const gl::Buffer& loss);
 
-// G, second half: hands the per-face sums to the vertices' parameters (signs of `counter`)
-// and clears them. Once per perturbation sample, after all its views.
+// G, second half of a vertex turn: hands the per-face sums to the vertices' parameters (signs of
+// `counter`) and clears them. Once per perturbation sample, after all its views.
 void scatterFaceDeltas(gl::ProgramCache& programs, optim::ParameterGroup& group, FaceVertexTable& faces,
                        std::uint32_t counter, std::uint32_t seed, bool fullImage = false);
 
