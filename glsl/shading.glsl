@@ -22,10 +22,12 @@ vec3 shadeLambert(vec3 nView) {
 // fill, a dim light from below) and a grey ambient, so that the asset's own colours show. The
 // image is compared, written and looked at in sRGB (shadeMaterial's result), where equal steps
 // look about equally different.
-const vec3 SUBDFIT_MATERIAL_LIGHTS[3] = vec3[3](vec3(1.00, 0.95, 0.88),
-                                                vec3(0.45, 0.50, 0.58),
-                                                vec3(0.22, 0.22, 0.24));
-const vec3 SUBDFIT_MATERIAL_AMBIENT = vec3(0.22);
+const vec3 SUBDFIT_MATERIAL_LIGHTS[3] = vec3[3](vec3(0.78, 0.74, 0.68),
+                                                vec3(0.28, 0.31, 0.36),
+                                                vec3(0.14, 0.14, 0.15));
+// A white surface facing the camera reflects about 0.95: bright albedos stay below clipping,
+// where their shading (the shape) would be lost.
+const vec3 SUBDFIT_MATERIAL_AMBIENT = vec3(0.12);
 const float SUBDFIT_PI = 3.14159265;
 
 struct SurfacePoint {

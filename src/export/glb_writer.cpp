@@ -61,11 +61,33 @@ void checkTessellation(const GltfMesh& tess) {
     if (tess.vertexCount() == 0 || tess.indices.empty()) throw Error("nothing to export: the mesh has no triangles");
 }
 
-json material(bool hasNormalTexture) {
-    json m = {{"name", "subdfit"},
-              {"pbrMetallicRoughness",
-               {{"baseColorFactor", {0.5, 0.5, 0.5, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}}}};
-    if (hasNormalTexture) m["normalTexture"] = {{"index", 0}};
+// The material, and the textures it names in `doc` (images in buffer views of `binary`).
+json material(const FittedTextures& t, json& doc, BinaryBuilder& binary) {
+    json pbr = {{"baseColorFactor", {0.5, 0.5, 0.5, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}};
+    json m = {{"name", "subdfit"}};
+    auto texture = [&](const std::vector<unsigned char>& png, const char* name) {
+        const int view = binary.addView(png);
+        if (!doc.contains("images")) {
+            doc["images"] = doc["textures"] = json::array();
+            // No mipmaps: each atlas tile is its own chart, and a coarser level would mix tiles.
+            doc["samplers"] = json::array(
+                {{{"magFilter", kLinear}, {"minFilter", kLinear}, {"wrapS", kClampToEdge}, {"wrapT", kClampToEdge}}});
+        }
+        doc["images"].push_back({{"bufferView", view}, {"mimeType", "image/png"}, {"name", name}});
+        doc["textures"].push_back({{"sampler", 0}, {"source", doc["images"].size() - 1}});
+        return json{{"index", doc["textures"].size() - 1}};
+    };
+    if (!t.baseColorPng.empty()) {
+        pbr["baseColorFactor"] = {1.0, 1.0, 1.0, 1.0};
+        pbr["baseColorTexture"] = texture(t.baseColorPng, "base_color");
+        pbr["roughnessFactor"] = 1.0;
+        if (!t.metallicRoughnessPng.empty()) {
+            pbr["metallicFactor"] = 1.0;
+            pbr["metallicRoughnessTexture"] = texture(t.metallicRoughnessPng, "metallic_roughness");
+        }
+    }
+    if (!t.normalPng.empty()) m["normalTexture"] = texture(t.normalPng, "normal");
+    m["pbrMetallicRoughness"] = pbr;
     return m;
 }
 
@@ -84,8 +106,8 @@ std::vector<AttributeSlot> presentAttributes(const GltfMesh& tess, const DracoEn
     return slots;
 }
 
-json document(const GltfMesh& tess, std::span<const unsigned char> normalPng, bool draco,
-              const json& meshExtras, BinaryBuilder& binary) {
+json document(const GltfMesh& tess, const FittedTextures& textures, bool draco, const json& meshExtras,
+              BinaryBuilder& binary) {
     const DracoEncodedMesh encoded = draco ? encodeDraco(tess) : DracoEncodedMesh{};
     const auto slots = presentAttributes(tess, encoded);
     json attributes = json::object(), dracoAttributes = json::object();
@@ -95,7 +117,7 @@ json document(const GltfMesh& tess, std::span<const unsigned char> normalPng, bo
         dracoAttributes[slots[i].name] = slots[i].dracoId;
     }
     json primitive = {{"attributes", attributes}, {"indices", slots.size()}, {"mode", kTriangles}};
-    const bool hasMaterial = tess.hasUvs() || !normalPng.empty();
+    const bool hasMaterial = tess.hasUvs() || !textures.normalPng.empty() || !textures.baseColorPng.empty();
     if (hasMaterial) primitive["material"] = 0;
 
     if (draco) {
@@ -128,28 +150,20 @@ json document(const GltfMesh& tess, std::span<const unsigned char> normalPng, bo
                 {"meshes", json::array({{{"name", "fitted"}, {"primitives", json::array({primitive})}}})},
                 {"accessors", accessors}};
     if (!meshExtras.empty()) doc["meshes"][0]["extras"] = meshExtras;
-    if (hasMaterial) doc["materials"] = json::array({material(!normalPng.empty())});
-    if (!normalPng.empty()) {
-        const int view = binary.addView(normalPng);
-        doc["images"] = json::array({{{"bufferView", view}, {"mimeType", "image/png"}, {"name", "normal"}}});
-        // No mipmaps: each atlas tile is its own chart, and a coarser level would mix tiles.
-        doc["samplers"] = json::array(
-            {{{"magFilter", kLinear}, {"minFilter", kLinear}, {"wrapS", kClampToEdge}, {"wrapT", kClampToEdge}}});
-        doc["textures"] = json::array({{{"sampler", 0}, {"source", 0}}});
-    }
+    if (hasMaterial) doc["materials"] = json::array({material(textures, doc, binary)});
     if (draco) doc["extensionsUsed"] = doc["extensionsRequired"] = json::array({kDraco});
     doc["bufferViews"] = binary.views();
     doc["buffers"] = json::array({{{"byteLength", binary.data().size()}}});
     return doc;
 }
 
-WrittenFile writeGlb(const std::filesystem::path& path, const GltfMesh& tess,
-                     std::span<const unsigned char> normalPng, bool draco, const json& meshExtras) {
+WrittenFile writeGlb(const std::filesystem::path& path, const GltfMesh& tess, const FittedTextures& textures,
+                     bool draco, const json& meshExtras) {
     std::vector<unsigned char> bytes;
     try {
         checkTessellation(tess);
         BinaryBuilder binary;
-        const json doc = document(tess, normalPng, draco, meshExtras, binary);
+        const json doc = document(tess, textures, draco, meshExtras, binary);
         bytes = packGlb(doc, binary.data());
     } catch (const Error& e) {
         throw fileError(path.string(), e.what());
@@ -161,7 +175,12 @@ WrittenFile writeGlb(const std::filesystem::path& path, const GltfMesh& tess,
 
 WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess,
                            std::span<const unsigned char> normalPng, bool draco) {
-    return writeGlb(path, tess, normalPng, draco, json::object());
+    return writeGlb(path, tess, {.normalPng = {normalPng.begin(), normalPng.end()}}, draco, json::object());
+}
+
+WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess, const FittedTextures& textures,
+                           bool draco) {
+    return writeGlb(path, tess, textures, draco, json::object());
 }
 
 WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
@@ -171,7 +190,7 @@ WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<gl
     mesh.positions = positions;
     mesh.normals = normals;
     mesh.indices = indices;
-    return writeGlb(path, mesh, {}, draco, extras);
+    return writeGlb(path, mesh, FittedTextures{}, draco, extras);
 }
 
 }  // namespace subdfit::exporter

@@ -4,6 +4,7 @@
 // normal atlas -- viewable in any glTF viewer.
 #include <filesystem>
 #include <span>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -20,6 +21,15 @@ namespace subdfit::exporter {
 // extension is required. Written atomically; throws subdfit::Error "path: problem".
 WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess,
                            std::span<const unsigned char> normalPng, bool draco);
+
+// The material's images (PNG bytes, all on the texcoords of `tess`; empty: none). With a base
+// colour the material is the fitted one: baseColorTexture (factor 1), and with a
+// metallic-roughness image its metallicRoughnessTexture (factors 1), else metallic 0, roughness 1.
+struct FittedTextures {
+    std::vector<unsigned char> normalPng{}, baseColorPng{}, metallicRoughnessPng{};
+};
+WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess, const FittedTextures& textures,
+                           bool draco);
 
 // A plain triangle mesh (a cage, a decimated mesh): positions, optional normals, indices;
 // `extras` (if not empty) goes into the mesh's glTF `extras`.

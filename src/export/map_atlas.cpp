@@ -15,8 +15,16 @@ namespace {
 constexpr const char* kDisplacementFile = "displacement.exr";
 constexpr const char* kNormalFile = "normal.png";
 constexpr const char* kManifestFile = "maps.json";
+constexpr const char* kBaseColorFile = "base_color.png";
+constexpr const char* kMetallicRoughnessFile = "metallic_roughness.png";
 
 void checkMaps(const surface::TexelLayout& layout, const surface::SurfaceMaps& maps) {
+    if (&layout == &maps.appearanceLayout) {
+        SUBDFIT_CHECK(layout.resolution >= 1 && layout.ptexFaceCount >= 1);
+        SUBDFIT_CHECK(maps.baseColor.empty() || maps.baseColor.size() == 3 * size_t(layout.nodeCount));
+        SUBDFIT_CHECK(maps.metallicRoughness.empty() || maps.metallicRoughness.size() == 2 * size_t(layout.nodeCount));
+        return;
+    }
     SUBDFIT_CHECK(layout.resolution >= 1 && layout.ptexFaceCount >= 1);
     SUBDFIT_CHECK(layout.faceNodes.size() == size_t(layout.ptexFaceCount) * size_t(layout.nodesPerFace()));
     SUBDFIT_CHECK(maps.displacement.empty() || maps.displacement.size() == size_t(layout.nodeCount));
@@ -132,34 +140,103 @@ std::vector<std::uint16_t> normalAtlas(const AtlasLayout& atlas, const surface::
     return pixels;
 }
 
-std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps, bool eightBit) {
-    const std::vector<std::uint16_t> pixels = normalAtlas(atlas, maps);
-    std::vector<std::uint8_t> pixels8;
-    if (eightBit)
-        for (std::uint16_t p : pixels) pixels8.push_back(std::uint8_t((unsigned(p) * 255u + 32767u) / 65535u));
-    const OIIO::TypeDesc type = eightBit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
-    const void* data = eightBit ? static_cast<const void*>(pixels8.data()) : pixels.data();
+std::vector<unsigned char> encodePng(int width, int height, int channels, const void* pixels, bool sixteenBit,
+                                     const std::string& name) {
+    const OIIO::TypeDesc type = sixteenBit ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;
     std::vector<unsigned char> bytes;
     OIIO::Filesystem::IOVecOutput proxy(bytes);
     auto out = OIIO::ImageOutput::create("png");
-    if (!out || !out->supports("ioproxy")) throw Error(std::string(kNormalFile) + ": no in-memory PNG writer in this OpenImageIO build");
-    OIIO::ImageSpec spec(atlas.width, atlas.height, 3, type);
-    if (!out->set_ioproxy(&proxy) || !out->open(kNormalFile, spec) || !out->write_image(type, data) || !out->close())
-        throw Error(std::string(kNormalFile) + ": could not encode PNG: " + out->geterror());
+    if (!out || !out->supports("ioproxy")) throw Error(name + ": no in-memory PNG writer in this OpenImageIO build");
+    OIIO::ImageSpec spec(width, height, channels, type);
+    if (!out->set_ioproxy(&proxy) || !out->open(name, spec) || !out->write_image(type, pixels) || !out->close())
+        throw Error(name + ": could not encode PNG: " + out->geterror());
     return bytes;
+}
+
+std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps, bool eightBit) {
+    const std::vector<std::uint16_t> pixels = normalAtlas(atlas, maps);
+    if (!eightBit) return encodePng(atlas.width, atlas.height, 3, pixels.data(), true, kNormalFile);
+    std::vector<std::uint8_t> pixels8;
+    for (std::uint16_t p : pixels) pixels8.push_back(std::uint8_t((unsigned(p) * 255u + 32767u) / 65535u));
+    return encodePng(atlas.width, atlas.height, 3, pixels8.data(), false, kNormalFile);
+}
+
+std::vector<unsigned char> encodeAppearancePng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps,
+                                               AppearanceImage which) {
+    checkMaps(maps.appearanceLayout, maps);
+    const bool color = which == AppearanceImage::BaseColor;
+    SUBDFIT_CHECK(color ? maps.hasBaseColor() : maps.hasMetallicRoughness());
+    // Outside every tile: mid grey; (occlusion 1, roughness 1, metallic 0).
+    std::vector<std::uint8_t> pixels(size_t(atlas.width) * size_t(atlas.height) * 3, 0);
+    for (size_t p = 0; p < pixels.size(); p += 3) {
+        pixels[p] = color ? 128 : 255;
+        pixels[p + 1] = color ? 128 : 255;
+        pixels[p + 2] = color ? 128 : 0;
+    }
+    auto unorm8 = [](float v) { return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+    forEachTilePixel(atlas, maps.appearanceLayout, [&](size_t pixel, int node) {
+        std::uint8_t* p = &pixels[3 * pixel];
+        const size_t n = size_t(node);
+        if (color) {
+            for (int c = 0; c < 3; ++c) p[c] = unorm8(maps.baseColor[3 * n + size_t(c)]);
+        } else {  // glTF's channels: G roughness, B metallic (R is occlusion's, left at 1)
+            p[1] = unorm8(maps.metallicRoughness[2 * n]);
+            p[2] = unorm8(maps.metallicRoughness[2 * n + 1]);
+        }
+    });
+    return encodePng(atlas.width, atlas.height, 3, pixels.data(), false, color ? kBaseColorFile : kMetallicRoughnessFile);
+}
+
+surface::SurfaceMaps normalOnAppearanceLattice(const surface::SurfaceMaps& maps) {
+    surface::SurfaceMaps out;
+    out.layout = maps.appearanceLayout;
+    if (!maps.hasNormal()) return out;
+    const surface::TexelLayout& to = maps.appearanceLayout;
+    out.normal.assign(2 * size_t(to.nodeCount), 0.0f);
+    const float t = float(to.resolution);
+    for (int f = 0; f < to.ptexFaceCount; ++f)
+        for (int j = 0; j <= to.resolution; ++j)
+            for (int i = 0; i <= to.resolution; ++i) {
+                const size_t n = size_t(to.node(f, i, j));
+                for (int c = 0; c < 2; ++c)
+                    out.normal[2 * n + size_t(c)] =
+                        surface::sampleBilinear(maps.layout, maps.normal, 2, c, f, float(i) / t, float(j) / t);
+            }
+    return out;
 }
 
 std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const surface::SurfaceMaps& maps,
                                          const AtlasOutputs& outputs) {
-    const AtlasLayout atlas = atlasLayout(maps.layout);
-    checkMaps(maps.layout, maps);
     std::vector<WrittenFile> written;
-    if (maps.hasDisplacement() && outputs.displacement)
-        written.push_back(writeDisplacementExr(dir / kDisplacementFile, atlas, maps, outputs.compact));
-    if (maps.hasNormal() && outputs.normal)
-        written.push_back(writeBytes(dir / kNormalFile, encodeNormalPng(atlas, maps, outputs.compact)));
-    if (outputs.manifest) {
-        const std::string text = manifest(atlas, maps, outputs).dump(2) + "\n";
+    nlohmann::json doc;
+    if (maps.layout.resolution > 0) {
+        const AtlasLayout atlas = atlasLayout(maps.layout);
+        checkMaps(maps.layout, maps);
+        if (maps.hasDisplacement() && outputs.displacement)
+            written.push_back(writeDisplacementExr(dir / kDisplacementFile, atlas, maps, outputs.compact));
+        if (maps.hasNormal() && outputs.normal)
+            written.push_back(writeBytes(dir / kNormalFile, encodeNormalPng(atlas, maps, outputs.compact)));
+        doc = manifest(atlas, maps, outputs);
+    }
+    if (maps.appearanceLayout.resolution > 0) {
+        const AtlasLayout atlas = atlasLayout(maps.appearanceLayout);
+        nlohmann::json appearance = manifest(atlas, {}, outputs);
+        appearance.erase("generator");
+        if (maps.hasBaseColor()) {
+            written.push_back(writeBytes(dir / kBaseColorFile, encodeAppearancePng(atlas, maps, AppearanceImage::BaseColor)));
+            appearance["baseColor"] = {{"file", kBaseColorFile}, {"encoding", "8-bit sRGB RGB, as glTF's baseColorTexture"}};
+        }
+        if (maps.hasMetallicRoughness()) {
+            written.push_back(writeBytes(dir / kMetallicRoughnessFile,
+                                         encodeAppearancePng(atlas, maps, AppearanceImage::MetallicRoughness)));
+            appearance["metallicRoughness"] = {{"file", kMetallicRoughnessFile},
+                                               {"encoding", "8-bit RGB, G roughness, B metallic, as glTF's metallicRoughnessTexture"}};
+        }
+        doc["generator"] = "subdfit";
+        doc["appearance"] = appearance;
+    }
+    if (outputs.manifest && !doc.is_null()) {
+        const std::string text = doc.dump(2) + "\n";
         written.push_back(writeBytes(dir / kManifestFile, {reinterpret_cast<const unsigned char*>(text.data()), text.size()}));
     }
     return written;

@@ -9,6 +9,7 @@
 // written into every tile that uses them.
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -43,6 +44,20 @@ std::vector<std::uint16_t> normalAtlas(const AtlasLayout& atlas, const surface::
 // GLB. Requires a normal map.
 std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps, bool eightBit = false);
 
+// 8-bit PNG bytes of the appearance maps on `atlas` (atlasLayout(maps.appearanceLayout)): the sRGB
+// base colour, or glTF's metallic-roughness image (G roughness, B metallic, R 1).
+enum class AppearanceImage { BaseColor, MetallicRoughness };
+std::vector<unsigned char> encodeAppearancePng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps,
+                                               AppearanceImage which);
+
+// The normal map resampled (bilinearly) onto the appearance lattice, as `layout` and `normal` of
+// the result: a glTF material's textures then share one set of texture coordinates.
+surface::SurfaceMaps normalOnAppearanceLattice(const surface::SurfaceMaps& maps);
+
+// PNG bytes of `channels`-channel pixels, rows top first; `name` names the image in errors.
+std::vector<unsigned char> encodePng(int width, int height, int channels, const void* pixels, bool sixteenBit,
+                                     const std::string& name);
+
 // Which files writeMapAtlases may write; a map that is absent is skipped either way.
 struct AtlasOutputs {
     bool displacement = true;  // displacement.exr, one FLOAT channel "Y"
@@ -53,7 +68,9 @@ struct AtlasOutputs {
     bool compact = false;
 };
 
-// Writes into the existing folder `dir`, each file atomically. Throws subdfit::Error naming the
+// Writes into the existing folder `dir`, each file atomically: displacement.exr and normal.png
+// on the geometric maps' atlas, base_color.png and metallic_roughness.png on the appearance
+// maps' (maps.json describes both, the latter under "appearance"). Throws subdfit::Error naming the
 // file that could not be written.
 std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const surface::SurfaceMaps& maps,
                                          const AtlasOutputs& outputs = {});

@@ -23,7 +23,9 @@ namespace subdfit::exporter {
 namespace {
 
 using Tag = std::array<char, 4>;
-constexpr Tag kCage{'C', 'A', 'G', 'E'}, kDisplacement{'D', 'I', 'S', 'P'}, kNormal{'N', 'O', 'R', 'M'};
+constexpr Tag kCage{'C', 'A', 'G', 'E'}, kDisplacement{'D', 'I', 'S', 'P'}, kNormal{'N', 'O', 'R', 'M'},
+              kBaseColor{'B', 'C', 'O', 'L'}, kMetallicRoughness{'M', 'T', 'R', 'G'};
+constexpr std::uint32_t kMostSections = 5;
 constexpr char kMagic[4] = {'S', 'U', 'B', 'D'};
 constexpr int kZstdLevel = 19;  // the asset is written once and shipped many times
 constexpr std::uint32_t kMaxRawSection = 1u << 30;
@@ -47,56 +49,73 @@ std::vector<int> firstPtexFaces(const mesh::PolygonMesh& cage) {
 // Node values of `maps` carried onto the decoded cage's layout: each decoded tile takes the
 // values of the tile it came from, turned by the face's rotation (a quad's (i, j) rotates; an
 // n-gon's per-corner tiles are renumbered).
-surface::SurfaceMaps carriedMaps(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps,
-                                 const mesh::PolygonMesh& decoded, const CageCorrespondence& to) {
-    const int T = maps.layout.resolution;
-    surface::SurfaceMaps out;
-    out.layout = surface::buildTexelLayout(decoded, T);
+// Node values on `from` (laid out on `cage`) carried onto `to` (the same resolution, laid out on
+// `decoded`): each decoded tile takes the values of the tile it came from, turned by the face's
+// rotation (a quad's (i, j) rotates; an n-gon's per-corner tiles are renumbered).
+std::vector<float> carriedValues(const mesh::PolygonMesh& cage, const surface::TexelLayout& from,
+                                 const std::vector<float>& values, int channels, const mesh::PolygonMesh& decoded,
+                                 const surface::TexelLayout& to, const CageCorrespondence& correspondence) {
+    const int T = from.resolution;
     const auto fromPtex = firstPtexFaces(cage), toPtex = firstPtexFaces(decoded);
     // A quad's corners in its own (i, j), counter-clockwise from corner 0.
     constexpr int kCornerI[4] = {0, 1, 1, 0}, kCornerJ[4] = {0, 0, 1, 1};
-    auto carry = [&](const std::vector<float>& from, int channels) {
-        std::vector<float> values(size_t(out.layout.nodeCount) * size_t(channels), 0.0f);
-        auto copy = [&](int fromFace, int i, int j, int toFace, int ti, int tj) {
-            const size_t a = size_t(maps.layout.node(fromFace, i, j)), b = size_t(out.layout.node(toFace, ti, tj));
-            for (int c = 0; c < channels; ++c) values[b * size_t(channels) + size_t(c)] = from[a * size_t(channels) + size_t(c)];
-        };
-        for (int f = 0; f < cage.faceCount(); ++f) {
-            const int n = cage.faceSizes[size_t(f)], r = to.rotation[size_t(f)];
-            const int g = to.face[size_t(f)];
-            for (int j = 0; j <= T; ++j)
-                for (int i = 0; i <= T; ++i) {
-                    if (n != 4) {
-                        for (int k = 0; k < n; ++k) copy(fromPtex[size_t(f)] + (k + r) % n, i, j, toPtex[size_t(g)] + k, i, j);
-                        continue;
-                    }
-                    // Decoded corner k is the cage's corner k + r: bilinear in the corners' (i, j).
-                    const int w[4] = {(T - i) * (T - j), i * (T - j), i * j, (T - i) * j};
-                    int si = 0, sj = 0;
-                    for (int k = 0; k < 4; ++k) {
-                        si += w[k] * kCornerI[(k + r) % 4];
-                        sj += w[k] * kCornerJ[(k + r) % 4];
-                    }
-                    copy(fromPtex[size_t(f)], si / T, sj / T, toPtex[size_t(g)], i, j);
-                }
-        }
-        return values;
+    std::vector<float> out(size_t(to.nodeCount) * size_t(channels), 0.0f);
+    auto copy = [&](int fromFace, int i, int j, int toFace, int ti, int tj) {
+        const size_t a = size_t(from.node(fromFace, i, j)), b = size_t(to.node(toFace, ti, tj));
+        for (int c = 0; c < channels; ++c) out[b * size_t(channels) + size_t(c)] = values[a * size_t(channels) + size_t(c)];
     };
-    if (maps.hasDisplacement()) out.displacement = carry(maps.displacement, 1);
-    if (maps.hasNormal()) out.normal = carry(maps.normal, 2);
+    for (int f = 0; f < cage.faceCount(); ++f) {
+        const int n = cage.faceSizes[size_t(f)], r = correspondence.rotation[size_t(f)];
+        const int g = correspondence.face[size_t(f)];
+        for (int j = 0; j <= T; ++j)
+            for (int i = 0; i <= T; ++i) {
+                if (n != 4) {
+                    for (int k = 0; k < n; ++k) copy(fromPtex[size_t(f)] + (k + r) % n, i, j, toPtex[size_t(g)] + k, i, j);
+                    continue;
+                }
+                // Decoded corner k is the cage's corner k + r: bilinear in the corners' (i, j).
+                const int w[4] = {(T - i) * (T - j), i * (T - j), i * j, (T - i) * j};
+                int si = 0, sj = 0;
+                for (int k = 0; k < 4; ++k) {
+                    si += w[k] * kCornerI[(k + r) % 4];
+                    sj += w[k] * kCornerJ[(k + r) % 4];
+                }
+                copy(fromPtex[size_t(f)], si / T, sj / T, toPtex[size_t(g)], i, j);
+            }
+    }
     return out;
 }
 
-void writeMaps(const surface::SurfaceMaps& maps, const std::vector<float>& values, int channels, int bits, ByteWriter& out) {
-    out.putVarint(std::uint64_t(maps.layout.resolution));
-    out.putVarint(std::uint64_t(maps.layout.nodeCount));
+surface::SurfaceMaps carriedMaps(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps,
+                                 const mesh::PolygonMesh& decoded, const CageCorrespondence& to) {
+    surface::SurfaceMaps out;
+    if (maps.layout.resolution > 0 && (maps.hasDisplacement() || maps.hasNormal())) {
+        out.layout = surface::buildTexelLayout(decoded, maps.layout.resolution);
+        if (maps.hasDisplacement())
+            out.displacement = carriedValues(cage, maps.layout, maps.displacement, 1, decoded, out.layout, to);
+        if (maps.hasNormal()) out.normal = carriedValues(cage, maps.layout, maps.normal, 2, decoded, out.layout, to);
+    }
+    if (maps.appearanceLayout.resolution > 0 && (maps.hasBaseColor() || maps.hasMetallicRoughness())) {
+        out.appearanceLayout = surface::buildTexelLayout(decoded, maps.appearanceLayout.resolution);
+        if (maps.hasBaseColor())
+            out.baseColor = carriedValues(cage, maps.appearanceLayout, maps.baseColor, 3, decoded, out.appearanceLayout, to);
+        if (maps.hasMetallicRoughness())
+            out.metallicRoughness = carriedValues(cage, maps.appearanceLayout, maps.metallicRoughness, 2, decoded,
+                                                  out.appearanceLayout, to);
+    }
+    return out;
+}
+
+void writeMaps(const surface::TexelLayout& layout, const std::vector<float>& values, int channels, int bits, ByteWriter& out) {
+    out.putVarint(std::uint64_t(layout.resolution));
+    out.putVarint(std::uint64_t(layout.nodeCount));
     std::vector<ChannelQuantisation> q;
     for (int c = 0; c < channels; ++c) {
         q.push_back(quantisationFor(values, channels, c, bits));
         out.put<float>(q.back().center);
         out.put<float>(q.back().step);
     }
-    for (int c = 0; c < channels; ++c) encodeNodes(maps.layout, values, channels, c, q[size_t(c)], out);
+    for (int c = 0; c < channels; ++c) encodeNodes(layout, values, channels, c, q[size_t(c)], out);
 }
 
 std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int channels, surface::TexelLayout& layout) {
@@ -132,29 +151,29 @@ void putSection(ByteWriter& file, const Tag& tag, const std::vector<unsigned cha
 
 SubdAsset shippableAsset(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps, int positionBits) {
     const CodedCage coded = encodeCage(cage, positionBits);
-    SubdAsset asset{.cage = cage, .maps = {}};
-    if (maps.layout.resolution > 0 && (maps.hasDisplacement() || maps.hasNormal()))
-        asset.maps = carriedMaps(cage, maps, coded.decoded, coded.correspondence);
-    return asset;
+    return SubdAsset{.cage = cage, .maps = carriedMaps(cage, maps, coded.decoded, coded.correspondence)};
 }
 
 std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecision& precision) {
     SUBDFIT_CHECK(precision.positionBits >= 8 && precision.positionBits <= 16);
     std::vector<std::pair<Tag, std::vector<unsigned char>>> sections;
     CodedCage cage = encodeCage(asset.cage, precision.positionBits);
-    SUBDFIT_CHECK(asset.maps.layout.resolution == 0 || asset.maps.layout.ptexFaceCount == firstPtexFaces(cage.decoded).back());
-    sections.emplace_back(kCage, std::move(cage.bytes));
     const auto& maps = asset.maps;
-    if (maps.layout.resolution > 0 && maps.hasDisplacement()) {
+    const int ptexFaces = firstPtexFaces(cage.decoded).back();
+    SUBDFIT_CHECK(maps.layout.resolution == 0 || maps.layout.ptexFaceCount == ptexFaces);
+    SUBDFIT_CHECK(maps.appearanceLayout.resolution == 0 || maps.appearanceLayout.ptexFaceCount == ptexFaces);
+    sections.emplace_back(kCage, std::move(cage.bytes));
+    auto add = [&](const Tag& tag, const surface::TexelLayout& layout, const std::vector<float>& values, int channels,
+                   int bits) {
+        if (layout.resolution == 0 || values.empty()) return;
         ByteWriter section;
-        writeMaps(maps, maps.displacement, 1, precision.displacementBits, section);
-        sections.emplace_back(kDisplacement, std::move(section.bytes()));
-    }
-    if (maps.layout.resolution > 0 && maps.hasNormal()) {
-        ByteWriter section;
-        writeMaps(maps, maps.normal, 2, precision.normalBits, section);
-        sections.emplace_back(kNormal, std::move(section.bytes()));
-    }
+        writeMaps(layout, values, channels, bits, section);
+        sections.emplace_back(tag, std::move(section.bytes()));
+    };
+    add(kDisplacement, maps.layout, maps.displacement, 1, precision.displacementBits);
+    add(kNormal, maps.layout, maps.normal, 2, precision.normalBits);
+    add(kBaseColor, maps.appearanceLayout, maps.baseColor, 3, precision.appearanceBits);
+    add(kMetallicRoughness, maps.appearanceLayout, maps.metallicRoughness, 2, precision.appearanceBits);
     ByteWriter file;
     file.putBytes({reinterpret_cast<const unsigned char*>(kMagic), 4});
     file.put<std::uint16_t>(kSubdVersion);
@@ -184,7 +203,7 @@ SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& na
     in.take(6);
     if (in.get<std::uint16_t>() != 0) throw Error(name + ": unknown flags");
     const auto count = in.get<std::uint32_t>();
-    if (count < 1 || count > 3) throw Error(name + ": " + std::to_string(count) + " sections");
+    if (count < 1 || count > kMostSections) throw Error(name + ": " + std::to_string(count) + " sections");
 
     SubdAsset asset;
     std::vector<Tag> seen;
@@ -207,6 +226,9 @@ SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& na
         if (tag == kCage) asset.cage = decodeCage(section);
         else if (tag == kDisplacement) asset.maps.displacement = readMaps(section, asset.cage, 1, asset.maps.layout);
         else if (tag == kNormal) asset.maps.normal = readMaps(section, asset.cage, 2, asset.maps.layout);
+        else if (tag == kBaseColor) asset.maps.baseColor = readMaps(section, asset.cage, 3, asset.maps.appearanceLayout);
+        else if (tag == kMetallicRoughness)
+            asset.maps.metallicRoughness = readMaps(section, asset.cage, 2, asset.maps.appearanceLayout);
         else throw Error(name + ": unknown section " + tagName(tag));
         if (section.remaining() != 0) throw Error(section.what() + ": trailing bytes");
     }

@@ -7,8 +7,8 @@
 //   section  4-byte tag | u32 stored bytes | u32 raw bytes | stored bytes (a zstd frame)
 //   trailer  u64 XXH3-64 of every byte before it
 //
-// Sections, each at most once: CAGE first (required), then DISP and/or NORM. Raw contents,
-// varints being LEB128 and signed ones zigzag:
+// Sections, each at most once: CAGE first (required), then any of DISP, NORM, BCOL, MTRG. Raw
+// contents, varints being LEB128 and signed ones zigzag:
 //
 //   CAGE  u8 coding (0 plain, 1 Draco) | varint vertices, varint faces | f32 origin[3],
 //         f32 extent | u8 position bits b; positions are q = round((p − origin) / extent ·
@@ -29,6 +29,10 @@
 //         the decoded cage (surface/texel_layout.h)
 //   NORM  the same with two channels (tangent-space x, y): T, node count, then per channel
 //         (f32 center, f32 step), then the residuals of x, then of y
+//   BCOL  the same with three channels, the sRGB base colour (r, g, b in [0, 1]), on a lattice
+//         of its own resolution (the appearance lattice)
+//   MTRG  the same with two channels, roughness and metallic in [0, 1], on the appearance
+//         lattice
 //
 // Heights are in the cage's units along the limit normal. (Version 1 had no coding byte and
 // 16-bit plain positions; its files are refused with the version named.)
@@ -56,6 +60,7 @@ struct SubdPrecision {
     int positionBits = 14;      // per coordinate, over the cage's bounding cube (8..16), as Draco's default for meshes
     int displacementBits = 12;  // over the heights' range (1..24)
     int normalBits = 10;        // over each tangent-space channel's range (1..24)
+    int appearanceBits = 8;     // per colour, roughness and metallic channel, over its range (1..24)
 };
 
 std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecision& precision = {});

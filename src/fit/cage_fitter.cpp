@@ -175,8 +175,16 @@ surface::SurfaceMaps CageFitter::surfaceMaps() {
     surface::SurfaceMaps maps;
     if (!maps_) return maps;
     maps.layout = maps_->layout();
+    maps.appearanceLayout = maps_->appearanceLayout();
     if (auto* g = maps_->displacement()) maps.displacement = g->read();
     if (auto* g = maps_->normalMap()) maps.normal = g->read();
+    // What the renderer reads them as: clamped to [0, 1].
+    auto clamped = [](std::vector<float> values) {
+        for (float& v : values) v = std::clamp(v, 0.0f, 1.0f);
+        return values;
+    };
+    if (auto* g = maps_->baseColor()) maps.baseColor = clamped(g->read());
+    if (auto* g = maps_->metallicRoughness()) maps.metallicRoughness = clamped(g->read());
     return maps;
 }
 

@@ -10,6 +10,22 @@
 #include "util/error.h"
 
 namespace subdfit::fit {
+
+void writeMaps(CageFitter& fitter, const surface::SurfaceMaps& maps) {
+    auto* parameters = fitter.maps();
+    if (!parameters) return;
+    auto write = [](optim::ParameterGroup* group, const std::vector<float>& values) {
+        if (group && !values.empty()) group->write(values);
+    };
+    write(parameters->displacement(), maps.displacement);
+    write(parameters->normalMap(), maps.normal);
+    write(parameters->baseColor(), maps.baseColor);
+    write(parameters->metallicRoughness(), maps.metallicRoughness);
+}
+
+}  // namespace subdfit::fit
+
+namespace subdfit::fit {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -59,9 +75,19 @@ FitRun::FitRun(const FitOptions& options, gl::ProgramCache& programs, FitScene& 
       fingerprint_(checkpointFingerprint(options, scene.cage, scene.reference)),
       monitorEvery_(std::max(5, options.steps / 50)),
       started_(Clock::now()) {
+    scoreStart();
+}
+
+void FitRun::scoreStart() {
     beforeImage_ = renderHoldout(*fitter_, scene_);
     trainBefore_ = score(*fitter_, scene_.training);
     holdoutBefore_ = score(*fitter_, scene_.holdout);
+}
+
+void FitRun::startFrom(const surface::SurfaceMaps& maps) {
+    SUBDFIT_CHECK(step() == 0);
+    writeMaps(*fitter_, maps);
+    scoreStart();
 }
 
 bool FitRun::resume(const std::filesystem::path& checkpoint) {

@@ -31,6 +31,10 @@ struct FitHooks {
     std::function<void(const std::string& line)> note{};  // news for the user, e.g. "nothing to resume"
 };
 
+// Writes the maps `maps` has values for into the fitter's groups of the same kind (a group the
+// fitter lacks, or values the maps lack, are left alone).
+void writeMaps(CageFitter& fitter, const surface::SurfaceMaps& maps);
+
 // Why a run of steps ended.
 enum class StopReason { Reached, Converged, Cancelled };
 const char* toString(StopReason reason);
@@ -44,6 +48,10 @@ public:
     // Continues from `checkpoint` if it exists: true when it did. Throws subdfit::Error naming
     // the file when it is damaged or was written for other inputs or settings.
     bool resume(const std::filesystem::path& checkpoint);
+
+    // Sets the maps `maps` holds (baked elsewhere: simplify's bake) as the fit's start, before any
+    // step: the groups it has values for take them, and the "before" scores are taken again.
+    void startFrom(const surface::SurfaceMaps& maps);
     void saveCheckpoint(const std::filesystem::path& checkpoint);
 
     int step() const { return fitter_->stepsTaken(); }
@@ -99,6 +107,7 @@ private:
     int monitorEvery_;
     std::chrono::steady_clock::time_point started_;
     double fitSeconds_ = 0.0;
+    void scoreStart();
     ViewSetScore trainBefore_, holdoutBefore_;
     std::vector<glm::vec4> beforeImage_;  // held-out view 0 before fitting
 };

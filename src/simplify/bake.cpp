@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "geometry/surface_queries.h"
+#include "mesh/material_sampling.h"
 #include "mesh/mesh_geometry.h"
 #include "subdiv/limit_evaluator.h"
 #include "util/interrupt.h"
@@ -91,46 +92,94 @@ std::optional<geometry::RayHit> castFacing(const geometry::SurfaceQueries& surfa
     return best;
 }
 
+// Every node of `layout` on `cage`'s limit surface, cast along its limit normal to the
+// reference: the hit on the sheet that faces the way the reference mostly faces the cage.
+struct NodeHits {
+    std::vector<NodeSite> sites;
+    std::vector<subdiv::LimitSample> samples;
+    std::vector<glm::vec3> normals;
+    std::vector<std::optional<geometry::RayHit>> hits;
+};
+
+NodeHits castNodes(const mesh::PolygonMesh& cage, const surface::TexelLayout& layout, const mesh::PolygonMesh& reference,
+                   const geometry::SurfaceQueries& surface, float maxDistance) {
+    NodeHits h;
+    h.sites = nodeSites(layout);
+    const size_t nodes = h.sites.size();
+    const subdiv::LimitEvaluator limit(cage);
+    h.samples.resize(nodes);
+    h.normals.resize(nodes);
+    h.hits.resize(nodes);
+    for (size_t n = 0; n < nodes; ++n) {
+        if (n % 4096 == 0) throwIfStopRequested();
+        if (h.sites[n].face < 0 || !limit.hasSurface(h.sites[n].face, 0.5f, 0.5f)) continue;
+        h.samples[n] = sampleAt(limit, h.sites[n], layout.resolution, cage.positions);
+        h.normals[n] = unitNormal(h.samples[n].dPdu, h.samples[n].dPdv, glm::vec3(0.0f, 0.0f, 1.0f));
+        h.hits[n] = surface.castBothWays(h.samples[n].position, h.normals[n], maxDistance);
+    }
+    // Which way the reference faces the cage's normals (it may wind the other way): as most
+    // nearest hits say. Hits that face against it are passed through to the sheet behind.
+    double agreement = 0.0;
+    for (size_t n = 0; n < nodes; ++n) {
+        if (!h.hits[n]) continue;
+        const glm::vec3 faced = triangleNormal(reference, h.hits[n]->triangle);
+        const float area = glm::length(faced);
+        if (area > 0.0f) agreement += glm::dot(faced / area, h.normals[n]);
+    }
+    const float facing = agreement >= 0.0 ? 1.0f : -1.0f;
+    for (size_t n = 0; n < nodes; ++n)
+        if (h.hits[n] && facing * glm::dot(triangleNormal(reference, h.hits[n]->triangle), h.normals[n]) <= 0.0f)
+            h.hits[n] = castFacing(surface, h.samples[n].position, h.normals[n], maxDistance, facing);
+    return h;
+}
+
+float maxDistanceFor(const BakeOptions& options, const mesh::PolygonMesh& cage) {
+    return options.maxDistance > 0.0f ? options.maxDistance : mesh::meanEdgeLength(cage);
+}
+
+// Nodes no ray found the reference from take the mean of their found neighbours, spreading
+// outwards until every node has a value (a node graph without any found node keeps its own).
+void fillMissing(const surface::TexelLayout& layout, std::vector<float>& values, int channels, std::vector<char> found) {
+    const auto graph = surface::nodeAdjacency(layout);
+    for (bool changed = true; changed;) {
+        changed = false;
+        std::vector<char> next = found;
+        for (size_t n = 0; n < found.size(); ++n) {
+            if (found[n]) continue;
+            int count = 0;
+            std::vector<float> sum(size_t(channels), 0.0f);
+            for (int k = graph.offsets[n]; k < graph.offsets[n + 1]; ++k) {
+                const size_t m = size_t(graph.neighbors[size_t(k)]);
+                if (!found[m]) continue;
+                for (int c = 0; c < channels; ++c) sum[size_t(c)] += values[m * size_t(channels) + size_t(c)];
+                ++count;
+            }
+            if (count == 0) continue;
+            for (int c = 0; c < channels; ++c) values[n * size_t(channels) + size_t(c)] = sum[size_t(c)] / float(count);
+            next[n] = 1;
+            changed = true;
+        }
+        found = std::move(next);
+    }
+}
+
 }  // namespace
 
 surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
                               const BakeOptions& options) {
     surface::SurfaceMaps maps;
     maps.layout = surface::buildTexelLayout(cage, options.resolution);
-    const auto sites = nodeSites(maps.layout);
-    const size_t nodes = sites.size();
-    const subdiv::LimitEvaluator limit(cage);
     const geometry::SurfaceQueries surface(reference);
     const auto referenceNormals = mesh::vertexNormals(reference);
-    const float maxDistance = options.maxDistance > 0.0f ? options.maxDistance : mesh::meanEdgeLength(cage);
-
-    std::vector<subdiv::LimitSample> samples(nodes);
-    std::vector<glm::vec3> normals(nodes);
-    std::vector<std::optional<geometry::RayHit>> hits(nodes);
+    const NodeHits nodeHits = castNodes(cage, maps.layout, reference, surface, maxDistanceFor(options, cage));
+    const auto& sites = nodeHits.sites;
+    const auto& samples = nodeHits.samples;
+    const auto& normals = nodeHits.normals;
+    const auto& hits = nodeHits.hits;
+    const size_t nodes = sites.size();
     std::vector<float> heights(nodes, 0.0f);
-    for (size_t n = 0; n < nodes; ++n) {
-        if (n % 4096 == 0) throwIfStopRequested();
-        if (sites[n].face < 0 || !limit.hasSurface(sites[n].face, 0.5f, 0.5f)) continue;
-        samples[n] = sampleAt(limit, sites[n], options.resolution, cage.positions);
-        normals[n] = unitNormal(samples[n].dPdu, samples[n].dPdv, glm::vec3(0.0f, 0.0f, 1.0f));
-        hits[n] = surface.castBothWays(samples[n].position, normals[n], maxDistance);
-    }
-    // Which way the reference faces the cage's normals (it may wind the other way): as most
-    // nearest hits say. Hits that face against it are passed through to the sheet behind.
-    double agreement = 0.0;
-    for (size_t n = 0; n < nodes; ++n) {
-        if (!hits[n]) continue;
-        const glm::vec3 faced = triangleNormal(reference, hits[n]->triangle);
-        const float area = glm::length(faced);
-        if (area > 0.0f) agreement += glm::dot(faced / area, normals[n]);
-    }
-    const float facing = agreement >= 0.0 ? 1.0f : -1.0f;
-    for (size_t n = 0; n < nodes; ++n) {
-        if (!hits[n]) continue;
-        if (facing * glm::dot(triangleNormal(reference, hits[n]->triangle), normals[n]) <= 0.0f)
-            hits[n] = castFacing(surface, samples[n].position, normals[n], maxDistance, facing);
+    for (size_t n = 0; n < nodes; ++n)
         if (hits[n]) heights[n] = hits[n]->distance;
-    }
     if (options.effects.displacement) maps.displacement = heights;
     if (!options.effects.normalMap) return maps;
 
@@ -159,6 +208,36 @@ surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
         maps.normal[2 * n] = glm::dot(r, T) / z;
         maps.normal[2 * n + 1] = glm::dot(r, B) / z;
     }
+    return maps;
+}
+
+}  // namespace subdfit::simplify
+
+namespace subdfit::simplify {
+
+surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
+                                    const AppearanceBakeOptions& options) {
+    surface::SurfaceMaps maps;
+    maps.appearanceLayout = surface::buildTexelLayout(cage, options.resolution);
+    const geometry::SurfaceQueries surface(reference);
+    const float maxDistance = options.maxDistance > 0.0f ? options.maxDistance : mesh::meanEdgeLength(cage);
+    const NodeHits nodeHits = castNodes(cage, maps.appearanceLayout, reference, surface, maxDistance);
+    const size_t nodes = nodeHits.sites.size();
+    std::vector<char> found(nodes, 0);
+    std::vector<float> color(3 * nodes, 0.5f), roughnessMetallic(2 * nodes, 0.0f);
+    for (size_t n = 0; n < nodes; ++n) {
+        if (!nodeHits.hits[n]) continue;
+        const auto& hit = *nodeHits.hits[n];
+        const mesh::MaterialSample s = mesh::sampleMaterial(reference, hit.triangle, hit.u, hit.v);
+        for (int c = 0; c < 3; ++c) color[3 * n + size_t(c)] = mesh::linearToSrgb(s.baseColor[c]);
+        roughnessMetallic[2 * n] = std::clamp(s.roughness, 0.0f, 1.0f);
+        roughnessMetallic[2 * n + 1] = std::clamp(s.metallic, 0.0f, 1.0f);
+        found[n] = 1;
+    }
+    fillMissing(maps.appearanceLayout, color, 3, found);
+    fillMissing(maps.appearanceLayout, roughnessMetallic, 2, found);
+    if (options.effects.baseColor) maps.baseColor = std::move(color);
+    if (options.effects.metallicRoughness) maps.metallicRoughness = std::move(roughnessMetallic);
     return maps;
 }
 

@@ -24,4 +24,17 @@ struct BakeOptions {
 surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
                               const BakeOptions& options);
 
+struct AppearanceBakeOptions {
+    maps::MapEffects effects{.baseColor = true, .metallicRoughness = true};
+    int resolution = 16;  // cells per ptex-face edge of the appearance lattice
+    float maxDistance = 0.0f;  // as BakeOptions
+};
+
+// The appearance maps (SurfaceMaps::appearanceLayout, baseColor, metallicRoughness) of `cage`:
+// each node takes the reference's material where its limit normal meets the reference (the
+// texture at the hit's interpolated texture coordinates, times the factors and vertex colours);
+// nodes whose rays miss take their neighbours' mean.
+surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
+                                    const AppearanceBakeOptions& options);
+
 }  // namespace subdfit::simplify

@@ -105,6 +105,23 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
     writeComparison(out / "comparison.png", o.fit.resolution, scene.holdout.readColor(0), columns);
 }
 
+// Every map `parameters` has, baked onto `cage` (normalised frame) from the reference.
+surface::SurfaceMaps bakeEverything(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
+                                    const maps::MapParameters& parameters) {
+    const maps::MapEffects effects = parameters.effects();
+    surface::SurfaceMaps maps;
+    if (effects.geometric())
+        maps = bakeMaps(cage, reference, {.effects = effects, .resolution = parameters.layout().resolution});
+    if (effects.appearance()) {
+        surface::SurfaceMaps appearance = bakeAppearance(
+            cage, reference, {.effects = effects, .resolution = parameters.appearanceLayout().resolution});
+        maps.appearanceLayout = std::move(appearance.appearanceLayout);
+        maps.baseColor = std::move(appearance.baseColor);
+        maps.metallicRoughness = std::move(appearance.metallicRoughness);
+    }
+    return maps;
+}
+
 // The maps join the fit at `bakeStep`: baked onto the cage as fitted so far (what the bake route
 // would ship for this cage), then only refined, with the cage frozen. A run resumed past that
 // step has the maps from its checkpoint (`baked` false) but must freeze and slow them again.
@@ -114,10 +131,7 @@ void startMaps(fit::FitRun& run, bool bake) {
     if (bake) {
         mesh::PolygonMesh current = run.scene().cage;
         current.positions = fitter.vertices();
-        const auto baked = bakeMaps(current, run.scene().reference,
-                                    {.effects = parameters->effects(), .resolution = parameters->layout().resolution});
-        if (auto* g = parameters->displacement()) g->write(baked.displacement);
-        if (auto* g = parameters->normalMap()) g->write(baked.normal);
+        fit::writeMaps(fitter, bakeEverything(current, run.scene().reference, *parameters));
     }
     // The bake fits this cage: moving it now would slide the maps off the detail they hold.
     fitter.setOptimised(fitter.vertexGroup(), false);
@@ -216,7 +230,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     io::checkOutputFolder(options.fit.out, {.ownMarkers = fit::kFitResultMarkers, .force = options.fit.force});
     const auto started = std::chrono::steady_clock::now();
     SimplifyOptions o = options;
-    const mesh::PolygonMesh reference = mesh::loadMesh(o.fit.reference);
+    const mesh::PolygonMesh reference = mesh::loadReference(o.fit.reference);
 
     auto context = context::createHeadlessContext(o.fit.glProvider);
     const std::string chosen = fit::resolveForCurrentDevice(o.fit);
@@ -229,8 +243,16 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     const mesh::PolygonMesh cage = scene.cageWorld;
     fit::FitRun run(fitOptions, programs, scene);
     const auto checkpoint = o.fit.out / "checkpoint.bin";
-    if (o.fit.resume && !run.resume(checkpoint) && hooks.note)
+    const bool resumed = o.fit.resume && run.resume(checkpoint);
+    if (o.fit.resume && !resumed && hooks.note)
         hooks.note("no checkpoint at " + checkpoint.string() + " to resume: starting from step 0");
+    // The appearance starts as the bake onto the starting cage: a grey surface against a
+    // coloured target would pull the cage where the colours differ, not the shape.
+    if (!resumed && run.fitter().maps() && run.fitter().maps()->effects().appearance()) {
+        const maps::MapParameters& parameters = *run.fitter().maps();
+        run.startFrom(bakeAppearance(scene.cage, scene.reference,
+                                     {.effects = parameters.effects(), .resolution = parameters.appearanceLayout().resolution}));
+    }
 
     // Stages: the cage alone; the maps baked onto it; the maps refined on the frozen cage.
     // Unlike `fit`, an interrupted simplify writes no results: they would cost the baselines'

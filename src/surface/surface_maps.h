@@ -16,8 +16,16 @@ struct SurfaceMaps {
     // (dPdu, dPdv, N) of the limit surface; empty = no normal map.
     std::vector<float> normal;
 
+    // The appearance maps, on a lattice of their own (resolution 0: none): 3 per node, the sRGB
+    // base colour in [0, 1]; 2 per node, (roughness, metallic) in [0, 1]; empty = none.
+    TexelLayout appearanceLayout;
+    std::vector<float> baseColor;
+    std::vector<float> metallicRoughness;
+
     bool hasDisplacement() const { return !displacement.empty(); }
     bool hasNormal() const { return !normal.empty(); }
+    bool hasBaseColor() const { return !baseColor.empty(); }
+    bool hasMetallicRoughness() const { return !metallicRoughness.empty(); }
 };
 
 }  // namespace subdfit::surface

@@ -277,7 +277,7 @@ TEST_F(ExportGlb, DracoGlbIsSmallerAndDecodesToTheSameSurface) {
 }
 
 TEST_F(ExportGlb, GlbWithoutNormalMapHasNoTexture) {
-    const WrittenFile file = writeFittedGlb(*dir_ / "untextured.glb", *tess_, {}, false);
+    const WrittenFile file = writeFittedGlb(*dir_ / "untextured.glb", *tess_, FittedTextures{}, false);
     const json doc = readGlb(file.path).document;
     EXPECT_FALSE(doc.contains("images"));
     EXPECT_FALSE(doc.contains("textures"));
