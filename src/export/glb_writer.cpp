@@ -8,6 +8,7 @@
 
 #include "export/draco_encoding.h"
 #include "export/glb_container.h"
+#include "export/gltf_builder.h"
 #include "util/error.h"
 
 namespace subdfit::exporter {
@@ -15,46 +16,7 @@ namespace {
 
 using nlohmann::json;
 
-constexpr const char* kDraco = "KHR_draco_mesh_compression";
-// glTF enums (spec 5.1.1, 5.25).
-constexpr int kFloat = 5126, kUnsignedInt = 5125;
-constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
-constexpr int kLinear = 9729, kClampToEdge = 33071;
-constexpr int kTriangles = 4;
-
-// buffers[0] and its bufferViews, each view starting 4-byte aligned (glTF requires accessor
-// offsets to be multiples of the component size; ours are all 4 bytes).
-class BinaryBuilder {
-public:
-    int addView(std::span<const unsigned char> bytes, int target = 0) {
-        data_.resize((data_.size() + 3) & ~size_t(3), 0);
-        json view = {{"buffer", 0}, {"byteOffset", data_.size()}, {"byteLength", bytes.size()}};
-        if (target) view["target"] = target;
-        data_.insert(data_.end(), bytes.begin(), bytes.end());
-        views_.push_back(std::move(view));
-        return int(views_.size()) - 1;
-    }
-
-    template <typename T>
-    int addArray(const std::vector<T>& values, int target) {
-        return addView({reinterpret_cast<const unsigned char*>(values.data()), values.size() * sizeof(T)}, target);
-    }
-
-    const std::vector<unsigned char>& data() const { return data_; }
-    const json& views() const { return views_; }
-
-private:
-    std::vector<unsigned char> data_;
-    json views_ = json::array();
-};
-
-json accessor(int view, int componentType, size_t count, const char* type) {
-    json a = {{"componentType", componentType}, {"count", count}, {"type", type}};
-    if (view >= 0) a["bufferView"] = view;  // a Draco-compressed accessor has none (KHR spec)
-    return a;
-}
-
-json vec3Json(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
+using namespace gltf;
 
 void checkTessellation(const GltfMesh& tess) {
     SUBDFIT_CHECK(tess.attributesConsistent());

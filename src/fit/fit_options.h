@@ -48,6 +48,7 @@ struct FitOptions {
     std::string shading = "auto";
     maps::MapEffects maps;        // none by default
     int mapResolution = 8;        // cells per ptex-face edge of each map tile
+    int appearanceResolution = 16;  // ... of the appearance maps (base colour, metallic-roughness)
     float mapsStart = 0.4f;       // fraction of the steps fitted by the cage alone before maps join
     int mapBits = 12;             // bits per map value in asset.subd (over each channel's range)
     bool preview = false;         // also write fitted.glb: the displaced limit surface, tessLevel per face edge

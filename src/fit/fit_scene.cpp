@@ -93,6 +93,7 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
     settings.mapEffects.baseColor = shading != render::ShadingModel::Geometry;
     settings.mapEffects.metallicRoughness = shading == render::ShadingModel::MetallicRoughness;
     settings.maps.resolution = o.mapResolution;
+    settings.maps.appearanceResolution = o.appearanceResolution;
     settings.mapsStartFraction = o.mapsStart;
     return settings;
 }

@@ -1,6 +1,8 @@
 #include "io/image_io.h"
 
 #include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -62,6 +64,31 @@ DecodedImage decodeImage(const void* data, std::size_t size, const std::string& 
         }
     }
     return image;
+}
+
+std::vector<std::uint8_t> encodeImage(const DecodedImage& image, int width, int height, ImageFormat format, int quality) {
+    SUBDFIT_CHECK(width >= 1 && height >= 1 && image.width >= 1 && image.height >= 1);
+    const bool jpeg = format == ImageFormat::Jpeg;
+    const int channels = jpeg ? 3 : 4;  // JPEG has no alpha
+    OIIO::ImageBuf source(OIIO::ImageSpec(image.width, image.height, 4, OIIO::TypeDesc::UINT8),
+                          const_cast<std::uint8_t*>(image.rgba.data()));
+    OIIO::ImageBuf resized = width == image.width && height == image.height
+                                 ? source
+                                 : OIIO::ImageBufAlgo::resize(source, "", 0.0f, OIIO::ROI(0, width, 0, height, 0, 1, 0, 4));
+    std::vector<std::uint8_t> pixels(size_t(width) * size_t(height) * size_t(channels));
+    if (!resized.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, channels), OIIO::TypeDesc::UINT8, pixels.data()))
+        throw Error("cannot resize an image: " + resized.geterror());
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput proxy(bytes);
+    const char* name = jpeg ? "image.jpg" : "image.png";
+    auto out = OIIO::ImageOutput::create(name);
+    if (!out || !out->supports("ioproxy")) throw Error(std::string("no in-memory ") + (jpeg ? "JPEG" : "PNG") + " writer");
+    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
+    if (jpeg) spec.attribute("Compression", "jpeg:" + std::to_string(std::clamp(quality, 1, 100)));
+    if (!out->set_ioproxy(&proxy) || !out->open(name, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) ||
+        !out->close())
+        throw Error(std::string("cannot encode an image: ") + out->geterror());
+    return bytes;
 }
 
 DecodedImage readImage(const std::filesystem::path& path) {

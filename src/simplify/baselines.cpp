@@ -8,6 +8,7 @@
 #include "export/map_atlas.h"
 #include "export/subd_format.h"
 #include "fit/cage_fitter.h"
+#include "fit/fit_run.h"
 #include "fit/fit_scene.h"
 #include "io/external_program.h"
 #include "mesh/mesh_loader.h"
@@ -141,9 +142,17 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
 
 Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& cage,
                      maps::MapEffects effects, int mapResolution, const BaselineSettings& settings) {
-    if (!effects.any()) effects = {.displacement = true, .normalMap = true};
-    const surface::SurfaceMaps baked =
-        bakeMaps(cage, scene.reference, {.effects = effects, .resolution = mapResolution});
+    if (!effects.geometric()) effects.displacement = effects.normalMap = true;
+    effects.baseColor = scene.shading != render::ShadingModel::Geometry;
+    effects.metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness;
+    surface::SurfaceMaps baked = bakeMaps(cage, scene.reference, {.effects = effects, .resolution = mapResolution});
+    if (effects.appearance()) {
+        surface::SurfaceMaps appearance = bakeAppearance(
+            cage, scene.reference, {.effects = effects, .resolution = settings.appearanceResolution});
+        baked.appearanceLayout = std::move(appearance.appearanceLayout);
+        baked.baseColor = std::move(appearance.baseColor);
+        baked.metallicRoughness = std::move(appearance.metallicRoughness);
+    }
 
     // Shipped exactly as subdfit ships: asset.subd, in world units (the atlases beside it for
     // DCC tools, not counted).
@@ -167,11 +176,12 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     // Rendered by the fitter's own renderer with the baked values in its map groups.
     fit::CageFitSettings rendering;
     rendering.mapEffects = effects;
+    rendering.shading = scene.shading;
     rendering.maps.resolution = mapResolution;
+    rendering.maps.appearanceResolution = settings.appearanceResolution;
     rendering.tessLevel = settings.segments;
     fit::CageFitter bakedScene(programs, cage, rendering);
-    if (auto* g = bakedScene.maps()->displacement()) g->write(baked.displacement);
-    if (auto* g = bakedScene.maps()->normalMap()) g->write(baked.normal);
+    fit::writeMaps(bakedScene, baked);
     scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
         bakedScene.render(camera, target);
     }, q);

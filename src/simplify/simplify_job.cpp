@@ -12,6 +12,7 @@
 #include "export/subd_format.h"
 #include "simplify/bake.h"
 #include "simplify/baselines.h"
+#include "simplify/textured_baselines.h"
 #include "simplify/budget_search.h"
 #include "simplify/decimate.h"
 #include "simplify/comparison_image.h"
@@ -93,11 +94,16 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
 
     const BaselineSettings settings{.dir = out / "baselines", .draco = o.fit.draco,
                                     .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments,
-                                    .mapBits = bakeRoute.bits};
+                                    .mapBits = bakeRoute.bits, .appearanceResolution = o.fit.appearanceResolution};
     std::filesystem::create_directories(settings.dir);
-    const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
-    report.decimation = decimationBaseline(programs, scene, welded, ours.bytes, settings);
-    report.gltfpack = gltfpackBaseline(programs, scene, welded, ours.bytes, settings);
+    if (scene.shading != render::ShadingModel::Geometry && scene.reference.materials && !scene.reference.uvs.empty()) {
+        report.decimation = texturedDecimationBaseline(programs, scene, ours.bytes, settings);
+        report.gltfpack = texturedGltfpackBaseline(programs, scene, ours.bytes, settings);
+    } else {
+        const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
+        report.decimation = decimationBaseline(programs, scene, welded, ours.bytes, settings);
+        report.gltfpack = gltfpackBaseline(programs, scene, welded, ours.bytes, settings);
+    }
     report.bake = bakeBaseline(programs, scene, bakeRoute.cage, bakeRoute.effects, bakeRoute.resolution, settings);
     std::vector<const std::vector<glm::vec4>*> columns{&ours.view, &report.decimation.view};
     if (report.gltfpack) columns.push_back(&report.gltfpack->view);

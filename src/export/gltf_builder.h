@@ -1,0 +1,54 @@
+#pragma once
+// What every GLB writer of subdfit builds a document with: buffers[0] and its buffer views, and
+// accessors (glTF 2.0 spec 5.1, 5.11).
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+namespace subdfit::exporter::gltf {
+
+// glTF enums (spec 5.1.1, 5.25).
+inline constexpr int kFloat = 5126, kUnsignedInt = 5125;
+inline constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+inline constexpr int kNearest = 9728, kLinear = 9729, kLinearMipmapLinear = 9987;
+inline constexpr int kRepeat = 10497, kClampToEdge = 33071, kMirroredRepeat = 33648;
+inline constexpr int kTriangles = 4;
+inline constexpr const char* kDraco = "KHR_draco_mesh_compression";
+
+// buffers[0] and its bufferViews, each view starting 4-byte aligned (glTF requires accessor
+// offsets to be multiples of the component size; ours are all 4 bytes).
+class BinaryBuilder {
+public:
+    int addView(std::span<const unsigned char> bytes, int target = 0) {
+        data_.resize((data_.size() + 3) & ~size_t(3), 0);
+        nlohmann::json view = {{"buffer", 0}, {"byteOffset", data_.size()}, {"byteLength", bytes.size()}};
+        if (target) view["target"] = target;
+        data_.insert(data_.end(), bytes.begin(), bytes.end());
+        views_.push_back(std::move(view));
+        return int(views_.size()) - 1;
+    }
+
+    template <typename T>
+    int addArray(const std::vector<T>& values, int target) {
+        return addView({reinterpret_cast<const unsigned char*>(values.data()), values.size() * sizeof(T)}, target);
+    }
+
+    const std::vector<unsigned char>& data() const { return data_; }
+    const nlohmann::json& views() const { return views_; }
+
+private:
+    std::vector<unsigned char> data_;
+    nlohmann::json views_ = nlohmann::json::array();
+};
+
+inline nlohmann::json accessor(int view, int componentType, size_t count, const char* type) {
+    nlohmann::json a = {{"componentType", componentType}, {"count", count}, {"type", type}};
+    if (view >= 0) a["bufferView"] = view;  // a Draco-compressed accessor has none (KHR spec)
+    return a;
+}
+
+inline nlohmann::json vec3Json(const glm::vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
+
+}  // namespace subdfit::exporter::gltf

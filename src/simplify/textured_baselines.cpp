@@ -1,0 +1,228 @@
+#include "simplify/textured_baselines.h"
+
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <functional>
+
+#include "export/textured_glb.h"
+#include "fit/fit_scene.h"
+#include "io/external_program.h"
+#include "io/image_io.h"
+#include "mesh/mesh_geometry.h"
+#include "mesh/mesh_loader.h"
+#include "render/mesh_renderer.h"
+#include "util/error.h"
+#include "util/interrupt.h"
+
+namespace subdfit::simplify {
+namespace {
+
+constexpr int kFewestTriangles = 12;
+constexpr int kTextureDivisors[] = {1, 2, 4, 8, 16, 32, 64};
+
+// The images of `set` at 1/divisor of their size: JPEG unless they have alpha.
+std::vector<exporter::EncodedImage> encodedAt(const mesh::MaterialSet& set, int divisor, std::uintmax_t& bytes) {
+    std::vector<exporter::EncodedImage> out;
+    bytes = 0;
+    for (const mesh::Image& image : set.images) {
+        if (image.rgba.empty()) {
+            out.push_back({});
+            continue;
+        }
+        bool opaque = true;
+        for (size_t p = 3; p < image.rgba.size() && opaque; p += 4) opaque = image.rgba[p] == 255;
+        const io::DecodedImage decoded{image.width, image.height, image.rgba};
+        const auto format = opaque ? io::ImageFormat::Jpeg : io::ImageFormat::Png;
+        out.push_back({io::encodeImage(decoded, std::max(1, image.width / divisor), std::max(1, image.height / divisor), format),
+                       opaque ? "image/jpeg" : "image/png"});
+        bytes += out.back().bytes.size();
+    }
+    return out;
+}
+
+// The most triangles in [fewest, most] whose file `ship` writes fits the budget (as
+// baselines.cpp's bisection); the file is left as shipped at that count.
+int mostWithin(int most, std::uintmax_t budget, const std::function<std::uintmax_t(int)>& ship) {
+    int lo = std::min(kFewestTriangles, most), hi = most;
+    while (lo < hi) {
+        const int mid = lo + (hi - lo + 1) / 2;
+        if (ship(mid) <= budget) lo = mid;
+        else hi = mid - 1;
+    }
+    ship(lo);
+    return lo;
+}
+
+// A shipped textured file as the renderer and the distance see it: read back (so the lossy
+// images count), in the scene's frame.
+mesh::PolygonMesh readBack(const std::filesystem::path& path, const fit::FitScene& scene) {
+    mesh::PolygonMesh m = mesh::triangulated(mesh::loadReference(path));
+    m.positions = scene.frame.toNormalized(m.positions);
+    return m;
+}
+
+double psnrOn(gl::ProgramCache& programs, const scene::TargetSet& views, const mesh::PolygonMesh& candidate,
+              render::ShadingModel shading) {
+    const render::MeshRenderer renderer(candidate, shading);
+    Quality q;
+    scoreHoldout(views, [&](const render::Camera& camera, const render::RenderTarget& target) {
+        renderer.draw(programs, camera, target);
+    }, q);
+    return q.psnrHoldout;
+}
+
+// The texture scale search both baselines share: `ship(divisor, images, triangles)` writes the
+// candidate and returns its bytes; the best on the monitor views is shipped again last.
+struct Shipped {
+    int divisor = 1, triangles = 0;
+    std::uintmax_t bytes = 0, textureBytes = 0;
+};
+using ShipFunction =
+    std::function<std::uintmax_t(int divisor, const std::vector<exporter::EncodedImage>& images, int triangles)>;
+
+Shipped bestScale(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
+                  const std::filesystem::path& output, const ShipFunction& ship) {
+    const int most = scene.reference.faceCount();
+    std::optional<Shipped> best;
+    double bestPsnr = -1.0;
+    for (int divisor : kTextureDivisors) {
+        throwIfStopRequested();
+        Shipped candidate{.divisor = divisor};
+        const auto images = encodedAt(*scene.reference.materials, divisor, candidate.textureBytes);
+        if (candidate.textureBytes >= budget) continue;
+        candidate.triangles =
+            mostWithin(most, budget, [&](int triangles) { return candidate.bytes = ship(divisor, images, triangles); });
+        if (candidate.bytes > budget && best) continue;
+        const double psnr = psnrOn(programs, scene.monitor, readBack(output, scene), scene.shading);
+        if (!best || (candidate.bytes <= budget && psnr > bestPsnr) || best->bytes > budget) {
+            best = candidate;
+            bestPsnr = psnr;
+        }
+        // Halving the textures frees at most 3/4 of their bytes: once they are a small share of
+        // the budget, smaller ones cannot buy the geometry anything.
+        if (candidate.textureBytes < budget / 16) break;
+    }
+    if (!best) {  // even the smallest images do not fit: the smallest there is, over budget
+        best = Shipped{.divisor = kTextureDivisors[std::size(kTextureDivisors) - 1]};
+        best->triangles = kFewestTriangles;
+    }
+    const auto images = encodedAt(*scene.reference.materials, best->divisor, best->textureBytes);
+    best->bytes = ship(best->divisor, images, best->triangles);
+    return *best;
+}
+
+Quality scored(gl::ProgramCache& programs, const fit::FitScene& scene, const std::filesystem::path& output,
+               const Shipped& shipped, std::uintmax_t budget, const BaselineSettings& settings) {
+    const mesh::PolygonMesh candidate = readBack(output, scene);
+    Quality q;
+    q.bytes = shipped.bytes;
+    q.files = {{output.filename().string(), shipped.bytes}};
+    q.details = {{"triangles", candidate.faceCount()},
+                 {"texture_scale", 1.0 / shipped.divisor},
+                 {"texture_bytes", shipped.textureBytes},
+                 {"over_budget", shipped.bytes > budget}};
+    const render::MeshRenderer renderer(candidate, scene.shading);
+    scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
+        renderer.draw(programs, camera, target);
+    }, q);
+    q.distance = worldDistance(candidate, scene.reference, scene.frame, settings.surfaceSamples);
+    return q;
+}
+
+}  // namespace
+
+mesh::PolygonMesh decimateTextured(const mesh::PolygonMesh& triangles, int targetTriangles) {
+    SUBDFIT_CHECK(triangles.materials && !triangles.uvs.empty());
+    const int total = triangles.faceCount();
+    std::vector<unsigned> kept;
+    std::vector<int> keptMaterials;
+    const float* positions = &triangles.positions[0].x;
+    for (size_t m = 0; m < triangles.materials->materials.size(); ++m) {
+        std::vector<unsigned> indices;
+        for (int f = 0; f < total; ++f)
+            if (triangles.faceMaterials[size_t(f)] == int(m))
+                for (int k = 0; k < 3; ++k) indices.push_back(unsigned(triangles.faceIndices[size_t(3 * f + k)]));
+        if (indices.empty()) continue;
+        const size_t share = std::max<size_t>(1, size_t(double(targetTriangles) * double(indices.size() / 3) / total));
+        std::vector<unsigned> out(indices.size());
+        out.resize(meshopt_simplify(out.data(), indices.data(), indices.size(), positions, triangles.positions.size(),
+                                    sizeof(glm::vec3), share * 3, 1.0f));
+        if (out.empty()) out = indices;  // never lose a material
+        kept.insert(kept.end(), out.begin(), out.end());
+        keptMaterials.insert(keptMaterials.end(), out.size() / 3, int(m));
+    }
+    // The vertices the kept triangles use, with their texture coordinates.
+    std::vector<unsigned> remap(triangles.positions.size());
+    const size_t used = meshopt_optimizeVertexFetchRemap(remap.data(), kept.data(), kept.size(), triangles.positions.size());
+    mesh::PolygonMesh out;
+    out.sourcePath = triangles.sourcePath;
+    out.materials = triangles.materials;
+    out.positions.resize(used);
+    out.uvs.resize(used);
+    if (!triangles.colors.empty()) out.colors.resize(used);
+    for (size_t v = 0; v < remap.size(); ++v)
+        if (remap[v] != ~0u) {
+            out.positions[remap[v]] = triangles.positions[v];
+            out.uvs[remap[v]] = triangles.uvs[v];
+            if (!triangles.colors.empty()) out.colors[remap[v]] = triangles.colors[v];
+        }
+    out.faceSizes.assign(kept.size() / 3, 3);
+    for (unsigned i : kept) out.faceIndices.push_back(int(remap[i]));
+    out.faceMaterials = std::move(keptMaterials);
+    return out;
+}
+
+Quality texturedDecimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
+                                   const BaselineSettings& settings) {
+    const auto output = settings.dir / "decimated.glb";
+    const Shipped shipped = bestScale(programs, scene, budget, output, [&](int, const auto& images, int triangles) {
+        throwIfStopRequested();
+        mesh::PolygonMesh decimated = decimateTextured(scene.reference, triangles);
+        const auto normals = mesh::vertexNormals(decimated);
+        decimated.positions = scene.frame.toWorld(decimated.positions);
+        return exporter::writeTexturedGlb(output, decimated, normals, images, /*draco=*/true).bytes;
+    });
+    return scored(programs, scene, output, shipped, budget, settings);
+}
+
+std::optional<Quality> texturedGltfpackBaseline(gl::ProgramCache& programs, const fit::FitScene& scene,
+                                                std::uintmax_t budget, const BaselineSettings& settings) {
+    const auto gltfpack = io::findProgram("gltfpack");
+    if (!gltfpack) return std::nullopt;
+    const auto input = settings.dir / "gltfpack_input.glb", output = settings.dir / "gltfpack.glb";
+    mesh::PolygonMesh world = scene.reference;
+    world.positions = scene.frame.toWorld(world.positions);
+    const auto normals = mesh::vertexNormals(scene.reference);
+    int writtenDivisor = 0;
+    std::vector<std::string> flags{"-cc"};
+    auto ship = [&](int divisor, const std::vector<exporter::EncodedImage>& images, int triangles) -> std::uintmax_t {
+        throwIfStopRequested();
+        if (divisor != writtenDivisor) {  // the input holds the images at one scale
+            exporter::writeTexturedGlb(input, world, normals, images, /*draco=*/false);
+            writtenDivisor = divisor;
+        }
+        char ratio[32];
+        std::snprintf(ratio, sizeof ratio, "%.9f", double(triangles) / double(scene.reference.faceCount()));
+        std::vector<std::string> arguments{"-i", input.string(), "-o", output.string(), "-si", ratio};
+        arguments.insert(arguments.end(), flags.begin(), flags.end());
+        const int status = io::runProgram(*gltfpack, arguments);
+        if (status != 0 || !std::filesystem::exists(output))
+            throw Error(gltfpack->string() + " -si " + ratio + " failed (exit " + std::to_string(status) + ")");
+        return std::filesystem::file_size(output);
+    };
+    Shipped shipped = bestScale(programs, scene, budget, output, ship);
+    if (shipped.bytes > budget) {  // as the plain baseline: -sa when -si alone cannot get there
+        flags.push_back("-sa");
+        shipped = bestScale(programs, scene, budget, output, ship);
+    }
+    std::filesystem::remove(input);
+    Quality q = scored(programs, scene, output, shipped, budget, settings);
+    std::string command = "gltfpack -si R";
+    for (const auto& flag : flags) command += " " + flag;
+    q.details["command"] = command + " (textures scaled by subdfit)";
+    return q;
+}
+
+}  // namespace subdfit::simplify
