@@ -1,4 +1,4 @@
-// One mesh loader under libFuzzer, the format chosen at build time (SUBDFIT_FUZZ_EXTENSION:
+// One mesh loader under libFuzzer (as a cage and as a reference), the format chosen at build time (SUBDFIT_FUZZ_EXTENSION:
 // ".obj" for OBJ with OpenSubdiv tags, ".glb" for glTF with embedded buffers and Draco). Any
 // input must give a mesh or subdfit::Error: never a crash, a sanitizer report or another
 // exception type. The loaders read paths (they name the file in every error), so each input
@@ -23,6 +23,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     try {
         const auto mesh = subdfit::mesh::loadMesh(path);
+        (void)subdfit::mesh::vertexNormals(subdfit::mesh::triangulated(mesh));
+    } catch (const subdfit::Error&) {
+    }
+    // As a reference: texture coordinates, colours, materials and embedded images too.
+    try {
+        const auto mesh = subdfit::mesh::loadReference(path);
         (void)subdfit::mesh::vertexNormals(subdfit::mesh::triangulated(mesh));
     } catch (const subdfit::Error&) {
     }

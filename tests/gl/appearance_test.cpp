@@ -178,7 +178,9 @@ TEST(AppearanceEffects, ASceneWithoutMaterialsCompilesAndRunsNoMaterialWork) {
         EXPECT_FALSE(anyVariantDefines(plain, define)) << define;
     // Its only texel group is the displacement: one channel, and no three-channel G variant.
     for (const auto& v : plain.variants()) {
-        if (v.defines.count("SUBDFIT_TEXEL_CHANNELS")) EXPECT_EQ(v.defines.at("SUBDFIT_TEXEL_CHANNELS"), "1");
+        if (v.defines.count("SUBDFIT_TEXEL_CHANNELS")) {
+            EXPECT_EQ(v.defines.at("SUBDFIT_TEXEL_CHANNELS"), "1");
+        }
     }
 
     gl::ProgramCache colored(platformDefines());
