@@ -163,6 +163,13 @@ std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const surfa
 
 std::vector<unsigned char> encodeAppearancePng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps,
                                                AppearanceImage which) {
+    const auto pixels = appearancePixels(atlas, maps, which);
+    return encodePng(atlas.width, atlas.height, 3, pixels.data(), false,
+                     which == AppearanceImage::BaseColor ? kBaseColorFile : kMetallicRoughnessFile);
+}
+
+std::vector<std::uint8_t> appearancePixels(const AtlasLayout& atlas, const surface::SurfaceMaps& maps,
+                                           AppearanceImage which) {
     checkMaps(maps.appearanceLayout, maps);
     const bool color = which == AppearanceImage::BaseColor;
     SUBDFIT_CHECK(color ? maps.hasBaseColor() : maps.hasMetallicRoughness());
@@ -184,7 +191,24 @@ std::vector<unsigned char> encodeAppearancePng(const AtlasLayout& atlas, const s
             p[2] = unorm8(maps.metallicRoughness[2 * n + 1]);
         }
     });
-    return encodePng(atlas.width, atlas.height, 3, pixels.data(), false, color ? kBaseColorFile : kMetallicRoughnessFile);
+    return pixels;
+}
+
+std::vector<float> nodesFromAppearancePixels(const AtlasLayout& atlas, const surface::TexelLayout& layout,
+                                             std::span<const std::uint8_t> rgb, AppearanceImage which) {
+    SUBDFIT_CHECK(rgb.size() == size_t(atlas.width) * size_t(atlas.height) * 3);
+    const bool color = which == AppearanceImage::BaseColor;
+    const int channels = color ? 3 : 2;
+    std::vector<float> sums(size_t(layout.nodeCount) * size_t(channels), 0.0f);
+    std::vector<int> counts(size_t(layout.nodeCount), 0);
+    forEachTilePixel(atlas, layout, [&](size_t pixel, int node) {
+        const std::uint8_t* p = &rgb[3 * pixel];
+        for (int c = 0; c < channels; ++c) sums[size_t(node) * size_t(channels) + size_t(c)] += float(p[color ? c : c + 1]) / 255.0f;
+        ++counts[size_t(node)];
+    });
+    for (size_t n = 0; n < counts.size(); ++n)
+        for (int c = 0; c < channels; ++c) sums[n * size_t(channels) + size_t(c)] /= float(std::max(1, counts[n]));
+    return sums;
 }
 
 surface::SurfaceMaps normalOnAppearanceLattice(const surface::SurfaceMaps& maps) {

@@ -9,6 +9,7 @@
 // written into every tile that uses them.
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,13 @@ std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const surfa
 enum class AppearanceImage { BaseColor, MetallicRoughness };
 std::vector<unsigned char> encodeAppearancePng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps,
                                                AppearanceImage which);
+
+// The same image's RGB8 pixels (rows top first), and the inverse: node values as the mean of
+// every pixel that holds the node (a node on a tile border is in several tiles).
+std::vector<std::uint8_t> appearancePixels(const AtlasLayout& atlas, const surface::SurfaceMaps& maps,
+                                           AppearanceImage which);
+std::vector<float> nodesFromAppearancePixels(const AtlasLayout& atlas, const surface::TexelLayout& layout,
+                                             std::span<const std::uint8_t> rgb, AppearanceImage which);
 
 // The normal map resampled (bilinearly) onto the appearance lattice, as `layout` and `normal` of
 // the result: a glTF material's textures then share one set of texture coordinates.

@@ -9,10 +9,13 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <tuple>
 
 #include "export/byte_stream.h"
 #include "export/cage_coding.h"
+#include "export/map_atlas.h"
 #include "export/node_coding.h"
+#include "io/image_io.h"
 #include "io/input_file.h"
 #include "mesh/input_limits.h"
 #include "mesh/mesh_validation.h"
@@ -137,6 +140,48 @@ std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int c
     return values;
 }
 
+// An appearance map as a JPEG of its atlas (export/map_atlas.h), 8-bit sRGB: textures carry
+// detail node prediction codes poorly, and what JPEG drops a viewer hardly sees.
+constexpr std::uint8_t kJpegCoding = 1;
+
+void writeAppearance(const surface::SurfaceMaps& maps, AppearanceImage which, int quality, ByteWriter& out) {
+    const surface::TexelLayout& layout = maps.appearanceLayout;
+    out.putVarint(std::uint64_t(layout.resolution));
+    out.putVarint(std::uint64_t(layout.nodeCount));
+    out.put<std::uint8_t>(kJpegCoding);
+    const AtlasLayout atlas = atlasLayout(layout);
+    const auto rgb = appearancePixels(atlas, maps, which);
+    io::DecodedImage image{atlas.width, atlas.height, std::vector<std::uint8_t>(rgb.size() / 3 * 4, 255)};
+    for (size_t p = 0; p < rgb.size() / 3; ++p)
+        for (int c = 0; c < 3; ++c) image.rgba[4 * p + size_t(c)] = rgb[3 * p + size_t(c)];
+    // Full-resolution chroma: the atlas packs unrelated tiles side by side, and halved chroma
+    // would bleed colour across their borders.
+    const auto jpeg = io::encodeImage(image, atlas.width, atlas.height, io::ImageFormat::Jpeg, quality, true);
+    out.putVarint(jpeg.size());
+    out.putBytes({jpeg.data(), jpeg.size()});
+}
+
+std::vector<float> readAppearance(ByteReader& in, const mesh::PolygonMesh& cage, AppearanceImage which,
+                                  surface::TexelLayout& layout) {
+    const int resolution = readIndex(in, 65, "map resolution");
+    if (resolution < 1) throw Error(in.what() + ": map resolution 0");
+    if (layout.resolution == 0) layout = surface::buildTexelLayout(cage, resolution);
+    if (layout.resolution != resolution) throw Error(in.what() + ": the maps disagree on their resolution");
+    if (in.getVarint() != std::uint64_t(layout.nodeCount))
+        throw Error(in.what() + ": node count does not match the cage's texel layout");
+    if (in.get<std::uint8_t>() != kJpegCoding) throw Error(in.what() + ": unknown appearance coding");
+    const auto bytes = in.take(in.getCount(1, "image byte"));
+    const AtlasLayout atlas = atlasLayout(layout);
+    const io::DecodedImage image = io::decodeImage(bytes.data(), bytes.size(), in.what());
+    if (image.width != atlas.width || image.height != atlas.height)
+        throw Error(in.what() + ": the image is " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                    ", the atlas " + std::to_string(atlas.width) + " x " + std::to_string(atlas.height));
+    std::vector<std::uint8_t> rgb(size_t(image.width) * size_t(image.height) * 3);
+    for (size_t p = 0; p < rgb.size() / 3; ++p)
+        for (int c = 0; c < 3; ++c) rgb[3 * p + size_t(c)] = image.rgba[4 * p + size_t(c)];
+    return nodesFromAppearancePixels(atlas, layout, rgb, which);
+}
+
 void putSection(ByteWriter& file, const Tag& tag, const std::vector<unsigned char>& raw) {
     std::vector<unsigned char> stored(ZSTD_compressBound(raw.size()));
     const std::size_t size = ZSTD_compress(stored.data(), stored.size(), raw.data(), raw.size(), kZstdLevel);
@@ -172,10 +217,18 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
     };
     add(kDisplacement, maps.layout, maps.displacement, 1, precision.displacementBits);
     add(kNormal, maps.layout, maps.normal, 2, precision.normalBits);
-    add(kBaseColor, maps.appearanceLayout, maps.baseColor, 3, precision.appearanceBits);
-    add(kMetallicRoughness, maps.appearanceLayout, maps.metallicRoughness, 2, precision.appearanceBits);
+    for (const auto& [tag, which, present] : {std::tuple{kBaseColor, AppearanceImage::BaseColor, maps.hasBaseColor()},
+                                              std::tuple{kMetallicRoughness, AppearanceImage::MetallicRoughness,
+                                                         maps.hasMetallicRoughness()}}) {
+        if (maps.appearanceLayout.resolution == 0 || !present) continue;
+        ByteWriter section;
+        writeAppearance(maps, which, precision.appearanceQuality, section);
+        sections.emplace_back(tag, std::move(section.bytes()));
+    }
     ByteWriter file;
-    file.putBytes({reinterpret_cast<const unsigned char*>(kMagic), 4});
+    // Assigned, not inserted: GCC 12 misreads an insert into the still-empty vector
+    // (-Wstringop-overflow) once the appearance sections change its inlining.
+    file.bytes().assign(std::begin(kMagic), std::end(kMagic));
     file.put<std::uint16_t>(kSubdVersion);
     file.put<std::uint16_t>(0);
     file.put<std::uint32_t>(std::uint32_t(sections.size()));
@@ -226,9 +279,11 @@ SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& na
         if (tag == kCage) asset.cage = decodeCage(section);
         else if (tag == kDisplacement) asset.maps.displacement = readMaps(section, asset.cage, 1, asset.maps.layout);
         else if (tag == kNormal) asset.maps.normal = readMaps(section, asset.cage, 2, asset.maps.layout);
-        else if (tag == kBaseColor) asset.maps.baseColor = readMaps(section, asset.cage, 3, asset.maps.appearanceLayout);
+        else if (tag == kBaseColor)
+            asset.maps.baseColor = readAppearance(section, asset.cage, AppearanceImage::BaseColor, asset.maps.appearanceLayout);
         else if (tag == kMetallicRoughness)
-            asset.maps.metallicRoughness = readMaps(section, asset.cage, 2, asset.maps.appearanceLayout);
+            asset.maps.metallicRoughness =
+                readAppearance(section, asset.cage, AppearanceImage::MetallicRoughness, asset.maps.appearanceLayout);
         else throw Error(name + ": unknown section " + tagName(tag));
         if (section.remaining() != 0) throw Error(section.what() + ": trailing bytes");
     }

@@ -29,10 +29,11 @@
 //         the decoded cage (surface/texel_layout.h)
 //   NORM  the same with two channels (tangent-space x, y): T, node count, then per channel
 //         (f32 center, f32 step), then the residuals of x, then of y
-//   BCOL  the same with three channels, the sRGB base colour (r, g, b in [0, 1]), on a lattice
-//         of its own resolution (the appearance lattice)
-//   MTRG  the same with two channels, roughness and metallic in [0, 1], on the appearance
-//         lattice
+//   BCOL  the sRGB base colour on a lattice of its own (the appearance lattice): varint T |
+//         varint node count | u8 coding (1: JPEG) | varint n | n bytes of a JPEG of the atlas
+//         (export/map_atlas.h: a (T+1)² pixel tile per ptex face, ceil(sqrt(F)) columns); a
+//         node's value is the mean of its pixels in every tile that holds it
+//   MTRG  the same for roughness (green) and metallic (blue) on the appearance lattice
 //
 // Heights are in the cage's units along the limit normal. (Version 1 had no coding byte and
 // 16-bit plain positions; its files are refused with the version named.)
@@ -60,7 +61,7 @@ struct SubdPrecision {
     int positionBits = 14;      // per coordinate, over the cage's bounding cube (8..16), as Draco's default for meshes
     int displacementBits = 12;  // over the heights' range (1..24)
     int normalBits = 10;        // over each tangent-space channel's range (1..24)
-    int appearanceBits = 8;     // per colour, roughness and metallic channel, over its range (1..24)
+    int appearanceQuality = 90;  // JPEG quality of the appearance maps' atlases (1..100)
 };
 
 std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecision& precision = {});

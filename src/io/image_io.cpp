@@ -66,7 +66,8 @@ DecodedImage decodeImage(const void* data, std::size_t size, const std::string& 
     return image;
 }
 
-std::vector<std::uint8_t> encodeImage(const DecodedImage& image, int width, int height, ImageFormat format, int quality) {
+std::vector<std::uint8_t> encodeImage(const DecodedImage& image, int width, int height, ImageFormat format, int quality,
+                                      bool fullChroma) {
     SUBDFIT_CHECK(width >= 1 && height >= 1 && image.width >= 1 && image.height >= 1);
     const bool jpeg = format == ImageFormat::Jpeg;
     const int channels = jpeg ? 3 : 4;  // JPEG has no alpha
@@ -84,7 +85,10 @@ std::vector<std::uint8_t> encodeImage(const DecodedImage& image, int width, int 
     auto out = OIIO::ImageOutput::create(name);
     if (!out || !out->supports("ioproxy")) throw Error(std::string("no in-memory ") + (jpeg ? "JPEG" : "PNG") + " writer");
     OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
-    if (jpeg) spec.attribute("Compression", "jpeg:" + std::to_string(std::clamp(quality, 1, 100)));
+    if (jpeg) {
+        spec.attribute("Compression", "jpeg:" + std::to_string(std::clamp(quality, 1, 100)));
+        if (fullChroma) spec.attribute("jpeg:subsampling", "4:4:4");
+    }
     if (!out->set_ioproxy(&proxy) || !out->open(name, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) ||
         !out->close())
         throw Error(std::string("cannot encode an image: ") + out->geterror());

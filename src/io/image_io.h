@@ -27,11 +27,12 @@ inline constexpr std::int64_t kMaxImagePixels = std::int64_t(1) << 28;
 // image, or one of more than kMaxImagePixels pixels.
 DecodedImage decodeImage(const void* data, std::size_t size, const std::string& nameForErrors);
 
-// `image` resized (filtered) to width × height and encoded as JPEG (at `quality`, 1..100) or
-// PNG: what a pipeline ships when it shrinks an asset's textures. Throws subdfit::Error.
+// `image` resized (filtered) to width × height and encoded as JPEG (at `quality`, 1..100;
+// chroma halved unless `fullChroma`) or PNG: what a pipeline ships when it shrinks an asset's
+// textures. Throws subdfit::Error.
 enum class ImageFormat { Png, Jpeg };
 std::vector<std::uint8_t> encodeImage(const DecodedImage& image, int width, int height, ImageFormat format,
-                                      int quality = 85);
+                                      int quality = 85, bool fullChroma = false);
 
 // readInputFile, then decodeImage.
 DecodedImage readImage(const std::filesystem::path& path);

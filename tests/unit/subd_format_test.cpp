@@ -171,6 +171,46 @@ TEST(SubdFormat, ACageWithoutMapsRoundTrips) {
     EXPECT_FALSE(decoded.maps.hasDisplacement());
 }
 
+// The appearance maps ship as JPEGs of their atlas: what decodes is within a few 8-bit steps of
+// what was fitted where the colours vary smoothly, on the decoded cage's own lattice.
+TEST(SubdFormat, AppearanceMapsRoundTripWithinJpegError) {
+    const auto cage = mesh::makeQuadSphere(3);
+    surface::SurfaceMaps maps;
+    maps.appearanceLayout = surface::buildTexelLayout(cage, 6);
+    const auto limit = surface::tessellate(cage, {}, 6);
+    const size_t nodes = size_t(maps.appearanceLayout.nodeCount);
+    maps.baseColor.assign(3 * nodes, 0.0f);
+    maps.metallicRoughness.assign(2 * nodes, 0.0f);
+    for (size_t k = 0; k < limit.vertexCount(); ++k) {
+        const auto& at = limit.ptex[k];
+        const size_t n = size_t(maps.appearanceLayout.node(at.face, int(std::lround(at.u * 6.0f)), int(std::lround(at.v * 6.0f))));
+        const glm::vec3 p = limit.positions[k];
+        maps.baseColor[3 * n] = 0.5f + 0.3f * p.x;
+        maps.baseColor[3 * n + 1] = 0.5f + 0.3f * p.y;
+        maps.baseColor[3 * n + 2] = 0.5f - 0.3f * p.z;
+        maps.metallicRoughness[2 * n] = 0.6f + 0.2f * p.y;
+        maps.metallicRoughness[2 * n + 1] = 0.3f;
+    }
+    const SubdAsset shipped = shippableAsset(cage, maps);
+    const SubdAsset decoded = decodeSubd(encodeSubd(shipped), "colours");
+    ASSERT_TRUE(decoded.maps.hasBaseColor());
+    ASSERT_TRUE(decoded.maps.hasMetallicRoughness());
+    ASSERT_EQ(decoded.maps.baseColor.size(), shipped.maps.baseColor.size());
+    double worst = 0.0, sum = 0.0;
+    for (size_t k = 0; k < shipped.maps.baseColor.size(); ++k) {
+        const double e = std::abs(double(decoded.maps.baseColor[k]) - double(shipped.maps.baseColor[k]));
+        worst = std::max(worst, e);
+        sum += e;
+    }
+    std::printf("base colour after JPEG: mean error %.4f, worst %.4f\n", sum / double(shipped.maps.baseColor.size()), worst);
+    // JPEG at quality 90 with full chroma: a few 8-bit steps on average, more at tile borders,
+    // where the atlas puts unrelated faces side by side.
+    EXPECT_LT(sum / double(shipped.maps.baseColor.size()), 4.0 / 255.0);
+    EXPECT_LT(worst, 0.1);
+    for (size_t k = 0; k < shipped.maps.metallicRoughness.size(); ++k)
+        EXPECT_NEAR(decoded.maps.metallicRoughness[k], shipped.maps.metallicRoughness[k], 0.06) << k;
+}
+
 TEST(SubdFormat, AnythingButAWholeVersionTwoFileIsRefusedInOneLine) {
     const auto cage = mesh::makeQuadSphere(3);
     const auto good = encodeSubd(shippableAsset(cage, someMaps(cage, 2, 1)));
