@@ -1,4 +1,7 @@
 #include "simplify/budget_search.h"
+#include "fit/fit_run.h"
+
+#include <map>
 
 #include <algorithm>
 #include <cctype>
@@ -27,6 +30,7 @@ std::string describe(const BudgetCandidate& c) {
     std::snprintf(line, sizeof line, "%6d faces, maps %-19s T=%d, %2d bits: %8ju bytes", c.faces,
                   maps::toString(c.maps).c_str(), c.mapResolution, c.mapBits, c.bytes);
     std::string text = line;
+    if (c.appearanceResolution > 0) text += ", appearance T=" + std::to_string(c.appearanceResolution);
     if (c.monitorLoss > 0.0) {
         std::snprintf(line, sizeof line, ", monitor loss %.4g", c.monitorLoss);
         text += line;
@@ -51,17 +55,16 @@ Shipped ship(const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps maps, int 
 double monitorLoss(gl::ProgramCache& programs, const fit::FitScene& scene, const exporter::SubdAsset& shipped) {
     mesh::PolygonMesh cage = shipped.cage;
     cage.positions = scene.frame.toNormalized(cage.positions);
-    const surface::SurfaceMaps& maps = shipped.maps;
+    surface::SurfaceMaps maps = shipped.maps;
+    for (float& d : maps.displacement) d *= scene.frame.scale;
     fit::CageFitSettings rendering;
-    rendering.mapEffects = {.displacement = maps.hasDisplacement(), .normalMap = maps.hasNormal()};
+    rendering.shading = scene.shading;
+    rendering.mapEffects = {.displacement = maps.hasDisplacement(), .normalMap = maps.hasNormal(),
+                            .baseColor = maps.hasBaseColor(), .metallicRoughness = maps.hasMetallicRoughness()};
     rendering.maps.resolution = std::max(maps.layout.resolution, 1);
+    rendering.maps.appearanceResolution = std::max(maps.appearanceLayout.resolution, 1);
     fit::CageFitter fitter(programs, cage, rendering);
-    if (auto* g = rendering.mapEffects.any() ? fitter.maps()->displacement() : nullptr) {
-        std::vector<float> heights = maps.displacement;
-        for (float& d : heights) d *= scene.frame.scale;
-        g->write(heights);
-    }
-    if (auto* g = rendering.mapEffects.any() ? fitter.maps()->normalMap() : nullptr) g->write(maps.normal);
+    fit::writeMaps(fitter, maps);
     return fit::score(fitter, scene.monitor).loss;
 }
 
@@ -109,12 +112,18 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
             return std::nullopt;
         }
     };
+    // The appearance maps of the candidates being judged (none in a scene without materials).
+    surface::SurfaceMaps appearance;
     // One candidate: the cage with `baked` (laid out on it) shipped at `bits`, judged if it fits.
-    auto judge = [&](const mesh::PolygonMesh& cageWorld, const surface::SurfaceMaps& baked, maps::MapEffects effects,
+    auto judge = [&](const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps baked, maps::MapEffects effects,
                      int resolution, int bits) {
+        baked.appearanceLayout = appearance.appearanceLayout;
+        baked.baseColor = appearance.baseColor;
+        baked.metallicRoughness = appearance.metallicRoughness;
         const Shipped shipped = ship(cageWorld, baked, bits, scene.frame.scale);
         BudgetCandidate c{.faces = cageWorld.faceCount(), .maps = effects, .mapResolution = resolution,
-                          .mapBits = bits, .bytes = shipped.bytes};
+                          .mapBits = bits, .appearanceResolution = appearance.appearanceLayout.resolution,
+                          .bytes = shipped.bytes};
         if (c.bytes <= search.budget) c.monitorLoss = monitorLoss(programs, scene, shipped.decoded);
         consider(c, cageWorld);  // over budget, it is listed so the report shows why
         return c.bytes <= search.budget;
@@ -125,22 +134,35 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
         return cage;
     };
 
+    const std::vector<int> appearanceResolutions =
+        search.appearance.appearance() ? search.appearanceResolutions : std::vector<int>{0};
     for (int faces : search.faceCounts) {
         const auto cageWorld = cageOf(faces);
         if (!cageWorld) continue;  // smaller counts will not do better
-        if (!judge(*cageWorld, {}, {}, 0, 0)) continue;
         const mesh::PolygonMesh cage = normalized(*cageWorld);
-        for (const maps::MapEffects& effects : mapChoices)
-            for (int resolution : search.mapResolutions) {
-                throwIfStopRequested();
-                const auto baked = bakeMaps(cage, scene.reference, {.effects = effects, .resolution = resolution});
-                bool fitted = false;
-                for (int bits : search.mapBits) {
-                    if (!judge(*cageWorld, baked, effects, resolution, bits)) break;  // more bits only cost more
-                    fitted = true;
+        std::map<std::pair<size_t, int>, surface::SurfaceMaps> geometric;  // baked once per (maps, resolution)
+        for (int appearanceResolution : appearanceResolutions) {
+            appearance = appearanceResolution > 0
+                             ? bakeAppearance(cage, scene.reference,
+                                              {.effects = search.appearance, .resolution = appearanceResolution})
+                             : surface::SurfaceMaps{};
+            if (!judge(*cageWorld, {}, {}, 0, 0)) break;  // finer appearance only costs more
+            for (size_t m = 0; m < mapChoices.size(); ++m)
+                for (int resolution : search.mapResolutions) {
+                    throwIfStopRequested();
+                    auto baked = geometric.find({m, resolution});
+                    if (baked == geometric.end())
+                        baked = geometric.emplace(std::make_pair(m, resolution),
+                                                  bakeMaps(cage, scene.reference, {.effects = mapChoices[m], .resolution = resolution}))
+                                    .first;
+                    bool fitted = false;
+                    for (int bits : search.mapBits) {
+                        if (!judge(*cageWorld, baked->second, mapChoices[m], resolution, bits)) break;  // more bits only cost more
+                        fitted = true;
+                    }
+                    if (!fitted) break;  // finer maps only cost more
                 }
-                if (!fitted) break;  // finer maps only cost more
-            }
+        }
     }
     // The ladder's steps leave bytes unspent: the chosen kind of asset on a cage grown to what the
     // budget holds (bytes grow about in proportion to the faces), shrinking until it fits.
@@ -152,6 +174,10 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
             if (faces <= int(best.faces * 1.05)) break;
             const auto cageWorld = cageOf(faces);
             if (!cageWorld) break;
+            appearance = best.appearanceResolution > 0
+                             ? bakeAppearance(normalized(*cageWorld), scene.reference,
+                                              {.effects = search.appearance, .resolution = best.appearanceResolution})
+                             : surface::SurfaceMaps{};
             const surface::SurfaceMaps baked =
                 best.maps.any() ? bakeMaps(normalized(*cageWorld), scene.reference, {.effects = best.maps, .resolution = best.mapResolution})
                                 : surface::SurfaceMaps{};
@@ -170,6 +196,7 @@ nlohmann::json toJson(const BudgetChoice& choice, std::uintmax_t budget) {
     auto candidate = [](const BudgetCandidate& c) {
         nlohmann::json j{{"faces", c.faces}, {"maps", maps::toString(c.maps)}, {"map_resolution", c.mapResolution},
                          {"map_bits", c.mapBits}, {"bytes", c.bytes}};
+        if (c.appearanceResolution > 0) j["appearance_resolution"] = c.appearanceResolution;
         if (c.monitorLoss > 0.0) j["monitor_loss"] = c.monitorLoss;
         return j;
     };

@@ -24,6 +24,7 @@ struct BudgetCandidate {
     maps::MapEffects maps;      // none: the bare cage
     int mapResolution = 0;      // 0 without maps
     int mapBits = 0;            // per map value in asset.subd; 0 without maps
+    int appearanceResolution = 0;  // of the base colour (and metallic-roughness); 0 without
     std::uintmax_t bytes = 0;   // of its asset.subd
     double monitorLoss = 0.0;   // of the decoded asset; 0 when over budget (not rendered)
 };
@@ -36,6 +37,10 @@ struct BudgetSearch {
     // Bits per map value: 8 keeps a height's step under ~1/200 of its range, well below a pixel
     // at the resolutions fitted; 10 where the budget allows.
     std::vector<int> mapBits{8, 10};
+    // A scene with materials: every candidate carries the appearance maps its shading reads
+    // (baked, shipped as JPEG), at one of these resolutions.
+    maps::MapEffects appearance{};
+    std::vector<int> appearanceResolutions{4, 8, 16};
 };
 
 struct BudgetChoice {

@@ -41,26 +41,36 @@ nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports
 // budgets buy finer maps instead, which cost the fit's renders next to nothing.
 constexpr int kMostBudgetFaces = 2 * kDefaultFaces;
 
-// The fitted maps code differently from the baked ones the budget search measured: when the
-// file comes out over, the heights and normals get fewer bits until it fits. Returns the bits
-// shipped (mapBits when the file fitted as written).
-int shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t budget, int mapBits, fit::FitReport& fitted) {
+// The fitted maps code differently from the baked ones the budget search measured (and the
+// search does not weigh the appearance maps): when the file comes out over, the appearance
+// images get a lower JPEG quality, then the heights and normals fewer bits, until it fits.
+// Returns {"map_bits", "appearance_quality"} as shipped.
+nlohmann::json shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t budget, int mapBits,
+                                fit::FitReport& fitted) {
     std::uintmax_t& bytes = fitted.exports.at("asset.subd");
     exporter::SubdPrecision precision{.displacementBits = mapBits, .normalBits = std::min(mapBits, 10)};
-    if (bytes <= budget) return precision.displacementBits;
+    auto shipped = [&] {
+        return nlohmann::json{{"map_bits", precision.displacementBits}, {"appearance_quality", precision.appearanceQuality}};
+    };
+    if (bytes <= budget) return shipped();
     const exporter::SubdAsset decoded = exporter::readSubd(subd);
-    constexpr int kFewestBits = 6;
-    for (int bits = precision.displacementBits - 1; bits >= kFewestBits; --bits) {
-        precision.displacementBits = bits;
-        precision.normalBits = std::min(bits, precision.normalBits);
+    std::vector<std::pair<int, int>> ladder;  // (bits, quality), coarser and coarser
+    constexpr int kFewestBits = 6, kLowestQuality = 30;
+    if (decoded.maps.hasBaseColor() || decoded.maps.hasMetallicRoughness())
+        for (int quality : {75, 60, 45, kLowestQuality}) ladder.emplace_back(mapBits, quality);
+    for (int bits = mapBits - 1; bits >= kFewestBits; --bits) ladder.emplace_back(bits, kLowestQuality);
+    for (size_t k = 0; k < ladder.size(); ++k) {
+        precision.displacementBits = ladder[k].first;
+        precision.normalBits = std::min(ladder[k].first, 10);
+        precision.appearanceQuality = ladder[k].second;
         const auto encoded =
             exporter::encodeSubd(exporter::shippableAsset(decoded.cage, decoded.maps, precision.positionBits), precision);
-        if (encoded.size() <= budget || bits == kFewestBits) {
+        if (encoded.size() <= budget || k + 1 == ladder.size()) {
             bytes = exporter::writeBytes(subd, encoded).bytes;
-            if (bytes <= budget) return bits;
+            if (bytes <= budget) break;
         }
     }
-    return kFewestBits;
+    return shipped();
 }
 
 // Scores the fitted scene and both baselines; writes cage.glb, baselines/ and comparison.png
@@ -162,11 +172,15 @@ Start chooseStart(SimplifyOptions& o, fit::FitOptions& fitOptions, gl::ProgramCa
     const BudgetSearch search{.budget = o.budget,
                               .faceCounts = o.faces > 0 ? std::vector<int>{o.faces}
                                                         : faceCountsFor(o.budget, scene.reference.faceCount(), kMostBudgetFaces),
-                              .allowedMaps = o.fit.maps};
+                              .allowedMaps = o.fit.maps,
+                              .appearance = {.baseColor = scene.shading != render::ShadingModel::Geometry,
+                                             .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness}};
     if (hooks.note) hooks.note("budget " + std::to_string(o.budget) + " bytes: trying candidates");
     const auto searchStarted = std::chrono::steady_clock::now();
     const BudgetChoice choice = searchBudget(programs, scene, reference, search, hooks.note);
     fitOptions.maps = o.fit.maps = choice.chosen.maps;
+    if (choice.chosen.appearanceResolution > 0)
+        fitOptions.appearanceResolution = o.fit.appearanceResolution = choice.chosen.appearanceResolution;
     if (choice.chosen.mapResolution > 0) {
         fitOptions.mapResolution = o.fit.mapResolution = choice.chosen.mapResolution;
         fitOptions.mapBits = o.fit.mapBits = choice.chosen.mapBits;
@@ -275,7 +289,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     mesh::writeObj(staged.path() / "initial_cage.obj", cage);
     SimplifyReport report{.fit = run.writeResults(staged.path(), *context), .gltfpack = std::nullopt, .facesRequested = o.faces,
                           .budget = start.budget};
-    if (o.budget > 0) report.budget["map_bits"] = shipWithinBudget(staged.path() / "asset.subd", o.budget, o.fit.mapBits, report.fit);
+    if (o.budget > 0) report.budget.update(shipWithinBudget(staged.path() / "asset.subd", o.budget, o.fit.mapBits, report.fit));
     const BakeRoute bakeRoute = start.bakeRoute ? *start.bakeRoute
                                                 : BakeRoute{.cage = scene.cage, .effects = o.fit.maps,
                                                             .resolution = o.fit.mapResolution, .bits = o.fit.mapBits};
