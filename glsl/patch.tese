@@ -24,6 +24,14 @@ layout(std430, binding = SUBDFIT_SSBO_DISPLACEMENT) readonly buffer Displacement
 
 uniform mat4 uViewProjection;
 
+#ifdef SUBDFIT_DISPLACEMENT
+float heightAt(int face, vec2 uv) {
+    MapFootprint m = mapFootprint(face, uv);
+    return dot(m.weights, vec4(displacement[m.nodes.x], displacement[m.nodes.y], displacement[m.nodes.z],
+                               displacement[m.nodes.w]));
+}
+#endif
+
 vec3 point(int i) { return vec3(points[3 * i], points[3 * i + 1], points[3 * i + 2]); }
 
 // P(s,t) = Σ_k w_k(s,t) CV_k with OpenSubdiv's basis (B-spline with boundary masks for regular
@@ -69,12 +77,15 @@ void main() {
 #ifdef SUBDFIT_DISPLACEMENT
     // P' = P + d(u,v) N̂. Shading normal of the displaced surface to first order:
     // ∂P'/∂u ≈ ∂P/∂u + (∂d/∂u) N̂ (the d ∂N̂/∂u term is dropped: d is small against curvature).
-    MapFootprint m = mapFootprint(tePtexFace, tePtexUv);
-    vec4 d = vec4(displacement[m.nodes.x], displacement[m.nodes.y], displacement[m.nodes.z], displacement[m.nodes.w]);
-    float height = dot(m.weights, d);
-    float n = float(uMapResolution);
-    float dddu = n * mix(d.y - d.x, d.w - d.z, m.fraction.y);
-    float dddv = n * mix(d.z - d.x, d.w - d.y, m.fraction.x);
+    // ∂d/∂u by central differences half a map cell wide, one-sided at the tile's border, exactly
+    // as the CPU twin (surface/displaced_surface.cpp): at a node that averages the slopes of the
+    // cells on either side, so the shading does not break at every cell edge.
+    float height = heightAt(tePtexFace, tePtexUv);
+    float h = 0.5 / float(uMapResolution);
+    float u0 = max(tePtexUv.x - h, 0.0), u1 = min(tePtexUv.x + h, 1.0);
+    float v0 = max(tePtexUv.y - h, 0.0), v1 = min(tePtexUv.y + h, 1.0);
+    float dddu = (heightAt(tePtexFace, vec2(u1, tePtexUv.y)) - heightAt(tePtexFace, vec2(u0, tePtexUv.y))) / (u1 - u0);
+    float dddv = (heightAt(tePtexFace, vec2(tePtexUv.x, v1)) - heightAt(tePtexFace, vec2(tePtexUv.x, v0))) / (v1 - v0);
     P += height * unitN;
     dPdu += dddu * unitN;
     dPdv += dddv * unitN;
