@@ -10,7 +10,7 @@
 namespace subdfit::view {
 
 FitInputs loadFitInputs(const fit::FitOptions& options) {
-    return {mesh::loadMesh(options.cage), mesh::loadMesh(options.reference)};
+    return {mesh::loadMesh(options.cage), mesh::loadReference(options.reference)};
 }
 
 FitSession::FitSession(const fit::FitOptions& given, FitInputs inputs) : programs_(gl::platformDefines()) {
