@@ -121,13 +121,19 @@ void writeMaps(const surface::TexelLayout& layout, const std::vector<float>& val
     for (int c = 0; c < channels; ++c) encodeNodes(layout, values, channels, c, q[size_t(c)], out);
 }
 
-std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int channels, surface::TexelLayout& layout) {
+// A map section's lattice: its resolution and node count, checked against the one the cage
+// makes (built on the first map of that lattice, the same for the next).
+void readLattice(ByteReader& in, const mesh::PolygonMesh& cage, surface::TexelLayout& layout) {
     const int resolution = readIndex(in, 65, "map resolution");
     if (resolution < 1) throw Error(in.what() + ": map resolution 0");
     if (layout.resolution == 0) layout = surface::buildTexelLayout(cage, resolution);
     if (layout.resolution != resolution) throw Error(in.what() + ": the maps disagree on their resolution");
     if (in.getVarint() != std::uint64_t(layout.nodeCount))
         throw Error(in.what() + ": node count does not match the cage's texel layout");
+}
+
+std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int channels, surface::TexelLayout& layout) {
+    readLattice(in, cage, layout);
     std::vector<ChannelQuantisation> q(static_cast<size_t>(channels));
     for (auto& channel : q) {
         channel.center = in.get<float>();
@@ -163,12 +169,7 @@ void writeAppearance(const surface::SurfaceMaps& maps, AppearanceImage which, in
 
 std::vector<float> readAppearance(ByteReader& in, const mesh::PolygonMesh& cage, AppearanceImage which,
                                   surface::TexelLayout& layout) {
-    const int resolution = readIndex(in, 65, "map resolution");
-    if (resolution < 1) throw Error(in.what() + ": map resolution 0");
-    if (layout.resolution == 0) layout = surface::buildTexelLayout(cage, resolution);
-    if (layout.resolution != resolution) throw Error(in.what() + ": the maps disagree on their resolution");
-    if (in.getVarint() != std::uint64_t(layout.nodeCount))
-        throw Error(in.what() + ": node count does not match the cage's texel layout");
+    readLattice(in, cage, layout);
     if (in.get<std::uint8_t>() != kJpegCoding) throw Error(in.what() + ": unknown appearance coding");
     const auto bytes = in.take(in.getCount(1, "image byte"));
     const AtlasLayout atlas = atlasLayout(layout);

@@ -28,6 +28,17 @@ std::vector<std::uint32_t> indicesOf(const mesh::PolygonMesh& triangles) {
 
 }  // namespace
 
+int mostWithinBudget(int fewest, int most, std::uintmax_t budget, const std::function<std::uintmax_t(int)>& ship) {
+    int lo = std::min(fewest, most), hi = most;
+    while (lo < hi) {
+        const int mid = lo + (hi - lo + 1) / 2;
+        if (ship(mid) <= budget) lo = mid;
+        else hi = mid - 1;
+    }
+    ship(lo);
+    return lo;
+}
+
 nlohmann::json shipCage(const std::filesystem::path& path, const mesh::PolygonMesh& cageWorld, bool draco) {
     const auto triangles = mesh::triangulated(cageWorld);
     // glTF has no subdivision surfaces: say how to read the triangles as a cage.
@@ -43,20 +54,6 @@ nlohmann::json shipCage(const std::filesystem::path& path, const mesh::PolygonMe
 }
 
 namespace {
-
-// The most triangles in [fewest, most] whose shipped file (`ship` writes it, returns its bytes)
-// fits `budget`: bytes grow with triangles. At `fewest` when even that is over (the report then
-// says so: a .glb's own header and JSON weigh hundreds of bytes). The file is left as shipped.
-int mostWithinBudget(int fewest, int most, std::uintmax_t budget, const std::function<std::uintmax_t(int)>& ship) {
-    int lo = std::min(fewest, most), hi = most;
-    while (lo < hi) {
-        const int mid = lo + (hi - lo + 1) / 2;
-        if (ship(mid) <= budget) lo = mid;
-        else hi = mid - 1;
-    }
-    ship(lo);
-    return lo;
-}
 
 // A triangle baseline (normalised frame) scored as every baseline is: rendered with smooth
 // normals on the held-out views, and its surface distance to the reference.

@@ -10,6 +10,7 @@
 //      reference onto its limit surface, no optimisation, shipped in subdfit's own format.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 
 #include "gl/program_cache.h"
@@ -46,6 +47,11 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
 // `effects` none means displacement and normal: a bake route without maps is no bake.
 Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& cage,
                      maps::MapEffects effects, int mapResolution, const BaselineSettings& settings);
+
+// The most triangles in [fewest, most] whose shipped file (`ship` writes it, returns its bytes)
+// fits `budget`: bytes grow with triangles. At `fewest` when even that is over (the report then
+// says so: a .glb's own header and JSON weigh hundreds of bytes). The file is left as shipped.
+int mostWithinBudget(int fewest, int most, std::uintmax_t budget, const std::function<std::uintmax_t(int)>& ship);
 
 // What subdfit-format assets ship: the cage as a GLB of positions and indices (written to
 // `path`, world units) plus the map files written beside it. Returns {file: bytes}.

@@ -42,19 +42,6 @@ std::vector<exporter::EncodedImage> encodedAt(const mesh::MaterialSet& set, int 
     return out;
 }
 
-// The most triangles in [fewest, most] whose file `ship` writes fits the budget (as
-// baselines.cpp's bisection); the file is left as shipped at that count.
-int mostWithin(int most, std::uintmax_t budget, const std::function<std::uintmax_t(int)>& ship) {
-    int lo = std::min(kFewestTriangles, most), hi = most;
-    while (lo < hi) {
-        const int mid = lo + (hi - lo + 1) / 2;
-        if (ship(mid) <= budget) lo = mid;
-        else hi = mid - 1;
-    }
-    ship(lo);
-    return lo;
-}
-
 // A shipped textured file as the renderer and the distance see it: read back (so the lossy
 // images count), in the scene's frame.
 mesh::PolygonMesh readBack(const std::filesystem::path& path, const fit::FitScene& scene) {
@@ -93,7 +80,7 @@ Shipped bestScale(gl::ProgramCache& programs, const fit::FitScene& scene, std::u
         const auto images = encodedAt(*scene.reference.materials, divisor, candidate.textureBytes);
         if (candidate.textureBytes >= budget) continue;
         candidate.triangles =
-            mostWithin(most, budget, [&](int triangles) { return candidate.bytes = ship(divisor, images, triangles); });
+            mostWithinBudget(kFewestTriangles, most, budget, [&](int triangles) { return candidate.bytes = ship(divisor, images, triangles); });
         if (candidate.bytes > budget && best) continue;
         const double psnr = psnrOn(programs, scene.monitor, readBack(output, scene), scene.shading);
         if (!best || (candidate.bytes <= budget && psnr > bestPsnr) || best->bytes > budget) {

@@ -11,6 +11,7 @@
 
 #include "export/subd_format.h"
 #include "gl_test_context.h"
+#include "gradient_checks.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
 #include "optim/updates.h"
@@ -21,18 +22,6 @@
 
 namespace subdfit::test {
 namespace {
-
-double cosine(const std::vector<double>& a, const std::vector<double>& b) {
-    const double ab = std::inner_product(a.begin(), a.end(), b.begin(), 0.0);
-    return ab / std::sqrt(std::inner_product(a.begin(), a.end(), a.begin(), 0.0) *
-                          std::inner_product(b.begin(), b.end(), b.begin(), 0.0));
-}
-
-bool anyVariantDefines(const gl::ProgramCache& cache, const std::string& define) {
-    for (const auto& v : cache.variants())
-        if (v.defines.count(define)) return true;
-    return false;
-}
 
 // A lumpy sphere painted by position (vertex colours) with one material: `metallic` and
 // `roughness` as given.

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "gl_test_context.h"
+#include "gradient_checks.h"
 #include "surface/texel_layout.h"
 #include "mesh/procedural.h"
 #include "scene_fixture.h"
@@ -15,12 +16,6 @@
 
 namespace subdfit::test {
 namespace {
-
-double cosine(const std::vector<double>& a, const std::vector<double>& b) {
-    const double ab = std::inner_product(a.begin(), a.end(), b.begin(), 0.0);
-    return ab / std::sqrt(std::inner_product(a.begin(), a.end(), a.begin(), 0.0) *
-                          std::inner_product(b.begin(), b.end(), b.begin(), 0.0));
-}
 
 void upload(optim::ParameterGroup& group, const std::vector<float>& values) {
     group.theta.upload(values.data(), GLsizeiptr(values.size() * sizeof(float)));
@@ -157,12 +152,6 @@ TEST(MapsWatertight, ConstantDisplacementLeavesNoCrackAcrossTiles) {
         EXPECT_EQ(pinholes, 0);
     }
     expectNoGlError();
-}
-
-bool anyVariantDefines(const gl::ProgramCache& cache, const std::string& define) {
-    for (const auto& v : cache.variants())
-        if (v.defines.count(define)) return true;
-    return false;
 }
 
 TEST(MapsEffects, OnlyTheEffectsTheSceneUsesAreCompiledAndRun) {

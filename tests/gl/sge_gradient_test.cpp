@@ -5,18 +5,12 @@
 #include <numeric>
 
 #include "gl_test_context.h"
+#include "gradient_checks.h"
 #include "mesh/procedural.h"
 #include "scene_fixture.h"
 
 namespace subdfit::test {
 namespace {
-
-double cosine(const std::vector<double>& a, const std::vector<double>& b) {
-    const double ab = std::inner_product(a.begin(), a.end(), b.begin(), 0.0);
-    const double aa = std::inner_product(a.begin(), a.end(), a.begin(), 0.0);
-    const double bb = std::inner_product(b.begin(), b.end(), b.begin(), 0.0);
-    return ab / std::sqrt(aa * bb);
-}
 
 TEST(SgeGradient, AgreesWithCentralFiniteDifferences) {
     // A 54-quad sphere cage against a lumpy sphere: 168 vertex parameters, two views.

@@ -8,6 +8,8 @@ namespace subdfit::test {
 gl::ProgramCache& programs();
 // SUBDFIT_ATOMIC_FLOAT when the context has GL_NV_shader_atomic_float.
 gl::Defines platformDefines();
+// Makes the shared context current before every test (gl_test_main.cpp calls it once).
+void installSharedContextListener();
 // Fails the current test if GL recorded an error.
 void expectNoGlError();
 

@@ -11,7 +11,17 @@ namespace {
 std::unique_ptr<context::GlContext> sharedContext;
 std::unique_ptr<gl::ProgramCache> sharedPrograms;
 
+// A test that runs a whole job (simplify, batch) makes a context of its own current and leaves
+// none current when it returns: every test starts on the shared one again.
+class SharedContextListener : public ::testing::EmptyTestEventListener {
+    void OnTestStart(const ::testing::TestInfo&) override { sharedContext->makeCurrent(); }
+};
+
 }  // namespace
+
+void installSharedContextListener() {
+    ::testing::UnitTest::GetInstance()->listeners().Append(new SharedContextListener);
+}
 
 gl::ProgramCache& programs() { return *sharedPrograms; }
 
@@ -30,6 +40,7 @@ int main(int argc, char** argv) {
     ::testing::InitGoogleTest(&argc, argv);
     subdfit::test::sharedContext = subdfit::context::createHeadlessContext("osmesa");
     subdfit::test::sharedPrograms = std::make_unique<subdfit::gl::ProgramCache>(subdfit::test::platformDefines());
+    subdfit::test::installSharedContextListener();
     const int result = RUN_ALL_TESTS();
     subdfit::test::sharedPrograms.reset();
     subdfit::test::sharedContext.reset();
