@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "simplify/decimate.h"
+#include "simplify/limit_fit.h"
 #include "subdiv/limit_evaluator.h"
 #include "util/error.h"
 #include "util/interrupt.h"
@@ -63,7 +64,8 @@ std::vector<glm::vec3> limitPositionsOfVertices(const mesh::PolygonMesh& cage, c
 }
 
 mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialCageOptions& options) {
-    mesh::PolygonMesh cage = decimate(weldedTriangles(reference), options.faces);
+    const mesh::PolygonMesh welded = weldedTriangles(reference);
+    mesh::PolygonMesh cage = decimate(welded, options.faces);
     cage.tags.triangles = mesh::TriangleSubdivision::Smooth;
     cage.tags.hasTriangles = true;
     cage.tags.boundary = mesh::BoundaryInterpolation::EdgeAndCorner;
@@ -80,6 +82,9 @@ mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialC
         const auto limit = limitOf(cage.positions);
         for (size_t v = 0; v < targets.size(); ++v) cage.positions[v] += targets[v] - limit[v];
     }
+    // Interpolation pins the vertices; between them an approximating surface overshoots
+    // (ripples on a dense triangle cage). The least-squares fit over whole faces settles it.
+    fitLimitToSurface(cage, welded, options.limitFit);
     for (const glm::vec3& p : cage.positions)
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
             throw fileError(reference.sourcePath, "limit interpolation of the decimated cage diverged");

@@ -3,14 +3,18 @@
 // Catmull-Clark cage. Decimated vertices lie on the reference, but a Catmull-Clark limit surface
 // only approximates its cage, shrinking into it; so the vertices are then moved until the limit
 // surface passes through where they were (limit interpolation), which starts the fit on the
-// reference's surface rather than inside it.
+// reference's surface rather than inside it; then until it lies on the reference across each
+// face in the least-squares sense (simplify/limit_fit.h), which removes the ripples that
+// interpolation leaves between the vertices of a dense triangle cage.
 #include "mesh/polygon_mesh.h"
+#include "simplify/limit_fit.h"
 
 namespace subdfit::simplify {
 
 struct InitialCageOptions {
     int faces = 1000;                // triangle budget of the cage
     int interpolationIterations = 16; // P += V − limit(P) sweeps (each ÷~2 the gap)
+    LimitFitOptions limitFit{};       // .rounds = 0: the interpolated cage as it is
 };
 
 // `reference` in any units, any polygons. The cage is all triangles, welded, with OpenSubdiv's

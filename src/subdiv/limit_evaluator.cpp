@@ -4,6 +4,8 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
+
 #include "util/error.h"
 
 namespace subdfit::subdiv {
@@ -55,6 +57,33 @@ LimitSample LimitEvaluator::evaluate(int ptexFace, float u, float v,
         dv += double(wDv[k]) * cv;
     }
     return {glm::vec3(p), glm::vec3(du), glm::vec3(dv)};
+}
+
+std::vector<LimitEvaluator::BaseWeight> LimitEvaluator::positionWeights(int ptexFace, float u, float v) const {
+    SUBDFIT_CHECK(hasSurface(ptexFace, u, v));
+    const Far::PatchTable::PatchHandle& handle = *patchMap_->FindPatch(ptexFace, u, v);
+    float wP[20];
+    tables_.patches->EvaluateBasis(handle, u, v, wP);
+    const Far::ConstIndexArray cvs = tables_.patches->GetPatchVertices(handle);
+    const int baseCount = baseVertexCount();
+    std::vector<BaseWeight> terms;
+    for (int k = 0; k < cvs.size(); ++k) {
+        if (wP[k] == 0.0f) continue;
+        if (cvs[k] < baseCount) {
+            terms.push_back({cvs[k], double(wP[k])});
+            continue;
+        }
+        const Far::Stencil row = tables_.stencils->GetStencil(cvs[k] - baseCount);
+        for (int e = 0; e < row.GetSize(); ++e)
+            terms.push_back({row.GetVertexIndices()[e], double(wP[k]) * double(row.GetWeights()[e])});
+    }
+    std::sort(terms.begin(), terms.end(), [](const BaseWeight& a, const BaseWeight& b) { return a.vertex < b.vertex; });
+    std::vector<BaseWeight> merged;
+    for (const BaseWeight& t : terms) {
+        if (!merged.empty() && merged.back().vertex == t.vertex) merged.back().weight += t.weight;
+        else merged.push_back(t);
+    }
+    return merged;
 }
 
 std::vector<glm::vec3> evaluatePoints(const PatchSet& set, std::span<const glm::vec3> base) {

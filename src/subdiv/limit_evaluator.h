@@ -34,6 +34,15 @@ public:
     LimitSample evaluate(int ptexFace, float u, float v,
                          std::span<const glm::vec3> basePositions) const;
 
+    // The limit position at (ptexFace, u, v) as weights on the base vertices: position =
+    // Σ weight · base[vertex], for any positions (the surface is linear in its cage). Each
+    // vertex appears once. Requires hasSurface(ptexFace, u, v).
+    struct BaseWeight {
+        int vertex;
+        double weight;
+    };
+    std::vector<BaseWeight> positionWeights(int ptexFace, float u, float v) const;
+
 private:
     AdaptiveTables tables_;
     std::unique_ptr<OpenSubdiv::Far::PatchMap> patchMap_;
