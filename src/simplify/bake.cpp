@@ -3,6 +3,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "geometry/surface_queries.h"
@@ -10,6 +11,7 @@
 #include "mesh/mesh_geometry.h"
 #include "subdiv/limit_evaluator.h"
 #include "util/interrupt.h"
+#include "util/sparse_least_squares.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -99,6 +101,7 @@ struct NodeHits {
     std::vector<subdiv::LimitSample> samples;
     std::vector<glm::vec3> normals;
     std::vector<std::optional<geometry::RayHit>> hits;
+    float facing = 1.0f;  // which way the reference faces the limit normals (+1: along them)
 };
 
 NodeHits castNodes(const mesh::PolygonMesh& cage, const surface::TexelLayout& layout, const mesh::PolygonMesh& reference,
@@ -126,7 +129,7 @@ NodeHits castNodes(const mesh::PolygonMesh& cage, const surface::TexelLayout& la
         const float area = glm::length(faced);
         if (area > 0.0f) agreement += glm::dot(faced / area, h.normals[n]);
     }
-    const float facing = agreement >= 0.0 ? 1.0f : -1.0f;
+    const float facing = h.facing = agreement >= 0.0 ? 1.0f : -1.0f;
     for (size_t n = 0; n < nodes; ++n)
         if (h.hits[n] && facing * glm::dot(triangleNormal(reference, h.hits[n]->triangle), h.normals[n]) <= 0.0f)
             h.hits[n] = castFacing(surface, h.samples[n].position, h.normals[n], maxDistance, facing);
@@ -163,6 +166,55 @@ void fillMissing(const surface::TexelLayout& layout, std::vector<float>& values,
     }
 }
 
+// Heights that make the bilinear map (what the renderer and the decoder interpolate between
+// nodes) lie on the reference across each cell, not just at its nodes: point samples at the
+// nodes alias detail finer than a cell into the whole cell. Rows: every node's own hit and every
+// cell centre's hit (a quarter on each corner), solved in the least-squares sense; nodes no ray
+// reached stay at 0, and so do the cells around them.
+std::vector<float> leastSquaresHeights(const mesh::PolygonMesh& cage, const surface::TexelLayout& layout,
+                                       const NodeHits& nodeHits, const geometry::SurfaceQueries& surface,
+                                       float maxDistance) {
+    const subdiv::LimitEvaluator limit(cage);
+    const int t = layout.resolution;
+    SparseRows rows;
+    std::vector<double> targets, weights;
+    std::vector<double> start(size_t(layout.nodeCount), 0.0);
+    for (size_t n = 0; n < nodeHits.hits.size(); ++n) {
+        if (!nodeHits.hits[n]) continue;
+        start[n] = nodeHits.hits[n]->distance;
+        rows.add(int(n), 1.0);
+        rows.endRow();
+        targets.push_back(start[n]);
+    }
+    for (int f = 0; f < layout.ptexFaceCount; ++f) {
+        if (f % 256 == 0) throwIfStopRequested();
+        for (int j = 0; j < t; ++j)
+            for (int i = 0; i < t; ++i) {
+                const float u = (float(i) + 0.5f) / float(t), v = (float(j) + 0.5f) / float(t);
+                if (!limit.hasSurface(f, u, v)) continue;
+                const subdiv::LimitSample at = limit.evaluate(f, u, v, cage.positions);
+                const glm::vec3 n = unitNormal(at.dPdu, at.dPdv, glm::vec3(0.0f));
+                if (glm::dot(n, n) == 0.0f) continue;
+                auto hit = surface.castBothWays(at.position, n, maxDistance);
+                if (hit && nodeHits.facing * glm::dot(triangleNormal(surface.mesh(), hit->triangle), n) <= 0.0f)
+                    hit = castFacing(surface, at.position, n, maxDistance, nodeHits.facing);
+                if (!hit) continue;
+                // A cell with a corner no ray reached says nothing safe about that corner: its
+                // row would set it to four times the centre's height less the other three.
+                const std::array<int, 4> corners{layout.node(f, i, j), layout.node(f, i + 1, j), layout.node(f, i, j + 1),
+                                                 layout.node(f, i + 1, j + 1)};
+                if (std::any_of(corners.begin(), corners.end(), [&](int c) { return !nodeHits.hits[size_t(c)]; })) continue;
+                for (int c : corners) rows.add(c, 0.25);
+                rows.endRow();
+                targets.push_back(hit->distance);
+            }
+    }
+    weights.assign(targets.size(), 1.0);
+    constexpr double kDamping = 1e-3;  // holds nodes only cells see near their point samples
+    const std::vector<double> solved = solveDampedLeastSquares(rows, targets, weights, start, kDamping);
+    return {solved.begin(), solved.end()};
+}
+
 }  // namespace
 
 surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
@@ -180,6 +232,8 @@ surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
     std::vector<float> heights(nodes, 0.0f);
     for (size_t n = 0; n < nodes; ++n)
         if (hits[n]) heights[n] = hits[n]->distance;
+    if (options.leastSquaresHeights)
+        heights = leastSquaresHeights(cage, maps.layout, nodeHits, surface, maxDistanceFor(options, cage));
     if (options.effects.displacement) maps.displacement = heights;
     if (!options.effects.normalMap) return maps;
 

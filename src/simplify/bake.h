@@ -17,6 +17,9 @@ struct BakeOptions {
     // mean edge length, since a surface farther than a cage edge is a different part of the
     // reference (the far wall of a hole, the other ear), not the one this face stands for.
     float maxDistance = 0.0f;
+    // Heights fitted so that the bilinear map lies on the reference across each cell (node and
+    // cell-centre rays, least squares) rather than point-sampled at the nodes.
+    bool leastSquaresHeights = true;
 };
 
 // `cage` and `reference` (triangulated) in the same units. Only the maps in options.effects

@@ -16,6 +16,7 @@
 #include "simplify/decimate.h"
 #include "simplify/initial_cage.h"
 #include "subdiv/limit_evaluator.h"
+#include "surface/tessellation.h"
 #include "util/error.h"
 
 namespace subdfit::simplify {
@@ -72,12 +73,13 @@ TEST(SimplifyDecimate, ClosedMeshStaysClosedWithinTheBudget) {
     EXPECT_THROW(decimate(dense, 0), Error);
 }
 
-// The limit surface passes through the decimated vertices: that is the point of the initial
-// cage. Without the interpolation the Catmull-Clark surface shrinks well inside them.
+// The limit surface passes through the decimated vertices: the initial cage's first step.
+// Without the interpolation the Catmull-Clark surface shrinks well inside them. (The limit fit
+// that follows trades exactness at the vertices for the whole faces: limit_fit_test.cpp.)
 TEST(SimplifyInitialCage, LimitSurfaceInterpolatesTheDecimatedVertices) {
     const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 9);
-    const mesh::PolygonMesh raw = initialCage(reference, {.faces = 300, .interpolationIterations = 0});
-    const mesh::PolygonMesh cage = initialCage(reference, {.faces = 300});
+    const mesh::PolygonMesh raw = initialCage(reference, {.faces = 300, .interpolationIterations = 0, .limitFit = {.rounds = 0}});
+    const mesh::PolygonMesh cage = initialCage(reference, {.faces = 300, .limitFit = {.rounds = 0}});
     ASSERT_EQ(cage.faceIndices, raw.faceIndices);
     EXPECT_EQ(cage.tags.triangles, mesh::TriangleSubdivision::Smooth);
 
@@ -164,6 +166,21 @@ TEST(SimplifyBake, SphereHeightsAndNormals) {
     EXPECT_LT(worstHeight, 3e-3);  // the reference's own facets and the ray's slant
     EXPECT_LT(worstTilt, 0.1);
     for (float d : maps.displacement) ASSERT_TRUE(std::isfinite(d));
+}
+
+// Detail a little finer than a map cell: point samples at the nodes alias it, the heights fitted
+// across each cell follow it better (what the decoder draws between nodes is bilinear).
+TEST(SimplifyBake, LeastSquaresHeightsLieCloserThanPointSamples) {
+    const mesh::PolygonMesh reference = mesh::triangulated(mesh::makeLumpySphere(5, 0.04f, 3, 400, 0.002f, 0.004f));
+    const mesh::PolygonMesh cage = initialCage(reference, {.faces = 200});
+    auto distance = [&](bool leastSquares) {
+        const auto maps = bakeMaps(cage, reference, {.effects = {.displacement = true}, .resolution = 3,
+                                                     .leastSquaresHeights = leastSquares});
+        for (float d : maps.displacement) EXPECT_TRUE(std::isfinite(d));
+        return geometry::surfaceDistance(surface::triangleMesh(surface::tessellate(cage, maps, 6)), reference, 20000).meanDistance;
+    };
+    const double pointSampled = distance(false), fitted = distance(true);
+    EXPECT_LT(fitted, 0.9 * pointSampled) << "point-sampled " << pointSampled << ", least squares " << fitted;
 }
 
 TEST(SimplifyBake, OnlyTheAskedMapsAreBaked) {
