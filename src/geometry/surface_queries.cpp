@@ -117,4 +117,32 @@ std::optional<RayHit> SurfaceQueries::castBothWays(const glm::vec3& origin, cons
     return ahead;
 }
 
+std::optional<RayHit> SurfaceQueries::castFacing(const glm::vec3& origin, const glm::vec3& direction, float maxDistance,
+                                                float facing) const {
+    constexpr int kSheets = 4;  // sheets passed through per direction before giving up
+    std::optional<RayHit> best;
+    for (const float way : {1.0f, -1.0f}) {
+        float travelled = 0.0f;
+        for (int sheet = 0; sheet < kSheets; ++sheet) {
+            const float reach = (best ? std::abs(best->distance) : maxDistance) - travelled;
+            if (reach <= 0.0f) break;
+            auto hit = cast(origin + way * travelled * direction, way * direction, reach);
+            if (!hit) break;
+            travelled += hit->distance;
+            if (facing * glm::dot(triangleNormal(hit->triangle), direction) > 0.0f) {
+                hit->distance = way * travelled;
+                best = hit;
+                break;
+            }
+            travelled += 1e-6f * maxDistance;  // past the sheet
+        }
+    }
+    return best;
+}
+
+glm::vec3 SurfaceQueries::triangleNormal(int t) const {
+    auto p = [&](int k) { return mesh_.positions[size_t(mesh_.faceIndices[size_t(3 * t + k)])]; };
+    return glm::cross(p(1) - p(0), p(2) - p(0));
+}
+
 }  // namespace subdfit::geometry

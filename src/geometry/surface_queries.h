@@ -32,6 +32,16 @@ public:
     // The nearer of the hits along +direction and −direction (distance signed accordingly).
     std::optional<RayHit> castBothWays(const glm::vec3& origin, const glm::vec3& direction, float maxDistance) const;
 
+    // As castBothWays, but only hits on triangles that face the way `facing` says (+1: along
+    // `direction`, as the surface the ray leaves), passing through up to a few sheets that face
+    // the other way. A surface inside a thin part (an ear, a fin) lies between two sheets of the
+    // mesh; the nearer may be the far side, and taking it would fold the surface through itself.
+    std::optional<RayHit> castFacing(const glm::vec3& origin, const glm::vec3& direction, float maxDistance,
+                                     float facing) const;
+
+    // (p1 − p0) × (p2 − p0) of triangle t: its winding's normal, twice its area long.
+    glm::vec3 triangleNormal(int t) const;
+
     // The distance from `point` to the nearest point of the mesh (exact; infinity for a mesh
     // without triangles). Thread-safe.
     float closestDistance(const glm::vec3& point) const;

@@ -62,38 +62,6 @@ glm::vec2 heightGradient(const surface::TexelLayout& layout, const std::vector<f
             (at(s.i, j1) - at(s.i, j0)) * float(t) / float(j1 - j0)};
 }
 
-glm::vec3 triangleNormal(const mesh::PolygonMesh& triangles, int t) {
-    auto p = [&](int k) { return triangles.positions[size_t(triangles.faceIndices[size_t(3 * t + k)])]; };
-    return glm::cross(p(1) - p(0), p(2) - p(0));
-}
-
-// The nearest hit along ±direction within maxDistance on a triangle that faces the way
-// `facing` says (+1: along direction, as the limit surface there). A limit surface inside a
-// thin part (an ear, a fin) lies between two sheets of the reference; the nearer one may be
-// the far side, whose height would fold the displaced surface through itself.
-std::optional<geometry::RayHit> castFacing(const geometry::SurfaceQueries& surface, const glm::vec3& origin,
-                                           const glm::vec3& direction, float maxDistance, float facing) {
-    constexpr int kSheets = 4;  // sheets passed through per direction before giving up
-    std::optional<geometry::RayHit> best;
-    for (const float way : {1.0f, -1.0f}) {
-        float travelled = 0.0f;
-        for (int sheet = 0; sheet < kSheets; ++sheet) {
-            const float reach = (best ? std::abs(best->distance) : maxDistance) - travelled;
-            if (reach <= 0.0f) break;
-            auto hit = surface.cast(origin + way * travelled * direction, way * direction, reach);
-            if (!hit) break;
-            travelled += hit->distance;
-            if (facing * glm::dot(triangleNormal(surface.mesh(), hit->triangle), direction) > 0.0f) {
-                hit->distance = way * travelled;
-                best = hit;
-                break;
-            }
-            travelled += 1e-6f * maxDistance;  // past the sheet
-        }
-    }
-    return best;
-}
-
 // Every node of `layout` on `cage`'s limit surface, cast along its limit normal to the
 // reference: the hit on the sheet that faces the way the reference mostly faces the cage.
 struct NodeHits {
@@ -125,14 +93,14 @@ NodeHits castNodes(const mesh::PolygonMesh& cage, const surface::TexelLayout& la
     double agreement = 0.0;
     for (size_t n = 0; n < nodes; ++n) {
         if (!h.hits[n]) continue;
-        const glm::vec3 faced = triangleNormal(reference, h.hits[n]->triangle);
+        const glm::vec3 faced = surface.triangleNormal(h.hits[n]->triangle);
         const float area = glm::length(faced);
         if (area > 0.0f) agreement += glm::dot(faced / area, h.normals[n]);
     }
     const float facing = h.facing = agreement >= 0.0 ? 1.0f : -1.0f;
     for (size_t n = 0; n < nodes; ++n)
-        if (h.hits[n] && facing * glm::dot(triangleNormal(reference, h.hits[n]->triangle), h.normals[n]) <= 0.0f)
-            h.hits[n] = castFacing(surface, h.samples[n].position, h.normals[n], maxDistance, facing);
+        if (h.hits[n] && facing * glm::dot(surface.triangleNormal(h.hits[n]->triangle), h.normals[n]) <= 0.0f)
+            h.hits[n] = surface.castFacing(h.samples[n].position, h.normals[n], maxDistance, facing);
     return h;
 }
 
@@ -196,8 +164,8 @@ std::vector<float> leastSquaresHeights(const mesh::PolygonMesh& cage, const surf
                 const glm::vec3 n = unitNormal(at.dPdu, at.dPdv, glm::vec3(0.0f));
                 if (glm::dot(n, n) == 0.0f) continue;
                 auto hit = surface.castBothWays(at.position, n, maxDistance);
-                if (hit && nodeHits.facing * glm::dot(triangleNormal(surface.mesh(), hit->triangle), n) <= 0.0f)
-                    hit = castFacing(surface, at.position, n, maxDistance, nodeHits.facing);
+                if (hit && nodeHits.facing * glm::dot(surface.triangleNormal(hit->triangle), n) <= 0.0f)
+                    hit = surface.castFacing(at.position, n, maxDistance, nodeHits.facing);
                 if (!hit) continue;
                 // A cell with a corner no ray reached says nothing safe about that corner: its
                 // row would set it to four times the centre's height less the other three.

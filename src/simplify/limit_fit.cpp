@@ -37,11 +37,6 @@ Samples samplesOf(const subdiv::LimitEvaluator& limit, int samplesPerEdge) {
     return samples;
 }
 
-glm::vec3 triangleNormal(const mesh::PolygonMesh& triangles, int t) {
-    auto p = [&](int k) { return triangles.positions[size_t(triangles.faceIndices[size_t(3 * t + k)])]; };
-    return glm::cross(p(1) - p(0), p(2) - p(0));
-}
-
 }  // namespace
 
 LimitFitReport fitLimitToSurface(mesh::PolygonMesh& cage, const mesh::PolygonMesh& referenceTriangles,
@@ -70,15 +65,19 @@ LimitFitReport fitLimitToSurface(mesh::PolygonMesh& cage, const mesh::PolygonMes
             normals[s] = glm::normalize(n);
             targets[s] = glm::dvec3(at.position);
             hits[s] = surface.castBothWays(at.position, normals[s], reach);
-            if (hits[s]) agreement += glm::dot(glm::normalize(triangleNormal(referenceTriangles, hits[s]->triangle)), normals[s]);
+            if (!hits[s]) continue;
+            const glm::vec3 faced = surface.triangleNormal(hits[s]->triangle);
+            if (const float area = glm::length(faced); area > 0.0f) agreement += glm::dot(faced / area, normals[s]);
         }
         // Hits on a sheet facing against the surface are the far side of a thin part: pulling
-        // onto them would fold the surface through itself.
+        // onto them would fold the surface through itself; the sheet behind is the one.
         const float facing = agreement >= 0.0 ? 1.0f : -1.0f;
         double squares = 0.0;
         int count = 0;
         for (size_t s = 0; s < L.size(); ++s) {
-            used[s] = hits[s] && facing * glm::dot(triangleNormal(referenceTriangles, hits[s]->triangle), normals[s]) > 0.0f;
+            if (hits[s] && facing * glm::dot(surface.triangleNormal(hits[s]->triangle), normals[s]) <= 0.0f)
+                hits[s] = surface.castFacing(glm::vec3(targets[s]), normals[s], reach, facing);
+            used[s] = hits[s] ? 1.0 : 0.0;
             if (!used[s]) continue;
             targets[s] += double(hits[s]->distance) * glm::dvec3(normals[s]);
             squares += double(hits[s]->distance) * double(hits[s]->distance);

@@ -121,6 +121,29 @@ TEST(SurfaceQueries, HitsBothWaysWithSignedDistance) {
     EXPECT_NEAR(glm::length(p - glm::vec3(0.2f, 0.3f, 0.0f)), 0.0f, 1e-5f);
 }
 
+// A thin slab: the top sheet faces +z, the bottom one −z. From inside, near the bottom, the
+// nearest hit is the bottom; asking for a sheet that faces along +z passes through to the top.
+TEST(SurfaceQueries, CastFacingPassesThroughSheetsFacingTheOtherWay) {
+    mesh::PolygonMesh top = mesh::triangulated(mesh::makeQuadGrid(1)), slab = top;
+    for (glm::vec3& p : top.positions) p.z = 0.1f;
+    for (glm::vec3& p : slab.positions) p.z = -0.1f;
+    for (size_t k = 0; k < slab.faceIndices.size(); k += 3) std::swap(slab.faceIndices[k + 1], slab.faceIndices[k + 2]);
+    const int offset = slab.vertexCount();
+    slab.positions.insert(slab.positions.end(), top.positions.begin(), top.positions.end());
+    for (int i : top.faceIndices) slab.faceIndices.push_back(i + offset);
+    slab.faceSizes.insert(slab.faceSizes.end(), top.faceSizes.begin(), top.faceSizes.end());
+    const geometry::SurfaceQueries queries(slab);
+    ASSERT_LT(queries.triangleNormal(0).z, 0.0f);
+    const glm::vec3 origin(0.2f, 0.3f, -0.05f), up(0.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(queries.castBothWays(origin, up, 1.0f)->distance, -0.05f, 1e-6f);
+    const auto along = queries.castFacing(origin, up, 1.0f, 1.0f);
+    ASSERT_TRUE(along);
+    EXPECT_NEAR(along->distance, 0.15f, 1e-5f);
+    EXPECT_GT(queries.triangleNormal(along->triangle).z, 0.0f);
+    EXPECT_NEAR(queries.castFacing(origin, up, 1.0f, -1.0f)->distance, -0.05f, 1e-6f);
+    EXPECT_FALSE(queries.castFacing(origin, up, 0.1f, 1.0f));  // the top is beyond reach
+}
+
 // The nearest point, whether it lies inside a triangle, on an edge or at a corner.
 TEST(SurfaceQueries, ClosestDistanceIsExact) {
     const mesh::PolygonMesh plane = mesh::triangulated(mesh::makeQuadGrid(4));  // [−1, 1]², z = 0
