@@ -140,6 +140,10 @@ std::optional<RayHit> SurfaceQueries::castFacing(const glm::vec3& origin, const 
     return best;
 }
 
+bool SurfaceQueries::reachesNearest(const glm::vec3& origin, const RayHit& hit, float slack) const {
+    return std::abs(hit.distance) <= slack * closestDistance(origin) * (1.0f + 1e-4f) + 1e-7f;
+}
+
 glm::vec3 SurfaceQueries::triangleNormal(int t) const {
     auto p = [&](int k) { return mesh_.positions[size_t(mesh_.faceIndices[size_t(3 * t + k)])]; };
     return glm::cross(p(1) - p(0), p(2) - p(0));

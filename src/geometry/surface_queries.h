@@ -39,6 +39,11 @@ public:
     std::optional<RayHit> castFacing(const glm::vec3& origin, const glm::vec3& direction, float maxDistance,
                                      float facing) const;
 
+    // Whether `hit`, cast from `origin`, found (about) the nearest part of the mesh: it is no
+    // farther than `slack` times the distance to the nearest point. A ray that grazes past the
+    // nearest surface and lands on another part (the next leg, the far wall of a fold) did not.
+    bool reachesNearest(const glm::vec3& origin, const RayHit& hit, float slack = 2.0f) const;
+
     // (p1 − p0) × (p2 − p0) of triangle t: its winding's normal, twice its area long.
     glm::vec3 triangleNormal(int t) const;
 

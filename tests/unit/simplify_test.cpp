@@ -142,6 +142,10 @@ TEST(SurfaceQueries, CastFacingPassesThroughSheetsFacingTheOtherWay) {
     EXPECT_GT(queries.triangleNormal(along->triangle).z, 0.0f);
     EXPECT_NEAR(queries.castFacing(origin, up, 1.0f, -1.0f)->distance, -0.05f, 1e-6f);
     EXPECT_FALSE(queries.castFacing(origin, up, 0.1f, 1.0f));  // the top is beyond reach
+    // The bottom is the nearest part (0.05 away): the top, three times as far, is a detour.
+    EXPECT_TRUE(queries.reachesNearest(origin, *queries.castFacing(origin, up, 1.0f, -1.0f)));
+    EXPECT_FALSE(queries.reachesNearest(origin, *along));
+    EXPECT_TRUE(queries.reachesNearest(origin, *along, 3.5f));
 }
 
 // The nearest point, whether it lies inside a triangle, on an edge or at a corner.
