@@ -140,8 +140,9 @@ std::optional<RayHit> SurfaceQueries::castFacing(const glm::vec3& origin, const 
     return best;
 }
 
-bool SurfaceQueries::reachesNearest(const glm::vec3& origin, const RayHit& hit, float slack) const {
-    return std::abs(hit.distance) <= slack * closestDistance(origin) * (1.0f + 1e-4f) + 1e-7f;
+bool SurfaceQueries::reachesNearest(const glm::vec3& origin, const RayHit& hit, float detour) const {
+    const float nearest = closestDistance(origin);
+    return std::abs(hit.distance) <= std::max(2.0f * nearest, nearest + detour) * (1.0f + 1e-4f) + 1e-7f;
 }
 
 glm::vec3 SurfaceQueries::triangleNormal(int t) const {

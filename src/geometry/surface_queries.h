@@ -40,9 +40,10 @@ public:
                                      float facing) const;
 
     // Whether `hit`, cast from `origin`, found (about) the nearest part of the mesh: it is no
-    // farther than `slack` times the distance to the nearest point. A ray that grazes past the
-    // nearest surface and lands on another part (the next leg, the far wall of a fold) did not.
-    bool reachesNearest(const glm::vec3& origin, const RayHit& hit, float slack = 2.0f) const;
+    // farther than twice the distance to the nearest point, or than `detour` beyond it. A ray that
+    // grazes past the nearest surface and lands on another part (the next leg, the far wall of
+    // a fold) did not; one that finds a trough beside a nearer crest of the same relief did.
+    bool reachesNearest(const glm::vec3& origin, const RayHit& hit, float detour = 0.0f) const;
 
     // (p1 − p0) × (p2 − p0) of triangle t: its winding's normal, twice its area long.
     glm::vec3 triangleNormal(int t) const;

@@ -62,6 +62,10 @@ glm::vec2 heightGradient(const surface::TexelLayout& layout, const std::vector<f
             (at(s.i, j1) - at(s.i, j0)) * float(t) / float(j1 - j0)};
 }
 
+// How far beyond the nearest point of the reference a node's hit may lie, as a fraction of the
+// reach (a cage edge): farther, the ray has passed its own part of the reference for another.
+constexpr float kDetour = 0.25f;
+
 // Every node of `layout` on `cage`'s limit surface, cast along its limit normal to the
 // reference: the hit on the sheet that faces the way the reference mostly faces the cage, kept
 // when it is about the nearest part of the reference (else the node has no hit).
@@ -103,7 +107,7 @@ NodeHits castNodes(const mesh::PolygonMesh& cage, const surface::TexelLayout& la
         if (h.hits[n] && facing * glm::dot(surface.triangleNormal(h.hits[n]->triangle), h.normals[n]) <= 0.0f)
             h.hits[n] = surface.castFacing(h.samples[n].position, h.normals[n], maxDistance, facing);
     for (size_t n = 0; n < nodes; ++n)
-        if (h.hits[n] && !surface.reachesNearest(h.samples[n].position, *h.hits[n])) h.hits[n].reset();
+        if (h.hits[n] && !surface.reachesNearest(h.samples[n].position, *h.hits[n], kDetour * maxDistance)) h.hits[n].reset();
     return h;
 }
 
@@ -169,7 +173,7 @@ std::vector<float> leastSquaresHeights(const mesh::PolygonMesh& cage, const surf
                 auto hit = surface.castBothWays(at.position, n, maxDistance);
                 if (hit && nodeHits.facing * glm::dot(surface.triangleNormal(hit->triangle), n) <= 0.0f)
                     hit = surface.castFacing(at.position, n, maxDistance, nodeHits.facing);
-                if (!hit || !surface.reachesNearest(at.position, *hit)) continue;
+                if (!hit || !surface.reachesNearest(at.position, *hit, kDetour * maxDistance)) continue;
                 // A cell with a corner no ray reached says nothing safe about that corner: its
                 // row would set it to four times the centre's height less the other three.
                 const std::array<int, 4> corners{layout.node(f, i, j), layout.node(f, i + 1, j), layout.node(f, i, j + 1),

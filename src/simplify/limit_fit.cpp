@@ -77,7 +77,7 @@ LimitFitReport fitLimitToSurface(mesh::PolygonMesh& cage, const mesh::PolygonMes
         for (size_t s = 0; s < L.size(); ++s) {
             if (hits[s] && facing * glm::dot(surface.triangleNormal(hits[s]->triangle), normals[s]) <= 0.0f)
                 hits[s] = surface.castFacing(glm::vec3(targets[s]), normals[s], reach, facing);
-            used[s] = hits[s] && surface.reachesNearest(glm::vec3(targets[s]), *hits[s]) ? 1.0 : 0.0;
+            used[s] = hits[s] && surface.reachesNearest(glm::vec3(targets[s]), *hits[s], options.detour * reach) ? 1.0 : 0.0;
             if (!used[s]) continue;
             targets[s] += double(hits[s]->distance) * glm::dvec3(normals[s]);
             squares += double(hits[s]->distance) * double(hits[s]->distance);

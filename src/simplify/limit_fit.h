@@ -19,6 +19,7 @@ struct LimitFitOptions {
     int samplesPerEdge = 3;    // a samplesPerEdge² grid inside each ptex face
     double damping = 0.02;     // μ as a fraction of the normal matrix's mean diagonal
     float reach = 1.0f;        // rays reach this many mean cage edge lengths
+    float detour = 0.25f;      // a hit farther than the nearest point by more of the reach is another part's
 };
 
 struct LimitFitReport {

@@ -145,7 +145,8 @@ TEST(SurfaceQueries, CastFacingPassesThroughSheetsFacingTheOtherWay) {
     // The bottom is the nearest part (0.05 away): the top, three times as far, is a detour.
     EXPECT_TRUE(queries.reachesNearest(origin, *queries.castFacing(origin, up, 1.0f, -1.0f)));
     EXPECT_FALSE(queries.reachesNearest(origin, *along));
-    EXPECT_TRUE(queries.reachesNearest(origin, *along, 3.5f));
+    EXPECT_FALSE(queries.reachesNearest(origin, *along, 0.05f));
+    EXPECT_TRUE(queries.reachesNearest(origin, *along, 0.11f));  // a short detour is the same relief
 }
 
 // The nearest point, whether it lies inside a triangle, on an edge or at a corner.
