@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 
+#include "geometry/normal_casting.h"
 #include "geometry/surface_queries.h"
 #include "mesh/material_sampling.h"
 #include "mesh/mesh_geometry.h"
@@ -67,8 +68,7 @@ glm::vec2 heightGradient(const surface::TexelLayout& layout, const std::vector<f
 constexpr float kDetour = 0.25f;
 
 // Every node of `layout` on `cage`'s limit surface, cast along its limit normal to the
-// reference: the hit on the sheet that faces the way the reference mostly faces the cage, kept
-// when it is about the nearest part of the reference (else the node has no hit).
+// reference (geometry/normal_casting.h).
 struct NodeHits {
     std::vector<NodeSite> sites;
     std::vector<subdiv::LimitSample> samples;
@@ -77,37 +77,25 @@ struct NodeHits {
     float facing = 1.0f;  // which way the reference faces the limit normals (+1: along them)
 };
 
-NodeHits castNodes(const mesh::PolygonMesh& cage, const surface::TexelLayout& layout, const mesh::PolygonMesh& reference,
-                   const geometry::SurfaceQueries& surface, float maxDistance) {
+NodeHits castNodes(const mesh::PolygonMesh& cage, const surface::TexelLayout& layout, const geometry::SurfaceQueries& surface,
+                   float maxDistance) {
     NodeHits h;
     h.sites = nodeSites(layout);
     const size_t nodes = h.sites.size();
     const subdiv::LimitEvaluator limit(cage);
     h.samples.resize(nodes);
     h.normals.resize(nodes);
-    h.hits.resize(nodes);
+    std::vector<glm::vec3> origins(nodes);
     for (size_t n = 0; n < nodes; ++n) {
         if (n % 4096 == 0) throwIfStopRequested();
         if (h.sites[n].face < 0 || !limit.hasSurface(h.sites[n].face, 0.5f, 0.5f)) continue;
         h.samples[n] = sampleAt(limit, h.sites[n], layout.resolution, cage.positions);
         h.normals[n] = unitNormal(h.samples[n].dPdu, h.samples[n].dPdv, glm::vec3(0.0f, 0.0f, 1.0f));
-        h.hits[n] = surface.castBothWays(h.samples[n].position, h.normals[n], maxDistance);
+        origins[n] = h.samples[n].position;
     }
-    // Which way the reference faces the cage's normals (it may wind the other way): as most
-    // nearest hits say. Hits that face against it are passed through to the sheet behind.
-    double agreement = 0.0;
-    for (size_t n = 0; n < nodes; ++n) {
-        if (!h.hits[n]) continue;
-        const glm::vec3 faced = surface.triangleNormal(h.hits[n]->triangle);
-        const float area = glm::length(faced);
-        if (area > 0.0f) agreement += glm::dot(faced / area, h.normals[n]);
-    }
-    const float facing = h.facing = agreement >= 0.0 ? 1.0f : -1.0f;
-    for (size_t n = 0; n < nodes; ++n)
-        if (h.hits[n] && facing * glm::dot(surface.triangleNormal(h.hits[n]->triangle), h.normals[n]) <= 0.0f)
-            h.hits[n] = surface.castFacing(h.samples[n].position, h.normals[n], maxDistance, facing);
-    for (size_t n = 0; n < nodes; ++n)
-        if (h.hits[n] && !surface.reachesNearest(h.samples[n].position, *h.hits[n], kDetour * maxDistance)) h.hits[n].reset();
+    geometry::NormalCasts casts = geometry::castAlongNormals(surface, origins, h.normals, maxDistance, kDetour * maxDistance);
+    h.hits = std::move(casts.hits);
+    h.facing = casts.facing;
     return h;
 }
 
@@ -161,28 +149,34 @@ std::vector<float> leastSquaresHeights(const mesh::PolygonMesh& cage, const surf
         rows.endRow();
         targets.push_back(start[n]);
     }
+    // Cell centres whose four corners all found the reference: a corner no ray reached says
+    // nothing safe, and the cell's row would set it to four times the centre's height less
+    // the other three.
+    std::vector<std::array<int, 4>> cells;
+    std::vector<glm::vec3> origins, normals;
     for (int f = 0; f < layout.ptexFaceCount; ++f) {
         if (f % 256 == 0) throwIfStopRequested();
         for (int j = 0; j < t; ++j)
             for (int i = 0; i < t; ++i) {
-                const float u = (float(i) + 0.5f) / float(t), v = (float(j) + 0.5f) / float(t);
-                if (!limit.hasSurface(f, u, v)) continue;
-                const subdiv::LimitSample at = limit.evaluate(f, u, v, cage.positions);
-                const glm::vec3 n = unitNormal(at.dPdu, at.dPdv, glm::vec3(0.0f));
-                if (glm::dot(n, n) == 0.0f) continue;
-                auto hit = surface.castBothWays(at.position, n, maxDistance);
-                if (hit && nodeHits.facing * glm::dot(surface.triangleNormal(hit->triangle), n) <= 0.0f)
-                    hit = surface.castFacing(at.position, n, maxDistance, nodeHits.facing);
-                if (!hit || !surface.reachesNearest(at.position, *hit, kDetour * maxDistance)) continue;
-                // A cell with a corner no ray reached says nothing safe about that corner: its
-                // row would set it to four times the centre's height less the other three.
                 const std::array<int, 4> corners{layout.node(f, i, j), layout.node(f, i + 1, j), layout.node(f, i, j + 1),
                                                  layout.node(f, i + 1, j + 1)};
-                if (std::any_of(corners.begin(), corners.end(), [&](int c) { return !nodeHits.hits[size_t(c)]; })) continue;
-                for (int c : corners) rows.add(c, 0.25);
-                rows.endRow();
-                targets.push_back(hit->distance);
+                const float u = (float(i) + 0.5f) / float(t), v = (float(j) + 0.5f) / float(t);
+                if (std::any_of(corners.begin(), corners.end(), [&](int c) { return !nodeHits.hits[size_t(c)]; }) ||
+                    !limit.hasSurface(f, u, v))
+                    continue;
+                const subdiv::LimitSample at = limit.evaluate(f, u, v, cage.positions);
+                cells.push_back(corners);
+                origins.push_back(at.position);
+                normals.push_back(unitNormal(at.dPdu, at.dPdv, glm::vec3(0.0f)));
             }
+    }
+    const geometry::NormalCasts casts =
+        geometry::castAlongNormals(surface, origins, normals, maxDistance, kDetour * maxDistance, nodeHits.facing);
+    for (size_t c = 0; c < cells.size(); ++c) {
+        if (!casts.hits[c]) continue;
+        for (int node : cells[c]) rows.add(node, 0.25);
+        rows.endRow();
+        targets.push_back(casts.hits[c]->distance);
     }
     weights.assign(targets.size(), 1.0);
     constexpr double kDamping = 1e-3;  // holds nodes only cells see near their point samples
@@ -198,7 +192,7 @@ surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
     maps.layout = surface::buildTexelLayout(cage, options.resolution);
     const geometry::SurfaceQueries surface(reference);
     const auto referenceNormals = mesh::vertexNormals(reference);
-    const NodeHits nodeHits = castNodes(cage, maps.layout, reference, surface, maxDistanceFor(options, cage));
+    const NodeHits nodeHits = castNodes(cage, maps.layout, surface, maxDistanceFor(options, cage));
     const auto& sites = nodeHits.sites;
     const auto& samples = nodeHits.samples;
     const auto& normals = nodeHits.normals;
@@ -250,7 +244,7 @@ surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::P
     maps.appearanceLayout = surface::buildTexelLayout(cage, options.resolution);
     const geometry::SurfaceQueries surface(reference);
     const float maxDistance = options.maxDistance > 0.0f ? options.maxDistance : mesh::meanEdgeLength(cage);
-    const NodeHits nodeHits = castNodes(cage, maps.appearanceLayout, reference, surface, maxDistance);
+    const NodeHits nodeHits = castNodes(cage, maps.appearanceLayout, surface, maxDistance);
     const size_t nodes = nodeHits.sites.size();
     std::vector<char> found(nodes, 0);
     std::vector<float> color(3 * nodes, 0.5f), roughnessMetallic(2 * nodes, 0.0f);

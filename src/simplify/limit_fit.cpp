@@ -3,8 +3,8 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
-#include <optional>
 
+#include "geometry/normal_casting.h"
 #include "geometry/surface_queries.h"
 #include "mesh/mesh_geometry.h"
 #include "subdiv/limit_evaluator.h"
@@ -55,36 +55,25 @@ LimitFitReport fitLimitToSurface(mesh::PolygonMesh& cage, const mesh::PolygonMes
     // samples that found the reference (the ones `used` then marks, with their `targets`).
     auto project = [&] {
         const std::vector<glm::vec3> positions(P.begin(), P.end());
-        std::vector<glm::vec3> normals(L.size());
-        std::vector<std::optional<geometry::RayHit>> hits(L.size());
-        double agreement = 0.0;
+        std::vector<glm::vec3> origins(L.size()), normals(L.size());
         for (size_t s = 0; s < L.size(); ++s) {
             const subdiv::LimitSample at = limit.evaluate(L.ptexFace[s], L.uv[s].x, L.uv[s].y, positions);
             const glm::vec3 n = glm::cross(at.dPdu, at.dPdv);
-            if (!(glm::length(n) > 1e-20f)) continue;
-            normals[s] = glm::normalize(n);
-            targets[s] = glm::dvec3(at.position);
-            hits[s] = surface.castBothWays(at.position, normals[s], reach);
-            if (!hits[s]) continue;
-            const glm::vec3 faced = surface.triangleNormal(hits[s]->triangle);
-            if (const float area = glm::length(faced); area > 0.0f) agreement += glm::dot(faced / area, normals[s]);
+            origins[s] = at.position;
+            normals[s] = glm::length(n) > 1e-20f ? glm::normalize(n) : glm::vec3(0.0f);
         }
-        // Hits on a sheet facing against the surface are the far side of a thin part: pulling
-        // onto them would fold the surface through itself; the sheet behind is the one.
-        const float facing = agreement >= 0.0 ? 1.0f : -1.0f;
+        const geometry::NormalCasts casts = geometry::castAlongNormals(surface, origins, normals, reach, options.detour * reach);
         double squares = 0.0;
-        int count = 0;
+        report.hits = 0;
         for (size_t s = 0; s < L.size(); ++s) {
-            if (hits[s] && facing * glm::dot(surface.triangleNormal(hits[s]->triangle), normals[s]) <= 0.0f)
-                hits[s] = surface.castFacing(glm::vec3(targets[s]), normals[s], reach, facing);
-            used[s] = hits[s] && surface.reachesNearest(glm::vec3(targets[s]), *hits[s], options.detour * reach) ? 1.0 : 0.0;
-            if (!used[s]) continue;
-            targets[s] += double(hits[s]->distance) * glm::dvec3(normals[s]);
-            squares += double(hits[s]->distance) * double(hits[s]->distance);
-            ++count;
+            used[s] = casts.hits[s] ? 1.0 : 0.0;
+            if (!casts.hits[s]) continue;
+            const double distance = casts.hits[s]->distance;
+            targets[s] = glm::dvec3(origins[s]) + distance * glm::dvec3(normals[s]);
+            squares += distance * distance;
+            ++report.hits;
         }
-        report.hits = count;
-        return std::sqrt(squares / std::max(count, 1));
+        return std::sqrt(squares / std::max(report.hits, 1));
     };
 
     report.rmsBefore = project();
