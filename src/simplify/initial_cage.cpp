@@ -1,7 +1,12 @@
 #include "simplify/initial_cage.h"
 
 #include <cmath>
+#include <map>
 
+#include <glm/geometric.hpp>
+
+#include "mesh/mesh_adjacency.h"
+#include "mesh/mesh_geometry.h"
 #include "simplify/decimate.h"
 #include "simplify/limit_fit.h"
 #include "subdiv/limit_evaluator.h"
@@ -57,6 +62,53 @@ private:
     std::vector<VertexSite> sites_;
 };
 
+// Decimation by quadrics leaves slivers where the surface is flat in one direction (long thin
+// triangles along a cylinder's axis), and a Catmull-Clark surface wrinkles over them. Each round
+// moves every smooth interior vertex halfway to its neighbours' centroid within its tangent
+// plane; boundary vertices and those on a feature (an incident face turned more than ~35° from
+// the vertex normal, or of no area) stay, so creases and rims keep their place.
+void evenOutTriangles(mesh::PolygonMesh& cage, int rounds) {
+    const size_t n = cage.positions.size();
+    std::vector<char> fixed(n, 0);
+    std::map<std::pair<int, int>, int> edgeUse;
+    for (int f = 0; f < cage.faceCount(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int a = cage.faceIndices[size_t(3 * f + k)], b = cage.faceIndices[size_t(3 * f + (k + 1) % 3)];
+            ++edgeUse[{std::min(a, b), std::max(a, b)}];
+        }
+    for (const auto& [edge, use] : edgeUse)
+        if (use != 2) fixed[size_t(edge.first)] = fixed[size_t(edge.second)] = 1;
+    const mesh::VertexAdjacency adjacency = mesh::vertexAdjacency(cage);
+    for (int round = 0; round < rounds; ++round) {
+        const std::vector<glm::vec3> normals = mesh::vertexNormals(cage);
+        std::vector<char> feature = fixed;
+        for (int f = 0; f < cage.faceCount(); ++f) {
+            const int* v = &cage.faceIndices[size_t(3 * f)];
+            const glm::vec3 faceNormal = glm::cross(cage.positions[size_t(v[1])] - cage.positions[size_t(v[0])],
+                                                    cage.positions[size_t(v[2])] - cage.positions[size_t(v[0])]);
+            const float length = glm::length(faceNormal);
+            const glm::vec3 e0 = cage.positions[size_t(v[1])] - cage.positions[size_t(v[0])],
+                            e1 = cage.positions[size_t(v[2])] - cage.positions[size_t(v[1])];
+            // A zero-area face (decimation leaves some along sharp edges) hides the feature it
+            // lies on from the vertex normal: its corners stay too.
+            const bool degenerate = !(length > 1e-6f * (glm::dot(e0, e0) + glm::dot(e1, e1)));
+            for (int k = 0; k < 3; ++k)
+                if (degenerate || glm::dot(faceNormal / length, normals[size_t(v[k])]) < 0.82f) feature[size_t(v[k])] = 1;
+        }
+        std::vector<glm::vec3> moved = cage.positions;
+        for (size_t v = 0; v < n; ++v) {
+            const int first = adjacency.offsets[v], last = adjacency.offsets[v + 1];
+            if (feature[v] || last == first) continue;
+            glm::vec3 centroid(0.0f);
+            for (int k = first; k < last; ++k) centroid += cage.positions[size_t(adjacency.neighbors[size_t(k)])];
+            glm::vec3 step = centroid / float(last - first) - cage.positions[v];
+            step -= normals[v] * glm::dot(normals[v], step);
+            moved[v] += 0.5f * step;
+        }
+        cage.positions = std::move(moved);
+    }
+}
+
 }  // namespace
 
 std::vector<glm::vec3> limitPositionsOfVertices(const mesh::PolygonMesh& cage, const std::vector<glm::vec3>& positions) {
@@ -73,6 +125,7 @@ mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialC
     if (cage.faceCount() < 2)
         throw fileError(reference.sourcePath, "too few faces survive decimation to make a cage");
 
+    evenOutTriangles(cage, options.evenOutRounds);
     // Jacobi on limit(P) = V: the limit masks are convex combinations with the vertex itself
     // weighted most, so I − L contracts and a few sweeps converge.
     const std::vector<glm::vec3> targets = cage.positions;

@@ -1,6 +1,6 @@
 #pragma once
-// The cage `simplify` starts from: the reference decimated to the face budget, made a sound
-// Catmull-Clark cage. Decimated vertices lie on the reference, but a Catmull-Clark limit surface
+// The cage `simplify` starts from: the reference decimated to the face budget, its slivers evened
+// out (a Catmull-Clark surface wrinkles over them), made a sound Catmull-Clark cage. Decimated vertices lie on the reference, but a Catmull-Clark limit surface
 // only approximates its cage, shrinking into it; so the vertices are then moved until the limit
 // surface passes through where they were (limit interpolation), which starts the fit on the
 // reference's surface rather than inside it; then until it lies on the reference across each
@@ -13,6 +13,7 @@ namespace subdfit::simplify {
 
 struct InitialCageOptions {
     int faces = 1000;                // triangle budget of the cage
+    int evenOutRounds = 3;            // tangential smoothing of decimation's slivers (features stay)
     int interpolationIterations = 16; // P += V − limit(P) sweeps (each ÷~2 the gap)
     LimitFitOptions limitFit{};       // .rounds = 0: the interpolated cage as it is
 };

@@ -95,5 +95,86 @@ TEST(LimitFit, HardCagesStayFinite) {
     }
 }
 
+// A tube: a quad grid wrapped around the z axis (its seam welds; its ends stay open).
+mesh::PolygonMesh tube(int n) {
+    mesh::PolygonMesh grid = mesh::triangulated(mesh::makeQuadGrid(n));
+    for (glm::vec3& p : grid.positions) {
+        const float angle = float(M_PI) * p.x;
+        p = glm::vec3(std::cos(angle), std::sin(angle), 2.0f * p.y);
+    }
+    return weldedTriangles(grid);
+}
+
+// Mean of 4√3·area / Σ edge² over the triangles: 1 for equilateral ones, near 0 for slivers.
+double meanTriangleQuality(const mesh::PolygonMesh& m) {
+    double sum = 0.0;
+    for (int f = 0; f < m.faceCount(); ++f) {
+        const glm::vec3 a = m.positions[size_t(m.faceIndices[size_t(3 * f)])], b = m.positions[size_t(m.faceIndices[size_t(3 * f + 1)])],
+                        c = m.positions[size_t(m.faceIndices[size_t(3 * f + 2)])];
+        const double edges = glm::dot(b - a, b - a) + glm::dot(c - b, c - b) + glm::dot(a - c, a - c);
+        sum += edges > 0.0 ? 4.0 * std::sqrt(3.0) * 0.5 * glm::length(glm::cross(b - a, c - a)) / edges : 0.0;
+    }
+    return sum / std::max(m.faceCount(), 1);
+}
+
+// Quadric decimation of a tube leaves slivers along its axis; evening them out in the tangent
+// plane gives rounder triangles and a surface at least as close.
+TEST(InitialCageTriangles, SliversAreEvenedOut) {
+    const mesh::PolygonMesh reference = tube(64);
+    const mesh::PolygonMesh raw = initialCage(reference, {.faces = 200, .evenOutRounds = 0});
+    const mesh::PolygonMesh even = initialCage(reference, {.faces = 200});
+    EXPECT_GT(meanTriangleQuality(even), 1.1 * meanTriangleQuality(raw))
+        << meanTriangleQuality(raw) << " -> " << meanTriangleQuality(even);
+    EXPECT_LE(meanDistance(even, reference), 1.05 * meanDistance(raw, reference));
+    EXPECT_TRUE(allFinite(even));
+}
+
+// A box [−1, 1]³ of n × n quads per side, triangulated and welded: sharp edges and corners.
+mesh::PolygonMesh box(int n) {
+    mesh::PolygonMesh all;
+    for (int axis = 0; axis < 3; ++axis)
+        for (const float side : {-1.0f, 1.0f}) {
+            mesh::PolygonMesh grid = mesh::triangulated(mesh::makeQuadGrid(n));  // z = 0, facing +z
+            for (glm::vec3& p : grid.positions) {
+                glm::vec3 q(0.0f);
+                q[axis] = side;
+                q[(axis + 1) % 3] = side * p.x;  // mirrored on the −side, so every side faces out
+                q[(axis + 2) % 3] = p.y;
+                p = q;
+            }
+            const int offset = all.vertexCount();
+            all.positions.insert(all.positions.end(), grid.positions.begin(), grid.positions.end());
+            for (int i : grid.faceIndices) all.faceIndices.push_back(i + offset);
+            all.faceSizes.insert(all.faceSizes.end(), grid.faceSizes.begin(), grid.faceSizes.end());
+        }
+    return weldedTriangles(all);
+}
+
+// Boundary vertices (the tube's open ends) and vertices on a feature (the box's edges and
+// corners) stay where decimation put them; the others move only within their tangent plane.
+TEST(InitialCageTriangles, FeaturesAndBoundariesStay) {
+    for (const mesh::PolygonMesh& reference : {box(12), tube(48)}) {
+        const InitialCageOptions evened{.faces = 150, .interpolationIterations = 0, .limitFit = {.rounds = 0}};
+        InitialCageOptions kept = evened;
+        kept.evenOutRounds = 0;
+        const mesh::PolygonMesh moved = initialCage(reference, evened), decimated = initialCage(reference, kept);
+        ASSERT_EQ(moved.faceIndices, decimated.faceIndices);
+        const auto normals = mesh::vertexNormals(decimated);
+        int pinned = 0;
+        for (size_t v = 0; v < decimated.positions.size(); ++v) {
+            const glm::vec3 p = decimated.positions[v];
+            const bool onBoxEdge = int(std::abs(std::abs(p.x) - 1.0f) < 1e-5f) + int(std::abs(std::abs(p.y) - 1.0f) < 1e-5f) +
+                                       int(std::abs(std::abs(p.z) - 1.0f) < 1e-5f) >= 2;
+            const bool onTubeEnd = std::abs(std::abs(p.z) - 2.0f) < 1e-5f;
+            if (onBoxEdge || onTubeEnd) {
+                EXPECT_EQ(moved.positions[v], p);
+                ++pinned;
+            }
+            EXPECT_LT(std::abs(glm::dot(moved.positions[v] - p, normals[v])), 0.05f * mesh::meanEdgeLength(decimated));
+        }
+        EXPECT_GT(pinned, 8);
+    }
+}
+
 }  // namespace
 }  // namespace subdfit::simplify
