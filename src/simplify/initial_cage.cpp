@@ -1,6 +1,7 @@
 #include "simplify/initial_cage.h"
 
 #include <cmath>
+#include <algorithm>
 #include <map>
 
 #include <glm/geometric.hpp>
@@ -62,50 +63,48 @@ private:
     std::vector<VertexSite> sites_;
 };
 
+// Vertices that must not slide: on a boundary (an edge not shared by two faces) or on a feature
+// (an incident face turned more than ~35° from the vertex normal, or of no area: decimation
+// leaves zero-area faces along sharp edges, hiding them from the vertex normal).
+std::vector<char> pinnedVertices(const mesh::PolygonMesh& triangles, const std::vector<glm::vec3>& normals) {
+    std::vector<char> pinned(triangles.positions.size(), 0);
+    std::map<std::pair<int, int>, int> edgeUse;
+    for (int f = 0; f < triangles.faceCount(); ++f) {
+        const int* v = &triangles.faceIndices[size_t(3 * f)];
+        for (int k = 0; k < 3; ++k) ++edgeUse[std::minmax(v[k], v[(k + 1) % 3])];
+        const glm::vec3 e1 = triangles.positions[size_t(v[1])] - triangles.positions[size_t(v[0])],
+                        e2 = triangles.positions[size_t(v[2])] - triangles.positions[size_t(v[0])];
+        const glm::vec3 faceNormal = glm::cross(e1, e2);
+        const float length = glm::length(faceNormal);
+        const bool degenerate = !(length > 1e-6f * (glm::dot(e1, e1) + glm::dot(e2, e2)));
+        for (int k = 0; k < 3; ++k)
+            if (degenerate || glm::dot(faceNormal / length, normals[size_t(v[k])]) < 0.82f) pinned[size_t(v[k])] = 1;
+    }
+    for (const auto& [edge, use] : edgeUse)
+        if (use != 2) pinned[size_t(edge.first)] = pinned[size_t(edge.second)] = 1;
+    return pinned;
+}
+
 // Decimation by quadrics leaves slivers where the surface is flat in one direction (long thin
 // triangles along a cylinder's axis), and a Catmull-Clark surface wrinkles over them. Each round
-// moves every smooth interior vertex halfway to its neighbours' centroid within its tangent
-// plane; boundary vertices and those on a feature (an incident face turned more than ~35° from
-// the vertex normal, or of no area) stay, so creases and rims keep their place.
-void evenOutTriangles(mesh::PolygonMesh& cage, int rounds) {
-    const size_t n = cage.positions.size();
-    std::vector<char> fixed(n, 0);
-    std::map<std::pair<int, int>, int> edgeUse;
-    for (int f = 0; f < cage.faceCount(); ++f)
-        for (int k = 0; k < 3; ++k) {
-            const int a = cage.faceIndices[size_t(3 * f + k)], b = cage.faceIndices[size_t(3 * f + (k + 1) % 3)];
-            ++edgeUse[{std::min(a, b), std::max(a, b)}];
-        }
-    for (const auto& [edge, use] : edgeUse)
-        if (use != 2) fixed[size_t(edge.first)] = fixed[size_t(edge.second)] = 1;
-    const mesh::VertexAdjacency adjacency = mesh::vertexAdjacency(cage);
+// moves every vertex that is not pinned halfway to its neighbours' centroid within its tangent
+// plane, so creases and rims keep their place.
+void evenOutTriangles(mesh::PolygonMesh& triangles, int rounds) {
+    const mesh::VertexAdjacency adjacency = mesh::vertexAdjacency(triangles);
     for (int round = 0; round < rounds; ++round) {
-        const std::vector<glm::vec3> normals = mesh::vertexNormals(cage);
-        std::vector<char> feature = fixed;
-        for (int f = 0; f < cage.faceCount(); ++f) {
-            const int* v = &cage.faceIndices[size_t(3 * f)];
-            const glm::vec3 faceNormal = glm::cross(cage.positions[size_t(v[1])] - cage.positions[size_t(v[0])],
-                                                    cage.positions[size_t(v[2])] - cage.positions[size_t(v[0])]);
-            const float length = glm::length(faceNormal);
-            const glm::vec3 e0 = cage.positions[size_t(v[1])] - cage.positions[size_t(v[0])],
-                            e1 = cage.positions[size_t(v[2])] - cage.positions[size_t(v[1])];
-            // A zero-area face (decimation leaves some along sharp edges) hides the feature it
-            // lies on from the vertex normal: its corners stay too.
-            const bool degenerate = !(length > 1e-6f * (glm::dot(e0, e0) + glm::dot(e1, e1)));
-            for (int k = 0; k < 3; ++k)
-                if (degenerate || glm::dot(faceNormal / length, normals[size_t(v[k])]) < 0.82f) feature[size_t(v[k])] = 1;
-        }
-        std::vector<glm::vec3> moved = cage.positions;
-        for (size_t v = 0; v < n; ++v) {
+        const std::vector<glm::vec3> normals = mesh::vertexNormals(triangles);
+        const std::vector<char> pinned = pinnedVertices(triangles, normals);
+        std::vector<glm::vec3> moved = triangles.positions;
+        for (size_t v = 0; v < moved.size(); ++v) {
             const int first = adjacency.offsets[v], last = adjacency.offsets[v + 1];
-            if (feature[v] || last == first) continue;
+            if (pinned[v] || last == first) continue;
             glm::vec3 centroid(0.0f);
-            for (int k = first; k < last; ++k) centroid += cage.positions[size_t(adjacency.neighbors[size_t(k)])];
-            glm::vec3 step = centroid / float(last - first) - cage.positions[v];
+            for (int k = first; k < last; ++k) centroid += triangles.positions[size_t(adjacency.neighbors[size_t(k)])];
+            glm::vec3 step = centroid / float(last - first) - triangles.positions[v];
             step -= normals[v] * glm::dot(normals[v], step);
             moved[v] += 0.5f * step;
         }
-        cage.positions = std::move(moved);
+        triangles.positions = std::move(moved);
     }
 }
 
