@@ -24,8 +24,12 @@ optim::Adjacency uploadAdjacency(const mesh::PolygonMesh& cage) {
             cage.vertexCount()};
 }
 
-int tessLevelFor(const CageFitSettings& s) {
-    return s.mapEffects.geometric() ? std::max(s.tessLevel, s.maps.resolution) : s.tessLevel;
+// A cage drawn one isolation level shallower (subdiv::drawingIsolationLevel) gets half the
+// segments per face edge: its faces span a few pixels, and its deepest patches keep one each.
+int tessLevelFor(const CageFitSettings& s, const mesh::PolygonMesh& cage) {
+    const bool dense = subdiv::drawingIsolationLevel(cage) < subdiv::PatchSetOptions{}.isolationLevel;
+    const int segments = dense ? std::max(1, s.tessLevel / 2) : s.tessLevel;
+    return s.mapEffects.geometric() ? std::max(segments, s.maps.resolution) : segments;
 }
 
 }  // namespace
@@ -33,9 +37,9 @@ int tessLevelFor(const CageFitSettings& s) {
 CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const CageFitSettings& settings)
     : programs_(programs),
       settings_(settings),
-      patches_(subdiv::buildPatchSet(cage)),
+      patches_(subdiv::buildPatchSet(cage, {.isolationLevel = subdiv::drawingIsolationLevel(cage)})),
       stencils_(patches_),
-      renderer_(patches_, tessLevelFor(settings), settings.shading),
+      renderer_(patches_, tessLevelFor(settings, cage), settings.shading),
       vertices_(optim::GroupKind::Vertices, "vertices", flatten(cage.positions), settings.vertices),
       maps_(settings.mapEffects.any() ? std::make_unique<maps::MapParameters>(cage, settings.mapEffects, settings.maps)
                                       : nullptr),

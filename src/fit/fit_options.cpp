@@ -27,7 +27,7 @@ const std::vector<OptionRow>& optionTable() {
         {{"views_per_step", "--views-per-step", "views rendered per step", 1, 1024, false, true, true}, &F::viewsPerStep},
         {{"samples_per_step", "--samples-per-step", "perturbations averaged per step", 1, 64, false, true, true},
          &F::samplesPerStep},
-        {{"tess_level", "--tess", "tessellation segments per face edge", 1, 64, false, true, true}, &F::tessLevel},
+        {{"tess_level", "--tess", "tessellation segments per face edge (half on cages of over 2 000 faces)", 1, 64, false, true, true}, &F::tessLevel},
         {{"seed", "--seed", "random seed (views, perturbations)", 1, 0, false, true, true}, &F::seed},
         {{"epsilon", "--epsilon", "vertex perturbation, a fraction of the cage's mean edge (at most ~1 pixel)", 0, 1, true, true, true},
          &F::epsilon},

@@ -36,10 +36,16 @@ nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports
     return {{"asset.subd", exports.at("asset.subd")}};
 }
 
-// A fit's step costs about its cage's faces (each tessellated alike): the budget search stops at
-// twice the default cage, so that --budget costs at most twice a default run per step. Larger
-// budgets buy finer maps instead, which cost the fit's renders next to nothing.
-constexpr int kMostBudgetFaces = 2 * kDefaultFaces;
+// The budget search's largest cage. A dense bare cage ships for ~2.2 bytes a face and its limit
+// surface shades closer than heights on a coarse one (bunny, 17.4 KB: 8 000 bare faces 37.1 dB,
+// 1 069 faces with T = 3 heights 34.8 dB). Past subdiv::kDenseCageFaces a cage is drawn one
+// isolation level shallower, a quarter of the triangles a step.
+constexpr int kMostBudgetFaces = 8 * kDefaultFaces;
+// Past this many faces the fit of a budget's cage takes proportionally fewer steps (unless
+// --steps was given): the search's bake is already close (on the relief Spot and the bunny the
+// fit of 2 000-8 000-face cages kept its start), and --budget should cost about what a
+// 2 000-face fit does.
+constexpr int kMostFullyFittedFaces = 2 * kDefaultFaces;
 
 // The fitted maps code differently from the baked ones the budget search measured (and the
 // search does not weigh the appearance maps): when the file comes out over, the appearance
@@ -163,7 +169,7 @@ struct Start {
 };
 
 Start chooseStart(SimplifyOptions& o, fit::FitOptions& fitOptions, gl::ProgramCache& programs, fit::FitScene& scene,
-                  const mesh::PolygonMesh& reference, const fit::FitHooks& hooks) {
+                  const mesh::PolygonMesh& reference, bool stepsByDevice, const fit::FitHooks& hooks) {
     Start start;
     if (o.budget <= 0) {
         scene.setCage(initialCage(reference, {.faces = o.faces > 0 ? o.faces : kDefaultFaces}));
@@ -190,6 +196,8 @@ Start chooseStart(SimplifyOptions& o, fit::FitOptions& fitOptions, gl::ProgramCa
         // 2.36e-3 refining the judged bake, in half the time).
         fitOptions.mapsStart = o.fit.mapsStart = 0.0f;
     }
+    if (const int faces = choice.cageWorld.faceCount(); stepsByDevice && faces > kMostFullyFittedFaces)
+        fitOptions.steps = o.fit.steps = std::max(1, int(std::lround(double(o.fit.steps) * kMostFullyFittedFaces / faces)));
     scene.setCage(choice.cageWorld);
     start.budget = toJson(choice, o.budget);
     start.budget["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - searchStarted).count();
@@ -259,7 +267,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     fit::FitOptions fitOptions = o.fit;
     fitOptions.cage = o.fit.out / "initial_cage.obj";  // where the report says the cage came from
     fit::FitScene scene(fitOptions, programs, {}, reference);
-    const Start start = chooseStart(o, fitOptions, programs, scene, reference, hooks);
+    const Start start = chooseStart(o, fitOptions, programs, scene, reference, options.fit.steps == fit::kByDevice, hooks);
     const mesh::PolygonMesh cage = scene.cageWorld;
     fit::FitRun run(fitOptions, programs, scene);
     const auto checkpoint = o.fit.out / "checkpoint.bin";

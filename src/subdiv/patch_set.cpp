@@ -86,6 +86,16 @@ void collectFaceVertices(PatchSet& set) {
 
 }  // namespace
 
+int drawingIsolationLevel(const mesh::PolygonMesh& cage) {
+    constexpr int kDefault = PatchSetOptions{}.isolationLevel;
+    if (cage.faceCount() <= kDenseCageFaces) return kDefault;
+    for (const mesh::Crease& c : cage.tags.creases)
+        if (c.sharpness > 2.0f) return kDefault;
+    for (const mesh::Corner& c : cage.tags.corners)
+        if (c.sharpness > 2.0f) return kDefault;
+    return 2;
+}
+
 PatchSet buildPatchSet(const mesh::PolygonMesh& mesh, const PatchSetOptions& options) {
     const AdaptiveTables tables = buildAdaptiveTables(mesh, options.isolationLevel);
     PatchSet set;

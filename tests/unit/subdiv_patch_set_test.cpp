@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -529,6 +530,50 @@ TEST(SubdivPatchSet, OsdShapesBuildAndMatchLimitStencils) {
         }
     }
     EXPECT_EQ(built, 58);
+}
+
+TEST(SubdivPatchSet, DenseCagesAreDrawnOneLevelShallowerWithinAFractionOfAnEdge) {
+    // A bumpy sphere of 4 800 triangles: extraordinary vertices everywhere, as on a decimated cage.
+    PolygonMesh cage = cubeCage(20, true);
+    for (glm::vec3& p : cage.positions) p *= 1.0f + 0.03f * std::sin(9.0f * p.x) * std::cos(7.0f * p.y + 3.0f * p.z);
+    PolygonMesh triangles = cage;
+    triangles.faceSizes.clear();
+    triangles.faceIndices.clear();
+    for (std::size_t q = 0; q < cage.faceIndices.size(); q += 4) {
+        const int* v = &cage.faceIndices[q];
+        addFace(triangles, {v[0], v[1], v[2]});
+        addFace(triangles, {v[0], v[2], v[3]});
+    }
+    ASSERT_GT(triangles.faceCount(), kDenseCageFaces);
+    EXPECT_EQ(drawingIsolationLevel(triangles), 2);
+    EXPECT_EQ(drawingIsolationLevel(cubeCage(8, true)), 3);  // a light cage keeps level 3
+    PolygonMesh creased = triangles;
+    creased.tags.creases.push_back({.v0 = triangles.faceIndices[0], .v1 = triangles.faceIndices[1], .sharpness = 2.5f});
+    EXPECT_EQ(drawingIsolationLevel(creased), 3);  // a crease that needs the third level keeps it
+
+    // What the shallower level changes is a small fraction of an edge: an 8 000-face cage at 256²
+    // spans ~5 pixels an edge, so a twentieth of an edge at worst is a quarter pixel (measured:
+    // 2.2 % at worst, near the extraordinary vertices where the end caps sit; 0.14 % on average).
+    double edge = 0.0;
+    for (std::size_t t = 0; t < triangles.faceIndices.size(); t += 3)
+        edge += glm::length(triangles.positions[triangles.faceIndices[t]] - triangles.positions[triangles.faceIndices[t + 1]]);
+    edge /= double(triangles.faceCount());
+    const LimitEvaluator level2(triangles, {.isolationLevel = 2}), level3(triangles, {.isolationLevel = 3});
+    ASSERT_EQ(level2.ptexFaceCount(), level3.ptexFaceCount());
+    double worst = 0.0, sum = 0.0;
+    int samples = 0;
+    for (int f = 0; f < level3.ptexFaceCount(); f += 7)
+        for (float u : kSampleCoords)
+            for (float v : kSampleCoords) {
+                const double d = glm::length(level2.evaluate(f, u, v, triangles.positions).position -
+                                             level3.evaluate(f, u, v, triangles.positions).position);
+                worst = std::max(worst, d);
+                sum += d;
+                ++samples;
+            }
+    EXPECT_LT(worst, 0.05 * edge) << "mean edge " << edge;
+    EXPECT_LT(sum / samples, 0.005 * edge) << "mean edge " << edge;
+    std::printf("level 2 vs 3: worst %.2f %%, mean %.3f %% of the mean edge\n", 100 * worst / edge, 100 * sum / samples / edge);
 }
 
 }  // namespace
