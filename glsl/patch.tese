@@ -25,10 +25,32 @@ layout(std430, binding = SUBDFIT_SSBO_DISPLACEMENT) readonly buffer Displacement
 uniform mat4 uViewProjection;
 
 #ifdef SUBDFIT_DISPLACEMENT
+uniform int uMapHaloTable;  // where the ring of nodes around each tile starts in faceNodes
+
+// The height at node (i, j) of `face`'s tile, one of i, j possibly one step outside it: the
+// neighbouring tile's node across that edge, or (no neighbour) the border cell's slope extended.
+// As surface::nodeValueAcross.
+float heightNode(int face, int i, int j) {
+    int n = uMapResolution;
+    int edge = j < 0 ? 0 : i > n ? 1 : j > n ? 2 : i < 0 ? 3 : -1;
+    if (edge < 0) return displacement[faceNodes[face * (n + 1) * (n + 1) + j * (n + 1) + i]];
+    int across = faceNodes[uMapHaloTable + (face * 4 + edge) * (n + 1) + ((edge & 1) == 0 ? i : j)];
+    if (across >= 0) return displacement[across];
+    ivec2 border = clamp(ivec2(i, j), ivec2(0), ivec2(n)), inner = 2 * border - ivec2(i, j);
+    return 2.0 * displacement[faceNodes[face * (n + 1) * (n + 1) + border.y * (n + 1) + border.x]] -
+           displacement[faceNodes[face * (n + 1) * (n + 1) + inner.y * (n + 1) + inner.x]];
+}
+
+// Bilinear, with at most one of u, v up to a cell outside [0, 1] (then in the cell between the
+// tile's border and the ring across it).
 float heightAt(int face, vec2 uv) {
-    MapFootprint m = mapFootprint(face, uv);
-    return dot(m.weights, vec4(displacement[m.nodes.x], displacement[m.nodes.y], displacement[m.nodes.z],
-                               displacement[m.nodes.w]));
+    int n = uMapResolution;
+    vec2 x = clamp(uv * float(n), vec2(-1.0), vec2(float(n + 1)));
+    ivec2 cell = ivec2(x.x < 0.0 ? -1 : x.x >= float(n) ? n : min(int(x.x), n - 1),
+                       x.y < 0.0 ? -1 : x.y >= float(n) ? n : min(int(x.y), n - 1));
+    vec2 f = x - vec2(cell);
+    return mix(mix(heightNode(face, cell.x, cell.y), heightNode(face, cell.x + 1, cell.y), f.x),
+               mix(heightNode(face, cell.x, cell.y + 1), heightNode(face, cell.x + 1, cell.y + 1), f.x), f.y);
 }
 #endif
 
@@ -77,15 +99,15 @@ void main() {
 #ifdef SUBDFIT_DISPLACEMENT
     // P' = P + d(u,v) N̂. Shading normal of the displaced surface to first order:
     // ∂P'/∂u ≈ ∂P/∂u + (∂d/∂u) N̂ (the d ∂N̂/∂u term is dropped: d is small against curvature).
-    // ∂d/∂u by central differences half a map cell wide, one-sided at the tile's border, exactly
-    // as the CPU twin (surface/displaced_surface.cpp): at a node that averages the slopes of the
-    // cells on either side, so the shading does not break at every cell edge.
-    float height = heightAt(tePtexFace, tePtexUv);
+    // ∂d/∂u by central differences half a map cell wide, reaching across the tile's border into
+    // the neighbouring face's tile, exactly as the CPU twin (surface/displaced_surface.cpp): at a
+    // node that averages the slopes of the cells on either side, so the shading breaks neither
+    // at a cell edge nor at a face edge.
+    vec2 at = clamp(tePtexUv, 0.0, 1.0);
+    float height = heightAt(tePtexFace, at);
     float h = 0.5 / float(uMapResolution);
-    float u0 = max(tePtexUv.x - h, 0.0), u1 = min(tePtexUv.x + h, 1.0);
-    float v0 = max(tePtexUv.y - h, 0.0), v1 = min(tePtexUv.y + h, 1.0);
-    float dddu = (heightAt(tePtexFace, vec2(u1, tePtexUv.y)) - heightAt(tePtexFace, vec2(u0, tePtexUv.y))) / (u1 - u0);
-    float dddv = (heightAt(tePtexFace, vec2(tePtexUv.x, v1)) - heightAt(tePtexFace, vec2(tePtexUv.x, v0))) / (v1 - v0);
+    float dddu = (heightAt(tePtexFace, at + vec2(h, 0.0)) - heightAt(tePtexFace, at - vec2(h, 0.0))) / (2.0 * h);
+    float dddv = (heightAt(tePtexFace, at + vec2(0.0, h)) - heightAt(tePtexFace, at - vec2(0.0, h))) / (2.0 * h);
     P += height * unitN;
     dPdu += dddu * unitN;
     dPdv += dddv * unitN;

@@ -14,9 +14,10 @@ optim::Adjacency uploadAdjacency(const surface::TexelLayout& layout) {
     return {gl::Buffer::fromVector(graph.offsets), gl::Buffer::fromVector(graph.neighbors), layout.nodeCount};
 }
 
-std::vector<int> concatenated(const std::vector<int>& a, const std::vector<int>& b) {
+std::vector<int> concatenated(const std::vector<int>& a, const std::vector<int>& b, const std::vector<int>& c) {
     std::vector<int> out(a);
     out.insert(out.end(), b.begin(), b.end());
+    out.insert(out.end(), c.begin(), c.end());
     return out;
 }
 
@@ -44,7 +45,7 @@ MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, 
       appearanceLayout_(effects.appearance() ? surface::buildTexelLayout(cage, settings.appearanceResolution)
                                              : surface::TexelLayout{}),
       settings_(settings),
-      faceNodes_(gl::Buffer::fromVector(concatenated(layout_.faceNodes, appearanceLayout_.faceNodes))),
+      faceNodes_(gl::Buffer::fromVector(concatenated(layout_.faceNodes, appearanceLayout_.faceNodes, layout_.halo))),
       adjacency_(uploadAdjacency(layout_)),
       appearanceAdjacency_(uploadAdjacency(appearanceLayout_)),
       scratch_(GLsizeiptr(std::max({1, 2 * layout_.nodeCount, 3 * appearanceLayout_.nodeCount})) *
@@ -98,6 +99,7 @@ render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::Para
             .resolution = std::max(layout_.resolution, 1),
             .appearanceResolution = std::max(appearanceLayout_.resolution, 1),
             .appearanceTable = int(layout_.faceNodes.size()),
+            .haloTable = int(layout_.faceNodes.size() + appearanceLayout_.faceNodes.size()),
             .bind = bind};
 }
 

@@ -65,7 +65,7 @@ private:
     MapEffects effects_;
     surface::TexelLayout layout_, appearanceLayout_;
     MapSettings settings_;
-    gl::Buffer faceNodes_;  // layout_'s table, then appearanceLayout_'s
+    gl::Buffer faceNodes_;  // layout_'s table, appearanceLayout_'s, then layout_'s halo
     optim::Adjacency adjacency_, appearanceAdjacency_;
     gl::Buffer scratch_;  // Jacobi ping-pong partner, sized for the largest group
     std::unique_ptr<optim::ParameterGroup> displacement_, normalMap_, baseColor_, metallicRoughness_;

@@ -54,6 +54,7 @@ void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, c
         program.set("uMapResolution", maps->resolution);
         program.set("uAppearanceResolution", maps->appearanceResolution);
         program.set("uAppearanceTable", maps->appearanceTable);
+        if (maps->displacement) program.set("uMapHaloTable", maps->haloTable);
         if (maps->bind) maps->bind();
     }
     patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);

@@ -53,14 +53,11 @@ glm::vec3 unitNormal(const glm::vec3& dPdu, const glm::vec3& dPdv, const glm::ve
     return length > 1e-20f ? n / length : fallback;
 }
 
-// ∂d/∂u at a node from its tile's neighbours (central where it can, one-sided at the tile edge).
+// ∂d/∂u at a node: central differences, across the tile's border too (as the renderer's slope).
 glm::vec2 heightGradient(const surface::TexelLayout& layout, const std::vector<float>& d, const NodeSite& s) {
-    const int t = layout.resolution;
-    auto at = [&](int i, int j) { return d[size_t(layout.node(s.face, i, j))]; };
-    const int i0 = std::max(s.i - 1, 0), i1 = std::min(s.i + 1, t);
-    const int j0 = std::max(s.j - 1, 0), j1 = std::min(s.j + 1, t);
-    return {(at(i1, s.j) - at(i0, s.j)) * float(t) / float(i1 - i0),
-            (at(s.i, j1) - at(s.i, j0)) * float(t) / float(j1 - j0)};
+    auto at = [&](int i, int j) { return surface::nodeValueAcross(layout, d, s.face, i, j); };
+    const float halfResolution = 0.5f * float(layout.resolution);
+    return {(at(s.i + 1, s.j) - at(s.i - 1, s.j)) * halfResolution, (at(s.i, s.j + 1) - at(s.i, s.j - 1)) * halfResolution};
 }
 
 // How far beyond the nearest point of the reference a node's hit may lie, as a fraction of the

@@ -72,16 +72,11 @@ float DisplacedSurface::height(int face, float u, float v) const {
     return maps_.hasDisplacement() ? sampleBilinear(maps_.layout, maps_.displacement, 1, 0, face, u, v) : 0.0f;
 }
 
-// d(height)/du, d(height)/dv by central differences half a map cell wide: at a node that
-// averages the slopes of the cells on either side (the bilinear map has a kink there); one-sided
-// at the tile border.
+// Central differences half a map cell wide, across tile borders too: the slope and the shading
+// normal agree on both sides of a face edge (surface/texel_layout.h).
 glm::vec2 DisplacedSurface::heightGradient(int face, float u, float v) const {
     if (!maps_.hasDisplacement()) return glm::vec2(0.0f);
-    const float h = 0.5f / float(maps_.layout.resolution);
-    const float u0 = std::max(u - h, 0.0f), u1 = std::min(u + h, 1.0f);
-    const float v0 = std::max(v - h, 0.0f), v1 = std::min(v + h, 1.0f);
-    return {(height(face, u1, v) - height(face, u0, v)) / (u1 - u0),
-            (height(face, u, v1) - height(face, u, v0)) / (v1 - v0)};
+    return slopeAcrossTiles(maps_.layout, maps_.displacement, face, u, v);
 }
 
 SurfaceVertex DisplacedSurface::at(int face, float u, float v) const {

@@ -1,7 +1,11 @@
 #include "surface/texel_layout.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <unordered_map>
 
@@ -10,7 +14,62 @@
 #include "util/error.h"
 
 namespace subdfit::surface {
+namespace {
 
+// Node (i, j) of edge `edge`'s k-th position, and the step from that edge into the tile.
+glm::ivec2 edgePosition(int edge, int k, int n) {
+    switch (edge) {
+        case 0: return {k, 0};
+        case 1: return {n, k};
+        case 2: return {k, n};
+        default: return {0, k};
+    }
+}
+glm::ivec2 inward(int edge) {
+    static constexpr std::array<glm::ivec2, 4> steps{glm::ivec2(0, 1), glm::ivec2(-1, 0), glm::ivec2(0, -1), glm::ivec2(1, 0)};
+    return steps[size_t(edge)];
+}
+
+// For every tile edge, the tile on the other side (the one other tile whose edge holds the same
+// nodes, in either direction) and its nodes one row in.
+std::vector<int> haloNodes(const TexelLayout& layout) {
+    const int n = layout.resolution, faces = layout.ptexFaceCount;
+    auto nodeAt = [&](int face, glm::ivec2 p) { return layout.node(face, p.x, p.y); };
+    std::unordered_map<int, std::vector<std::pair<int, int>>> edgesAtEndpoint;  // node -> (face, edge)
+    for (int face = 0; face < faces; ++face)
+        for (int edge = 0; edge < 4; ++edge) {
+            edgesAtEndpoint[nodeAt(face, edgePosition(edge, 0, n))].push_back({face, edge});
+            edgesAtEndpoint[nodeAt(face, edgePosition(edge, n, n))].push_back({face, edge});
+        }
+    std::vector<int> halo(size_t(faces) * 4 * size_t(n + 1), -1);
+    for (int face = 0; face < faces; ++face)
+        for (int edge = 0; edge < 4; ++edge) {
+            auto sameNodes = [&](int other, int otherEdge, bool reversed) {
+                for (int k = 0; k <= n; ++k)
+                    if (nodeAt(face, edgePosition(edge, k, n)) != nodeAt(other, edgePosition(otherEdge, reversed ? n - k : k, n)))
+                        return false;
+                return true;
+            };
+            if (nodeAt(face, edgePosition(edge, 0, n)) == nodeAt(face, edgePosition(edge, n, n))) continue;  // collapsed
+            int matches = 0, across = -1, acrossEdge = -1;
+            bool acrossReversed = false;
+            for (const auto& [other, otherEdge] : edgesAtEndpoint[nodeAt(face, edgePosition(edge, 0, n))]) {
+                if (other == face && otherEdge == edge) continue;
+                for (bool reversed : {false, true})
+                    if (sameNodes(other, otherEdge, reversed)) {
+                        ++matches, across = other, acrossEdge = otherEdge, acrossReversed = reversed;
+                        break;
+                    }
+            }
+            if (matches != 1) continue;  // a boundary, or non-manifold: extend the slope instead
+            for (int k = 0; k <= n; ++k)
+                halo[(size_t(face) * 4 + size_t(edge)) * size_t(n + 1) + size_t(k)] =
+                    nodeAt(across, edgePosition(acrossEdge, acrossReversed ? n - k : k, n) + inward(acrossEdge));
+        }
+    return halo;
+}
+
+}  // namespace
 
 TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution) {
     SUBDFIT_CHECK(resolution >= 1 && resolution <= 256);
@@ -42,6 +101,7 @@ TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution) {
             }
     }
     layout.nodeCount = next;
+    layout.halo = haloNodes(layout);
     return layout;
 }
 
@@ -85,6 +145,41 @@ float sampleBilinear(const TexelLayout& layout, std::span<const float> values, i
     auto value = [&](int a, int b) { return values[size_t(layout.node(face, a, b)) * size_t(stride) + size_t(channel)]; };
     return (1 - fx) * (1 - fy) * value(i, j) + fx * (1 - fy) * value(i + 1, j) + (1 - fx) * fy * value(i, j + 1) +
            fx * fy * value(i + 1, j + 1);
+}
+
+float nodeValueAcross(const TexelLayout& layout, std::span<const float> values, int face, int i, int j) {
+    const int n = layout.resolution;
+    const int edge = j < 0 ? 0 : i > n ? 1 : j > n ? 2 : i < 0 ? 3 : -1;
+    if (edge < 0) return values[size_t(layout.node(face, i, j))];
+    const int k = edge == 0 || edge == 2 ? i : j;
+    if (const int across = layout.halo[(size_t(face) * 4 + size_t(edge)) * size_t(n + 1) + size_t(k)]; across >= 0)
+        return values[size_t(across)];
+    const glm::ivec2 border = glm::clamp(glm::ivec2(i, j), glm::ivec2(0), glm::ivec2(n)), inner = 2 * border - glm::ivec2(i, j);
+    return 2.0f * values[size_t(layout.node(face, border.x, border.y))] - values[size_t(layout.node(face, inner.x, inner.y))];
+}
+
+namespace {
+
+// Bilinear at (u, v) with at most one of them up to a cell outside [0, 1]: the cell there spans
+// the tile's border nodes and the ring across it.
+float sampleAcross(const TexelLayout& layout, std::span<const float> values, int face, float u, float v) {
+    const int n = layout.resolution;
+    auto cellOf = [n](float x) { return x < 0.0f ? -1 : x >= float(n) ? n : std::min(int(x), n - 1); };
+    const float x = std::clamp(u * float(n), -1.0f, float(n + 1)), y = std::clamp(v * float(n), -1.0f, float(n + 1));
+    const int i = cellOf(x), j = cellOf(y);
+    const float fx = x - float(i), fy = y - float(j);
+    auto value = [&](int a, int b) { return nodeValueAcross(layout, values, face, a, b); };
+    return (1 - fx) * (1 - fy) * value(i, j) + fx * (1 - fy) * value(i + 1, j) + (1 - fx) * fy * value(i, j + 1) +
+           fx * fy * value(i + 1, j + 1);
+}
+
+}  // namespace
+
+glm::vec2 slopeAcrossTiles(const TexelLayout& layout, std::span<const float> values, int face, float u, float v) {
+    const float h = 0.5f / float(layout.resolution);
+    u = std::clamp(u, 0.0f, 1.0f), v = std::clamp(v, 0.0f, 1.0f);
+    return {(sampleAcross(layout, values, face, u + h, v) - sampleAcross(layout, values, face, u - h, v)) / (2.0f * h),
+            (sampleAcross(layout, values, face, u, v + h) - sampleAcross(layout, values, face, u, v - h)) / (2.0f * h)};
 }
 
 }  // namespace subdfit::surface

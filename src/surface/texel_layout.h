@@ -4,6 +4,8 @@
 // from the nodes. Nodes on a tile's border are *shared* with the neighbouring tiles (welded by
 // their limit position), so a map is continuous across faces: no seams, and a displaced
 // surface stays watertight wherever the limit normal is continuous.
+#include <glm/vec2.hpp>
+
 #include <span>
 #include <vector>
 
@@ -16,6 +18,12 @@ struct TexelLayout {
     int ptexFaceCount = 0;
     int nodeCount = 0;      // distinct parameters per channel
     std::vector<int> faceNodes;  // [face][j][i] -> node, i along u, j along v, (T+1)² per face
+    // The ring of nodes just outside each tile, in the tile's own (i, j): [face][edge][k] -> the
+    // neighbouring tile's node one row in from the shared edge, or -1 where there is none (a
+    // boundary, a hole, a non-manifold edge). Edges: 0 at j = 0, 1 at i = T, 2 at j = T, 3 at
+    // i = 0; k runs along increasing i or j. It lets a slope near a face edge be a central
+    // difference, so both faces agree on it (shading without a kink at every cage edge).
+    std::vector<int> halo;
 
     int nodesPerFace() const { return (resolution + 1) * (resolution + 1); }
     int node(int face, int i, int j) const {
@@ -37,5 +45,15 @@ TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution);
 // (u, v) of `face` ((u, v) is clamped to the tile: rasterised (u, v) can stray by ~1e-3).
 float sampleBilinear(const TexelLayout& layout, std::span<const float> values, int stride, int channel, int face,
                      float u, float v);
+
+// The value at node (i, j) of `face`'s tile, where one of i, j may lie one step outside it
+// (-1 or T + 1): the neighbouring tile's node across that edge, or without a neighbour the
+// border cell's slope extended (2·border − inner). glsl/patch.tese does exactly the same.
+float nodeValueAcross(const TexelLayout& layout, std::span<const float> values, int face, int i, int j);
+
+// (∂/∂u, ∂/∂v) of a one-value-per-node map at ptex (u, v) of `face` by central differences half
+// a cell wide, reaching into the neighbouring tiles near the border (nodeValueAcross): at a
+// node it averages the slopes of the cells on either side, whichever tile they are in.
+glm::vec2 slopeAcrossTiles(const TexelLayout& layout, std::span<const float> values, int face, float u, float v);
 
 }  // namespace subdfit::surface
