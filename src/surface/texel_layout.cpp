@@ -25,6 +25,13 @@ glm::ivec2 edgePosition(int edge, int k, int n) {
         default: return {0, k};
     }
 }
+// Bilinear blend of the cell whose lower corner is node (i, j), at (fx, fy) inside it.
+template <class Value>
+float blend(int i, int j, float fx, float fy, const Value& value) {
+    return (1 - fx) * (1 - fy) * value(i, j) + fx * (1 - fy) * value(i + 1, j) + (1 - fx) * fy * value(i, j + 1) +
+           fx * fy * value(i + 1, j + 1);
+}
+
 glm::ivec2 inward(int edge) {
     static constexpr std::array<glm::ivec2, 4> steps{glm::ivec2(0, 1), glm::ivec2(-1, 0), glm::ivec2(0, -1), glm::ivec2(1, 0)};
     return steps[size_t(edge)];
@@ -142,9 +149,7 @@ float sampleBilinear(const TexelLayout& layout, std::span<const float> values, i
     const float x = std::clamp(u, 0.0f, 1.0f) * float(n), y = std::clamp(v, 0.0f, 1.0f) * float(n);
     const int i = std::min(int(x), n - 1), j = std::min(int(y), n - 1);
     const float fx = x - float(i), fy = y - float(j);
-    auto value = [&](int a, int b) { return values[size_t(layout.node(face, a, b)) * size_t(stride) + size_t(channel)]; };
-    return (1 - fx) * (1 - fy) * value(i, j) + fx * (1 - fy) * value(i + 1, j) + (1 - fx) * fy * value(i, j + 1) +
-           fx * fy * value(i + 1, j + 1);
+    return blend(i, j, fx, fy, [&](int a, int b) { return values[size_t(layout.node(face, a, b)) * size_t(stride) + size_t(channel)]; });
 }
 
 float nodeValueAcross(const TexelLayout& layout, std::span<const float> values, int face, int i, int j) {
@@ -168,9 +173,7 @@ float sampleAcross(const TexelLayout& layout, std::span<const float> values, int
     const float x = std::clamp(u * float(n), -1.0f, float(n + 1)), y = std::clamp(v * float(n), -1.0f, float(n + 1));
     const int i = cellOf(x), j = cellOf(y);
     const float fx = x - float(i), fy = y - float(j);
-    auto value = [&](int a, int b) { return nodeValueAcross(layout, values, face, a, b); };
-    return (1 - fx) * (1 - fy) * value(i, j) + fx * (1 - fy) * value(i + 1, j) + (1 - fx) * fy * value(i, j + 1) +
-           fx * fy * value(i + 1, j + 1);
+    return blend(i, j, fx, fy, [&](int a, int b) { return nodeValueAcross(layout, values, face, a, b); });
 }
 
 }  // namespace
