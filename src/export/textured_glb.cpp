@@ -41,13 +41,19 @@ GltfMesh primitiveOf(const mesh::PolygonMesh& triangles, const std::vector<glm::
                 remap[v] = std::uint32_t(out.positions.size());
                 out.positions.push_back(triangles.positions[v]);
                 out.normals.push_back(normals[v]);
-                const glm::vec2 uv = triangles.uvs.empty() ? glm::vec2(0.0f) : triangles.uvs[v];
-                out.uvs.push_back(glm::vec2(uvTransform * glm::vec3(uv, 1.0f)));
+                if (!triangles.uvs.empty()) out.uvs.push_back(glm::vec2(uvTransform * glm::vec3(triangles.uvs[v], 1.0f)));
             }
             out.indices.push_back(remap[v]);
         }
     }
     return out;
+}
+
+// POSITION, NORMAL and (with uvs) TEXCOORD_0 at consecutive accessors from `first`.
+json attributesFrom(size_t first, bool uvs) {
+    json attributes = {{"POSITION", first}, {"NORMAL", first + 1}};
+    if (uvs) attributes["TEXCOORD_0"] = first + 2;
+    return attributes;
 }
 
 class TexturedDocument {
@@ -131,30 +137,32 @@ std::vector<unsigned char> document(const mesh::PolygonMesh& triangles, const st
         if (draco) {
             const DracoEncodedMesh encoded = encodeDraco(part);
             const int view = binary.addView(encoded.bytes);
-            primitive["attributes"] = {{"POSITION", first}, {"NORMAL", first + 1}, {"TEXCOORD_0", first + 2}};
+            json ids = {{"POSITION", encoded.position}, {"NORMAL", encoded.normal}};
             accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC3"));
             accessors.back()["min"] = vec3Json(encoded.positionMin);
             accessors.back()["max"] = vec3Json(encoded.positionMax);
             accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC3"));
-            accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC2"));
+            if (part.hasUvs()) {
+                ids["TEXCOORD_0"] = encoded.texcoord;
+                accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC2"));
+            }
+            primitive["attributes"] = attributesFrom(first, part.hasUvs());
+            primitive["indices"] = accessors.size();
             accessors.push_back(accessor(-1, kUnsignedInt, encoded.triangleCount * 3, "SCALAR"));
-            primitive["indices"] = first + 3;
-            primitive["extensions"][kDraco] = {
-                {"bufferView", view},
-                {"attributes", {{"POSITION", encoded.position}, {"NORMAL", encoded.normal}, {"TEXCOORD_0", encoded.texcoord}}}};
+            primitive["extensions"][kDraco] = {{"bufferView", view}, {"attributes", ids}};
         } else {
             glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
             for (const glm::vec3& p : part.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
             const size_t n = part.vertexCount();
-            primitive["attributes"] = {{"POSITION", first}, {"NORMAL", first + 1}, {"TEXCOORD_0", first + 2}};
             accessors.push_back(accessor(binary.addArray(part.positions, kArrayBuffer), kFloat, n, "VEC3"));
             accessors.back()["min"] = vec3Json(lo);
             accessors.back()["max"] = vec3Json(hi);
             accessors.push_back(accessor(binary.addArray(part.normals, kArrayBuffer), kFloat, n, "VEC3"));
-            accessors.push_back(accessor(binary.addArray(part.uvs, kArrayBuffer), kFloat, n, "VEC2"));
+            if (part.hasUvs()) accessors.push_back(accessor(binary.addArray(part.uvs, kArrayBuffer), kFloat, n, "VEC2"));
+            primitive["attributes"] = attributesFrom(first, part.hasUvs());
+            primitive["indices"] = accessors.size();
             accessors.push_back(
                 accessor(binary.addArray(part.indices, kElementArrayBuffer), kUnsignedInt, part.indices.size(), "SCALAR"));
-            primitive["indices"] = first + 3;
         }
         primitives.push_back(primitive);
     }

@@ -16,7 +16,7 @@ struct EncodedImage {
     std::string mimeType;              // "image/png", "image/jpeg"
 };
 
-// `triangles` (triangulated, with uvs, faceMaterials and materials; in the units to write),
+// `triangles` (triangulated, with faceMaterials and materials, uvs if it has any; in the units to write),
 // `normals` per vertex, `images[i]` the encoding of materials->images[i]. Each material's
 // KHR_texture_transform is applied to its primitive's texture coordinates (that of its base
 // colour texture; a material whose textures disagree keeps the base colour's). With `draco`

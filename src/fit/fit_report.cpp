@@ -43,7 +43,7 @@ nlohmann::json toJson(const FitReport& r) {
         {"shader_variants", variants},
         {"settings", settings},
         {"cage", {{"path", r.options.cage.string()}, {"vertices", r.cageVertices}, {"faces", r.cageFaces},
-                  {"patches", r.patches}}},
+                  {"patches", r.patches}, {"creases", r.cageCreases}, {"corners", r.cageCorners}}},
         {"reference", {{"path", r.options.reference.string()}, {"triangles", r.referenceTriangles}}},
         {"exports", exports},
         {"stop_reason", r.stopReason},

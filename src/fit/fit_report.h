@@ -32,6 +32,7 @@ struct FitReport {
     std::vector<std::pair<std::string, int>> parameters;  // per group: name, count
     int tessLevel = 0;           // as rendered (a crack-free power of two)
     int cageVertices = 0, cageFaces = 0, patches = 0, referenceTriangles = 0;
+    int cageCreases = 0, cageCorners = 0;  // OpenSubdiv tags: sharp edges, sharp vertices
     context::GlInfo gl;
     std::string glProvider;
     std::vector<gl::ProgramVariant> shaderVariants;  // every program the run compiled

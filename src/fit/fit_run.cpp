@@ -217,6 +217,8 @@ FitReport FitRun::writeResults(const std::filesystem::path& out, const context::
     r.tessLevel = fitter_->renderer().tessLevel();
     r.cageVertices = scene_.cage.vertexCount();
     r.cageFaces = scene_.cage.faceCount();
+    r.cageCreases = int(scene_.cage.tags.creases.size());
+    r.cageCorners = int(scene_.cage.tags.corners.size());
     r.patches = fitter_->renderer().patchCount();
     r.referenceTriangles = scene_.reference.faceCount();
     r.gl = context::currentGlInfo();

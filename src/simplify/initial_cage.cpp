@@ -9,6 +9,7 @@
 #include "mesh/mesh_adjacency.h"
 #include "mesh/mesh_geometry.h"
 #include "simplify/decimate.h"
+#include "simplify/feature_edges.h"
 #include "simplify/limit_fit.h"
 #include "subdiv/limit_evaluator.h"
 #include "util/error.h"
@@ -123,6 +124,8 @@ mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialC
     cage.tags.hasBoundary = true;
     if (cage.faceCount() < 2)
         throw fileError(reference.sourcePath, "too few faces survive decimation to make a cage");
+    // While the decimated vertices still lie on the reference, where its hard edges are.
+    if (options.hardEdges) tagFeatures(cage, mesh::triangulated(reference));
 
     evenOutTriangles(cage, options.evenOutRounds);
     // Jacobi on limit(P) = V: the limit masks are convex combinations with the vertex itself

@@ -16,11 +16,12 @@ struct InitialCageOptions {
     int evenOutRounds = 3;            // tangential smoothing of decimation's slivers (features stay)
     int interpolationIterations = 16; // P += V − limit(P) sweeps (each ÷~2 the gap)
     LimitFitOptions limitFit{};       // .rounds = 0: the interpolated cage as it is
+    bool hardEdges = true;            // the reference's hard edges as creases (simplify/feature_edges.h)
 };
 
 // `reference` in any units, any polygons. The cage is all triangles, welded, with OpenSubdiv's
-// smooth-triangle rule (Loop-like weights on triangles, which keeps them from pinching) and
-// boundaries interpolated with their corners. Throws subdfit::Error naming the reference when
+// smooth-triangle rule (Loop-like weights on triangles, which keeps them from pinching),
+// boundaries interpolated with their corners, and the reference's hard edges as sharp creases. Throws subdfit::Error naming the reference when
 // the result is not a usable cage.
 mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialCageOptions& options);
 

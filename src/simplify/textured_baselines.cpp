@@ -121,7 +121,7 @@ Quality scored(gl::ProgramCache& programs, const fit::FitScene& scene, const std
 }  // namespace
 
 mesh::PolygonMesh decimateTextured(const mesh::PolygonMesh& triangles, int targetTriangles) {
-    SUBDFIT_CHECK(triangles.materials && !triangles.uvs.empty());
+    SUBDFIT_CHECK(triangles.materials);
     const int total = triangles.faceCount();
     std::vector<unsigned> kept;
     std::vector<int> keptMaterials;
@@ -147,12 +147,12 @@ mesh::PolygonMesh decimateTextured(const mesh::PolygonMesh& triangles, int targe
     out.sourcePath = triangles.sourcePath;
     out.materials = triangles.materials;
     out.positions.resize(used);
-    out.uvs.resize(used);
+    if (!triangles.uvs.empty()) out.uvs.resize(used);
     if (!triangles.colors.empty()) out.colors.resize(used);
     for (size_t v = 0; v < remap.size(); ++v)
         if (remap[v] != ~0u) {
             out.positions[remap[v]] = triangles.positions[v];
-            out.uvs[remap[v]] = triangles.uvs[v];
+            if (!triangles.uvs.empty()) out.uvs[remap[v]] = triangles.uvs[v];
             if (!triangles.colors.empty()) out.colors[remap[v]] = triangles.colors[v];
         }
     out.faceSizes.assign(kept.size() / 3, 3);

@@ -23,7 +23,7 @@ Quality texturedDecimationBaseline(gl::ProgramCache& programs, const fit::FitSce
 std::optional<Quality> texturedGltfpackBaseline(gl::ProgramCache& programs, const fit::FitScene& scene,
                                                 std::uintmax_t budget, const BaselineSettings& settings);
 
-// `triangles` (with uvs, faceMaterials, materials) collapsed to about `targetTriangles`, each
+// `triangles` (with faceMaterials and materials, uvs if any) collapsed to about `targetTriangles`, each
 // material in proportion to its share; the appearance is kept.
 mesh::PolygonMesh decimateTextured(const mesh::PolygonMesh& triangles, int targetTriangles);
 
