@@ -13,23 +13,11 @@
 #include "simplify/decimate.h"
 #include "simplify/feature_edges.h"
 #include "simplify/initial_cage.h"
+#include "split_triangles.h"
 #include "subdiv/limit_evaluator.h"
 
 namespace subdfit::simplify {
 namespace {
-
-// The triangles of `m` with three vertices of their own each: every edge split, each side
-// shaded with its own face's normal (a flat-shaded glTF).
-mesh::PolygonMesh flatShaded(const mesh::PolygonMesh& m) {
-    const mesh::PolygonMesh t = mesh::triangulated(m);
-    mesh::PolygonMesh out;
-    for (int i : t.faceIndices) {
-        out.faceIndices.push_back(int(out.positions.size()));
-        out.positions.push_back(t.positions[size_t(i)]);
-    }
-    out.faceSizes.assign(t.faceSizes.size(), 3);
-    return out;
-}
 
 // A quad sphere pushed out onto the cube [−1, 1]³: 6 n² quads, flat sides.
 mesh::PolygonMesh cubeGrid(int n) {
@@ -58,7 +46,7 @@ mesh::PolygonMesh boxCage(const mesh::PolygonMesh& reference) {
 }
 
 TEST(FeatureEdges, AFlatShadedBoxCreasesItsTwelveEdgesAndNotItsDiagonals) {
-    const mesh::PolygonMesh reference = flatShaded(cubeGrid(4));
+    const mesh::PolygonMesh reference = testing::splitTriangles(cubeGrid(4));
     mesh::PolygonMesh cage = boxCage(reference);
     const FeatureCount found = tagFeatures(cage, reference);
     EXPECT_EQ(found.creases, 12);
@@ -76,7 +64,7 @@ TEST(FeatureEdges, ACoarseCageOverASmoothSphereGetsNoCreases) {
     // The same eight-corner cage turns by 90° at its edges, but the sphere under it is smooth:
     // welded (shaded smooth) or flat-shaded with faces a few degrees apart.
     const mesh::PolygonMesh sphere = mesh::triangulated(mesh::makeQuadSphere(8));
-    for (const mesh::PolygonMesh& reference : {sphere, flatShaded(sphere)}) {
+    for (const mesh::PolygonMesh& reference : {sphere, testing::splitTriangles(sphere)}) {
         mesh::PolygonMesh cage = boxCage(reference);
         const FeatureCount found = tagFeatures(cage, reference);
         EXPECT_EQ(found.creases, 0);
@@ -104,7 +92,7 @@ TEST(FeatureEdges, ASquarePlateKeepsItsFourCorners) {
 TEST(FeatureEdges, TheInitialCageOfABoxIsABoxNotAPillow) {
     // Without the creases the limit surface of a box cage rounds every edge inwards by a good
     // fraction of the box; with them the cage's limit stays on the box.
-    const mesh::PolygonMesh reference = flatShaded(cubeGrid(6));
+    const mesh::PolygonMesh reference = testing::splitTriangles(cubeGrid(6));
     auto worstDistance = [&](bool hardEdges) {
         const mesh::PolygonMesh cage = initialCage(reference, {.faces = 12, .hardEdges = hardEdges});
         const subdiv::LimitEvaluator limit(cage);

@@ -15,6 +15,7 @@
 #include "simplify/batch.h"
 #include "simplify/decimate.h"
 #include "simplify/initial_cage.h"
+#include "split_triangles.h"
 #include "subdiv/limit_evaluator.h"
 #include "surface/tessellation.h"
 #include "util/error.h"
@@ -36,21 +37,9 @@ std::map<std::pair<int, int>, int> edgeUse(const mesh::PolygonMesh& m) {
     return use;
 }
 
-// The triangles of `m` with three vertices of their own each, as a glTF split at seams has.
-mesh::PolygonMesh unwelded(const mesh::PolygonMesh& m) {
-    const mesh::PolygonMesh t = mesh::triangulated(m);
-    mesh::PolygonMesh out;
-    for (int i : t.faceIndices) {
-        out.faceIndices.push_back(int(out.positions.size()));
-        out.positions.push_back(t.positions[size_t(i)]);
-    }
-    out.faceSizes.assign(t.faceSizes.size(), 3);
-    return out;
-}
-
 TEST(SimplifyWeld, CoincidentVerticesBecomeOne) {
     const mesh::PolygonMesh sphere = mesh::triangulated(mesh::makeQuadSphere(4));
-    const mesh::PolygonMesh welded = weldedTriangles(unwelded(sphere));
+    const mesh::PolygonMesh welded = weldedTriangles(testing::splitTriangles(sphere));
     EXPECT_EQ(welded.vertexCount(), sphere.vertexCount());
     EXPECT_EQ(welded.faceCount(), sphere.faceCount());
     for (const auto& [edge, faces] : edgeUse(welded)) EXPECT_EQ(faces, 2);  // closed again
