@@ -1,5 +1,5 @@
 #pragma once
-// The shipped asset, one file: `.subd`, version 2. What a user ships is the control cage (with its
+// The shipped asset, one file: `.subd`, version 3. What a user ships is the control cage (with its
 // OpenSubdiv tags) and the maps' node values, quantised and entropy-coded; `subdfit decode`
 // turns it back into triangles. Layout (little-endian):
 //
@@ -49,7 +49,7 @@
 
 namespace subdfit::exporter {
 
-inline constexpr std::uint16_t kSubdVersion = 2;
+inline constexpr std::uint16_t kSubdVersion = 3;
 
 // The cage as fitted and the maps laid out on the cage as it decodes (shippableAsset makes one).
 struct SubdAsset {
@@ -67,7 +67,7 @@ struct SubdPrecision {
 std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecision& precision = {});
 
 // `name` names the data in errors. Throws subdfit::Error ("name: problem") for anything that is
-// not a whole, checksummed version-2 file whose cage and maps are sound.
+// not a whole, checksummed version-3 file whose cage and maps are sound.
 SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& name);
 
 WrittenFile writeSubd(const std::filesystem::path& path, const SubdAsset& asset, const SubdPrecision& precision = {});

@@ -51,6 +51,7 @@ struct FitOptions {
     int appearanceResolution = 16;  // ... of the appearance maps (base colour, metallic-roughness)
     float mapsStart = 0.4f;       // fraction of the steps fitted by the cage alone before maps join
     int mapBits = 12;             // bits per map value in asset.subd (over each channel's range)
+    int appearanceQuality = 90;   // JPEG quality of the appearance images in asset.subd
     bool preview = false;         // also write fitted.glb: the displaced limit surface, tessLevel per face edge
     bool draco = false;           // fitted.glb with KHR_draco_mesh_compression
     bool compactMaps = false;     // ship maps as HALF EXR and 8-bit PNG (export/map_atlas.h)

@@ -162,7 +162,8 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     Quality q;
     shipCage(dir / "cage.glb", cageWorld, settings.draco);
     exporter::writeMapAtlases(dir, bakedWorld, {.compact = settings.compactMaps});
-    const exporter::SubdPrecision precision{.displacementBits = settings.mapBits, .normalBits = std::min(settings.mapBits, 10)};
+    const exporter::SubdPrecision precision{.displacementBits = settings.mapBits, .normalBits = std::min(settings.mapBits, 10),
+                                            .appearanceQuality = settings.appearanceQuality};
     q.files = {{"asset.subd", exporter::writeSubd(dir / "asset.subd",
                                                   exporter::shippableAsset(cageWorld, bakedWorld, precision.positionBits),
                                                   precision)

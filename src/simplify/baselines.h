@@ -30,7 +30,8 @@ struct BaselineSettings {
     int surfaceSamples = 100000; // per side, for the surface distance
     int segments = 8;            // tessellation of limit surfaces for the surface distance
     int mapBits = 12;            // per map value in the bake's asset.subd, as subdfit's
-    int appearanceResolution = 16;  // the appearance maps' lattice, as subdfit's
+    int appearanceResolution = 16;  // the appearance maps' lattice and JPEG quality in the bake's asset.subd
+    int appearanceQuality = 90;
 };
 
 // Both triangle baselines start from `welded`: weldedTriangles(scene.reference), made once.

@@ -30,7 +30,8 @@ std::string describe(const BudgetCandidate& c) {
     std::snprintf(line, sizeof line, "%6d faces, maps %-19s T=%d, %2d bits: %8ju bytes", c.faces,
                   maps::toString(c.maps).c_str(), c.mapResolution, c.mapBits, c.bytes);
     std::string text = line;
-    if (c.appearanceResolution > 0) text += ", appearance T=" + std::to_string(c.appearanceResolution);
+    if (c.appearanceResolution > 0)
+        text += ", appearance T=" + std::to_string(c.appearanceResolution) + " q" + std::to_string(c.appearanceQuality);
     if (c.monitorLoss > 0.0) {
         std::snprintf(line, sizeof line, ", monitor loss %.4g", c.monitorLoss);
         text += line;
@@ -44,9 +45,11 @@ struct Shipped {
     exporter::SubdAsset decoded;
 };
 
-Shipped ship(const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps maps, int mapBits, float frameScale) {
+Shipped ship(const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps maps, int mapBits, int appearanceQuality,
+             float frameScale) {
     for (float& d : maps.displacement) d /= frameScale;  // heights in world units, as shipped
-    const exporter::SubdPrecision precision{.displacementBits = mapBits, .normalBits = std::min(mapBits, 10)};
+    exporter::SubdPrecision precision{.displacementBits = mapBits, .normalBits = std::min(mapBits, 10)};
+    if (appearanceQuality > 0) precision.appearanceQuality = appearanceQuality;
     const auto bytes = exporter::encodeSubd(exporter::shippableAsset(cageWorld, maps, precision.positionBits), precision);
     return {bytes.size(), exporter::decodeSubd(bytes, "budget candidate")};
 }
@@ -114,16 +117,17 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
     };
     // The appearance maps of the candidates being judged (none in a scene without materials).
     surface::SurfaceMaps appearance;
+    int appearanceQuality = 0;  // ... and the JPEG quality they ship at
     // One candidate: the cage with `baked` (laid out on it) shipped at `bits`, judged if it fits.
     auto judge = [&](const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps baked, maps::MapEffects effects,
                      int resolution, int bits) {
         baked.appearanceLayout = appearance.appearanceLayout;
         baked.baseColor = appearance.baseColor;
         baked.metallicRoughness = appearance.metallicRoughness;
-        const Shipped shipped = ship(cageWorld, baked, bits, scene.frame.scale);
+        const Shipped shipped = ship(cageWorld, baked, bits, appearanceQuality, scene.frame.scale);
         BudgetCandidate c{.faces = cageWorld.faceCount(), .maps = effects, .mapResolution = resolution,
                           .mapBits = bits, .appearanceResolution = appearance.appearanceLayout.resolution,
-                          .bytes = shipped.bytes};
+                          .appearanceQuality = appearanceQuality, .bytes = shipped.bytes};
         if (c.bytes <= search.budget) c.monitorLoss = monitorLoss(programs, scene, shipped.decoded);
         consider(c, cageWorld);  // over budget, it is listed so the report shows why
         return c.bytes <= search.budget;
@@ -146,7 +150,14 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
                              ? bakeAppearance(cage, scene.reference,
                                               {.effects = search.appearance, .resolution = appearanceResolution})
                              : surface::SurfaceMaps{};
-            if (!judge(*cageWorld, {}, {}, 0, 0)) break;  // finer appearance only costs more
+            // The best quality at which the bare cage fits; none: finer appearance only costs more.
+            const auto& qualities = appearanceResolution > 0 ? search.appearanceQualities : std::vector<int>{0};
+            bool bareFits = false;
+            for (size_t q = 0; q < qualities.size() && !bareFits; ++q) {
+                appearanceQuality = qualities[q];
+                bareFits = judge(*cageWorld, {}, {}, 0, 0);
+            }
+            if (!bareFits) break;
             for (size_t m = 0; m < mapChoices.size(); ++m)
                 for (int resolution : search.mapResolutions) {
                     throwIfStopRequested();
@@ -174,6 +185,7 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
             if (faces <= int(best.faces * 1.05)) break;
             const auto cageWorld = cageOf(faces);
             if (!cageWorld) break;
+            appearanceQuality = best.appearanceQuality;
             appearance = best.appearanceResolution > 0
                              ? bakeAppearance(normalized(*cageWorld), scene.reference,
                                               {.effects = search.appearance, .resolution = best.appearanceResolution})
@@ -196,7 +208,10 @@ nlohmann::json toJson(const BudgetChoice& choice, std::uintmax_t budget) {
     auto candidate = [](const BudgetCandidate& c) {
         nlohmann::json j{{"faces", c.faces}, {"maps", maps::toString(c.maps)}, {"map_resolution", c.mapResolution},
                          {"map_bits", c.mapBits}, {"bytes", c.bytes}};
-        if (c.appearanceResolution > 0) j["appearance_resolution"] = c.appearanceResolution;
+        if (c.appearanceResolution > 0) {
+            j["appearance_resolution"] = c.appearanceResolution;
+            j["appearance_quality"] = c.appearanceQuality;
+        }
         if (c.monitorLoss > 0.0) j["monitor_loss"] = c.monitorLoss;
         return j;
     };

@@ -38,9 +38,10 @@ nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports
 
 // The budget search's largest cage. A dense bare cage ships for ~2.2 bytes a face and its limit
 // surface shades closer than heights on a coarse one (bunny, 17.4 KB: 8 000 bare faces 37.1 dB,
-// 1 069 faces with T = 3 heights 34.8 dB). Past subdiv::kDenseCageFaces a cage is drawn one
-// isolation level shallower, a quarter of the triangles a step.
-constexpr int kMostBudgetFaces = 8 * kDefaultFaces;
+// 1 069 faces with T = 3 heights 34.8 dB; at 100 KB, 16 000 bare faces reach in 32 KB the
+// 38.7 dB that 8 000 faces with T = 2 heights reached in 71 KB). Past subdiv::kDenseCageFaces a
+// cage is drawn one isolation level shallower, a quarter of the triangles a step.
+constexpr int kMostBudgetFaces = 16 * kDefaultFaces;
 // Past this many faces the fit of a budget's cage takes proportionally fewer steps (unless
 // --steps was given): the search's bake is already close (on the relief Spot and the bunny the
 // fit of 2 000-8 000-face cages kept its start), and --budget should cost about what a
@@ -52,19 +53,22 @@ constexpr int kMostFullyFittedFaces = 2 * kDefaultFaces;
 // images get a lower JPEG quality, then the heights and normals fewer bits, until it fits.
 // Returns {"map_bits", "appearance_quality"} as shipped.
 nlohmann::json shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t budget, int mapBits,
-                                fit::FitReport& fitted) {
+                                int appearanceQuality, fit::FitReport& fitted) {
     std::uintmax_t& bytes = fitted.exports.at("asset.subd");
-    exporter::SubdPrecision precision{.displacementBits = mapBits, .normalBits = std::min(mapBits, 10)};
+    exporter::SubdPrecision precision{.displacementBits = mapBits, .normalBits = std::min(mapBits, 10),
+                                      .appearanceQuality = appearanceQuality};
     auto shipped = [&] {
         return nlohmann::json{{"map_bits", precision.displacementBits}, {"appearance_quality", precision.appearanceQuality}};
     };
     if (bytes <= budget) return shipped();
     const exporter::SubdAsset decoded = exporter::readSubd(subd);
     std::vector<std::pair<int, int>> ladder;  // (bits, quality), coarser and coarser
-    constexpr int kFewestBits = 6, kLowestQuality = 30;
+    // Quality in small steps: a JPEG's bytes fall ~5 % a step, and every byte left is detail lost.
+    constexpr int kFewestBits = 6, kLowestQuality = 30, kQualityStep = 5;
+    int quality = appearanceQuality;
     if (decoded.maps.hasBaseColor() || decoded.maps.hasMetallicRoughness())
-        for (int quality : {75, 60, 45, kLowestQuality}) ladder.emplace_back(mapBits, quality);
-    for (int bits = mapBits - 1; bits >= kFewestBits; --bits) ladder.emplace_back(bits, kLowestQuality);
+        while (quality - kQualityStep >= kLowestQuality) ladder.emplace_back(mapBits, quality -= kQualityStep);
+    for (int bits = mapBits - 1; bits >= kFewestBits; --bits) ladder.emplace_back(bits, quality);
     for (size_t k = 0; k < ladder.size(); ++k) {
         precision.displacementBits = ladder[k].first;
         precision.normalBits = std::min(ladder[k].first, 10);
@@ -87,6 +91,8 @@ struct BakeRoute {
     maps::MapEffects effects;
     int resolution = 4;
     int bits = 12;
+    int appearanceResolution = 16;  // its appearance lattice and JPEG quality (scenes with materials)
+    int appearanceQuality = 90;
 };
 
 void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::ProgramCache& programs,
@@ -110,7 +116,8 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
 
     const BaselineSettings settings{.dir = out / "baselines", .draco = o.fit.draco,
                                     .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments,
-                                    .mapBits = bakeRoute.bits, .appearanceResolution = o.fit.appearanceResolution};
+                                    .mapBits = bakeRoute.bits, .appearanceResolution = bakeRoute.appearanceResolution,
+                                    .appearanceQuality = bakeRoute.appearanceQuality};
     std::filesystem::create_directories(settings.dir);
     // A material (textured or a plain colour) the triangle baselines must keep, as a user's would.
     if (scene.shading != render::ShadingModel::Geometry && scene.reference.materials) {
@@ -122,6 +129,7 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
         report.gltfpack = gltfpackBaseline(programs, scene, welded, ours.bytes, settings);
     }
     report.bake = bakeBaseline(programs, scene, bakeRoute.cage, bakeRoute.effects, bakeRoute.resolution, settings);
+    if (o.budget > 0) report.bake.details["over_budget"] = report.bake.bytes > o.budget;
     std::vector<const std::vector<glm::vec4>*> columns{&ours.view, &report.decimation.view};
     if (report.gltfpack) columns.push_back(&report.gltfpack->view);
     columns.push_back(&report.bake.view);
@@ -190,13 +198,16 @@ Start chooseStart(SimplifyOptions& o, fit::FitOptions& fitOptions, gl::ProgramCa
                                                         : faceCountsFor(o.budget, scene.reference.faceCount(), kMostBudgetFaces),
                               .allowedMaps = o.fit.maps,
                               .appearance = {.baseColor = scene.shading != render::ShadingModel::Geometry,
-                                             .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness}};
+                                             .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness},
+                              .appearanceQualities = {o.fit.appearanceQuality}};
     if (hooks.note) hooks.note("budget " + std::to_string(o.budget) + " bytes: trying candidates");
     const auto searchStarted = std::chrono::steady_clock::now();
     const BudgetChoice choice = searchBudget(programs, scene, reference, search, hooks.note);
     fitOptions.maps = o.fit.maps = choice.chosen.maps;
-    if (choice.chosen.appearanceResolution > 0)
+    if (choice.chosen.appearanceResolution > 0) {
         fitOptions.appearanceResolution = o.fit.appearanceResolution = choice.chosen.appearanceResolution;
+        fitOptions.appearanceQuality = o.fit.appearanceQuality = choice.chosen.appearanceQuality;
+    }
     if (choice.chosen.mapResolution > 0) {
         fitOptions.mapResolution = o.fit.mapResolution = choice.chosen.mapResolution;
         fitOptions.mapBits = o.fit.mapBits = choice.chosen.mapBits;
@@ -211,12 +222,21 @@ Start chooseStart(SimplifyOptions& o, fit::FitOptions& fitOptions, gl::ProgramCa
     scene.setCage(choice.cageWorld);
     start.budget = toJson(choice, o.budget);
     start.budget["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - searchStarted).count();
-    if (choice.bestWithMaps) {
-        // The bake route at these bytes: the search's best candidate with maps, as it is.
-        mesh::PolygonMesh bakeCage = choice.bestWithMapsCage;
+    // The bake route at these bytes: the search's best candidate with maps, as it is; when none
+    // fits, the chosen cage with the cheapest maps the search tries (reported over budget), not
+    // the default maps at many times the bytes.
+    if (choice.bestWithMaps || search.allowedMaps.geometric()) {
+        const BudgetCandidate route = choice.bestWithMaps ? *choice.bestWithMaps
+                                                          : BudgetCandidate{.maps = search.allowedMaps,
+                                                                            .mapResolution = search.mapResolutions.front(),
+                                                                            .mapBits = search.mapBits.front()};
+        mesh::PolygonMesh bakeCage = choice.bestWithMaps ? choice.bestWithMapsCage : choice.cageWorld;
         bakeCage.positions = scene.frame.toNormalized(bakeCage.positions);
-        start.bakeRoute = BakeRoute{.cage = std::move(bakeCage), .effects = choice.bestWithMaps->maps,
-                                    .resolution = choice.bestWithMaps->mapResolution, .bits = choice.bestWithMaps->mapBits};
+        const bool appearance = route.appearanceResolution > 0;
+        start.bakeRoute = BakeRoute{.cage = std::move(bakeCage), .effects = route.maps, .resolution = route.mapResolution,
+                                    .bits = route.mapBits,
+                                    .appearanceResolution = appearance ? route.appearanceResolution : o.fit.appearanceResolution,
+                                    .appearanceQuality = appearance ? route.appearanceQuality : o.fit.appearanceQuality};
     }
     return start;
 }
@@ -307,10 +327,13 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     mesh::writeObj(staged.path() / "initial_cage.obj", cage);
     SimplifyReport report{.fit = run.writeResults(staged.path(), *context), .gltfpack = std::nullopt, .facesRequested = o.faces,
                           .budget = start.budget};
-    if (o.budget > 0) report.budget.update(shipWithinBudget(staged.path() / "asset.subd", o.budget, o.fit.mapBits, report.fit));
+    if (o.budget > 0) report.budget.update(shipWithinBudget(staged.path() / "asset.subd", o.budget, o.fit.mapBits,
+                                                                  o.fit.appearanceQuality, report.fit));
     const BakeRoute bakeRoute = start.bakeRoute ? *start.bakeRoute
                                                 : BakeRoute{.cage = scene.cage, .effects = o.fit.maps,
-                                                            .resolution = o.fit.mapResolution, .bits = o.fit.mapBits};
+                                                            .resolution = o.fit.mapResolution, .bits = o.fit.mapBits,
+                                                            .appearanceResolution = o.fit.appearanceResolution,
+                                                            .appearanceQuality = o.fit.appearanceQuality};
     evaluate(o, staged.path(), programs, bakeRoute, run, report.fit, report);
     report.fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     io::writeTextAtomically(staged.path() / "report.json", toJson(report).dump(2) + "\n");

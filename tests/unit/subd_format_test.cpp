@@ -1,5 +1,5 @@
 // The shipped .subd file: what is decoded is what was fitted, within the quantisation steps, and
-// anything that is not a whole version-2 file is refused in one line.
+// anything that is not a whole version-3 file is refused in one line.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -211,7 +211,7 @@ TEST(SubdFormat, AppearanceMapsRoundTripWithinJpegError) {
         EXPECT_NEAR(decoded.maps.metallicRoughness[k], shipped.maps.metallicRoughness[k], 0.06) << k;
 }
 
-TEST(SubdFormat, AnythingButAWholeVersionTwoFileIsRefusedInOneLine) {
+TEST(SubdFormat, AnythingButAWholeVersionThreeFileIsRefusedInOneLine) {
     const auto cage = mesh::makeQuadSphere(3);
     const auto good = encodeSubd(shippableAsset(cage, someMaps(cage, 2, 1)));
     auto expectRefused = [](std::vector<unsigned char> bytes, const std::string& expected) {

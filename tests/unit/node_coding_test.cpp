@@ -1,0 +1,93 @@
+// The map node coder (export/node_coding.h): a smooth map's residuals are near zero, corners
+// included, and a noisy map is predicted by its mean rather than by its noisy neighbours.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "export/node_coding.h"
+#include "mesh/procedural.h"
+#include "surface/tessellation.h"
+#include "surface/texel_layout.h"
+
+namespace subdfit::exporter {
+namespace {
+
+constexpr int kResolution = 4;
+
+// One value per node of the quad sphere's layout, from where the node lies on the limit surface.
+template <class Value>
+std::vector<float> nodeValues(const mesh::PolygonMesh& cage, const surface::TexelLayout& layout, Value value) {
+    std::vector<float> values(size_t(layout.nodeCount), 0.0f);
+    const auto limit = surface::tessellate(cage, {}, kResolution);
+    for (size_t k = 0; k < limit.vertexCount(); ++k) {
+        const auto& at = limit.ptex[k];
+        const int node = layout.node(at.face, int(std::lround(at.u * kResolution)), int(std::lround(at.v * kResolution)));
+        values[size_t(node)] = value(limit.positions[k]);
+    }
+    return values;
+}
+
+struct Coded {
+    std::vector<unsigned char> bytes;
+    std::vector<float> decoded;
+};
+
+Coded roundTrip(const surface::TexelLayout& layout, const std::vector<float>& values, const ChannelQuantisation& q) {
+    ByteWriter out;
+    encodeNodes(layout, values, 1, 0, q, out);
+    Coded coded{out.bytes(), std::vector<float>(values.size())};
+    ByteReader in(coded.bytes, "nodes");
+    decodeNodes(layout, coded.decoded, 1, 0, q, in);
+    EXPECT_EQ(in.remaining(), 0u);
+    return coded;
+}
+
+TEST(NodeCoding, ASmoothMapFarFromItsMeanCostsAboutOneByteANode) {
+    // Heights around 0.3 with one spike to 1.0: the range's center (0.65) is far from every
+    // corner, which a prediction from the center would pay for at every shared corner
+    // (residuals of ~-127 steps: two varint bytes each).
+    const auto cage = mesh::makeQuadSphere(4);
+    const auto layout = surface::buildTexelLayout(cage, kResolution);
+    auto values = nodeValues(cage, layout, [](glm::vec3 p) { return 0.3f + 0.01f * p.x; });
+    values[7] = 1.0f;
+    const ChannelQuantisation q = quantisationFor(values, 1, 0, 8);
+    const Coded coded = roundTrip(layout, values, q);
+    EXPECT_EQ(coded.bytes[0], 8) << "the corners lean fully on their neighbours";
+    EXPECT_EQ(coded.bytes[1], 8) << "so do the interpolated nodes";
+    EXPECT_LT(double(coded.bytes.size()), 1.02 * layout.nodeCount + 2.0);
+    for (size_t n = 0; n < values.size(); ++n) ASSERT_LE(std::abs(coded.decoded[n] - values[n]), 0.5f * q.step * 1.001f);
+}
+
+TEST(NodeCoding, NoiseIsPredictedByItsMean) {
+    // Independent noise: a neighbour says nothing about a node, and leaning on it would add its
+    // noise to every residual.
+    const auto cage = mesh::makeQuadSphere(16);
+    const auto layout = surface::buildTexelLayout(cage, kResolution);
+    std::mt19937 rng(3);
+    std::normal_distribution<float> noise(0.0f, 1.0f);
+    std::vector<float> values(size_t(layout.nodeCount));
+    for (float& v : values) v = noise(rng);
+    const ChannelQuantisation q = quantisationFor(values, 1, 0, 8);
+    const Coded coded = roundTrip(layout, values, q);
+    EXPECT_LE(coded.bytes[0], 2) << "corner lean, in eighths";
+    EXPECT_LE(coded.bytes[1], 4) << "interpolated lean, in eighths";
+    for (size_t n = 0; n < values.size(); ++n) ASSERT_LE(std::abs(coded.decoded[n] - values[n]), 0.5f * q.step * 1.001f);
+}
+
+TEST(NodeCoding, AnImpossibleLeanIsRefused) {
+    const auto cage = mesh::makeQuadSphere(2);
+    const auto layout = surface::buildTexelLayout(cage, kResolution);
+    const std::vector<float> values(size_t(layout.nodeCount), 0.5f);
+    const ChannelQuantisation q{.center = 0.5f, .step = 0.01f};
+    ByteWriter out;
+    encodeNodes(layout, values, 1, 0, q, out);
+    std::vector<unsigned char> bytes = out.bytes();
+    bytes[0] = 9;
+    std::vector<float> decoded(values.size());
+    ByteReader in(bytes, "nodes");
+    EXPECT_THROW(decodeNodes(layout, decoded, 1, 0, q, in), Error);
+}
+
+}  // namespace
+}  // namespace subdfit::exporter
