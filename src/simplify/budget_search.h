@@ -2,9 +2,9 @@
 // `simplify --budget`: which asset to fit so that what ships fits the bytes. A small
 // rate-distortion search: cages of several face counts, each bare and with baked maps at a few
 // resolutions and bit depths; every candidate is encoded exactly as it would ship (asset.subd:
-// its bytes), decoded again and rendered on the monitor views (its loss), and the one with the
-// lowest loss within the budget is fitted. The bake stands in for the fit, which starts from it and only improves on
-// it (the fit keeps its best state).
+// its bytes), decoded again and rendered on the monitor views (its loss), and of those within
+// the budget the smallest whose loss is within 2 % of the lowest is fitted. The bake stands in
+// for the fit, which starts from it and only improves on it (the fit keeps its best state).
 #include <cstdint>
 #include <functional>
 #include <optional>
