@@ -110,23 +110,23 @@ struct Leans {
     int corner = kLeanSteps, interpolated = kLeanSteps;
 };
 
-float predicted(const Predictors& p, const std::vector<float>& decoded, float center, const Leans& leans, bool corner) {
+float predicted(const Predictors& p, const std::vector<float>& decoded, float center, const Leans& leans) {
     if (p.count == 0) return center;
     float neighbours = 0.0f;
     for (int k = 0; k < p.count; ++k) neighbours += p.weights[size_t(k)] * decoded[size_t(p.nodes[size_t(k)])];
-    const int lean = corner ? leans.corner : leans.interpolated;
+    const int lean = p.corner ? leans.corner : leans.interpolated;
     return center + float(lean) / float(kLeanSteps) * (neighbours - center);
 }
 
 // The leans that code the channel in the fewest bits, estimated on the original values (what
-// the decoded ones are within half a step of) with a zigzag code's length as the cost.
+// the decoded ones are within half a step of), a residual r costing about log2(1 + |r|).
 Leans chooseLeans(const surface::TexelLayout& layout, const std::vector<float>& original, const ChannelQuantisation& q) {
     std::array<double, kLeanSteps + 1> cornerCost{}, interpolatedCost{};
     forEachNode(layout, [&](int node, const Predictors& from) {
         if (from.count == 0) return;
         auto& cost = from.corner ? cornerCost : interpolatedCost;
         for (int lean = 0; lean <= kLeanSteps; ++lean) {
-            const float prediction = predicted(from, original, q.center, {lean, lean}, from.corner);
+            const float prediction = predicted(from, original, q.center, {lean, lean});
             cost[size_t(lean)] += std::log2(1.0 + std::abs(std::round((original[size_t(node)] - prediction) / q.step)));
         }
     });
@@ -155,7 +155,7 @@ void encodeNodes(const surface::TexelLayout& layout, std::span<const float> valu
     out.put<std::uint8_t>(std::uint8_t(leans.interpolated));
     std::vector<float> decoded(size_t(layout.nodeCount), 0.0f);
     forEachNode(layout, [&](int node, const Predictors& from) {
-        const float prediction = predicted(from, decoded, q.center, leans, from.corner);
+        const float prediction = predicted(from, decoded, q.center, leans);
         const double residual = std::round((double(original[size_t(node)]) - prediction) / q.step);
         const auto r = std::int64_t(std::clamp(residual, -9.0e15, 9.0e15));
         out.putSigned(r);
@@ -171,7 +171,7 @@ void decodeNodes(const surface::TexelLayout& layout, std::span<float> values, in
     if (leans.corner > kLeanSteps || leans.interpolated > kLeanSteps) throw Error(in.what() + ": bad prediction lean");
     std::vector<float> decoded(size_t(layout.nodeCount), 0.0f);
     forEachNode(layout, [&](int node, const Predictors& from) {
-        const float prediction = predicted(from, decoded, q.center, leans, from.corner);
+        const float prediction = predicted(from, decoded, q.center, leans);
         const float value = prediction + float(double(in.getSigned()) * q.step);
         if (!std::isfinite(value)) throw Error(in.what() + ": a map value is not finite");
         decoded[size_t(node)] = value;
