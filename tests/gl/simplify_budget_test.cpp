@@ -67,6 +67,9 @@ TEST(SimplifyBudget, ShipsWithinTheBudgetAndListsTheCandidates) {
     EXPECT_EQ(report["settings"]["maps"], budget["chosen"]["maps"]);
     // The decimation baseline is held to the same bytes.
     EXPECT_LE(report["baselines"]["decimation"]["bytes"].get<std::uintmax_t>(), report["bytes"].get<std::uintmax_t>());
+    // The bake route says whether it fits too (it is the best candidate with maps when one fits).
+    const auto& bake = report["baselines"]["bake"];
+    EXPECT_EQ(bake["over_budget"].get<bool>(), bake["bytes"].get<std::uintmax_t>() > kBudget);
 }
 
 TEST(SimplifyBudget, ABudgetNoCageFitsIsRefusedNamingTheReference) {
