@@ -169,8 +169,9 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
                              ? bakeAppearance(cage, scene.reference,
                                               {.effects = search.appearance, .resolution = appearanceResolution})
                              : surface::SurfaceMaps{};
-            // The best quality at which the bare cage fits; none: finer appearance only costs more.
-            const auto& qualities = appearanceResolution > 0 ? search.appearanceQualities : std::vector<int>{0};
+            // The first quality (best first) at which the bare cage fits; none: finer appearance
+            // only costs more. Without materials there is no quality to choose (0).
+            const std::vector<int> qualities = appearanceResolution > 0 ? search.appearanceQualities : std::vector<int>{0};
             bool bareFits = false;
             for (size_t q = 0; q < qualities.size() && !bareFits; ++q) {
                 appearanceQuality = qualities[q];
