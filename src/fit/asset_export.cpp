@@ -16,8 +16,7 @@ nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene:
     if (fitter.maps()) written = exporter::writeMapAtlases(o.out, maps, {.compact = o.compactMaps});
     if (o.preview)
         written.push_back(exporter::writeSurfaceGlb(o.out / "fitted.glb", fittedWorld, maps, fitter.renderer().tessLevel(), o.draco));
-    const exporter::SubdPrecision precision{.displacementBits = o.mapBits, .normalBits = std::min(o.mapBits, 10),
-                                            .appearanceQuality = o.appearanceQuality};
+    const auto precision = exporter::SubdPrecision::forMapBits(o.mapBits, o.appearanceQuality);
     written.push_back(exporter::writeSubd(o.out / "asset.subd", exporter::shippableAsset(fittedWorld, maps, precision.positionBits),
                                           precision));
     nlohmann::json files = nlohmann::json::object();

@@ -162,8 +162,7 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     Quality q;
     shipCage(dir / "cage.glb", cageWorld, settings.draco);
     exporter::writeMapAtlases(dir, bakedWorld, {.compact = settings.compactMaps});
-    const exporter::SubdPrecision precision{.displacementBits = settings.mapBits, .normalBits = std::min(settings.mapBits, 10),
-                                            .appearanceQuality = settings.appearanceQuality};
+    const auto precision = exporter::SubdPrecision::forMapBits(settings.mapBits, settings.appearanceQuality);
     q.files = {{"asset.subd", exporter::writeSubd(dir / "asset.subd",
                                                   exporter::shippableAsset(cageWorld, bakedWorld, precision.positionBits),
                                                   precision)

@@ -49,8 +49,7 @@ struct Shipped {
 Shipped ship(const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps maps, int mapBits, int appearanceQuality,
              float frameScale) {
     for (float& d : maps.displacement) d /= frameScale;  // heights in world units, as shipped
-    exporter::SubdPrecision precision{.displacementBits = mapBits, .normalBits = std::min(mapBits, 10)};
-    if (appearanceQuality > 0) precision.appearanceQuality = appearanceQuality;
+    const auto precision = exporter::SubdPrecision::forMapBits(mapBits, appearanceQuality > 0 ? appearanceQuality : exporter::SubdPrecision{}.appearanceQuality);
     const auto bytes = exporter::encodeSubd(exporter::shippableAsset(cageWorld, maps, precision.positionBits), precision);
     return {bytes.size(), exporter::decodeSubd(bytes, "budget candidate")};
 }

@@ -55,8 +55,7 @@ constexpr int kMostFullyFittedFaces = 2 * kDefaultFaces;
 nlohmann::json shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t budget, int mapBits,
                                 int appearanceQuality, fit::FitReport& fitted) {
     std::uintmax_t& bytes = fitted.exports.at("asset.subd");
-    exporter::SubdPrecision precision{.displacementBits = mapBits, .normalBits = std::min(mapBits, 10),
-                                      .appearanceQuality = appearanceQuality};
+    auto precision = exporter::SubdPrecision::forMapBits(mapBits, appearanceQuality);
     auto shipped = [&] {
         return nlohmann::json{{"map_bits", precision.displacementBits}, {"appearance_quality", precision.appearanceQuality}};
     };
@@ -70,9 +69,7 @@ nlohmann::json shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
         while (quality - kQualityStep >= kLowestQuality) ladder.emplace_back(mapBits, quality -= kQualityStep);
     for (int bits = mapBits - 1; bits >= kFewestBits; --bits) ladder.emplace_back(bits, quality);
     for (size_t k = 0; k < ladder.size(); ++k) {
-        precision.displacementBits = ladder[k].first;
-        precision.normalBits = std::min(ladder[k].first, 10);
-        precision.appearanceQuality = ladder[k].second;
+        precision = exporter::SubdPrecision::forMapBits(ladder[k].first, ladder[k].second);
         const auto encoded =
             exporter::encodeSubd(exporter::shippableAsset(decoded.cage, decoded.maps, precision.positionBits), precision);
         if (encoded.size() <= budget || k + 1 == ladder.size()) {
