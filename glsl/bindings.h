@@ -42,6 +42,8 @@
 // (roughness, metallic), 2 per node.
 #define SUBDFIT_SSBO_BASE_COLOR 32
 #define SUBDFIT_SSBO_METALLIC_ROUGHNESS 33
+// With an atlas (surface/appearance_atlas.h): per ptex face its 4 corners' atlas coordinates.
+#define SUBDFIT_SSBO_APPEARANCE_UVS 34
 
 // The cage's tangential relaxation (fit/cage_relaxation.h).
 #define SUBDFIT_SSBO_RELAX_MODES 29           // per vertex: surface, crease or fixed

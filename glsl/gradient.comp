@@ -31,12 +31,23 @@ SUBDFIT_DECLARE_ACCUMULATOR(Loss, SUBDFIT_SSBO_LOSS, loss, addLoss)
 #ifdef SUBDFIT_TEXELS
 // A texel group's turn (SUBDFIT_TEXEL_CHANNELS floats per node, on the lattice whose face table
 // starts at uTexelTable): its nodes under the pixel get the difference; no vertex does.
+#ifdef SUBDFIT_TEXELS_IN_ATLAS
+#define SUBDFIT_APPEARANCE_ATLAS
+#endif
 #include "maps.glsl"
 layout(binding = SUBDFIT_UNIT_UV_PLUS) uniform sampler2D uvPlus;
 layout(binding = SUBDFIT_UNIT_UV_MINUS) uniform sampler2D uvMinus;
 uniform int uTexelResolution;
 uniform int uTexelTable;
 uniform uint uTexelSeed;
+
+MapFootprint texelFootprint(int face, vec2 uv) {
+#ifdef SUBDFIT_TEXELS_IN_ATLAS
+    return atlasFootprint(face, uv, uTexelResolution, uTexelTable);
+#else
+    return footprint(face, uv, uTexelResolution, uTexelTable);
+#endif
+}
 #endif
 
 uniform int uTargetLayer;
@@ -75,7 +86,7 @@ void addTexelNode(int node, float scaledDelta) {
 void addTexelGradients(ivec2 pixel, int fp, int fm, float scaledDelta) {
     ivec4 plusNodes = ivec4(-1);
     if (fp >= 0) {
-        plusNodes = footprint(fp, texelFetch(uvPlus, pixel, 0).rg, uTexelResolution, uTexelTable).nodes;
+        plusNodes = texelFootprint(fp, texelFetch(uvPlus, pixel, 0).rg).nodes;
         for (int k = 0; k < 4; ++k) {
             bool repeated = false;  // nodes are shared along cell and tile borders
             for (int j = 0; j < k; ++j) repeated = repeated || plusNodes[j] == plusNodes[k];
@@ -83,7 +94,7 @@ void addTexelGradients(ivec2 pixel, int fp, int fm, float scaledDelta) {
         }
     }
     if (fm >= 0) {
-        ivec4 minusNodes = footprint(fm, texelFetch(uvMinus, pixel, 0).rg, uTexelResolution, uTexelTable).nodes;
+        ivec4 minusNodes = texelFootprint(fm, texelFetch(uvMinus, pixel, 0).rg).nodes;
         for (int k = 0; k < 4; ++k) {
             bool repeated = any(equal(plusNodes, ivec4(minusNodes[k])));
             for (int j = 0; j < k; ++j) repeated = repeated || minusNodes[j] == minusNodes[k];

@@ -27,7 +27,26 @@ MapFootprint footprint(int face, vec2 uv, int n, int table) {
     return m;
 }
 
+#ifdef SUBDFIT_APPEARANCE_ATLAS
+// The appearance in the reference's texture space (surface/appearance_atlas.h): ptex (u, v) of
+// `face` -> the bilinear blend of its corners' atlas coordinates t -> the texel grid, a one-tile
+// lattice of n = size − 1 cells whose nodes are the texel centres (i + ½) / size, clamped to the
+// edge texels as glTF's CLAMP_TO_EDGE.
+layout(std430, binding = SUBDFIT_SSBO_APPEARANCE_UVS) readonly buffer AppearanceUvs { vec2 appearanceUvs[]; };
+
+MapFootprint atlasFootprint(int face, vec2 uv, int n, int table) {
+    vec2 c = clamp(uv, 0.0, 1.0);
+    int k = 4 * face;
+    vec2 t = mix(mix(appearanceUvs[k], appearanceUvs[k + 1], c.x), mix(appearanceUvs[k + 3], appearanceUvs[k + 2], c.x), c.y);
+    return footprint(0, (t * float(n + 1) - 0.5) / float(n), n, table);
+}
+#endif
+
 MapFootprint mapFootprint(int face, vec2 uv) { return footprint(face, uv, uMapResolution, 0); }
 MapFootprint appearanceFootprint(int face, vec2 uv) {
+#ifdef SUBDFIT_APPEARANCE_ATLAS
+    return atlasFootprint(face, uv, uAppearanceResolution, uAppearanceTable);
+#else
     return footprint(face, uv, uAppearanceResolution, uAppearanceTable);
+#endif
 }

@@ -246,6 +246,13 @@ std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const
         const AtlasLayout atlas = atlasLayout(maps.appearanceLayout);
         nlohmann::json appearance = manifest(atlas, {}, outputs);
         appearance.erase("generator");
+        if (maps.appearanceAtlas.present()) {
+            // Not tiles: the reference's own texture space, placed by the corners' coordinates.
+            appearance = {{"width", atlas.width}, {"height", atlas.height},
+                          {"uv", "the reference's texture coordinates (glTF convention); ptex (u, v) of face f maps to "
+                                 "the bilinear blend of its corners' coordinates, stored in asset.subd's AUVS section; "
+                                 "sample bilinearly, clamped to the edge"}};
+        }
         if (maps.hasBaseColor()) {
             written.push_back(writeBytes(dir / kBaseColorFile, encodeAppearancePng(atlas, maps, AppearanceImage::BaseColor)));
             appearance["baseColor"] = {{"file", kBaseColorFile}, {"encoding", "8-bit sRGB RGB, as glTF's baseColorTexture"}};

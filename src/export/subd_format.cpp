@@ -11,6 +11,7 @@
 #include <limits>
 #include <tuple>
 
+#include "export/atlas_uv_coding.h"
 #include "export/byte_stream.h"
 #include "export/cage_coding.h"
 #include "export/map_atlas.h"
@@ -27,8 +28,8 @@ namespace {
 
 using Tag = std::array<char, 4>;
 constexpr Tag kCage{'C', 'A', 'G', 'E'}, kDisplacement{'D', 'I', 'S', 'P'}, kNormal{'N', 'O', 'R', 'M'},
-              kBaseColor{'B', 'C', 'O', 'L'}, kMetallicRoughness{'M', 'T', 'R', 'G'};
-constexpr std::uint32_t kMostSections = 5;
+              kAtlasUvs{'A', 'U', 'V', 'S'}, kBaseColor{'B', 'C', 'O', 'L'}, kMetallicRoughness{'M', 'T', 'R', 'G'};
+constexpr std::uint32_t kMostSections = 6;
 constexpr char kMagic[4] = {'S', 'U', 'B', 'D'};
 constexpr int kZstdLevel = 19;  // the asset is written once and shipped many times
 constexpr std::uint32_t kMaxRawSection = 1u << 30;
@@ -89,6 +90,27 @@ std::vector<float> carriedValues(const mesh::PolygonMesh& cage, const surface::T
     return out;
 }
 
+// An atlas's corner coordinates carried onto the decoded cage as carriedValues carries tiles:
+// decoded corner k of a quad is the cage's corner k + r; an n-gon's per-corner faces renumber.
+surface::AppearanceAtlas carriedCornerUvs(const mesh::PolygonMesh& cage, const surface::AppearanceAtlas& atlas,
+                                          const mesh::PolygonMesh& decoded, const CageCorrespondence& correspondence) {
+    const auto fromPtex = firstPtexFaces(cage), toPtex = firstPtexFaces(decoded);
+    surface::AppearanceAtlas out{.size = atlas.size, .cornerUvs = std::vector<glm::vec2>(4 * size_t(toPtex.back()))};
+    for (int f = 0; f < cage.faceCount(); ++f) {
+        const int n = cage.faceSizes[size_t(f)], r = correspondence.rotation[size_t(f)];
+        const int g = correspondence.face[size_t(f)];
+        for (int k = 0; k < (n == 4 ? 1 : n); ++k)
+            for (int c = 0; c < 4; ++c) {
+                const size_t to = n == 4 ? 4 * size_t(toPtex[size_t(g)]) + size_t(c)
+                                         : 4 * size_t(toPtex[size_t(g)] + k) + size_t(c);
+                const size_t from = n == 4 ? 4 * size_t(fromPtex[size_t(f)]) + size_t((c + r) % 4)
+                                           : 4 * size_t(fromPtex[size_t(f)] + (k + r) % n) + size_t(c);
+                out.cornerUvs[to] = atlas.cornerUvs[from];
+            }
+    }
+    return out;
+}
+
 surface::SurfaceMaps carriedMaps(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps,
                                  const mesh::PolygonMesh& decoded, const CageCorrespondence& to) {
     surface::SurfaceMaps out;
@@ -98,7 +120,13 @@ surface::SurfaceMaps carriedMaps(const mesh::PolygonMesh& cage, const surface::S
             out.displacement = carriedValues(cage, maps.layout, maps.displacement, 1, decoded, out.layout, to);
         if (maps.hasNormal()) out.normal = carriedValues(cage, maps.layout, maps.normal, 2, decoded, out.layout, to);
     }
-    if (maps.appearanceLayout.resolution > 0 && (maps.hasBaseColor() || maps.hasMetallicRoughness())) {
+    if (maps.appearanceAtlas.present() && (maps.hasBaseColor() || maps.hasMetallicRoughness())) {
+        // The texels stay; the corners' coordinates follow their faces and corners.
+        out.appearanceLayout = maps.appearanceLayout;
+        out.baseColor = maps.baseColor;
+        out.metallicRoughness = maps.metallicRoughness;
+        out.appearanceAtlas = carriedCornerUvs(cage, maps.appearanceAtlas, decoded, to);
+    } else if (maps.appearanceLayout.resolution > 0 && (maps.hasBaseColor() || maps.hasMetallicRoughness())) {
         out.appearanceLayout = surface::buildTexelLayout(decoded, maps.appearanceLayout.resolution);
         if (maps.hasBaseColor())
             out.baseColor = carriedValues(cage, maps.appearanceLayout, maps.baseColor, 3, decoded, out.appearanceLayout, to);
@@ -124,7 +152,8 @@ void writeMaps(const surface::TexelLayout& layout, const std::vector<float>& val
 // A map section's lattice: its resolution and node count, checked against the one the cage
 // makes (built on the first map of that lattice, the same for the next).
 void readLattice(ByteReader& in, const mesh::PolygonMesh& cage, surface::TexelLayout& layout) {
-    const int resolution = readIndex(in, 65, "map resolution");
+    // Tiles have at most 64 cells a side; an atlas lattice is its texture's, up to 16384 texels.
+    const int resolution = readIndex(in, layout.resolution > 0 ? std::uint64_t(layout.resolution) + 1 : 65, "map resolution");
     if (resolution < 1) throw Error(in.what() + ": map resolution 0");
     if (layout.resolution == 0) layout = surface::buildTexelLayout(cage, resolution);
     if (layout.resolution != resolution) throw Error(in.what() + ": the maps disagree on their resolution");
@@ -160,15 +189,17 @@ void writeAppearance(const surface::SurfaceMaps& maps, AppearanceImage which, in
     io::DecodedImage image{atlas.width, atlas.height, std::vector<std::uint8_t>(rgb.size() / 3 * 4, 255)};
     for (size_t p = 0; p < rgb.size() / 3; ++p)
         for (int c = 0; c < 3; ++c) image.rgba[4 * p + size_t(c)] = rgb[3 * p + size_t(c)];
-    // Full-resolution chroma: the atlas packs unrelated tiles side by side, and halved chroma
-    // would bleed colour across their borders.
-    const auto jpeg = io::encodeImage(image, atlas.width, atlas.height, io::ImageFormat::Jpeg, quality, true);
+    // Full-resolution chroma for tiles: the atlas packs unrelated tiles side by side, and halved
+    // chroma would bleed colour across their borders. A texture atlas is an ordinary image.
+    const bool tiles = !maps.appearanceAtlas.present();
+    const auto jpeg = io::encodeImage(image, atlas.width, atlas.height, io::ImageFormat::Jpeg, quality, tiles);
     out.putVarint(jpeg.size());
     out.putBytes({jpeg.data(), jpeg.size()});
 }
 
 std::vector<float> readAppearance(ByteReader& in, const mesh::PolygonMesh& cage, AppearanceImage which,
-                                  surface::TexelLayout& layout) {
+                                  const surface::AppearanceAtlas& atlasUvs, surface::TexelLayout& layout) {
+    if (atlasUvs.present() && layout.resolution == 0) layout = surface::atlasLattice(atlasUvs.size);
     readLattice(in, cage, layout);
     if (in.get<std::uint8_t>() != kJpegCoding) throw Error(in.what() + ": unknown appearance coding");
     const auto bytes = in.take(in.getCount(1, "image byte"));
@@ -207,7 +238,8 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
     const auto& maps = asset.maps;
     const int ptexFaces = firstPtexFaces(cage.decoded).back();
     SUBDFIT_CHECK(maps.layout.resolution == 0 || maps.layout.ptexFaceCount == ptexFaces);
-    SUBDFIT_CHECK(maps.appearanceLayout.resolution == 0 || maps.appearanceLayout.ptexFaceCount == ptexFaces);
+    SUBDFIT_CHECK(maps.appearanceLayout.resolution == 0 || maps.appearanceAtlas.present() ||
+                  maps.appearanceLayout.ptexFaceCount == ptexFaces);
     sections.emplace_back(kCage, std::move(cage.bytes));
     auto add = [&](const Tag& tag, const surface::TexelLayout& layout, const std::vector<float>& values, int channels,
                    int bits) {
@@ -218,6 +250,11 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
     };
     add(kDisplacement, maps.layout, maps.displacement, 1, precision.displacementBits);
     add(kNormal, maps.layout, maps.normal, 2, precision.normalBits);
+    if (maps.appearanceAtlas.present() && (maps.hasBaseColor() || maps.hasMetallicRoughness())) {
+        ByteWriter section;
+        writeAtlasUvs(cage.decoded, maps.appearanceAtlas, section);
+        sections.emplace_back(kAtlasUvs, std::move(section.bytes()));
+    }
     for (const auto& [tag, which, present] : {std::tuple{kBaseColor, AppearanceImage::BaseColor, maps.hasBaseColor()},
                                               std::tuple{kMetallicRoughness, AppearanceImage::MetallicRoughness,
                                                          maps.hasMetallicRoughness()}}) {
@@ -245,7 +282,7 @@ SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& na
     ByteReader header(bytes, name);
     header.take(4);
     const auto version = header.get<std::uint16_t>();
-    if (version != kSubdVersion)
+    if (version != kSubdVersion && version != 3)  // version 4 added AUVS; a version-3 file reads the same
         throw Error(name + ": .subd version " + std::to_string(version) + ", this subdfit reads version " +
                     std::to_string(kSubdVersion));
     const auto body = bytes.first(bytes.size() - 8);
@@ -280,15 +317,21 @@ SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& na
         if (tag == kCage) asset.cage = decodeCage(section);
         else if (tag == kDisplacement) asset.maps.displacement = readMaps(section, asset.cage, 1, asset.maps.layout);
         else if (tag == kNormal) asset.maps.normal = readMaps(section, asset.cage, 2, asset.maps.layout);
-        else if (tag == kBaseColor)
-            asset.maps.baseColor = readAppearance(section, asset.cage, AppearanceImage::BaseColor, asset.maps.appearanceLayout);
+        else if (tag == kAtlasUvs) {
+            if (asset.maps.appearanceLayout.resolution != 0) throw Error(name + ": section AUVS after the appearance");
+            asset.maps.appearanceAtlas = readAtlasUvs(section, asset.cage);
+        } else if (tag == kBaseColor)
+            asset.maps.baseColor = readAppearance(section, asset.cage, AppearanceImage::BaseColor, asset.maps.appearanceAtlas,
+                                                  asset.maps.appearanceLayout);
         else if (tag == kMetallicRoughness)
-            asset.maps.metallicRoughness =
-                readAppearance(section, asset.cage, AppearanceImage::MetallicRoughness, asset.maps.appearanceLayout);
+            asset.maps.metallicRoughness = readAppearance(section, asset.cage, AppearanceImage::MetallicRoughness,
+                                                          asset.maps.appearanceAtlas, asset.maps.appearanceLayout);
         else throw Error(name + ": unknown section " + tagName(tag));
         if (section.remaining() != 0) throw Error(section.what() + ": trailing bytes");
     }
     if (in.remaining() != 0) throw Error(name + ": trailing bytes after the sections");
+    if (asset.maps.appearanceAtlas.present() && !asset.maps.hasBaseColor() && !asset.maps.hasMetallicRoughness())
+        throw Error(name + ": atlas coordinates without an appearance");
     return asset;
 }
 

@@ -1,13 +1,13 @@
 #pragma once
-// The shipped asset, one file: `.subd`, version 3. What a user ships is the control cage (with its
+// The shipped asset, one file: `.subd`, version 4. What a user ships is the control cage (with its
 // OpenSubdiv tags) and the maps' node values, quantised and entropy-coded; `subdfit decode`
 // turns it back into triangles. Layout (little-endian):
 //
-//   header   "SUBD" | u16 version (2) | u16 flags (0) | u32 section count
+//   header   "SUBD" | u16 version (4) | u16 flags (0) | u32 section count
 //   section  4-byte tag | u32 stored bytes | u32 raw bytes | stored bytes (a zstd frame)
 //   trailer  u64 XXH3-64 of every byte before it
 //
-// Sections, each at most once: CAGE first (required), then any of DISP, NORM, BCOL, MTRG. Raw
+// Sections, each at most once: CAGE first (required), then any of DISP, NORM, AUVS, BCOL, MTRG. Raw
 // contents, varints being LEB128 and signed ones zigzag:
 //
 //   CAGE  u8 coding (0 plain, 1 Draco) | varint vertices, varint faces | f32 origin[3],
@@ -34,9 +34,13 @@
 //         (export/map_atlas.h: a (T+1)² pixel tile per ptex face, ceil(sqrt(F)) columns); a
 //         node's value is the mean of its pixels in every tile that holds it
 //   MTRG  the same for roughness (green) and metallic (blue) on the appearance lattice
+//   AUVS  (before BCOL and MTRG) the appearance is in a texture atlas instead: the corners'
+//         atlas coordinates (export/atlas_uv_coding.h); BCOL and MTRG then hold T = size − 1,
+//         size² nodes and a size × size JPEG, the texture itself (glTF texture coordinates)
 //
 // Heights are in the cage's units along the limit normal. (Version 1 had no coding byte and
-// 16-bit plain positions; its files are refused with the version named.)
+// 16-bit plain positions; its files are refused with the version named. Version 3 had no AUVS
+// and reads as version 4.)
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -49,7 +53,7 @@
 
 namespace subdfit::exporter {
 
-inline constexpr std::uint16_t kSubdVersion = 3;
+inline constexpr std::uint16_t kSubdVersion = 4;
 
 // The cage as fitted and the maps laid out on the cage as it decodes (shippableAsset makes one).
 struct SubdAsset {
@@ -73,7 +77,7 @@ struct SubdPrecision {
 std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecision& precision = {});
 
 // `name` names the data in errors. Throws subdfit::Error ("name: problem") for anything that is
-// not a whole, checksummed version-3 file whose cage and maps are sound.
+// not a whole, checksummed version-3 or 4 file whose cage and maps are sound.
 SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& name);
 
 WrittenFile writeSubd(const std::filesystem::path& path, const SubdAsset& asset, const SubdPrecision& precision = {});

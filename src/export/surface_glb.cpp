@@ -4,6 +4,7 @@
 #include "export/gltf_mesh.h"
 #include "export/map_atlas.h"
 #include "surface/tessellation.h"
+#include "util/error.h"
 
 namespace subdfit::exporter {
 
@@ -14,6 +15,22 @@ WrittenFile writeSurfaceGlb(const std::filesystem::path& path, const mesh::Polyg
         const auto atlas = atlasLayout(maps.layout.resolution > 0 ? maps.layout : surface::buildTexelLayout(cage, 1));
         const auto normalPng = maps.hasNormal() ? encodeNormalPng(atlas, maps) : std::vector<unsigned char>{};
         return writeFittedGlb(path, gltfMesh(tessellation, atlas), normalPng, draco);
+    }
+    if (maps.appearanceAtlas.present()) {
+        // The appearance in the reference's own atlas: the texture as it is, addressed by the
+        // corners' coordinates blended across each face. Its one TEXCOORD_0 leaves no room for a
+        // normal map on tiles (the search pairs an atlas with heights alone).
+        SUBDFIT_CHECK(!maps.hasNormal());
+        const auto grid = atlasLayout(maps.appearanceLayout);
+        FittedTextures textures{.baseColorPng = encodeAppearancePng(grid, maps, AppearanceImage::BaseColor)};
+        if (maps.hasMetallicRoughness())
+            textures.metallicRoughnessPng = encodeAppearancePng(grid, maps, AppearanceImage::MetallicRoughness);
+        GltfMesh mesh = gltfMesh(tessellation, grid);
+        for (size_t k = 0; k < mesh.uvs.size(); ++k) {
+            const surface::PtexPoint& p = tessellation.ptex[k];
+            mesh.uvs[k] = surface::atlasUvAt(maps.appearanceAtlas, p.face, p.u, p.v);
+        }
+        return writeFittedGlb(path, mesh, textures, draco);
     }
     // With a material every texture sits on the appearance atlas, so that one TEXCOORD_0
     // serves them all (any viewer reads it); the normal map is resampled onto its lattice.

@@ -11,6 +11,8 @@ namespace subdfit::fit {
 
 FitReport runFit(const FitOptions& options, const FitHooks& hooks) {
     validate(options);
+    // The atlas coordinates come from the bake onto the reference, which only simplify runs.
+    if (options.appearanceAtlas != 0) throw OptionError("appearance_atlas", "applies to simplify only");
     io::checkOutputFolder(options.out, {.ownMarkers = kFitResultMarkers, .force = options.force});
     const auto started = std::chrono::steady_clock::now();
     auto context = context::createHeadlessContext(options.glProvider);

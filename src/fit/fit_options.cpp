@@ -49,6 +49,10 @@ const std::vector<OptionRow>& optionTable() {
         {{"appearance_resolution", "--appearance-res",
           "base colour / metallic-roughness cells per face edge (scenes with materials)", 1, 64, false, true, true},
          &F::appearanceResolution},
+        {{"appearance_atlas", "--appearance-atlas",
+          "simplify: texels per side of the base colour / metallic-roughness in the reference's own UV atlas "
+          "(0 = tiles per face; a reference with one textured material)", 0, 4096, false, true, true},
+         &F::appearanceAtlas},
         {{"maps_start", "--maps-start", "fraction of the steps before the maps join", 0, 1, false, true, true},
          &F::mapsStart},
         {{"map_bits", "--map-bits", "bits per map value in asset.subd, over each channel's range", 4, 16, false, false, true},
@@ -118,6 +122,7 @@ void validate(const FitOptions& o) {
             throw OptionError("shading", e.what());
         }
     }
+    if (o.appearanceAtlas == 1) throw OptionError("appearance_atlas", "must be 0 (tiles) or at least 2 texels");
     if (o.schedule != "plateau" && o.schedule != "anneal")
         throw OptionError("schedule", "must be plateau or anneal, got '" + o.schedule + "'");
 }

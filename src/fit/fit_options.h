@@ -49,6 +49,9 @@ struct FitOptions {
     maps::MapEffects maps;        // none by default
     int mapResolution = 8;        // cells per ptex-face edge of each map tile
     int appearanceResolution = 16;  // ... of the appearance maps (base colour, metallic-roughness)
+    // simplify: texels per side of the appearance maps in the reference's own texture atlas
+    // (surface/appearance_atlas.h); 0: per-face tiles of appearanceResolution.
+    int appearanceAtlas = 0;
     float mapsStart = 0.4f;       // fraction of the steps fitted by the cage alone before maps join
     int mapBits = 12;             // bits per map value in asset.subd (over each channel's range)
     int appearanceQuality = 90;   // JPEG quality of the appearance images in asset.subd

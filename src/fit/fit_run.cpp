@@ -21,6 +21,8 @@ void writeMaps(CageFitter& fitter, const surface::SurfaceMaps& maps) {
     write(parameters->normalMap(), maps.normal);
     write(parameters->baseColor(), maps.baseColor);
     write(parameters->metallicRoughness(), maps.metallicRoughness);
+    if (maps.appearanceAtlas.present() && parameters->appearanceAtlas().present())
+        parameters->setAppearanceUvs(maps.appearanceAtlas.cornerUvs);
 }
 
 }  // namespace subdfit::fit

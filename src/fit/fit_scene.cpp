@@ -94,6 +94,7 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
     settings.mapEffects.metallicRoughness = shading == render::ShadingModel::MetallicRoughness;
     settings.maps.resolution = o.mapResolution;
     settings.maps.appearanceResolution = o.appearanceResolution;
+    settings.maps.appearanceAtlas = o.appearanceAtlas;
     settings.mapsStartFraction = o.mapsStart;
     return settings;
 }

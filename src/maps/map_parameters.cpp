@@ -37,15 +37,29 @@ bool isAppearance(const optim::ParameterGroup& group) {
     return group.kind() == optim::GroupKind::BaseColor || group.kind() == optim::GroupKind::MetallicRoughness;
 }
 
+surface::TexelLayout appearanceLayoutFor(const mesh::PolygonMesh& cage, MapEffects effects, const MapSettings& settings) {
+    if (!effects.appearance()) return {};
+    if (settings.appearanceAtlas > 0) return surface::atlasLattice(settings.appearanceAtlas);
+    return surface::buildTexelLayout(cage, settings.appearanceResolution);
+}
+
+int ptexFaceCount(const mesh::PolygonMesh& cage) {
+    int count = 0;
+    for (int n : cage.faceSizes) count += n == 4 ? 1 : n;
+    return count;
+}
+
 }  // namespace
 
 MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, const MapSettings& settings)
     : effects_(effects),
       layout_(effects.geometric() ? surface::buildTexelLayout(cage, settings.resolution) : surface::TexelLayout{}),
-      appearanceLayout_(effects.appearance() ? surface::buildTexelLayout(cage, settings.appearanceResolution)
-                                             : surface::TexelLayout{}),
+      appearanceLayout_(appearanceLayoutFor(cage, effects, settings)),
       settings_(settings),
       faceNodes_(gl::Buffer::fromVector(concatenated(layout_.faceNodes, appearanceLayout_.faceNodes, layout_.halo))),
+      appearanceUvs_(effects.appearance() && settings.appearanceAtlas > 0 ? 4 * size_t(ptexFaceCount(cage)) : 0),
+      appearanceUvBuffer_(GLsizeiptr(std::max<size_t>(1, appearanceUvs_.size())) * GLsizeiptr(sizeof(glm::vec2)),
+                          appearanceUvs_.empty() ? nullptr : appearanceUvs_.data()),
       adjacency_(uploadAdjacency(layout_)),
       appearanceAdjacency_(uploadAdjacency(appearanceLayout_)),
       scratch_(GLsizeiptr(std::max({1, 2 * layout_.nodeCount, 3 * appearanceLayout_.nodeCount})) *
@@ -74,6 +88,21 @@ std::vector<optim::ParameterGroup*> MapParameters::groups() {
     return out;
 }
 
+bool MapParameters::inAtlas(const optim::ParameterGroup& group) const {
+    return isAppearance(group) && !appearanceUvs_.empty();
+}
+
+surface::AppearanceAtlas MapParameters::appearanceAtlas() const {
+    if (appearanceUvs_.empty()) return {};
+    return {.size = settings_.appearanceAtlas, .cornerUvs = appearanceUvs_};
+}
+
+void MapParameters::setAppearanceUvs(const std::vector<glm::vec2>& cornerUvs) {
+    SUBDFIT_CHECK(!appearanceUvs_.empty() && cornerUvs.size() == appearanceUvs_.size());
+    appearanceUvs_ = cornerUvs;
+    appearanceUvBuffer_.upload(appearanceUvs_.data(), GLsizeiptr(appearanceUvs_.size() * sizeof(glm::vec2)));
+}
+
 const surface::TexelLayout& MapParameters::layoutOf(const optim::ParameterGroup& group) const {
     return isAppearance(group) ? appearanceLayout_ : layout_;
 }
@@ -85,7 +114,7 @@ int MapParameters::tableOffsetOf(const optim::ParameterGroup& group) const {
 render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::ParameterGroup* perturbed) const {
     auto bind = [this, v, perturbed] {
         auto of = [&](const optim::ParameterGroup& g) { return &g == perturbed ? v : ParameterVersion::Current; };
-        faceNodes_.bindStorage(SUBDFIT_SSBO_FACE_NODES);
+        bindFaceNodes();
         if (displacement_) version(*displacement_, of(*displacement_)).bindStorage(SUBDFIT_SSBO_DISPLACEMENT);
         if (normalMap_) version(*normalMap_, of(*normalMap_)).bindStorage(SUBDFIT_SSBO_NORMAL_MAP);
         if (baseColor_) version(*baseColor_, of(*baseColor_)).bindStorage(SUBDFIT_SSBO_BASE_COLOR);
@@ -98,12 +127,16 @@ render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::Para
             .metallicRoughness = effects_.metallicRoughness,
             .resolution = std::max(layout_.resolution, 1),
             .appearanceResolution = std::max(appearanceLayout_.resolution, 1),
+            .appearanceAtlas = !appearanceUvs_.empty(),
             .appearanceTable = int(layout_.faceNodes.size()),
             .haloTable = int(layout_.faceNodes.size() + appearanceLayout_.faceNodes.size()),
             .bind = bind};
 }
 
-void MapParameters::bindFaceNodes() const { faceNodes_.bindStorage(SUBDFIT_SSBO_FACE_NODES); }
+void MapParameters::bindFaceNodes() const {
+    faceNodes_.bindStorage(SUBDFIT_SSBO_FACE_NODES);
+    if (!appearanceUvs_.empty()) appearanceUvBuffer_.bindStorage(SUBDFIT_SSBO_APPEARANCE_UVS);
+}
 
 void MapParameters::update(gl::ProgramCache& programs, optim::ParameterGroup& group, float learningRate) {
     optim::precondition(programs, group, isAppearance(group) ? appearanceAdjacency_ : adjacency_, settings_.smoothing,

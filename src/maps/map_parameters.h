@@ -10,6 +10,7 @@
 
 #include "gl/program.h"
 #include "maps/map_effects.h"
+#include "surface/appearance_atlas.h"
 #include "surface/texel_layout.h"
 #include "optim/parameter_group.h"
 #include "optim/updates.h"
@@ -20,6 +21,8 @@ namespace subdfit::maps {
 struct MapSettings {
     int resolution = 8;             // cells per ptex-face edge of the geometric maps
     int appearanceResolution = 16;  // ... of the appearance maps
+    // Texels per side of an appearance atlas (surface/appearance_atlas.h); 0: per-face tiles.
+    int appearanceAtlas = 0;
     // Heights in the normalised frame (scene radius 1); tangent offsets are dimensionless;
     // colours are sRGB values and roughness / metallic fractions, all in [0, 1].
     optim::GroupSettings displacement{.epsilon = 0.004f, .learningRate = 0.003f};
@@ -43,6 +46,12 @@ public:
     const surface::TexelLayout& layout() const { return layout_; }
     const surface::TexelLayout& appearanceLayout() const { return appearanceLayout_; }
     const surface::TexelLayout& layoutOf(const optim::ParameterGroup& group) const;
+    // Whether `group` lives on an atlas's texel grid (placed by the corners' atlas coordinates).
+    bool inAtlas(const optim::ParameterGroup& group) const;
+    // With an atlas: its corners' coordinates, 4 per ptex face (what setAppearanceUvs was given;
+    // all 0 until then).
+    surface::AppearanceAtlas appearanceAtlas() const;
+    void setAppearanceUvs(const std::vector<glm::vec2>& cornerUvs);
     // Where `group`'s lattice starts in the face-node table the shaders read.
     int tableOffsetOf(const optim::ParameterGroup& group) const;
     MapEffects effects() const { return effects_; }
@@ -55,7 +64,7 @@ public:
     // The patch pass's maps: θ± of the group being perturbed (`perturbed`, may be null) and θ of
     // the others. Valid while this object lives.
     render::PatchMaps forRaster(ParameterVersion version, const optim::ParameterGroup* perturbed = nullptr) const;
-    // The face-node table, for a pass that looks nodes up (G).
+    // The face-node table (and an atlas's corner coordinates), for a pass that looks nodes up (G).
     void bindFaceNodes() const;
 
     // Preconditions `group`'s gradient on its node graph and applies Adam to it at `learningRate`.
@@ -66,6 +75,8 @@ private:
     surface::TexelLayout layout_, appearanceLayout_;
     MapSettings settings_;
     gl::Buffer faceNodes_;  // layout_'s table, appearanceLayout_'s, then layout_'s halo
+    std::vector<glm::vec2> appearanceUvs_;  // with an atlas: 4 per ptex face
+    gl::Buffer appearanceUvBuffer_;
     optim::Adjacency adjacency_, appearanceAdjacency_;
     gl::Buffer scratch_;  // Jacobi ping-pong partner, sized for the largest group
     std::unique_ptr<optim::ParameterGroup> displacement_, normalMap_, baseColor_, metallicRoughness_;

@@ -19,11 +19,12 @@ const gl::ProgramSpec kPatchRaster{"patch_raster",
                                        std::vector<std::string> defines = kShadingDefines;  // bits 0-2
                                        defines.insert(defines.end(), {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP",
                                                                       "SUBDFIT_BASE_COLOR_MAP",
-                                                                      "SUBDFIT_METALLIC_ROUGHNESS_MAP"});
+                                                                      "SUBDFIT_METALLIC_ROUGHNESS_MAP",
+                                                                      "SUBDFIT_APPEARANCE_ATLAS"});
                                        return defines;
                                    }()};
 constexpr gl::VariantBits kPatchDisplacement = 1u << 3, kPatchNormalMap = 1u << 4, kPatchBaseColor = 1u << 5,
-                          kPatchMetallicRoughness = 1u << 6;
+                          kPatchMetallicRoughness = 1u << 6, kPatchAppearanceAtlas = 1u << 7;
 
 }  // namespace
 
@@ -44,7 +45,8 @@ void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, c
                          const RenderTarget& target, const PatchMaps* maps) const {
     const gl::VariantBits mapBits =
         maps ? (maps->displacement ? kPatchDisplacement : 0) | (maps->normalMap ? kPatchNormalMap : 0) |
-                   (maps->baseColor ? kPatchBaseColor : 0) | (maps->metallicRoughness ? kPatchMetallicRoughness : 0)
+                   (maps->baseColor ? kPatchBaseColor : 0) | (maps->metallicRoughness ? kPatchMetallicRoughness : 0) |
+                   (maps->appearanceAtlas && (maps->baseColor || maps->metallicRoughness) ? kPatchAppearanceAtlas : 0)
              : 0;
     const auto& program = programs.get(kPatchRaster, shadingBits(shading_) | mapBits);
     beginRasterPass(program, camera, target);

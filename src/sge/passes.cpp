@@ -15,8 +15,10 @@ namespace {
 GLuint groupsOf(int count, int size) { return GLuint((count + size - 1) / size); }
 
 // One variant for the vertices' turns and one per texel group's channel count.
-const gl::ProgramSpec kGradient{"gradient", {{GL_COMPUTE_SHADER, "gradient.comp"}}, {"SUBDFIT_TEXELS", "SUBDFIT_FULL_IMAGE"}};
-constexpr gl::VariantBits kGradientTexels = 1u << 0, kGradientFullImage = 1u << 1;
+const gl::ProgramSpec kGradient{"gradient",
+                                {{GL_COMPUTE_SHADER, "gradient.comp"}},
+                                {"SUBDFIT_TEXELS", "SUBDFIT_FULL_IMAGE", "SUBDFIT_TEXELS_IN_ATLAS"}};
+constexpr gl::VariantBits kGradientTexels = 1u << 0, kGradientFullImage = 1u << 1, kGradientInAtlas = 1u << 2;
 const gl::ProgramSpec kScatterFaces{"scatter_faces", {{GL_COMPUTE_SHADER, "scatter_faces.comp"}}, {"SUBDFIT_FULL_IMAGE"}};
 
 std::vector<int> transposeOffsets(const std::vector<int>& offsets, const std::vector<int>& indices, int columns,
@@ -50,7 +52,7 @@ void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group
     const bool texels = group.kind() != optim::GroupKind::Vertices;
     SUBDFIT_CHECK(!texels || in.maps);
     const auto& program =
-        texels ? programs.get(kGradient, kGradientTexels,
+        texels ? programs.get(kGradient, kGradientTexels | (in.maps->inAtlas(group) ? kGradientInAtlas : 0),
                               {{"SUBDFIT_TEXEL_CHANNELS", std::to_string(group.count() / in.maps->layoutOf(group).nodeCount)}})
                : programs.get(kGradient, in.fullImage ? kGradientFullImage : 0);
     program.use();

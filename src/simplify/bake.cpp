@@ -9,6 +9,7 @@
 #include "geometry/normal_casting.h"
 #include "geometry/surface_queries.h"
 #include "mesh/material_sampling.h"
+#include "simplify/atlas_bake.h"
 #include "mesh/mesh_geometry.h"
 #include "subdiv/limit_evaluator.h"
 #include "util/interrupt.h"
@@ -237,6 +238,7 @@ namespace subdfit::simplify {
 
 surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
                                     const AppearanceBakeOptions& options) {
+    if (options.atlas > 0) return bakeAtlasAppearance(cage, reference, options.effects, options.atlas, options.maxDistance);
     surface::SurfaceMaps maps;
     maps.appearanceLayout = surface::buildTexelLayout(cage, options.resolution);
     const geometry::SurfaceQueries surface(reference);

@@ -31,12 +31,15 @@ struct AppearanceBakeOptions {
     maps::MapEffects effects{.baseColor = true, .metallicRoughness = true};
     int resolution = 16;  // cells per ptex-face edge of the appearance lattice
     float maxDistance = 0.0f;  // as BakeOptions
+    // Texels per side of an atlas in the reference's own texture space instead of tiles
+    // (simplify/atlas_bake.h; the reference must be suitable); 0: tiles.
+    int atlas = 0;
 };
 
 // The appearance maps (SurfaceMaps::appearanceLayout, baseColor, metallicRoughness) of `cage`:
 // each node takes the reference's material where its limit normal meets the reference (the
 // texture at the hit's interpolated texture coordinates, times the factors and vertex colours);
-// nodes whose rays miss take their neighbours' mean.
+// nodes whose rays miss take their neighbours' mean. With options.atlas, bakeAtlasAppearance.
 surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
                                     const AppearanceBakeOptions& options);
 

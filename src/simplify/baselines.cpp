@@ -140,15 +140,14 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
 Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& cage,
                      maps::MapEffects effects, int mapResolution, const BaselineSettings& settings) {
     if (!effects.geometric()) effects.displacement = effects.normalMap = true;
+    if (settings.appearanceAtlas > 0) effects.normalMap = false;  // an atlas pairs with heights alone
     effects.baseColor = scene.shading != render::ShadingModel::Geometry;
     effects.metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness;
     surface::SurfaceMaps baked = bakeMaps(cage, scene.reference, {.effects = effects, .resolution = mapResolution});
     if (effects.appearance()) {
-        surface::SurfaceMaps appearance = bakeAppearance(
-            cage, scene.reference, {.effects = effects, .resolution = settings.appearanceResolution});
-        baked.appearanceLayout = std::move(appearance.appearanceLayout);
-        baked.baseColor = std::move(appearance.baseColor);
-        baked.metallicRoughness = std::move(appearance.metallicRoughness);
+        baked.setAppearance(bakeAppearance(
+            cage, scene.reference,
+            {.effects = effects, .resolution = settings.appearanceResolution, .atlas = settings.appearanceAtlas}));
     }
 
     // Shipped exactly as subdfit ships: asset.subd, in world units (the atlases beside it for
@@ -176,6 +175,7 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     rendering.shading = scene.shading;
     rendering.maps.resolution = mapResolution;
     rendering.maps.appearanceResolution = settings.appearanceResolution;
+    rendering.maps.appearanceAtlas = effects.appearance() ? settings.appearanceAtlas : 0;
     rendering.tessLevel = settings.segments;
     fit::CageFitter bakedScene(programs, cage, rendering);
     fit::writeMaps(bakedScene, baked);

@@ -32,6 +32,7 @@ struct BaselineSettings {
     int mapBits = 12;            // per map value in the bake's asset.subd, as subdfit's
     int appearanceResolution = 16;  // the appearance maps' lattice and JPEG quality in the bake's asset.subd
     int appearanceQuality = 90;
+    int appearanceAtlas = 0;  // texels per side when the appearance is in the reference's atlas
 };
 
 // Both triangle baselines start from `welded`: weldedTriangles(scene.reference), made once.

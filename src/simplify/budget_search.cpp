@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "export/subd_format.h"
+#include "simplify/atlas_bake.h"
 #include "simplify/bake.h"
 #include "simplify/initial_cage.h"
 #include "util/error.h"
@@ -31,7 +32,9 @@ std::string describe(const BudgetCandidate& c) {
     std::snprintf(line, sizeof line, "%6d faces, maps %-19s T=%d, %2d bits: %8ju bytes", c.faces,
                   maps::toString(c.maps).c_str(), c.mapResolution, c.mapBits, c.bytes);
     std::string text = line;
-    if (c.appearanceResolution > 0)
+    if (c.appearanceAtlas > 0)
+        text += ", appearance atlas " + std::to_string(c.appearanceAtlas) + " q" + std::to_string(c.appearanceQuality);
+    else if (c.appearanceResolution > 0)
         text += ", appearance T=" + std::to_string(c.appearanceResolution) + " q" + std::to_string(c.appearanceQuality);
     if (c.monitorLoss > 0.0) {
         std::snprintf(line, sizeof line, ", monitor loss %.4g", c.monitorLoss);
@@ -66,6 +69,7 @@ double monitorLoss(gl::ProgramCache& programs, const fit::FitScene& scene, const
                             .baseColor = maps.hasBaseColor(), .metallicRoughness = maps.hasMetallicRoughness()};
     rendering.maps.resolution = std::max(maps.layout.resolution, 1);
     rendering.maps.appearanceResolution = std::max(maps.appearanceLayout.resolution, 1);
+    rendering.maps.appearanceAtlas = maps.appearanceAtlas.size;
     fit::CageFitter fitter(programs, cage, rendering);
     fit::writeMaps(fitter, maps);
     return fit::score(fitter, scene.monitor).loss;
@@ -139,13 +143,13 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
     // One candidate: the cage with `baked` (laid out on it) shipped at `bits`, judged if it fits.
     auto judge = [&](const std::shared_ptr<const mesh::PolygonMesh>& cageWorld, surface::SurfaceMaps baked,
                      maps::MapEffects effects, int resolution, int bits) {
-        baked.appearanceLayout = appearance.appearanceLayout;
-        baked.baseColor = appearance.baseColor;
-        baked.metallicRoughness = appearance.metallicRoughness;
+        baked.setAppearance(appearance);
         const Shipped shipped = ship(*cageWorld, baked, bits, appearanceQuality, scene.frame.scale);
+        const bool atlas = appearance.appearanceAtlas.present();
         BudgetCandidate c{.faces = cageWorld->faceCount(), .maps = effects, .mapResolution = resolution,
-                          .mapBits = bits, .appearanceResolution = appearance.appearanceLayout.resolution,
-                          .appearanceQuality = appearanceQuality, .bytes = shipped.bytes};
+                          .mapBits = bits, .appearanceResolution = atlas ? 0 : appearance.appearanceLayout.resolution,
+                          .appearanceQuality = appearanceQuality, .appearanceAtlas = appearance.appearanceAtlas.size,
+                          .bytes = shipped.bytes};
         if (c.bytes <= search.budget) c.monitorLoss = monitorLoss(programs, scene, shipped.decoded);
         consider(c, cageWorld);  // over budget, it is listed so the report shows why
         return c.bytes <= search.budget;
@@ -156,28 +160,37 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
         return cage;
     };
 
-    const std::vector<int> appearanceResolutions =
-        search.appearance.appearance() ? search.appearanceResolutions : std::vector<int>{0};
+    // The appearance lattices to try: tiles of these resolutions, then atlases of these sizes
+    // (0, 0: a scene without materials).
+    std::vector<AppearanceBakeOptions> appearances;
+    if (!search.appearance.appearance()) appearances.push_back({.resolution = 0});
+    else {
+        for (int resolution : search.appearanceResolutions)
+            appearances.push_back({.effects = search.appearance, .resolution = resolution});
+        for (int size : search.appearanceAtlases) appearances.push_back({.effects = search.appearance, .atlas = size});
+    }
     for (int faces : search.faceCounts) {
         const auto cageWorld = cageOf(faces);
         if (!cageWorld) continue;  // smaller counts will not do better
         const mesh::PolygonMesh cage = normalized(*cageWorld);
         std::map<std::pair<size_t, int>, surface::SurfaceMaps> geometric;  // baked once per (maps, resolution)
-        for (int appearanceResolution : appearanceResolutions) {
-            appearance = appearanceResolution > 0
-                             ? bakeAppearance(cage, scene.reference,
-                                              {.effects = search.appearance, .resolution = appearanceResolution})
-                             : surface::SurfaceMaps{};
+        for (size_t a = 0; a < appearances.size(); ++a) {
+            const bool withAppearance = appearances[a].resolution > 0 || appearances[a].atlas > 0;
+            appearance = withAppearance ? bakeAppearance(cage, scene.reference, appearances[a]) : surface::SurfaceMaps{};
             // The first quality (best first) at which the bare cage fits; none: finer appearance
-            // only costs more. Without materials there is no quality to choose (0).
-            const std::vector<int> qualities = appearanceResolution > 0 ? search.appearanceQualities : std::vector<int>{0};
+            // of this kind only costs more. Without materials there is no quality to choose (0).
+            const std::vector<int> qualities = withAppearance ? search.appearanceQualities : std::vector<int>{0};
             bool bareFits = false;
             for (size_t q = 0; q < qualities.size() && !bareFits; ++q) {
                 appearanceQuality = qualities[q];
                 bareFits = judge(cageWorld, {}, {}, 0, 0);
             }
-            if (!bareFits) break;
-            for (size_t m = 0; m < mapChoices.size(); ++m)
+            if (!bareFits) {  // finer appearance of this kind only costs more: on to the next kind
+                while (a + 1 < appearances.size() && (appearances[a + 1].atlas > 0) == (appearances[a].atlas > 0)) ++a;
+                continue;
+            }
+            for (size_t m = 0; m < mapChoices.size(); ++m) {
+                if (appearances[a].atlas > 0 && mapChoices[m].normalMap) continue;  // an atlas takes heights alone
                 for (int resolution : search.mapResolutions) {
                     throwIfStopRequested();
                     auto baked = geometric.find({m, resolution});
@@ -192,6 +205,7 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
                     }
                     if (!fitted) break;  // finer maps only cost more
                 }
+            }
         }
     }
     // The ladder's steps leave bytes unspent: the chosen kind of asset on a cage grown to what the
@@ -205,9 +219,10 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
             const auto cageWorld = cageOf(faces);
             if (!cageWorld) break;
             appearanceQuality = best.appearanceQuality;
-            appearance = best.appearanceResolution > 0
+            appearance = best.appearanceResolution > 0 || best.appearanceAtlas > 0
                              ? bakeAppearance(normalized(*cageWorld), scene.reference,
-                                              {.effects = search.appearance, .resolution = best.appearanceResolution})
+                                              {.effects = search.appearance, .resolution = best.appearanceResolution,
+                                               .atlas = best.appearanceAtlas})
                              : surface::SurfaceMaps{};
             const surface::SurfaceMaps baked =
                 best.maps.any() ? bakeMaps(normalized(*cageWorld), scene.reference, {.effects = best.maps, .resolution = best.mapResolution})
@@ -230,14 +245,23 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
     return choice;
 }
 
+std::vector<int> atlasSizesFor(const mesh::PolygonMesh& reference) {
+    if (!atlasUnsuitability(reference).empty()) return {};
+    std::vector<int> sizes;
+    for (int divisor : {32, 16, 8}) {
+        const int size = std::clamp(atlasSourceSize(reference) / divisor, 32, 512);
+        if (sizes.empty() || sizes.back() != size) sizes.push_back(size);
+    }
+    return sizes;
+}
+
 nlohmann::json toJson(const BudgetChoice& choice, std::uintmax_t budget) {
     auto candidate = [](const BudgetCandidate& c) {
         nlohmann::json j{{"faces", c.faces}, {"maps", maps::toString(c.maps)}, {"map_resolution", c.mapResolution},
                          {"map_bits", c.mapBits}, {"bytes", c.bytes}};
-        if (c.appearanceResolution > 0) {
-            j["appearance_resolution"] = c.appearanceResolution;
-            j["appearance_quality"] = c.appearanceQuality;
-        }
+        if (c.appearanceResolution > 0) j["appearance_resolution"] = c.appearanceResolution;
+        if (c.appearanceAtlas > 0) j["appearance_atlas"] = c.appearanceAtlas;
+        if (c.appearanceQuality > 0) j["appearance_quality"] = c.appearanceQuality;
         if (c.monitorLoss > 0.0) j["monitor_loss"] = c.monitorLoss;
         return j;
     };

@@ -26,6 +26,7 @@ struct BudgetCandidate {
     int mapBits = 0;            // per map value in asset.subd; 0 without maps
     int appearanceResolution = 0;  // of the base colour (and metallic-roughness); 0 without
     int appearanceQuality = 0;     // JPEG quality of the appearance images; 0 without
+    int appearanceAtlas = 0;       // texels per side of the appearance in the reference's atlas; 0: tiles
     std::uintmax_t bytes = 0;   // of its asset.subd
     double monitorLoss = 0.0;   // of the decoded asset; 0 when over budget (not rendered)
 };
@@ -47,6 +48,9 @@ struct BudgetSearch {
     maps::MapEffects appearance{};
     std::vector<int> appearanceResolutions{4, 8, 16};
     std::vector<int> appearanceQualities{90};
+    // ... or in the reference's own texture atlas at these sizes (simplify/atlas_bake.h), smallest
+    // first, where the reference allows (atlasSizesFor); such candidates take heights alone.
+    std::vector<int> appearanceAtlases;
 };
 
 struct BudgetChoice {
@@ -69,6 +73,11 @@ std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, in
 BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene,
                           const mesh::PolygonMesh& referenceWorld, const BudgetSearch& search,
                           const std::function<void(const std::string&)>& say = {});
+
+// The atlas sizes worth trying on `reference`: its texture at 1/32, 1/16 and 1/8 of its size
+// (what the triangle baselines' texture scales reach at small budgets), 32 to 512 texels; none
+// when its appearance cannot stay in its atlas.
+std::vector<int> atlasSizesFor(const mesh::PolygonMesh& reference);
 
 nlohmann::json toJson(const BudgetChoice& choice, std::uintmax_t budget);
 

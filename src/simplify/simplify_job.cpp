@@ -10,6 +10,7 @@
 #include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
 #include "export/subd_format.h"
+#include "simplify/atlas_bake.h"
 #include "simplify/bake.h"
 #include "simplify/baselines.h"
 #include "simplify/textured_baselines.h"
@@ -90,6 +91,7 @@ struct BakeRoute {
     int bits = 12;
     int appearanceResolution = 16;  // its appearance lattice and JPEG quality (scenes with materials)
     int appearanceQuality = 90;
+    int appearanceAtlas = 0;  // texels per side of its atlas; 0: tiles
 };
 
 void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::ProgramCache& programs,
@@ -114,7 +116,8 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
     const BaselineSettings settings{.dir = out / "baselines", .draco = o.fit.draco,
                                     .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments,
                                     .mapBits = bakeRoute.bits, .appearanceResolution = bakeRoute.appearanceResolution,
-                                    .appearanceQuality = bakeRoute.appearanceQuality};
+                                    .appearanceQuality = bakeRoute.appearanceQuality,
+                                    .appearanceAtlas = bakeRoute.appearanceAtlas};
     std::filesystem::create_directories(settings.dir);
     // A material (textured or a plain colour) the triangle baselines must keep, as a user's would.
     if (scene.shading != render::ShadingModel::Geometry && scene.reference.materials) {
@@ -133,6 +136,12 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
     writeComparison(out / "comparison.png", o.fit.resolution, scene.holdout.readColor(0), columns);
 }
 
+// How `parameters`' appearance is baked: its lattice, or its atlas.
+AppearanceBakeOptions appearanceBakeOf(const maps::MapParameters& parameters) {
+    return {.effects = parameters.effects(), .resolution = parameters.appearanceLayout().resolution,
+            .atlas = parameters.appearanceAtlas().size};
+}
+
 // Every map `parameters` has, baked onto `cage` (normalised frame) from the reference.
 surface::SurfaceMaps bakeEverything(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
                                     const maps::MapParameters& parameters) {
@@ -141,11 +150,7 @@ surface::SurfaceMaps bakeEverything(const mesh::PolygonMesh& cage, const mesh::P
     if (effects.geometric())
         maps = bakeMaps(cage, reference, {.effects = effects, .resolution = parameters.layout().resolution});
     if (effects.appearance()) {
-        surface::SurfaceMaps appearance = bakeAppearance(
-            cage, reference, {.effects = effects, .resolution = parameters.appearanceLayout().resolution});
-        maps.appearanceLayout = std::move(appearance.appearanceLayout);
-        maps.baseColor = std::move(appearance.baseColor);
-        maps.metallicRoughness = std::move(appearance.metallicRoughness);
+        maps.setAppearance(bakeAppearance(cage, reference, appearanceBakeOf(parameters)));
     }
     return maps;
 }
@@ -196,13 +201,17 @@ Start chooseStart(SimplifyOptions& o, fit::FitOptions& fitOptions, gl::ProgramCa
                               .allowedMaps = o.fit.maps,
                               .appearance = {.baseColor = scene.shading != render::ShadingModel::Geometry,
                                              .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness},
-                              .appearanceQualities = {o.fit.appearanceQuality}};
+                              .appearanceQualities = {o.fit.appearanceQuality},
+                              .appearanceAtlases = o.fit.appearanceAtlas > 0 ? std::vector<int>{o.fit.appearanceAtlas}
+                                                                              : atlasSizesFor(scene.reference)};
     if (hooks.note) hooks.note("budget " + std::to_string(o.budget) + " bytes: trying candidates");
     const auto searchStarted = std::chrono::steady_clock::now();
     const BudgetChoice choice = searchBudget(programs, scene, reference, search, hooks.note);
     fitOptions.maps = o.fit.maps = choice.chosen.maps;
-    if (choice.chosen.appearanceResolution > 0) {
-        fitOptions.appearanceResolution = o.fit.appearanceResolution = choice.chosen.appearanceResolution;
+    if (choice.chosen.appearanceResolution > 0 || choice.chosen.appearanceAtlas > 0) {
+        if (choice.chosen.appearanceResolution > 0)
+            fitOptions.appearanceResolution = o.fit.appearanceResolution = choice.chosen.appearanceResolution;
+        fitOptions.appearanceAtlas = o.fit.appearanceAtlas = choice.chosen.appearanceAtlas;
         fitOptions.appearanceQuality = o.fit.appearanceQuality = choice.chosen.appearanceQuality;
     }
     if (choice.chosen.mapResolution > 0) {
@@ -229,11 +238,12 @@ Start chooseStart(SimplifyOptions& o, fit::FitOptions& fitOptions, gl::ProgramCa
                                                                             .mapBits = search.mapBits.front()};
         mesh::PolygonMesh bakeCage = choice.bestWithMaps ? choice.bestWithMapsCage : choice.cageWorld;
         bakeCage.positions = scene.frame.toNormalized(bakeCage.positions);
-        const bool appearance = route.appearanceResolution > 0;
+        const bool appearance = route.appearanceResolution > 0 || route.appearanceAtlas > 0;
         start.bakeRoute = BakeRoute{.cage = std::move(bakeCage), .effects = route.maps, .resolution = route.mapResolution,
                                     .bits = route.mapBits,
                                     .appearanceResolution = appearance ? route.appearanceResolution : o.fit.appearanceResolution,
-                                    .appearanceQuality = appearance ? route.appearanceQuality : o.fit.appearanceQuality};
+                                    .appearanceQuality = appearance ? route.appearanceQuality : o.fit.appearanceQuality,
+                                    .appearanceAtlas = appearance ? route.appearanceAtlas : o.fit.appearanceAtlas};
     }
     return start;
 }
@@ -245,6 +255,9 @@ void validate(const SimplifyOptions& o) {
         throw OptionError("faces", "must be in 4..1000000, got " + std::to_string(o.faces));
     if (o.budget != 0 && o.budget < 100) throw OptionError("budget", "must be at least 100 bytes");
     if (o.surfaceSamples < 1000) throw OptionError("surface_samples", "must be >= 1000");
+    if (o.fit.appearanceAtlas > 0 && o.fit.maps.normalMap)
+        throw OptionError("appearance_atlas", "takes heights alone (--maps displacement): the atlas's texture coordinates "
+                                              "leave the shipped glTF no room for a normal map on tiles");
     fit::validate(o.fit);
 }
 
@@ -286,6 +299,10 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     const auto started = std::chrono::steady_clock::now();
     SimplifyOptions o = options;
     const mesh::PolygonMesh reference = mesh::loadReference(o.fit.reference);
+    if (o.fit.appearanceAtlas > 0)
+        if (const std::string why = atlasUnsuitability(reference); !why.empty())
+            throw OptionError("appearance_atlas", "needs a reference whose appearance is one textured material; " +
+                                                      o.fit.reference.string() + ": " + why);
 
     auto context = context::createHeadlessContext(o.fit.glProvider);
     const std::string chosen = fit::resolveForCurrentDevice(o.fit);
@@ -303,10 +320,12 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
         hooks.note("no checkpoint at " + checkpoint.string() + " to resume: starting from step 0");
     // The appearance starts as the bake onto the starting cage: a grey surface against a
     // coloured target would pull the cage where the colours differ, not the shape.
-    if (!resumed && run.fitter().maps() && run.fitter().maps()->effects().appearance()) {
-        const maps::MapParameters& parameters = *run.fitter().maps();
-        run.startFrom(bakeAppearance(scene.cage, scene.reference,
-                                     {.effects = parameters.effects(), .resolution = parameters.appearanceLayout().resolution}));
+    // A resumed run has its texels from the checkpoint, but an atlas's corner coordinates are
+    // not parameters: they come from the same bake.
+    if (maps::MapParameters* parameters = run.fitter().maps(); parameters && parameters->effects().appearance()) {
+        const surface::SurfaceMaps baked = bakeAppearance(scene.cage, scene.reference, appearanceBakeOf(*parameters));
+        if (!resumed) run.startFrom(baked);
+        else if (baked.appearanceAtlas.present()) parameters->setAppearanceUvs(baked.appearanceAtlas.cornerUvs);
     }
 
     // Stages: the cage alone; the maps baked onto it; the maps refined on the frozen cage.
@@ -330,7 +349,8 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
                                                 : BakeRoute{.cage = scene.cage, .effects = o.fit.maps,
                                                             .resolution = o.fit.mapResolution, .bits = o.fit.mapBits,
                                                             .appearanceResolution = o.fit.appearanceResolution,
-                                                            .appearanceQuality = o.fit.appearanceQuality};
+                                                            .appearanceQuality = o.fit.appearanceQuality,
+                                                            .appearanceAtlas = o.fit.appearanceAtlas};
     evaluate(o, staged.path(), programs, bakeRoute, run, report.fit, report);
     report.fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     io::writeTextAtomically(staged.path() / "report.json", toJson(report).dump(2) + "\n");

@@ -3,6 +3,7 @@
 // images. What the displaced surface is evaluated from, what a bake produces, what exporters read.
 #include <vector>
 
+#include "surface/appearance_atlas.h"
 #include "surface/texel_layout.h"
 
 namespace subdfit::surface {
@@ -17,10 +18,21 @@ struct SurfaceMaps {
     std::vector<float> normal;
 
     // The appearance maps, on a lattice of their own (resolution 0: none): 3 per node, the sRGB
-    // base colour in [0, 1]; 2 per node, (roughness, metallic) in [0, 1]; empty = none.
+    // base colour in [0, 1]; 2 per node, (roughness, metallic) in [0, 1]; empty = none. With an
+    // atlas the lattice is its texel grid (atlasLattice) and the corners' atlas coordinates place
+    // it on the surface; without, per-face tiles.
     TexelLayout appearanceLayout;
+    AppearanceAtlas appearanceAtlas;
     std::vector<float> baseColor;
     std::vector<float> metallicRoughness;
+
+    // The appearance of `other` (lattice, atlas and values) in place of this one's.
+    void setAppearance(const SurfaceMaps& other) {
+        appearanceLayout = other.appearanceLayout;
+        appearanceAtlas = other.appearanceAtlas;
+        baseColor = other.baseColor;
+        metallicRoughness = other.metallicRoughness;
+    }
 
     bool hasDisplacement() const { return !displacement.empty(); }
     bool hasNormal() const { return !normal.empty(); }

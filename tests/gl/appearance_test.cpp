@@ -55,16 +55,34 @@ ShadedScene shadedScene(render::ShadingModel shading, int views, int resolution)
     return s;
 }
 
+// Atlas coordinates for every ptex corner of a quad cage: its cage vertex seen from +z, so that
+// the front and the back of the sphere share the 4 × 4 texels (each texel reached by many faces).
+std::vector<glm::vec2> projectedCornerUvs(const mesh::PolygonMesh& cage) {
+    std::vector<glm::vec2> uvs;
+    int offset = 0;
+    for (int n : cage.faceSizes) {
+        EXPECT_EQ(n, 4);
+        for (int k : {0, 1, 2, 3}) {
+            const glm::vec3 p = cage.positions[size_t(cage.faceIndices[size_t(offset + k)])];
+            uvs.push_back(glm::vec2(0.5f) + 0.45f * glm::vec2(p.x, p.y) / glm::length(p));
+        }
+        offset += n;
+    }
+    return uvs;
+}
+
 // SGE of one appearance group, alone in the turns, against central differences of the image
-// loss, parameter by parameter.
-double appearanceCosine(render::ShadingModel shading, bool baseColor) {
+// loss, parameter by parameter; on 2-cell tiles, or on a 4 × 4 atlas.
+double appearanceCosine(render::ShadingModel shading, bool baseColor, bool atlas = false) {
     const ShadedScene scene = shadedScene(shading, 2, 96);
     fit::CageFitSettings settings;
     settings.resolution = 96;
     settings.shading = shading;
     settings.mapEffects = {.baseColor = true, .metallicRoughness = shading == render::ShadingModel::MetallicRoughness};
     settings.maps.appearanceResolution = 2;
+    settings.maps.appearanceAtlas = atlas ? 4 : 0;
     fit::CageFitter fitter(programs(), scene.cage, settings);
+    if (atlas) fitter.maps()->setAppearanceUvs(projectedCornerUvs(scene.cage));
     auto& group = baseColor ? *fitter.maps()->baseColor() : *fitter.maps()->metallicRoughness();
     for (auto* g : fitter.groups()) fitter.setOptimised(*g, g == &group);
     const float epsilon = group.settings().epsilon;
@@ -102,6 +120,11 @@ TEST(AppearanceGradient, BaseColorTexelsAgreeWithFiniteDifferences) {
 
 TEST(AppearanceGradient, MetallicRoughnessTexelsAgreeWithFiniteDifferences) {
     EXPECT_GT(appearanceCosine(render::ShadingModel::MetallicRoughness, false), 0.75);
+}
+
+TEST(AppearanceGradient, AtlasTexelsAgreeWithFiniteDifferences) {
+    EXPECT_GT(appearanceCosine(render::ShadingModel::Lambert, true, true), 0.75);
+    EXPECT_GT(appearanceCosine(render::ShadingModel::MetallicRoughness, false, true), 0.75);
 }
 
 TEST(AppearanceRender, TheDuckRendersInItsOwnYellow) {

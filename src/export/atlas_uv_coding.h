@@ -1,0 +1,25 @@
+#pragma once
+// The AUVS section of asset.subd: the atlas coordinates of every ptex face's corners
+// (surface/appearance_atlas.h), stored once per distinct value at each limit point. Corners meet
+// at the nodes of the cage's one-cell texel layout (surface::buildTexelLayout(cage, 1), which the
+// decoder rebuilds); inside a chart of the atlas all corners at a node agree, so most nodes hold
+// one coordinate pair and their corners need no index. Raw layout:
+//
+//   varint atlas size | u8 bits b | per node: varint count (>= 1) | per node, per value: the
+//   quantised q = round(uv · 2^b) as signed varint deltas from the previous value (u, then v) |
+//   per ptex corner (face order, corners at (0,0), (1,0), (1,1), (0,1)) whose node holds more
+//   than one value: varint index into its node's values
+#include "export/byte_stream.h"
+#include "mesh/polygon_mesh.h"
+#include "surface/appearance_atlas.h"
+
+namespace subdfit::exporter {
+
+// Bits under the point: 1/16 of a texel.
+int atlasUvBits(int atlasSize);
+
+void writeAtlasUvs(const mesh::PolygonMesh& cage, const surface::AppearanceAtlas& atlas, ByteWriter& out);
+// Throws subdfit::Error naming `in` for anything that does not fit `cage`.
+surface::AppearanceAtlas readAtlasUvs(ByteReader& in, const mesh::PolygonMesh& cage);
+
+}  // namespace subdfit::exporter

@@ -1,0 +1,27 @@
+#pragma once
+// The appearance baked into the reference's own texture atlas (surface/appearance_atlas.h): the
+// texels are the reference's textures downscaled, as the triangle baselines ship them; each ptex
+// face of the cage gets the atlas coordinates of its corners from where its limit surface meets
+// the reference.
+#include <string>
+
+#include "maps/map_effects.h"
+#include "mesh/polygon_mesh.h"
+#include "surface/surface_maps.h"
+
+namespace subdfit::simplify {
+
+// Why `reference` cannot keep its appearance in its atlas (one material whose base colour or
+// metallic-roughness is textured through TEXCOORD_0 without a transform, coordinates inside the
+// texture, no vertex colours), or "" when it can.
+std::string atlasUnsuitability(const mesh::PolygonMesh& reference);
+
+// The texels per side of the reference's largest appearance texture (0: none).
+int atlasSourceSize(const mesh::PolygonMesh& reference);
+
+// `effects`' appearance maps on a size × size atlas (size >= 2) and the corner coordinates of
+// every ptex face of `cage` (both meshes in the same units). The reference must be suitable.
+surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
+                                         maps::MapEffects effects, int size, float maxDistance = 0.0f);
+
+}  // namespace subdfit::simplify

@@ -1,0 +1,38 @@
+#pragma once
+// The appearance maps in the reference's own texture space. A textured asset's UV atlas is
+// coherent and smooth, so its textures, downscaled, are what the triangle baselines ship; per-face
+// tiles of colour code the same content far less compactly (the WaterBottle at 40 KB: ~1.6 bytes
+// a node for ~31 dB). With an atlas, each ptex face carries the atlas coordinates of its four
+// corners, the appearance at ptex (u, v) is the texture at their bilinear blend, and the
+// appearance "lattice" is the texture's texel grid: one node per texel, at the texel's centre.
+#include <glm/vec2.hpp>
+
+#include <vector>
+
+#include "surface/texel_layout.h"
+
+namespace subdfit::surface {
+
+struct AppearanceAtlas {
+    int size = 0;  // texels per side of the square texture; 0: no atlas (the appearance is on tiles)
+    // 4 per ptex face, at ptex (0, 0), (1, 0), (1, 1), (0, 1): glTF texture coordinates (v down
+    // the image).
+    std::vector<glm::vec2> cornerUvs;
+
+    bool present() const { return size > 0; }
+};
+
+// The texel grid of a size × size texture as a TexelLayout: one tile (ptex face 0) of size − 1
+// cells whose node (i, j) is texel (i, j) (row j from the top) and value index j·size + i; no
+// halo. nodeAdjacency and the per-tile code work on it unchanged.
+TexelLayout atlasLattice(int size);
+
+// The atlas coordinates of ptex (u, v) on `face`: the bilinear blend of its corners' ((u, v)
+// clamped to the face, as the renderer's).
+glm::vec2 atlasUvAt(const AppearanceAtlas& atlas, int face, float u, float v);
+
+// Where atlas coordinates fall on atlasLattice(size) as its tile's (u, v): texel centres sit at
+// (i + ½) / size, and the texture is clamped to its edge texels (glTF CLAMP_TO_EDGE).
+glm::vec2 latticeUv(int size, glm::vec2 atlasUv);
+
+}  // namespace subdfit::surface
