@@ -1,0 +1,221 @@
+// The appearance in the reference's own texture atlas: the bake gives every surface point the
+// reference's texture coordinates there (and keeps the two sides of a seam apart), the AUVS
+// section and the .subd file carry the corners' coordinates within their quantisation step, and
+// a damaged section is refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include <glm/geometric.hpp>
+
+#include "export/atlas_uv_coding.h"
+#include "export/subd_format.h"
+#include "mesh/procedural.h"
+#include "simplify/atlas_bake.h"
+#include "subdiv/limit_evaluator.h"
+#include "util/error.h"
+
+namespace subdfit {
+namespace {
+
+// One material whose base colour is a 64² texture, red along u and green along v.
+void paint(mesh::PolygonMesh& reference) {
+    mesh::Image image{.name = "gradient", .width = 64, .height = 64, .rgba = {}};
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+            image.rgba.insert(image.rgba.end(), {std::uint8_t(x * 4), std::uint8_t(y * 4), 128, 255});
+    mesh::Material m = mesh::defaultMaterial();
+    m.baseColorTexture.image = 0;
+    reference.materials = std::make_shared<mesh::MaterialSet>(mesh::MaterialSet{{m}, {image}});
+    reference.faceMaterials.assign(size_t(reference.faceCount()), 0);
+}
+
+mesh::PolygonMesh triangles(const mesh::PolygonMesh& quads) {
+    mesh::PolygonMesh out = quads;
+    out.faceSizes.clear();
+    out.faceIndices.clear();
+    size_t offset = 0;
+    for (int n : quads.faceSizes) {
+        for (int k = 1; k + 1 < n; ++k) {
+            out.faceIndices.insert(out.faceIndices.end(), {quads.faceIndices[offset], quads.faceIndices[offset + size_t(k)],
+                                                           quads.faceIndices[offset + size_t(k) + 1]});
+            out.faceSizes.push_back(3);
+        }
+        offset += size_t(n);
+    }
+    return out;
+}
+
+// Ptex points of every face of `cage` (a 3 × 3 grid in each), with their limit positions.
+template <class Check>
+void forSurfacePoints(const mesh::PolygonMesh& cage, Check check) {
+    const subdiv::LimitEvaluator limit(cage);
+    for (int f = 0; f < limit.ptexFaceCount(); ++f)
+        for (float v : {0.1f, 0.5f, 0.9f})
+            for (float u : {0.1f, 0.5f, 0.9f}) check(f, u, v, limit.evaluate(f, u, v, cage.positions).position);
+}
+
+TEST(AtlasBake, APlaneGetsItsOwnTextureCoordinatesAndTexture) {
+    mesh::PolygonMesh reference = triangles(mesh::makeQuadGrid(32));
+    for (const glm::vec3& p : reference.positions) reference.uvs.push_back({(p.x + 1.0f) / 2.0f, (1.0f - p.y) / 2.0f});
+    paint(reference);
+    ASSERT_EQ(simplify::atlasUnsuitability(reference), "");
+    const mesh::PolygonMesh cage = mesh::makeQuadGrid(4);
+    const surface::SurfaceMaps maps = simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 16);
+    ASSERT_TRUE(maps.appearanceAtlas.present());
+    ASSERT_EQ(maps.baseColor.size(), 3u * 16 * 16);
+    // Inside, the limit surface of a uniform grid is parametrised linearly, and bilinear corners
+    // give it exactly; the boundary faces' limit parametrisation bends (boundary rules), which
+    // bilinear corners follow to within a small part of the face.
+    float worstInside = 0.0f, worst = 0.0f;
+    forSurfacePoints(cage, [&](int f, float u, float v, glm::vec3 p) {
+        const glm::vec2 expected((p.x + 1.0f) / 2.0f, (1.0f - p.y) / 2.0f);
+        const float error = glm::distance(surface::atlasUvAt(maps.appearanceAtlas, f, u, v), expected);
+        worst = std::max(worst, error);
+        if (f % 4 != 0 && f % 4 != 3 && f / 4 != 0 && f / 4 != 3) worstInside = std::max(worstInside, error);
+    });
+    std::printf("texture coordinate error: %.4g inside, %.4g on boundary faces (a face spans 0.25)\n", worstInside, worst);
+    EXPECT_LT(worstInside, 1e-3f);
+    EXPECT_LT(worst, 0.25f * 0.1f);
+    // The texels are the texture downscaled: red grows along a row, green down a column.
+    EXPECT_LT(maps.baseColor[3 * 0], maps.baseColor[3 * 15]);
+    EXPECT_LT(maps.baseColor[3 * 0 + 1], maps.baseColor[3 * (15 * 16) + 1]);
+    EXPECT_NEAR(maps.baseColor[3 * (8 * 16 + 8)], (8.5f * 4.0f * 4.0f - 2.0f) / 255.0f, 0.03f);  // texel 8's mean red
+}
+
+// A tube around z whose texture wraps once around it, its vertices split along the seam at
+// angle 0 (u = 0 on one side, 1 on the other), as any exporter writes a cylinder.
+mesh::PolygonMesh seamedTube(int around, int along) {
+    mesh::PolygonMesh tube;
+    for (int j = 0; j <= along; ++j)
+        for (int i = 0; i <= around; ++i) {
+            const float a = 2.0f * std::numbers::pi_v<float> * float(i) / float(around);
+            tube.positions.push_back({std::cos(a), std::sin(a), -1.0f + 2.0f * float(j) / float(along)});
+            tube.uvs.push_back({float(i) / float(around), float(j) / float(along)});
+        }
+    for (int j = 0; j < along; ++j)
+        for (int i = 0; i < around; ++i) {
+            const int a = j * (around + 1) + i, b = a + 1, c = a + around + 2, d = a + around + 1;
+            tube.faceIndices.insert(tube.faceIndices.end(), {a, b, c, a, c, d});
+            tube.faceSizes.insert(tube.faceSizes.end(), {3, 3});
+        }
+    paint(tube);
+    return tube;
+}
+
+// The same tube as a closed ring of quads (welded: no seam in the cage).
+mesh::PolygonMesh tubeCage(int around, int along) {
+    mesh::PolygonMesh cage;
+    for (int j = 0; j <= along; ++j)
+        for (int i = 0; i < around; ++i) {
+            const float a = 2.0f * std::numbers::pi_v<float> * (float(i) + 0.5f) / float(around);
+            cage.positions.push_back({std::cos(a), std::sin(a), -0.8f + 1.6f * float(j) / float(along)});
+        }
+    for (int j = 0; j < along; ++j)
+        for (int i = 0; i < around; ++i) {
+            const int a = j * around + i, b = j * around + (i + 1) % around;
+            cage.faceIndices.insert(cage.faceIndices.end(), {a, b, b + around, a + around});
+            cage.faceSizes.push_back(4);
+        }
+    return cage;
+}
+
+TEST(AtlasBake, TheTwoSidesOfASeamKeepTheirOwnCoordinates) {
+    const mesh::PolygonMesh reference = seamedTube(96, 8);
+    const mesh::PolygonMesh cage = tubeCage(12, 3);
+    const surface::SurfaceMaps maps = simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 32);
+    // Every surface point reads the texture where the reference has it (u by angle, modulo the
+    // wrap: a face across the seam takes one side's coordinates and runs past 1 or below 0).
+    float worst = 0.0f;
+    forSurfacePoints(cage, [&](int f, float u, float v, glm::vec3 p) {
+        const float expected = std::atan2(p.y, p.x) / (2.0f * std::numbers::pi_v<float>);
+        const float got = surface::atlasUvAt(maps.appearanceAtlas, f, u, v).x;
+        const float wrapped = std::abs(std::remainder(got - expected, 1.0f));
+        worst = std::max(worst, wrapped);
+    });
+    EXPECT_LT(worst, 0.02f);
+    // No face spans the atlas (its corners welded across the seam would).
+    for (int f = 0; f < cage.faceCount(); ++f) {
+        float lo = 2.0f, hi = -2.0f;
+        for (int k = 0; k < 4; ++k) {
+            lo = std::min(lo, maps.appearanceAtlas.cornerUvs[4 * size_t(f) + size_t(k)].x);
+            hi = std::max(hi, maps.appearanceAtlas.cornerUvs[4 * size_t(f) + size_t(k)].x);
+        }
+        EXPECT_LT(hi - lo, 0.2f) << "face " << f;
+    }
+}
+
+TEST(AtlasBake, SaysWhyAReferenceCannotKeepItsAtlas) {
+    mesh::PolygonMesh reference = seamedTube(8, 2);
+    reference.materials = nullptr;
+    EXPECT_NE(simplify::atlasUnsuitability(reference), "");
+    reference = seamedTube(8, 2);
+    reference.uvs[3].x = 1.5f;  // a repeating texture
+    EXPECT_NE(simplify::atlasUnsuitability(reference).find("leave [0, 1]"), std::string::npos);
+    reference = seamedTube(8, 2);
+    reference.uvs.clear();
+    EXPECT_NE(simplify::atlasUnsuitability(reference), "");
+}
+
+// Corner coordinates that agree at shared corners within a chart, and a seam.
+surface::AppearanceAtlas someAtlas(const mesh::PolygonMesh& cage, int size) {
+    const subdiv::LimitEvaluator limit(cage);
+    surface::AppearanceAtlas atlas{.size = size, .cornerUvs = {}};
+    for (int f = 0; f < limit.ptexFaceCount(); ++f) {
+        const bool otherChart = f % 3 == 0;
+        for (const glm::vec2 corner : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}) {
+            const glm::vec3 p = limit.evaluate(f, corner.x, corner.y, cage.positions).position;
+            atlas.cornerUvs.push_back(glm::vec2(0.3f + 0.25f * p.x, 0.4f + 0.3f * p.y) + (otherChart ? glm::vec2(0.5f, 0.0f) : glm::vec2(0.0f)));
+        }
+    }
+    return atlas;
+}
+
+TEST(AtlasUvCoding, RoundTripsWithinTheQuantisationStep) {
+    const mesh::PolygonMesh cage = mesh::makeQuadSphere(3);
+    const surface::AppearanceAtlas atlas = someAtlas(cage, 128);
+    exporter::ByteWriter out;
+    exporter::writeAtlasUvs(cage, atlas, out);
+    exporter::ByteReader in(out.bytes(), "AUVS");
+    const surface::AppearanceAtlas back = exporter::readAtlasUvs(in, cage);
+    EXPECT_EQ(in.remaining(), 0u);
+    ASSERT_EQ(back.size, 128);
+    ASSERT_EQ(back.cornerUvs.size(), atlas.cornerUvs.size());
+    const float step = std::ldexp(1.0f, -exporter::atlasUvBits(128));
+    for (size_t k = 0; k < atlas.cornerUvs.size(); ++k)
+        EXPECT_LE(glm::distance(back.cornerUvs[k], atlas.cornerUvs[k]), step) << "corner " << k;
+    // Shared corners are stored once: fewer than 4 bytes a ptex corner before entropy coding.
+    EXPECT_LT(out.bytes().size(), 4 * atlas.cornerUvs.size());
+
+    for (size_t cut : {size_t(1), out.bytes().size() / 2, out.bytes().size() - 1}) {
+        exporter::ByteReader truncated(std::span(out.bytes()).first(cut), "AUVS");
+        EXPECT_THROW(exporter::readAtlasUvs(truncated, cage), Error) << "cut at " << cut;
+    }
+}
+
+TEST(AtlasUvCoding, TheShippedFileCarriesTheAtlas) {
+    mesh::PolygonMesh cage = mesh::makeQuadSphere(3);
+    surface::SurfaceMaps maps;
+    maps.appearanceAtlas = someAtlas(cage, 32);
+    maps.appearanceLayout = surface::atlasLattice(32);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(0.2f, 0.8f);
+    for (int k = 0; k < 3 * 32 * 32; ++k) maps.baseColor.push_back(k % 3 == 0 ? float(k % 96) / 96.0f : 0.5f);
+    const exporter::SubdAsset asset = exporter::shippableAsset(cage, maps, 14);
+    const auto bytes = exporter::encodeSubd(asset);
+    const exporter::SubdAsset back = exporter::decodeSubd(bytes, "atlas.subd");
+    ASSERT_TRUE(back.maps.appearanceAtlas.present());
+    EXPECT_EQ(back.maps.appearanceLayout.nodeCount, 32 * 32);
+    ASSERT_EQ(back.maps.appearanceAtlas.cornerUvs.size(), asset.maps.appearanceAtlas.cornerUvs.size());
+    const float step = std::ldexp(1.0f, -exporter::atlasUvBits(32));
+    for (size_t k = 0; k < back.maps.appearanceAtlas.cornerUvs.size(); ++k)
+        ASSERT_LE(glm::distance(back.maps.appearanceAtlas.cornerUvs[k], asset.maps.appearanceAtlas.cornerUvs[k]), step);
+    double error = 0.0;
+    for (size_t k = 0; k < maps.baseColor.size(); ++k) error = std::max(error, double(std::abs(back.maps.baseColor[k] - maps.baseColor[k])));
+    EXPECT_LT(error, 0.08);  // JPEG at quality 90
+}
+
+}  // namespace
+}  // namespace subdfit
