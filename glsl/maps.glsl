@@ -34,11 +34,14 @@ MapFootprint footprint(int face, vec2 uv, int n, int table) {
 // edge texels as glTF's CLAMP_TO_EDGE.
 layout(std430, binding = SUBDFIT_SSBO_APPEARANCE_UVS) readonly buffer AppearanceUvs { vec2 appearanceUvs[]; };
 
-MapFootprint atlasFootprint(int face, vec2 uv, int n, int table) {
+vec2 atlasUv(int face, vec2 uv) {
     vec2 c = clamp(uv, 0.0, 1.0);
     int k = 4 * face;
-    vec2 t = mix(mix(appearanceUvs[k], appearanceUvs[k + 1], c.x), mix(appearanceUvs[k + 3], appearanceUvs[k + 2], c.x), c.y);
-    return footprint(0, (t * float(n + 1) - 0.5) / float(n), n, table);
+    return mix(mix(appearanceUvs[k], appearanceUvs[k + 1], c.x), mix(appearanceUvs[k + 3], appearanceUvs[k + 2], c.x), c.y);
+}
+
+MapFootprint atlasFootprint(int face, vec2 uv, int n, int table) {
+    return footprint(0, (atlasUv(face, uv) * float(n + 1) - 0.5) / float(n), n, table);
 }
 #endif
 

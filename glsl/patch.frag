@@ -34,7 +34,37 @@ vec3 mappedNormal(vec3 N) {
 }
 #endif
 
+#ifdef SUBDFIT_ATLAS_NORMAL_TEXTURE
+layout(std430, binding = SUBDFIT_SSBO_ATLAS_NORMAL) readonly buffer AtlasNormal { float atlasNormal[]; };
+
+// The reference's normal texture, carried on the atlas, in the frame its coordinates give: as
+// glsl/mesh.frag derives it for the reference (screen-space derivatives, T along +u, B along
+// +v, the texture's green up the image), so both are shaded alike.
+vec3 atlasMappedNormal(vec3 N) {
+    vec2 uv = atlasUv(tePtexFace, tePtexUv);
+    vec3 dp1 = dFdx(teWorldPosition), dp2 = dFdy(teWorldPosition);
+    vec2 duv1 = dFdx(uv), duv2 = dFdy(uv);
+    vec3 dp2perp = cross(dp2, N), dp1perp = cross(N, dp1);
+    vec3 T = dp2perp * duv1.x + dp1perp * duv2.x;
+    vec3 B = dp2perp * duv1.y + dp1perp * duv2.y;
+    float scale = max(dot(T, T), dot(B, B));
+    if (!(scale > 0.0)) return N;
+    MapFootprint m = appearanceFootprint(tePtexFace, tePtexUv);
+    vec3 t = vec3(0.0);
+    for (int k = 0; k < 4; ++k)
+        t += m.weights[k] * vec3(atlasNormal[3 * m.nodes[k]], atlasNormal[3 * m.nodes[k] + 1], atlasNormal[3 * m.nodes[k] + 2]);
+    t = t * 2.0 - 1.0;
+    return normalize(inversesqrt(scale) * (t.x * T - t.y * B) + t.z * N);
+}
+#endif
+
 #ifdef SUBDFIT_MATERIAL
+#ifdef SUBDFIT_ATLAS_OCCLUSION
+layout(std430, binding = SUBDFIT_SSBO_ATLAS_OCCLUSION) readonly buffer AtlasOcclusion { float atlasOcclusion[]; };
+#endif
+#ifdef SUBDFIT_ATLAS_EMISSIVE
+layout(std430, binding = SUBDFIT_SSBO_ATLAS_EMISSIVE) readonly buffer AtlasEmissive { float atlasEmissive[]; };
+#endif
 #ifdef SUBDFIT_BASE_COLOR_MAP
 layout(std430, binding = SUBDFIT_SSBO_BASE_COLOR) readonly buffer BaseColor { float baseColor[]; };
 #endif
@@ -63,6 +93,16 @@ SurfacePoint surfacePoint() {
     s.roughness = rm.x;
     s.metallic = rm.y;
 #endif
+#ifdef SUBDFIT_ATLAS_OCCLUSION
+    s.occlusion = 0.0;
+    for (int k = 0; k < 4; ++k) s.occlusion += m.weights[k] * atlasOcclusion[m.nodes[k]];
+#endif
+#ifdef SUBDFIT_ATLAS_EMISSIVE
+    vec3 e = vec3(0.0);
+    for (int k = 0; k < 4; ++k)
+        e += m.weights[k] * vec3(atlasEmissive[3 * m.nodes[k]], atlasEmissive[3 * m.nodes[k] + 1], atlasEmissive[3 * m.nodes[k] + 2]);
+    s.emissive = srgbToLinear(clamp(e, 0.0, 1.0));
+#endif
     return s;
 }
 #endif
@@ -76,6 +116,9 @@ void main() {
     n = mappedNormal(n);
 #endif
     if (dot(n, uEye - teWorldPosition) < 0.0) n = -n;  // open surfaces are seen from both sides
+#ifdef SUBDFIT_ATLAS_NORMAL_TEXTURE
+    n = atlasMappedNormal(n);
+#endif
 #ifdef SUBDFIT_MATERIAL
     vec3 v = normalize(uEye - teWorldPosition);
     outColor = vec4(shadeMaterial(normalize(mat3(uView) * n), normalize(mat3(uView) * v), surfacePoint()), 1.0);

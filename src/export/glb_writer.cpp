@@ -46,9 +46,14 @@ json material(const FittedTextures& t, json& doc, BinaryBuilder& binary) {
         if (!t.metallicRoughnessPng.empty()) {
             pbr["metallicFactor"] = 1.0;
             pbr["metallicRoughnessTexture"] = texture(t.metallicRoughnessPng, "metallic_roughness");
+            if (t.occlusionInMetallicRoughness) m["occlusionTexture"] = pbr["metallicRoughnessTexture"];
         }
     }
     if (!t.normalPng.empty()) m["normalTexture"] = texture(t.normalPng, "normal");
+    if (!t.emissivePng.empty()) {
+        m["emissiveTexture"] = texture(t.emissivePng, "emissive");
+        m["emissiveFactor"] = {1.0, 1.0, 1.0};
+    }
     m["pbrMetallicRoughness"] = pbr;
     return m;
 }

@@ -26,7 +26,8 @@ WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& te
 // colour the material is the fitted one: baseColorTexture (factor 1), and with a
 // metallic-roughness image its metallicRoughnessTexture (factors 1), else metallic 0, roughness 1.
 struct FittedTextures {
-    std::vector<unsigned char> normalPng{}, baseColorPng{}, metallicRoughnessPng{};
+    std::vector<unsigned char> normalPng{}, baseColorPng{}, metallicRoughnessPng{}, emissivePng{};
+    bool occlusionInMetallicRoughness = false;  // its red channel is the occlusionTexture
 };
 WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess, const FittedTextures& textures,
                            bool draco);

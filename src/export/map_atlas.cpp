@@ -4,6 +4,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -168,47 +169,72 @@ std::vector<unsigned char> encodeAppearancePng(const AtlasLayout& atlas, const s
                      which == AppearanceImage::BaseColor ? kBaseColorFile : kMetallicRoughnessFile);
 }
 
+namespace {
+
+// Where an appearance image's values come from: `channels` floats per node into the pixel's
+// channels from `first` on, and what a pixel outside every tile holds.
+struct ImageChannels {
+    const std::vector<float>* values;
+    int channels, first;
+    std::array<std::uint8_t, 3> fill;
+};
+
+ImageChannels imageChannels(const surface::SurfaceMaps& maps, AppearanceImage which) {
+    switch (which) {
+        case AppearanceImage::BaseColor: return {&maps.baseColor, 3, 0, {128, 128, 128}};
+        case AppearanceImage::MetallicRoughness: return {&maps.metallicRoughness, 2, 1, {255, 255, 0}};
+        case AppearanceImage::NormalTexture: return {&maps.normalTexture, 3, 0, {128, 128, 255}};
+        case AppearanceImage::Emissive: return {&maps.emissive, 3, 0, {0, 0, 0}};
+    }
+    throw Error("unknown appearance image");
+}
+
+// Node values as the mean of every pixel that holds the node, from `channels` pixel channels
+// starting at `first`.
+std::vector<float> nodesFromPixels(const AtlasLayout& atlas, const surface::TexelLayout& layout,
+                                   std::span<const std::uint8_t> rgb, int first, int channels) {
+    SUBDFIT_CHECK(rgb.size() == size_t(atlas.width) * size_t(atlas.height) * 3);
+    std::vector<float> sums(size_t(layout.nodeCount) * size_t(channels), 0.0f);
+    std::vector<int> counts(size_t(layout.nodeCount), 0);
+    forEachTilePixel(atlas, layout, [&](size_t pixel, int node) {
+        const std::uint8_t* p = &rgb[3 * pixel];
+        for (int c = 0; c < channels; ++c) sums[size_t(node) * size_t(channels) + size_t(c)] += float(p[first + c]) / 255.0f;
+        ++counts[size_t(node)];
+    });
+    for (size_t n = 0; n < counts.size(); ++n)
+        for (int c = 0; c < channels; ++c) sums[n * size_t(channels) + size_t(c)] /= float(std::max(1, counts[n]));
+    return sums;
+}
+
+}  // namespace
+
 std::vector<std::uint8_t> appearancePixels(const AtlasLayout& atlas, const surface::SurfaceMaps& maps,
                                            AppearanceImage which) {
     checkMaps(maps.appearanceLayout, maps);
-    const bool color = which == AppearanceImage::BaseColor;
-    SUBDFIT_CHECK(color ? maps.hasBaseColor() : maps.hasMetallicRoughness());
-    // Outside every tile: mid grey; (occlusion 1, roughness 1, metallic 0).
+    const ImageChannels image = imageChannels(maps, which);
+    SUBDFIT_CHECK(image.values->size() == size_t(maps.appearanceLayout.nodeCount) * size_t(image.channels));
+    const bool occlusion = which == AppearanceImage::MetallicRoughness && !maps.occlusion.empty();
     std::vector<std::uint8_t> pixels(size_t(atlas.width) * size_t(atlas.height) * 3, 0);
-    for (size_t p = 0; p < pixels.size(); p += 3) {
-        pixels[p] = color ? 128 : 255;
-        pixels[p + 1] = color ? 128 : 255;
-        pixels[p + 2] = color ? 128 : 0;
-    }
+    for (size_t p = 0; p < pixels.size(); p += 3) std::copy(image.fill.begin(), image.fill.end(), pixels.begin() + std::ptrdiff_t(p));
     auto unorm8 = [](float v) { return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
     forEachTilePixel(atlas, maps.appearanceLayout, [&](size_t pixel, int node) {
         std::uint8_t* p = &pixels[3 * pixel];
         const size_t n = size_t(node);
-        if (color) {
-            for (int c = 0; c < 3; ++c) p[c] = unorm8(maps.baseColor[3 * n + size_t(c)]);
-        } else {  // glTF's channels: G roughness, B metallic (R is occlusion's, left at 1)
-            p[1] = unorm8(maps.metallicRoughness[2 * n]);
-            p[2] = unorm8(maps.metallicRoughness[2 * n + 1]);
-        }
+        for (int c = 0; c < image.channels; ++c) p[image.first + c] = unorm8((*image.values)[size_t(image.channels) * n + size_t(c)]);
+        if (occlusion) p[0] = unorm8(maps.occlusion[n]);
     });
     return pixels;
 }
 
 std::vector<float> nodesFromAppearancePixels(const AtlasLayout& atlas, const surface::TexelLayout& layout,
                                              std::span<const std::uint8_t> rgb, AppearanceImage which) {
-    SUBDFIT_CHECK(rgb.size() == size_t(atlas.width) * size_t(atlas.height) * 3);
-    const bool color = which == AppearanceImage::BaseColor;
-    const int channels = color ? 3 : 2;
-    std::vector<float> sums(size_t(layout.nodeCount) * size_t(channels), 0.0f);
-    std::vector<int> counts(size_t(layout.nodeCount), 0);
-    forEachTilePixel(atlas, layout, [&](size_t pixel, int node) {
-        const std::uint8_t* p = &rgb[3 * pixel];
-        for (int c = 0; c < channels; ++c) sums[size_t(node) * size_t(channels) + size_t(c)] += float(p[color ? c : c + 1]) / 255.0f;
-        ++counts[size_t(node)];
-    });
-    for (size_t n = 0; n < counts.size(); ++n)
-        for (int c = 0; c < channels; ++c) sums[n * size_t(channels) + size_t(c)] /= float(std::max(1, counts[n]));
-    return sums;
+    const ImageChannels image = imageChannels({}, which);
+    return nodesFromPixels(atlas, layout, rgb, image.first, image.channels);
+}
+
+std::vector<float> occlusionFromPixels(const AtlasLayout& atlas, const surface::TexelLayout& layout,
+                                       std::span<const std::uint8_t> rgb) {
+    return nodesFromPixels(atlas, layout, rgb, 0, 1);
 }
 
 surface::SurfaceMaps normalOnAppearanceLattice(const surface::SurfaceMaps& maps) {

@@ -46,8 +46,9 @@ std::vector<std::uint16_t> normalAtlas(const AtlasLayout& atlas, const surface::
 std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps, bool eightBit = false);
 
 // 8-bit PNG bytes of the appearance maps on `atlas` (atlasLayout(maps.appearanceLayout)): the sRGB
-// base colour, or glTF's metallic-roughness image (G roughness, B metallic, R 1).
-enum class AppearanceImage { BaseColor, MetallicRoughness };
+// base colour, glTF's metallic-roughness image (G roughness, B metallic, R occlusion: 1 without),
+// or, carried on an atlas, the normal texture (rgb as glTF's) and the sRGB emissive.
+enum class AppearanceImage { BaseColor, MetallicRoughness, NormalTexture, Emissive };
 std::vector<unsigned char> encodeAppearancePng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps,
                                                AppearanceImage which);
 
@@ -57,6 +58,9 @@ std::vector<std::uint8_t> appearancePixels(const AtlasLayout& atlas, const surfa
                                            AppearanceImage which);
 std::vector<float> nodesFromAppearancePixels(const AtlasLayout& atlas, const surface::TexelLayout& layout,
                                              std::span<const std::uint8_t> rgb, AppearanceImage which);
+// The occlusion in a metallic-roughness image's red channel, one value per node.
+std::vector<float> occlusionFromPixels(const AtlasLayout& atlas, const surface::TexelLayout& layout,
+                                       std::span<const std::uint8_t> rgb);
 
 // The normal map resampled (bilinearly) onto the appearance lattice, as `layout` and `normal` of
 // the result: a glTF material's textures then share one set of texture coordinates.

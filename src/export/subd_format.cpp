@@ -28,8 +28,9 @@ namespace {
 
 using Tag = std::array<char, 4>;
 constexpr Tag kCage{'C', 'A', 'G', 'E'}, kDisplacement{'D', 'I', 'S', 'P'}, kNormal{'N', 'O', 'R', 'M'},
-              kAtlasUvs{'A', 'U', 'V', 'S'}, kBaseColor{'B', 'C', 'O', 'L'}, kMetallicRoughness{'M', 'T', 'R', 'G'};
-constexpr std::uint32_t kMostSections = 6;
+              kAtlasUvs{'A', 'U', 'V', 'S'}, kBaseColor{'B', 'C', 'O', 'L'}, kMetallicRoughness{'M', 'T', 'R', 'G'},
+              kNormalTexture{'N', 'T', 'E', 'X'}, kEmissive{'E', 'M', 'I', 'S'};
+constexpr std::uint32_t kMostSections = 8;
 constexpr char kMagic[4] = {'S', 'U', 'B', 'D'};
 constexpr int kZstdLevel = 19;  // the asset is written once and shipped many times
 constexpr std::uint32_t kMaxRawSection = 1u << 30;
@@ -122,9 +123,7 @@ surface::SurfaceMaps carriedMaps(const mesh::PolygonMesh& cage, const surface::S
     }
     if (maps.appearanceAtlas.present() && (maps.hasBaseColor() || maps.hasMetallicRoughness())) {
         // The texels stay; the corners' coordinates follow their faces and corners.
-        out.appearanceLayout = maps.appearanceLayout;
-        out.baseColor = maps.baseColor;
-        out.metallicRoughness = maps.metallicRoughness;
+        out.setAppearance(maps);
         out.appearanceAtlas = carriedCornerUvs(cage, maps.appearanceAtlas, decoded, to);
     } else if (maps.appearanceLayout.resolution > 0 && (maps.hasBaseColor() || maps.hasMetallicRoughness())) {
         out.appearanceLayout = surface::buildTexelLayout(decoded, maps.appearanceLayout.resolution);
@@ -176,14 +175,16 @@ std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int c
 }
 
 // An appearance map as a JPEG of its atlas (export/map_atlas.h), 8-bit sRGB: textures carry
-// detail node prediction codes poorly, and what JPEG drops a viewer hardly sees.
-constexpr std::uint8_t kJpegCoding = 1;
+// detail node prediction codes poorly, and what JPEG drops a viewer hardly sees. A metallic-
+// roughness image whose red channel holds the occlusion says so by its coding.
+constexpr std::uint8_t kJpegCoding = 1, kJpegWithOcclusionCoding = 2;
 
 void writeAppearance(const surface::SurfaceMaps& maps, AppearanceImage which, int quality, ByteWriter& out) {
     const surface::TexelLayout& layout = maps.appearanceLayout;
     out.putVarint(std::uint64_t(layout.resolution));
     out.putVarint(std::uint64_t(layout.nodeCount));
-    out.put<std::uint8_t>(kJpegCoding);
+    const bool occlusion = which == AppearanceImage::MetallicRoughness && !maps.occlusion.empty();
+    out.put<std::uint8_t>(occlusion ? kJpegWithOcclusionCoding : kJpegCoding);
     const AtlasLayout atlas = atlasLayout(layout);
     const auto rgb = appearancePixels(atlas, maps, which);
     io::DecodedImage image{atlas.width, atlas.height, std::vector<std::uint8_t>(rgb.size() / 3 * 4, 255)};
@@ -197,11 +198,14 @@ void writeAppearance(const surface::SurfaceMaps& maps, AppearanceImage which, in
     out.putBytes({jpeg.data(), jpeg.size()});
 }
 
-std::vector<float> readAppearance(ByteReader& in, const mesh::PolygonMesh& cage, AppearanceImage which,
-                                  const surface::AppearanceAtlas& atlasUvs, surface::TexelLayout& layout) {
-    if (atlasUvs.present() && layout.resolution == 0) layout = surface::atlasLattice(atlasUvs.size);
+// Reads an appearance image into `maps` (its lattice built on the first).
+void readAppearance(ByteReader& in, const mesh::PolygonMesh& cage, AppearanceImage which, surface::SurfaceMaps& maps) {
+    surface::TexelLayout& layout = maps.appearanceLayout;
+    if (maps.appearanceAtlas.present() && layout.resolution == 0) layout = surface::atlasLattice(maps.appearanceAtlas.size);
     readLattice(in, cage, layout);
-    if (in.get<std::uint8_t>() != kJpegCoding) throw Error(in.what() + ": unknown appearance coding");
+    const auto coding = in.get<std::uint8_t>();
+    const bool occlusion = which == AppearanceImage::MetallicRoughness && coding == kJpegWithOcclusionCoding;
+    if (coding != kJpegCoding && !occlusion) throw Error(in.what() + ": unknown appearance coding");
     const auto bytes = in.take(in.getCount(1, "image byte"));
     const AtlasLayout atlas = atlasLayout(layout);
     const io::DecodedImage image = io::decodeImage(bytes.data(), bytes.size(), in.what());
@@ -211,7 +215,14 @@ std::vector<float> readAppearance(ByteReader& in, const mesh::PolygonMesh& cage,
     std::vector<std::uint8_t> rgb(size_t(image.width) * size_t(image.height) * 3);
     for (size_t p = 0; p < rgb.size() / 3; ++p)
         for (int c = 0; c < 3; ++c) rgb[3 * p + size_t(c)] = image.rgba[4 * p + size_t(c)];
-    return nodesFromAppearancePixels(atlas, layout, rgb, which);
+    std::vector<float> values = nodesFromAppearancePixels(atlas, layout, rgb, which);
+    switch (which) {
+        case AppearanceImage::BaseColor: maps.baseColor = std::move(values); break;
+        case AppearanceImage::MetallicRoughness: maps.metallicRoughness = std::move(values); break;
+        case AppearanceImage::NormalTexture: maps.normalTexture = std::move(values); break;
+        case AppearanceImage::Emissive: maps.emissive = std::move(values); break;
+    }
+    if (occlusion) maps.occlusion = occlusionFromPixels(atlas, layout, rgb);
 }
 
 void putSection(ByteWriter& file, const Tag& tag, const std::vector<unsigned char>& raw) {
@@ -255,9 +266,13 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
         writeAtlasUvs(cage.decoded, maps.appearanceAtlas, section);
         sections.emplace_back(kAtlasUvs, std::move(section.bytes()));
     }
+    const bool atlas = maps.appearanceAtlas.present();
     for (const auto& [tag, which, present] : {std::tuple{kBaseColor, AppearanceImage::BaseColor, maps.hasBaseColor()},
                                               std::tuple{kMetallicRoughness, AppearanceImage::MetallicRoughness,
-                                                         maps.hasMetallicRoughness()}}) {
+                                                         maps.hasMetallicRoughness()},
+                                              std::tuple{kNormalTexture, AppearanceImage::NormalTexture,
+                                                         atlas && !maps.normalTexture.empty()},
+                                              std::tuple{kEmissive, AppearanceImage::Emissive, atlas && !maps.emissive.empty()}}) {
         if (maps.appearanceLayout.resolution == 0 || !present) continue;
         ByteWriter section;
         writeAppearance(maps, which, precision.appearanceQuality, section);
@@ -320,12 +335,13 @@ SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& na
         else if (tag == kAtlasUvs) {
             if (asset.maps.appearanceLayout.resolution != 0) throw Error(name + ": section AUVS after the appearance");
             asset.maps.appearanceAtlas = readAtlasUvs(section, asset.cage);
-        } else if (tag == kBaseColor)
-            asset.maps.baseColor = readAppearance(section, asset.cage, AppearanceImage::BaseColor, asset.maps.appearanceAtlas,
-                                                  asset.maps.appearanceLayout);
-        else if (tag == kMetallicRoughness)
-            asset.maps.metallicRoughness = readAppearance(section, asset.cage, AppearanceImage::MetallicRoughness,
-                                                          asset.maps.appearanceAtlas, asset.maps.appearanceLayout);
+        } else if (tag == kBaseColor) readAppearance(section, asset.cage, AppearanceImage::BaseColor, asset.maps);
+        else if (tag == kMetallicRoughness) readAppearance(section, asset.cage, AppearanceImage::MetallicRoughness, asset.maps);
+        else if (tag == kNormalTexture || tag == kEmissive) {
+            if (!asset.maps.appearanceAtlas.present()) throw Error(name + ": section " + tagName(tag) + " without AUVS");
+            readAppearance(section, asset.cage, tag == kNormalTexture ? AppearanceImage::NormalTexture : AppearanceImage::Emissive,
+                           asset.maps);
+        }
         else throw Error(name + ": unknown section " + tagName(tag));
         if (section.remaining() != 0) throw Error(section.what() + ": trailing bytes");
     }

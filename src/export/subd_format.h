@@ -7,7 +7,8 @@
 //   section  4-byte tag | u32 stored bytes | u32 raw bytes | stored bytes (a zstd frame)
 //   trailer  u64 XXH3-64 of every byte before it
 //
-// Sections, each at most once: CAGE first (required), then any of DISP, NORM, AUVS, BCOL, MTRG. Raw
+// Sections, each at most once: CAGE first (required), then any of DISP, NORM, AUVS, BCOL, MTRG,
+// NTEX, EMIS. Raw
 // contents, varints being LEB128 and signed ones zigzag:
 //
 //   CAGE  u8 coding (0 plain, 1 Draco) | varint vertices, varint faces | f32 origin[3],
@@ -33,10 +34,14 @@
 //         varint node count | u8 coding (1: JPEG) | varint n | n bytes of a JPEG of the atlas
 //         (export/map_atlas.h: a (T+1)² pixel tile per ptex face, ceil(sqrt(F)) columns); a
 //         node's value is the mean of its pixels in every tile that holds it
-//   MTRG  the same for roughness (green) and metallic (blue) on the appearance lattice
+//   MTRG  the same for roughness (green) and metallic (blue) on the appearance lattice; coding
+//         2: its red channel is the occlusion (glTF's occlusion-roughness-metallic packing)
 //   AUVS  (before BCOL and MTRG) the appearance is in a texture atlas instead: the corners'
 //         atlas coordinates (export/atlas_uv_coding.h); BCOL and MTRG then hold T = size − 1,
 //         size² nodes and a size × size JPEG, the texture itself (glTF texture coordinates)
+//   NTEX  (with AUVS) the reference's normal texture on the atlas, as BCOL: rgb as glTF's, in
+//         the tangent frame of the atlas coordinates
+//   EMIS  (with AUVS) the sRGB emissive on the atlas, as BCOL
 //
 // Heights are in the cage's units along the limit normal. (Version 1 had no coding byte and
 // 16-bit plain positions; its files are refused with the version named. Version 3 had no AUVS

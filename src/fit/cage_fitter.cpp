@@ -181,6 +181,7 @@ surface::SurfaceMaps CageFitter::surfaceMaps() {
     maps.layout = maps_->layout();
     maps.appearanceLayout = maps_->appearanceLayout();
     maps.appearanceAtlas = maps_->appearanceAtlas();
+    maps_->readCarriedTextures(maps);
     if (auto* g = maps_->displacement()) maps.displacement = g->read();
     if (auto* g = maps_->normalMap()) maps.normal = g->read();
     // What the renderer reads them as: clamped to [0, 1].

@@ -103,6 +103,28 @@ void MapParameters::setAppearanceUvs(const std::vector<glm::vec2>& cornerUvs) {
     appearanceUvBuffer_.upload(appearanceUvs_.data(), GLsizeiptr(appearanceUvs_.size() * sizeof(glm::vec2)));
 }
 
+void MapParameters::Carried::set(const std::vector<float>& v) {
+    values = v;
+    buffer = v.empty() ? nullptr : std::make_unique<gl::Buffer>(gl::Buffer::fromVector(v));
+}
+
+void MapParameters::setCarriedTextures(const surface::SurfaceMaps& maps) {
+    SUBDFIT_CHECK(!appearanceUvs_.empty());
+    const size_t texels = size_t(appearanceLayout_.nodeCount);
+    SUBDFIT_CHECK(maps.normalTexture.empty() || maps.normalTexture.size() == 3 * texels);
+    SUBDFIT_CHECK(maps.occlusion.empty() || maps.occlusion.size() == texels);
+    SUBDFIT_CHECK(maps.emissive.empty() || maps.emissive.size() == 3 * texels);
+    normalTexture_.set(maps.normalTexture);
+    occlusion_.set(maps.occlusion);
+    emissive_.set(maps.emissive);
+}
+
+void MapParameters::readCarriedTextures(surface::SurfaceMaps& maps) const {
+    maps.normalTexture = normalTexture_.values;
+    maps.occlusion = occlusion_.values;
+    maps.emissive = emissive_.values;
+}
+
 const surface::TexelLayout& MapParameters::layoutOf(const optim::ParameterGroup& group) const {
     return isAppearance(group) ? appearanceLayout_ : layout_;
 }
@@ -120,6 +142,9 @@ render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::Para
         if (baseColor_) version(*baseColor_, of(*baseColor_)).bindStorage(SUBDFIT_SSBO_BASE_COLOR);
         if (metallicRoughness_)
             version(*metallicRoughness_, of(*metallicRoughness_)).bindStorage(SUBDFIT_SSBO_METALLIC_ROUGHNESS);
+        if (normalTexture_.buffer) normalTexture_.buffer->bindStorage(SUBDFIT_SSBO_ATLAS_NORMAL);
+        if (occlusion_.buffer) occlusion_.buffer->bindStorage(SUBDFIT_SSBO_ATLAS_OCCLUSION);
+        if (emissive_.buffer) emissive_.buffer->bindStorage(SUBDFIT_SSBO_ATLAS_EMISSIVE);
     };
     return {.displacement = effects_.displacement,
             .normalMap = effects_.normalMap,
@@ -128,6 +153,9 @@ render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::Para
             .resolution = std::max(layout_.resolution, 1),
             .appearanceResolution = std::max(appearanceLayout_.resolution, 1),
             .appearanceAtlas = !appearanceUvs_.empty(),
+            .atlasNormal = normalTexture_.buffer != nullptr,
+            .atlasOcclusion = occlusion_.buffer != nullptr,
+            .atlasEmissive = emissive_.buffer != nullptr,
             .appearanceTable = int(layout_.faceNodes.size()),
             .haloTable = int(layout_.faceNodes.size() + appearanceLayout_.faceNodes.size()),
             .bind = bind};

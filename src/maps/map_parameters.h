@@ -10,7 +10,7 @@
 
 #include "gl/program.h"
 #include "maps/map_effects.h"
-#include "surface/appearance_atlas.h"
+#include "surface/surface_maps.h"
 #include "surface/texel_layout.h"
 #include "optim/parameter_group.h"
 #include "optim/updates.h"
@@ -52,6 +52,11 @@ public:
     // all 0 until then).
     surface::AppearanceAtlas appearanceAtlas() const;
     void setAppearanceUvs(const std::vector<glm::vec2>& cornerUvs);
+    // With an atlas: the reference's textures it carries unchanged (SurfaceMaps::normalTexture,
+    // occlusion, emissive; empty ones are dropped), which the patch pass then applies.
+    void setCarriedTextures(const surface::SurfaceMaps& maps);
+    // ... copied into `maps`.
+    void readCarriedTextures(surface::SurfaceMaps& maps) const;
     // Where `group`'s lattice starts in the face-node table the shaders read.
     int tableOffsetOf(const optim::ParameterGroup& group) const;
     MapEffects effects() const { return effects_; }
@@ -77,6 +82,13 @@ private:
     gl::Buffer faceNodes_;  // layout_'s table, appearanceLayout_'s, then layout_'s halo
     std::vector<glm::vec2> appearanceUvs_;  // with an atlas: 4 per ptex face
     gl::Buffer appearanceUvBuffer_;
+    // A carried texture's values and their buffer (none while empty).
+    struct Carried {
+        std::vector<float> values;
+        std::unique_ptr<gl::Buffer> buffer;
+        void set(const std::vector<float>& v);
+    };
+    Carried normalTexture_, occlusion_, emissive_;
     optim::Adjacency adjacency_, appearanceAdjacency_;
     gl::Buffer scratch_;  // Jacobi ping-pong partner, sized for the largest group
     std::unique_ptr<optim::ParameterGroup> displacement_, normalMap_, baseColor_, metallicRoughness_;

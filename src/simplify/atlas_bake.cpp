@@ -167,7 +167,10 @@ void weldCorners(const mesh::PolygonMesh& cage, std::vector<glm::vec2>& corners,
 std::vector<glm::vec2> cornerUvs(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference, float maxDistance) {
     const subdiv::LimitEvaluator limit(cage);
     const int faces = limit.ptexFaceCount();
-    std::vector<glm::vec3> origins(size_t(faces) * kGrid * kGrid), normals(origins.size(), glm::vec3(0.0f));
+    // Sized, not constructed with the size: GCC 12 misreads the latter's release (-Wfree-nonheap-object).
+    std::vector<glm::vec3> origins, normals;
+    origins.resize(size_t(faces) * kGrid * kGrid);
+    normals.resize(origins.size(), glm::vec3(0.0f));
     for (int f = 0; f < faces; ++f) {
         if (f % 1024 == 0) throwIfStopRequested();
         if (!limit.hasSurface(f, 0.5f, 0.5f)) continue;
@@ -258,11 +261,14 @@ surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const me
     // a renderer's mip chain), a few samples a source texel.
     const int samples = std::clamp((atlasSourceSize(reference) + size - 1) / size, 1, 8);
     const size_t texels = size_t(size) * size_t(size);
-    std::vector<float> color(3 * texels), roughnessMetallic(2 * texels);
+    const bool normal = m.normalTexture.present(), occlusion = m.occlusionTexture.present(),
+               emissive = m.emissiveFactor != glm::vec3(0.0f);
+    std::vector<float> color(3 * texels), roughnessMetallic(2 * texels), normals, occlusions, emission;
     for (int j = 0; j < size; ++j)
         for (int i = 0; i < size; ++i) {
-            glm::vec3 c(0.0f);
+            glm::vec3 c(0.0f), n(0.0f), e(0.0f);
             glm::vec2 rm(0.0f);
+            float o = 0.0f;
             for (int b = 0; b < samples; ++b)
                 for (int a = 0; a < samples; ++a) {
                     const glm::vec2 uv((float(i) + (float(a) + 0.5f) / float(samples)) / float(size),
@@ -270,15 +276,35 @@ surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const me
                     c += glm::vec3(m.baseColorFactor) * glm::vec3(mesh::sampleTexture(set, m.baseColorTexture, uv, true));
                     const glm::vec4 t = mesh::sampleTexture(set, m.metallicRoughnessTexture, uv, false);
                     rm += glm::vec2(m.roughnessFactor * t.g, m.metallicFactor * t.b);
+                    if (normal) {
+                        glm::vec3 tangent = glm::vec3(mesh::sampleTexture(set, m.normalTexture, uv, false)) * 2.0f - 1.0f;
+                        tangent.x *= m.normalScale, tangent.y *= m.normalScale;
+                        if (glm::length(tangent) > 1e-6f) n += glm::normalize(tangent);
+                    }
+                    if (occlusion) o += 1.0f + m.occlusionStrength * (mesh::sampleTexture(set, m.occlusionTexture, uv, false).r - 1.0f);
+                    if (emissive) e += m.emissiveFactor * glm::vec3(mesh::sampleTexture(set, m.emissiveTexture, uv, true));
                 }
-            const float n = float(samples * samples);
+            const float count = float(samples * samples);
             const size_t texel = size_t(j) * size_t(size) + size_t(i);
-            for (int k = 0; k < 3; ++k) color[3 * texel + size_t(k)] = std::clamp(mesh::linearToSrgb(c[k] / n), 0.0f, 1.0f);
-            roughnessMetallic[2 * texel] = std::clamp(rm.x / n, 0.0f, 1.0f);
-            roughnessMetallic[2 * texel + 1] = std::clamp(rm.y / n, 0.0f, 1.0f);
+            auto srgb = [](float linear) { return std::clamp(mesh::linearToSrgb(linear), 0.0f, 1.0f); };
+            for (int k = 0; k < 3; ++k) color[3 * texel + size_t(k)] = srgb(c[k] / count);
+            roughnessMetallic[2 * texel] = std::clamp(rm.x / count, 0.0f, 1.0f);
+            roughnessMetallic[2 * texel + 1] = std::clamp(rm.y / count, 0.0f, 1.0f);
+            if (normal) {
+                const glm::vec3 unit = glm::length(n) > 1e-6f ? glm::normalize(n) : glm::vec3(0.0f, 0.0f, 1.0f);
+                for (int k = 0; k < 3; ++k) normals.push_back(unit[k] * 0.5f + 0.5f);
+            }
+            if (occlusion) occlusions.push_back(std::clamp(o / count, 0.0f, 1.0f));
+            if (emissive)
+                for (int k = 0; k < 3; ++k) emission.push_back(srgb(e[k] / count));
         }
     if (effects.baseColor) maps.baseColor = std::move(color);
     if (effects.metallicRoughness) maps.metallicRoughness = std::move(roughnessMetallic);
+    // Occlusion rides in the metallic-roughness image's red channel (glTF's occlusion-roughness-
+    // metallic packing), so only a scene with that image keeps it.
+    maps.normalTexture = std::move(normals);
+    if (effects.metallicRoughness) maps.occlusion = std::move(occlusions);
+    maps.emissive = std::move(emission);
     return maps;
 }
 

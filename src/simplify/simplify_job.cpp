@@ -325,7 +325,10 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     if (maps::MapParameters* parameters = run.fitter().maps(); parameters && parameters->effects().appearance()) {
         const surface::SurfaceMaps baked = bakeAppearance(scene.cage, scene.reference, appearanceBakeOf(*parameters));
         if (!resumed) run.startFrom(baked);
-        else if (baked.appearanceAtlas.present()) parameters->setAppearanceUvs(baked.appearanceAtlas.cornerUvs);
+        else if (baked.appearanceAtlas.present()) {
+            parameters->setAppearanceUvs(baked.appearanceAtlas.cornerUvs);
+            parameters->setCarriedTextures(baked);
+        }
     }
 
     // Stages: the cage alone; the maps baked onto it; the maps refined on the frozen cage.

@@ -25,6 +25,12 @@ struct SurfaceMaps {
     AppearanceAtlas appearanceAtlas;
     std::vector<float> baseColor;
     std::vector<float> metallicRoughness;
+    // With an atlas, the reference's other textures on the same texel grid: not fitted, but its
+    // renders show them, so the asset's must. The tangent-space normal as a glTF normal texture's
+    // rgb in [0, 1] (3 per texel, the normal scale folded in; its frame is the atlas coordinates'
+    // own, as a renderer without tangents derives it); occlusion (1 per texel, the strength
+    // folded in); emissive (3 per texel, sRGB, the factor folded in). Empty = none.
+    std::vector<float> normalTexture, occlusion, emissive;
 
     // The appearance of `other` (lattice, atlas and values) in place of this one's.
     void setAppearance(const SurfaceMaps& other) {
@@ -32,6 +38,9 @@ struct SurfaceMaps {
         appearanceAtlas = other.appearanceAtlas;
         baseColor = other.baseColor;
         metallicRoughness = other.metallicRoughness;
+        normalTexture = other.normalTexture;
+        occlusion = other.occlusion;
+        emissive = other.emissive;
     }
 
     bool hasDisplacement() const { return !displacement.empty(); }
