@@ -248,7 +248,7 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
 std::vector<int> atlasSizesFor(const mesh::PolygonMesh& reference) {
     if (!atlasUnsuitability(reference).empty()) return {};
     std::vector<int> sizes;
-    for (int divisor : {32, 16, 8}) {
+    for (int divisor : {16, 8}) {
         const int size = std::clamp(atlasSourceSize(reference) / divisor, 32, 512);
         if (sizes.empty() || sizes.back() != size) sizes.push_back(size);
     }
