@@ -72,6 +72,10 @@ surface::AppearanceAtlas readAtlasUvs(ByteReader& in, const mesh::PolygonMesh& c
         if (counts[n] < 1 || counts[n] > 4 * size_t(points.ptexFaceCount)) throw Error(in.what() + ": bad value count");
         first[n + 1] = first[n] + counts[n];
     }
+    // Each corner adds at most one value, and each value takes at least two bytes: refused before
+    // anything that large is allocated.
+    if (first.back() > 4 * size_t(points.ptexFaceCount) || first.back() > in.remaining() / 2)
+        throw Error(in.what() + ": more values than corners or data");
     std::vector<glm::vec2> values(first.back());
     std::int64_t u = 0, v = 0;
     constexpr std::int64_t kLimit = std::int64_t(1) << 40;

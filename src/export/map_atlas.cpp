@@ -18,6 +18,8 @@ constexpr const char* kNormalFile = "normal.png";
 constexpr const char* kManifestFile = "maps.json";
 constexpr const char* kBaseColorFile = "base_color.png";
 constexpr const char* kMetallicRoughnessFile = "metallic_roughness.png";
+constexpr const char* kNormalTextureFile = "normal_texture.png";
+constexpr const char* kEmissiveFile = "emissive.png";
 
 void checkMaps(const surface::TexelLayout& layout, const surface::SurfaceMaps& maps) {
     if (&layout == &maps.appearanceLayout) {
@@ -165,8 +167,8 @@ std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const surfa
 std::vector<unsigned char> encodeAppearancePng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps,
                                                AppearanceImage which) {
     const auto pixels = appearancePixels(atlas, maps, which);
-    return encodePng(atlas.width, atlas.height, 3, pixels.data(), false,
-                     which == AppearanceImage::BaseColor ? kBaseColorFile : kMetallicRoughnessFile);
+    const char* names[] = {kBaseColorFile, kMetallicRoughnessFile, kNormalTextureFile, kEmissiveFile};
+    return encodePng(atlas.width, atlas.height, 3, pixels.data(), false, names[int(which)]);
 }
 
 namespace {
@@ -288,6 +290,16 @@ std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const
                                          encodeAppearancePng(atlas, maps, AppearanceImage::MetallicRoughness)));
             appearance["metallicRoughness"] = {{"file", kMetallicRoughnessFile},
                                                {"encoding", "8-bit RGB, G roughness, B metallic, as glTF's metallicRoughnessTexture"}};
+        }
+        if (!maps.occlusion.empty()) appearance["occlusion"] = {{"file", kMetallicRoughnessFile}, {"channel", "R"}};
+        if (!maps.normalTexture.empty()) {
+            written.push_back(writeBytes(dir / kNormalTextureFile, encodeAppearancePng(atlas, maps, AppearanceImage::NormalTexture)));
+            appearance["normalTexture"] = {{"file", kNormalTextureFile},
+                                           {"encoding", "8-bit RGB as glTF's normalTexture, in the atlas coordinates' tangent frame"}};
+        }
+        if (!maps.emissive.empty()) {
+            written.push_back(writeBytes(dir / kEmissiveFile, encodeAppearancePng(atlas, maps, AppearanceImage::Emissive)));
+            appearance["emissive"] = {{"file", kEmissiveFile}, {"encoding", "8-bit sRGB RGB, as glTF's emissiveTexture"}};
         }
         doc["generator"] = "subdfit";
         doc["appearance"] = appearance;
