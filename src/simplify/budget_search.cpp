@@ -26,6 +26,8 @@ constexpr double kBytesPerCageFace = 2.5;
 constexpr double kLadderStep = 1.6;
 constexpr int kLadderLength = 7;
 constexpr int kFewestFaces = 24;
+// Appearance kinds (tile resolutions, atlas sizes) whose maps ladder is tried on each cage.
+constexpr size_t kMostAppearancesWithMaps = 2;
 
 std::string describe(const BudgetCandidate& c) {
     char line[160];
@@ -152,8 +154,9 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
                           .bytes = shipped.bytes};
         if (c.bytes <= search.budget) c.monitorLoss = monitorLoss(programs, scene, shipped.decoded);
         consider(c, cageWorld);  // over budget, it is listed so the report shows why
-        return c.bytes <= search.budget;
+        return c;
     };
+    auto fits = [&](const BudgetCandidate& c) { return c.bytes <= search.budget; };
     auto normalized = [&](const mesh::PolygonMesh& cageWorld) {
         mesh::PolygonMesh cage = cageWorld;
         cage.positions = scene.frame.toNormalized(cageWorld.positions);
@@ -174,21 +177,47 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
         if (!cageWorld) continue;  // smaller counts will not do better
         const mesh::PolygonMesh cage = normalized(*cageWorld);
         std::map<std::pair<size_t, int>, surface::SurfaceMaps> geometric;  // baked once per (maps, resolution)
+        // Each appearance on the bare cage first: the first quality (best first) at which it fits;
+        // none: finer appearance of this kind only costs more.
+        struct Bare {
+            size_t kind;
+            surface::SurfaceMaps appearance;
+            BudgetCandidate candidate;
+        };
+        std::vector<Bare> bare;
         for (size_t a = 0; a < appearances.size(); ++a) {
             const bool withAppearance = appearances[a].resolution > 0 || appearances[a].atlas > 0;
             appearance = withAppearance ? bakeAppearance(cage, scene.reference, appearances[a]) : surface::SurfaceMaps{};
-            // The first quality (best first) at which the bare cage fits; none: finer appearance
-            // of this kind only costs more. Without materials there is no quality to choose (0).
+            // Without materials there is no quality to choose (0).
             const std::vector<int> qualities = withAppearance ? search.appearanceQualities : std::vector<int>{0};
-            bool bareFits = false;
-            for (size_t q = 0; q < qualities.size() && !bareFits; ++q) {
+            BudgetCandidate c;
+            for (size_t q = 0; q < qualities.size() && (q == 0 || !fits(c)); ++q) {
                 appearanceQuality = qualities[q];
-                bareFits = judge(cageWorld, {}, {}, 0, 0);
+                c = judge(cageWorld, {}, {}, 0, 0);
             }
-            if (!bareFits) {  // finer appearance of this kind only costs more: on to the next kind
-                while (a + 1 < appearances.size() && (appearances[a + 1].atlas > 0) == (appearances[a].atlas > 0)) ++a;
+            if (fits(c)) {
+                bare.push_back({a, std::move(appearance), c});
                 continue;
             }
+            while (a + 1 < appearances.size() && (appearances[a + 1].atlas > 0) == (appearances[a].atlas > 0)) ++a;
+        }
+        // Maps only on the appearances worth them: not one another bare one beats in bytes and
+        // loss alike, and of those the two of lowest loss (maps add about the same to each: a
+        // ladder for every kind made the Duck's search 3x slower for nothing it chose).
+        std::vector<const Bare*> worth;
+        for (const Bare& b : bare) {
+            const bool dominated = std::any_of(bare.begin(), bare.end(), [&](const Bare& o) {
+                const BudgetCandidate &p = o.candidate, &q = b.candidate;
+                return p.bytes <= q.bytes && p.monitorLoss <= q.monitorLoss && (p.bytes < q.bytes || p.monitorLoss < q.monitorLoss);
+            });
+            if (!dominated) worth.push_back(&b);
+        }
+        std::sort(worth.begin(), worth.end(), [](const Bare* x, const Bare* y) { return x->candidate.monitorLoss < y->candidate.monitorLoss; });
+        if (worth.size() > kMostAppearancesWithMaps) worth.resize(kMostAppearancesWithMaps);
+        for (const Bare* b : worth) {
+            appearance = b->appearance;
+            appearanceQuality = b->candidate.appearanceQuality;
+            const size_t a = b->kind;
             for (size_t m = 0; m < mapChoices.size(); ++m) {
                 if (appearances[a].atlas > 0 && mapChoices[m].normalMap) continue;  // an atlas takes heights alone
                 for (int resolution : search.mapResolutions) {
@@ -200,7 +229,7 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
                                     .first;
                     bool fitted = false;
                     for (int bits : search.mapBits) {
-                        if (!judge(cageWorld, baked->second, mapChoices[m], resolution, bits)) break;  // more bits only cost more
+                        if (!fits(judge(cageWorld, baked->second, mapChoices[m], resolution, bits))) break;  // more bits only cost more
                         fitted = true;
                     }
                     if (!fitted) break;  // finer maps only cost more
@@ -227,7 +256,7 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
             const surface::SurfaceMaps baked =
                 best.maps.any() ? bakeMaps(normalized(*cageWorld), scene.reference, {.effects = best.maps, .resolution = best.mapResolution})
                                 : surface::SurfaceMaps{};
-            if (judge(cageWorld, baked, best.maps, best.mapResolution, best.mapBits)) break;
+            if (fits(judge(cageWorld, baked, best.maps, best.mapResolution, best.mapBits))) break;
         }
     }
     const Fitting* chosen = preferred(fitting, any);
