@@ -1,8 +1,7 @@
 #pragma once
 // The appearance baked into the reference's own texture atlas (surface/appearance_atlas.h): the
 // texels are the reference's textures downscaled, as the triangle baselines ship them; each ptex
-// face of the cage gets the atlas coordinates of its corners from where its limit surface meets
-// the reference.
+// face of the cage gets the atlas coordinates of its corners (simplify/atlas_corners.h).
 #include <string>
 
 #include "maps/map_effects.h"
