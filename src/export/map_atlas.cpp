@@ -173,20 +173,29 @@ std::vector<unsigned char> encodeAppearancePng(const AtlasLayout& atlas, const s
 
 namespace {
 
-// Where an appearance image's values come from: `channels` floats per node into the pixel's
-// channels from `first` on, and what a pixel outside every tile holds.
+// How an appearance image holds its values: `channels` floats per node in the pixel's channels
+// from `first` on, and what a pixel outside every tile holds.
 struct ImageChannels {
-    const std::vector<float>* values;
     int channels, first;
     std::array<std::uint8_t, 3> fill;
 };
 
-ImageChannels imageChannels(const surface::SurfaceMaps& maps, AppearanceImage which) {
+ImageChannels imageChannels(AppearanceImage which) {
     switch (which) {
-        case AppearanceImage::BaseColor: return {&maps.baseColor, 3, 0, {128, 128, 128}};
-        case AppearanceImage::MetallicRoughness: return {&maps.metallicRoughness, 2, 1, {255, 255, 0}};
-        case AppearanceImage::NormalTexture: return {&maps.normalTexture, 3, 0, {128, 128, 255}};
-        case AppearanceImage::Emissive: return {&maps.emissive, 3, 0, {0, 0, 0}};
+        case AppearanceImage::BaseColor: return {3, 0, {128, 128, 128}};
+        case AppearanceImage::MetallicRoughness: return {2, 1, {255, 255, 0}};
+        case AppearanceImage::NormalTexture: return {3, 0, {128, 128, 255}};
+        case AppearanceImage::Emissive: return {3, 0, {0, 0, 0}};
+    }
+    throw Error("unknown appearance image");
+}
+
+const std::vector<float>& imageValues(const surface::SurfaceMaps& maps, AppearanceImage which) {
+    switch (which) {
+        case AppearanceImage::BaseColor: return maps.baseColor;
+        case AppearanceImage::MetallicRoughness: return maps.metallicRoughness;
+        case AppearanceImage::NormalTexture: return maps.normalTexture;
+        case AppearanceImage::Emissive: return maps.emissive;
     }
     throw Error("unknown appearance image");
 }
@@ -213,8 +222,9 @@ std::vector<float> nodesFromPixels(const AtlasLayout& atlas, const surface::Texe
 std::vector<std::uint8_t> appearancePixels(const AtlasLayout& atlas, const surface::SurfaceMaps& maps,
                                            AppearanceImage which) {
     checkMaps(maps.appearanceLayout, maps);
-    const ImageChannels image = imageChannels(maps, which);
-    SUBDFIT_CHECK(image.values->size() == size_t(maps.appearanceLayout.nodeCount) * size_t(image.channels));
+    const ImageChannels image = imageChannels(which);
+    const std::vector<float>& values = imageValues(maps, which);
+    SUBDFIT_CHECK(values.size() == size_t(maps.appearanceLayout.nodeCount) * size_t(image.channels));
     const bool occlusion = which == AppearanceImage::MetallicRoughness && !maps.occlusion.empty();
     std::vector<std::uint8_t> pixels(size_t(atlas.width) * size_t(atlas.height) * 3, 0);
     for (size_t p = 0; p < pixels.size(); p += 3) std::copy(image.fill.begin(), image.fill.end(), pixels.begin() + std::ptrdiff_t(p));
@@ -222,7 +232,7 @@ std::vector<std::uint8_t> appearancePixels(const AtlasLayout& atlas, const surfa
     forEachTilePixel(atlas, maps.appearanceLayout, [&](size_t pixel, int node) {
         std::uint8_t* p = &pixels[3 * pixel];
         const size_t n = size_t(node);
-        for (int c = 0; c < image.channels; ++c) p[image.first + c] = unorm8((*image.values)[size_t(image.channels) * n + size_t(c)]);
+        for (int c = 0; c < image.channels; ++c) p[image.first + c] = unorm8(values[size_t(image.channels) * n + size_t(c)]);
         if (occlusion) p[0] = unorm8(maps.occlusion[n]);
     });
     return pixels;
@@ -230,7 +240,7 @@ std::vector<std::uint8_t> appearancePixels(const AtlasLayout& atlas, const surfa
 
 std::vector<float> nodesFromAppearancePixels(const AtlasLayout& atlas, const surface::TexelLayout& layout,
                                              std::span<const std::uint8_t> rgb, AppearanceImage which) {
-    const ImageChannels image = imageChannels({}, which);
+    const ImageChannels image = imageChannels(which);
     return nodesFromPixels(atlas, layout, rgb, image.first, image.channels);
 }
 

@@ -322,7 +322,8 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     // coloured target would pull the cage where the colours differ, not the shape.
     // A resumed run has its texels from the checkpoint, but an atlas's corner coordinates are
     // not parameters: they come from the same bake.
-    if (maps::MapParameters* parameters = run.fitter().maps(); parameters && parameters->effects().appearance()) {
+    if (maps::MapParameters* parameters = run.fitter().maps();
+        parameters && parameters->effects().appearance() && (!resumed || parameters->appearanceAtlas().present())) {
         const surface::SurfaceMaps baked = bakeAppearance(scene.cage, scene.reference, appearanceBakeOf(*parameters));
         if (!resumed) run.startFrom(baked);
         else if (baked.appearanceAtlas.present()) {
