@@ -107,7 +107,15 @@ const Fitting* preferred(const std::vector<Fitting>& fitting, Keep keep) {
 std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, int mostFaces) {
     const double largest = std::min({double(budget) / kBytesPerCageFace, 0.5 * double(referenceTriangles), double(mostFaces)});
     std::vector<int> counts;
-    for (double f = largest; f >= kFewestFaces && int(counts.size()) < kLadderLength; f /= kLadderStep)
+    // Above the ladder, as many faces as the reference has triangles where the budget holds them:
+    // a light asset (the WaterBottle's 4 510 triangles at 40 KB, which gltfpack ships whole)
+    // shades best from a cage of its own density (42.3 dB, against 36.7 from half as many faces).
+    // On top of the ladder rather than its start: moving every rung moved the Duck's at 20 KB
+    // off its best (320 faces, grown to 372: 39.81 dB; 642 on the moved ladder: 38.95).
+    const double denser = std::min({double(budget) / kBytesPerCageFace, double(referenceTriangles), double(mostFaces)});
+    if (denser > 1.25 * largest) counts.push_back(int(std::lround(denser)));
+    const size_t above = counts.size();
+    for (double f = largest; f >= kFewestFaces && int(counts.size() - above) < kLadderLength; f /= kLadderStep)
         counts.push_back(int(std::lround(f)));
     if (counts.empty()) counts.push_back(std::min(kFewestFaces, std::max(referenceTriangles, 4)));
     return counts;

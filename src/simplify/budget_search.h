@@ -63,8 +63,9 @@ struct BudgetChoice {
 };
 
 // Face counts worth trying for `budget` bytes on a reference of `referenceTriangles`: from what
-// the budget could hold as a bare cage (at most `mostFaces`) down to ~1/20 of that, at steps
-// of ~1.6x.
+// the budget could hold as a bare cage (at most `mostFaces` and half the reference's triangles)
+// down to ~1/20 of that, at steps of ~1.6x; and first, where the budget holds more, a cage of
+// the reference's own triangle count.
 std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, int mostFaces);
 
 // Runs the search on `scene` (its targets and frame; its cage is not used). `referenceWorld`
