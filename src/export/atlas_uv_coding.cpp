@@ -4,18 +4,14 @@
 #include <array>
 #include <cmath>
 
+#include "surface/appearance_atlas.h"
 #include "surface/texel_layout.h"
 #include "util/error.h"
 
 namespace subdfit::exporter {
 namespace {
 
-constexpr std::array<std::array<int, 2>, 4> kCornerIJ{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
 constexpr int kMostAtlasSize = 16384;
-
-int cornerNode(const surface::TexelLayout& points, int face, int corner) {
-    return points.node(face, kCornerIJ[size_t(corner)][0], kCornerIJ[size_t(corner)][1]);
-}
 
 }  // namespace
 
@@ -39,7 +35,7 @@ void writeAtlasUvs(const mesh::PolygonMesh& cage, const surface::AppearanceAtlas
         for (int k = 0; k < 4; ++k) {
             const glm::vec2 uv = atlas.cornerUvs[4 * size_t(f) + size_t(k)];
             const Q q{std::llround(double(uv.x) * scale), std::llround(double(uv.y) * scale)};
-            auto& list = values[size_t(cornerNode(points, f, k))];
+            auto& list = values[size_t(surface::cornerPoint(points, f, k))];
             auto at = std::find(list.begin(), list.end(), q);
             if (at == list.end()) at = list.insert(list.end(), q);
             index[4 * size_t(f) + size_t(k)] = int(at - list.begin());
@@ -54,7 +50,7 @@ void writeAtlasUvs(const mesh::PolygonMesh& cage, const surface::AppearanceAtlas
         }
     for (int f = 0; f < points.ptexFaceCount; ++f)
         for (int k = 0; k < 4; ++k)
-            if (values[size_t(cornerNode(points, f, k))].size() > 1) out.putVarint(std::uint64_t(index[4 * size_t(f) + size_t(k)]));
+            if (values[size_t(surface::cornerPoint(points, f, k))].size() > 1) out.putVarint(std::uint64_t(index[4 * size_t(f) + size_t(k)]));
 }
 
 surface::AppearanceAtlas readAtlasUvs(ByteReader& in, const mesh::PolygonMesh& cage) {
@@ -87,7 +83,7 @@ surface::AppearanceAtlas readAtlasUvs(ByteReader& in, const mesh::PolygonMesh& c
     atlas.cornerUvs.resize(4 * size_t(points.ptexFaceCount));
     for (int f = 0; f < points.ptexFaceCount; ++f)
         for (int k = 0; k < 4; ++k) {
-            const size_t node = size_t(cornerNode(points, f, k));
+            const size_t node = size_t(surface::cornerPoint(points, f, k));
             size_t index = 0;
             if (counts[node] > 1) {
                 index = in.getVarint();

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "bindings.h"
+#include "subdiv/topology.h"
 #include "util/error.h"
 
 namespace subdfit::maps {
@@ -43,12 +44,6 @@ surface::TexelLayout appearanceLayoutFor(const mesh::PolygonMesh& cage, MapEffec
     return surface::buildTexelLayout(cage, settings.appearanceResolution);
 }
 
-int ptexFaceCount(const mesh::PolygonMesh& cage) {
-    int count = 0;
-    for (int n : cage.faceSizes) count += n == 4 ? 1 : n;
-    return count;
-}
-
 }  // namespace
 
 MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, const MapSettings& settings)
@@ -57,7 +52,7 @@ MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, 
       appearanceLayout_(appearanceLayoutFor(cage, effects, settings)),
       settings_(settings),
       faceNodes_(gl::Buffer::fromVector(concatenated(layout_.faceNodes, appearanceLayout_.faceNodes, layout_.halo))),
-      appearanceUvs_(effects.appearance() && settings.appearanceAtlas > 0 ? 4 * size_t(ptexFaceCount(cage)) : 0),
+      appearanceUvs_(effects.appearance() && settings.appearanceAtlas > 0 ? 4 * size_t(subdiv::ptexFaceCount(cage)) : 0),
       appearanceUvBuffer_(GLsizeiptr(std::max<size_t>(1, appearanceUvs_.size())) * GLsizeiptr(sizeof(glm::vec2)),
                           appearanceUvs_.empty() ? nullptr : appearanceUvs_.data()),
       adjacency_(uploadAdjacency(layout_)),

@@ -10,6 +10,7 @@
 #include "geometry/normal_casting.h"
 #include "geometry/surface_queries.h"
 #include "subdiv/limit_evaluator.h"
+#include "surface/appearance_atlas.h"
 #include "surface/texel_layout.h"
 #include "util/interrupt.h"
 
@@ -121,14 +122,13 @@ void weldCorners(const mesh::PolygonMesh& cage, std::vector<glm::vec2>& corners,
     };
     std::vector<std::vector<Cluster>> clusters(size_t(points.nodeCount));
     std::vector<std::pair<int, int>> member(corners.size(), {-1, -1});  // (node, cluster)
-    constexpr std::array<std::pair<int, int>, 4> kCornerIJ{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
     for (int f = 0; f < points.ptexFaceCount; ++f) {
         if (!found[size_t(f)]) continue;
         float extent = 0.0f;
         for (int k = 1; k < 4; ++k) extent = std::max(extent, glm::distance(corners[4 * size_t(f)], corners[4 * size_t(f) + size_t(k)]));
         const float tolerance = 0.25f * extent + 1e-5f;
         for (int k = 0; k < 4; ++k) {
-            const int node = points.node(f, kCornerIJ[size_t(k)].first, kCornerIJ[size_t(k)].second);
+            const int node = surface::cornerPoint(points, f, k);
             const glm::vec2 uv = corners[4 * size_t(f) + size_t(k)];
             auto& here = clusters[size_t(node)];
             int c = 0;
@@ -147,7 +147,7 @@ void weldCorners(const mesh::PolygonMesh& cage, std::vector<glm::vec2>& corners,
                 continue;
             }
             // A face no ray placed takes what its corners' neighbours agreed on.
-            const int node = points.node(f, kCornerIJ[size_t(k)].first, kCornerIJ[size_t(k)].second);
+            const int node = surface::cornerPoint(points, f, k);
             uv = clusters[size_t(node)].empty() ? glm::vec2(0.5f) : clusters[size_t(node)].front().centre();
         }
 }

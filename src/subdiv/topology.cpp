@@ -77,6 +77,12 @@ Sdc::Options::FVarLinearInterpolation fvarInterpolation(int tag) {
 
 }  // namespace
 
+int ptexFaceCount(const mesh::PolygonMesh& mesh) {
+    int count = 0;
+    for (int n : mesh.faceSizes) count += n == 4 ? 1 : n;
+    return count;
+}
+
 std::string meshName(const mesh::PolygonMesh& mesh) {
     return mesh.sourcePath.empty() ? std::string("<in-memory mesh>") : mesh.sourcePath;
 }

@@ -19,6 +19,9 @@ std::string meshName(const mesh::PolygonMesh& mesh);
 
 OpenSubdiv::Sdc::Options sdcOptions(const mesh::SubdivisionTags& tags);
 
+// Ptex faces of a cage, as Far::PtexIndices numbers them: one per quad, n per n-gon.
+int ptexFaceCount(const mesh::PolygonMesh& mesh);
+
 // Throws subdfit::Error naming mesh.sourcePath when the mesh is malformed (indices out of range,
 // faces with fewer than 3 corners, ...) or OpenSubdiv rejects it; the message carries
 // OpenSubdiv's own text. Non-manifold edges and repeated vertices in a face are accepted:

@@ -20,6 +20,11 @@ TexelLayout atlasLattice(int size) {
     return layout;
 }
 
+int cornerPoint(const TexelLayout& corners, int face, int corner) {
+    static constexpr int kI[4] = {0, 1, 1, 0}, kJ[4] = {0, 0, 1, 1};
+    return corners.node(face, kI[corner], kJ[corner]);
+}
+
 glm::vec2 atlasUvAt(const AppearanceAtlas& atlas, int face, float u, float v) {
     u = glm::clamp(u, 0.0f, 1.0f), v = glm::clamp(v, 0.0f, 1.0f);
     const glm::vec2* c = &atlas.cornerUvs[4 * size_t(face)];

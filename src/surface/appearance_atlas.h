@@ -27,6 +27,11 @@ struct AppearanceAtlas {
 // halo. nodeAdjacency and the per-tile code work on it unchanged.
 TexelLayout atlasLattice(int size);
 
+// The point where corner `corner` of ptex face `face` lies ((0, 0), (1, 0), (1, 1), (0, 1), the
+// order of cornerUvs) as a node of `corners` = buildTexelLayout(cage, 1): corners that meet
+// share it.
+int cornerPoint(const TexelLayout& corners, int face, int corner);
+
 // The atlas coordinates of ptex (u, v) on `face`: the bilinear blend of its corners' ((u, v)
 // clamped to the face, as the renderer's).
 glm::vec2 atlasUvAt(const AppearanceAtlas& atlas, int face, float u, float v);
