@@ -94,6 +94,7 @@ PolygonMesh decodeDracoMesh(const char* data, size_t size, const std::string& pa
         }
     if (ids.texCoord >= 0) mesh.uvs = pointValues<2>(dracoMesh, ids.texCoord, glm::vec2(0.0f), path, "texture coordinate");
     if (ids.color >= 0) mesh.colors = pointValues<4>(dracoMesh, ids.color, glm::vec4(1.0f), path, "colour");
+    if (ids.normal >= 0) mesh.normals = pointValues<3>(dracoMesh, ids.normal, glm::vec3(0.0f), path, "normal");
     return mesh;
 }
 

@@ -97,7 +97,7 @@ T load(const unsigned char* p) {
     return value;
 }
 
-// One position component; integer encodings follow KHR_mesh_quantization's normalisation.
+// One VEC3 component; integer encodings follow KHR_mesh_quantization's normalisation.
 float component(const unsigned char* p, int type, bool normalized) {
     switch (type) {
         case TINYGLTF_COMPONENT_TYPE_BYTE: {
@@ -116,7 +116,7 @@ float component(const unsigned char* p, int type, bool normalized) {
             const float v = load<uint16_t>(p);
             return normalized ? v / 65535.0f : v;
         }
-        default: return load<float>(p);  // readPositions admits no other type
+        default: return load<float>(p);  // readVec3 admits no other type
     }
 }
 
@@ -137,24 +137,37 @@ std::string_view bufferViewBytes(const tinygltf::Model& model, int index, const 
     return {reinterpret_cast<const char*>(data.data()) + view.byteOffset, view.byteLength};
 }
 
-std::vector<glm::vec3> readPositions(const tinygltf::Model& model, int accessor, const std::string& path) {
+namespace {
+
+// A VEC3 attribute (POSITION, NORMAL): float, or (KHR_mesh_quantization) 8/16-bit integers.
+std::vector<glm::vec3> readVec3(const tinygltf::Model& model, int accessor, const std::string& path, const char* what) {
     const ElementSpan span = resolve(model, accessor, TINYGLTF_TYPE_VEC3, path);
     if (span.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-        throw fileError(path, "accessor " + std::to_string(accessor) + ": positions cannot be UNSIGNED_INT");
-    std::vector<glm::vec3> positions(span.count, glm::vec3(0.0f));
-    if (!span.data) return positions;
+        throw fileError(path, "accessor " + std::to_string(accessor) + ": " + what + "s cannot be UNSIGNED_INT");
+    std::vector<glm::vec3> values(span.count, glm::vec3(0.0f));
+    if (!span.data) return values;
     const size_t size = componentSize(span.componentType);
     for (size_t i = 0; i < span.count; ++i) {
         const unsigned char* element = span.data + i * span.stride;
         for (int c = 0; c < 3; ++c) {
             const float v = component(element + size_t(c) * size, span.componentType, span.normalized);
             if (!std::isfinite(v))
-                throw fileError(path, "accessor " + std::to_string(accessor) + ": non-finite position at vertex " +
+                throw fileError(path, "accessor " + std::to_string(accessor) + ": non-finite " + what + " at vertex " +
                                           std::to_string(i));
-            positions[i][c] = v;
+            values[i][c] = v;
         }
     }
-    return positions;
+    return values;
+}
+
+}  // namespace
+
+std::vector<glm::vec3> readPositions(const tinygltf::Model& model, int accessor, const std::string& path) {
+    return readVec3(model, accessor, path, "position");
+}
+
+std::vector<glm::vec3> readNormals(const tinygltf::Model& model, int accessor, const std::string& path) {
+    return readVec3(model, accessor, path, "normal");
 }
 
 namespace {

@@ -18,6 +18,8 @@ namespace subdfit::mesh::gltf {
 // Positions of a VEC3 accessor: float, or (KHR_mesh_quantization) 8/16-bit integers,
 // normalized or not. NaN and Inf are errors.
 std::vector<glm::vec3> readPositions(const tinygltf::Model& model, int accessor, const std::string& path);
+// NORMAL, the same way (not yet normalised: a zero normal is the caller's to replace).
+std::vector<glm::vec3> readNormals(const tinygltf::Model& model, int accessor, const std::string& path);
 
 // TEXCOORD_n of a VEC2 accessor, and COLOR_n of a VEC3 (alpha 1) or VEC4 accessor: float, or
 // normalized unsigned byte / short. NaN and Inf are errors.

@@ -21,6 +21,7 @@
 #include "mesh/gltf_meshopt.h"
 #include "mesh/gltf_preflight.h"
 #include "mesh/input_limits.h"
+#include "mesh/mesh_geometry.h"
 #include "util/error.h"
 #include "util/interrupt.h"
 
@@ -120,6 +121,7 @@ struct MeshTriangles {
     // With appearance: per vertex (zero / white where a primitive has none), per triangle.
     std::vector<glm::vec2> uvs;
     std::vector<glm::vec4> colors;
+    std::vector<glm::vec3> normals;  // the file's, or computed per primitive where it has none
     std::vector<int> materials;  // the glTF material, -1 for none
 };
 
@@ -239,12 +241,14 @@ private:
         std::vector<uint32_t> indices;
         std::vector<glm::vec2> uvs;
         std::vector<glm::vec4> colors;
+        std::vector<glm::vec3> normals;
         if (const auto draco = primitive.extensions.find(kDraco); draco != primitive.extensions.end()) {
             PolygonMesh decoded = decodeDraco(draco->second);
             positions = std::move(decoded.positions);
             indices.assign(decoded.faceIndices.begin(), decoded.faceIndices.end());
             uvs = std::move(decoded.uvs);
             colors = std::move(decoded.colors);
+            normals = std::move(decoded.normals);
         } else {
             const auto position = primitive.attributes.find("POSITION");
             if (position == primitive.attributes.end())
@@ -262,10 +266,13 @@ private:
                     uvs = gltf::readTexCoords(model_, a->second, path_);
                 if (const auto a = primitive.attributes.find("COLOR_0"); a != primitive.attributes.end())
                     colors = gltf::readColors(model_, a->second, path_);
+                if (const auto a = primitive.attributes.find("NORMAL"); a != primitive.attributes.end())
+                    normals = gltf::readNormals(model_, a->second, path_);
             }
         }
-        if ((!uvs.empty() && uvs.size() != positions.size()) || (!colors.empty() && colors.size() != positions.size()))
-            throw fileError(path_, "a primitive's TEXCOORD_0 or COLOR_0 has another count than its POSITION");
+        if ((!uvs.empty() && uvs.size() != positions.size()) || (!colors.empty() && colors.size() != positions.size()) ||
+            (!normals.empty() && normals.size() != positions.size()))
+            throw fileError(path_, "a primitive's TEXCOORD_0, COLOR_0 or NORMAL has another count than its POSITION");
         if (indices.size() % 3 != 0)
             throw fileError(path_, "a TRIANGLES primitive has " + std::to_string(indices.size()) +
                                        " indices, not a multiple of 3");
@@ -281,11 +288,30 @@ private:
         if (appearance_) {
             hasUvs_ = hasUvs_ || !uvs.empty();
             hasColors_ = hasColors_ || !colors.empty();
+            hasNormals_ = hasNormals_ || !normals.empty();
+            completeNormals(positions, indices, normals);
+            mesh.normals.insert(mesh.normals.end(), normals.begin(), normals.end());
             uvs.resize(positions.size(), glm::vec2(0.0f));
             colors.resize(positions.size(), glm::vec4(1.0f));
             mesh.uvs.insert(mesh.uvs.end(), uvs.begin(), uvs.end());
             mesh.colors.insert(mesh.colors.end(), colors.begin(), colors.end());
             mesh.materials.insert(mesh.materials.end(), indices.size() / 3, primitive.material);
+        }
+    }
+
+    // Where a primitive has no NORMAL, or a vertex a zero one, the smooth normal of its own
+    // triangles (glTF asks for flat ones there; smooth is what its renders have always shown).
+    static void completeNormals(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices,
+                                std::vector<glm::vec3>& normals) {
+        PolygonMesh primitive;
+        primitive.positions = positions;
+        primitive.faceIndices.assign(indices.begin(), indices.end());
+        primitive.faceSizes.assign(indices.size() / 3, 3);
+        const std::vector<glm::vec3> computed = vertexNormals(primitive);
+        normals.resize(positions.size(), glm::vec3(0.0f));
+        for (size_t v = 0; v < normals.size(); ++v) {
+            const float length = glm::length(normals[v]);
+            normals[v] = length > 0.0f ? normals[v] / length : computed[v];
         }
     }
 
@@ -301,6 +327,8 @@ private:
             const tinygltf::Value& color = extension.Get("attributes").Get("COLOR_0");
             if (texCoord.IsNumber()) ids.texCoord = texCoord.GetNumberAsInt();
             if (color.IsNumber()) ids.color = color.GetNumberAsInt();
+            const tinygltf::Value& normal = extension.Get("attributes").Get("NORMAL");
+            if (normal.IsNumber()) ids.normal = normal.GetNumberAsInt();
         }
         return decodeDracoMesh(bytes.data(), bytes.size(), path_, ids);
     }
@@ -334,6 +362,14 @@ private:
             mesh_.faceSizes.push_back(3);
         }
         if (appearance_) {
+            // Normals transform by the inverse transpose, which also keeps them outward on the
+            // triangles a mirroring transform turned round above.
+            const glm::dmat3 normalTransform = glm::transpose(glm::inverse(glm::dmat3(transform)));
+            for (const glm::vec3& n : triangles.normals) {
+                const glm::dvec3 m = normalTransform * glm::dvec3(n);
+                const double length = glm::length(m);
+                mesh_.normals.push_back(length > 0.0 && std::isfinite(length) ? glm::vec3(m / length) : n);
+            }
             mesh_.uvs.insert(mesh_.uvs.end(), triangles.uvs.begin(), triangles.uvs.end());
             mesh_.colors.insert(mesh_.colors.end(), triangles.colors.begin(), triangles.colors.end());
             mesh_.faceMaterials.insert(mesh_.faceMaterials.end(), triangles.materials.begin(), triangles.materials.end());
@@ -346,6 +382,7 @@ private:
     void finishAppearance() {
         if (!hasUvs_) mesh_.uvs.clear();
         if (!hasColors_) mesh_.colors.clear();
+        if (!hasNormals_) mesh_.normals.clear();
         if (model_.materials.empty() && !hasColors_) {
             mesh_.faceMaterials.clear();
             return;
@@ -369,7 +406,7 @@ private:
     const tinygltf::Model& model_;
     std::string path_;
     bool appearance_;
-    bool hasUvs_ = false, hasColors_ = false;
+    bool hasUvs_ = false, hasColors_ = false, hasNormals_ = false;
     std::vector<std::optional<MeshTriangles>> meshes_;
     std::vector<UnfoldCost> costs_;
     std::vector<Visit> visit_;

@@ -15,6 +15,7 @@ PolygonMesh triangulated(const PolygonMesh& mesh) {
     out.sourcePath = mesh.sourcePath;
     out.uvs = mesh.uvs;
     out.colors = mesh.colors;
+    out.normals = mesh.normals;
     out.materials = mesh.materials;
     std::vector<char> isHole(mesh.faceSizes.size(), 0);
     for (int f : mesh.tags.holes)
@@ -62,6 +63,10 @@ std::vector<glm::vec3> vertexNormals(const PolygonMesh& mesh) {
         normals[i] = length > 0.0 && std::isfinite(length) ? glm::vec3(sums[i] / length) : glm::vec3(0, 0, 1);
     }
     return normals;
+}
+
+std::vector<glm::vec3> shadingNormals(const PolygonMesh& mesh) {
+    return mesh.normals.empty() ? vertexNormals(mesh) : mesh.normals;
 }
 
 float meanEdgeLength(const PolygonMesh& m) {

@@ -1,5 +1,5 @@
 #pragma once
-// Derived geometry of a PolygonMesh that renderers need: triangles and vertex normals. Both
+// Derived geometry of a PolygonMesh that renderers need: triangles and vertex normals. All
 // expect a mesh that passed validateMesh (broken indices are a SUBDFIT_CHECK failure).
 #include <vector>
 
@@ -16,6 +16,10 @@ PolygonMesh triangulated(const PolygonMesh& mesh);
 // Area-weighted vertex normals (each face contributes its vector area). Never NaN: a vertex
 // whose faces have no area, or that no face uses, gets +Z.
 std::vector<glm::vec3> vertexNormals(const PolygonMesh& mesh);
+
+// The normals a glTF viewer shades `mesh` with: the author's (mesh.normals) where the file has
+// them, else vertexNormals().
+std::vector<glm::vec3> shadingNormals(const PolygonMesh& mesh);
 
 // The mean length of the faces' edges (an edge shared by two faces counts twice): the scale of
 // a cage, which perturbations, steps and ray reaches are measured against.

@@ -62,6 +62,8 @@ void validateAppearance(const PolygonMesh& mesh) {
     const size_t vertices = mesh.positions.size();
     if ((!mesh.uvs.empty() && mesh.uvs.size() != vertices) || (!mesh.colors.empty() && mesh.colors.size() != vertices))
         throw fileError(path, "texture coordinates or colours do not match the vertices");
+    if (!mesh.normals.empty() && mesh.normals.size() != vertices)
+        throw fileError(path, "normals do not match the vertices");
     if (!mesh.materials) {
         if (!mesh.faceMaterials.empty()) throw fileError(path, "faces name materials, but there are none");
         return;

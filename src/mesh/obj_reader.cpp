@@ -7,6 +7,7 @@
 
 #include "io/input_file.h"
 #include "mesh/input_limits.h"
+#include "mesh/mesh_geometry.h"
 #include "mesh/obj_materials.h"
 #include "mesh/obj_tags.h"
 #include "mesh/obj_tokens.h"
@@ -153,11 +154,14 @@ private:
         return int(index);
     }
 
-    // One vertex per distinct (position, texture coordinate) pair, as a renderer needs them;
-    // the tags, which name the file's vertices, no longer apply and are dropped.
+    // One vertex per distinct (position, texture coordinate) pair, as a renderer needs them,
+    // each shaded with its position's smooth normal (the split is the texture's, not a hard
+    // edge; `vn` is not read); the tags, which name the file's vertices, no longer apply and
+    // are dropped.
     void finishAppearance() {
         const obj::MaterialLibrary library = obj::readMaterialLibraries(mesh_.sourcePath, libraries_);
         if (!texCoords_.empty()) {
+            const std::vector<glm::vec3> smooth = vertexNormals(mesh_);
             std::vector<glm::vec3> positions;
             std::map<std::pair<int, int>, int> split;
             for (size_t k = 0; k < mesh_.faceIndices.size(); ++k) {
@@ -165,6 +169,7 @@ private:
                 const auto [it, fresh] = split.try_emplace(key, int(positions.size()));
                 if (fresh) {
                     positions.push_back(mesh_.positions[size_t(key.first)]);
+                    mesh_.normals.push_back(smooth[size_t(key.first)]);
                     mesh_.uvs.push_back(key.second >= 0 ? texCoords_[size_t(key.second)] : glm::vec2(0.0f));
                 }
                 mesh_.faceIndices[k] = it->second;

@@ -59,10 +59,12 @@ struct PolygonMesh {
     std::string sourcePath;  // for error messages
 
     // A reference's appearance, read only when asked for (mesh_loader.h's loadReference): per
-    // vertex texture coordinates (TEXCOORD_0; empty when none) and colours (COLOR_0, linear RGBA;
-    // empty when none), and per face its material in `materials` (all empty for a mesh
-    // without materials: a grey surface).
+    // vertex texture coordinates (TEXCOORD_0; empty when none), colours (COLOR_0, linear RGBA;
+    // empty when none) and the author's unit shading normals (NORMAL; empty when the file has
+    // none, and mesh_geometry.h's shadingNormals() computes them), and per face its material in
+    // `materials` (all empty for a mesh without materials: a grey surface).
     std::vector<glm::vec2> uvs;
+    std::vector<glm::vec3> normals;
     std::vector<glm::vec4> colors;
     std::vector<int> faceMaterials;
     std::shared_ptr<const MaterialSet> materials;

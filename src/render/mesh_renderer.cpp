@@ -71,7 +71,7 @@ MeshRenderer::MeshRenderer(const std::vector<glm::vec3>& positions, const std::v
 MeshRenderer::MeshRenderer(const mesh::PolygonMesh& triangles, ShadingModel shading)
     : shading_(shading),
       positions_(gl::Buffer::fromVector(triangles.positions)),
-      normals_(gl::Buffer::fromVector(mesh::vertexNormals(triangles))),
+      normals_(gl::Buffer::fromVector(mesh::shadingNormals(triangles))),
       materials_(triangles.materials) {
     // A material shading asked of a mesh without materials: one plain white one.
     std::vector<int> plain;

@@ -189,7 +189,7 @@ surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
     surface::SurfaceMaps maps;
     maps.layout = surface::buildTexelLayout(cage, options.resolution);
     const geometry::SurfaceQueries surface(reference);
-    const auto referenceNormals = mesh::vertexNormals(reference);
+    const auto referenceNormals = mesh::shadingNormals(reference);
     const NodeHits nodeHits = castNodes(cage, maps.layout, surface, maxDistanceFor(options, cage));
     const auto& sites = nodeHits.sites;
     const auto& samples = nodeHits.samples;

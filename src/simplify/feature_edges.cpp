@@ -92,7 +92,7 @@ ReferenceFeatures referenceFeatures(const mesh::PolygonMesh& reference, const Fe
             sides[std::minmax(welded[size_t(a)], welded[size_t(b)])].push_back(inOrder ? Side{a, b} : Side{b, a});
         }
     }
-    const std::vector<glm::vec3> normals = mesh::vertexNormals(reference);
+    const std::vector<glm::vec3> normals = mesh::shadingNormals(reference);
     auto parts = [&](int u, int w) { return u != w && angleBetween(normals[size_t(u)], normals[size_t(w)]) > hard; };
     std::vector<std::vector<int>> boundaryNeighbors(count);
     for (const auto& [edge, around] : sides) {

@@ -25,7 +25,7 @@ struct FeatureCount {
 };
 
 // Adds the creases and corners to `cage.tags`. `reference`: triangles as read (vertices split
-// where the file splits them), shaded with mesh::vertexNormals as the reference renderer does.
+// where the file splits them), shaded with mesh::shadingNormals as the reference renderer does.
 // `cage`: triangles whose vertices lie at vertices of `reference`, as decimation leaves them; a
 // cage vertex found nowhere on it takes part in no feature.
 FeatureCount tagFeatures(mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference, const FeatureAngles& angles = {});

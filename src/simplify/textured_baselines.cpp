@@ -149,11 +149,13 @@ mesh::PolygonMesh decimateTextured(const mesh::PolygonMesh& triangles, int targe
     out.positions.resize(used);
     if (!triangles.uvs.empty()) out.uvs.resize(used);
     if (!triangles.colors.empty()) out.colors.resize(used);
+    if (!triangles.normals.empty()) out.normals.resize(used);
     for (size_t v = 0; v < remap.size(); ++v)
         if (remap[v] != ~0u) {
             out.positions[remap[v]] = triangles.positions[v];
             if (!triangles.uvs.empty()) out.uvs[remap[v]] = triangles.uvs[v];
             if (!triangles.colors.empty()) out.colors[remap[v]] = triangles.colors[v];
+            if (!triangles.normals.empty()) out.normals[remap[v]] = triangles.normals[v];
         }
     out.faceSizes.assign(kept.size() / 3, 3);
     for (unsigned i : kept) out.faceIndices.push_back(int(remap[i]));
@@ -167,7 +169,7 @@ Quality texturedDecimationBaseline(gl::ProgramCache& programs, const fit::FitSce
     const Shipped shipped = bestScale(programs, scene, budget, output, [&](int, const auto& images, int triangles) {
         throwIfStopRequested();
         mesh::PolygonMesh decimated = decimateTextured(scene.reference, triangles);
-        const auto normals = mesh::vertexNormals(decimated);
+        const auto normals = mesh::shadingNormals(decimated);
         decimated.positions = scene.frame.toWorld(decimated.positions);
         return exporter::writeTexturedGlb(output, decimated, normals, images, /*draco=*/true).bytes;
     });
@@ -181,7 +183,7 @@ std::optional<Quality> texturedGltfpackBaseline(gl::ProgramCache& programs, cons
     const auto input = settings.dir / "gltfpack_input.glb", output = settings.dir / "gltfpack.glb";
     mesh::PolygonMesh world = scene.reference;
     world.positions = scene.frame.toWorld(world.positions);
-    const auto normals = mesh::vertexNormals(scene.reference);
+    const auto normals = mesh::shadingNormals(scene.reference);
     int writtenDivisor = 0;
     std::vector<std::string> flags{"-cc"};
     auto ship = [&](int divisor, const std::vector<exporter::EncodedImage>& images, int triangles) -> std::uintmax_t {
