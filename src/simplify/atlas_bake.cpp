@@ -21,6 +21,90 @@ const mesh::Material* atlasMaterial(const mesh::PolygonMesh& reference) {
     return &reference.materials->materials[size_t(reference.faceMaterials.front())];
 }
 
+// Which of a grid × grid lattice of sample points (at cell centres, over [0, 1]²) some triangle
+// of the reference covers in texture space: the texture's charts, without its gutter.
+std::vector<char> chartCoverage(const mesh::PolygonMesh& reference, int grid) {
+    std::vector<char> covered(size_t(grid) * size_t(grid), 0);
+    for (int f = 0; f < reference.faceCount(); ++f) {
+        glm::vec2 t[3];
+        for (int k = 0; k < 3; ++k) t[k] = reference.uvs[size_t(reference.faceIndices[size_t(3 * f + k)])] * float(grid);
+        const float area = (t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[2].x - t[0].x) * (t[1].y - t[0].y);
+        if (!(std::abs(area) > 0.0f)) continue;
+        const auto lo = glm::max(glm::floor(glm::min(t[0], glm::min(t[1], t[2]))), glm::vec2(0.0f));
+        const auto hi = glm::min(glm::ceil(glm::max(t[0], glm::max(t[1], t[2]))), glm::vec2(float(grid)));
+        for (int y = int(lo.y); y < int(hi.y); ++y)
+            for (int x = int(lo.x); x < int(hi.x); ++x) {
+                const glm::vec2 p(float(x) + 0.5f, float(y) + 0.5f);
+                bool inside = true;
+                for (int k = 0; k < 3 && inside; ++k) {
+                    const glm::vec2 a = t[k], b = t[(k + 1) % 3];
+                    inside = ((b.x - a.x) * (p.y - a.y) - (p.x - a.x) * (b.y - a.y)) * area >= 0.0f;
+                }
+                if (inside) covered[size_t(y) * size_t(grid) + size_t(x)] = 1;
+            }
+    }
+    return covered;
+}
+
+// Texels no chart reaches take their reached neighbours' mean, ring by ring (a few rings: as far
+// as a ptex face's coordinates or the bilinear filter stray past a chart's edge), then the mean
+// of the whole: the gutter continues each chart instead of pulling its border towards the
+// texture's background, which a coarse atlas would otherwise mix into every border texel.
+class GutterFill {
+public:
+    GutterFill(const std::vector<char>& reached, int size) : size_(size), ring_(reached.size(), kNever) {
+        for (size_t t = 0; t < reached.size(); ++t)
+            if (reached[t]) ring_[t] = 0;
+        for (int ring = 1; ring <= kRings; ++ring)
+            for (int j = 0; j < size; ++j)
+                for (int i = 0; i < size; ++i)
+                    if (ring_[at(i, j)] == kNever && !earlierNeighbours(i, j, ring).empty()) ring_[at(i, j)] = ring;
+    }
+
+    // Fills `values` (`channels` per texel, row by row) where no chart reaches.
+    void operator()(std::vector<float>& values, size_t channels) const {
+        if (values.empty()) return;
+        for (int ring = 1; ring <= kRings; ++ring)
+            for (int j = 0; j < size_; ++j)
+                for (int i = 0; i < size_; ++i) {
+                    if (ring_[at(i, j)] != ring) continue;
+                    const std::vector<size_t> from = earlierNeighbours(i, j, ring);
+                    for (size_t k = 0; k < channels; ++k) {
+                        float sum = 0.0f;
+                        for (size_t n : from) sum += values[channels * n + k];
+                        values[channels * at(i, j) + k] = sum / float(from.size());
+                    }
+                }
+        std::vector<double> mean(channels, 0.0);
+        size_t filled = 0;
+        for (size_t t = 0; t < ring_.size(); ++t)
+            if (ring_[t] != kNever) {
+                ++filled;
+                for (size_t k = 0; k < channels; ++k) mean[k] += values[channels * t + k];
+            }
+        for (size_t t = 0; t < ring_.size(); ++t)
+            if (ring_[t] == kNever)
+                for (size_t k = 0; k < channels; ++k) values[channels * t + k] = filled ? float(mean[k] / double(filled)) : 0.0f;
+    }
+
+private:
+    static constexpr int kRings = 8, kNever = -1;
+    size_t at(int i, int j) const { return size_t(j) * size_t(size_) + size_t(i); }
+
+    std::vector<size_t> earlierNeighbours(int i, int j, int ring) const {
+        std::vector<size_t> out;
+        for (int y = std::max(j - 1, 0); y <= std::min(j + 1, size_ - 1); ++y)
+            for (int x = std::max(i - 1, 0); x <= std::min(i + 1, size_ - 1); ++x) {
+                const int r = ring_[at(x, y)];
+                if (r != kNever && r < ring && (x != i || y != j)) out.push_back(at(x, y));
+            }
+        return out;
+    }
+
+    int size_;
+    std::vector<int> ring_;  // the ring a texel is filled in: 0 reached by a chart, kNever beyond the rings
+};
+
 }  // namespace
 
 std::string atlasUnsuitability(const mesh::PolygonMesh& reference) {
@@ -61,9 +145,12 @@ surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const me
     maps.appearanceLayout = surface::atlasLattice(size);
     maps.appearanceAtlas = {.size = size,
                             .cornerUvs = atlasCornerUvs(cage, reference, maxDistance > 0.0f ? maxDistance : mesh::meanEdgeLength(cage))};
-    // Each texel the mean of the material over its square (a box filter in linear units, as
-    // a renderer's mip chain), a few samples a source texel.
+    // Each texel the mean of the material over the part of its square that a chart covers (a
+    // box filter in linear units, as a renderer's mip chain, without the gutter), a few samples
+    // a source texel.
     const int samples = std::clamp((atlasSourceSize(reference) + size - 1) / size, 1, 8);
+    const std::vector<char> covered = chartCoverage(reference, size * samples);
+    std::vector<char> reached(size_t(size) * size_t(size), 0);
     const size_t texels = size_t(size) * size_t(size);
     const bool normal = m.normalTexture.present(), occlusion = m.occlusionTexture.present(),
                emissive = m.emissiveFactor != glm::vec3(0.0f);
@@ -73,8 +160,11 @@ surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const me
             glm::vec3 c(0.0f), n(0.0f), e(0.0f);
             glm::vec2 rm(0.0f);
             float o = 0.0f;
+            int count = 0;
             for (int b = 0; b < samples; ++b)
                 for (int a = 0; a < samples; ++a) {
+                    if (!covered[size_t(j * samples + b) * size_t(size * samples) + size_t(i * samples + a)]) continue;
+                    ++count;
                     const glm::vec2 uv((float(i) + (float(a) + 0.5f) / float(samples)) / float(size),
                                        (float(j) + (float(b) + 0.5f) / float(samples)) / float(size));
                     c += glm::vec3(m.baseColorFactor) * glm::vec3(mesh::sampleTexture(set, m.baseColorTexture, uv, true));
@@ -88,20 +178,27 @@ surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const me
                     if (occlusion) o += 1.0f + m.occlusionStrength * (mesh::sampleTexture(set, m.occlusionTexture, uv, false).r - 1.0f);
                     if (emissive) e += m.emissiveFactor * glm::vec3(mesh::sampleTexture(set, m.emissiveTexture, uv, true));
                 }
-            const float count = float(samples * samples);
             const size_t texel = size_t(j) * size_t(size) + size_t(i);
+            reached[texel] = count > 0;
+            count = std::max(count, 1);
             auto srgb = [](float linear) { return std::clamp(mesh::linearToSrgb(linear), 0.0f, 1.0f); };
-            for (int k = 0; k < 3; ++k) color[3 * texel + size_t(k)] = srgb(c[k] / count);
-            roughnessMetallic[2 * texel] = std::clamp(rm.x / count, 0.0f, 1.0f);
-            roughnessMetallic[2 * texel + 1] = std::clamp(rm.y / count, 0.0f, 1.0f);
+            for (int k = 0; k < 3; ++k) color[3 * texel + size_t(k)] = srgb(c[k] / float(count));
+            roughnessMetallic[2 * texel] = std::clamp(rm.x / float(count), 0.0f, 1.0f);
+            roughnessMetallic[2 * texel + 1] = std::clamp(rm.y / float(count), 0.0f, 1.0f);
             if (normal) {
                 const glm::vec3 unit = glm::length(n) > 1e-6f ? glm::normalize(n) : glm::vec3(0.0f, 0.0f, 1.0f);
                 for (int k = 0; k < 3; ++k) normals.push_back(unit[k] * 0.5f + 0.5f);
             }
-            if (occlusion) occlusions.push_back(std::clamp(o / count, 0.0f, 1.0f));
+            if (occlusion) occlusions.push_back(std::clamp(o / float(count), 0.0f, 1.0f));
             if (emissive)
-                for (int k = 0; k < 3; ++k) emission.push_back(srgb(e[k] / count));
+                for (int k = 0; k < 3; ++k) emission.push_back(srgb(e[k] / float(count)));
         }
+    const GutterFill fillGutter(reached, size);
+    fillGutter(color, 3);
+    fillGutter(roughnessMetallic, 2);
+    fillGutter(normals, 3);
+    fillGutter(occlusions, 1);
+    fillGutter(emission, 3);
     if (effects.baseColor) maps.baseColor = std::move(color);
     if (effects.metallicRoughness) maps.metallicRoughness = std::move(roughnessMetallic);
     // Occlusion rides in the metallic-roughness image's red channel (glTF's occlusion-roughness-

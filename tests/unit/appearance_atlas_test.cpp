@@ -4,6 +4,7 @@
 // a damaged section is refused.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -20,12 +21,18 @@
 namespace subdfit {
 namespace {
 
-// One material whose base colour is a 64² texture, red along u and green along v.
-void paint(mesh::PolygonMesh& reference) {
-    mesh::Image image{.name = "gradient", .width = 64, .height = 64, .rgba = {}};
+using Rgba = std::array<std::uint8_t, 4>;
+Rgba gradient(int x, int y) { return {std::uint8_t(x * 4), std::uint8_t(y * 4), 128, 255}; }
+
+// One material whose base colour is a 64² texture: `texel` (x, y), by default red along u and
+// green along v.
+void paint(mesh::PolygonMesh& reference, Rgba (*texel)(int x, int y) = gradient) {
+    mesh::Image image{.name = "painted", .width = 64, .height = 64, .rgba = {}};
     for (int y = 0; y < 64; ++y)
-        for (int x = 0; x < 64; ++x)
-            image.rgba.insert(image.rgba.end(), {std::uint8_t(x * 4), std::uint8_t(y * 4), 128, 255});
+        for (int x = 0; x < 64; ++x) {
+            const Rgba c = texel(x, y);
+            image.rgba.insert(image.rgba.end(), c.begin(), c.end());
+        }
     mesh::Material m = mesh::defaultMaterial();
     m.baseColorTexture.image = 0;
     reference.materials = std::make_shared<mesh::MaterialSet>(mesh::MaterialSet{{m}, {image}});
@@ -83,6 +90,25 @@ TEST(AtlasBake, APlaneGetsItsOwnTextureCoordinatesAndTexture) {
     EXPECT_LT(maps.baseColor[3 * 0], maps.baseColor[3 * 15]);
     EXPECT_LT(maps.baseColor[3 * 0 + 1], maps.baseColor[3 * (15 * 16) + 1]);
     EXPECT_NEAR(maps.baseColor[3 * (8 * 16 + 8)], (8.5f * 4.0f * 4.0f - 2.0f) / 255.0f, 0.03f);  // texel 8's mean red
+}
+
+TEST(AtlasBake, ChartBordersKeepTheirColourNotTheGutters) {
+    // A plane textured through the middle of its image, [0.3, 0.7]², which is orange there and
+    // black around: every texel of a coarse atlas is the chart's orange, those its border cuts
+    // through and the gutter's too.
+    mesh::PolygonMesh reference = triangles(mesh::makeQuadGrid(8));
+    for (const glm::vec3& p : reference.positions)
+        reference.uvs.push_back({0.5f + 0.2f * p.x, 0.5f - 0.2f * p.y});
+    paint(reference, [](int x, int y) -> Rgba {
+        const bool chart = x >= 19 && x < 45 && y >= 19 && y < 45;  // texel centres inside [0.3, 0.7]
+        return chart ? Rgba{255, 128, 0, 255} : Rgba{0, 0, 0, 255};
+    });
+    const surface::SurfaceMaps maps = simplify::bakeAtlasAppearance(mesh::makeQuadGrid(2), reference, {.baseColor = true}, 8);
+    ASSERT_EQ(maps.baseColor.size(), 3u * 8 * 8);
+    for (size_t t = 0; t < 64; ++t) {
+        EXPECT_NEAR(maps.baseColor[3 * t], 1.0f, 0.02f) << "texel " << t;
+        EXPECT_NEAR(maps.baseColor[3 * t + 1], 128.0f / 255.0f, 0.02f) << "texel " << t;
+    }
 }
 
 // A tube around z whose texture wraps once around it, its vertices split along the seam at
