@@ -5,10 +5,17 @@
 // decoder rebuilds); inside a chart of the atlas all corners at a node agree, so most nodes hold
 // one coordinate pair and their corners need no index. Raw layout:
 //
-//   varint atlas size | u8 bits b | per node: varint count (>= 1) | per node, per value: the
-//   quantised q = round(uv · 2^b) as signed varint deltas from the previous value (u, then v) |
-//   per ptex corner (face order, corners at (0,0), (1,0), (1,1), (0,1)) whose node holds more
-//   than one value: varint index into its node's values
+//   varint atlas size | u8 bits b | per node: varint count (>= 1) | per ptex corner (face order,
+//   corners at (0,0), (1,0), (1,1), (0,1)) whose node holds more than one value: varint index
+//   into its node's values | per value, in the order of cage faces: the quantised
+//   q = round(uv · 2^b) less its prediction from the values of its cage face coded before it,
+//   as signed varints (u, then v).
+//
+// A quad's corners are predicted by the parallelogram of its other three (else a neighbour, else
+// the value coded last); an n-gon's vertex corners by the one before, then its edge midpoints by
+// the mean of the edge's ends and its centre by the mean of its vertices, which inside a chart is
+// within a fraction of a texel (the face's texture is about affine), so that the two thirds of
+// a triangle cage's values that sit at midpoints and centres cost a few bits each.
 #include "export/byte_stream.h"
 #include "mesh/polygon_mesh.h"
 #include "surface/appearance_atlas.h"

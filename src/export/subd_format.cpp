@@ -297,7 +297,7 @@ SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& na
     ByteReader header(bytes, name);
     header.take(4);
     const auto version = header.get<std::uint16_t>();
-    if (version != kSubdVersion && version != 3)  // version 4 added AUVS; a version-3 file reads the same
+    if (version != kSubdVersion && version != 3 && version != 4)  // the versions differ only in AUVS
         throw Error(name + ": .subd version " + std::to_string(version) + ", this subdfit reads version " +
                     std::to_string(kSubdVersion));
     const auto body = bytes.first(bytes.size() - 8);
@@ -334,6 +334,8 @@ SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& na
         else if (tag == kNormal) asset.maps.normal = readMaps(section, asset.cage, 2, asset.maps.layout);
         else if (tag == kAtlasUvs) {
             if (asset.maps.appearanceLayout.resolution != 0) throw Error(name + ": section AUVS after the appearance");
+            if (version == 4)
+                throw Error(name + ": .subd version 4 atlas coordinates (a development format); simplify the asset again");
             asset.maps.appearanceAtlas = readAtlasUvs(section, asset.cage);
         } else if (tag == kBaseColor) readAppearance(section, asset.cage, AppearanceImage::BaseColor, asset.maps);
         else if (tag == kMetallicRoughness) readAppearance(section, asset.cage, AppearanceImage::MetallicRoughness, asset.maps);

@@ -1,9 +1,9 @@
 #pragma once
-// The shipped asset, one file: `.subd`, version 4. What a user ships is the control cage (with its
+// The shipped asset, one file: `.subd`, version 5. What a user ships is the control cage (with its
 // OpenSubdiv tags) and the maps' node values, quantised and entropy-coded; `subdfit decode`
 // turns it back into triangles. Layout (little-endian):
 //
-//   header   "SUBD" | u16 version (4) | u16 flags (0) | u32 section count
+//   header   "SUBD" | u16 version (5) | u16 flags (0) | u32 section count
 //   section  4-byte tag | u32 stored bytes | u32 raw bytes | stored bytes (a zstd frame)
 //   trailer  u64 XXH3-64 of every byte before it
 //
@@ -45,7 +45,8 @@
 //
 // Heights are in the cage's units along the limit normal. (Version 1 had no coding byte and
 // 16-bit plain positions; its files are refused with the version named. Version 3 had no AUVS
-// and reads as version 4.)
+// and reads as version 5; version 4 coded AUVS without prediction, and reads as version 5 when
+// it has none.)
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -58,7 +59,7 @@
 
 namespace subdfit::exporter {
 
-inline constexpr std::uint16_t kSubdVersion = 4;
+inline constexpr std::uint16_t kSubdVersion = 5;
 
 // The cage as fitted and the maps laid out on the cage as it decodes (shippableAsset makes one).
 struct SubdAsset {
@@ -82,7 +83,7 @@ struct SubdPrecision {
 std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecision& precision = {});
 
 // `name` names the data in errors. Throws subdfit::Error ("name: problem") for anything that is
-// not a whole, checksummed version-3 or 4 file whose cage and maps are sound.
+// not a whole, checksummed version-3, 4 or 5 file whose cage and maps are sound.
 SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& name);
 
 WrittenFile writeSubd(const std::filesystem::path& path, const SubdAsset& asset, const SubdPrecision& precision = {});

@@ -152,6 +152,59 @@ void weldCorners(const mesh::PolygonMesh& cage, std::vector<glm::vec2>& corners,
         }
 }
 
+// An n-gon's sub-faces (n ≠ 4) meet at its edges' midpoints, corners (1, 0) and (0, 1), and at
+// its centre, corner (1, 1); inside a chart the texture there is about the mean of the face's
+// vertices' (corner (0, 0) of each sub-face), which is what the AUVS coding predicts. A value
+// that every corner holding it puts within a small part of its sub-face of that mean becomes
+// the mean: the fit's noise, not the texture, is what would have cost the bytes.
+void snapToVertexMeans(const mesh::PolygonMesh& cage, std::vector<glm::vec2>& corners) {
+    constexpr float kTolerance = 0.15f;  // of the sub-face's extent in the atlas
+    const surface::TexelLayout points = surface::buildTexelLayout(cage, 1);
+    struct Value {
+        glm::vec2 uv;
+        glm::vec2 predictions{0.0f};
+        int count = 0;
+        bool movable = true;
+    };
+    std::vector<std::vector<Value>> values(size_t(points.nodeCount));
+    auto valueAt = [&](int f, int k) -> Value& {
+        auto& list = values[size_t(surface::cornerPoint(points, f, k))];
+        const glm::vec2 uv = corners[4 * size_t(f) + size_t(k)];
+        auto at = std::find_if(list.begin(), list.end(), [&](const Value& v) { return v.uv == uv; });
+        return at != list.end() ? *at : list.emplace_back(Value{uv});
+    };
+    int ptex = 0;
+    for (const int n : cage.faceSizes) {
+        const int first = ptex;
+        ptex += n == 4 ? 1 : n;
+        if (n == 4) {
+            for (int k = 0; k < 4; ++k) valueAt(first, k).movable = false;
+            continue;
+        }
+        auto vertex = [&](int i) { return corners[4 * size_t(first + (i % n + n) % n)]; };
+        glm::vec2 centre(0.0f);
+        for (int i = 0; i < n; ++i) centre += vertex(i) / float(n);
+        for (int i = 0; i < n; ++i) {
+            const int f = first + i;
+            float extent = 0.0f;
+            for (int k = 1; k < 4; ++k) extent = std::max(extent, glm::distance(corners[4 * size_t(f)], corners[4 * size_t(f) + size_t(k)]));
+            valueAt(f, 0).movable = false;
+            for (const auto& [k, prediction] : {std::pair{1, 0.5f * (vertex(i) + vertex(i + 1))}, std::pair{3, 0.5f * (vertex(i - 1) + vertex(i))},
+                                                std::pair{2, centre}}) {
+                Value& value = valueAt(f, k);
+                value.movable = value.movable && glm::distance(value.uv, prediction) <= kTolerance * extent;
+                value.predictions += prediction;
+                ++value.count;
+            }
+        }
+    }
+    for (int f = 0; f < points.ptexFaceCount; ++f)
+        for (int k = 0; k < 4; ++k) {
+            const Value& value = valueAt(f, k);
+            if (value.movable && value.count > 0) corners[4 * size_t(f) + size_t(k)] = value.predictions / float(value.count);
+        }
+}
+
 }  // namespace
 
 std::vector<glm::vec2> atlasCornerUvs(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference, float maxDistance) {
@@ -204,6 +257,7 @@ std::vector<glm::vec2> atlasCornerUvs(const mesh::PolygonMesh& cage, const mesh:
         found[size_t(f)] = 1;
     }
     weldCorners(cage, corners, found);
+    snapToVertexMeans(cage, corners);
     return corners;
 }
 
