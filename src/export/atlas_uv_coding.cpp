@@ -77,8 +77,8 @@ void walkValues(const mesh::PolygonMesh& cage, const ValueSlots& slots, Code cod
 }  // namespace
 
 int atlasUvBits(int atlasSize) {
-    int bits = 4;
-    while ((1 << (bits - 4)) < atlasSize) ++bits;
+    int bits = 2;
+    while ((1 << (bits - 2)) < atlasSize) ++bits;
     return std::min(bits, 24);
 }
 

@@ -22,7 +22,8 @@
 
 namespace subdfit::exporter {
 
-// Bits under the point: 1/16 of a texel.
+// Bits under the point: a quarter of a texel (the fit places corners no better than that: on the
+// WaterBottle 1/16 cost 3.6 KB more for the same image).
 int atlasUvBits(int atlasSize);
 
 void writeAtlasUvs(const mesh::PolygonMesh& cage, const surface::AppearanceAtlas& atlas, ByteWriter& out);
