@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <unordered_map>
 
 #include "surface/appearance_atlas.h"
 #include "surface/texel_layout.h"
@@ -43,8 +44,18 @@ void walkValues(const mesh::PolygonMesh& cage, const ValueSlots& slots, Code cod
         std::optional<Q>& slot = value(f, k);
         if (!slot) last = *(slot = code(f, k, prediction));
     };
+    // Each triangle's values along its edges, for the parallelogram across them.
+    struct Wing {
+        int a, b;  // the edge's cage vertices
+        Q atA, atB, opposite;
+    };
+    std::unordered_map<std::uint64_t, Wing> wings;
+    auto edgeKey = [](int a, int b) { return std::uint64_t(std::uint32_t(std::min(a, b))) << 32 | std::uint32_t(std::max(a, b)); };
     int ptex = 0;
+    size_t offset = 0;
     for (const int n : cage.faceSizes) {
+        const int* ids = cage.faceIndices.data() + offset;
+        offset += size_t(n);
         if (n == 4) {
             const int f = ptex++;
             for (int k = 0; k < 4; ++k) {
@@ -59,7 +70,24 @@ void walkValues(const mesh::PolygonMesh& cage, const ValueSlots& slots, Code cod
         const int first = ptex;
         ptex += n;
         auto vertex = [&](int i) -> const std::optional<Q>& { return value(first + (i % n + n) % n, 0); };
-        for (int i = 0; i < n; ++i) visit(first + i, 0, vertex(i - 1) ? *vertex(i - 1) : last);
+        auto id = [&](int i) { return ids[(i % n + n) % n]; };
+        // A triangle's vertex whose two neighbours are known: the parallelogram over the edge
+        // between them, when the triangle across it has the same values there (the same chart).
+        auto acrossEdge = [&](int i) -> std::optional<Q> {
+            if (n != 3 || !vertex(i - 1) || !vertex(i + 1)) return std::nullopt;
+            const auto wing = wings.find(edgeKey(id(i - 1), id(i + 1)));
+            if (wing == wings.end()) return std::nullopt;
+            const Wing& w = wing->second;
+            const bool aFirst = w.a == id(i - 1);
+            if ((aFirst ? w.atA : w.atB) != *vertex(i - 1) || (aFirst ? w.atB : w.atA) != *vertex(i + 1)) return std::nullopt;
+            return *vertex(i - 1) + *vertex(i + 1) - w.opposite;
+        };
+        for (int i = 0; i < n; ++i) {
+            const std::optional<Q> parallelogram = acrossEdge(i);
+            visit(first + i, 0, parallelogram ? *parallelogram : vertex(i - 1) ? *vertex(i - 1) : last);
+        }
+        if (n == 3)
+            for (int i = 0; i < 3; ++i) wings[edgeKey(id(i), id(i + 1))] = {id(i), id(i + 1), *vertex(i), *vertex(i + 1), *vertex(i + 2)};
         auto midpoint = [&](int i, int j) {
             const Q sum = *vertex(i) + *vertex(j);
             return Q{floorDiv(sum[0], 2), floorDiv(sum[1], 2)};

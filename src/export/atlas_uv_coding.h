@@ -12,7 +12,9 @@
 //   as signed varints (u, then v).
 //
 // A quad's corners are predicted by the parallelogram of its other three (else a neighbour, else
-// the value coded last); an n-gon's vertex corners by the one before, then its edge midpoints by
+// the value coded last); a triangle's vertex corners by the parallelogram across the edge between
+// its two others when a triangle coded before holds that edge with the same values, else (and an
+// n-gon's) by the one before; then its edge midpoints by
 // the mean of the edge's ends and its centre by the mean of its vertices, which inside a chart is
 // within a fraction of a texel (the face's texture is about affine), so that the two thirds of
 // a triangle cage's values that sit at midpoints and centres cost a few bits each.
