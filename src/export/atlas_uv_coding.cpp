@@ -34,7 +34,8 @@ struct ValueSlots {
 // A quad's corners are predicted by the parallelogram of the other three (or a neighbour); an
 // n-gon's sub-faces have their corner (0,0) at its vertices, (1,0) and (0,1) at its edges'
 // midpoints and (1,1) at its centre, and inside a chart the coordinates there are the mean of
-// its vertices' (the texture is about affine across a face), so its vertices come first.
+// its vertices' (the texture is about affine across a face), so its vertices come first, each
+// from the one before or, on a triangle, by the parallelogram across an edge already coded.
 template <class Code>
 void walkValues(const mesh::PolygonMesh& cage, const ValueSlots& slots, Code code) {
     std::vector<std::optional<Q>> values(slots.first.back());
