@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <map>
+
+#include <glm/geometric.hpp>
 
 #include "io/input_file.h"
 #include "mesh/input_limits.h"
@@ -63,9 +66,10 @@ private:
         else if (keyword == "f") parseFace(tokens);
         else if (keyword == "t") obj::parseTagLine(line, at_, mesh_.tags, tagIndexUses_);
         else if (appearance_ && keyword == "vt") parseTexCoord(tokens);
+        else if (appearance_ && keyword == "vn") parseNormal(tokens);
         else if (appearance_ && keyword == "usemtl") material_ = materialNamed(std::string(obj::restOfLine(line, keyword)));
         else if (appearance_ && keyword == "mtllib") libraries_.push_back({std::string(obj::restOfLine(line, keyword)), at_.line});
-        // Everything else (vn, comments, g, o, s, l, p, ...) is not what a cage or a reference
+        // Everything else (comments, g, o, s, l, p, ...) is not what a cage or a reference
         // render needs.
     }
 
@@ -78,6 +82,15 @@ private:
         }
         // OBJ's v grows upwards from the image's bottom row; glTF's (and ours) downwards from its top.
         texCoords_.push_back({t.x, 1.0f - t.y});
+    }
+
+    void parseNormal(Tokens& tokens) {
+        glm::vec3 n(0.0f);
+        for (int axis = 0; axis < 3; ++axis) {
+            const std::string_view token = tokens.next();
+            if (!obj::parseFloat(token, n[axis]) || !std::isfinite(n[axis])) at_.fail("bad normal " + quoted(token));
+        }
+        normals_.push_back(n);
     }
 
     int materialNamed(const std::string& name) {
@@ -105,7 +118,10 @@ private:
         int size = 0;
         for (std::string_view entry = tokens.next(); !entry.empty(); entry = tokens.next()) {
             mesh_.faceIndices.push_back(vertexIndex(entry));
-            if (appearance_) cornerTexCoords_.push_back(texCoordIndex(entry));
+            if (appearance_) {
+                cornerTexCoords_.push_back(attributeIndex(entry, 1, texCoords_.size(), "texture coordinate"));
+                cornerNormals_.push_back(attributeIndex(entry, 2, normals_.size(), "normal"));
+            }
             ++size;
         }
         if (appearance_) faceMaterialNames_.push_back(material_);
@@ -139,38 +155,44 @@ private:
         return index;
     }
 
-    // The vt of an `f` entry "v/vt[/vn]", 0-based, or -1 when it has none.
-    int texCoordIndex(std::string_view entry) {
-        const size_t slash = entry.find('/');
-        if (slash == std::string_view::npos || slash + 1 >= entry.size() || entry[slash + 1] == '/') return -1;
-        std::string_view field = entry.substr(slash + 1);
-        field = field.substr(0, field.find('/'));
+    // Field `field` (1: vt, 2: vn) of an `f` entry "v/vt/vn", 0-based into the `count` read so
+    // far, or -1 when the entry has none.
+    int attributeIndex(std::string_view entry, int field, size_t count, const char* what) {
+        for (int k = 0; k < field; ++k) {
+            const size_t slash = entry.find('/');
+            if (slash == std::string_view::npos) return -1;
+            entry = entry.substr(slash + 1);
+        }
+        entry = entry.substr(0, entry.find('/'));
+        if (entry.empty()) return -1;
         int64_t raw = 0;
-        if (!obj::parseInt(field, raw) || raw == 0) at_.fail("bad texture coordinate index in " + quoted(entry));
-        const int64_t index = raw < 0 ? int64_t(texCoords_.size()) + raw : raw - 1;
-        if (index < 0 || index >= int64_t(texCoords_.size()))
-            at_.fail("texture coordinate index " + std::to_string(raw) + " is out of range (" +
-                     std::to_string(texCoords_.size()) + " read so far)");
+        if (!obj::parseInt(entry, raw) || raw == 0) at_.fail(std::string("bad ") + what + " index " + quoted(entry));
+        const int64_t index = raw < 0 ? int64_t(count) + raw : raw - 1;
+        if (index < 0 || index >= int64_t(count))
+            at_.fail(std::string(what) + " index " + std::to_string(raw) + " is out of range (" + std::to_string(count) +
+                     " read so far)");
         return int(index);
     }
 
-    // One vertex per distinct (position, texture coordinate) pair, as a renderer needs them,
-    // each shaded with its position's smooth normal (the split is the texture's, not a hard
-    // edge; `vn` is not read); the tags, which name the file's vertices, no longer apply and
-    // are dropped.
+    // One vertex per distinct (position, texture coordinate, normal), as a renderer needs them,
+    // shaded with its `vn` or, without one (or with a zero one), its position's smooth normal: a
+    // split only by texture coordinates is the texture's, not a hard edge. The tags, which name
+    // the file's vertices, no longer apply and are dropped.
     void finishAppearance() {
         const obj::MaterialLibrary library = obj::readMaterialLibraries(mesh_.sourcePath, libraries_);
-        if (!texCoords_.empty()) {
+        if (!texCoords_.empty() || !normals_.empty()) {
             const std::vector<glm::vec3> smooth = vertexNormals(mesh_);
             std::vector<glm::vec3> positions;
-            std::map<std::pair<int, int>, int> split;
+            std::map<std::array<int, 3>, int> split;
             for (size_t k = 0; k < mesh_.faceIndices.size(); ++k) {
-                const std::pair<int, int> key{mesh_.faceIndices[k], cornerTexCoords_[k]};
+                const std::array<int, 3> key{mesh_.faceIndices[k], cornerTexCoords_[k], cornerNormals_[k]};
                 const auto [it, fresh] = split.try_emplace(key, int(positions.size()));
                 if (fresh) {
-                    positions.push_back(mesh_.positions[size_t(key.first)]);
-                    mesh_.normals.push_back(smooth[size_t(key.first)]);
-                    mesh_.uvs.push_back(key.second >= 0 ? texCoords_[size_t(key.second)] : glm::vec2(0.0f));
+                    const auto [v, vt, vn] = key;
+                    positions.push_back(mesh_.positions[size_t(v)]);
+                    const float length = vn >= 0 ? glm::length(normals_[size_t(vn)]) : 0.0f;
+                    mesh_.normals.push_back(length > 0.0f ? normals_[size_t(vn)] / length : smooth[size_t(v)]);
+                    if (!texCoords_.empty()) mesh_.uvs.push_back(vt >= 0 ? texCoords_[size_t(vt)] : glm::vec2(0.0f));
                 }
                 mesh_.faceIndices[k] = it->second;
             }
@@ -200,7 +222,8 @@ private:
     LineContext at_;
     bool appearance_;
     std::vector<glm::vec2> texCoords_;
-    std::vector<int> cornerTexCoords_;     // per face corner, with appearance
+    std::vector<glm::vec3> normals_;
+    std::vector<int> cornerTexCoords_, cornerNormals_;  // per face corner, with appearance
     std::vector<int> faceMaterialNames_;   // per face: into materialNames_, -1 before any usemtl
     std::vector<std::string> materialNames_;
     std::vector<obj::LibraryUse> libraries_;

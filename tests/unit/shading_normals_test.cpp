@@ -1,5 +1,5 @@
-// A reference is shaded with its author's normals (glTF NORMAL, carried through node transforms)
-// or, where it has none, with smooth ones that ignore texture seams; never NaN.
+// A reference is shaded with its author's normals (glTF NORMAL, carried through node transforms;
+// OBJ vn) or, where it has none, with smooth ones that ignore texture seams; never NaN.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -126,6 +126,29 @@ TEST(ShadingNormals, AnObjTextureSeamDoesNotCreaseTheShading) {
     // And the split copies are not each their own face's flat normal: both faces were averaged.
     const auto split = vertexNormals(m);
     EXPECT_LT(glm::dot(split[size_t(first)], m.normals[size_t(first)]), 0.9999f);
+}
+
+TEST(ShadingNormals, AnObjsVnAreItsShadingNormalsAndSplitItsVertices) {
+    const fs::path dir = test::scratchDir("shading_normals_obj_vn");
+    // Two triangles folded along their shared edge 1-3, each side with its own (hard) normal
+    // there; the corner without a vn, and the one with a zero vn, take the smooth normal.
+    std::ofstream(dir / "m.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\nvn 0 0 3\nvn 0 -0.6 0.8\nvn 0 0 0\n"
+                                    "f 1//1 2//1 3//1\nf 1//2 3//2 4//3\n";
+    const PolygonMesh m = loadReference(dir / "m.obj");
+    ASSERT_EQ(m.vertexCount(), 6);  // positions 1 and 3 each split by their two normals
+    ASSERT_EQ(m.normals.size(), 6u);
+    EXPECT_TRUE(m.uvs.empty());
+    const auto smooth = vertexNormals(loadMesh(dir / "m.obj"));
+    for (int f = 0; f < 2; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int v = m.faceIndices[size_t(3 * f + k)];
+            const glm::vec3 expected = f == 0 ? glm::vec3(0, 0, 1) : k < 2 ? glm::vec3(0, -0.6f, 0.8f) : smooth[3];
+            EXPECT_GT(glm::dot(m.normals[size_t(v)], expected), 0.99999f) << "face " << f << " corner " << k;
+        }
+    std::ofstream(dir / "bad.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n";
+    const std::string message = test::errorMessage([&] { loadReference(dir / "bad.obj"); });
+    EXPECT_NE(message.find("bad.obj: line 5"), std::string::npos) << message;
+    EXPECT_NE(message.find("normal index 2 is out of range"), std::string::npos) << message;
 }
 
 }  // namespace
