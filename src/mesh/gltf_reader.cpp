@@ -303,15 +303,22 @@ private:
     // triangles (glTF asks for flat ones there; smooth is what its renders have always shown).
     static void completeNormals(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices,
                                 std::vector<glm::vec3>& normals) {
-        PolygonMesh primitive;
-        primitive.positions = positions;
-        primitive.faceIndices.assign(indices.begin(), indices.end());
-        primitive.faceSizes.assign(indices.size() / 3, 3);
-        const std::vector<glm::vec3> computed = vertexNormals(primitive);
         normals.resize(positions.size(), glm::vec3(0.0f));
+        std::vector<glm::vec3> computed;  // only for a primitive that needs them
         for (size_t v = 0; v < normals.size(); ++v) {
             const float length = glm::length(normals[v]);
-            normals[v] = length > 0.0f ? normals[v] / length : computed[v];
+            if (length > 0.0f) {
+                normals[v] /= length;
+                continue;
+            }
+            if (computed.empty()) {
+                PolygonMesh primitive;
+                primitive.positions = positions;
+                primitive.faceIndices.assign(indices.begin(), indices.end());
+                primitive.faceSizes.assign(indices.size() / 3, 3);
+                computed = vertexNormals(primitive);
+            }
+            normals[v] = computed[v];
         }
     }
 
