@@ -1,5 +1,6 @@
 #include "simplify/atlas_bake.h"
 #include "simplify/atlas_corners.h"
+#include "simplify/atlas_shading_normals.h"
 
 #include <glm/geometric.hpp>
 
@@ -137,7 +138,7 @@ int atlasSourceSize(const mesh::PolygonMesh& reference) {
 }
 
 surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
-                                         maps::MapEffects effects, int size, float maxDistance) {
+                                         maps::MapEffects effects, int size, float maxDistance, bool shadingNormals) {
     SUBDFIT_CHECK(size >= 2 && atlasUnsuitability(reference).empty());
     const mesh::Material& m = *atlasMaterial(reference);
     const mesh::MaterialSet& set = *reference.materials;
@@ -193,6 +194,11 @@ surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const me
             if (emissive)
                 for (int k = 0; k < 3; ++k) emission.push_back(srgb(e[k] / float(count)));
         }
+    if (shadingNormals) {
+        if (normals.empty())
+            for (size_t t = 0; t < texels; ++t) normals.insert(normals.end(), {0.5f, 0.5f, 1.0f});
+        carryShadingNormals(cage, maps, reference, maxDistance > 0.0f ? maxDistance : mesh::meanEdgeLength(cage), normals);
+    }
     const GutterFill fillGutter(reached, size);
     fillGutter(color, 3);
     fillGutter(roughnessMetallic, 2);

@@ -20,7 +20,10 @@ int atlasSourceSize(const mesh::PolygonMesh& reference);
 
 // `effects`' appearance maps on a size × size atlas (size >= 2) and the corner coordinates of
 // every ptex face of `cage` (both meshes in the same units). The reference must be suitable.
+// With `shadingNormals`, the normal texture (the reference's, or a flat one where it has none)
+// also turns the cage's limit normals into the reference's (simplify/atlas_shading_normals.h).
 surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
-                                         maps::MapEffects effects, int size, float maxDistance = 0.0f);
+                                         maps::MapEffects effects, int size, float maxDistance = 0.0f,
+                                         bool shadingNormals = false);
 
 }  // namespace subdfit::simplify

@@ -238,7 +238,7 @@ namespace subdfit::simplify {
 
 surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
                                     const AppearanceBakeOptions& options) {
-    if (options.atlas > 0) return bakeAtlasAppearance(cage, reference, options.effects, options.atlas, options.maxDistance);
+    if (options.atlas > 0) return bakeAtlasAppearance(cage, reference, options.effects, options.atlas, options.maxDistance, options.shadingNormals);
     surface::SurfaceMaps maps;
     maps.appearanceLayout = surface::buildTexelLayout(cage, options.resolution);
     const geometry::SurfaceQueries surface(reference);

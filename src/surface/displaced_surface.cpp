@@ -98,7 +98,7 @@ SurfaceVertex DisplacedSurface::at(int face, float u, float v) const {
     if (!tangent) tangent = anyPerpendicular(normal);
     const float handedness = glm::dot(glm::cross(normal, *tangent), p.dPdv) < 0.0f ? -1.0f : 1.0f;
 
-    return {p.position + d * p.normal, normal, glm::vec4(*tangent, handedness)};
+    return {p.position + d * p.normal, normal, glm::vec4(*tangent, handedness), du, dv};
 }
 
 }  // namespace subdfit::surface

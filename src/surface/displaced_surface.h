@@ -18,6 +18,9 @@ struct SurfaceVertex {
     // xyz: unit, orthogonal to the normal, along dP/du; w = ±1 so that cross(normal, xyz) · w
     // points along dP/dv: the frame the normal map's (x, y) is expressed in.
     glm::vec4 tangent;
+    // The displaced surface's derivatives along the ptex face's u and v (curvature term dropped):
+    // what a renderer's screen-space derivatives of position see.
+    glm::vec3 dPdu, dPdv;
 };
 
 class DisplacedSurface {
