@@ -40,6 +40,15 @@ vec2 atlasUv(int face, vec2 uv) {
     return mix(mix(appearanceUvs[k], appearanceUvs[k + 1], c.x), mix(appearanceUvs[k + 3], appearanceUvs[k + 2], c.x), c.y);
 }
 
+// How the atlas coordinates change along the ptex face's u and v at (u, v): the columns of the
+// bilinear blend's Jacobian.
+mat2 atlasUvJacobian(int face, vec2 uv) {
+    vec2 c = clamp(uv, 0.0, 1.0);
+    int k = 4 * face;
+    return mat2(mix(appearanceUvs[k + 1] - appearanceUvs[k], appearanceUvs[k + 2] - appearanceUvs[k + 3], c.y),
+                mix(appearanceUvs[k + 3] - appearanceUvs[k], appearanceUvs[k + 2] - appearanceUvs[k + 1], c.x));
+}
+
 MapFootprint atlasFootprint(int face, vec2 uv, int n, int table) {
     return footprint(0, (atlasUv(face, uv) * float(n + 1) - 0.5) / float(n), n, table);
 }

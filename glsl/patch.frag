@@ -37,16 +37,21 @@ vec3 mappedNormal(vec3 N) {
 #ifdef SUBDFIT_ATLAS_NORMAL_TEXTURE
 layout(std430, binding = SUBDFIT_SSBO_ATLAS_NORMAL) readonly buffer AtlasNormal { float atlasNormal[]; };
 
-// The reference's normal texture, carried on the atlas, in the frame its coordinates give: as
-// glsl/mesh.frag derives it for the reference (screen-space derivatives, T along +u, B along
-// +v, the texture's green up the image), so both are shaded alike.
+// The atlas's normal texture in the frame its coordinates give, as glsl/mesh.frag derives it for
+// the reference (a cotangent frame: T along +u, B along +v, the texture's green up the image),
+// so both are shaded alike. mesh.frag takes it from screen-space derivatives; here the surface's
+// own derivatives and the atlas coordinates' Jacobian give the same frame exactly: derivatives
+// across a 2 × 2 pixel quad of tessellated triangles a pixel or two wide striped the shading
+// (simplify/atlas_shading_normals.h bakes against this frame).
 vec3 atlasMappedNormal(vec3 N) {
-    vec2 uv = atlasUv(tePtexFace, tePtexUv);
-    vec3 dp1 = dFdx(teWorldPosition), dp2 = dFdy(teWorldPosition);
-    vec2 duv1 = dFdx(uv), duv2 = dFdy(uv);
-    vec3 dp2perp = cross(dp2, N), dp1perp = cross(N, dp1);
-    vec3 T = dp2perp * duv1.x + dp1perp * duv2.x;
-    vec3 B = dp2perp * duv1.y + dp1perp * duv2.y;
+    mat2 duv = atlasUvJacobian(tePtexFace, tePtexUv);
+    vec3 dp1 = teTangentU, dp2 = teTangentV;
+    // T·dp1 = du1 and T·dp2 = du2 with T ⟂ N: the gradient of u, whichever way N faces.
+    float det = dot(N, cross(dp1, dp2));
+    if (!(abs(det) > 1e-6 * length(dp1) * length(dp2))) return N;
+    vec3 dp2perp = cross(dp2, N) / det, dp1perp = cross(N, dp1) / det;
+    vec3 T = dp2perp * duv[0].x + dp1perp * duv[1].x;
+    vec3 B = dp2perp * duv[0].y + dp1perp * duv[1].y;
     float scale = max(dot(T, T), dot(B, B));
     if (!(scale > 0.0)) return N;
     MapFootprint m = appearanceFootprint(tePtexFace, tePtexUv);
