@@ -8,6 +8,7 @@
 #include "fit/fit_run.h"
 #include "gl_test_context.h"
 #include "mesh/procedural.h"
+#include "plain_texture.h"
 #include "scene_fixture.h"
 #include "simplify/atlas_bake.h"
 #include "surface/tessellation.h"
@@ -29,11 +30,7 @@ mesh::PolygonMesh tiledLimitSurface(const mesh::PolygonMesh& cage, float tilt) {
         const glm::vec3 field(std::sin(3.0f * x.y), std::cos(2.0f * x.z), std::sin(2.5f * x.x));
         reference.normals.push_back(glm::normalize(n + tilt * (field - glm::dot(field, n) * n)));
     }
-    mesh::Image white{.name = "white", .width = 4, .height = 4, .rgba = std::vector<std::uint8_t>(64, 255)};
-    mesh::Material m = mesh::defaultMaterial();
-    m.baseColorTexture.image = 0;
-    reference.materials = std::make_shared<mesh::MaterialSet>(mesh::MaterialSet{{m}, {white}});
-    reference.faceMaterials.assign(size_t(reference.faceCount()), 0);
+    paintWhite(reference);
     return reference;
 }
 

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "mesh/procedural.h"
+#include "plain_texture.h"
 #include "simplify/atlas_bake.h"
 #include "simplify/atlas_shading_normals.h"
 #include "surface/displaced_surface.h"
@@ -59,11 +60,7 @@ mesh::PolygonMesh tiltedPlane(glm::vec3 (*tilt)(glm::vec3 p)) {
         reference.uvs.push_back({(p.x + 1.0f) / 2.0f, (1.0f - p.y) / 2.0f});
         reference.normals.push_back(glm::normalize(tilt(p)));
     }
-    mesh::Image white{.name = "white", .width = 4, .height = 4, .rgba = std::vector<std::uint8_t>(64, 255)};
-    mesh::Material m = mesh::defaultMaterial();
-    m.baseColorTexture.image = 0;
-    reference.materials = std::make_shared<mesh::MaterialSet>(mesh::MaterialSet{{m}, {white}});
-    reference.faceMaterials.assign(size_t(reference.faceCount()), 0);
+    test::paintWhite(reference);
     return reference;
 }
 
