@@ -12,6 +12,8 @@ namespace subdfit::bench {
 struct ReliefOptions {
     std::filesystem::path cage = "assets/spot/spot_control_mesh.obj";
     std::filesystem::path out = "relief_spot.glb";
+    std::filesystem::path mesh;  // a textured triangle asset to split and relieve instead of the cage's limit surface
+    int splits = 3;              // its triangles 4-split this many times
     surface::ReliefOptions relief;
 };
 int runRelief(const ReliefOptions& options);

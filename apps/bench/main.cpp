@@ -73,6 +73,8 @@ int main(int argc, char** argv) {
     auto* reliefCommand = app.add_subcommand("relief", "write a dense reference: a cage's limit surface with fine procedural relief");
     reliefCommand->add_option("--cage", relief.cage, "cage whose limit surface is the base")->capture_default_str();
     reliefCommand->add_option("--out", relief.out, "the .glb to write")->capture_default_str();
+    reliefCommand->add_option("--mesh", relief.mesh, "a textured triangle asset (.gltf, .glb, .obj) to split and relieve instead");
+    reliefCommand->add_option("--splits", relief.splits, "with --mesh: 4-splits of its triangles")->capture_default_str()->check(CLI::Range(0, 5));
     reliefCommand->add_option("--segments", relief.relief.segments, "tessellation per ptex-face edge")->capture_default_str();
     reliefCommand->add_option("--amplitude", relief.relief.amplitude, "RMS height, a fraction of the bounding-box diagonal")
         ->capture_default_str();

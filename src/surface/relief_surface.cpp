@@ -9,15 +9,35 @@
 #include <random>
 
 #include "mesh/mesh_geometry.h"
+#include "mesh/point_welder.h"
 #include "subdiv/uniform_refinement.h"
 #include "surface/tessellation.h"
 
 namespace subdfit::surface {
 
-mesh::PolygonMesh reliefSurface(const mesh::PolygonMesh& cage, const ReliefOptions& o) {
-    // All quads first, so that every ptex tile has the same size and the tessellation no
-    // T-junctions (cracks a decimator would take for borders).
-    mesh::PolygonMesh surface = limitMesh(subdiv::refinedOnce(cage), std::max(1, o.segments / 2));
+namespace {
+
+// Area-weighted normals of `mesh` as if vertices at one position were one: a seam (vertices split
+// for their texture coordinates) moves as one piece, without a crack.
+std::vector<glm::vec3> weldedNormals(const mesh::PolygonMesh& mesh, float tolerance) {
+    mesh::PointWelder welder(tolerance);
+    int welded = 0;
+    std::vector<int> weldedIndex(mesh.positions.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v) weldedIndex[v] = welder.indexOf(mesh.positions[v], welded);
+    mesh::PolygonMesh shape;
+    shape.positions.resize(size_t(welded));
+    for (size_t v = 0; v < mesh.positions.size(); ++v) shape.positions[size_t(weldedIndex[v])] = mesh.positions[v];
+    shape.faceSizes = mesh.faceSizes;
+    for (int i : mesh.faceIndices) shape.faceIndices.push_back(weldedIndex[size_t(i)]);
+    const std::vector<glm::vec3> normals = mesh::vertexNormals(shape);
+    std::vector<glm::vec3> out(mesh.positions.size());
+    for (size_t v = 0; v < out.size(); ++v) out[v] = normals[size_t(weldedIndex[v])];
+    return out;
+}
+
+}  // namespace
+
+void addRelief(mesh::PolygonMesh& surface, const ReliefOptions& o) {
     glm::vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
     for (const auto& p : surface.positions) low = glm::min(low, p), high = glm::max(high, p);
     const float diagonal = glm::length(high - low);
@@ -38,13 +58,21 @@ mesh::PolygonMesh reliefSurface(const mesh::PolygonMesh& cage, const ReliefOptio
     }
     // A sum of N unit sines has RMS sqrt(N / 2).
     const float scale = o.amplitude * diagonal / std::sqrt(0.5f * float(std::max(o.waves, 1)));
-    const auto normals = mesh::vertexNormals(surface);
+    const auto normals = weldedNormals(surface, 1e-6f * diagonal);
     for (size_t v = 0; v < surface.positions.size(); ++v) {
         const glm::vec3 p = surface.positions[v];
         float height = 0.0f;
         for (const Wave& wave : waves) height += std::sin(glm::dot(wave.k, p) + wave.phase);
         surface.positions[v] = p + scale * height * normals[v];
     }
+    surface.normals.clear();  // the author's, if any, were for the surface without relief
+}
+
+mesh::PolygonMesh reliefSurface(const mesh::PolygonMesh& cage, const ReliefOptions& o) {
+    // All quads first, so that every ptex tile has the same size and the tessellation no
+    // T-junctions (cracks a decimator would take for borders).
+    mesh::PolygonMesh surface = limitMesh(subdiv::refinedOnce(cage), std::max(1, o.segments / 2));
+    addRelief(surface, o);
     surface.sourcePath = cage.sourcePath + " (relief surface)";
     return surface;
 }

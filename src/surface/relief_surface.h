@@ -17,6 +17,11 @@ struct ReliefOptions {
     std::uint32_t seed = 1;
 };
 
+// Moves every vertex of `surface` along its normal by the relief's height there (the options'
+// wavelengths and amplitude are fractions of its bounding-box diagonal). Vertices at one position
+// (a texture seam) move together; texture coordinates, colours and materials stay as they are.
+void addRelief(mesh::PolygonMesh& surface, const ReliefOptions& options);
+
 // Welded triangles, in the cage's units. Deterministic for a given cage and options.
 mesh::PolygonMesh reliefSurface(const mesh::PolygonMesh& cage, const ReliefOptions& options = {});
 
