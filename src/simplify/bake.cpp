@@ -1,6 +1,8 @@
 #include "simplify/bake.h"
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include <algorithm>
 #include <array>
@@ -236,6 +238,74 @@ surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
 
 namespace subdfit::simplify {
 
+namespace {
+
+// The appearance a ray that found the reference reads there: sRGB base colour, roughness, metallic.
+std::array<float, 5> appearanceAt(const mesh::PolygonMesh& reference, const geometry::RayHit& hit) {
+    const mesh::MaterialSample s = mesh::sampleMaterial(reference, hit.triangle, hit.u, hit.v);
+    return {mesh::linearToSrgb(s.baseColor.r), mesh::linearToSrgb(s.baseColor.g), mesh::linearToSrgb(s.baseColor.b),
+            std::clamp(s.roughness, 0.0f, 1.0f), std::clamp(s.metallic, 0.0f, 1.0f)};
+}
+
+// Node values whose bilinear interpolation (what the renderer draws between nodes) matches the
+// material across each cell, not only at the nodes: the nodes' own samples and 2 × 2 more in
+// every cell, least squares, as the heights are fitted. A node's point sample alone aliases a
+// texture finer than the lattice (a coarse cage's tiles span many of a dense reference's texels).
+void fitAppearanceAcrossCells(const mesh::PolygonMesh& cage, const surface::TexelLayout& layout, const NodeHits& nodeHits,
+                              const mesh::PolygonMesh& reference, const geometry::SurfaceQueries& surface, float maxDistance,
+                              std::vector<glm::dvec3>& color, std::vector<glm::dvec2>& roughnessMetallic) {
+    const subdiv::LimitEvaluator limit(cage);
+    const int t = layout.resolution;
+    SparseRows rows;
+    std::vector<glm::dvec3> colorTargets;
+    std::vector<glm::dvec2> rmTargets;
+    auto addRow = [&](const std::array<float, 5>& a) {
+        rows.endRow();
+        colorTargets.emplace_back(a[0], a[1], a[2]);
+        rmTargets.emplace_back(a[3], a[4]);
+    };
+    for (size_t n = 0; n < nodeHits.hits.size(); ++n)
+        if (nodeHits.hits[n]) {
+            rows.add(int(n), 1.0);
+            addRow(appearanceAt(reference, *nodeHits.hits[n]));
+        }
+    struct CellSample {
+        int face, i, j;
+        glm::vec2 f;  // within the cell
+    };
+    std::vector<CellSample> cellSamples;
+    std::vector<glm::vec3> origins, normals;
+    for (int face = 0; face < layout.ptexFaceCount; ++face) {
+        if (face % 256 == 0) throwIfStopRequested();
+        if (!limit.hasSurface(face, 0.5f, 0.5f)) continue;
+        for (int j = 0; j < t; ++j)
+            for (int i = 0; i < t; ++i)
+                for (const glm::vec2 f : {glm::vec2(0.25f, 0.25f), glm::vec2(0.75f, 0.25f), glm::vec2(0.25f, 0.75f), glm::vec2(0.75f, 0.75f)}) {
+                    const subdiv::LimitSample at = limit.evaluate(face, (float(i) + f.x) / float(t), (float(j) + f.y) / float(t), cage.positions);
+                    cellSamples.push_back({face, i, j, f});
+                    origins.push_back(at.position);
+                    normals.push_back(unitNormal(at.dPdu, at.dPdv, glm::vec3(0.0f)));
+                }
+    }
+    const geometry::NormalCasts casts =
+        geometry::castAlongNormals(surface, origins, normals, maxDistance, kDetour * maxDistance, nodeHits.facing);
+    for (size_t k = 0; k < cellSamples.size(); ++k) {
+        if (!casts.hits[k]) continue;
+        const CellSample& c = cellSamples[k];
+        rows.add(layout.node(c.face, c.i, c.j), double((1.0f - c.f.x) * (1.0f - c.f.y)));
+        rows.add(layout.node(c.face, c.i + 1, c.j), double(c.f.x * (1.0f - c.f.y)));
+        rows.add(layout.node(c.face, c.i, c.j + 1), double((1.0f - c.f.x) * c.f.y));
+        rows.add(layout.node(c.face, c.i + 1, c.j + 1), double(c.f.x * c.f.y));
+        addRow(appearanceAt(reference, *casts.hits[k]));
+    }
+    const std::vector<double> weights(rows.rows(), 1.0);
+    constexpr double kDamping = 1e-3;  // as the heights: holds nodes few samples see
+    color = solveDampedLeastSquares(rows, colorTargets, weights, color, kDamping);
+    roughnessMetallic = solveDampedLeastSquares(rows, rmTargets, weights, roughnessMetallic, kDamping);
+}
+
+}  // namespace
+
 surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
                                     const AppearanceBakeOptions& options) {
     if (options.atlas > 0) return bakeAtlasAppearance(cage, reference, options.effects, options.atlas, options.maxDistance, options.shadingNormals);
@@ -249,15 +319,26 @@ surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::P
     std::vector<float> color(3 * nodes, 0.5f), roughnessMetallic(2 * nodes, 0.0f);
     for (size_t n = 0; n < nodes; ++n) {
         if (!nodeHits.hits[n]) continue;
-        const auto& hit = *nodeHits.hits[n];
-        const mesh::MaterialSample s = mesh::sampleMaterial(reference, hit.triangle, hit.u, hit.v);
-        for (int c = 0; c < 3; ++c) color[3 * n + size_t(c)] = mesh::linearToSrgb(s.baseColor[c]);
-        roughnessMetallic[2 * n] = std::clamp(s.roughness, 0.0f, 1.0f);
-        roughnessMetallic[2 * n + 1] = std::clamp(s.metallic, 0.0f, 1.0f);
+        const std::array<float, 5> a = appearanceAt(reference, *nodeHits.hits[n]);
+        std::copy(a.begin(), a.begin() + 3, color.begin() + 3 * std::ptrdiff_t(n));
+        std::copy(a.begin() + 3, a.end(), roughnessMetallic.begin() + 2 * std::ptrdiff_t(n));
         found[n] = 1;
     }
     fillMissing(maps.appearanceLayout, color, 3, found);
     fillMissing(maps.appearanceLayout, roughnessMetallic, 2, found);
+    if (options.acrossCells) {
+        std::vector<glm::dvec3> c(nodes);
+        std::vector<glm::dvec2> rm(nodes);
+        for (size_t n = 0; n < nodes; ++n) {
+            c[n] = {color[3 * n], color[3 * n + 1], color[3 * n + 2]};
+            rm[n] = {roughnessMetallic[2 * n], roughnessMetallic[2 * n + 1]};
+        }
+        fitAppearanceAcrossCells(cage, maps.appearanceLayout, nodeHits, reference, surface, maxDistance, c, rm);
+        for (size_t n = 0; n < nodes; ++n) {
+            for (int k = 0; k < 3; ++k) color[3 * n + size_t(k)] = float(std::clamp(c[n][k], 0.0, 1.0));
+            for (int k = 0; k < 2; ++k) roughnessMetallic[2 * n + size_t(k)] = float(std::clamp(rm[n][k], 0.0, 1.0));
+        }
+    }
     if (options.effects.baseColor) maps.baseColor = std::move(color);
     if (options.effects.metallicRoughness) maps.metallicRoughness = std::move(roughnessMetallic);
     return maps;

@@ -10,6 +10,7 @@
 #include "geometry/surface_distance.h"
 #include "geometry/surface_queries.h"
 #include "mesh/mesh_geometry.h"
+#include "mesh/material_sampling.h"
 #include "mesh/procedural.h"
 #include "simplify/bake.h"
 #include "simplify/batch.h"
@@ -198,6 +199,47 @@ TEST(SimplifyBake, LeastSquaresHeightsLieCloserThanPointSamples) {
     };
     const double pointSampled = distance(false), fitted = distance(true);
     EXPECT_LT(fitted, 0.9 * pointSampled) << "point-sampled " << pointSampled << ", least squares " << fitted;
+}
+
+// Stripes a little finer than the appearance lattice: node point samples alias them into a
+// false pattern as strong as the stripes; values fitted across each cell follow what the lattice
+// can hold (about their mean) and lie closer to the texture everywhere between the nodes.
+TEST(SimplifyBake, AppearanceFittedAcrossCellsLiesCloserThanPointSamples) {
+    mesh::PolygonMesh reference = mesh::triangulated(mesh::makeQuadGrid(32, [](float, float) { return 0.01f; }));
+    for (const glm::vec3& p : reference.positions) reference.uvs.push_back({(p.x + 1.0f) / 2.0f, (1.0f - p.y) / 2.0f});
+    mesh::Image stripes{.name = "stripes", .width = 64, .height = 64, .rgba = {}};
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const auto red = std::uint8_t(std::lround(127.5 + 127.5 * std::sin(2.0 * M_PI * x / 5.0)));
+            stripes.rgba.insert(stripes.rgba.end(), {red, 128, 128, 255});
+        }
+    mesh::Material material = mesh::defaultMaterial();
+    material.baseColorTexture.image = 0;
+    reference.materials = std::make_shared<mesh::MaterialSet>(mesh::MaterialSet{{material}, {stripes}});
+    reference.faceMaterials.assign(size_t(reference.faceCount()), 0);
+    const mesh::PolygonMesh cage = mesh::makeQuadGrid(4);  // nodes every 4 texels, stripes every 5
+
+    auto error = [&](bool acrossCells) {
+        const auto maps = bakeAppearance(cage, reference, {.effects = {.baseColor = true}, .resolution = 4, .acrossCells = acrossCells});
+        const subdiv::LimitEvaluator limit(cage);
+        double sum = 0.0;
+        int samples = 0;
+        for (int f = 0; f < maps.appearanceLayout.ptexFaceCount; ++f)
+            for (float v = 0.05f; v < 1.0f; v += 0.1f)
+                for (float u = 0.05f; u < 1.0f; u += 0.1f) {
+                    const glm::vec3 p = limit.evaluate(f, u, v, cage.positions).position;
+                    const float expected = mesh::linearToSrgb(
+                        mesh::sampleTexture(*reference.materials, material.baseColorTexture, {(p.x + 1.0f) / 2.0f, (1.0f - p.y) / 2.0f}, true).r);
+                    const float baked = surface::sampleBilinear(maps.appearanceLayout, maps.baseColor, 3, 0, f, u, v);
+                    EXPECT_TRUE(std::isfinite(baked));
+                    sum += double(baked - expected) * double(baked - expected);
+                    ++samples;
+                }
+        return std::sqrt(sum / samples);
+    };
+    const double pointSampled = error(false), fitted = error(true);
+    std::printf("RMS red error: point-sampled %.4f, fitted %.4f\n", pointSampled, fitted);
+    EXPECT_LT(fitted, 0.85 * pointSampled) << "RMS red error: point-sampled " << pointSampled << ", fitted " << fitted;
 }
 
 TEST(SimplifyBake, OnlyTheAskedMapsAreBaked) {
