@@ -32,7 +32,7 @@ int writeTexturedRelief(const ReliefOptions& o) {
     const auto images = surface.materials ? losslessImages(*surface.materials) : std::vector<exporter::EncodedImage>{};
     if (!surface.materials) surface.materials = std::make_shared<mesh::MaterialSet>(mesh::MaterialSet{{mesh::defaultMaterial()}, {}});
     if (surface.faceMaterials.empty()) surface.faceMaterials.assign(size_t(surface.faceCount()), 0);
-    exporter::writeTexturedGlb(o.out, surface, mesh::vertexNormals(surface), images, /*draco=*/false);
+    exporter::writeTexturedGlb(o.out, surface, surface.normals, images, /*draco=*/false);
     return surface.faceCount();
 }
 

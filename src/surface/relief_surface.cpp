@@ -65,7 +65,8 @@ void addRelief(mesh::PolygonMesh& surface, const ReliefOptions& o) {
         for (const Wave& wave : waves) height += std::sin(glm::dot(wave.k, p) + wave.phase);
         surface.positions[v] = p + scale * height * normals[v];
     }
-    surface.normals.clear();  // the author's, if any, were for the surface without relief
+    // Shaded smooth across seams, as a sculpting tool would export it.
+    surface.normals = weldedNormals(surface, 1e-6f * diagonal);
 }
 
 mesh::PolygonMesh reliefSurface(const mesh::PolygonMesh& cage, const ReliefOptions& o) {

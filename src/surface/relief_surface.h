@@ -19,7 +19,8 @@ struct ReliefOptions {
 
 // Moves every vertex of `surface` along its normal by the relief's height there (the options'
 // wavelengths and amplitude are fractions of its bounding-box diagonal). Vertices at one position
-// (a texture seam) move together; texture coordinates, colours and materials stay as they are.
+// (a texture seam) move together; texture coordinates, colours and materials stay as they are,
+// and `normals` become the relieved surface's, alike on both sides of a seam.
 void addRelief(mesh::PolygonMesh& surface, const ReliefOptions& options);
 
 // Welded triangles, in the cage's units. Deterministic for a given cage and options.

@@ -1,5 +1,5 @@
 // Midpoint subdivision keeps a textured asset's surface and appearance; the relief added to it
-// keeps its texture seams closed.
+// keeps its texture seams closed and shaded alike on both sides.
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
@@ -57,16 +57,19 @@ TEST(TriangleSubdivision, FourTimesTheTrianglesOnTheSameSurfaceWithTheirCharts) 
     EXPECT_EQ(split.vertexCount(), 15 + 15 - 5 + 5);
 }
 
-TEST(TriangleSubdivision, ReliefKeepsSeamsClosed) {
+TEST(TriangleSubdivision, ReliefKeepsSeamsClosedAndShadedAlike) {
     PolygonMesh split = subdividedTriangles(seamedSquare(), 4);
     const PolygonMesh flat = split;
     surface::addRelief(split, {.amplitude = 0.01f, .shortestWavelength = 0.1f, .longestWavelength = 0.3f});
-    std::map<std::tuple<float, float, float>, glm::vec3> moved;
+    std::map<std::tuple<float, float, float>, glm::vec3> moved, normals;
+    ASSERT_EQ(split.normals.size(), split.positions.size());
     float largest = 0.0f;
     for (size_t v = 0; v < flat.positions.size(); ++v) {
         const glm::vec3 p = flat.positions[v];
         const auto [it, added] = moved.try_emplace({p.x, p.y, p.z}, split.positions[v]);
         if (!added) EXPECT_EQ(it->second, split.positions[v]) << "a seam vertex moved apart at " << p.x << ", " << p.y;
+        const auto [normal, first] = normals.try_emplace({p.x, p.y, p.z}, split.normals[v]);
+        if (!first) EXPECT_EQ(normal->second, split.normals[v]) << "a seam vertex shades apart at " << p.x << ", " << p.y;
         largest = std::max(largest, std::abs(split.positions[v].z));
         EXPECT_EQ(split.uvs[v], flat.uvs[v]);
     }
