@@ -99,6 +99,26 @@ NodeHits castNodes(const mesh::PolygonMesh& cage, const surface::TexelLayout& la
     return h;
 }
 
+// A point of a ptex face, (u, v) in [0, 1]².
+struct PtexPoint {
+    int face;
+    glm::vec2 uv;
+};
+
+// Casts from `points` of the cage's limit surface along its normal there to the reference, facing
+// as the nodes found it (the cells between the nodes are sampled as the nodes are).
+std::vector<std::optional<geometry::RayHit>> castFromLimit(const mesh::PolygonMesh& cage, const subdiv::LimitEvaluator& limit,
+                                                           const std::vector<PtexPoint>& points, const geometry::SurfaceQueries& surface,
+                                                           float maxDistance, float facing) {
+    std::vector<glm::vec3> origins, normals;
+    for (const PtexPoint& p : points) {
+        const subdiv::LimitSample at = limit.evaluate(p.face, p.uv.x, p.uv.y, cage.positions);
+        origins.push_back(at.position);
+        normals.push_back(unitNormal(at.dPdu, at.dPdv, glm::vec3(0.0f)));
+    }
+    return geometry::castAlongNormals(surface, origins, normals, maxDistance, kDetour * maxDistance, facing).hits;
+}
+
 float maxDistanceFor(const BakeOptions& options, const mesh::PolygonMesh& cage) {
     return options.maxDistance > 0.0f ? options.maxDistance : mesh::meanEdgeLength(cage);
 }
@@ -153,30 +173,27 @@ std::vector<float> leastSquaresHeights(const mesh::PolygonMesh& cage, const surf
     // nothing safe, and the cell's row would set it to four times the centre's height less
     // the other three.
     std::vector<std::array<int, 4>> cells;
-    std::vector<glm::vec3> origins, normals;
+    std::vector<PtexPoint> centres;
     for (int f = 0; f < layout.ptexFaceCount; ++f) {
         if (f % 256 == 0) throwIfStopRequested();
         for (int j = 0; j < t; ++j)
             for (int i = 0; i < t; ++i) {
                 const std::array<int, 4> corners{layout.node(f, i, j), layout.node(f, i + 1, j), layout.node(f, i, j + 1),
                                                  layout.node(f, i + 1, j + 1)};
-                const float u = (float(i) + 0.5f) / float(t), v = (float(j) + 0.5f) / float(t);
+                const glm::vec2 centre = (glm::vec2(float(i), float(j)) + 0.5f) / float(t);
                 if (std::any_of(corners.begin(), corners.end(), [&](int c) { return !nodeHits.hits[size_t(c)]; }) ||
-                    !limit.hasSurface(f, u, v))
+                    !limit.hasSurface(f, centre.x, centre.y))
                     continue;
-                const subdiv::LimitSample at = limit.evaluate(f, u, v, cage.positions);
                 cells.push_back(corners);
-                origins.push_back(at.position);
-                normals.push_back(unitNormal(at.dPdu, at.dPdv, glm::vec3(0.0f)));
+                centres.push_back({f, centre});
             }
     }
-    const geometry::NormalCasts casts =
-        geometry::castAlongNormals(surface, origins, normals, maxDistance, kDetour * maxDistance, nodeHits.facing);
+    const auto hits = castFromLimit(cage, limit, centres, surface, maxDistance, nodeHits.facing);
     for (size_t c = 0; c < cells.size(); ++c) {
-        if (!casts.hits[c]) continue;
+        if (!hits[c]) continue;
         for (int node : cells[c]) rows.add(node, 0.25);
         rows.endRow();
-        targets.push_back(casts.hits[c]->distance);
+        targets.push_back(hits[c]->distance);
     }
     weights.assign(targets.size(), 1.0);
     constexpr double kDamping = 1e-3;  // holds nodes only cells see near their point samples
@@ -251,6 +268,8 @@ std::array<float, 5> appearanceAt(const mesh::PolygonMesh& reference, const geom
 // material across each cell, not only at the nodes: the nodes' own samples and 2 × 2 more in
 // every cell, least squares, as the heights are fitted. A node's point sample alone aliases a
 // texture finer than the lattice (a coarse cage's tiles span many of a dense reference's texels).
+constexpr glm::vec2 kCellSamples[] = {{0.25f, 0.25f}, {0.75f, 0.25f}, {0.25f, 0.75f}, {0.75f, 0.75f}};
+
 void fitAppearanceAcrossCells(const mesh::PolygonMesh& cage, const surface::TexelLayout& layout, const NodeHits& nodeHits,
                               const mesh::PolygonMesh& reference, const geometry::SurfaceQueries& surface, float maxDistance,
                               std::vector<glm::dvec3>& color, std::vector<glm::dvec2>& roughnessMetallic) {
@@ -269,34 +288,27 @@ void fitAppearanceAcrossCells(const mesh::PolygonMesh& cage, const surface::Texe
             rows.add(int(n), 1.0);
             addRow(appearanceAt(reference, *nodeHits.hits[n]));
         }
-    struct CellSample {
-        int face, i, j;
-        glm::vec2 f;  // within the cell
-    };
-    std::vector<CellSample> cellSamples;
-    std::vector<glm::vec3> origins, normals;
+    std::vector<PtexPoint> samples;  // 2 × 2 a cell, in order: face, row, cell, sample
     for (int face = 0; face < layout.ptexFaceCount; ++face) {
         if (face % 256 == 0) throwIfStopRequested();
         if (!limit.hasSurface(face, 0.5f, 0.5f)) continue;
         for (int j = 0; j < t; ++j)
             for (int i = 0; i < t; ++i)
-                for (const glm::vec2 f : {glm::vec2(0.25f, 0.25f), glm::vec2(0.75f, 0.25f), glm::vec2(0.25f, 0.75f), glm::vec2(0.75f, 0.75f)}) {
-                    const subdiv::LimitSample at = limit.evaluate(face, (float(i) + f.x) / float(t), (float(j) + f.y) / float(t), cage.positions);
-                    cellSamples.push_back({face, i, j, f});
-                    origins.push_back(at.position);
-                    normals.push_back(unitNormal(at.dPdu, at.dPdv, glm::vec3(0.0f)));
-                }
+                for (const glm::vec2 f : kCellSamples) samples.push_back({face, (glm::vec2(float(i), float(j)) + f) / float(t)});
     }
-    const geometry::NormalCasts casts =
-        geometry::castAlongNormals(surface, origins, normals, maxDistance, kDetour * maxDistance, nodeHits.facing);
-    for (size_t k = 0; k < cellSamples.size(); ++k) {
-        if (!casts.hits[k]) continue;
-        const CellSample& c = cellSamples[k];
-        rows.add(layout.node(c.face, c.i, c.j), double((1.0f - c.f.x) * (1.0f - c.f.y)));
-        rows.add(layout.node(c.face, c.i + 1, c.j), double(c.f.x * (1.0f - c.f.y)));
-        rows.add(layout.node(c.face, c.i, c.j + 1), double((1.0f - c.f.x) * c.f.y));
-        rows.add(layout.node(c.face, c.i + 1, c.j + 1), double(c.f.x * c.f.y));
-        addRow(appearanceAt(reference, *casts.hits[k]));
+    const auto hits = castFromLimit(cage, limit, samples, surface, maxDistance, nodeHits.facing);
+    for (size_t k = 0; k < samples.size(); ++k) {
+        if (!hits[k]) continue;
+        // Which cell and where in it, back from (u, v): a sample sits a quarter cell inside its
+        // cell, far beyond what rounding could move it.
+        const glm::vec2 x = samples[k].uv * float(t);
+        const int i = std::min(int(x.x), t - 1), j = std::min(int(x.y), t - 1), face = samples[k].face;
+        const glm::vec2 f = x - glm::vec2(float(i), float(j));
+        rows.add(layout.node(face, i, j), double((1.0f - f.x) * (1.0f - f.y)));
+        rows.add(layout.node(face, i + 1, j), double(f.x * (1.0f - f.y)));
+        rows.add(layout.node(face, i, j + 1), double((1.0f - f.x) * f.y));
+        rows.add(layout.node(face, i + 1, j + 1), double(f.x * f.y));
+        addRow(appearanceAt(reference, *hits[k]));
     }
     const std::vector<double> weights(rows.rows(), 1.0);
     constexpr double kDamping = 1e-3;  // as the heights: holds nodes few samples see
