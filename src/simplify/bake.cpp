@@ -264,12 +264,15 @@ std::array<float, 5> appearanceAt(const mesh::PolygonMesh& reference, const geom
             std::clamp(s.roughness, 0.0f, 1.0f), std::clamp(s.metallic, 0.0f, 1.0f)};
 }
 
+// Where in each cell the appearance is sampled besides its corners.
+constexpr glm::vec2 kCellSamples[] = {{0.25f, 0.25f}, {0.75f, 0.25f}, {0.25f, 0.75f}, {0.75f, 0.75f}};
+
 // Node values whose bilinear interpolation (what the renderer draws between nodes) matches the
 // material across each cell, not only at the nodes: the nodes' own samples and 2 × 2 more in
 // every cell, least squares, as the heights are fitted. A node's point sample alone aliases a
 // texture finer than the lattice (a coarse cage's tiles span many of a dense reference's texels).
-constexpr glm::vec2 kCellSamples[] = {{0.25f, 0.25f}, {0.75f, 0.25f}, {0.25f, 0.75f}, {0.75f, 0.75f}};
-
+// `color` and `roughnessMetallic` come in as the point samples (where a node's ray found the
+// reference; elsewhere filled in) and go out fitted.
 void fitAppearanceAcrossCells(const mesh::PolygonMesh& cage, const surface::TexelLayout& layout, const NodeHits& nodeHits,
                               const mesh::PolygonMesh& reference, const geometry::SurfaceQueries& surface, float maxDistance,
                               std::vector<glm::dvec3>& color, std::vector<glm::dvec2>& roughnessMetallic) {
@@ -284,9 +287,11 @@ void fitAppearanceAcrossCells(const mesh::PolygonMesh& cage, const surface::Texe
         rmTargets.emplace_back(a[3], a[4]);
     };
     for (size_t n = 0; n < nodeHits.hits.size(); ++n)
-        if (nodeHits.hits[n]) {
+        if (nodeHits.hits[n]) {  // its own sample, already read
             rows.add(int(n), 1.0);
-            addRow(appearanceAt(reference, *nodeHits.hits[n]));
+            rows.endRow();
+            colorTargets.push_back(color[n]);
+            rmTargets.push_back(roughnessMetallic[n]);
         }
     std::vector<PtexPoint> samples;  // 2 × 2 a cell, in order: face, row, cell, sample
     for (int face = 0; face < layout.ptexFaceCount; ++face) {
