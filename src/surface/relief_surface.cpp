@@ -17,21 +17,27 @@ namespace subdfit::surface {
 
 namespace {
 
-// Area-weighted normals of `mesh` as if vertices at one position were one: a seam (vertices split
-// for their texture coordinates) moves as one piece, without a crack.
-std::vector<glm::vec3> weldedNormals(const mesh::PolygonMesh& mesh, float tolerance) {
+// One index per position: vertices split only for their texture coordinates (a seam) share one.
+std::vector<int> positionIndices(const mesh::PolygonMesh& mesh, float tolerance) {
     mesh::PointWelder welder(tolerance);
-    int welded = 0;
-    std::vector<int> weldedIndex(mesh.positions.size());
-    for (size_t v = 0; v < mesh.positions.size(); ++v) weldedIndex[v] = welder.indexOf(mesh.positions[v], welded);
+    int positions = 0;
+    std::vector<int> index(mesh.positions.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v) index[v] = welder.indexOf(mesh.positions[v], positions);
+    return index;
+}
+
+// Area-weighted normals of `mesh` as if the vertices of one position (positionIndices) were one:
+// a seam moves as one piece, without a crack, and shades alike on both sides.
+std::vector<glm::vec3> normalsByPosition(const mesh::PolygonMesh& mesh, const std::vector<int>& position) {
+    if (position.empty()) return {};
     mesh::PolygonMesh shape;
-    shape.positions.resize(size_t(welded));
-    for (size_t v = 0; v < mesh.positions.size(); ++v) shape.positions[size_t(weldedIndex[v])] = mesh.positions[v];
+    shape.positions.resize(size_t(*std::max_element(position.begin(), position.end()) + 1));
+    for (size_t v = 0; v < mesh.positions.size(); ++v) shape.positions[size_t(position[v])] = mesh.positions[v];
     shape.faceSizes = mesh.faceSizes;
-    for (int i : mesh.faceIndices) shape.faceIndices.push_back(weldedIndex[size_t(i)]);
+    for (int i : mesh.faceIndices) shape.faceIndices.push_back(position[size_t(i)]);
     const std::vector<glm::vec3> normals = mesh::vertexNormals(shape);
     std::vector<glm::vec3> out(mesh.positions.size());
-    for (size_t v = 0; v < out.size(); ++v) out[v] = normals[size_t(weldedIndex[v])];
+    for (size_t v = 0; v < out.size(); ++v) out[v] = normals[size_t(position[v])];
     return out;
 }
 
@@ -58,7 +64,8 @@ void addRelief(mesh::PolygonMesh& surface, const ReliefOptions& o) {
     }
     // A sum of N unit sines has RMS sqrt(N / 2).
     const float scale = o.amplitude * diagonal / std::sqrt(0.5f * float(std::max(o.waves, 1)));
-    const auto normals = weldedNormals(surface, 1e-6f * diagonal);
+    const std::vector<int> position = positionIndices(surface, 1e-6f * diagonal);
+    const auto normals = normalsByPosition(surface, position);
     for (size_t v = 0; v < surface.positions.size(); ++v) {
         const glm::vec3 p = surface.positions[v];
         float height = 0.0f;
@@ -66,7 +73,7 @@ void addRelief(mesh::PolygonMesh& surface, const ReliefOptions& o) {
         surface.positions[v] = p + scale * height * normals[v];
     }
     // Shaded smooth across seams, as a sculpting tool would export it.
-    surface.normals = weldedNormals(surface, 1e-6f * diagonal);
+    surface.normals = normalsByPosition(surface, position);
 }
 
 mesh::PolygonMesh reliefSurface(const mesh::PolygonMesh& cage, const ReliefOptions& o) {
