@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "mesh/mesh_adjacency.h"
+#include "mesh/mesh_geometry.h"
 #include "util/error.h"
 
 namespace subdfit::fit {
@@ -26,10 +27,14 @@ optim::Adjacency uploadAdjacency(const mesh::PolygonMesh& cage) {
 
 // A cage drawn one isolation level shallower (subdiv::drawingIsolationLevel) gets half the
 // segments per face edge: its faces span a few pixels, and its deepest patches keep one each.
+// With maps, every map cell gets at least one segment. The level counts segments per base-face
+// edge, and a face that is not a quad splits into ptex faces of half its edges, each with a full
+// map tile: such a cage needs twice the map resolution (drawn with only T/2 segments a ptex
+// edge, the heights of every other node would be skipped between the vertices).
 int tessLevelFor(const CageFitSettings& s, const mesh::PolygonMesh& cage) {
     const bool dense = subdiv::drawingIsolationLevel(cage) < subdiv::PatchSetOptions{}.isolationLevel;
     const int segments = dense ? std::max(1, s.tessLevel / 2) : s.tessLevel;
-    return s.mapEffects.geometric() ? std::max(segments, s.maps.resolution) : segments;
+    return s.mapEffects.geometric() ? std::max(segments, (mesh::hasNonQuadFaces(cage) ? 2 : 1) * s.maps.resolution) : segments;
 }
 
 }  // namespace

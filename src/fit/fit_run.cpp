@@ -173,7 +173,8 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
     return stopReason_;
 }
 
-StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& hooks, const MapsStart& startMaps) {
+StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& hooks, const MapsStart& startMaps,
+                       const Widen& widen) {
     if (fitter_->maps()) {
         const bool pastStart = step() > fitter_->mapsStartStep();
         const StopReason cage = runTo(fitter_->mapsStartStep(), checkpoint, hooks);
@@ -184,8 +185,13 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
         }
         if (startMaps) startMaps(!pastStart);
     }
-    const StopReason last = runTo(options_.steps, checkpoint, hooks);
-    if (last != StopReason::Cancelled) endStage();
+    StopReason last = runTo(options_.steps, checkpoint, hooks);
+    if (last == StopReason::Cancelled) return last;
+    endStage();
+    if (last == StopReason::Converged && step() < options_.steps && widen && widen()) {
+        last = runTo(options_.steps, checkpoint, hooks);
+        if (last != StopReason::Cancelled) endStage();
+    }
     return last;
 }
 

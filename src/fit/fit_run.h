@@ -76,8 +76,13 @@ public:
     // converged), then with the maps, each stage ending at its best state. `startMaps` (if any)
     // runs when the maps join; `fresh` is false in a run resumed past that point (the maps' θ
     // came from the checkpoint, but settings changed then must be made again).
+    // `widen` (if any) runs when the maps' stage has converged with steps left: where it returns
+    // true (it let more groups move), one more stage follows, which again ends at its best state,
+    // so what it adds can only lower the monitored loss.
     using MapsStart = std::function<void(bool fresh)>;
-    StopReason run(const std::filesystem::path& checkpoint, const FitHooks& hooks = {}, const MapsStart& startMaps = {});
+    using Widen = std::function<bool()>;
+    StopReason run(const std::filesystem::path& checkpoint, const FitHooks& hooks = {}, const MapsStart& startMaps = {},
+                   const Widen& widen = {});
 
     // Scores the current state and writes cage.obj, the exports (fitted.glb, maps) and the
     // before / after / target PNGs of held-out view 0 into `out`, each atomically. report.json

@@ -1,5 +1,6 @@
 #include "mesh/mesh_geometry.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -67,6 +68,10 @@ std::vector<glm::vec3> vertexNormals(const PolygonMesh& mesh) {
 
 std::vector<glm::vec3> shadingNormals(const PolygonMesh& mesh) {
     return mesh.normals.empty() ? vertexNormals(mesh) : mesh.normals;
+}
+
+bool hasNonQuadFaces(const PolygonMesh& m) {
+    return std::any_of(m.faceSizes.begin(), m.faceSizes.end(), [](int n) { return n != 4; });
 }
 
 float meanEdgeLength(const PolygonMesh& m) {

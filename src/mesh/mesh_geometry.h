@@ -24,5 +24,8 @@ std::vector<glm::vec3> shadingNormals(const PolygonMesh& mesh);
 // The mean length of the faces' edges (an edge shared by two faces counts twice): the scale of
 // a cage, which perturbations, steps and ray reaches are measured against.
 float meanEdgeLength(const PolygonMesh& mesh);
+// Whether any face is not a quad: OpenSubdiv splits such a face into ptex faces (one per
+// corner) whose edges are half the face's, each with a whole map tile.
+bool hasNonQuadFaces(const PolygonMesh& mesh);
 
 }  // namespace subdfit::mesh

@@ -60,6 +60,21 @@ TEST(MapsGradient, DisplacementTexelsAgreeWithFiniteDifferences) {
     expectNoGlError();
 }
 
+// A triangle's tessellation level counts segments along its whole edge, which is two ptex
+// edges, each with a whole map tile: a triangle cage needs twice the map resolution, or the
+// heights of every other node are skipped between the vertices.
+TEST(MapsTessellation, EveryMapCellGetsASegmentOnQuadAndTriangleCages) {
+    for (const bool triangles : {false, true}) {
+        const mesh::PolygonMesh cage = triangles ? mesh::triangulated(mesh::makeQuadSphere(1)) : mesh::makeQuadSphere(1);
+        fit::CageFitSettings settings;
+        settings.mapEffects.displacement = true;
+        settings.maps.resolution = 8;
+        fit::CageFitter fitter(programs(), cage, settings);
+        EXPECT_GE(fitter.renderer().tessLevel(), (triangles ? 2 : 1) * settings.maps.resolution) << triangles;
+    }
+    expectNoGlError();
+}
+
 TEST(MapsBump, FlatCageRecoversABumpInTheDisplacementMap) {
     const auto bump = [](float x, float y) { return 0.25f * std::exp(-(x * x + y * y) / 0.08f); };
     auto scene = makeFitScene(programs(), mesh::makeQuadGrid(3), mesh::makeQuadGrid(96, bump), 12, 128);
