@@ -188,7 +188,7 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
     StopReason last = runTo(options_.steps, checkpoint, hooks);
     if (last == StopReason::Cancelled) return last;
     endStage();
-    if (last == StopReason::Converged && step() < options_.steps && widen && widen()) {
+    if (fitter_->maps() && last == StopReason::Converged && step() < options_.steps && widen && widen()) {
         last = runTo(options_.steps, checkpoint, hooks);
         if (last != StopReason::Cancelled) endStage();
     }

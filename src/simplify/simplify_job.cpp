@@ -185,7 +185,7 @@ void startMaps(fit::FitRun& run, bool bake) {
 // heights 30.83). The stage ends at its best state, so it never undoes the appearance's gain.
 bool widenToHeights(fit::FitRun& run) {
     auto* parameters = run.fitter().maps();
-    if (!parameters->effects().appearance() || !parameters->displacement()) return false;
+    if (!parameters || !parameters->effects().appearance() || !parameters->displacement()) return false;
     run.fitter().setOptimised(*parameters->displacement(), true);
     return true;
 }

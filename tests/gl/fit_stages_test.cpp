@@ -44,5 +44,24 @@ TEST(FitStages, AWidenedStageStartsAfterConvergenceAndEndsNoWorse) {
     expectNoGlError();
 }
 
+// A fit without maps has no maps' stage to widen: it converges and stops.
+TEST(FitStages, AFitWithoutMapsIsNeverWidened) {
+    const auto dir = scratchDir("fit_stages_bare");
+    fit::FitOptions o;
+    o.out = dir;
+    o.steps = 1500;
+    o.views = 4;
+    o.holdoutViews = 1;
+    o.resolution = 48;
+    fit::FitScene scene(o, programs(), mesh::makeQuadSphere(2), mesh::makeLumpySphere(4, 0.15f, 4));
+    fit::FitRun run(o, programs(), scene);
+    bool widened = false;
+    const auto stopped = run.run(dir / "checkpoint.bin", {}, {}, [&] { return widened = true; });
+    EXPECT_EQ(stopped, fit::StopReason::Converged);
+    EXPECT_LT(run.step(), o.steps);
+    EXPECT_FALSE(widened);
+    expectNoGlError();
+}
+
 }  // namespace
 }  // namespace subdfit::test
