@@ -104,6 +104,7 @@ bool FitRun::resume(const std::filesystem::path& checkpoint) {
     }
     resumedFromStep_ = saved->steps;
     schedule_ = saved->schedule;
+    widenedStep_ = saved->widenedStep;
     return true;
 }
 
@@ -111,6 +112,7 @@ void FitRun::saveCheckpoint(const std::filesystem::path& checkpoint) {
     std::filesystem::create_directories(checkpoint.parent_path());
     FitState state = fitter_->state();
     state.schedule = schedule_;
+    state.widenedStep = widenedStep_;
     writeCheckpoint(checkpoint, fingerprint_, state);
 }
 
@@ -185,10 +187,16 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
         }
         if (startMaps) startMaps(!pastStart);
     }
+    // A run resumed inside the widened stage widens again (the settings are not in the checkpoint)
+    // and goes on with it.
+    const bool resumedWidened = widenedStep_ >= 0;
+    if (resumedWidened && widen) widen();
     StopReason last = runTo(options_.steps, checkpoint, hooks);
     if (last == StopReason::Cancelled) return last;
     endStage();
-    if (fitter_->maps() && last == StopReason::Converged && step() < options_.steps && widen && widen()) {
+    if (!resumedWidened && fitter_->maps() && last == StopReason::Converged && step() < options_.steps && widen &&
+        widen()) {
+        widenedStep_ = step();
         last = runTo(options_.steps, checkpoint, hooks);
         if (last != StopReason::Cancelled) endStage();
     }

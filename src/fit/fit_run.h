@@ -107,6 +107,7 @@ private:
     int resumedFromStep_ = 0;
     ScheduleState schedule_;
     int bestStep_ = -1;  // of the last stage ended
+    int widenedStep_ = -1;  // when run() widened its last stage; < 0: not (yet)
     void restoreBest();  // θ of every group back to the best monitored state
     StopReason stopReason_ = StopReason::Reached;
     int monitorEvery_;

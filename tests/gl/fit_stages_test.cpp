@@ -1,6 +1,10 @@
 // The fit's stages: one widened after its predecessor converged ends no worse than it began.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <memory>
+#include <utility>
+
 #include "fit/fit_run.h"
 #include "fit/fit_scene.h"
 #include "gl_test_context.h"
@@ -10,8 +14,8 @@
 namespace subdfit::test {
 namespace {
 
-TEST(FitStages, AWidenedStageStartsAfterConvergenceAndEndsNoWorse) {
-    const auto dir = scratchDir("fit_stages");
+// Heights on a lumpy sphere's cage: the cage converges, then the heights (frozen cage), then both.
+fit::FitOptions stagedFit(const std::filesystem::path& dir) {
     fit::FitOptions o;
     o.out = dir;
     o.steps = 1500;
@@ -21,7 +25,17 @@ TEST(FitStages, AWidenedStageStartsAfterConvergenceAndEndsNoWorse) {
     o.maps.displacement = true;
     o.mapResolution = 2;
     o.mapsStart = 0.1f;
-    fit::FitScene scene(o, programs(), mesh::makeQuadSphere(2), mesh::makeLumpySphere(4, 0.15f, 4));
+    return o;
+}
+
+fit::FitScene stagedScene(const fit::FitOptions& o) {
+    return fit::FitScene(o, programs(), mesh::makeQuadSphere(2), mesh::makeLumpySphere(4, 0.15f, 4));
+}
+
+TEST(FitStages, AWidenedStageStartsAfterConvergenceAndEndsNoWorse) {
+    const auto dir = scratchDir("fit_stages");
+    const fit::FitOptions o = stagedFit(dir);
+    fit::FitScene scene = stagedScene(o);
     fit::FitRun run(o, programs(), scene);
 
     // The heights alone once the maps join; the cage is let back in when they have converged.
@@ -41,6 +55,46 @@ TEST(FitStages, AWidenedStageStartsAfterConvergenceAndEndsNoWorse) {
     EXPECT_LT(widenedAt, o.steps);
     EXPECT_GT(run.step(), widenedAt);
     EXPECT_LE(fit::score(fitter, scene.monitor).loss, lossWhenWidened);
+    expectNoGlError();
+}
+
+// Interrupted inside the widened stage, a resumed run widens again and ends where a straight
+// run does.
+TEST(FitStages, AResumedWidenedStageEndsWhereAStraightRunDoes) {
+    const auto dir = scratchDir("fit_stages_resume");
+    const fit::FitOptions o = stagedFit(dir);
+    fit::FitScene scene = stagedScene(o);
+    int widenedAt = -1;
+    auto fit = [&](const std::filesystem::path& checkpoint, bool resume, const fit::FitHooks& hooks) {
+        auto run = std::make_unique<fit::FitRun>(o, programs(), scene);
+        if (resume) EXPECT_TRUE(run->resume(checkpoint));
+        auto& fitter = run->fitter();
+        const auto stopped = run->run(
+            checkpoint, hooks, [&](bool) { fitter.setOptimised(fitter.vertexGroup(), false); },
+            [&, r = run.get()] {
+                widenedAt = r->step();
+                fitter.setOptimised(fitter.vertexGroup(), true);
+                return true;
+            });
+        return std::make_pair(stopped, std::move(run));
+    };
+    auto [straightStop, straight] = fit(dir / "straight.bin", false, {});
+    ASSERT_GT(widenedAt, 0);
+    const int straightWidenedAt = std::exchange(widenedAt, -1);
+
+    std::atomic<bool> cancel{false};
+    auto [interruptedStop, interrupted] =
+        fit(dir / "resumed.bin", false,
+            {.progress = [&](const fit::Progress& p) { cancel = cancel || (widenedAt > 0 && p.step > widenedAt + 60); },
+             .cancel = &cancel});
+    ASSERT_EQ(interruptedStop, fit::StopReason::Cancelled);
+    EXPECT_EQ(widenedAt, straightWidenedAt);
+    auto [resumedStop, resumed] = fit(dir / "resumed.bin", true, {});
+    EXPECT_EQ(resumedStop, straightStop);
+    EXPECT_EQ(resumed->step(), straight->step());
+    EXPECT_EQ(resumed->fitter().vertices(), straight->fitter().vertices());
+    EXPECT_EQ(resumed->fitter().maps()->displacement()->theta.read<float>(),
+              straight->fitter().maps()->displacement()->theta.read<float>());
     expectNoGlError();
 }
 

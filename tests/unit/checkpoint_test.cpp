@@ -106,7 +106,7 @@ TEST_F(Checkpoint, TruncationOtherVersionsAndOtherSettingsAreRefused) {
 // A count of 2^40 floats behind a valid checksum: the reader must see that the file cannot
 // hold them instead of allocating 4 TB.
 TEST_F(Checkpoint, ACountBeyondTheFileAllocatesNothing) {
-    std::string payload = "SDFTCKP4";
+    std::string payload = "SDFTCKP5";
     auto put = [&](auto value) { payload.append(reinterpret_cast<const char*>(&value), sizeof value); };
     put(std::uint64_t(2));
     payload += "fp";
