@@ -32,6 +32,7 @@ FitState sampleState() {
     // Where a plateau schedule stands: resumed, it must continue with the same step and best.
     state.learningRateScale = 0.25f;
     state.mapsStartStep = 30;
+    state.widenedStep = 35;
     state.schedule = {.bestLoss = 0.125, .bestStep = 36, .sinceImprovement = 2, .halvings = 2,
                       .bestTheta = {state.groups[0].theta, state.groups[1].moment1}};
     return state;
@@ -74,6 +75,7 @@ TEST_F(Checkpoint, ReadsBackExactly) {
     }
     EXPECT_EQ(read->learningRateScale, expected.learningRateScale);
     EXPECT_EQ(read->mapsStartStep, expected.mapsStartStep);
+    EXPECT_EQ(read->widenedStep, expected.widenedStep);
     EXPECT_EQ(read->schedule.bestLoss, expected.schedule.bestLoss);
     EXPECT_EQ(read->schedule.bestStep, expected.schedule.bestStep);
     EXPECT_EQ(read->schedule.sinceImprovement, expected.schedule.sinceImprovement);
