@@ -101,13 +101,9 @@ TEST(FitStages, AResumedWidenedStageEndsWhereAStraightRunDoes) {
 // A fit without maps has no maps' stage to widen: it converges and stops.
 TEST(FitStages, AFitWithoutMapsIsNeverWidened) {
     const auto dir = scratchDir("fit_stages_bare");
-    fit::FitOptions o;
-    o.out = dir;
-    o.steps = 1500;
-    o.views = 4;
-    o.holdoutViews = 1;
-    o.resolution = 48;
-    fit::FitScene scene(o, programs(), mesh::makeQuadSphere(2), mesh::makeLumpySphere(4, 0.15f, 4));
+    fit::FitOptions o = stagedFit(dir);
+    o.maps = {};
+    fit::FitScene scene = stagedScene(o);
     fit::FitRun run(o, programs(), scene);
     bool widened = false;
     const auto stopped = run.run(dir / "checkpoint.bin", {}, {}, [&] { return widened = true; });
