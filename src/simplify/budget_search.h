@@ -2,9 +2,9 @@
 // `simplify --budget`: which asset to fit so that what ships fits the bytes. A small
 // rate-distortion search: cages of several face counts, each bare and with baked maps at a few
 // resolutions and bit depths; every candidate is encoded exactly as it would ship (asset.subd:
-// its bytes), decoded again and rendered on the monitor views (its loss), and of those within
-// the budget the smallest whose loss is within 2 % of the lowest, saving bytes worth the loss,
-// is fitted. The bake stands in for the fit, which starts from it and only improves on it (the
+// its bytes), decoded again and rendered on the monitor views (its loss); those within 20 % of
+// the lowest are rendered on the training views as well, and of them the smallest whose loss is
+// within 2 % of the lowest, saving bytes worth the loss, is fitted. The bake stands in for the fit, which starts from it and only improves on it (the
 // fit keeps its best state).
 #include <cstdint>
 #include <functional>
@@ -30,6 +30,8 @@ struct BudgetCandidate {
     int appearanceAtlas = 0;       // texels per side of the appearance in the reference's atlas; 0: tiles
     std::uintmax_t bytes = 0;   // of its asset.subd
     double monitorLoss = 0.0;   // of the decoded asset; 0 when over budget (not rendered)
+    // Over the monitor and training views, for those near the lowest monitor loss; 0 otherwise.
+    double settledLoss = 0.0;
 };
 
 struct BudgetSearch {
