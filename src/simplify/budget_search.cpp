@@ -107,13 +107,23 @@ struct Fitting {
     size_t tried;  // its place in BudgetChoice::tried
 };
 
+double monitored(const BudgetCandidate& c) { return c.monitorLoss; }
+double settled(const BudgetCandidate& c) { return c.settledLoss; }
+
+// Of those `keep` accepts, the one of lowest `loss` (none if it accepts none).
+template <class Keep, class Loss>
+const Fitting* lowestOf(const std::vector<Fitting>& fitting, Keep keep, Loss loss) {
+    const Fitting* lowest = nullptr;
+    for (const Fitting& f : fitting)
+        if (keep(f.candidate) && (!lowest || loss(f.candidate) < loss(lowest->candidate))) lowest = &f;
+    return lowest;
+}
+
 // Of those `keep` accepts, the fewest bytes within kLossTolerance of the lowest `loss` that save
 // kBytesPerLoss times the loss they give up.
 template <class Keep, class Loss>
 const Fitting* preferred(const std::vector<Fitting>& fitting, Keep keep, Loss loss) {
-    const Fitting* lowest = nullptr;
-    for (const Fitting& f : fitting)
-        if (keep(f.candidate) && (!lowest || loss(f.candidate) < loss(lowest->candidate))) lowest = &f;
+    const Fitting* lowest = lowestOf(fitting, keep, loss);
     if (!lowest) return nullptr;
     const double lowestLoss = loss(lowest->candidate), bytes = double(lowest->candidate.bytes);
     const Fitting* best = lowest;
@@ -126,16 +136,11 @@ const Fitting* preferred(const std::vector<Fitting>& fitting, Keep keep, Loss lo
     return best;
 }
 
-double monitored(const BudgetCandidate& c) { return c.monitorLoss; }
-double settled(const BudgetCandidate& c) { return c.settledLoss; }
-
 // preferred() among those `keep` accepts within kNearTie of the lowest monitor loss, on their
 // loss over the monitor and training views (scored here where not yet).
 template <class Keep>
 const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, std::vector<Fitting>& fitting, Keep keep) {
-    const Fitting* lowest = nullptr;
-    for (const Fitting& f : fitting)
-        if (keep(f.candidate) && (!lowest || f.candidate.monitorLoss < lowest->candidate.monitorLoss)) lowest = &f;
+    const Fitting* lowest = lowestOf(fitting, keep, monitored);
     if (!lowest) return nullptr;
     const double within = (1.0 + kNearTie) * lowest->candidate.monitorLoss;
     for (Fitting& f : fitting) {
