@@ -27,10 +27,10 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
     std::filesystem::create_directories(o.out);
     std::vector<std::filesystem::path> references = o.references;
     if (references.empty()) references.push_back(reliefReference(o.out));
-    std::vector<std::vector<std::string>> rows{{"reference", "budget", "method", "bytes", "psnr_holdout", "mean_distance",
-                                                "chamfer", "hausdorff", "seconds", "chosen"}};
-    std::printf("%-18s %8s  %-10s %8s %9s %13s %9s  %s\n", "reference", "budget", "method", "bytes", "PSNR dB",
-                "mean distance", "seconds", "chosen");
+    std::vector<std::vector<std::string>> rows{{"reference", "budget", "method", "bytes", "psnr_holdout", "ssim_holdout",
+                                                "mean_distance", "chamfer", "hausdorff", "seconds", "chosen"}};
+    std::printf("%-18s %8s  %-10s %8s %9s %7s %13s %9s  %s\n", "reference", "budget", "method", "bytes", "PSNR dB",
+                "SSIM", "mean distance", "seconds", "chosen");
     for (const auto& reference : references) {
         const std::string name = reference.stem().string();
         std::map<std::string, Series> psnr, distance;
@@ -54,11 +54,12 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
             for (const auto& [method, q] : methods) {
                 const double seconds = method == "subdfit" ? report.fit.seconds : 0.0;
                 const std::string chosenText = method == "subdfit" ? choice : "";
-                std::printf("%-18.18s %8ju  %-10s %8ju %9.2f %13.4e %9.1f  %s\n", name.c_str(), budget, method.c_str(),
-                            q->bytes, q->psnrHoldout, q->distance.meanDistance, seconds, chosenText.c_str());
+                std::printf("%-18.18s %8ju  %-10s %8ju %9.2f %7.4f %13.4e %9.1f  %s\n", name.c_str(), budget,
+                            method.c_str(), q->bytes, q->psnrHoldout, q->ssimHoldout, q->distance.meanDistance, seconds,
+                            chosenText.c_str());
                 std::fflush(stdout);
                 rows.push_back({name, std::to_string(budget), method, std::to_string(q->bytes), std::to_string(q->psnrHoldout),
-                                std::to_string(q->distance.meanDistance), std::to_string(q->distance.chamferL2Squared),
+                                std::to_string(q->ssimHoldout), std::to_string(q->distance.meanDistance), std::to_string(q->distance.chamferL2Squared),
                                 std::to_string(q->distance.hausdorff), std::to_string(seconds), chosenText});
                 // A decimation that fits the whole reference is lossless (PSNR capped at 120 dB):
                 // in the CSV, off the plots, whose scale it would flatten.

@@ -23,10 +23,10 @@ void printSummary(const subdfit::fit::FitReport& r) {
 }
 
 void printComparison(const subdfit::simplify::SimplifyReport& r) {
-    std::fprintf(stderr, "%-11s %10s %12s %14s %12s\n", "", "bytes", "PSNR (dB)", "mean distance", "Chamfer");
+    std::fprintf(stderr, "%-11s %10s %12s %8s %14s %12s\n", "", "bytes", "PSNR (dB)", "SSIM", "mean distance", "Chamfer");
     auto row = [](const char* name, const subdfit::simplify::Quality& q) {
-        std::fprintf(stderr, "%-11s %10llu %12.2f %14.4e %12.4e\n", name, (unsigned long long)q.bytes, q.psnrHoldout,
-                     q.distance.meanDistance, q.distance.chamferL2Squared);
+        std::fprintf(stderr, "%-11s %10llu %12.2f %8.4f %14.4e %12.4e\n", name, (unsigned long long)q.bytes, q.psnrHoldout,
+                     q.ssimHoldout, q.distance.meanDistance, q.distance.chamferL2Squared);
     };
     row("subdfit", r.subdfit);
     row("decimation", r.decimation);

@@ -1,5 +1,7 @@
 #include "fit/image_metrics.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -18,6 +20,78 @@ double meanPixelLoss(const std::vector<glm::vec4>& image, const std::vector<glm:
 double psnrFromLoss(double meanPixelLoss) {
     const double mse = std::max(meanPixelLoss / 3.0, 1e-12);  // capped at 120 dB for identical images
     return 10.0 * std::log10(1.0 / mse);
+}
+
+namespace {
+
+constexpr int kRadius = 5;  // 11 taps
+constexpr double kSigma = 1.5;
+
+std::array<double, 2 * kRadius + 1> gaussianTaps() {
+    std::array<double, 2 * kRadius + 1> taps{};
+    double sum = 0.0;
+    for (int k = -kRadius; k <= kRadius; ++k) {
+        taps[size_t(k + kRadius)] = std::exp(-k * k / (2.0 * kSigma * kSigma));
+        sum += taps[size_t(k + kRadius)];
+    }
+    for (double& t : taps) t /= sum;
+    return taps;
+}
+
+// The Gaussian-weighted local mean of `values` around every pixel, edges clamped (separable).
+std::vector<double> blurred(const std::vector<double>& values, int width, int height) {
+    static const auto taps = gaussianTaps();
+    std::vector<double> rows(values.size()), out(values.size());
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            double sum = 0.0;
+            for (int k = -kRadius; k <= kRadius; ++k)
+                sum += taps[size_t(k + kRadius)] * values[size_t(y) * size_t(width) + size_t(std::clamp(x + k, 0, width - 1))];
+            rows[size_t(y) * size_t(width) + size_t(x)] = sum;
+        }
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            double sum = 0.0;
+            for (int k = -kRadius; k <= kRadius; ++k)
+                sum += taps[size_t(k + kRadius)] * rows[size_t(std::clamp(y + k, 0, height - 1)) * size_t(width) + size_t(x)];
+            out[size_t(y) * size_t(width) + size_t(x)] = sum;
+        }
+    return out;
+}
+
+}  // namespace
+
+double structuralSimilarity(const std::vector<glm::vec4>& image, const std::vector<glm::vec4>& target, int width,
+                            int height) {
+    const size_t pixels = size_t(width) * size_t(height);
+    std::vector<char> covered(pixels);
+    size_t coveredCount = 0;
+    for (size_t i = 0; i < pixels; ++i) {
+        covered[i] = image[i].a > 0.0f || target[i].a > 0.0f;
+        coveredCount += size_t(covered[i]);
+    }
+    if (coveredCount == 0) return 1.0;
+    constexpr double kC1 = 0.01 * 0.01, kC2 = 0.03 * 0.03;
+    double sum = 0.0;
+    std::vector<double> x(pixels), y(pixels), xx(pixels), yy(pixels), xy(pixels);
+    for (int c = 0; c < 3; ++c) {
+        for (size_t i = 0; i < pixels; ++i) {
+            x[i] = std::clamp(double(image[i][c]), 0.0, 1.0);
+            y[i] = std::clamp(double(target[i][c]), 0.0, 1.0);
+            xx[i] = x[i] * x[i];
+            yy[i] = y[i] * y[i];
+            xy[i] = x[i] * y[i];
+        }
+        const auto mx = blurred(x, width, height), my = blurred(y, width, height);
+        const auto sxx = blurred(xx, width, height), syy = blurred(yy, width, height), sxy = blurred(xy, width, height);
+        for (size_t i = 0; i < pixels; ++i) {
+            if (!covered[i]) continue;
+            const double varX = sxx[i] - mx[i] * mx[i], varY = syy[i] - my[i] * my[i], cov = sxy[i] - mx[i] * my[i];
+            sum += (2.0 * mx[i] * my[i] + kC1) * (2.0 * cov + kC2) /
+                   ((mx[i] * mx[i] + my[i] * my[i] + kC1) * (varX + varY + kC2));
+        }
+    }
+    return sum / (3.0 * double(coveredCount));
 }
 
 }  // namespace subdfit::fit

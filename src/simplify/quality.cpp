@@ -8,6 +8,7 @@ namespace subdfit::simplify {
 
 nlohmann::json toJson(const Quality& q) {
     nlohmann::json j = {{"psnr_holdout", q.psnrHoldout},
+                        {"ssim_holdout", q.ssimHoldout},
                         {"chamfer", q.distance.chamferL2Squared},
                         {"hausdorff", q.distance.hausdorff},
                         {"mean_distance", q.distance.meanDistance},
@@ -25,14 +26,17 @@ std::uintmax_t totalBytes(const nlohmann::json& files) {
 
 void scoreHoldout(const scene::TargetSet& holdout, const DrawFunction& draw, Quality& quality) {
     const render::RenderTarget image(holdout.resolution(), holdout.resolution());
-    double loss = 0.0;
+    double loss = 0.0, similarity = 0.0;
     for (int i = 0; i < holdout.size(); ++i) {
         draw(holdout.camera(i), image);
         auto pixels = image.readColor();
-        loss += fit::meanPixelLoss(pixels, holdout.readColor(i));
+        const auto target = holdout.readColor(i);
+        loss += fit::meanPixelLoss(pixels, target);
+        similarity += fit::structuralSimilarity(pixels, target, holdout.resolution(), holdout.resolution());
         if (i == 0) quality.view = std::move(pixels);
     }
     quality.psnrHoldout = fit::psnrFromLoss(loss / std::max(1, holdout.size()));
+    quality.ssimHoldout = holdout.size() > 0 ? similarity / holdout.size() : 0.0;
 }
 
 geometry::SurfaceDistance worldDistance(const mesh::PolygonMesh& candidate, const mesh::PolygonMesh& reference,

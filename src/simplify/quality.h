@@ -1,6 +1,7 @@
 #pragma once
 // How good a simplified asset is, measured the same way for subdfit and for each baseline:
-// PSNR over the held-out views, surface distance to the reference, and the bytes a user ships.
+// PSNR and SSIM over the held-out views, surface distance to the reference, and the bytes a user
+// ships.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -20,6 +21,7 @@ namespace subdfit::simplify {
 
 struct Quality {
     double psnrHoldout = 0.0;
+    double ssimHoldout = 0.0;  // mean over the held-out views (fit/image_metrics.h)
     geometry::SurfaceDistance distance;  // in the reference's units
     std::uintmax_t bytes = 0;
     nlohmann::json files = nlohmann::json::object();  // {shipped file: bytes}
@@ -35,7 +37,8 @@ std::uintmax_t totalBytes(const nlohmann::json& files);
 // Renders one camera into a target: how a candidate is drawn.
 using DrawFunction = std::function<void(const render::Camera&, const render::RenderTarget&)>;
 
-// Mean-loss PSNR of `draw` over every held-out view; view 0's image goes to `quality.view`.
+// Mean-loss PSNR and mean SSIM of `draw` over every held-out view; view 0's image goes to
+// `quality.view`.
 void scoreHoldout(const scene::TargetSet& holdout, const DrawFunction& draw, Quality& quality);
 
 // Surface distance of `candidate` (triangles, normalised frame) to `reference` (same), reported

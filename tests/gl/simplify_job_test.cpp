@@ -83,6 +83,8 @@ TEST(SimplifyJob, ReportMatchesTheFilesAndComparesAtEqualBytes) {
     for (const auto* q : {&report, &decimation, &bake}) {
         EXPECT_TRUE(std::isfinite((*q)["psnr_holdout"].get<double>()));
         EXPECT_GT((*q)["psnr_holdout"].get<double>(), 15.0);
+        EXPECT_GT((*q)["ssim_holdout"].get<double>(), 0.0);
+        EXPECT_LT((*q)["ssim_holdout"].get<double>(), 1.0);  // no method renders the reference exactly
         EXPECT_GE((*q)["chamfer"].get<double>(), 0.0);
         EXPECT_GE((*q)["hausdorff"].get<double>(), std::sqrt((*q)["chamfer"].get<double>() / 2.0) * 0.5);
     }
