@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
+
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+
+#include "util/error.h"
 
 namespace subdfit::fit {
 
@@ -59,11 +63,17 @@ std::vector<double> blurred(const std::vector<double>& values, int width, int he
     return out;
 }
 
+// A channel value as SSIM's constants assume it: in [0, 1], and 0 for a non-finite one.
+double unitValue(float v) { return std::isfinite(v) ? std::clamp(double(v), 0.0, 1.0) : 0.0; }
+
 }  // namespace
 
 double structuralSimilarity(const std::vector<glm::vec4>& image, const std::vector<glm::vec4>& target, int width,
                             int height) {
-    const size_t pixels = size_t(width) * size_t(height);
+    const size_t pixels = size_t(std::max(width, 0)) * size_t(std::max(height, 0));
+    if (image.size() != pixels || target.size() != pixels)
+        throw Error("SSIM of images of " + std::to_string(image.size()) + " and " + std::to_string(target.size()) +
+                    " pixels as " + std::to_string(width) + "x" + std::to_string(height));
     std::vector<char> covered(pixels);
     size_t coveredCount = 0;
     for (size_t i = 0; i < pixels; ++i) {
@@ -76,8 +86,8 @@ double structuralSimilarity(const std::vector<glm::vec4>& image, const std::vect
     std::vector<double> x(pixels), y(pixels), xx(pixels), yy(pixels), xy(pixels);
     for (int c = 0; c < 3; ++c) {
         for (size_t i = 0; i < pixels; ++i) {
-            x[i] = std::clamp(double(image[i][c]), 0.0, 1.0);
-            y[i] = std::clamp(double(target[i][c]), 0.0, 1.0);
+            x[i] = unitValue(image[i][c]);
+            y[i] = unitValue(target[i][c]);
             xx[i] = x[i] * x[i];
             yy[i] = y[i] * y[i];
             xy[i] = x[i] * y[i];

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "fit/image_metrics.h"
+#include "util/error.h"
 
 namespace subdfit::fit {
 namespace {
@@ -83,6 +84,15 @@ TEST(StructuralSimilarity, FallsWithNoiseAndIsSymmetric) {
     EXPECT_LT(heavy, light);
     EXPECT_GT(heavy, -1.0);
     EXPECT_NEAR(structuralSimilarity(clean, noisy(clean, 0.2f, 1), kSize, kSize), heavy, 1e-12);
+}
+
+TEST(StructuralSimilarity, StaysFiniteOnNonFinitePixelsAndRefusesAMismatchedSize) {
+    auto broken = disc();
+    broken[size_t(16 * kSize + 16)] = glm::vec4(std::nanf(""), INFINITY, -INFINITY, 1.0f);
+    const double score = structuralSimilarity(broken, disc(), kSize, kSize);
+    EXPECT_TRUE(std::isfinite(score));
+    EXPECT_LT(score, 1.0);
+    EXPECT_THROW(structuralSimilarity(disc(), disc(kSize - 1), kSize, kSize), Error);
 }
 
 TEST(StructuralSimilarity, MatchesTheWindowedDefinition) {
