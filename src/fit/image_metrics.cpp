@@ -42,24 +42,25 @@ std::array<double, 2 * kRadius + 1> gaussianTaps() {
     return taps;
 }
 
-// The Gaussian-weighted local mean of `values` around every pixel, edges clamped (separable).
-std::vector<double> blurred(const std::vector<double>& values, int width, int height) {
+// One pass of the Gaussian along `lines` lines of `length` values (`step` apart within a line,
+// `lineStep` between lines), edges clamped.
+void blurLines(const std::vector<double>& in, std::vector<double>& out, int lines, int length, size_t step,
+               size_t lineStep) {
     static const auto taps = gaussianTaps();
+    for (int line = 0; line < lines; ++line)
+        for (int i = 0; i < length; ++i) {
+            double sum = 0.0;
+            for (int k = -kRadius; k <= kRadius; ++k)
+                sum += taps[size_t(k + kRadius)] * in[size_t(line) * lineStep + size_t(std::clamp(i + k, 0, length - 1)) * step];
+            out[size_t(line) * lineStep + size_t(i) * step] = sum;
+        }
+}
+
+// The Gaussian-weighted local mean of `values` around every pixel (separable: rows, then columns).
+std::vector<double> blurred(const std::vector<double>& values, int width, int height) {
     std::vector<double> rows(values.size()), out(values.size());
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            double sum = 0.0;
-            for (int k = -kRadius; k <= kRadius; ++k)
-                sum += taps[size_t(k + kRadius)] * values[size_t(y) * size_t(width) + size_t(std::clamp(x + k, 0, width - 1))];
-            rows[size_t(y) * size_t(width) + size_t(x)] = sum;
-        }
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            double sum = 0.0;
-            for (int k = -kRadius; k <= kRadius; ++k)
-                sum += taps[size_t(k + kRadius)] * rows[size_t(std::clamp(y + k, 0, height - 1)) * size_t(width) + size_t(x)];
-            out[size_t(y) * size_t(width) + size_t(x)] = sum;
-        }
+    blurLines(values, rows, height, width, 1, size_t(width));
+    blurLines(rows, out, width, height, size_t(width), 1);
     return out;
 }
 
