@@ -97,22 +97,23 @@ void main() {
     tePtexFace = OsdPatchParamGetFaceId(param);
 
 #ifdef SUBDFIT_DISPLACEMENT
+    vec2 at = clamp(tePtexUv, 0.0, 1.0);
+    P += heightAt(tePtexFace, at) * unitN;
+#ifndef SUBDFIT_LIMIT_SHADING  // (with it, the limit surface's normal shades: surface::ShadingNormal)
     // P' = P + d(u,v) N̂. Shading normal of the displaced surface to first order:
     // ∂P'/∂u ≈ ∂P/∂u + (∂d/∂u) N̂ (the d ∂N̂/∂u term is dropped: d is small against curvature).
     // ∂d/∂u by central differences half a map cell wide, reaching across the tile's border into
     // the neighbouring face's tile, exactly as the CPU twin (surface/displaced_surface.cpp): at a
     // node that averages the slopes of the cells on either side, so the shading breaks neither
     // at a cell edge nor at a face edge.
-    vec2 at = clamp(tePtexUv, 0.0, 1.0);
-    float height = heightAt(tePtexFace, at);
     float h = 0.5 / float(uMapResolution);
     float dddu = (heightAt(tePtexFace, at + vec2(h, 0.0)) - heightAt(tePtexFace, at - vec2(h, 0.0))) / (2.0 * h);
     float dddv = (heightAt(tePtexFace, at + vec2(0.0, h)) - heightAt(tePtexFace, at - vec2(0.0, h))) / (2.0 * h);
-    P += height * unitN;
     dPdu += dddu * unitN;
     dPdv += dddv * unitN;
     N = cross(dPdu, dPdv);
     unitN = dot(N, N) > 0.0 ? normalize(N) : unitN;
+#endif
 #endif
     teWorldNormal = unitN;
     teTangentU = dPdu;

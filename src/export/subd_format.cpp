@@ -32,6 +32,7 @@ constexpr Tag kCage{'C', 'A', 'G', 'E'}, kDisplacement{'D', 'I', 'S', 'P'}, kNor
               kNormalTexture{'N', 'T', 'E', 'X'}, kEmissive{'E', 'M', 'I', 'S'};
 constexpr std::uint32_t kMostSections = 8;
 constexpr char kMagic[4] = {'S', 'U', 'B', 'D'};
+constexpr std::uint16_t kLimitShadingFlag = 1;
 constexpr int kZstdLevel = 19;  // the asset is written once and shipped many times
 constexpr std::uint32_t kMaxRawSection = 1u << 30;
 
@@ -115,6 +116,7 @@ surface::AppearanceAtlas carriedCornerUvs(const mesh::PolygonMesh& cage, const s
 surface::SurfaceMaps carriedMaps(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps,
                                  const mesh::PolygonMesh& decoded, const CageCorrespondence& to) {
     surface::SurfaceMaps out;
+    out.shadingNormal = maps.shadingNormal;
     if (maps.layout.resolution > 0 && (maps.hasDisplacement() || maps.hasNormal())) {
         out.layout = surface::buildTexelLayout(decoded, maps.layout.resolution);
         if (maps.hasDisplacement())
@@ -283,7 +285,8 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
     // (-Wstringop-overflow) once the appearance sections change its inlining.
     file.bytes().assign(std::begin(kMagic), std::end(kMagic));
     file.put<std::uint16_t>(kSubdVersion);
-    file.put<std::uint16_t>(0);
+    const bool limitShading = maps.hasDisplacement() && maps.shadingNormal == surface::ShadingNormal::Limit;
+    file.put<std::uint16_t>(limitShading ? kLimitShadingFlag : 0);
     file.put<std::uint32_t>(std::uint32_t(sections.size()));
     for (const auto& [tag, raw] : sections) putSection(file, tag, raw);
     const auto& bytes = file.bytes();
@@ -307,7 +310,8 @@ SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& na
         throw Error(name + ": checksum mismatch (damaged or truncated)");
     ByteReader in(body, name);
     in.take(6);
-    if (in.get<std::uint16_t>() != 0) throw Error(name + ": unknown flags");
+    const auto flags = in.get<std::uint16_t>();
+    if ((flags & ~kLimitShadingFlag) != 0) throw Error(name + ": unknown flags");
     const auto count = in.get<std::uint32_t>();
     if (count < 1 || count > kMostSections) throw Error(name + ": " + std::to_string(count) + " sections");
 
@@ -350,6 +354,10 @@ SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& na
     if (in.remaining() != 0) throw Error(name + ": trailing bytes after the sections");
     if (asset.maps.appearanceAtlas.present() && !asset.maps.hasBaseColor() && !asset.maps.hasMetallicRoughness())
         throw Error(name + ": atlas coordinates without an appearance");
+    if (flags & kLimitShadingFlag) {
+        if (!asset.maps.hasDisplacement()) throw Error(name + ": limit shading flagged without a displacement");
+        asset.maps.shadingNormal = surface::ShadingNormal::Limit;
+    }
     return asset;
 }
 

@@ -3,7 +3,7 @@
 // OpenSubdiv tags) and the maps' node values, quantised and entropy-coded; `subdfit decode`
 // turns it back into triangles. Layout (little-endian):
 //
-//   header   "SUBD" | u16 version (5) | u16 flags (0) | u32 section count
+//   header   "SUBD" | u16 version (5) | u16 flags | u32 section count
 //   section  4-byte tag | u32 stored bytes | u32 raw bytes | stored bytes (a zstd frame)
 //   trailer  u64 XXH3-64 of every byte before it
 //
@@ -42,6 +42,9 @@
 //   NTEX  (with AUVS) the reference's normal texture on the atlas, as BCOL: rgb as glTF's, in
 //         the tangent frame of the atlas coordinates
 //   EMIS  (with AUVS) the sRGB emissive on the atlas, as BCOL
+//
+// Flags: bit 0, with DISP: the limit surface's normal shades the displaced surface (the heights
+// only place it; surface::ShadingNormal); otherwise the displaced surface's own. Other bits: 0.
 //
 // Heights are in the cage's units along the limit normal. (Version 1 had no coding byte and
 // 16-bit plain positions; its files are refused with the version named. Version 3 had no AUVS

@@ -188,6 +188,7 @@ surface::SurfaceMaps CageFitter::surfaceMaps() {
     maps.appearanceAtlas = maps_->appearanceAtlas();
     maps_->readCarriedTextures(maps);
     if (auto* g = maps_->displacement()) maps.displacement = g->read();
+    maps.shadingNormal = maps_->shadingNormal();
     if (auto* g = maps_->normalMap()) maps.normal = g->read();
     // What the renderer reads them as: clamped to [0, 1].
     auto clamped = [](std::vector<float> values) {

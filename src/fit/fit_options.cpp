@@ -46,6 +46,10 @@ const std::vector<OptionRow>& optionTable() {
         {{"maps", "--maps", "maps to fit: none, displacement, normal, displacement,normal", 1, 0, false, true, true},
          &F::maps},
         {{"map_resolution", "--map-res", "map cells per face edge", 1, 64, false, true, true}, &F::mapResolution},
+        {{"shading_normal", "--shading-normal",
+          "what shades displaced heights: displaced (their slopes tilt the normal) or limit (the limit surface's "
+          "normal, the heights only place it); simplify --budget chooses", 1, 0, false, true, true},
+         &F::shadingNormal},
         {{"appearance_resolution", "--appearance-res",
           "base colour / metallic-roughness cells per face edge (scenes with materials)", 1, 64, false, true, true},
          &F::appearanceResolution},
@@ -123,6 +127,8 @@ void validate(const FitOptions& o) {
         }
     }
     if (o.appearanceAtlas == 1) throw OptionError("appearance_atlas", "must be 0 (tiles) or at least 2 texels");
+    if (o.shadingNormal != "displaced" && o.shadingNormal != "limit")
+        throw OptionError("shading_normal", "must be displaced or limit, got '" + o.shadingNormal + "'");
     if (o.schedule != "plateau" && o.schedule != "anneal")
         throw OptionError("schedule", "must be plateau or anneal, got '" + o.schedule + "'");
 }

@@ -48,6 +48,8 @@ struct FitOptions {
     std::string shading = "auto";
     maps::MapEffects maps;        // none by default
     int mapResolution = 8;        // cells per ptex-face edge of each map tile
+    // What shades the displaced surface (surface::ShadingNormal): "displaced" or "limit".
+    std::string shadingNormal = "displaced";
     int appearanceResolution = 16;  // ... of the appearance maps (base colour, metallic-roughness)
     // simplify: texels per side of the appearance maps in the reference's own texture atlas
     // (surface/appearance_atlas.h); 0: per-face tiles of appearanceResolution.

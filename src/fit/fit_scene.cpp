@@ -95,6 +95,7 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
     settings.maps.resolution = o.mapResolution;
     settings.maps.appearanceResolution = o.appearanceResolution;
     settings.maps.appearanceAtlas = o.appearanceAtlas;
+    settings.maps.shadingNormal = surface::shadingNormalNamed(o.shadingNormal);
     settings.mapsStartFraction = o.mapsStart;
     return settings;
 }

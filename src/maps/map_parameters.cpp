@@ -143,6 +143,7 @@ render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::Para
     };
     return {.displacement = effects_.displacement,
             .normalMap = effects_.normalMap,
+            .limitShading = settings_.shadingNormal == surface::ShadingNormal::Limit,
             .baseColor = effects_.baseColor,
             .metallicRoughness = effects_.metallicRoughness,
             .resolution = std::max(layout_.resolution, 1),

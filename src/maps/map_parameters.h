@@ -23,6 +23,7 @@ struct MapSettings {
     int appearanceResolution = 16;  // ... of the appearance maps
     // Texels per side of an appearance atlas (surface/appearance_atlas.h); 0: per-face tiles.
     int appearanceAtlas = 0;
+    surface::ShadingNormal shadingNormal = surface::ShadingNormal::Displaced;  // with a displacement
     // Heights in the normalised frame (scene radius 1); tangent offsets are dimensionless;
     // colours are sRGB values and roughness / metallic fractions, all in [0, 1].
     optim::GroupSettings displacement{.epsilon = 0.004f, .learningRate = 0.003f};
@@ -60,6 +61,7 @@ public:
     // Where `group`'s lattice starts in the face-node table the shaders read.
     int tableOffsetOf(const optim::ParameterGroup& group) const;
     MapEffects effects() const { return effects_; }
+    surface::ShadingNormal shadingNormal() const { return settings_.shadingNormal; }
     optim::ParameterGroup* displacement() { return displacement_.get(); }
     optim::ParameterGroup* normalMap() { return normalMap_.get(); }
     optim::ParameterGroup* baseColor() { return baseColor_.get(); }

@@ -21,12 +21,14 @@ const gl::ProgramSpec kPatchRaster{"patch_raster",
                                                                       "SUBDFIT_BASE_COLOR_MAP",
                                                                       "SUBDFIT_METALLIC_ROUGHNESS_MAP",
                                                                       "SUBDFIT_APPEARANCE_ATLAS", "SUBDFIT_ATLAS_NORMAL_TEXTURE",
-                                                                      "SUBDFIT_ATLAS_OCCLUSION", "SUBDFIT_ATLAS_EMISSIVE"});
+                                                                      "SUBDFIT_ATLAS_OCCLUSION", "SUBDFIT_ATLAS_EMISSIVE",
+                                                                      "SUBDFIT_LIMIT_SHADING"});
                                        return defines;
                                    }()};
 constexpr gl::VariantBits kPatchDisplacement = 1u << 3, kPatchNormalMap = 1u << 4, kPatchBaseColor = 1u << 5,
                           kPatchMetallicRoughness = 1u << 6, kPatchAppearanceAtlas = 1u << 7,
-                          kPatchAtlasNormal = 1u << 8, kPatchAtlasOcclusion = 1u << 9, kPatchAtlasEmissive = 1u << 10;
+                          kPatchAtlasNormal = 1u << 8, kPatchAtlasOcclusion = 1u << 9, kPatchAtlasEmissive = 1u << 10,
+                          kPatchLimitShading = 1u << 11;
 
 }  // namespace
 
@@ -46,7 +48,8 @@ PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel, Sha
 void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera,
                          const RenderTarget& target, const PatchMaps* maps) const {
     const gl::VariantBits mapBits =
-        maps ? (maps->displacement ? kPatchDisplacement : 0) | (maps->normalMap ? kPatchNormalMap : 0) |
+        maps ? (maps->displacement ? kPatchDisplacement | (maps->limitShading ? kPatchLimitShading : 0) : 0) |
+                   (maps->normalMap ? kPatchNormalMap : 0) |
                    (maps->baseColor ? kPatchBaseColor : 0) | (maps->metallicRoughness ? kPatchMetallicRoughness : 0) |
                    (maps->appearanceAtlas && (maps->baseColor || maps->metallicRoughness) ? kPatchAppearanceAtlas : 0)
              : 0;

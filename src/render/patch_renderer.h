@@ -17,6 +17,7 @@ namespace subdfit::render {
 // shader variant; whoever owns the maps binds their buffers.
 struct PatchMaps {
     bool displacement = false, normalMap = false;
+    bool limitShading = false;     // the heights place the surface, the limit normal shades it
     bool baseColor = false, metallicRoughness = false;
     int resolution = 1;            // cells per ptex-face edge of the geometric maps
     int appearanceResolution = 1;  // ... of the appearance maps

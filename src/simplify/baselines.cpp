@@ -144,6 +144,7 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     effects.baseColor = scene.shading != render::ShadingModel::Geometry;
     effects.metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness;
     surface::SurfaceMaps baked = bakeMaps(cage, scene.reference, {.effects = effects, .resolution = mapResolution});
+    baked.shadingNormal = settings.shadingNormal;
     if (effects.appearance()) {
         baked.setAppearance(bakeAppearance(
             cage, scene.reference,
@@ -167,7 +168,8 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
                                                   precision)
                                   .bytes}};
     q.bytes = totalBytes(q.files);
-    q.details = {{"faces", cage.faceCount()}, {"map_resolution", mapResolution}, {"map_bits", settings.mapBits}};
+    q.details = {{"faces", cage.faceCount()}, {"map_resolution", mapResolution}, {"map_bits", settings.mapBits},
+                 {"shading_normal", surface::toString(settings.shadingNormal)}};
 
     // Rendered by the fitter's own renderer with the baked values in its map groups.
     fit::CageFitSettings rendering;
@@ -176,6 +178,7 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     rendering.maps.resolution = mapResolution;
     rendering.maps.appearanceResolution = settings.appearanceResolution;
     rendering.maps.appearanceAtlas = effects.appearance() ? settings.appearanceAtlas : 0;
+    rendering.maps.shadingNormal = settings.shadingNormal;
     rendering.tessLevel = settings.segments;
     fit::CageFitter bakedScene(programs, cage, rendering);
     fit::writeMaps(bakedScene, baked);

@@ -33,6 +33,7 @@ struct BaselineSettings {
     int appearanceResolution = 16;  // the appearance maps' lattice and JPEG quality in the bake's asset.subd
     int appearanceQuality = 90;
     int appearanceAtlas = 0;  // texels per side when the appearance is in the reference's atlas
+    surface::ShadingNormal shadingNormal = surface::ShadingNormal::Displaced;  // of the bake's heights
 };
 
 // Both triangle baselines start from `welded`: weldedTriangles(scene.reference), made once.

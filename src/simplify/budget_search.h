@@ -25,6 +25,9 @@ struct BudgetCandidate {
     maps::MapEffects maps;      // none: the bare cage
     int mapResolution = 0;      // 0 without maps
     int mapBits = 0;            // per map value in asset.subd; 0 without maps
+    // With heights, what shades them: whichever of the two scored lower on the monitor views
+    // (over budget, not judged: Displaced).
+    surface::ShadingNormal shadingNormal = surface::ShadingNormal::Displaced;
     int appearanceResolution = 0;  // of the base colour (and metallic-roughness); 0 without
     int appearanceQuality = 0;     // JPEG quality of the appearance images; 0 without
     int appearanceAtlas = 0;       // texels per side of the appearance in the reference's atlas; 0: tiles

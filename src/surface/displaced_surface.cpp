@@ -82,7 +82,7 @@ glm::vec2 DisplacedSurface::heightGradient(int face, float u, float v) const {
 SurfaceVertex DisplacedSurface::at(int face, float u, float v) const {
     const LimitPoint p = limitPoint(face, u, v);
     const float d = height(face, u, v);
-    const glm::vec2 slope = heightGradient(face, u, v);
+    const glm::vec2 slope = maps_.shadingNormal == ShadingNormal::Limit ? glm::vec2(0.0f) : heightGradient(face, u, v);
 
     // The displaced surface P + d·N has derivatives Pu + d_u·N + d·N_u; the curvature term
     // d·N_u is dropped (it vanishes for flat patches and is small for the displacements a fit

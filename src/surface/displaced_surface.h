@@ -14,12 +14,12 @@ namespace subdfit::surface {
 
 struct SurfaceVertex {
     glm::vec3 position;
-    glm::vec3 normal;   // unit, of the displaced surface
+    glm::vec3 normal;   // unit, of the displaced surface (of the limit surface: SurfaceMaps::shadingNormal)
     // xyz: unit, orthogonal to the normal, along dP/du; w = ±1 so that cross(normal, xyz) · w
     // points along dP/dv: the frame the normal map's (x, y) is expressed in.
     glm::vec4 tangent;
-    // The displaced surface's derivatives along the ptex face's u and v (curvature term dropped):
-    // what a renderer's screen-space derivatives of position see.
+    // The displaced surface's derivatives along the ptex face's u and v (curvature term dropped;
+    // the limit surface's where it shades): the frame the shading normal comes from.
     glm::vec3 dPdu, dPdv;
 };
 

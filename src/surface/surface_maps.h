@@ -1,6 +1,7 @@
 #pragma once
 // A cage's maps as CPU values: node values on the shared texel layout, before any packing into
 // images. What the displaced surface is evaluated from, what a bake produces, what exporters read.
+#include <string_view>
 #include <vector>
 
 #include "surface/appearance_atlas.h"
@@ -8,11 +9,23 @@
 
 namespace subdfit::surface {
 
+// What shades a displaced surface. Displaced: its own normal, the heights' slopes tilting the
+// limit normal (relief the heights carry shows). Limit: the limit surface's, the heights only
+// placing the surface: a light reference's flat triangles shaded with smooth vertex normals,
+// whose facets heights baked onto them would otherwise copy into the shading.
+enum class ShadingNormal { Displaced, Limit };
+inline const char* toString(ShadingNormal s) { return s == ShadingNormal::Limit ? "limit" : "displaced"; }
+// The inverse of toString, for text already checked to be one of the two.
+inline ShadingNormal shadingNormalNamed(std::string_view name) {
+    return name == "limit" ? ShadingNormal::Limit : ShadingNormal::Displaced;
+}
+
 struct SurfaceMaps {
     TexelLayout layout;  // resolution 0: no maps at all
     // layout.nodeCount heights along the limit normal, in the cage's units; empty = no
     // displacement map.
     std::vector<float> displacement;
+    ShadingNormal shadingNormal = ShadingNormal::Displaced;  // with a displacement
     // 2 per node: tangent-space (x, y); the normal is normalize(x, y, 1) in the frame
     // (dPdu, dPdv, N) of the limit surface; empty = no normal map.
     std::vector<float> normal;

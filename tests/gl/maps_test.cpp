@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <random>
 
 #include "gl_test_context.h"
 #include "gradient_checks.h"
@@ -197,6 +198,48 @@ TEST(MapsEffects, OnlyTheEffectsTheSceneUsesAreCompiledAndRun) {
     const auto normal = run({.normalMap = true});
     EXPECT_FALSE(anyVariantDefines(*normal, "SUBDFIT_DISPLACEMENT"));
     EXPECT_TRUE(anyVariantDefines(*normal, "SUBDFIT_NORMAL_MAP"));
+    EXPECT_FALSE(anyVariantDefines(*displaced, "SUBDFIT_LIMIT_SHADING"));  // only where asked for (below)
+    expectNoGlError();
+}
+
+// surface::ShadingNormal::Limit, what simplify ships for a faceted reference: the heights move
+// the surface, the limit normal shades it. A flat cage then shades in one colour whatever its
+// heights, and the same heights shade it unevenly when their slopes tilt the normal.
+TEST(MapsShading, LimitShadingIgnoresTheHeightsSlopes) {
+    auto cage = mesh::makeQuadGrid(3);
+    cage.positions = scene::frameAround(cage.positions).toNormalized(cage.positions);
+    constexpr int kSize = 96;
+    auto colourSpread = [&](surface::ShadingNormal shading) {
+        auto cache = std::make_unique<gl::ProgramCache>(platformDefines());
+        fit::CageFitSettings settings;
+        settings.resolution = kSize;
+        settings.mapEffects.displacement = true;
+        settings.maps.resolution = 8;
+        settings.maps.shadingNormal = shading;
+        fit::CageFitter fitter(*cache, cage, settings);
+        std::vector<float> heights(size_t(fitter.maps()->layout().nodeCount));
+        std::mt19937 rng(3);
+        std::uniform_real_distribution<float> height(-0.02f, 0.02f);
+        for (float& h : heights) h = height(rng);
+        upload(*fitter.maps()->displacement(), heights);
+        render::RenderTarget image(kSize, kSize);
+        fitter.render(render::orbitCamera({0.3f, 0.2f, 1.0f}), image);
+        EXPECT_EQ(anyVariantDefines(*cache, "SUBDFIT_LIMIT_SHADING"), shading == surface::ShadingNormal::Limit);
+        // Spread of the red channel over the covered pixels (the lights are directional and the
+        // flat cage's shading Lambertian: one normal, one colour).
+        double sum = 0.0, squares = 0.0;
+        int covered = 0;
+        for (const glm::vec4& p : image.readColor())
+            if (p.a > 0.5f) sum += p.r, squares += double(p.r) * p.r, ++covered;
+        EXPECT_GT(covered, kSize * kSize / 4);
+        const double mean = sum / covered;
+        return std::sqrt(std::max(0.0, squares / covered - mean * mean));
+    };
+    const double limit = colourSpread(surface::ShadingNormal::Limit);
+    const double displaced = colourSpread(surface::ShadingNormal::Displaced);
+    std::printf("red spread over a flat cage with rough heights: limit-shaded %.5f, displaced %.5f\n", limit, displaced);
+    EXPECT_LT(limit, 2e-3);
+    EXPECT_GT(displaced, 10.0 * limit + 0.01);
     expectNoGlError();
 }
 

@@ -6,6 +6,8 @@
 #include <filesystem>
 
 #include "error_message.h"
+#include "export/subd_format.h"
+#include "mesh/mesh_geometry.h"
 #include "mesh/obj_writer.h"
 #include "mesh/procedural.h"
 #include "simplify/budget_search.h"
@@ -79,11 +81,43 @@ TEST(SimplifyBudget, ShipsWithinTheBudgetAndListsTheCandidates) {
     // What was chosen is what was fitted.
     EXPECT_EQ(report["cage"]["faces"], budget["chosen"]["faces"]);
     EXPECT_EQ(report["settings"]["maps"], budget["chosen"]["maps"]);
+    // Every candidate with heights that was judged says what shades them, and the fitted one
+    // ships that.
+    for (const auto& c : budget["candidates"])
+        EXPECT_EQ(c.contains("shading_normal"),
+                  c.contains("monitor_loss") && c["maps"].get<std::string>().find("displacement") != std::string::npos)
+            << c.dump();
+    if (budget["chosen"].contains("shading_normal")) {
+        EXPECT_EQ(report["settings"]["shading_normal"], budget["chosen"]["shading_normal"]);
+        const auto shipped = exporter::readSubd(dir / "out" / "asset.subd");
+        EXPECT_EQ(surface::toString(shipped.maps.shadingNormal), budget["chosen"]["shading_normal"].get<std::string>());
+    }
     // The decimation baseline is held to the same bytes.
     EXPECT_LE(report["baselines"]["decimation"]["bytes"].get<std::uintmax_t>(), report["bytes"].get<std::uintmax_t>());
     // The bake route says whether it fits too (it is the best candidate with maps when one fits).
     const auto& bake = report["baselines"]["bake"];
     EXPECT_EQ(bake["over_budget"].get<bool>(), bake["bytes"].get<std::uintmax_t>() > kBudget);
+}
+
+// A light faceted reference (flat triangles, shaded with smooth vertex normals): heights baked
+// onto a cage of its own density copy its facets, and shading them with the limit normal is what
+// looks like it. The search judges both and says which won.
+TEST(SimplifyBudget, HeightsOnAFacetedReferenceShadeWithTheLimitNormal) {
+    const auto dir = scratchDir("simplify_budget_faceted");
+    const mesh::PolygonMesh faceted = mesh::triangulated(mesh::makeQuadSphere(4));  // 192 flat triangles
+    mesh::writeObj(dir / "faceted.obj", faceted);
+    auto o = budgeted(dir / "faceted.obj", dir / "out", 4000);
+    o.fit.resolution = 128;
+    o.fit.maps = {.displacement = true};
+    const auto report = simplify::toJson(simplify::runSimplify(o));
+    int ownDensity = 0;
+    for (const auto& c : report["budget"]["candidates"]) {
+        if (c["faces"].get<int>() != faceted.faceCount() || !c.contains("shading_normal") || !c.contains("monitor_loss"))
+            continue;
+        ++ownDensity;
+        EXPECT_EQ(c["shading_normal"], "limit") << c.dump();
+    }
+    EXPECT_GT(ownDensity, 0) << report["budget"].dump();
 }
 
 TEST(SimplifyBudget, ABudgetNoCageFitsIsRefusedNamingTheReference) {
