@@ -9,6 +9,7 @@ namespace subdfit::simplify {
 nlohmann::json toJson(const Quality& q) {
     nlohmann::json j = {{"psnr_holdout", q.psnrHoldout},
                         {"ssim_holdout", q.ssimHoldout},
+                        {"psnr_holdout_views", q.psnrViews},
                         {"chamfer", q.distance.chamferL2Squared},
                         {"hausdorff", q.distance.hausdorff},
                         {"mean_distance", q.distance.meanDistance},
@@ -27,11 +28,14 @@ std::uintmax_t totalBytes(const nlohmann::json& files) {
 void scoreHoldout(const scene::TargetSet& holdout, const DrawFunction& draw, Quality& quality) {
     const render::RenderTarget image(holdout.resolution(), holdout.resolution());
     double loss = 0.0, similarity = 0.0;
+    quality.psnrViews.clear();
     for (int i = 0; i < holdout.size(); ++i) {
         draw(holdout.camera(i), image);
         auto pixels = image.readColor();
         const auto target = holdout.readColor(i);
-        loss += fit::meanPixelLoss(pixels, target);
+        const double viewLoss = fit::meanPixelLoss(pixels, target);
+        loss += viewLoss;
+        quality.psnrViews.push_back(fit::psnrFromLoss(viewLoss));
         similarity += fit::structuralSimilarity(pixels, target, holdout.resolution(), holdout.resolution());
         if (i == 0) quality.view = std::move(pixels);
     }

@@ -22,6 +22,9 @@ namespace subdfit::simplify {
 struct Quality {
     double psnrHoldout = 0.0;
     double ssimHoldout = 0.0;  // mean over the held-out views (fit/image_metrics.h)
+    // Each held-out view's own PSNR: psnrHoldout is of their mean loss, so one bad view can
+    // decide it, and this says which.
+    std::vector<double> psnrViews;
     geometry::SurfaceDistance distance;  // in the reference's units
     std::uintmax_t bytes = 0;
     nlohmann::json files = nlohmann::json::object();  // {shipped file: bytes}

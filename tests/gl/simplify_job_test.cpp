@@ -86,6 +86,12 @@ TEST(SimplifyJob, ReportMatchesTheFilesAndComparesAtEqualBytes) {
         EXPECT_GT((*q)["ssim_holdout"].get<double>(), 0.0);
         EXPECT_LT((*q)["ssim_holdout"].get<double>(), 1.0);  // no method renders the reference exactly
         EXPECT_GE((*q)["chamfer"].get<double>(), 0.0);
+        // One PSNR per held-out view, whose mean loss is the one reported.
+        const auto& views = (*q)["psnr_holdout_views"];
+        ASSERT_EQ(views.size(), 2u);
+        double meanMse = 0.0;
+        for (const auto& p : views) meanMse += std::pow(10.0, -p.get<double>() / 10.0) / double(views.size());
+        EXPECT_NEAR(-10.0 * std::log10(meanMse), (*q)["psnr_holdout"].get<double>(), 1e-3);
         EXPECT_GE((*q)["hausdorff"].get<double>(), std::sqrt((*q)["chamfer"].get<double>() / 2.0) * 0.5);
     }
     EXPECT_NEAR(report["margin_db"]["bake"].get<double>(),
