@@ -86,7 +86,10 @@ nlohmann::json manifest(const AtlasLayout& atlas, const surface::SurfaceMaps& ma
     if (maps.hasDisplacement() && outputs.displacement)
         doc["displacement"] = {{"file", kDisplacementFile},
                                {"channel", "Y"},
-                               {"units", "cage units, along the unit normal of the limit surface"}};
+                               {"units", "cage units, along the unit normal of the limit surface"},
+                               {"shading", maps.shadingNormal == surface::ShadingNormal::Limit
+                                               ? "the limit surface's normal shades the displaced surface"
+                                               : "the displaced surface's own normal"}};
     if (maps.hasNormal() && outputs.normal)
         doc["normal"] = {{"file", kNormalFile},
                          {"encoding", outputs.compact ? "8-bit RGB, rgb = n * 0.5 + 0.5" : "16-bit RGB, rgb = n * 0.5 + 0.5"},

@@ -155,6 +155,7 @@ TEST(ExportAtlas, FilesReadBackWithTheNodeValuesAtTheirPixels) {
     for (int f = 0; f < 96; ++f)  // the formula maps.json states
         EXPECT_EQ(atlas.tileOrigins[size_t(f)], glm::ivec2(tile * (f % columns), tile * (f / columns))) << f;
     EXPECT_EQ(manifest["displacement"]["file"], "displacement.exr");
+    EXPECT_EQ(manifest["displacement"]["shading"], "the displaced surface's own normal");  // a DCC tool must know
     EXPECT_EQ(manifest["normal"]["file"], "normal.png");
     EXPECT_TRUE(manifest["uv"].is_string());
 }
