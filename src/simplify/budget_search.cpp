@@ -148,8 +148,7 @@ const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, st
     for (Fitting& f : fitting) {
         if (!keep(f.candidate) || f.candidate.monitorLoss > within || f.candidate.settledLoss > 0.0) continue;
         throwIfStopRequested();
-        auto shipped = exporter::decodeSubd(*f.encoded, "budget candidate");
-        shipped.maps.shadingNormal = f.candidate.shadingNormal;  // (encoded without the flag: the same bytes)
+        const auto shipped = exporter::decodeSubd(*f.encoded, "budget candidate");
         f.candidate.settledLoss = lossOn(programs, scene, shipped, {&scene.monitor, &scene.training});
     }
     return preferred(fitting, [&](const BudgetCandidate& c) { return keep(c) && c.settledLoss > 0.0; }, settled);
@@ -208,7 +207,7 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
     auto judge = [&](const std::shared_ptr<const mesh::PolygonMesh>& cageWorld, surface::SurfaceMaps baked,
                      maps::MapEffects effects, int resolution, int bits) {
         baked.setAppearance(appearance);
-        const Shipped shipped = ship(*cageWorld, baked, bits, appearanceQuality, scene.frame.scale);
+        Shipped shipped = ship(*cageWorld, baked, bits, appearanceQuality, scene.frame.scale);
         const bool atlas = appearance.appearanceAtlas.present();
         BudgetCandidate c{.faces = cageWorld->faceCount(), .maps = effects, .mapResolution = resolution,
                           .mapBits = bits, .appearanceResolution = atlas ? 0 : appearance.appearanceLayout.resolution,
@@ -225,7 +224,8 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
                 limitShaded.maps.shadingNormal = surface::ShadingNormal::Limit;
                 if (const double loss = lossOn(programs, scene, limitShaded, {&scene.monitor}); loss < c.monitorLoss) {
                     c.monitorLoss = loss;
-                    c.shadingNormal = surface::ShadingNormal::Limit;
+                    c.shadingNormal = baked.shadingNormal = surface::ShadingNormal::Limit;
+                    shipped = ship(*cageWorld, baked, bits, appearanceQuality, scene.frame.scale);  // with the flag
                 }
             }
         }
