@@ -62,6 +62,7 @@ public:
     int tableOffsetOf(const optim::ParameterGroup& group) const;
     MapEffects effects() const { return effects_; }
     surface::ShadingNormal shadingNormal() const { return settings_.shadingNormal; }
+    void setShadingNormal(surface::ShadingNormal s) { settings_.shadingNormal = s; }  // the next pass draws with it
     optim::ParameterGroup* displacement() { return displacement_.get(); }
     optim::ParameterGroup* normalMap() { return normalMap_.get(); }
     optim::ParameterGroup* baseColor() { return baseColor_.get(); }

@@ -61,9 +61,9 @@ Shipped ship(const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps maps, int 
     return {encoded, exporter::decodeSubd(*encoded, "budget candidate")};
 }
 
-// The mean loss of the decoded candidate over the views of each of `viewSets`.
-double lossOn(gl::ProgramCache& programs, const fit::FitScene& scene, const exporter::SubdAsset& shipped,
-              std::initializer_list<const scene::TargetSet*> viewSets) {
+// The decoded candidate in a fitter of its own, drawn as the fit would draw it.
+std::unique_ptr<fit::CageFitter> drawnAsFitted(gl::ProgramCache& programs, const fit::FitScene& scene,
+                                               const exporter::SubdAsset& shipped) {
     mesh::PolygonMesh cage = shipped.cage;
     cage.positions = scene.frame.toNormalized(cage.positions);
     surface::SurfaceMaps maps = shipped.maps;
@@ -76,8 +76,13 @@ double lossOn(gl::ProgramCache& programs, const fit::FitScene& scene, const expo
     rendering.maps.appearanceResolution = std::max(maps.appearanceLayout.resolution, 1);
     rendering.maps.appearanceAtlas = maps.appearanceAtlas.size;
     rendering.maps.shadingNormal = maps.shadingNormal;
-    fit::CageFitter fitter(programs, cage, rendering);
-    fit::writeMaps(fitter, maps);
+    auto fitter = std::make_unique<fit::CageFitter>(programs, cage, rendering);
+    fit::writeMaps(*fitter, maps);
+    return fitter;
+}
+
+// Its mean loss over the views of each of `viewSets`.
+double lossOn(fit::CageFitter& fitter, std::initializer_list<const scene::TargetSet*> viewSets) {
     double weighted = 0.0;
     int views = 0;
     for (const scene::TargetSet* viewSet : viewSets) {
@@ -149,7 +154,7 @@ const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, st
         if (!keep(f.candidate) || f.candidate.monitorLoss > within || f.candidate.settledLoss > 0.0) continue;
         throwIfStopRequested();
         const auto shipped = exporter::decodeSubd(*f.encoded, "budget candidate");
-        f.candidate.settledLoss = lossOn(programs, scene, shipped, {&scene.monitor, &scene.training});
+        f.candidate.settledLoss = lossOn(*drawnAsFitted(programs, scene, shipped), {&scene.monitor, &scene.training});
     }
     return preferred(fitting, [&](const BudgetCandidate& c) { return keep(c) && c.settledLoss > 0.0; }, settled);
 }
@@ -214,15 +219,15 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
                           .appearanceQuality = appearanceQuality, .appearanceAtlas = appearance.appearanceAtlas.size,
                           .bytes = shipped.encoded->size()};
         if (c.bytes <= search.budget) {
-            c.monitorLoss = lossOn(programs, scene, shipped.decoded, {&scene.monitor});
+            const auto drawn = drawnAsFitted(programs, scene, shipped.decoded);
+            c.monitorLoss = lossOn(*drawn, {&scene.monitor});
             // Heights baked onto a faceted reference copy its facets into the shading; the limit
             // normal shades the way its smooth vertex normals do (the WaterBottle's 4 510 faces at
             // T = 2: 43.95 -> 44.51 dB), but a coarse cage needs the heights' slopes to shade its
             // shape (the Duck's 200 faces at T = 8: 39.11 -> 37.65). So both are judged.
             if (effects.displacement) {
-                exporter::SubdAsset limitShaded = shipped.decoded;
-                limitShaded.maps.shadingNormal = surface::ShadingNormal::Limit;
-                if (const double loss = lossOn(programs, scene, limitShaded, {&scene.monitor}); loss < c.monitorLoss) {
+                drawn->maps()->setShadingNormal(surface::ShadingNormal::Limit);
+                if (const double loss = lossOn(*drawn, {&scene.monitor}); loss < c.monitorLoss) {
                     c.monitorLoss = loss;
                     c.shadingNormal = baked.shadingNormal = surface::ShadingNormal::Limit;
                     shipped = ship(*cageWorld, baked, bits, appearanceQuality, scene.frame.scale);  // with the flag
