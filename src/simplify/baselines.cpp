@@ -137,18 +137,21 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
     return q;
 }
 
-Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& cage,
-                     maps::MapEffects effects, int mapResolution, const BaselineSettings& settings) {
+Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const BakeRoute& route,
+                     const BaselineSettings& settings) {
+    const mesh::PolygonMesh& cage = route.cage;
+    const int mapResolution = route.resolution;
+    maps::MapEffects effects = route.effects;
     if (!effects.geometric()) effects.displacement = effects.normalMap = true;
-    if (settings.appearanceAtlas > 0) effects.normalMap = false;  // an atlas pairs with heights alone
+    if (route.appearanceAtlas > 0) effects.normalMap = false;  // an atlas pairs with heights alone
     effects.baseColor = scene.shading != render::ShadingModel::Geometry;
     effects.metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness;
     surface::SurfaceMaps baked = bakeMaps(cage, scene.reference, {.effects = effects, .resolution = mapResolution});
-    baked.shadingNormal = settings.shadingNormal;
+    baked.shadingNormal = route.shadingNormal;
     if (effects.appearance()) {
         baked.setAppearance(bakeAppearance(
             cage, scene.reference,
-            {.effects = effects, .resolution = settings.appearanceResolution, .atlas = settings.appearanceAtlas}));
+            {.effects = effects, .resolution = route.appearanceResolution, .atlas = route.appearanceAtlas}));
     }
 
     // Shipped exactly as subdfit ships: asset.subd, in world units (the atlases beside it for
@@ -162,23 +165,23 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     Quality q;
     shipCage(dir / "cage.glb", cageWorld, settings.draco);
     exporter::writeMapAtlases(dir, bakedWorld, {.compact = settings.compactMaps});
-    const auto precision = exporter::SubdPrecision::forMapBits(settings.mapBits, settings.appearanceQuality);
+    const auto precision = exporter::SubdPrecision::forMapBits(route.bits, route.appearanceQuality);
     q.files = {{"asset.subd", exporter::writeSubd(dir / "asset.subd",
                                                   exporter::shippableAsset(cageWorld, bakedWorld, precision.positionBits),
                                                   precision)
                                   .bytes}};
     q.bytes = totalBytes(q.files);
-    q.details = {{"faces", cage.faceCount()}, {"map_resolution", mapResolution}, {"map_bits", settings.mapBits},
-                 {"shading_normal", surface::toString(settings.shadingNormal)}};
+    q.details = {{"faces", cage.faceCount()}, {"map_resolution", mapResolution}, {"map_bits", route.bits},
+                 {"shading_normal", surface::toString(route.shadingNormal)}};
 
     // Rendered by the fitter's own renderer with the baked values in its map groups.
     fit::CageFitSettings rendering;
     rendering.mapEffects = effects;
     rendering.shading = scene.shading;
     rendering.maps.resolution = mapResolution;
-    rendering.maps.appearanceResolution = settings.appearanceResolution;
-    rendering.maps.appearanceAtlas = effects.appearance() ? settings.appearanceAtlas : 0;
-    rendering.maps.shadingNormal = settings.shadingNormal;
+    rendering.maps.appearanceResolution = route.appearanceResolution;
+    rendering.maps.appearanceAtlas = effects.appearance() ? route.appearanceAtlas : 0;
+    rendering.maps.shadingNormal = route.shadingNormal;
     rendering.tessLevel = settings.segments;
     fit::CageFitter bakedScene(programs, cage, rendering);
     fit::writeMaps(bakedScene, baked);

@@ -6,8 +6,9 @@
 //      10-bit normals), which is what a web or game pipeline would run;
 //  (b) gltfpack (Debian's, when on PATH): `gltfpack -si R -cc` at the largest ratio R whose
 //      output fits the budget, which is what a web or game developer would run;
-//  (c) the bake route: the initial cage (same faces as subdfit's) with maps ray-cast from the
-//      reference onto its limit surface, no optimisation, shipped in subdfit's own format.
+//  (c) the bake route: a cage (the initial one, or the budget search's best with maps) with maps
+//      ray-cast from the reference onto its limit surface, no optimisation, shipped in subdfit's
+//      own format (BakeRoute says how).
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -29,11 +30,19 @@ struct BaselineSettings {
     bool compactMaps = true;     // and maps
     int surfaceSamples = 100000; // per side, for the surface distance
     int segments = 8;            // tessellation of limit surfaces for the surface distance
-    int mapBits = 12;            // per map value in the bake's asset.subd, as subdfit's
-    int appearanceResolution = 16;  // the appearance maps' lattice and JPEG quality in the bake's asset.subd
+};
+
+// The bake route's recipe: a cage (normalised frame) and how the maps baked onto it ship,
+// unfitted.
+struct BakeRoute {
+    mesh::PolygonMesh cage;
+    maps::MapEffects effects;  // none means displacement and normal: a bake route without maps is no bake
+    int resolution = 4;        // map cells per face edge
+    int bits = 12;             // per map value in its asset.subd
+    int appearanceResolution = 16;  // its appearance lattice and JPEG quality (scenes with materials)
     int appearanceQuality = 90;
-    int appearanceAtlas = 0;  // texels per side when the appearance is in the reference's atlas
-    surface::ShadingNormal shadingNormal = surface::ShadingNormal::Displaced;  // of the bake's heights
+    int appearanceAtlas = 0;  // texels per side when the appearance is in the reference's atlas; 0: tiles
+    surface::ShadingNormal shadingNormal = surface::ShadingNormal::Displaced;  // of its heights
 };
 
 // Both triangle baselines start from `welded`: weldedTriangles(scene.reference), made once.
@@ -46,10 +55,9 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
                                         const mesh::PolygonMesh& welded, std::uintmax_t budget,
                                         const BaselineSettings& settings);
 
-// `cage`: the initial cage in the scene's normalised frame. Writes dir/bake/{cage.glb, maps}.
-// `effects` none means displacement and normal: a bake route without maps is no bake.
-Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& cage,
-                     maps::MapEffects effects, int mapResolution, const BaselineSettings& settings);
+// Writes dir/bake/{asset.subd, cage.glb, maps}.
+Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const BakeRoute& route,
+                     const BaselineSettings& settings);
 
 // The most triangles in [fewest, most] whose shipped file (`ship` writes it, returns its bytes)
 // fits `budget`: bytes grow with triangles. At `fewest` when even that is over (the report then

@@ -83,18 +83,6 @@ nlohmann::json shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
 
 // Scores the fitted scene and both baselines; writes cage.glb, baselines/ and comparison.png
 // into `out`.
-// The bake route's asset: a cage (normalised frame) and the maps baked onto it, unfitted.
-struct BakeRoute {
-    mesh::PolygonMesh cage;
-    maps::MapEffects effects;
-    int resolution = 4;
-    int bits = 12;
-    int appearanceResolution = 16;  // its appearance lattice and JPEG quality (scenes with materials)
-    int appearanceQuality = 90;
-    int appearanceAtlas = 0;  // texels per side of its atlas; 0: tiles
-    surface::ShadingNormal shadingNormal = surface::ShadingNormal::Displaced;
-};
-
 void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::ProgramCache& programs,
               const BakeRoute& bakeRoute, fit::FitRun& run, const fit::FitReport& fitted, SimplifyReport& report) {
     fit::CageFitter& fitter = run.fitter();
@@ -115,11 +103,7 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
     ours.distance = shippedDistance(out / "asset.subd", segments, scene.frame, scene.reference, o.surfaceSamples);
 
     const BaselineSettings settings{.dir = out / "baselines", .draco = o.fit.draco,
-                                    .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments,
-                                    .mapBits = bakeRoute.bits, .appearanceResolution = bakeRoute.appearanceResolution,
-                                    .appearanceQuality = bakeRoute.appearanceQuality,
-                                    .appearanceAtlas = bakeRoute.appearanceAtlas,
-                                    .shadingNormal = bakeRoute.shadingNormal};
+                                    .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments};
     std::filesystem::create_directories(settings.dir);
     // A material (textured or a plain colour) the triangle baselines must keep, as a user's would.
     if (scene.shading != render::ShadingModel::Geometry && scene.reference.materials) {
@@ -130,7 +114,7 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
         report.decimation = decimationBaseline(programs, scene, welded, ours.bytes, settings);
         report.gltfpack = gltfpackBaseline(programs, scene, welded, ours.bytes, settings);
     }
-    report.bake = bakeBaseline(programs, scene, bakeRoute.cage, bakeRoute.effects, bakeRoute.resolution, settings);
+    report.bake = bakeBaseline(programs, scene, bakeRoute, settings);
     if (o.budget > 0) report.bake.details["over_budget"] = report.bake.bytes > o.budget;
     std::vector<const std::vector<glm::vec4>*> columns{&ours.view, &report.decimation.view};
     if (report.gltfpack) columns.push_back(&report.gltfpack->view);
