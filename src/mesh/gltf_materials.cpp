@@ -13,6 +13,7 @@ namespace {
 constexpr const char* kTextureTransform = "KHR_texture_transform";
 constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
 constexpr const char* kUnlit = "KHR_materials_unlit";
+constexpr const char* kTextureWebp = "EXT_texture_webp";
 
 double number(const tinygltf::Value& v, double fallback) { return v.IsNumber() ? v.GetNumberAsDouble() : fallback; }
 
@@ -79,15 +80,21 @@ private:
         if (size_t(index) >= model_.textures.size())
             throw fileError(path_, std::string(slot) + " names texture " + std::to_string(index) + ", which does not exist");
         const tinygltf::Texture& texture = model_.textures[size_t(index)];
-        if (texture.source < 0 || size_t(texture.source) >= model_.images.size()) {
-            if (!texture.extensions.empty()) {
+        int source = texture.source;
+        if (source < 0 && !texture.extensions.empty()) {
+            // No fallback image: only the extension's own (gltf-transform's `webp` writes these).
+            // WebP is decoded like any other image; other formats (KTX2, AVIF, DDS) are not read.
+            const auto webp = texture.extensions.find(kTextureWebp);
+            if (webp == texture.extensions.end()) {
                 ignored_.insert("texture source extension " + texture.extensions.begin()->first);
                 return ref;
             }
-            throw fileError(path_, "texture " + std::to_string(index) + " names image " + std::to_string(texture.source) +
-                                       ", which does not exist");
+            source = int(number(webp->second.Get("source"), -1.0));
         }
-        ref.image = texture.source;
+        if (source < 0 || size_t(source) >= model_.images.size())
+            throw fileError(path_, "texture " + std::to_string(index) + " names image " + std::to_string(source) +
+                                       ", which does not exist");
+        ref.image = source;
         if (texture.sampler >= 0) {
             if (size_t(texture.sampler) >= model_.samplers.size())
                 throw fileError(path_, "texture " + std::to_string(index) + " names sampler " +

@@ -7,6 +7,7 @@
 
 #include "io/image_io.h"
 #include "mesh/mesh_loader.h"
+#include "util/warnings.h"
 #include "error_message.h"
 #include "test_paths.h"
 
@@ -66,7 +67,8 @@ TEST(MeshMaterials, TheWaterBottleHasEveryMetallicRoughnessTexture) {
 }
 
 // A one-triangle glTF whose base colour texture has a sampler and a KHR_texture_transform.
-std::string triangleGltf(const std::string& textureInfo, const std::string& imageUri) {
+std::string triangleGltf(const std::string& textureInfo, const std::string& imageUri,
+                         const std::string& texture = R"({"source":0,"sampler":0})") {
     return R"({"asset":{"version":"2.0"},
   "buffers":[{"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/","byteLength":60}],
   "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":24}],
@@ -74,7 +76,7 @@ std::string triangleGltf(const std::string& textureInfo, const std::string& imag
                {"bufferView":1,"componentType":5126,"count":3,"type":"VEC2"}],
   "images":[{"uri":")" + imageUri + R"("}],
   "samplers":[{"magFilter":9728,"wrapS":33071,"wrapT":33648}],
-  "textures":[{"source":0,"sampler":0}],
+  "textures":[)" + texture + R"(],
   "materials":[{"pbrMetallicRoughness":{"baseColorTexture":)" + textureInfo + R"(,"roughnessFactor":0.25},
                 "extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":4}},"emissiveFactor":[0.5,0,0]}],
   "meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"material":0}]}],
@@ -106,6 +108,36 @@ TEST(MeshMaterials, SamplersTextureTransformAndEmissiveStrengthAreRead) {
     EXPECT_EQ(image.rgba[1], 0);
     EXPECT_EQ(image.rgba[3 * 4 + 0], 255);  // bottom-right white
     EXPECT_EQ(mesh.uvs.size(), 3u);
+}
+
+// gltf-transform's `webp` writes textures whose only image is EXT_texture_webp's: read, not grey.
+// A source only in an extension subdfit cannot decode (KTX2) is named in one warning.
+TEST(MeshMaterials, AWebpOnlyTextureIsReadAndAnUndecodableOneIsNamed) {
+    const fs::path dir = test::scratchDir("materials_webp");
+    io::writeImage(dir / "red.webp", std::vector<glm::vec4>(4, {1, 0, 0, 1}), 2, 2);
+    writeText(dir / "webp.gltf", triangleGltf(R"({"index":0})", "red.webp",
+                                              R"({"sampler":0,"extensions":{"EXT_texture_webp":{"source":0}}})"));
+    const PolygonMesh mesh = loadReference(dir / "webp.gltf");
+    ASSERT_TRUE(mesh.materials);
+    const TextureRef& t = mesh.materials->materials.at(0).baseColorTexture;
+    ASSERT_TRUE(t.present());
+    EXPECT_TRUE(t.nearest);  // the texture's own sampler still applies
+    const Image& image = mesh.materials->images.at(size_t(t.image));
+    ASSERT_EQ(image.width, 2);
+    EXPECT_GT(image.rgba[0], 200);  // red, give or take WebP's loss
+    EXPECT_LT(image.rgba[1], 60);
+
+    writeText(dir / "ktx.gltf", triangleGltf(R"({"index":0})", "red.webp",
+                                             R"({"extensions":{"KHR_texture_basisu":{"source":0}}})"));
+    std::vector<std::string> warnings;
+    const auto previous = setWarningSink([&](const std::string& w) { warnings.push_back(w); });
+    const PolygonMesh untextured = loadReference(dir / "ktx.gltf");
+    setWarningSink(previous);
+    ASSERT_TRUE(untextured.materials);
+    EXPECT_FALSE(untextured.materials->materials.at(0).baseColorTexture.present());
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("ktx.gltf"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("KHR_texture_basisu"), std::string::npos) << warnings[0];
 }
 
 TEST(MeshMaterials, ACorruptImageIsRefusedNamingTheFile) {
