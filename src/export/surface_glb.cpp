@@ -20,8 +20,8 @@ WrittenFile writeSurfaceGlb(const std::filesystem::path& path, const mesh::Polyg
         // The appearance in the reference's own atlas: the texture as it is, addressed by the
         // corners' coordinates blended across each face. Its one TEXCOORD_0 leaves no room for a
         // normal map on tiles (the search pairs an atlas with heights alone); the reference's
-        // own normal texture is in the frame of the atlas coordinates, which a viewer derives
-        // from them when there is no TANGENT.
+        // own normal texture is in the frame of the atlas coordinates, which the tessellation's
+        // TANGENTs give (the fit's frame, not one each viewer derives its own way).
         SUBDFIT_CHECK(!maps.hasNormal());
         const auto grid = atlasLayout(maps.appearanceLayout);
         FittedTextures textures{.baseColorPng = encodeAppearancePng(grid, maps, AppearanceImage::BaseColor)};
@@ -32,7 +32,7 @@ WrittenFile writeSurfaceGlb(const std::filesystem::path& path, const mesh::Polyg
         if (!maps.normalTexture.empty()) textures.normalPng = encodeAppearancePng(grid, maps, AppearanceImage::NormalTexture);
         if (!maps.emissive.empty()) textures.emissivePng = encodeAppearancePng(grid, maps, AppearanceImage::Emissive);
         GltfMesh mesh = gltfMesh(tessellation, grid);
-        mesh.tangents.clear();
+        if (maps.normalTexture.empty()) mesh.tangents.clear();
         for (size_t k = 0; k < mesh.uvs.size(); ++k) {
             const surface::PtexPoint& p = tessellation.ptex[k];
             mesh.uvs[k] = surface::atlasUvAt(maps.appearanceAtlas, p.face, p.u, p.v);

@@ -5,7 +5,10 @@
 // a node for ~31 dB). With an atlas, each ptex face carries the atlas coordinates of its four
 // corners, the appearance at ptex (u, v) is the texture at their bilinear blend, and the
 // appearance "lattice" is the texture's texel grid: one node per texel, at the texel's centre.
+#include <glm/mat2x2.hpp>
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <vector>
 
@@ -35,6 +38,20 @@ int cornerPoint(const TexelLayout& corners, int face, int corner);
 // The atlas coordinates of ptex (u, v) on `face`: the bilinear blend of its corners' ((u, v)
 // clamped to the face, as the renderer's).
 glm::vec2 atlasUvAt(const AppearanceAtlas& atlas, int face, float u, float v);
+
+// How those coordinates change along the face's u and v at (u, v): the columns of the bilinear
+// blend's Jacobian (glsl/maps.glsl's atlasUvJacobian).
+glm::mat2 atlasUvJacobian(const AppearanceAtlas& atlas, int face, float u, float v);
+
+// glTF's TANGENT for a normal texture in the atlas's coordinates at a surface point with unit
+// `normal` and derivatives dPdu, dPdv along the ptex face: xyz along ∂P/∂s (where the surface goes
+// as s grows, t held) in the tangent plane, w = ±1 so that cross(normal, xyz) · w points up the
+// image (against ∂P/∂t): MikkTSpace's convention, which authored tangents such as the
+// WaterBottle's follow, so a viewer shades the carried normal texture as on the reference.
+// (glsl/patch.frag shades it in the cotangent frame of the gradients of s and t, as it shades the
+// reference: the same where the atlas is conformal.) `fallback` where the coordinates do not
+// vary over the surface.
+glm::vec4 atlasTangent(glm::vec3 normal, glm::vec3 dPdu, glm::vec3 dPdv, const glm::mat2& jacobian, glm::vec4 fallback);
 
 // Where atlas coordinates fall on atlasLattice(size) as its tile's (u, v): texel centres sit at
 // (i + ½) / size, and the texture is clamped to its edge texels (glTF CLAMP_TO_EDGE).

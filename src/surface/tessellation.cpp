@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "mesh/point_welder.h"
+#include "surface/appearance_atlas.h"
 #include "surface/displaced_surface.h"
 #include "util/error.h"
 
@@ -39,7 +40,10 @@ Tessellation tessellate(const mesh::PolygonMesh& cage, const SurfaceMaps& maps, 
                 const SurfaceVertex vertex = surface.at(face, u, v);
                 out.positions.push_back(vertex.position);
                 out.normals.push_back(vertex.normal);
-                out.tangents.push_back(vertex.tangent);
+                out.tangents.push_back(maps.appearanceAtlas.present()
+                                           ? atlasTangent(vertex.normal, vertex.dPdu, vertex.dPdv,
+                                                          atlasUvJacobian(maps.appearanceAtlas, face, u, v), vertex.tangent)
+                                           : vertex.tangent);
                 out.ptex.push_back({face, u, v});
             }
         // (u, v) → (u+1, v) → (u+1, v+1) turns counter-clockwise about dP/du × dP/dv, which

@@ -22,7 +22,10 @@ struct PtexPoint {
 struct Tessellation {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;   // unit normals of the displaced surface
-    std::vector<glm::vec4> tangents;  // as SurfaceVertex::tangent
+    // The frame of the normal texture the maps carry, as glTF's TANGENT: SurfaceVertex::tangent
+    // (along the ptex face's u) for tiles; with an appearance atlas, along its coordinates
+    // (surface::atlasTangent).
+    std::vector<glm::vec4> tangents;
     std::vector<PtexPoint> ptex;
     std::vector<std::uint32_t> indices;  // counter-clockwise seen from outside (the cage's winding)
 

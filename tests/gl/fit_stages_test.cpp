@@ -68,7 +68,9 @@ TEST(FitStages, AResumedWidenedStageEndsWhereAStraightRunDoes) {
     int widenedAt = -1;
     auto fit = [&](const std::filesystem::path& checkpoint, bool resume, const fit::FitHooks& hooks) {
         auto run = std::make_unique<fit::FitRun>(o, programs(), scene);
-        if (resume) EXPECT_TRUE(run->resume(checkpoint));
+        if (resume) {
+            EXPECT_TRUE(run->resume(checkpoint));
+        }
         auto& fitter = run->fitter();
         const auto stopped = run->run(
             checkpoint, hooks, [&](bool) { fitter.setOptimised(fitter.vertexGroup(), false); },

@@ -76,7 +76,9 @@ TEST(SimplifyBudget, ShipsWithinTheBudgetAndListsTheCandidates) {
     const auto chosenBytes = budget["chosen"]["bytes"].get<std::uintmax_t>();
     EXPECT_TRUE(worthIt(budget["chosen"]));
     for (const auto& c : budget["candidates"])
-        if (c["bytes"].get<std::uintmax_t>() < chosenBytes) EXPECT_FALSE(worthIt(c)) << c.dump();
+        if (c["bytes"].get<std::uintmax_t>() < chosenBytes) {
+            EXPECT_FALSE(worthIt(c)) << c.dump();
+        }
     EXPECT_LE(chosenBytes, kBudget);
     // What was chosen is what was fitted.
     EXPECT_EQ(report["cage"]["faces"], budget["chosen"]["faces"]);

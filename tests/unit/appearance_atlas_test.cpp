@@ -1,7 +1,7 @@
 // The appearance in the reference's own texture atlas: the bake gives every surface point the
 // reference's texture coordinates there (and keeps the two sides of a seam apart), the AUVS
 // section and the .subd file carry the corners' coordinates within their quantisation step, and
-// a damaged section is refused.
+// a damaged section is refused; the shipped surface's TANGENTs follow the atlas.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -18,6 +18,8 @@
 #include "mesh/procedural.h"
 #include "simplify/atlas_bake.h"
 #include "subdiv/limit_evaluator.h"
+#include "surface/appearance_atlas.h"
+#include "surface/tessellation.h"
 #include "util/error.h"
 
 namespace subdfit {
@@ -290,6 +292,52 @@ TEST(AtlasUvCoding, TheShippedFileCarriesTheAtlas) {
     double error = 0.0;
     for (size_t k = 0; k < maps.baseColor.size(); ++k) error = std::max(error, double(std::abs(back.maps.baseColor[k] - maps.baseColor[k])));
     EXPECT_LT(error, 0.08);  // JPEG at quality 90
+}
+
+// glTF's TANGENT for the carried normal texture: along the atlas's s, with w = +1 where "up the
+// image" (against t) is cross(normal, tangent), -1 where the atlas is mirrored.
+TEST(AtlasTangent, FollowsTheAtlasCoordinatesAndTheirHandedness) {
+    const glm::vec3 n(0, 0, 1), dPdu(2, 0, 0), dPdv(0, 0.5f, 0);
+    const glm::vec4 fallback(0, 1, 0, 1);
+    // Jacobian columns: the atlas coordinates' change along u and along v.
+    const auto tangent = [&](glm::vec2 alongU, glm::vec2 alongV) {
+        return surface::atlasTangent(n, dPdu, dPdv, glm::mat2(alongU, alongV), fallback);
+    };
+    EXPECT_EQ(tangent({0.1f, 0}, {0, -0.1f}), glm::vec4(1, 0, 0, 1));    // s along x, t down the image
+    EXPECT_EQ(tangent({-0.1f, 0}, {0, -0.1f}), glm::vec4(-1, 0, 0, -1)); // mirrored in s
+    EXPECT_EQ(tangent({0.1f, 0}, {0, 0.1f}), glm::vec4(1, 0, 0, -1));    // mirrored in t
+    EXPECT_EQ(tangent({0, 0.1f}, {0.1f, 0}), glm::vec4(0, 1, 0, 1));     // s along y, t along x: turned
+    EXPECT_EQ(tangent({0, 0}, {0, 0}), fallback);                         // a face the atlas collapses
+    EXPECT_EQ(surface::atlasTangent(n, glm::vec3(0), glm::vec3(0), glm::mat2(1.0f), fallback), fallback);  // a pole
+}
+
+TEST(AtlasTangent, TheTessellationCarriesTheAtlasFrame) {
+    const mesh::PolygonMesh cage = mesh::makeQuadGrid(4);
+    for (const float sense : {1.0f, -1.0f}) {
+        surface::SurfaceMaps maps;
+        maps.appearanceAtlas = {.size = 64, .cornerUvs = {}};
+        const subdiv::LimitEvaluator limit(cage);
+        for (int f = 0; f < limit.ptexFaceCount(); ++f)
+            for (const glm::vec2 corner : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}) {
+                const glm::vec3 p = limit.evaluate(f, corner.x, corner.y, cage.positions).position;
+                maps.appearanceAtlas.cornerUvs.push_back({0.5f + sense * 0.4f * p.x, 0.5f - 0.4f * p.y});
+            }
+        const surface::Tessellation t = surface::tessellate(cage, maps, 4);
+        ASSERT_EQ(t.tangents.size(), t.positions.size());
+        for (size_t v = 0; v < t.tangents.size(); ++v) {
+            const glm::vec3 tangent(t.tangents[v]);
+            ASSERT_NEAR(glm::length(tangent), 1.0f, 1e-5f) << v;
+            ASSERT_NEAR(glm::dot(tangent, t.normals[v]), 0.0f, 1e-5f) << v;
+            // Inside, the limit surface is the grid's plane affinely in (u, v), as the atlas is;
+            // the boundary faces' limit shrinks inwards and bends the blend a little.
+            const glm::vec3 p = t.positions[v];
+            if (std::max(std::abs(p.x), std::abs(p.y)) < 0.5001f) {
+                ASSERT_GT(sense * tangent.x, 0.999f) << v << (sense > 0 ? "" : ", mirrored");
+            }
+            ASSERT_GT(sense * tangent.x, 0.5f) << v << (sense > 0 ? "" : ", mirrored");
+            ASSERT_EQ(t.tangents[v].w, sense) << v;
+        }
+    }
 }
 
 }  // namespace
