@@ -125,6 +125,25 @@ std::string atlasUnsuitability(const mesh::PolygonMesh& reference) {
     return "";
 }
 
+std::string lostOnTiles(const mesh::PolygonMesh& reference) {
+    if (!reference.materials) return "";
+    std::vector<char> used(reference.materials->materials.size(), 0);
+    for (int k : reference.faceMaterials) used[size_t(k)] = 1;
+    bool normal = false, occlusion = false, emission = false;
+    for (size_t k = 0; k < used.size(); ++k) {
+        if (!used[k]) continue;
+        const mesh::Material& m = reference.materials->materials[k];
+        normal = normal || m.normalTexture.present();
+        occlusion = occlusion || m.occlusionTexture.present();
+        emission = emission || m.emissiveFactor != glm::vec3(0.0f);
+    }
+    std::string list;
+    for (const auto& [present, what] : {std::pair{normal, "normal texture"}, std::pair{occlusion, "occlusion texture"},
+                                        std::pair{emission, "emission"}})
+        if (present) list += (list.empty() ? "" : ", ") + std::string(what);
+    return list;
+}
+
 int atlasSourceSize(const mesh::PolygonMesh& reference) {
     const mesh::Material* m = atlasMaterial(reference);
     if (!m) return 0;

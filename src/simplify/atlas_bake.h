@@ -15,6 +15,11 @@ namespace subdfit::simplify {
 // texture, no vertex colours), or "" when it can.
 std::string atlasUnsuitability(const mesh::PolygonMesh& reference);
 
+// What of the reference's look an appearance on per-face tiles leaves out, for a warning: its
+// normal, occlusion and emissive textures and its emission ride along only in its own atlas
+// (tiles carry the fitted base colour and metallic-roughness). "" when its materials have none.
+std::string lostOnTiles(const mesh::PolygonMesh& reference);
+
 // The texels per side of the reference's largest appearance texture (0: none).
 int atlasSourceSize(const mesh::PolygonMesh& reference);
 

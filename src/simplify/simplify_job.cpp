@@ -20,6 +20,7 @@
 #include "simplify/initial_cage.h"
 #include "surface/tessellation.h"
 #include "util/error.h"
+#include "util/warnings.h"
 #include "util/interrupt.h"
 
 namespace subdfit::simplify {
@@ -246,6 +247,17 @@ Start chooseStart(SimplifyOptions& o, fit::FitOptions& fitOptions, gl::ProgramCa
     return start;
 }
 
+// Never a silent loss: an appearance on tiles carries the fitted colours, not the reference's
+// normal, occlusion or emissive textures (those ride along only in its own atlas).
+void warnOfWhatTilesLeaveOut(const std::filesystem::path& path, const mesh::PolygonMesh& reference, bool searched) {
+    const std::string lost = lostOnTiles(reference);
+    if (lost.empty()) return;
+    std::string why = atlasUnsuitability(reference);
+    why = !why.empty() ? "no atlas: " + why : searched ? "the budget search chose them" : "no --appearance-atlas";
+    warn(path.string() + ": the appearance is on per-face tiles (" + why + "), which do not carry its " + lost +
+         " (the look may differ)");
+}
+
 }  // namespace
 
 void validate(const SimplifyOptions& o) {
@@ -310,6 +322,8 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     fitOptions.cage = o.fit.out / "initial_cage.obj";  // where the report says the cage came from
     fit::FitScene scene(fitOptions, programs, {}, reference);
     const Start start = chooseStart(o, fitOptions, programs, scene, reference, options.fit.steps == fit::kByDevice, hooks);
+    if (scene.shading != render::ShadingModel::Geometry && fitOptions.appearanceAtlas == 0)
+        warnOfWhatTilesLeaveOut(o.fit.reference, reference, o.budget > 0);
     const mesh::PolygonMesh cage = scene.cageWorld;
     fit::FitRun run(fitOptions, programs, scene);
     const auto checkpoint = o.fit.out / "checkpoint.bin";

@@ -203,6 +203,27 @@ surface::AppearanceAtlas someAtlas(const mesh::PolygonMesh& cage, int size) {
     return atlas;
 }
 
+// What tiles leave out is named, from the materials the faces use only.
+TEST(AtlasBake, SaysWhatTilesLeaveOut) {
+    mesh::PolygonMesh reference = triangles(mesh::makeQuadGrid(2));
+    paint(reference);
+    EXPECT_EQ(simplify::lostOnTiles(reference), "");  // a base colour texture: tiles carry it
+    mesh::MaterialSet set = *reference.materials;
+    mesh::Material glowing = set.materials[0];
+    glowing.emissiveFactor = {1, 0.5f, 0};
+    glowing.normalTexture.image = 0;
+    set.materials.push_back(glowing);
+    reference.materials = std::make_shared<mesh::MaterialSet>(set);
+    EXPECT_EQ(simplify::lostOnTiles(reference), "") << "a material no face uses";
+    reference.faceMaterials.back() = 1;
+    EXPECT_EQ(simplify::lostOnTiles(reference), "normal texture, emission");
+    set.materials[0].occlusionTexture.image = 0;
+    reference.materials = std::make_shared<mesh::MaterialSet>(set);
+    EXPECT_EQ(simplify::lostOnTiles(reference), "normal texture, occlusion texture, emission");
+    reference.materials = nullptr;
+    EXPECT_EQ(simplify::lostOnTiles(reference), "");
+}
+
 TEST(AtlasUvCoding, RoundTripsWithinTheQuantisationStep) {
     const mesh::PolygonMesh cage = mesh::makeQuadSphere(3);
     const surface::AppearanceAtlas atlas = someAtlas(cage, 128);
