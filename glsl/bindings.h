@@ -44,11 +44,12 @@
 #define SUBDFIT_SSBO_METALLIC_ROUGHNESS 33
 // With an atlas (surface/appearance_atlas.h): per ptex face its 4 corners' atlas coordinates.
 #define SUBDFIT_SSBO_APPEARANCE_UVS 34
-// ... and the reference's textures carried on its texel grid unchanged (SurfaceMaps::normalTexture,
-// occlusion, emissive).
+// ... and the reference's normal texture carried on its texel grid unchanged
+// (SurfaceMaps::normalTexture); its occlusion and emission, carried on the appearance lattice
+// (the atlas's texel grid or the tiles).
 #define SUBDFIT_SSBO_ATLAS_NORMAL 35
-#define SUBDFIT_SSBO_ATLAS_OCCLUSION 36
-#define SUBDFIT_SSBO_ATLAS_EMISSIVE 37
+#define SUBDFIT_SSBO_CARRIED_OCCLUSION 36
+#define SUBDFIT_SSBO_CARRIED_EMISSIVE 37
 
 // The cage's tangential relaxation (fit/cage_relaxation.h).
 #define SUBDFIT_SSBO_RELAX_MODES 29           // per vertex: surface, crease or fixed

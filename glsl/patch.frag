@@ -64,11 +64,11 @@ vec3 atlasMappedNormal(vec3 N) {
 #endif
 
 #ifdef SUBDFIT_MATERIAL
-#ifdef SUBDFIT_ATLAS_OCCLUSION
-layout(std430, binding = SUBDFIT_SSBO_ATLAS_OCCLUSION) readonly buffer AtlasOcclusion { float atlasOcclusion[]; };
+#ifdef SUBDFIT_CARRIED_OCCLUSION
+layout(std430, binding = SUBDFIT_SSBO_CARRIED_OCCLUSION) readonly buffer CarriedOcclusion { float carriedOcclusion[]; };
 #endif
-#ifdef SUBDFIT_ATLAS_EMISSIVE
-layout(std430, binding = SUBDFIT_SSBO_ATLAS_EMISSIVE) readonly buffer AtlasEmissive { float atlasEmissive[]; };
+#ifdef SUBDFIT_CARRIED_EMISSIVE
+layout(std430, binding = SUBDFIT_SSBO_CARRIED_EMISSIVE) readonly buffer CarriedEmissive { float carriedEmissive[]; };
 #endif
 #ifdef SUBDFIT_BASE_COLOR_MAP
 layout(std430, binding = SUBDFIT_SSBO_BASE_COLOR) readonly buffer BaseColor { float baseColor[]; };
@@ -79,9 +79,10 @@ layout(std430, binding = SUBDFIT_SSBO_METALLIC_ROUGHNESS) readonly buffer Metall
 
 // The fitted material: sRGB base colour and (roughness, metallic) bilinear between the nodes of
 // the appearance lattice, clamped to what they mean; white, fully rough, not metallic without.
+// The reference's occlusion and emission, where they are carried, on the same lattice.
 SurfacePoint surfacePoint() {
     SurfacePoint s = SurfacePoint(vec3(1.0), 0.0, 1.0, 1.0, vec3(0.0));
-#if defined(SUBDFIT_BASE_COLOR_MAP) || defined(SUBDFIT_METALLIC_ROUGHNESS_MAP)
+#if defined(SUBDFIT_BASE_COLOR_MAP) || defined(SUBDFIT_METALLIC_ROUGHNESS_MAP) || defined(SUBDFIT_CARRIED_OCCLUSION) || defined(SUBDFIT_CARRIED_EMISSIVE)
     MapFootprint m = appearanceFootprint(tePtexFace, tePtexUv);
 #endif
 #ifdef SUBDFIT_BASE_COLOR_MAP
@@ -98,14 +99,14 @@ SurfacePoint surfacePoint() {
     s.roughness = rm.x;
     s.metallic = rm.y;
 #endif
-#ifdef SUBDFIT_ATLAS_OCCLUSION
+#ifdef SUBDFIT_CARRIED_OCCLUSION
     s.occlusion = 0.0;
-    for (int k = 0; k < 4; ++k) s.occlusion += m.weights[k] * atlasOcclusion[m.nodes[k]];
+    for (int k = 0; k < 4; ++k) s.occlusion += m.weights[k] * carriedOcclusion[m.nodes[k]];
 #endif
-#ifdef SUBDFIT_ATLAS_EMISSIVE
+#ifdef SUBDFIT_CARRIED_EMISSIVE
     vec3 e = vec3(0.0);
     for (int k = 0; k < 4; ++k)
-        e += m.weights[k] * vec3(atlasEmissive[3 * m.nodes[k]], atlasEmissive[3 * m.nodes[k] + 1], atlasEmissive[3 * m.nodes[k] + 2]);
+        e += m.weights[k] * vec3(carriedEmissive[3 * m.nodes[k]], carriedEmissive[3 * m.nodes[k] + 1], carriedEmissive[3 * m.nodes[k] + 2]);
     s.emissive = srgbToLinear(clamp(e, 0.0, 1.0));
 #endif
     return s;

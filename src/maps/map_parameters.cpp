@@ -138,8 +138,8 @@ render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::Para
         if (metallicRoughness_)
             version(*metallicRoughness_, of(*metallicRoughness_)).bindStorage(SUBDFIT_SSBO_METALLIC_ROUGHNESS);
         if (normalTexture_.buffer) normalTexture_.buffer->bindStorage(SUBDFIT_SSBO_ATLAS_NORMAL);
-        if (occlusion_.buffer) occlusion_.buffer->bindStorage(SUBDFIT_SSBO_ATLAS_OCCLUSION);
-        if (emissive_.buffer) emissive_.buffer->bindStorage(SUBDFIT_SSBO_ATLAS_EMISSIVE);
+        if (occlusion_.buffer) occlusion_.buffer->bindStorage(SUBDFIT_SSBO_CARRIED_OCCLUSION);
+        if (emissive_.buffer) emissive_.buffer->bindStorage(SUBDFIT_SSBO_CARRIED_EMISSIVE);
     };
     return {.displacement = effects_.displacement,
             .normalMap = effects_.normalMap,
@@ -150,8 +150,8 @@ render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::Para
             .appearanceResolution = std::max(appearanceLayout_.resolution, 1),
             .appearanceAtlas = !appearanceUvs_.empty(),
             .atlasNormal = normalTexture_.buffer != nullptr,
-            .atlasOcclusion = occlusion_.buffer != nullptr,
-            .atlasEmissive = emissive_.buffer != nullptr,
+            .carriedOcclusion = occlusion_.buffer != nullptr,
+            .carriedEmissive = emissive_.buffer != nullptr,
             .appearanceTable = int(layout_.faceNodes.size()),
             .haloTable = int(layout_.faceNodes.size() + appearanceLayout_.faceNodes.size()),
             .bind = bind};

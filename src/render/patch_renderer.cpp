@@ -21,13 +21,13 @@ const gl::ProgramSpec kPatchRaster{"patch_raster",
                                                                       "SUBDFIT_BASE_COLOR_MAP",
                                                                       "SUBDFIT_METALLIC_ROUGHNESS_MAP",
                                                                       "SUBDFIT_APPEARANCE_ATLAS", "SUBDFIT_ATLAS_NORMAL_TEXTURE",
-                                                                      "SUBDFIT_ATLAS_OCCLUSION", "SUBDFIT_ATLAS_EMISSIVE",
+                                                                      "SUBDFIT_CARRIED_OCCLUSION", "SUBDFIT_CARRIED_EMISSIVE",
                                                                       "SUBDFIT_LIMIT_SHADING"});
                                        return defines;
                                    }()};
 constexpr gl::VariantBits kPatchDisplacement = 1u << 3, kPatchNormalMap = 1u << 4, kPatchBaseColor = 1u << 5,
                           kPatchMetallicRoughness = 1u << 6, kPatchAppearanceAtlas = 1u << 7,
-                          kPatchAtlasNormal = 1u << 8, kPatchAtlasOcclusion = 1u << 9, kPatchAtlasEmissive = 1u << 10,
+                          kPatchAtlasNormal = 1u << 8, kPatchCarriedOcclusion = 1u << 9, kPatchCarriedEmissive = 1u << 10,
                           kPatchLimitShading = 1u << 11;
 
 }  // namespace
@@ -56,8 +56,8 @@ void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, c
     // The reference's textures the atlas carries: only where the atlas itself is drawn, with a material.
     const bool carried = (mapBits & kPatchAppearanceAtlas) && shading_ != ShadingModel::Geometry;
     const gl::VariantBits carriedBits = carried ? (maps->atlasNormal ? kPatchAtlasNormal : 0) |
-                                                      (maps->atlasOcclusion ? kPatchAtlasOcclusion : 0) |
-                                                      (maps->atlasEmissive ? kPatchAtlasEmissive : 0)
+                                                      (maps->carriedOcclusion ? kPatchCarriedOcclusion : 0) |
+                                                      (maps->carriedEmissive ? kPatchCarriedEmissive : 0)
                                                 : 0;
     const auto& program = programs.get(kPatchRaster, shadingBits(shading_) | mapBits | carriedBits);
     beginRasterPass(program, camera, target);

@@ -22,7 +22,8 @@ struct PatchMaps {
     int resolution = 1;            // cells per ptex-face edge of the geometric maps
     int appearanceResolution = 1;  // ... of the appearance maps
     bool appearanceAtlas = false;  // the appearance lattice is an atlas's texel grid
-    bool atlasNormal = false, atlasOcclusion = false, atlasEmissive = false;  // ... carrying these
+    bool atlasNormal = false;      // ... carrying the reference's normal texture
+    bool carriedOcclusion = false, carriedEmissive = false;  // the appearance lattice carries these
     int appearanceTable = 0;       // where their lattice starts in the face-node table
     int haloTable = 0;             // where the geometric lattice's ring across tile edges starts
     std::function<void()> bind;    // the node table and the map values this pass reads
