@@ -134,6 +134,11 @@ surface::SurfaceMaps carriedMaps(const mesh::PolygonMesh& cage, const surface::S
         if (maps.hasMetallicRoughness())
             out.metallicRoughness = carriedValues(cage, maps.appearanceLayout, maps.metallicRoughness, 2, decoded,
                                                   out.appearanceLayout, to);
+        // The reference's occlusion (shipped in the metallic-roughness image's red) and emission.
+        if (maps.hasMetallicRoughness() && !maps.occlusion.empty())
+            out.occlusion = carriedValues(cage, maps.appearanceLayout, maps.occlusion, 1, decoded, out.appearanceLayout, to);
+        if (!maps.emissive.empty())
+            out.emissive = carriedValues(cage, maps.appearanceLayout, maps.emissive, 3, decoded, out.appearanceLayout, to);
     }
     return out;
 }
@@ -274,7 +279,7 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
                                                          maps.hasMetallicRoughness()},
                                               std::tuple{kNormalTexture, AppearanceImage::NormalTexture,
                                                          atlas && !maps.normalTexture.empty()},
-                                              std::tuple{kEmissive, AppearanceImage::Emissive, atlas && !maps.emissive.empty()}}) {
+                                              std::tuple{kEmissive, AppearanceImage::Emissive, !maps.emissive.empty()}}) {
         if (maps.appearanceLayout.resolution == 0 || !present) continue;
         ByteWriter section;
         writeAppearance(maps, which, precision.appearanceQuality, section);
@@ -343,11 +348,10 @@ SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& na
             asset.maps.appearanceAtlas = readAtlasUvs(section, asset.cage);
         } else if (tag == kBaseColor) readAppearance(section, asset.cage, AppearanceImage::BaseColor, asset.maps);
         else if (tag == kMetallicRoughness) readAppearance(section, asset.cage, AppearanceImage::MetallicRoughness, asset.maps);
-        else if (tag == kNormalTexture || tag == kEmissive) {
+        else if (tag == kNormalTexture) {
             if (!asset.maps.appearanceAtlas.present()) throw Error(name + ": section " + tagName(tag) + " without AUVS");
-            readAppearance(section, asset.cage, tag == kNormalTexture ? AppearanceImage::NormalTexture : AppearanceImage::Emissive,
-                           asset.maps);
-        }
+            readAppearance(section, asset.cage, AppearanceImage::NormalTexture, asset.maps);
+        } else if (tag == kEmissive) readAppearance(section, asset.cage, AppearanceImage::Emissive, asset.maps);
         else throw Error(name + ": unknown section " + tagName(tag));
         if (section.remaining() != 0) throw Error(section.what() + ": trailing bytes");
     }

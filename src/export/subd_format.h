@@ -41,7 +41,7 @@
 //         size² nodes and a size × size JPEG, the texture itself (glTF texture coordinates)
 //   NTEX  (with AUVS) the reference's normal texture on the atlas, as BCOL: rgb as glTF's, in
 //         the tangent frame of the atlas coordinates
-//   EMIS  (with AUVS) the sRGB emissive on the atlas, as BCOL
+//   EMIS  the reference's sRGB emission on the appearance lattice (tiles or the atlas), as BCOL
 //
 // Flags: bit 0, with DISP: the limit surface's normal shades the displaced surface (the heights
 // only place it; surface::ShadingNormal); otherwise the displaced surface's own. Other bits: 0.

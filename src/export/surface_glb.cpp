@@ -43,8 +43,11 @@ WrittenFile writeSurfaceGlb(const std::filesystem::path& path, const mesh::Polyg
     // serves them all (any viewer reads it); the normal map is resampled onto its lattice.
     const auto atlas = atlasLayout(maps.appearanceLayout);
     FittedTextures textures{.baseColorPng = encodeAppearancePng(atlas, maps, AppearanceImage::BaseColor)};
-    if (maps.hasMetallicRoughness())
+    if (maps.hasMetallicRoughness()) {
         textures.metallicRoughnessPng = encodeAppearancePng(atlas, maps, AppearanceImage::MetallicRoughness);
+        textures.occlusionInMetallicRoughness = !maps.occlusion.empty();
+    }
+    if (!maps.emissive.empty()) textures.emissivePng = encodeAppearancePng(atlas, maps, AppearanceImage::Emissive);
     if (maps.hasNormal()) textures.normalPng = encodeNormalPng(atlas, normalOnAppearanceLattice(maps));
     return writeFittedGlb(path, gltfMesh(tessellation, atlas), textures, draco);
 }

@@ -21,10 +21,10 @@ void writeMaps(CageFitter& fitter, const surface::SurfaceMaps& maps) {
     write(parameters->normalMap(), maps.normal);
     write(parameters->baseColor(), maps.baseColor);
     write(parameters->metallicRoughness(), maps.metallicRoughness);
-    if (maps.appearanceAtlas.present() && parameters->appearanceAtlas().present()) {
+    if (maps.appearanceAtlas.present() && parameters->appearanceAtlas().present())
         parameters->setAppearanceUvs(maps.appearanceAtlas.cornerUvs);
+    if (parameters->effects().appearance() && (maps.hasBaseColor() || maps.hasMetallicRoughness()))
         parameters->setCarriedTextures(maps);
-    }
 }
 
 }  // namespace subdfit::fit

@@ -104,7 +104,7 @@ void MapParameters::Carried::set(const std::vector<float>& v) {
 }
 
 void MapParameters::setCarriedTextures(const surface::SurfaceMaps& maps) {
-    SUBDFIT_CHECK(!appearanceUvs_.empty());
+    SUBDFIT_CHECK(effects_.appearance() && (maps.normalTexture.empty() || !appearanceUvs_.empty()));
     const size_t texels = size_t(appearanceLayout_.nodeCount);
     SUBDFIT_CHECK(maps.normalTexture.empty() || maps.normalTexture.size() == 3 * texels);
     SUBDFIT_CHECK(maps.occlusion.empty() || maps.occlusion.size() == texels);

@@ -53,8 +53,9 @@ public:
     // all 0 until then).
     surface::AppearanceAtlas appearanceAtlas() const;
     void setAppearanceUvs(const std::vector<glm::vec2>& cornerUvs);
-    // With an atlas: the reference's textures it carries unchanged (SurfaceMaps::normalTexture,
-    // occlusion, emissive; empty ones are dropped), which the patch pass then applies.
+    // The reference's textures the appearance lattice carries unchanged (SurfaceMaps::occlusion,
+    // emissive, and with an atlas normalTexture; empty ones are dropped), which the patch pass
+    // then applies.
     void setCarriedTextures(const surface::SurfaceMaps& maps);
     // ... copied into `maps`.
     void readCarriedTextures(surface::SurfaceMaps& maps) const;

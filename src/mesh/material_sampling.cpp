@@ -68,6 +68,10 @@ MaterialSample sampleMaterial(const PolygonMesh& triangles, int triangle, float 
     const glm::vec4 mr = sampleTexture(*triangles.materials, m.metallicRoughnessTexture, uv, false);
     s.roughness = m.roughnessFactor * mr.g;
     s.metallic = m.metallicFactor * mr.b;
+    if (m.occlusionTexture.present())
+        s.occlusion = 1.0f + m.occlusionStrength * (sampleTexture(*triangles.materials, m.occlusionTexture, uv, false).r - 1.0f);
+    if (m.emissiveFactor != glm::vec3(0.0f))
+        s.emissive = m.emissiveFactor * glm::vec3(sampleTexture(*triangles.materials, m.emissiveTexture, uv, true));
     return s;
 }
 

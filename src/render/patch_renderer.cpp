@@ -53,12 +53,13 @@ void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, c
                    (maps->baseColor ? kPatchBaseColor : 0) | (maps->metallicRoughness ? kPatchMetallicRoughness : 0) |
                    (maps->appearanceAtlas && (maps->baseColor || maps->metallicRoughness) ? kPatchAppearanceAtlas : 0)
              : 0;
-    // The reference's textures the atlas carries: only where the atlas itself is drawn, with a material.
-    const bool carried = (mapBits & kPatchAppearanceAtlas) && shading_ != ShadingModel::Geometry;
-    const gl::VariantBits carriedBits = carried ? (maps->atlasNormal ? kPatchAtlasNormal : 0) |
-                                                      (maps->carriedOcclusion ? kPatchCarriedOcclusion : 0) |
-                                                      (maps->carriedEmissive ? kPatchCarriedEmissive : 0)
-                                                : 0;
+    // The reference's textures the appearance lattice carries: only where it is drawn, with a
+    // material (the normal texture only with its atlas, whose frame it is in).
+    const bool carried = (mapBits & (kPatchBaseColor | kPatchMetallicRoughness)) && shading_ != ShadingModel::Geometry;
+    const gl::VariantBits carriedBits =
+        carried ? (maps->atlasNormal && (mapBits & kPatchAppearanceAtlas) ? kPatchAtlasNormal : 0) |
+                      (maps->carriedOcclusion ? kPatchCarriedOcclusion : 0) | (maps->carriedEmissive ? kPatchCarriedEmissive : 0)
+                : 0;
     const auto& program = programs.get(kPatchRaster, shadingBits(shading_) | mapBits | carriedBits);
     beginRasterPass(program, camera, target);
     program.set("uTessLevel", float(tessLevel_));

@@ -125,22 +125,26 @@ std::string atlasUnsuitability(const mesh::PolygonMesh& reference) {
     return "";
 }
 
-std::string lostOnTiles(const mesh::PolygonMesh& reference) {
-    if (!reference.materials) return "";
+CarriedLook carriedLookOf(const mesh::PolygonMesh& reference) {
+    CarriedLook look;
+    if (!reference.materials) return look;
     std::vector<char> used(reference.materials->materials.size(), 0);
     for (int k : reference.faceMaterials) used[size_t(k)] = 1;
-    bool normal = false, occlusion = false, emission = false;
     for (size_t k = 0; k < used.size(); ++k) {
         if (!used[k]) continue;
         const mesh::Material& m = reference.materials->materials[k];
-        normal = normal || m.normalTexture.present();
-        occlusion = occlusion || m.occlusionTexture.present();
-        emission = emission || m.emissiveFactor != glm::vec3(0.0f);
+        look.normalTexture = look.normalTexture || m.normalTexture.present();
+        look.occlusion = look.occlusion || m.occlusionTexture.present();
+        look.emission = look.emission || m.emissiveFactor != glm::vec3(0.0f);
     }
+    return look;
+}
+
+std::string lostOnTiles(const mesh::PolygonMesh& reference, bool metallicRoughness) {
+    const CarriedLook look = carriedLookOf(reference);
     std::string list;
-    for (const auto& [present, what] : {std::pair{normal, "normal texture"}, std::pair{occlusion, "occlusion texture"},
-                                        std::pair{emission, "emission"}})
-        if (present) list += (list.empty() ? "" : ", ") + std::string(what);
+    if (look.normalTexture) list = "normal texture";
+    if (look.occlusion && !metallicRoughness) list += (list.empty() ? "" : ", ") + std::string("occlusion texture");
     return list;
 }
 

@@ -15,10 +15,16 @@ namespace subdfit::simplify {
 // texture, no vertex colours), or "" when it can.
 std::string atlasUnsuitability(const mesh::PolygonMesh& reference);
 
+// What of the reference's look its materials (those its faces use) have beyond colours.
+struct CarriedLook {
+    bool normalTexture = false, occlusion = false, emission = false;
+};
+CarriedLook carriedLookOf(const mesh::PolygonMesh& reference);
+
 // What of the reference's look an appearance on per-face tiles leaves out, for a warning: its
-// normal, occlusion and emissive textures and its emission ride along only in its own atlas
-// (tiles carry the fitted base colour and metallic-roughness). "" when its materials have none.
-std::string lostOnTiles(const mesh::PolygonMesh& reference);
+// normal texture (in its atlas's frame, which tiles do not have) and, without a metallic-roughness
+// map to ship it in, its occlusion. "" when nothing is left out.
+std::string lostOnTiles(const mesh::PolygonMesh& reference, bool metallicRoughness);
 
 // The texels per side of the reference's largest appearance texture (0: none).
 int atlasSourceSize(const mesh::PolygonMesh& reference);

@@ -334,15 +334,32 @@ surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::P
     const size_t nodes = nodeHits.sites.size();
     std::vector<char> found(nodes, 0);
     std::vector<float> color(3 * nodes, 0.5f), roughnessMetallic(2 * nodes, 0.0f);
+    // The reference's emission and occlusion ride along unfitted, point-sampled at the nodes
+    // (occlusion only beside a metallic-roughness map: the shipped file packs it in its red).
+    const CarriedLook carried = carriedLookOf(reference);
+    const bool emission = carried.emission && options.effects.appearance();
+    const bool occlusion = carried.occlusion && options.effects.metallicRoughness;
+    std::vector<float> emissive(emission ? 3 * nodes : 0, 0.0f), occlusions(occlusion ? nodes : 0, 1.0f);
     for (size_t n = 0; n < nodes; ++n) {
         if (!nodeHits.hits[n]) continue;
         const std::array<float, 5> a = appearanceAt(reference, *nodeHits.hits[n]);
         std::copy(a.begin(), a.begin() + 3, color.begin() + 3 * std::ptrdiff_t(n));
         std::copy(a.begin() + 3, a.end(), roughnessMetallic.begin() + 2 * std::ptrdiff_t(n));
+        if (emission || occlusion) {
+            const geometry::RayHit& hit = *nodeHits.hits[n];
+            const mesh::MaterialSample sample = mesh::sampleMaterial(reference, hit.triangle, hit.u, hit.v);
+            for (int k = 0; emission && k < 3; ++k)
+                emissive[3 * n + size_t(k)] = std::clamp(mesh::linearToSrgb(sample.emissive[k]), 0.0f, 1.0f);
+            if (occlusion) occlusions[n] = std::clamp(sample.occlusion, 0.0f, 1.0f);
+        }
         found[n] = 1;
     }
     fillMissing(maps.appearanceLayout, color, 3, found);
     fillMissing(maps.appearanceLayout, roughnessMetallic, 2, found);
+    if (emission) fillMissing(maps.appearanceLayout, emissive, 3, found);
+    if (occlusion) fillMissing(maps.appearanceLayout, occlusions, 1, found);
+    maps.emissive = std::move(emissive);
+    maps.occlusion = std::move(occlusions);
     if (options.acrossCells) {
         std::vector<glm::dvec3> c(nodes);
         std::vector<glm::dvec2> rm(nodes);

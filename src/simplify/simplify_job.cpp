@@ -247,10 +247,11 @@ Start chooseStart(SimplifyOptions& o, fit::FitOptions& fitOptions, gl::ProgramCa
     return start;
 }
 
-// Never a silent loss: an appearance on tiles carries the fitted colours, not the reference's
-// normal, occlusion or emissive textures (those ride along only in its own atlas).
-void warnOfWhatTilesLeaveOut(const std::filesystem::path& path, const mesh::PolygonMesh& reference, bool searched) {
-    const std::string lost = lostOnTiles(reference);
+// Never a silent loss: an appearance on tiles carries the fitted colours and the reference's
+// emission and occlusion, not its normal texture (that rides along only in its own atlas).
+void warnOfWhatTilesLeaveOut(const std::filesystem::path& path, const mesh::PolygonMesh& reference, bool searched,
+                             bool metallicRoughness) {
+    const std::string lost = lostOnTiles(reference, metallicRoughness);
     if (lost.empty()) return;
     std::string why = atlasUnsuitability(reference);
     why = !why.empty() ? "no atlas: " + why : searched ? "the budget search chose them" : "no --appearance-atlas";
@@ -323,7 +324,8 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     fit::FitScene scene(fitOptions, programs, {}, reference);
     const Start start = chooseStart(o, fitOptions, programs, scene, reference, options.fit.steps == fit::kByDevice, hooks);
     if (scene.shading != render::ShadingModel::Geometry && fitOptions.appearanceAtlas == 0)
-        warnOfWhatTilesLeaveOut(o.fit.reference, reference, o.budget > 0);
+        warnOfWhatTilesLeaveOut(o.fit.reference, reference, o.budget > 0,
+                                scene.shading == render::ShadingModel::MetallicRoughness);
     const mesh::PolygonMesh cage = scene.cageWorld;
     fit::FitRun run(fitOptions, programs, scene);
     const auto checkpoint = o.fit.out / "checkpoint.bin";
@@ -332,14 +334,13 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
         hooks.note("no checkpoint at " + checkpoint.string() + " to resume: starting from step 0");
     // The appearance starts as the bake onto the starting cage: a grey surface against a
     // coloured target would pull the cage where the colours differ, not the shape.
-    // A resumed run has its texels from the checkpoint, but an atlas's corner coordinates are
-    // not parameters: they come from the same bake.
-    if (maps::MapParameters* parameters = run.fitter().maps();
-        parameters && parameters->effects().appearance() && (!resumed || parameters->appearanceAtlas().present())) {
+    // A resumed run has its texels from the checkpoint, but an atlas's corner coordinates and
+    // the textures carried unfitted are not parameters: they come from the same bake.
+    if (maps::MapParameters* parameters = run.fitter().maps(); parameters && parameters->effects().appearance()) {
         const surface::SurfaceMaps baked = bakeAppearance(scene.cage, scene.reference, appearanceBakeOf(*parameters));
         if (!resumed) run.startFrom(baked);
-        else if (baked.appearanceAtlas.present()) {
-            parameters->setAppearanceUvs(baked.appearanceAtlas.cornerUvs);
+        else {
+            if (baked.appearanceAtlas.present()) parameters->setAppearanceUvs(baked.appearanceAtlas.cornerUvs);
             parameters->setCarriedTextures(baked);
         }
     }

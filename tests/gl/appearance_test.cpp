@@ -1,6 +1,6 @@
 // Appearance: a reference's material in its renders, the appearance groups' per-texel gradients
 // against finite differences, shading on demand (a scene without materials compiles and
-// dispatches no material code), and simplify shipping a coloured asset.
+// dispatches no material code), and simplify shipping a coloured asset, glow included.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "export/subd_format.h"
+#include "export/textured_glb.h"
 #include "gl_test_context.h"
 #include "gradient_checks.h"
 #include "mesh/mesh_loader.h"
@@ -239,6 +240,55 @@ TEST(AppearanceSimplify, TheDuckShipsInColour) {
     const std::string glb{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     EXPECT_NE(glb.find("\"baseColorTexture\""), std::string::npos);
     EXPECT_GT(report["psnr_holdout"].get<double>(), report["psnr_holdout_initial"].get<double>() - 0.5);
+    expectNoGlError();
+}
+
+// A reference of two materials (so tiles, not its atlas) whose top half glows: the tiles carry
+// its emission unfitted, asset.subd ships it (EMIS) and the preview's material shows it.
+TEST(AppearanceSimplify, AGlowOnTilesIsCarriedAndShipped) {
+    const auto dir = scratchDir("appearance_glow");
+    mesh::PolygonMesh sphere = mesh::triangulated(mesh::makeQuadSphere(6));
+    mesh::Material plain = mesh::defaultMaterial(), glowing = plain;
+    plain.baseColorFactor = glowing.baseColorFactor = {0.2f, 0.2f, 0.25f, 1.0f};
+    plain.metallicFactor = glowing.metallicFactor = 0.0f;
+    glowing.emissiveFactor = {1.0f, 0.5f, 0.0f};
+    sphere.materials = std::make_shared<mesh::MaterialSet>(mesh::MaterialSet{{plain, glowing}, {}});
+    for (int f = 0; f < sphere.faceCount(); ++f) {
+        const auto* v = &sphere.faceIndices[size_t(3 * f)];
+        const float y = (sphere.positions[size_t(v[0])].y + sphere.positions[size_t(v[1])].y + sphere.positions[size_t(v[2])].y) / 3.0f;
+        sphere.faceMaterials.push_back(y > 0.2f ? 1 : 0);
+    }
+    exporter::writeTexturedGlb(dir / "glow.glb", sphere, mesh::vertexNormals(sphere), {}, false);
+
+    simplify::SimplifyOptions o;
+    o.fit.reference = dir / "glow.glb";
+    o.fit.out = dir / "out";
+    o.fit.steps = 10;
+    o.fit.views = 4;
+    o.fit.holdoutViews = 2;
+    o.fit.resolution = 64;
+    o.fit.mapResolution = 2;
+    o.fit.appearanceResolution = 4;
+    o.fit.glProvider = "osmesa";
+    o.fit.preview = true;
+    o.faces = 120;
+    o.surfaceSamples = 5000;
+    const auto report = simplify::toJson(simplify::runSimplify(o));
+    EXPECT_NE(report["shader_variants"].dump().find("SUBDFIT_CARRIED_EMISSIVE"), std::string::npos);
+    const auto shipped = exporter::readSubd(dir / "out" / "asset.subd");
+    ASSERT_EQ(shipped.maps.emissive.size(), 3 * size_t(shipped.maps.appearanceLayout.nodeCount));
+    int lit = 0, dark = 0;
+    const auto& e = shipped.maps.emissive;
+    for (size_t n = 0; n < e.size(); n += 3) {
+        lit += e[n] > 0.85f && e[n + 1] > 0.6f && e[n + 2] < 0.15f;  // (1, 0.5, 0) linear, in sRGB
+        dark += e[n] < 0.1f && e[n + 1] < 0.1f && e[n + 2] < 0.1f;
+    }
+    const int nodes = shipped.maps.appearanceLayout.nodeCount;
+    EXPECT_GT(lit, nodes / 5) << "of " << nodes;
+    EXPECT_GT(dark, nodes / 3) << "of " << nodes;
+    std::ifstream in(dir / "out" / "fitted.glb", std::ios::binary);
+    const std::string glb{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    EXPECT_NE(glb.find("\"emissiveTexture\""), std::string::npos);
     expectNoGlError();
 }
 

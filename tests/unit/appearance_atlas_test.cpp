@@ -203,25 +203,29 @@ surface::AppearanceAtlas someAtlas(const mesh::PolygonMesh& cage, int size) {
     return atlas;
 }
 
-// What tiles leave out is named, from the materials the faces use only.
+// What tiles leave out is named, from the materials the faces use only: the normal texture, and
+// the occlusion where no metallic-roughness map can ship it; emission rides along.
 TEST(AtlasBake, SaysWhatTilesLeaveOut) {
     mesh::PolygonMesh reference = triangles(mesh::makeQuadGrid(2));
     paint(reference);
-    EXPECT_EQ(simplify::lostOnTiles(reference), "");  // a base colour texture: tiles carry it
+    EXPECT_EQ(simplify::lostOnTiles(reference, true), "");  // a base colour texture: tiles carry it
     mesh::MaterialSet set = *reference.materials;
     mesh::Material glowing = set.materials[0];
     glowing.emissiveFactor = {1, 0.5f, 0};
     glowing.normalTexture.image = 0;
     set.materials.push_back(glowing);
     reference.materials = std::make_shared<mesh::MaterialSet>(set);
-    EXPECT_EQ(simplify::lostOnTiles(reference), "") << "a material no face uses";
+    EXPECT_EQ(simplify::lostOnTiles(reference, true), "") << "a material no face uses";
+    EXPECT_FALSE(simplify::carriedLookOf(reference).emission);
     reference.faceMaterials.back() = 1;
-    EXPECT_EQ(simplify::lostOnTiles(reference), "normal texture, emission");
+    EXPECT_EQ(simplify::lostOnTiles(reference, true), "normal texture");
+    EXPECT_TRUE(simplify::carriedLookOf(reference).emission);
     set.materials[0].occlusionTexture.image = 0;
     reference.materials = std::make_shared<mesh::MaterialSet>(set);
-    EXPECT_EQ(simplify::lostOnTiles(reference), "normal texture, occlusion texture, emission");
+    EXPECT_EQ(simplify::lostOnTiles(reference, true), "normal texture");
+    EXPECT_EQ(simplify::lostOnTiles(reference, false), "normal texture, occlusion texture");
     reference.materials = nullptr;
-    EXPECT_EQ(simplify::lostOnTiles(reference), "");
+    EXPECT_EQ(simplify::lostOnTiles(reference, false), "");
 }
 
 TEST(AtlasUvCoding, RoundTripsWithinTheQuantisationStep) {
