@@ -211,6 +211,39 @@ TEST(SubdFormat, AppearanceMapsRoundTripWithinJpegError) {
         EXPECT_NEAR(decoded.maps.metallicRoughness[k], shipped.maps.metallicRoughness[k], 0.06) << k;
 }
 
+// The reference's emission and occlusion carried on tiles ship too (EMIS; MTRG's red), their
+// nodes following the cage's coding as the base colour's do: an emission equal to the base colour
+// and an occlusion equal to its red stay so.
+TEST(SubdFormat, EmissionAndOcclusionOnTilesRoundTrip) {
+    const auto cage = mesh::makeQuadSphere(3);
+    surface::SurfaceMaps maps;
+    maps.appearanceLayout = surface::buildTexelLayout(cage, 4);
+    const auto limit = surface::tessellate(cage, {}, 4);
+    const size_t nodes = size_t(maps.appearanceLayout.nodeCount);
+    maps.baseColor.assign(3 * nodes, 0.0f);
+    maps.metallicRoughness.assign(2 * nodes, 0.5f);
+    for (size_t k = 0; k < limit.vertexCount(); ++k) {
+        const auto& at = limit.ptex[k];
+        const size_t n = size_t(maps.appearanceLayout.node(at.face, int(std::lround(at.u * 4.0f)), int(std::lround(at.v * 4.0f))));
+        const glm::vec3 p = limit.positions[k];
+        maps.baseColor[3 * n] = 0.5f + 0.4f * p.x;
+        maps.baseColor[3 * n + 1] = 0.5f + 0.4f * p.y;
+        maps.baseColor[3 * n + 2] = 0.5f - 0.4f * p.z;
+    }
+    maps.emissive = maps.baseColor;
+    for (size_t n = 0; n < nodes; ++n) maps.occlusion.push_back(maps.baseColor[3 * n]);
+    const SubdAsset shipped = shippableAsset(cage, maps);
+    ASSERT_EQ(shipped.maps.emissive, shipped.maps.baseColor);
+    const SubdAsset decoded = decodeSubd(encodeSubd(shipped), "glow");
+    ASSERT_EQ(decoded.maps.emissive.size(), 3 * nodes);
+    ASSERT_EQ(decoded.maps.occlusion.size(), nodes);
+    double emission = 0.0, occlusion = 0.0;
+    for (size_t k = 0; k < 3 * nodes; ++k) emission += std::abs(double(decoded.maps.emissive[k]) - double(shipped.maps.baseColor[k]));
+    for (size_t n = 0; n < nodes; ++n) occlusion += std::abs(double(decoded.maps.occlusion[n]) - double(shipped.maps.baseColor[3 * n]));
+    EXPECT_LT(emission / double(3 * nodes), 4.0 / 255.0);  // JPEG at quality 90, as the base colour
+    EXPECT_LT(occlusion / double(nodes), 4.0 / 255.0);
+}
+
 TEST(SubdFormat, AnythingButAWholeVersionThreeFileIsRefusedInOneLine) {
     const auto cage = mesh::makeQuadSphere(3);
     const auto good = encodeSubd(shippableAsset(cage, someMaps(cage, 2, 1)));
