@@ -208,12 +208,12 @@ TEST(AppearanceEffects, ASceneWithoutMaterialsCompilesAndRunsNoMaterialWork) {
     expectNoGlError();
 }
 
-TEST(AppearanceSimplify, TheDuckShipsInColour) {
-    const auto dir = scratchDir("appearance_duck");
+// A small simplify of `reference` into dir/out: 120 faces, T = 2 heights, appearance T = 4, a preview.
+simplify::SimplifyOptions smallSimplify(const std::filesystem::path& reference, const std::filesystem::path& dir, int steps) {
     simplify::SimplifyOptions o;
-    o.fit.reference = assetPath("gltf/Duck/Duck.glb");
+    o.fit.reference = reference;
     o.fit.out = dir / "out";
-    o.fit.steps = 30;
+    o.fit.steps = steps;
     o.fit.views = 4;
     o.fit.holdoutViews = 2;
     o.fit.resolution = 64;
@@ -223,6 +223,12 @@ TEST(AppearanceSimplify, TheDuckShipsInColour) {
     o.fit.preview = true;
     o.faces = 120;
     o.surfaceSamples = 5000;
+    return o;
+}
+
+TEST(AppearanceSimplify, TheDuckShipsInColour) {
+    const auto dir = scratchDir("appearance_duck");
+    const simplify::SimplifyOptions o = smallSimplify(assetPath("gltf/Duck/Duck.glb"), dir, 30);
     const auto report = simplify::toJson(simplify::runSimplify(o));
     const auto effects = report["effects"];
     EXPECT_NE(std::find(effects.begin(), effects.end(), "base_color"), effects.end()) << effects;
@@ -260,20 +266,7 @@ TEST(AppearanceSimplify, AGlowOnTilesIsCarriedAndShipped) {
     }
     exporter::writeTexturedGlb(dir / "glow.glb", sphere, mesh::vertexNormals(sphere), {}, false);
 
-    simplify::SimplifyOptions o;
-    o.fit.reference = dir / "glow.glb";
-    o.fit.out = dir / "out";
-    o.fit.steps = 10;
-    o.fit.views = 4;
-    o.fit.holdoutViews = 2;
-    o.fit.resolution = 64;
-    o.fit.mapResolution = 2;
-    o.fit.appearanceResolution = 4;
-    o.fit.glProvider = "osmesa";
-    o.fit.preview = true;
-    o.faces = 120;
-    o.surfaceSamples = 5000;
-    const auto report = simplify::toJson(simplify::runSimplify(o));
+    const auto report = simplify::toJson(simplify::runSimplify(smallSimplify(dir / "glow.glb", dir, 10)));
     EXPECT_NE(report["shader_variants"].dump().find("SUBDFIT_CARRIED_EMISSIVE"), std::string::npos);
     const auto shipped = exporter::readSubd(dir / "out" / "asset.subd");
     ASSERT_EQ(shipped.maps.emissive.size(), 3 * size_t(shipped.maps.appearanceLayout.nodeCount));

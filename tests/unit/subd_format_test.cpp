@@ -173,17 +173,19 @@ TEST(SubdFormat, ACageWithoutMapsRoundTrips) {
 
 // The appearance maps ship as JPEGs of their atlas: what decodes is within a few 8-bit steps of
 // what was fitted where the colours vary smoothly, on the decoded cage's own lattice.
-TEST(SubdFormat, AppearanceMapsRoundTripWithinJpegError) {
-    const auto cage = mesh::makeQuadSphere(3);
+// Tiles of `resolution` cells on `cage` whose base colour and roughness follow each node's limit
+// position (metallic 0.3).
+surface::SurfaceMaps tilesColouredByPosition(const mesh::PolygonMesh& cage, int resolution) {
     surface::SurfaceMaps maps;
-    maps.appearanceLayout = surface::buildTexelLayout(cage, 6);
-    const auto limit = surface::tessellate(cage, {}, 6);
+    maps.appearanceLayout = surface::buildTexelLayout(cage, resolution);
+    const auto limit = surface::tessellate(cage, {}, resolution);
     const size_t nodes = size_t(maps.appearanceLayout.nodeCount);
     maps.baseColor.assign(3 * nodes, 0.0f);
     maps.metallicRoughness.assign(2 * nodes, 0.0f);
     for (size_t k = 0; k < limit.vertexCount(); ++k) {
         const auto& at = limit.ptex[k];
-        const size_t n = size_t(maps.appearanceLayout.node(at.face, int(std::lround(at.u * 6.0f)), int(std::lround(at.v * 6.0f))));
+        const size_t n = size_t(maps.appearanceLayout.node(at.face, int(std::lround(at.u * float(resolution))),
+                                                           int(std::lround(at.v * float(resolution)))));
         const glm::vec3 p = limit.positions[k];
         maps.baseColor[3 * n] = 0.5f + 0.3f * p.x;
         maps.baseColor[3 * n + 1] = 0.5f + 0.3f * p.y;
@@ -191,6 +193,12 @@ TEST(SubdFormat, AppearanceMapsRoundTripWithinJpegError) {
         maps.metallicRoughness[2 * n] = 0.6f + 0.2f * p.y;
         maps.metallicRoughness[2 * n + 1] = 0.3f;
     }
+    return maps;
+}
+
+TEST(SubdFormat, AppearanceMapsRoundTripWithinJpegError) {
+    const auto cage = mesh::makeQuadSphere(3);
+    const surface::SurfaceMaps maps = tilesColouredByPosition(cage, 6);
     const SubdAsset shipped = shippableAsset(cage, maps);
     const SubdAsset decoded = decodeSubd(encodeSubd(shipped), "colours");
     ASSERT_TRUE(decoded.maps.hasBaseColor());
@@ -216,20 +224,8 @@ TEST(SubdFormat, AppearanceMapsRoundTripWithinJpegError) {
 // and an occlusion equal to its red stay so.
 TEST(SubdFormat, EmissionAndOcclusionOnTilesRoundTrip) {
     const auto cage = mesh::makeQuadSphere(3);
-    surface::SurfaceMaps maps;
-    maps.appearanceLayout = surface::buildTexelLayout(cage, 4);
-    const auto limit = surface::tessellate(cage, {}, 4);
+    surface::SurfaceMaps maps = tilesColouredByPosition(cage, 4);
     const size_t nodes = size_t(maps.appearanceLayout.nodeCount);
-    maps.baseColor.assign(3 * nodes, 0.0f);
-    maps.metallicRoughness.assign(2 * nodes, 0.5f);
-    for (size_t k = 0; k < limit.vertexCount(); ++k) {
-        const auto& at = limit.ptex[k];
-        const size_t n = size_t(maps.appearanceLayout.node(at.face, int(std::lround(at.u * 4.0f)), int(std::lround(at.v * 4.0f))));
-        const glm::vec3 p = limit.positions[k];
-        maps.baseColor[3 * n] = 0.5f + 0.4f * p.x;
-        maps.baseColor[3 * n + 1] = 0.5f + 0.4f * p.y;
-        maps.baseColor[3 * n + 2] = 0.5f - 0.4f * p.z;
-    }
     maps.emissive = maps.baseColor;
     for (size_t n = 0; n < nodes; ++n) maps.occlusion.push_back(maps.baseColor[3 * n]);
     const SubdAsset shipped = shippableAsset(cage, maps);
