@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
     std::string mode = "fit";
     std::vector<std::string> modes;
     for (const auto& [key, value] : subdfit::view::viewModesByKey()) modes.push_back(key);
-    app.add_option("--mode", mode, "view to start with: fit, target, difference, faces, uv, displacement, normal")
+    app.add_option("--mode", mode, "view to start with: fit, target, difference, faces, uv, displacement, normal, base_color, metallic_roughness")
         ->check(CLI::IsMember(modes))
         ->capture_default_str();
     app.add_flag("--wireframe", options.cageWireframe, "start with the cage's edges drawn over the view");

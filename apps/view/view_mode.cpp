@@ -11,6 +11,8 @@ const char* viewModeName(ViewMode mode) {
         case ViewMode::Uv: return "Patch (u, v)";
         case ViewMode::Displacement: return "Displacement map";
         case ViewMode::NormalMap: return "Normal map";
+        case ViewMode::BaseColor: return "Base colour";
+        case ViewMode::MetallicRoughness: return "Metallic-roughness";
     }
     return "?";
 }
@@ -19,13 +21,16 @@ const std::map<std::string, ViewMode>& viewModesByKey() {
     static const std::map<std::string, ViewMode> keys{
         {"fit", ViewMode::Fit},   {"target", ViewMode::Target},   {"difference", ViewMode::Difference},
         {"faces", ViewMode::FaceId}, {"uv", ViewMode::Uv}, {"displacement", ViewMode::Displacement},
-        {"normal", ViewMode::NormalMap}};
+        {"normal", ViewMode::NormalMap}, {"base_color", ViewMode::BaseColor},
+        {"metallic_roughness", ViewMode::MetallicRoughness}};
     return keys;
 }
 
 bool viewModeAvailable(ViewMode mode, maps::MapEffects effects) {
     if (mode == ViewMode::Displacement) return effects.displacement;
     if (mode == ViewMode::NormalMap) return effects.normalMap;
+    if (mode == ViewMode::BaseColor) return effects.baseColor;
+    if (mode == ViewMode::MetallicRoughness) return effects.metallicRoughness;
     return true;
 }
 

@@ -18,11 +18,14 @@ enum class ViewMode {
     Uv = SUBDFIT_VIEW_UV,                      // patch-local (u, v) buffer
     Displacement = SUBDFIT_VIEW_DISPLACEMENT,  // the surface coloured by its displacement
     NormalMap = SUBDFIT_VIEW_NORMAL_MAP,       // the surface coloured by its tangent-space normal map
+    BaseColor = SUBDFIT_VIEW_BASE_COLOR,       // its fitted base colour texels, unlit
+    MetallicRoughness = SUBDFIT_VIEW_METALLIC_ROUGHNESS,  // its roughness (green) and metallic (blue)
 };
 constexpr int kViewModeCount = SUBDFIT_VIEW_MODE_COUNT;
 
 const char* viewModeName(ViewMode mode);
-// Command-line names: fit, target, difference, faces, uv, displacement, normal.
+// Command-line names: fit, target, difference, faces, uv, displacement, normal, base_color,
+// metallic_roughness.
 const std::map<std::string, ViewMode>& viewModesByKey();
 
 // The map modes need the scene to have that map.

@@ -7,8 +7,10 @@ namespace {
 
 const gl::ProgramSpec kComposite{"view_composite",
                                  {{GL_VERTEX_SHADER, "view_fullscreen.vert"}, {GL_FRAGMENT_SHADER, "view_composite.frag"}},
-                                 {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP"}};
-constexpr gl::VariantBits kCompositeDisplacement = 1u << 0, kCompositeNormalMap = 1u << 1;
+                                 {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP", "SUBDFIT_BASE_COLOR_MAP",
+                                  "SUBDFIT_METALLIC_ROUGHNESS_MAP", "SUBDFIT_APPEARANCE_ATLAS"}};
+constexpr gl::VariantBits kCompositeDisplacement = 1u << 0, kCompositeNormalMap = 1u << 1, kCompositeBaseColor = 1u << 2,
+                          kCompositeMetallicRoughness = 1u << 3, kCompositeAppearanceAtlas = 1u << 4;
 
 }  // namespace
 
@@ -30,8 +32,12 @@ void ViewRenderer::draw(FitSession& session, const CageWireframe& wireframe, con
 
     const maps::MapParameters* maps = fitter.maps();
     const maps::MapEffects effects = maps ? maps->effects() : maps::MapEffects{};
-    const auto& program = programs_.get(kComposite, (effects.displacement ? kCompositeDisplacement : 0) |
-                                                        (effects.normalMap ? kCompositeNormalMap : 0));
+    const bool atlas = maps && maps->appearanceAtlas().present();
+    const auto& program = programs_.get(
+        kComposite, (effects.displacement ? kCompositeDisplacement : 0) | (effects.normalMap ? kCompositeNormalMap : 0) |
+                        (effects.baseColor ? kCompositeBaseColor : 0) |
+                        (effects.metallicRoughness ? kCompositeMetallicRoughness : 0) |
+                        (atlas && effects.appearance() ? kCompositeAppearanceAtlas : 0));
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(origin.x, origin.y, size.x, size.y);
     gl::RasterState{.depthTest = false}.apply();
@@ -40,8 +46,13 @@ void ViewRenderer::draw(FitSession& session, const CageWireframe& wireframe, con
     glUniform2i(program.location("uOrigin"), origin.x, origin.y);
     program.set("uScale", settings.scale);
     if (maps) {
+        const render::PatchMaps current = maps->forRaster(maps::ParameterVersion::Current);
         program.set("uMapResolution", maps->layout().resolution);
-        maps->forRaster(maps::ParameterVersion::Current).bind();
+        if (effects.appearance()) {
+            program.set("uAppearanceResolution", current.appearanceResolution);
+            program.set("uAppearanceTable", current.appearanceTable);
+        }
+        current.bind();
     }
     glBindTextureUnit(0, fit_->color().id());
     glBindTextureUnit(1, fit_->faceId().id());

@@ -181,8 +181,11 @@ private:
 }  // namespace
 
 void runViewer(const ViewerOptions& options, FitInputs inputs) {
-    if (!viewModeAvailable(options.mode, options.fit.maps))
-        throw Error(std::string("invalid option: --mode: the ") + viewModeName(options.mode) + " view needs --maps with that map");
+    if (!viewModeAvailable(options.mode, fit::mapEffectsOf(options.fit, fit::shadingOf(options.fit, inputs.reference)))) {
+        const bool appearance = options.mode == ViewMode::BaseColor || options.mode == ViewMode::MetallicRoughness;
+        throw Error(std::string("invalid option: --mode: the ") + viewModeName(options.mode) + " view needs " +
+                    (appearance ? "a reference whose material has it" : "--maps with that map"));
+    }
     Viewer(options, std::move(inputs)).run();
 }
 

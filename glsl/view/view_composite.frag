@@ -3,7 +3,7 @@
 #include "bindings.h"
 #include "hash.glsl"
 #include "view_modes.h"
-#if defined(SUBDFIT_DISPLACEMENT) || defined(SUBDFIT_NORMAL_MAP)
+#if defined(SUBDFIT_DISPLACEMENT) || defined(SUBDFIT_NORMAL_MAP) || defined(SUBDFIT_BASE_COLOR_MAP) || defined(SUBDFIT_METALLIC_ROUGHNESS_MAP)
 #include "maps.glsl"
 #endif
 
@@ -17,6 +17,12 @@ layout(std430, binding = SUBDFIT_SSBO_DISPLACEMENT) readonly buffer Displacement
 #endif
 #ifdef SUBDFIT_NORMAL_MAP
 layout(std430, binding = SUBDFIT_SSBO_NORMAL_MAP) readonly buffer NormalMap { float normalMap[]; };
+#endif
+#ifdef SUBDFIT_BASE_COLOR_MAP
+layout(std430, binding = SUBDFIT_SSBO_BASE_COLOR) readonly buffer BaseColor { float baseColor[]; };
+#endif
+#ifdef SUBDFIT_METALLIC_ROUGHNESS_MAP
+layout(std430, binding = SUBDFIT_SSBO_METALLIC_ROUGHNESS) readonly buffer MetallicRoughness { float metallicRoughness[]; };
 #endif
 
 uniform int uMode;
@@ -87,6 +93,25 @@ void main() {
         vec2 t = vec2(0.0);
         for (int k = 0; k < 4; ++k) t += m.weights[k] * vec2(normalMap[2 * m.nodes[k]], normalMap[2 * m.nodes[k] + 1]);
         c = vec3(0.5 + 0.5 * clamp(t * uScale, -1.0, 1.0), 1.0);  // the usual tangent-space colours
+    }
+#endif
+#ifdef SUBDFIT_BASE_COLOR_MAP
+    else if (uMode == SUBDFIT_VIEW_BASE_COLOR && face >= 0) {
+        // The fitted texels as they are (sRGB), unlit: what baseColorTexture ships.
+        MapFootprint m = appearanceFootprint(face, uv);
+        vec3 t = vec3(0.0);
+        for (int k = 0; k < 4; ++k)
+            t += m.weights[k] * vec3(baseColor[3 * m.nodes[k]], baseColor[3 * m.nodes[k] + 1], baseColor[3 * m.nodes[k] + 2]);
+        c = clamp(t, 0.0, 1.0);
+    }
+#endif
+#ifdef SUBDFIT_METALLIC_ROUGHNESS_MAP
+    else if (uMode == SUBDFIT_VIEW_METALLIC_ROUGHNESS && face >= 0) {
+        // Roughness in green, metallic in blue: glTF's metallicRoughnessTexture packing.
+        MapFootprint m = appearanceFootprint(face, uv);
+        vec2 t = vec2(0.0);
+        for (int k = 0; k < 4; ++k) t += m.weights[k] * vec2(metallicRoughness[2 * m.nodes[k]], metallicRoughness[2 * m.nodes[k] + 1]);
+        c = vec3(0.0, clamp(t, 0.0, 1.0));
     }
 #endif
     outColor = vec4(c, 1.0);

@@ -35,11 +35,18 @@ scene::SceneFrame frameOf(const mesh::PolygonMesh& reference) {
     }
 }
 
+}  // namespace
+
 render::ShadingModel shadingOf(const FitOptions& o, const mesh::PolygonMesh& reference) {
     return o.shading == "auto" ? render::shadingFor(reference) : render::parseShadingModel(o.shading);
 }
 
-}  // namespace
+maps::MapEffects mapEffectsOf(const FitOptions& o, render::ShadingModel shading) {
+    maps::MapEffects effects = o.maps;
+    effects.baseColor = shading != render::ShadingModel::Geometry;
+    effects.metallicRoughness = shading == render::ShadingModel::MetallicRoughness;
+    return effects;
+}
 
 FitScene::FitScene(const FitOptions& options, gl::ProgramCache& programs)
     : FitScene(options, programs, mesh::loadMesh(options.cage), mesh::loadReference(options.reference)) {}
@@ -88,10 +95,8 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
     settings.resolution = o.resolution;
     settings.seed = o.seed;
     settings.plannedSteps = o.steps;
-    settings.mapEffects = o.maps;
+    settings.mapEffects = mapEffectsOf(o, shading);
     settings.shading = shading;
-    settings.mapEffects.baseColor = shading != render::ShadingModel::Geometry;
-    settings.mapEffects.metallicRoughness = shading == render::ShadingModel::MetallicRoughness;
     settings.maps.resolution = o.mapResolution;
     settings.maps.appearanceResolution = o.appearanceResolution;
     settings.maps.appearanceAtlas = o.appearanceAtlas;

@@ -43,6 +43,11 @@ public:
 CageFitSettings fitSettings(const FitOptions& options, const mesh::PolygonMesh& cage,
                             render::ShadingModel shading = render::ShadingModel::Geometry);
 
+// How a fit of `reference` shades (--shading, or what its materials call for), and the maps it
+// then has: those of --maps, and with a material the appearance maps that shading reads.
+render::ShadingModel shadingOf(const FitOptions& options, const mesh::PolygonMesh& reference);
+maps::MapEffects mapEffectsOf(const FitOptions& options, render::ShadingModel shading);
+
 // Mean loss and PSNR of the fitter's current scene over every view of `targets`.
 ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets);
 

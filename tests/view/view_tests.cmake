@@ -35,6 +35,13 @@ subdfit_view_screenshot(fit SAVED ${SUBDFIT_VIEW_SMALL} --steps 3 --frames 5)
 subdfit_view_screenshot(maps_difference ${SUBDFIT_VIEW_SMALL} --maps displacement --steps 2 --frames 3
                         --mode difference --wireframe)
 
+# A reference with a material (a textured box, a cube cage): the base colour group's own view,
+# the composite pass's appearance variant.
+subdfit_view_screenshot(base_color --cage ${PROJECT_SOURCE_DIR}/assets/osd-shapes/catmark_cube.obj
+                        --reference ${PROJECT_SOURCE_DIR}/assets/gltf/BoxTextured/BoxTextured.glb
+                        --res 64 --views 4 --holdout-views 1 --width 640 --height 400 --steps 2 --frames 3
+                        --mode base_color)
+
 # Refused with one stderr line naming the culprit (tests/cli/expect_failure.cmake), no window needed.
 function(subdfit_view_refuses name expect)
   list(JOIN ARGN "|" args)
@@ -48,3 +55,5 @@ subdfit_view_refuses(missing_cage ${SUBDFIT_VIEW_OUT}/does_not_exist.obj
                      --cage ${SUBDFIT_VIEW_OUT}/does_not_exist.obj --reference ${SUBDFIT_VIEW_REFERENCE})
 subdfit_view_refuses(map_mode_without_maps --mode --cage ${SUBDFIT_VIEW_CAGE} --reference ${SUBDFIT_VIEW_REFERENCE}
                      --mode displacement)
+subdfit_view_refuses(appearance_mode_without_material "needs a reference whose material" --cage ${SUBDFIT_VIEW_CAGE}
+                     --reference ${SUBDFIT_VIEW_REFERENCE} --mode metallic_roughness)
