@@ -258,10 +258,17 @@ namespace subdfit::simplify {
 namespace {
 
 // The appearance a ray that found the reference reads there: sRGB base colour, roughness, metallic.
-std::array<float, 5> appearanceAt(const mesh::PolygonMesh& reference, const geometry::RayHit& hit) {
-    const mesh::MaterialSample s = mesh::sampleMaterial(reference, hit.triangle, hit.u, hit.v);
+std::array<float, 5> appearanceOf(const mesh::MaterialSample& s) {
     return {mesh::linearToSrgb(s.baseColor.r), mesh::linearToSrgb(s.baseColor.g), mesh::linearToSrgb(s.baseColor.b),
             std::clamp(s.roughness, 0.0f, 1.0f), std::clamp(s.metallic, 0.0f, 1.0f)};
+}
+
+mesh::MaterialSample materialAt(const mesh::PolygonMesh& reference, const geometry::RayHit& hit) {
+    return mesh::sampleMaterial(reference, hit.triangle, hit.u, hit.v);
+}
+
+std::array<float, 5> appearanceAt(const mesh::PolygonMesh& reference, const geometry::RayHit& hit) {
+    return appearanceOf(materialAt(reference, hit));
 }
 
 // Where in each cell the appearance is sampled besides its corners.
@@ -342,16 +349,13 @@ surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::P
     std::vector<float> emissive(emission ? 3 * nodes : 0, 0.0f), occlusions(occlusion ? nodes : 0, 1.0f);
     for (size_t n = 0; n < nodes; ++n) {
         if (!nodeHits.hits[n]) continue;
-        const std::array<float, 5> a = appearanceAt(reference, *nodeHits.hits[n]);
+        const mesh::MaterialSample sample = materialAt(reference, *nodeHits.hits[n]);
+        const std::array<float, 5> a = appearanceOf(sample);
         std::copy(a.begin(), a.begin() + 3, color.begin() + 3 * std::ptrdiff_t(n));
         std::copy(a.begin() + 3, a.end(), roughnessMetallic.begin() + 2 * std::ptrdiff_t(n));
-        if (emission || occlusion) {
-            const geometry::RayHit& hit = *nodeHits.hits[n];
-            const mesh::MaterialSample sample = mesh::sampleMaterial(reference, hit.triangle, hit.u, hit.v);
-            for (int k = 0; emission && k < 3; ++k)
-                emissive[3 * n + size_t(k)] = std::clamp(mesh::linearToSrgb(sample.emissive[k]), 0.0f, 1.0f);
-            if (occlusion) occlusions[n] = std::clamp(sample.occlusion, 0.0f, 1.0f);
-        }
+        for (int k = 0; emission && k < 3; ++k)
+            emissive[3 * n + size_t(k)] = std::clamp(mesh::linearToSrgb(sample.emissive[k]), 0.0f, 1.0f);
+        if (occlusion) occlusions[n] = std::clamp(sample.occlusion, 0.0f, 1.0f);
         found[n] = 1;
     }
     fillMissing(maps.appearanceLayout, color, 3, found);
