@@ -1,0 +1,39 @@
+#include "export/usd_export.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "export/usdz_archive.h"
+#include "util/error.h"
+
+namespace subdfit::exporter {
+namespace {
+
+std::vector<unsigned char> bytesOf(const std::string& text) { return {text.begin(), text.end()}; }
+
+}  // namespace
+
+UsdUnits usdUnitsOf(const std::filesystem::path& source) {
+    std::string extension = source.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (extension == ".gltf" || extension == ".glb") return {.upAxis = "Y", .metersPerUnit = 1.0};
+    return {};
+}
+
+std::vector<WrittenFile> writeUsd(const std::filesystem::path& dir, const SubdAsset& asset, const UsdUnits& units, bool text) {
+    std::vector<WrittenFile> written;
+    const auto package = dir / kUsdPackageFile;
+    try {
+        UsdStage stage = usdStage(asset, units);
+        std::vector<UsdzEntry> entries{{kUsdTextFile, bytesOf(stage.layer)}};
+        for (UsdTextureFile& texture : stage.textures) entries.push_back({texture.name, std::move(texture.bytes)});
+        written.push_back(writeBytes(package, usdzArchive(entries)));
+    } catch (const Error& e) {
+        if (std::string(e.what()).starts_with(package.string())) throw;
+        throw fileError(package.string(), e.what());
+    }
+    if (text) written.push_back(writeBytes(dir / kUsdTextFile, bytesOf(usdStage(asset, units, kUsdPackageFile).layer)));
+    return written;
+}
+
+}  // namespace subdfit::exporter
