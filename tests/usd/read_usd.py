@@ -1,6 +1,6 @@
 """Reads a subdfit USD export with Pixar's usd-core and reports what a renderer would take from it.
 
-    python read_usd.py STAGE OUT_DIR
+    python read_usd.py STAGE OUT_DIR [--check]
 
 Opens STAGE (asset.usdz or asset.usda), checks the cage's topology (UsdGeom.Mesh.ValidateTopology)
 and runs every registered UsdValidation validator; then writes OUT_DIR/stage.json with the stage
@@ -8,7 +8,9 @@ metadata, the cage as USD holds it (points, topology, rules, creases, corners, h
 primvars) and, per UsdPreviewSurface input, the texture it reads (resolved path, colour space,
 scale, bias, output, primvar). Each texture's bytes, read through USD's asset resolver (so from
 inside the package when that is where it resolves), go to OUT_DIR/<input>.<ext>. Prints the
-validation results; exits 0 when the stage opened, whatever it found (the caller judges).
+validation results; exits 0 when the stage opened, whatever it found (the caller judges), or
+with --check exits 1 unless the stage opened, its cage's topology is valid, no validator
+reported an error and every texture resolved.
 """
 import json
 import os
@@ -58,14 +60,30 @@ def texture_of(surface, input_name, out_dir):
     return entry
 
 
+def failures(report):
+    found = []
+    if not report.get("opened"):
+        return ["the stage did not open"]
+    found += [f"{e['name']}: {e['message']}" for e in report["validation"] if "Error" in e["type"]]
+    if report.get("meshes", 0) < 1:
+        found.append("no mesh")
+    elif not report["cage"]["topologyValid"]:
+        found.append("invalid topology: " + report["cage"]["topologyReason"])
+    for name, entry in report.get("material", {}).get("inputs", {}).items():
+        if "extracted" not in entry:
+            found.append(f"{name}: {entry['asset']} does not resolve")
+    return found
+
+
 def main():
     path, out_dir = sys.argv[1], sys.argv[2]
+    check = "--check" in sys.argv[3:]
     os.makedirs(out_dir, exist_ok=True)
     stage = Usd.Stage.Open(path)
     report = {"opened": bool(stage)}
     if not stage:
         json.dump(report, open(os.path.join(out_dir, "stage.json"), "w"))
-        return 0
+        return 1 if check else 0
 
     validators = UsdValidation.ValidationRegistry().GetOrLoadAllValidators()
     errors = UsdValidation.ValidationContext(validators).Validate(stage)
@@ -83,7 +101,7 @@ def main():
     report["meshes"] = len(meshes)
     if not meshes:
         json.dump(report, open(os.path.join(out_dir, "stage.json"), "w"))
-        return 0
+        return 1 if check else 0
     mesh = meshes[0]
     counts, indices = mesh.GetFaceVertexCountsAttr().Get(), mesh.GetFaceVertexIndicesAttr().Get()
     points = mesh.GetPointsAttr().Get()
@@ -123,7 +141,13 @@ def main():
                     report["material"]["inputs"][name] = entry
     with open(os.path.join(out_dir, "stage.json"), "w") as f:
         json.dump(report, f)
-    return 0
+    for name, entry in report.get("material", {}).get("inputs", {}).items():
+        print(f"  inputs:{name} <- {entry['shader']} {entry['asset']} ({entry['sourceColorSpace']}, "
+              f"{entry.get('primvar')}.{entry['output']}) resolved: {entry['resolved']}")
+    problems = failures(report)
+    for problem in problems:
+        print(f"{path}: {problem}")
+    return 1 if check and problems else 0
 
 
 if __name__ == "__main__":

@@ -135,6 +135,7 @@ TilePoint tilePointOf(const exporter::AtlasLayout& atlas, glm::vec2 st) {
     const glm::ivec2 tile = glm::clamp(glm::ivec2(glm::floor((pixel + 0.5f) / float(atlas.tileSize))), glm::ivec2(0),
                                        glm::ivec2(atlas.columns - 1, atlas.rows - 1));
     const int face = tile.y * atlas.columns + tile.x;
+    if (size_t(face) >= atlas.tileOrigins.size()) return {-1, glm::vec2(0.0f), pixel};  // outside every tile
     return {face, (pixel - glm::vec2(atlas.tileOrigins[size_t(face)])) / float(atlas.resolution), pixel};
 }
 
@@ -245,6 +246,7 @@ void checkExport(const exporter::SubdAsset& shipped, const fs::path& dir, const 
                     const glm::vec2 value = glm::mix(glm::mix(cornerValue(st, f, 0), cornerValue(st, f, 1), ab.x),
                                                      glm::mix(cornerValue(st, f, 3), cornerValue(st, f, 2), ab.x), ab.y);
                     const TilePoint at = tilePointOf(*atlas, value);
+                    ASSERT_GE(at.face, 0) << "st " << value.x << ", " << value.y << " of face " << f << " is on no tile";
                     face = at.face, uv = at.uv;
                     const double height = heightImage.bilinear(at.pixel.x, at.pixel.y, 0) * scale + bias;
                     const double ours = surface::sampleBilinear(maps.layout, maps.displacement, 1, 0, face, uv.x, uv.y);
@@ -300,6 +302,7 @@ bool allQuads(const mesh::PolygonMesh& cage) {
 struct Shape {
     const char* file;
     bool normal;
+    friend void PrintTo(const Shape& shape, std::ostream* out) { *out << shape.file; }
 };
 
 class UsdExport : public ::testing::TestWithParam<Shape> {};
@@ -397,6 +400,7 @@ TEST(UsdExport, ATexturedAssetCarriesItsAppearance) {
     for (int f = 0; f < theirs.faceCount(); ++f)
         for (int k = 0; k < 4; ++k) {
             const TilePoint at = tilePointOf(heights, cornerValue(usd["cage"]["primvars"]["st"], f, k));
+            ASSERT_GE(at.face, 0);
             const glm::vec2 uv = surface::atlasUvAt(asset.maps.appearanceAtlas, at.face, at.uv.x, at.uv.y);
             worst = std::max(worst, glm::length(cornerValue(usd["cage"]["primvars"]["st1"], f, k) - glm::vec2(uv.x, 1.0f - uv.y)));
         }
