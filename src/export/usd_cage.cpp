@@ -113,6 +113,11 @@ void writeCagePrim(usda::Layer& layer, const subdiv::RefinedCage& cage, const st
                    " (interpolation = \"faceVarying\")");
         layer.line("int[] primvars:" + coords.primvar + ":indices = " + usda::array(primvar.indices));
     }
+    // RenderMan displaces only within a bound it is told (hdPrman assumes 1 for a
+    // UsdPreviewSurface): the heights' own reach, as RenderMan's attribute primvar.
+    if (options.reach > 0.0f)
+        layer.line("float primvars:ri:attributes:displacementbound:sphere = " + usda::number(options.reach) +
+                   " (interpolation = \"constant\")");
     if (!options.material.empty()) layer.line("rel material:binding = <" + options.material + ">");
     layer.end();
 }

@@ -29,7 +29,9 @@ struct UsdTexCoords {
 struct UsdCageOptions {
     std::string name = "Cage";
     std::string material;   // the bound material's path; "" for none
-    float reach = 0.0f;     // how far the displacement may move the surface: widens the extent
+    // How far the displacement may move the surface: widens the extent, and is RenderMan's
+    // displacement bound.
+    float reach = 0.0f;
 };
 
 // The cage as it goes into USD (see above); `texCoords`: whether any map needs them. Left as it
