@@ -5,11 +5,23 @@
 
 #include "export/usdz_archive.h"
 #include "util/error.h"
+#include "util/warnings.h"
 
 namespace subdfit::exporter {
 namespace {
 
 std::vector<unsigned char> bytesOf(const std::string& text) { return {text.begin(), text.end()}; }
+
+// UsdGeomMesh has no crease method: Chaikin's differs from the uniform rule only on semi-sharp tags.
+void warnOfWhatUsdCannotSay(const std::filesystem::path& package, const mesh::SubdivisionTags& tags) {
+    if (tags.creaseMethod != mesh::CreaseMethod::Chaikin) return;
+    auto semiSharp = [](float s) { return s > 0.0f && s < 10.0f; };
+    const bool any = std::any_of(tags.creases.begin(), tags.creases.end(), [&](const auto& c) { return semiSharp(c.sharpness); }) ||
+                     std::any_of(tags.corners.begin(), tags.corners.end(), [&](const auto& c) { return semiSharp(c.sharpness); });
+    if (any)
+        warn(package.string() + ": USD has no Chaikin crease method: the cage's semi-sharp creases render with the uniform "
+                                "rule there");
+}
 
 }  // namespace
 
@@ -23,6 +35,7 @@ UsdUnits usdUnitsOf(const std::filesystem::path& source) {
 std::vector<WrittenFile> writeUsd(const std::filesystem::path& dir, const SubdAsset& asset, const UsdUnits& units, bool text) {
     std::vector<WrittenFile> written;
     const auto package = dir / kUsdPackageFile;
+    warnOfWhatUsdCannotSay(package, asset.cage.tags);
     try {
         UsdStage stage = usdStage(asset, units);
         std::vector<UsdzEntry> entries{{kUsdTextFile, bytesOf(stage.layer)}};

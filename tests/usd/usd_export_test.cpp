@@ -27,6 +27,7 @@
 #include "simplify/initial_cage.h"
 #include "subdiv/limit_evaluator.h"
 #include "test_paths.h"
+#include "util/warnings.h"
 
 namespace subdfit::test {
 namespace {
@@ -422,6 +423,22 @@ TEST(UsdExport, AnAppearanceOnTilesHasItsOwnCoordinates) {
     const json usd = readWithUsd(dir / "asset.usdz", dir / "read_tiles");
     EXPECT_EQ(usd["material"]["inputs"]["diffuseColor"]["primvar"], "st1");
     EXPECT_EQ(usd["cage"]["primvars"]["st1"]["interpolation"], "faceVarying");
+}
+
+// USD has no crease method: a Chaikin cage with semi-sharp creases is written, with a warning
+// naming the package, never silently.
+TEST(UsdExport, WarnsThatChaikinCreasesRenderUniform) {
+    mesh::PolygonMesh cage = mesh::loadMesh(assetPath("osd-shapes/catmark_chaikin2.obj"));
+    ASSERT_EQ(cage.tags.creaseMethod, mesh::CreaseMethod::Chaikin);
+    std::vector<std::string> warnings;
+    const auto previous = setWarningSink([&](const std::string& w) { warnings.push_back(w); });
+    const fs::path dir = scratchDir("usd_chaikin");
+    exporter::writeUsd(dir, shipped(cage, {}), {});
+    cage.tags.creaseMethod = mesh::CreaseMethod::Uniform;
+    exporter::writeUsd(dir, shipped(cage, {}), {});
+    setWarningSink(previous);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("asset.usdz: USD has no Chaikin crease method"), std::string::npos) << warnings[0];
 }
 
 }  // namespace
