@@ -5,6 +5,7 @@
 #include "export/map_atlas.h"
 #include "export/subd_format.h"
 #include "export/surface_glb.h"
+#include "export/usd_export.h"
 
 namespace subdfit::fit {
 
@@ -20,6 +21,16 @@ nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene:
     written.push_back(exporter::writeSubd(o.out / "asset.subd", exporter::shippableAsset(fittedWorld, maps, precision.positionBits),
                                           precision));
     nlohmann::json files = nlohmann::json::object();
+    for (const auto& file : written) files[file.path.filename().string()] = file.bytes;
+    files.update(exportUsd(o, o.out));
+    return files;
+}
+
+nlohmann::json exportUsd(const FitOptions& o, const std::filesystem::path& dir) {
+    nlohmann::json files = nlohmann::json::object();
+    if (o.usd == "none") return files;
+    const auto written = exporter::writeUsd(dir, exporter::readSubd(dir / "asset.subd"), exporter::usdUnitsOf(o.reference),
+                                            o.usd == "usdz,usda");
     for (const auto& file : written) files[file.path.filename().string()] = file.bytes;
     return files;
 }

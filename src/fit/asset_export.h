@@ -3,7 +3,8 @@
 // (export/subd_format.h, the maps at --map-bits) that `subdfit decode` turns into triangles;
 // displacement.exr, normal.png and maps.json when the scene has maps (for DCC tools); and with
 // --preview fitted.glb -- the cage's limit surface tessellated as rendered, displaced, with the
-// normal map, in world units (--draco: Draco-compressed).
+// normal map, in world units (--draco: Draco-compressed); asset.usdz (--usd), what asset.subd
+// holds as a USD package that DCC tools and renderers open (export/usd_export.h).
 #include <nlohmann/json.hpp>
 
 #include "fit/cage_fitter.h"
@@ -15,5 +16,9 @@ namespace subdfit::fit {
 // Returns {file name: bytes} of everything written (each file atomically).
 nlohmann::json exportAsset(const FitOptions& options, CageFitter& fitter, const scene::SceneFrame& frame,
                            const mesh::PolygonMesh& fittedWorld);
+
+// asset.usdz (and asset.usda) of dir/asset.subd as it ships, as options.usd asks, the units those
+// of options.reference's format. Whoever rewrites asset.subd calls it again. Returns {file name: bytes}.
+nlohmann::json exportUsd(const FitOptions& options, const std::filesystem::path& dir);
 
 }  // namespace subdfit::fit

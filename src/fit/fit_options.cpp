@@ -68,6 +68,9 @@ const std::vector<OptionRow>& optionTable() {
           1, 0, false, false, true},
          &F::preview},
         {{"draco", "--draco", "compress the exported meshes with Draco", 1, 0, false, false, true}, &F::draco},
+        {{"usd", "--usd", "USD export of the shipped asset: usdz (asset.usdz), usdz,usda (and the layer's text beside it), none",
+          1, 0, false, false, true},
+         &F::usd},
         {{"compact_maps", "", "ship maps as HALF EXR and 8-bit PNG", 1, 0, false, false, true}, &F::compactMaps},
         {{"resume", "--resume", "continue from DIR/checkpoint.bin (same inputs and settings)"}, &F::resume},
         {{"force", "--force", "write into --out even if it holds other files"}, &F::force},
@@ -129,6 +132,8 @@ void validate(const FitOptions& o) {
     if (o.appearanceAtlas == 1) throw OptionError("appearance_atlas", "must be 0 (tiles) or at least 2 texels");
     if (o.shadingNormal != "displaced" && o.shadingNormal != "limit")
         throw OptionError("shading_normal", "must be displaced or limit, got '" + o.shadingNormal + "'");
+    if (o.usd != "usdz" && o.usd != "usdz,usda" && o.usd != "none")
+        throw OptionError("usd", "must be usdz, usdz,usda or none, got '" + o.usd + "'");
     if (o.schedule != "plateau" && o.schedule != "anneal")
         throw OptionError("schedule", "must be plateau or anneal, got '" + o.schedule + "'");
 }

@@ -59,6 +59,9 @@ struct FitOptions {
     int appearanceQuality = 90;   // JPEG quality of the appearance images in asset.subd
     bool preview = false;         // also write fitted.glb: the displaced limit surface, tessLevel per face edge
     bool draco = false;           // fitted.glb with KHR_draco_mesh_compression
+    // The USD export of asset.subd (export/usd_export.h): "usdz" (asset.usdz), "usdz,usda" (and
+    // the layer's text beside it) or "none".
+    std::string usd = "usdz";
     bool compactMaps = false;     // ship maps as HALF EXR and 8-bit PNG (export/map_atlas.h)
     bool resume = false;          // continue from out/checkpoint.bin when it exists
     bool force = false;           // write into a non-empty folder that holds no subdfit results

@@ -39,20 +39,6 @@ int mostWithinBudget(int fewest, int most, std::uintmax_t budget, const std::fun
     return lo;
 }
 
-nlohmann::json shipCage(const std::filesystem::path& path, const mesh::PolygonMesh& cageWorld, bool draco) {
-    const auto triangles = mesh::triangulated(cageWorld);
-    // glTF has no subdivision surfaces: say how to read the triangles as a cage.
-    const nlohmann::json extras = {
-        {"subdfit",
-         {{"subdivision", "catmull-clark"},
-          {"triangleSubdivision", cageWorld.tags.triangles == mesh::TriangleSubdivision::Smooth ? "smooth" : "catmark"},
-          {"boundary", cageWorld.tags.boundary == mesh::BoundaryInterpolation::EdgeAndCorner ? "edge-and-corner"
-                                                                                              : "edge-only"},
-          {"maps", "maps.json beside this file: ptex-face tiles on the limit surface"}}}};
-    const auto written = exporter::writeMeshGlb(path, triangles.positions, {}, indicesOf(triangles), draco, extras);
-    return {{path.filename().string(), written.bytes}};
-}
-
 namespace {
 
 // A triangle baseline (normalised frame) scored as every baseline is: rendered with smooth
@@ -163,7 +149,6 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     surface::SurfaceMaps bakedWorld = baked;
     for (float& d : bakedWorld.displacement) d /= scene.frame.scale;
     Quality q;
-    shipCage(dir / "cage.glb", cageWorld, settings.draco);
     exporter::writeMapAtlases(dir, bakedWorld, {.compact = settings.compactMaps});
     const auto precision = exporter::SubdPrecision::forMapBits(route.bits, route.appearanceQuality);
     q.files = {{"asset.subd", exporter::writeSubd(dir / "asset.subd",

@@ -26,7 +26,6 @@ namespace subdfit::simplify {
 
 struct BaselineSettings {
     std::filesystem::path dir;   // where the baselines' shipped files go
-    bool draco = false;          // the convenience cage.glb with Draco (the decimation always has it)
     bool compactMaps = true;     // and maps
     int surfaceSamples = 100000; // per side, for the surface distance
     int segments = 8;            // tessellation of limit surfaces for the surface distance
@@ -55,7 +54,7 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
                                         const mesh::PolygonMesh& welded, std::uintmax_t budget,
                                         const BaselineSettings& settings);
 
-// Writes dir/bake/{asset.subd, cage.glb, maps}.
+// Writes dir/bake/{asset.subd, maps}.
 Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const BakeRoute& route,
                      const BaselineSettings& settings);
 
@@ -63,9 +62,5 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
 // fits `budget`: bytes grow with triangles. At `fewest` when even that is over (the report then
 // says so: a .glb's own header and JSON weigh hundreds of bytes). The file is left as shipped.
 int mostWithinBudget(int fewest, int most, std::uintmax_t budget, const std::function<std::uintmax_t(int)>& ship);
-
-// What subdfit-format assets ship: the cage as a GLB of positions and indices (written to
-// `path`, world units) plus the map files written beside it. Returns {file: bytes}.
-nlohmann::json shipCage(const std::filesystem::path& path, const mesh::PolygonMesh& cageWorld, bool draco);
 
 }  // namespace subdfit::simplify

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "fit/asset_export.h"
 #include "fit/device_defaults.h"
 #include "gl/platform_defines.h"
 #include "io/atomic_file.h"
@@ -32,7 +33,7 @@ namespace {
 // of the bake itself, 1 loses 5 dB to noise.
 constexpr float kRefineRate = 0.02f;
 
-// What subdfit ships: asset.subd (cage and maps, export/subd_format.h). cage.glb, the map
+// What subdfit ships: asset.subd (cage and maps, export/subd_format.h). asset.usdz, the map
 // atlases and fitted.glb are conveniences for DCC tools and viewers, not what the budget counts.
 nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports) {
     return {{"asset.subd", exports.at("asset.subd")}};
@@ -82,20 +83,14 @@ nlohmann::json shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
     return shipped();
 }
 
-// Scores the fitted scene and both baselines; writes cage.glb, baselines/ and comparison.png
-// into `out`.
+// Scores the fitted scene and both baselines; writes baselines/ and comparison.png into `out`.
 void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::ProgramCache& programs,
               const BakeRoute& bakeRoute, fit::FitRun& run, const fit::FitReport& fitted, SimplifyReport& report) {
     fit::CageFitter& fitter = run.fitter();
     fit::FitScene& scene = run.scene();
-    mesh::PolygonMesh cage = scene.cage;
-    cage.positions = fitter.vertices();
-    mesh::PolygonMesh cageWorld = cage;
-    cageWorld.positions = scene.frame.toWorld(cage.positions);
     const int segments = fitter.renderer().tessLevel();
 
     Quality& ours = report.subdfit;
-    shipCage(out / "cage.glb", cageWorld, o.fit.draco);
     ours.files = shippedFiles(fitted.exports);
     ours.bytes = totalBytes(ours.files);
     scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
@@ -103,8 +98,7 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
     }, ours);
     ours.distance = shippedDistance(out / "asset.subd", segments, scene.frame, scene.reference, o.surfaceSamples);
 
-    const BaselineSettings settings{.dir = out / "baselines", .draco = o.fit.draco,
-                                    .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments};
+    const BaselineSettings settings{.dir = out / "baselines", .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments};
     std::filesystem::create_directories(settings.dir);
     // A material (textured or a plain colour) the triangle baselines must keep, as a user's would.
     if (scene.shading != render::ShadingModel::Geometry && scene.reference.materials) {
@@ -361,8 +355,13 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     mesh::writeObj(staged.path() / "initial_cage.obj", cage);
     SimplifyReport report{.fit = run.writeResults(staged.path(), *context), .gltfpack = std::nullopt, .facesRequested = o.faces,
                           .budget = start.budget};
-    if (o.budget > 0) report.budget.update(shipWithinBudget(staged.path() / "asset.subd", o.budget, o.fit.mapBits,
-                                                                  o.fit.appearanceQuality, report.fit));
+    if (o.budget > 0) {
+        report.budget.update(shipWithinBudget(staged.path() / "asset.subd", o.budget, o.fit.mapBits, o.fit.appearanceQuality,
+                                              report.fit));
+        // The USD export follows asset.subd, which may have been coded again.
+        const nlohmann::json usd = fit::exportUsd(o.fit, staged.path());
+        for (const auto& [name, bytes] : usd.items()) report.fit.exports[name] = bytes.get<std::uintmax_t>();
+    }
     const BakeRoute bakeRoute = start.bakeRoute ? *start.bakeRoute
                                                 : BakeRoute{.cage = scene.cage, .effects = o.fit.maps,
                                                             .resolution = o.fit.mapResolution, .bits = o.fit.mapBits,

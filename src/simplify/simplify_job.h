@@ -2,8 +2,8 @@
 // `subdfit simplify`: a dense asset in, a light Catmull-Clark cage and maps out, judged against
 // the baselines a technical artist would otherwise use, at the same byte budget.
 //
-// DIR gets what `subdfit fit` writes (cage.obj, maps, fitted.glb, report.json, PNGs) plus
-// initial_cage.obj, cage.glb (the cage as shipped), comparison.png (held-out view: reference |
+// DIR gets what `subdfit fit` writes (cage.obj, asset.subd, asset.usdz, maps, fitted.glb,
+// report.json, PNGs) plus initial_cage.obj, comparison.png (held-out view: reference |
 // subdfit | decimation | bake, error heat maps below) and baselines/ (each baseline's shipped
 // files). report.json adds `bytes`, `chamfer`, `hausdorff` and `baselines`.
 #include <optional>

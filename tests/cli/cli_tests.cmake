@@ -68,12 +68,13 @@ subdfit_cli_refuses(option_map_res_0 --map-res
 # Options the parser itself rejects get the same one-line treatment.
 subdfit_cli_refuses(option_steps_not_a_number --steps
                     --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --steps abc)
+subdfit_cli_refuses(option_usd_unknown --usd --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --usd usdc)
 subdfit_cli_refuses(option_unknown --bogus --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --bogus)
 
 # A short fit that works: every result file, nothing temporary left.
 add_test(NAME cli.fit.torus_to_spot
          COMMAND ${CMAKE_COMMAND} -DSUBDFIT=$<TARGET_FILE:subdfit> -DOUT=${SUBDFIT_CLI_OUT}/fit_torus_to_spot
-                 -DSTEPS=3 -DEXTRA=fitted.glb
+                 -DSTEPS=3 -DEXTRA=fitted.glb|asset.usdz
                  "-DARGS=fit|--cage|${SUBDFIT_CLI_CAGE}|--reference|${SUBDFIT_CLI_REFERENCE}|--steps|3|--res|64|--views|2|--preview"
                  -P ${SUBDFIT_CLI_SCRIPTS}/expect_success.cmake)
 set_tests_properties(cli.fit.torus_to_spot PROPERTIES LABELS cli TIMEOUT 600)
@@ -104,10 +105,17 @@ subdfit_cli_command_refuses(batch batch_bad_shard --shard ${SUBDFIT_CLI_MANIFEST
 # baselines (its budget behaviour: tests/gl/simplify_budget_test.cpp).
 add_test(NAME cli.simplify.spot
          COMMAND ${CMAKE_COMMAND} -DSUBDFIT=$<TARGET_FILE:subdfit> -DOUT=${SUBDFIT_CLI_OUT}/simplify_spot
-                 -DSTEPS=4 "-DEXTRA=cage.glb|comparison.png|initial_cage.obj|baselines/decimated.glb|baselines/bake/cage.glb"
+                 -DSTEPS=4 "-DEXTRA=asset.usdz|comparison.png|initial_cage.obj|baselines/decimated.glb|baselines/bake/asset.subd"
                  "-DARGS=simplify|${SUBDFIT_CLI_REFERENCE}|--faces|80|--steps|4|--res|48|--views|2|--holdout-views|1"
                  -P ${SUBDFIT_CLI_SCRIPTS}/expect_success.cmake)
-set_tests_properties(cli.simplify.spot PROPERTIES LABELS cli TIMEOUT 600)
+set_tests_properties(cli.simplify.spot PROPERTIES LABELS cli TIMEOUT 600 FIXTURES_SETUP simplify_spot)
+
+# What that simplify shipped as USD opens in Pixar's USD with no validation error
+# (tests/usd/read_usd.py; the usd-core environment .ci/setup makes).
+add_test(NAME usd.simplify_spot
+         COMMAND ${SUBDFIT_USD_PYTHON} ${PROJECT_SOURCE_DIR}/tests/usd/read_usd.py ${SUBDFIT_CLI_OUT}/simplify_spot/asset.usdz
+                 ${SUBDFIT_CLI_OUT}/simplify_spot_usd --check)
+set_tests_properties(usd.simplify_spot PROPERTIES LABELS "usd;cli" TIMEOUT 120 FIXTURES_REQUIRED simplify_spot)
 
 # What a batch service meets (tests/cli/service/*.sh): manifests named to escape --out or to
 # collide, two batches on one folder, SIGKILL and SIGTERM, FIFOs and devices as inputs, a

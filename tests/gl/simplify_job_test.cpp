@@ -63,13 +63,16 @@ TEST(SimplifyJob, ReportMatchesTheFilesAndComparesAtEqualBytes) {
         EXPECT_EQ(fs::file_size(dir / "out" / name), bytes.get<std::uintmax_t>()) << name;
         onDisk += fs::file_size(dir / "out" / name);
     }
-    // One file ships: asset.subd. The cage .glb, the atlases and fitted.glb are conveniences.
+    // One file ships: asset.subd. The USD package, the atlases and fitted.glb are conveniences,
+    // each named in `exports` with its bytes; no bare cage.glb that looks complete and is not.
     EXPECT_EQ(report["files"].size(), 1u);
     EXPECT_TRUE(report["files"].contains("asset.subd"));
-    for (const char* convenience : {"cage.glb", "normal.png", "fitted.glb"}) {
+    for (const char* convenience : {"asset.usdz", "normal.png", "fitted.glb"}) {
         EXPECT_FALSE(report["files"].contains(convenience)) << convenience;
-        EXPECT_TRUE(fs::exists(dir / "out" / convenience)) << convenience;
+        ASSERT_TRUE(fs::exists(dir / "out" / convenience)) << convenience;
+        EXPECT_EQ(report["exports"][convenience].get<std::uintmax_t>(), fs::file_size(dir / "out" / convenience)) << convenience;
     }
+    EXPECT_FALSE(fs::exists(dir / "out" / "cage.glb"));
     EXPECT_EQ(report["bytes"].get<std::uintmax_t>(), onDisk);
 
     const auto& decimation = report["baselines"]["decimation"];

@@ -1,11 +1,13 @@
 // One Catmull-Clark step keeps the limit surface; the relief reference built on it is watertight.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 
 #include <glm/geometric.hpp>
 
 #include "mesh/mesh_loader.h"
+#include "subdiv/limit_evaluator.h"
 #include "subdiv/uniform_refinement.h"
 #include "surface/relief_surface.h"
 #include "surface/tessellation.h"
@@ -54,14 +56,50 @@ TEST_P(RefinedOnce, IsAllQuadsWithTheSameLimitSurface) {
     EXPECT_EQ(refined.tags.creases.empty(), cage.tags.creases.empty());
 }
 
+// Each child face's corners name where it lies on the cage's ptex faces: the refined cage's
+// limit surface at a child's (a, b) is the cage's at the bilinear blend of those corners. The
+// refined cage is evaluated one isolation level shallower, so that both use the same patches
+// (semi-sharp creases included).
+class RefinedPtex : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(RefinedPtex, ChildFacesMapOntoThePtexFacesExactly) {
+    const auto cage = mesh::loadMesh(test::assetPath(GetParam()));
+    const auto refined = subdiv::refinedOnceWithPtex(cage);
+    ASSERT_EQ(refined.ptexFace.size(), size_t(refined.mesh.faceCount()));
+    const subdiv::LimitEvaluator ours(cage, {.isolationLevel = 3}), theirs(refined.mesh, {.isolationLevel = 2});
+    float size = 0.0f;
+    for (const auto& p : cage.positions) size = std::max(size, glm::length(p));
+    int compared = 0;
+    for (int f = 0; f < refined.mesh.faceCount(); ++f)
+        for (const glm::vec2 ab : {glm::vec2(0.5f), glm::vec2(0.1f, 0.8f), glm::vec2(0.9f, 0.3f), glm::vec2(1.0f, 0.0f)}) {
+            const glm::vec2* c = &refined.cornerUv[4 * size_t(f)];
+            const glm::vec2 uv = glm::mix(glm::mix(c[0], c[1], ab.x), glm::mix(c[3], c[2], ab.x), ab.y);
+            const int ptex = refined.ptexFace[size_t(f)];
+            ASSERT_EQ(theirs.hasSurface(f, ab.x, ab.y), ours.hasSurface(ptex, uv.x, uv.y)) << "face " << f;
+            if (!theirs.hasSurface(f, ab.x, ab.y)) continue;
+            const auto a = theirs.evaluate(f, ab.x, ab.y, refined.mesh.positions);
+            const auto b = ours.evaluate(ptex, uv.x, uv.y, cage.positions);
+            ASSERT_LT(glm::length(a.position - b.position), 1e-5f * size) << "face " << f << " at " << ab.x << ", " << ab.y;
+            ++compared;
+        }
+    EXPECT_GT(compared, refined.mesh.faceCount());
+}
+
+std::string shapeName(const ::testing::TestParamInfo<const char*>& info) {
+    std::string name = info.param;
+    name = name.substr(name.find('/') + 1);
+    return name.substr(0, name.find('.'));
+}
+
 INSTANTIATE_TEST_SUITE_P(Shapes, RefinedOnce,
                          ::testing::Values("spot/spot_control_mesh.obj", "osd-shapes/catmark_inf_crease0.obj",
                                            "osd-shapes/catmark_hole_test1.obj"),
-                         [](const auto& info) {
-                             std::string name = info.param;
-                             name = name.substr(name.find('/') + 1);
-                             return name.substr(0, name.find('.'));
-                         });
+                         shapeName);
+INSTANTIATE_TEST_SUITE_P(Shapes, RefinedPtex,
+                         ::testing::Values("spot/spot_control_mesh.obj", "osd-shapes/catmark_inf_crease0.obj",
+                                           "osd-shapes/catmark_hole_test1.obj", "osd-shapes/catmark_smoothtris0.obj",
+                                           "osd-shapes/catmark_edgecorner.obj", "osd-shapes/catmark_pyramid_creases2.obj"),
+                         shapeName);
 
 // Spot has triangles and pentagons beside its quads; tessellated as they are, their per-corner
 // tiles meet a quad's edge at twice its samples (T-junctions, 3 888 open edges at 24 segments).

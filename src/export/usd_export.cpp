@@ -1,0 +1,52 @@
+#include "export/usd_export.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "export/usdz_archive.h"
+#include "util/error.h"
+#include "util/warnings.h"
+
+namespace subdfit::exporter {
+namespace {
+
+std::vector<unsigned char> bytesOf(const std::string& text) { return {text.begin(), text.end()}; }
+
+// UsdGeomMesh has no crease method: Chaikin's differs from the uniform rule only on semi-sharp tags.
+void warnOfWhatUsdCannotSay(const std::filesystem::path& package, const mesh::SubdivisionTags& tags) {
+    if (tags.creaseMethod != mesh::CreaseMethod::Chaikin) return;
+    auto semiSharp = [](float s) { return s > 0.0f && s < 10.0f; };
+    const bool any = std::any_of(tags.creases.begin(), tags.creases.end(), [&](const auto& c) { return semiSharp(c.sharpness); }) ||
+                     std::any_of(tags.corners.begin(), tags.corners.end(), [&](const auto& c) { return semiSharp(c.sharpness); });
+    if (any)
+        warn(package.string() + ": USD has no Chaikin crease method: the cage's semi-sharp creases render with the uniform "
+                                "rule there");
+}
+
+}  // namespace
+
+UsdUnits usdUnitsOf(const std::filesystem::path& source) {
+    std::string extension = source.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (extension == ".gltf" || extension == ".glb") return {.upAxis = "Y", .metersPerUnit = 1.0};
+    return {};
+}
+
+std::vector<WrittenFile> writeUsd(const std::filesystem::path& dir, const SubdAsset& asset, const UsdUnits& units, bool text) {
+    std::vector<WrittenFile> written;
+    const auto package = dir / kUsdPackageFile;
+    warnOfWhatUsdCannotSay(package, asset.cage.tags);
+    try {
+        UsdStage stage = usdStage(asset, units);
+        std::vector<UsdzEntry> entries{{kUsdTextFile, bytesOf(stage.layer)}};
+        for (UsdTextureFile& texture : stage.textures) entries.push_back({texture.name, std::move(texture.bytes)});
+        written.push_back(writeBytes(package, usdzArchive(entries)));
+    } catch (const Error& e) {
+        if (std::string(e.what()).starts_with(package.string())) throw;
+        throw fileError(package.string(), e.what());
+    }
+    if (text) written.push_back(writeBytes(dir / kUsdTextFile, bytesOf(usdStage(asset, units, kUsdPackageFile).layer)));
+    return written;
+}
+
+}  // namespace subdfit::exporter

@@ -1,0 +1,25 @@
+#pragma once
+// The USD export beside asset.subd: asset.usdz, one self-contained package (the layer of
+// export/usd_stage.h and its images, export/usdz_archive.h), and on request asset.usda, the
+// same layer as text, its images read from inside the package.
+#include <filesystem>
+#include <vector>
+
+#include "export/output_file.h"
+#include "export/usd_stage.h"
+
+namespace subdfit::exporter {
+
+inline constexpr const char* kUsdPackageFile = "asset.usdz";
+inline constexpr const char* kUsdTextFile = "asset.usda";
+
+// What the source's format says of its axes and units: glTF is Y up in metres (glTF 2.0, 3.4);
+// OBJ and Draco files say nothing (UsdUnits' fallbacks).
+UsdUnits usdUnitsOf(const std::filesystem::path& source);
+
+// Writes dir/asset.usdz and, with `text`, dir/asset.usda, each atomically. Throws subdfit::Error
+// naming the file that could not be written.
+std::vector<WrittenFile> writeUsd(const std::filesystem::path& dir, const SubdAsset& asset, const UsdUnits& units,
+                                  bool text = false);
+
+}  // namespace subdfit::exporter
