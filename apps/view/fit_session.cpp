@@ -5,6 +5,7 @@
 #include "fit/device_defaults.h"
 #include "gl/platform_defines.h"
 #include "io/atomic_file.h"
+#include "mesh/mesh_geometry.h"
 #include "mesh/mesh_loader.h"
 
 namespace subdfit::view {
@@ -20,6 +21,7 @@ FitSession::FitSession(const fit::FitOptions& given, FitInputs inputs) : program
         std::fprintf(stderr, "subdfit-view: %s\n", chosen.c_str());
     scene_ = std::make_unique<fit::FitScene>(options, programs_, std::move(inputs.cage), inputs.reference);
     run_ = std::make_unique<fit::FitRun>(options, programs_, *scene_);
+    meanEdge_ = mesh::meanEdgeLength(scene_->cage);
     if (options.resume) run_->resume(options.out / "checkpoint.bin");
 }
 
@@ -39,9 +41,7 @@ bool FitSession::anythingOptimised() {
 nlohmann::json FitSession::save(const context::GlContext& context, const std::filesystem::path& out) {
     // The report's settings say what the vertices were fitted with last, knobs included.
     fit::FitOptions& options = run_->options();
-    auto& vertices = fitter().vertexGroup();
-    options.epsilon = vertices.settings().epsilon;
-    options.learningRate = vertices.settings().learningRate;
+    options = fit::withVertexRates(options, run_->scene().cage, fitter().vertexGroup().settings());
     fit::validate(options);
     const auto report = fit::toJson(run_->writeResults(out, context));
     io::writeTextAtomically(out / "report.json", report.dump(2) + "\n");

@@ -27,6 +27,7 @@ public:
     fit::FitScene& scene() { return *scene_; }
     fit::CageFitter& fitter() { return run_->fitter(); }
     gl::ProgramCache& programs() { return programs_; }
+    float meanEdge() const { return meanEdge_; }  // of the cage in the fit's frame: the unit of the vertex knobs' options
 
     // One step, its mean loss measured and kept; none while no group is optimised.
     void step();
@@ -46,6 +47,7 @@ private:
     std::unique_ptr<fit::FitScene> scene_;
     std::unique_ptr<fit::FitRun> run_;
     std::vector<float> losses_;
+    float meanEdge_ = 0.0f;
 };
 
 }  // namespace subdfit::view

@@ -1,7 +1,8 @@
 # Runs subdfit-view under a virtual X server (xvfb-run) for a few frames and checks its
 # screenshot with check_screenshot; with SAVED, also the results it saved on exit.
 #   cmake -DVIEWER=<exe> -DCHECKER=<exe> -DSHOT=<png> -DVIEW_LEFT=<px> -DARGS=<a|b|c>
-#         [-DSAVED=<dir>] -P run_viewer.cmake
+#         [-DSAVED=<dir> [-DSETTINGS=<key=low:high|...>]] -P run_viewer.cmake
+# SETTINGS: report.json's settings.<key> must lie in [low, high].
 # Prints "SKIP:" (the test's SKIP_REGULAR_EXPRESSION) where xvfb-run is not installed.
 foreach(var VIEWER CHECKER SHOT VIEW_LEFT ARGS)
   if(NOT DEFINED ${var})
@@ -46,4 +47,15 @@ if(SAVED)
   if(NOT finite)
     message(FATAL_ERROR "${SAVED}/report.json: the saved cage is not finite")
   endif()
+  string(REPLACE "|" ";" settings "${SETTINGS}")
+  foreach(setting IN LISTS settings)
+    string(REGEX MATCH "^([a-z_]+)=([^:]+):(.+)$" parsed "${setting}")
+    set(key ${CMAKE_MATCH_1})
+    set(low ${CMAKE_MATCH_2})
+    set(high ${CMAKE_MATCH_3})
+    string(JSON value GET "${report}" settings ${key})
+    if(value LESS low OR value GREATER high)
+      message(FATAL_ERROR "${SAVED}/report.json: settings.${key} is ${value}, expected ${low}..${high}")
+    endif()
+  endforeach()
 endif()

@@ -11,26 +11,35 @@ set(SUBDFIT_VIEW_REFERENCE ${PROJECT_SOURCE_DIR}/assets/spot/spot_triangulated.o
 set(SUBDFIT_VIEW_SMALL --cage ${SUBDFIT_VIEW_CAGE} --reference ${SUBDFIT_VIEW_REFERENCE}
     --res 64 --views 4 --holdout-views 1 --width 640 --height 400)
 
-# subdfit_view_screenshot(NAME [SAVED] ARG...): a screenshot run; with SAVED, --save-on-exit too.
+# subdfit_view_screenshot(NAME [SAVED [SETTINGS key=low:high|...]] ARG...): a screenshot run; with
+# SAVED, --save-on-exit too, and report.json's settings checked against SETTINGS.
 function(subdfit_view_screenshot name)
   set(saved "")
+  set(settings "")
   set(extra ${ARGN})
   if(ARGV1 STREQUAL "SAVED")
     set(saved ${SUBDFIT_VIEW_OUT}/${name}_out)
     list(REMOVE_AT extra 0)
+    list(GET extra 0 next)
+    if(next STREQUAL "SETTINGS")
+      list(GET extra 1 settings)
+      list(REMOVE_AT extra 0 1)
+    endif()
     list(APPEND extra --save-on-exit --out ${saved})
   endif()
   list(JOIN extra "|" args)
   add_test(NAME view.screenshot.${name}
            COMMAND ${CMAKE_COMMAND} -DVIEWER=$<TARGET_FILE:subdfit-view>
                    -DCHECKER=$<TARGET_FILE:subdfit_view_check_screenshot>
-                   -DSHOT=${SUBDFIT_VIEW_OUT}/${name}.png -DVIEW_LEFT=360 -DSAVED=${saved} -DARGS=${args}
-                   -P ${CMAKE_CURRENT_LIST_DIR}/run_viewer.cmake)
+                   -DSHOT=${SUBDFIT_VIEW_OUT}/${name}.png -DVIEW_LEFT=360 -DSAVED=${saved} "-DSETTINGS=${settings}"
+                   -DARGS=${args} -P ${CMAKE_CURRENT_LIST_DIR}/run_viewer.cmake)
   set_tests_properties(view.screenshot.${name} PROPERTIES LABELS view TIMEOUT 120 SKIP_REGULAR_EXPRESSION "SKIP:")
 endfunction()
 
-# The fit, playing for a few frames (it stops at --steps), then saved as `subdfit fit` would.
-subdfit_view_screenshot(fit SAVED ${SUBDFIT_VIEW_SMALL} --steps 3 --frames 5)
+# The fit, playing for a few frames (it stops at --steps), then saved as `subdfit fit` would: its
+# settings say what the command line said (the vertex rates in fractions of the mean edge).
+subdfit_view_screenshot(fit SAVED SETTINGS "epsilon=0.0499:0.0501|learning_rate=0.0999:0.1001"
+                        ${SUBDFIT_VIEW_SMALL} --epsilon 0.05 --lr 0.1 --steps 3 --frames 5)
 # The map variant of the composite pass, the difference heat map and the cage overlay.
 subdfit_view_screenshot(maps_difference ${SUBDFIT_VIEW_SMALL} --maps displacement --steps 2 --frames 3
                         --mode difference --wireframe)
