@@ -107,7 +107,8 @@ add_test(NAME cli.simplify.spot
                  -DSTEPS=4 "-DEXTRA=cage.glb|comparison.png|initial_cage.obj|baselines/decimated.glb|baselines/bake/cage.glb"
                  "-DARGS=simplify|${SUBDFIT_CLI_REFERENCE}|--faces|80|--steps|4|--res|48|--views|2|--holdout-views|1"
                  -P ${SUBDFIT_CLI_SCRIPTS}/expect_success.cmake)
-set_tests_properties(cli.simplify.spot PROPERTIES LABELS cli TIMEOUT 600)
+# Its folder is also the result the viewer's tests show (tests/view/view_tests.cmake).
+set_tests_properties(cli.simplify.spot PROPERTIES LABELS cli TIMEOUT 600 FIXTURES_SETUP simplify_spot_result)
 
 # What a batch service meets (tests/cli/service/*.sh): manifests named to escape --out or to
 # collide, two batches on one folder, SIGKILL and SIGTERM, FIFOs and devices as inputs, a

@@ -51,6 +51,20 @@ subdfit_view_screenshot(base_color --cage ${PROJECT_SOURCE_DIR}/assets/osd-shape
                         --res 64 --views 4 --holdout-views 1 --width 640 --height 400 --steps 2 --frames 3
                         --mode base_color)
 
+# A result folder (the short simplify of tests/cli: Spot, its baselines): every column side by
+# side; subdfit's asset on its own is not the reference.
+set(SUBDFIT_VIEW_RESULT ${SUBDFIT_CLI_OUT}/simplify_spot)
+add_test(NAME view.result.columns
+         COMMAND ${CMAKE_COMMAND} -DVIEWER=$<TARGET_FILE:subdfit-view> -DCHECKER=$<TARGET_FILE:subdfit_view_check_screenshot>
+                 -DRESULT=${SUBDFIT_VIEW_RESULT} -DSHOTS=${SUBDFIT_VIEW_OUT}/result
+                 -P ${CMAKE_CURRENT_LIST_DIR}/run_result_view.cmake)
+set_tests_properties(view.result.columns PROPERTIES LABELS view TIMEOUT 180 SKIP_REGULAR_EXPRESSION "SKIP:"
+                     FIXTURES_REQUIRED simplify_spot_result)
+# The result refined: a fit from its asset and maps against its reference, saved as `fit` would.
+subdfit_view_screenshot(refine SAVED ${SUBDFIT_VIEW_RESULT} --refine --res 48 --views 2 --holdout-views 1 --steps 2
+                        --frames 3 --width 640 --height 400)
+set_tests_properties(view.screenshot.refine PROPERTIES FIXTURES_REQUIRED simplify_spot_result)
+
 # Refused with one stderr line naming the culprit (tests/cli/expect_failure.cmake), no window needed.
 function(subdfit_view_refuses name expect)
   list(JOIN ARGN "|" args)
@@ -64,5 +78,9 @@ subdfit_view_refuses(missing_cage ${SUBDFIT_VIEW_OUT}/does_not_exist.obj
                      --cage ${SUBDFIT_VIEW_OUT}/does_not_exist.obj --reference ${SUBDFIT_VIEW_REFERENCE})
 subdfit_view_refuses(map_mode_without_maps --mode --cage ${SUBDFIT_VIEW_CAGE} --reference ${SUBDFIT_VIEW_REFERENCE}
                      --mode displacement)
+# A result that cannot be shown: a damaged asset.subd, a folder that holds no result.
+subdfit_view_refuses(damaged_subd "damaged.subd: checksum mismatch" ${PROJECT_SOURCE_DIR}/tests/data/damaged.subd)
+subdfit_view_refuses(folder_without_result "data: not a subdfit result: no report.json" ${PROJECT_SOURCE_DIR}/tests/data)
+subdfit_view_refuses(neither_result_nor_fit "give a RESULT" --width 640)
 subdfit_view_refuses(appearance_mode_without_material "needs a reference whose material" --cage ${SUBDFIT_VIEW_CAGE}
                      --reference ${SUBDFIT_VIEW_REFERENCE} --mode metallic_roughness)
