@@ -75,7 +75,8 @@ int main(int argc, char** argv) {
     // The fit's own settings, as `subdfit fit` takes them, in a group of their own.
     subdfit::apps::addFitSettings(app, options.fit);
     for (CLI::Option* option : app.get_options())
-        if (option->get_group() == "Options" && option->get_name() != "--help") option->group(kFitSettingsGroup);
+        if (option->get_group() == "Options" && option->nonpositional() && option->get_name() != "--help")
+            option->group(kFitSettingsGroup);
 
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit-view")) return *exitCode;
     options.mode = subdfit::view::viewModesByKey().at(mode);

@@ -4,16 +4,8 @@
 # asset shows something other than the reference does.
 #   cmake -DVIEWER=<exe> -DCHECKER=<exe> -DRESULT=<folder> -DSHOTS=<dir> -P run_result_view.cmake
 # Prints "SKIP:" where xvfb-run is not installed.
-foreach(var VIEWER CHECKER RESULT SHOTS)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "run_result_view.cmake: -D${var}=... is required")
-  endif()
-endforeach()
-find_program(XVFB_RUN xvfb-run)
-if(NOT XVFB_RUN)
-  message(STATUS "SKIP: xvfb-run not found (Debian: apt-get install xvfb xauth)")
-  return()
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/xvfb_prelude.cmake)
+subdfit_view_prelude(run_result_view.cmake VIEWER CHECKER RESULT SHOTS)
 
 # The columns the folder should give.
 file(READ "${RESULT}/report.json" report)

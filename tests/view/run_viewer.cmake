@@ -4,16 +4,8 @@
 #         [-DSAVED=<dir> [-DSETTINGS=<key=low:high|...>]] -P run_viewer.cmake
 # SETTINGS: report.json's settings.<key> must lie in [low, high].
 # Prints "SKIP:" (the test's SKIP_REGULAR_EXPRESSION) where xvfb-run is not installed.
-foreach(var VIEWER CHECKER SHOT VIEW_LEFT ARGS)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "run_viewer.cmake: -D${var}=... is required")
-  endif()
-endforeach()
-find_program(XVFB_RUN xvfb-run)
-if(NOT XVFB_RUN)
-  message(STATUS "SKIP: xvfb-run not found (Debian: apt-get install xvfb xauth)")
-  return()
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/xvfb_prelude.cmake)
+subdfit_view_prelude(run_viewer.cmake VIEWER CHECKER SHOT VIEW_LEFT ARGS)
 
 get_filename_component(shotFolder "${SHOT}" DIRECTORY)
 file(MAKE_DIRECTORY "${shotFolder}")
