@@ -1,5 +1,7 @@
 #include "result_panel.h"
 
+#include <algorithm>
+
 #include <imgui.h>
 
 #include "cage_wireframe.h"

@@ -1,5 +1,7 @@
 #include "result_scene.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 
