@@ -1,6 +1,9 @@
 #pragma once
-// The cage's edges drawn over the view, straight from the fitter's control vertices on the GPU
-// (no readback per frame).
+// The cage's edges drawn over the view, straight from the control vertices on the GPU (the
+// fitter's θ: no readback per frame), its OpenSubdiv tags in colour: infinitely sharp creases,
+// semi-sharp ones, and corner vertices as dots.
+#include <glm/vec4.hpp>
+
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
 #include "gl/vertex_array.h"
@@ -8,6 +11,12 @@
 #include "render/camera.h"
 
 namespace subdfit::view {
+
+// The colours, for the panel's legend too.
+inline constexpr glm::vec4 kSmoothEdgeColor{1.0f, 0.85f, 0.25f, 0.75f};
+inline constexpr glm::vec4 kSharpCreaseColor{1.0f, 0.2f, 0.15f, 1.0f};
+inline constexpr glm::vec4 kSemiSharpCreaseColor{1.0f, 0.55f, 0.1f, 1.0f};
+inline constexpr glm::vec4 kCornerColor{0.2f, 0.9f, 1.0f, 1.0f};
 
 class CageWireframe {
 public:
@@ -18,9 +27,17 @@ public:
     void draw(gl::ProgramCache& programs, const gl::Buffer& vertices, const render::Camera& camera) const;
 
 private:
-    GLsizei indexCount_;
-    gl::Buffer edges_;
-    gl::VertexArray vertexArray_;
+    // One primitive list of one colour.
+    struct Part {
+        GLenum primitive;
+        glm::vec4 color;
+        GLsizei count = 0;
+        gl::Buffer indices{};
+        gl::VertexArray vertexArray{};
+    };
+    void add(GLenum primitive, glm::vec4 color, const std::vector<unsigned>& indices);
+
+    std::vector<Part> parts_;
 };
 
 }  // namespace subdfit::view

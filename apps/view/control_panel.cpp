@@ -52,6 +52,8 @@ void fitControls(PanelState& state, FitSession& session, PanelRequests& requests
 void groupControls(FitSession& session) {
     auto& fitter = session.fitter();
     for (auto* group : fitter.groups()) {
+        // The vertices' knobs are saved as fractions of the cage's mean edge, which must stay below 1.
+        const float most = group == &fitter.vertexGroup() ? 0.99f * session.meanEdge() : 0.99f;
         ImGui::PushID(group->name().c_str());
         bool on = fitter.optimised(*group);
         const std::string label = "optimise " + group->name() + " (" + std::to_string(group->count()) + ")";
@@ -60,7 +62,7 @@ void groupControls(FitSession& session) {
         float learningRate = group->settings().learningRate;
         bool changed = ImGui::SliderFloat("epsilon", &epsilon, 1e-5f, 0.5f, "%.2e", ImGuiSliderFlags_Logarithmic);
         changed |= ImGui::SliderFloat("learning rate", &learningRate, 1e-5f, 0.5f, "%.2e", ImGuiSliderFlags_Logarithmic);
-        if (changed) fitter.setRates(*group, std::clamp(epsilon, 1e-6f, 0.99f), std::clamp(learningRate, 1e-6f, 0.99f));
+        if (changed) fitter.setRates(*group, std::clamp(epsilon, 1e-6f, most), std::clamp(learningRate, 1e-6f, most));
         ImGui::TextDisabled("annealed learning rate now %.2e", double(group->settings().learningRate * fitter.learningRateScale()));
         ImGui::PopID();
     }

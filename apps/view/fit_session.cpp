@@ -3,14 +3,45 @@
 #include <cstdio>
 
 #include "fit/device_defaults.h"
+#include "fit/shipped_asset.h"
 #include "gl/platform_defines.h"
 #include "io/atomic_file.h"
+#include "mesh/mesh_geometry.h"
 #include "mesh/mesh_loader.h"
 
 namespace subdfit::view {
 
 FitInputs loadFitInputs(const fit::FitOptions& options) {
     return {mesh::loadMesh(options.cage), mesh::loadReference(options.reference)};
+}
+
+FitInputs refineInputs(const ResultInputs& result, fit::FitOptions& options) {
+    const ColumnInputs* reference = nullptr;
+    const ColumnInputs* ours = nullptr;
+    for (const auto& column : result.columns) {
+        if (column.reference) reference = &column;
+        if (column.name == "subdfit" && column.levels.front().asset) ours = &column;
+    }
+    if (!result.folder || !reference || !ours)
+        throw Error(result.title + ": nothing to refine: --refine takes a fit or simplify folder whose reference is there");
+    const exporter::SubdAsset& asset = *ours->levels.front().asset;
+    const surface::SurfaceMaps& maps = asset.maps;
+    options.cage = ours->levels.front().path;
+    options.reference = result.folder->reference;
+    options.maps = {.displacement = maps.hasDisplacement(), .normalMap = maps.hasNormal()};
+    if (maps.layout.resolution > 0) options.mapResolution = maps.layout.resolution;
+    options.shadingNormal = surface::toString(maps.shadingNormal);
+    options.appearanceAtlas = maps.appearanceAtlas.size;
+    if (!maps.appearanceAtlas.present() && maps.appearanceLayout.resolution > 0)
+        options.appearanceResolution = maps.appearanceLayout.resolution;
+    // How the result was coded and shaded, so that Save ships it alike.
+    const nlohmann::json& settings = result.folder->settings;
+    options.mapBits = settings.value("map_bits", options.mapBits);
+    options.appearanceQuality = settings.value("appearance_quality", options.appearanceQuality);
+    options.shading = settings.value("shading", options.shading);
+    options.compactMaps = settings.value("compact_maps", options.compactMaps);
+    options.mapsStart = 0.0f;  // the maps are already fitted: they refine with the cage from the start
+    return {.cage = asset.cage, .reference = reference->levels.front().mesh, .start = maps};
 }
 
 FitSession::FitSession(const fit::FitOptions& given, FitInputs inputs) : programs_(gl::platformDefines()) {
@@ -20,6 +51,8 @@ FitSession::FitSession(const fit::FitOptions& given, FitInputs inputs) : program
         std::fprintf(stderr, "subdfit-view: %s\n", chosen.c_str());
     scene_ = std::make_unique<fit::FitScene>(options, programs_, std::move(inputs.cage), inputs.reference);
     run_ = std::make_unique<fit::FitRun>(options, programs_, *scene_);
+    if (inputs.start) run_->startFrom(fit::normalizedMaps(*inputs.start, scene_->frame));
+    meanEdge_ = mesh::meanEdgeLength(scene_->cage);
     if (options.resume) run_->resume(options.out / "checkpoint.bin");
 }
 
@@ -39,9 +72,7 @@ bool FitSession::anythingOptimised() {
 nlohmann::json FitSession::save(const context::GlContext& context, const std::filesystem::path& out) {
     // The report's settings say what the vertices were fitted with last, knobs included.
     fit::FitOptions& options = run_->options();
-    auto& vertices = fitter().vertexGroup();
-    options.epsilon = vertices.settings().epsilon;
-    options.learningRate = vertices.settings().learningRate;
+    options = fit::withVertexRates(options, run_->scene().cage, fitter().vertexGroup().settings());
     fit::validate(options);
     const auto report = fit::toJson(run_->writeResults(out, context));
     io::writeTextAtomically(out / "report.json", report.dump(2) + "\n");

@@ -14,8 +14,8 @@ constexpr gl::VariantBits kCompositeDisplacement = 1u << 0, kCompositeNormalMap 
 
 }  // namespace
 
-void ViewRenderer::draw(FitSession& session, const CageWireframe& wireframe, const render::Camera& camera,
-                        const ViewSettings& settings, glm::ivec2 origin, glm::ivec2 size) {
+void ViewRenderer::draw(const ViewSource& source, const render::Camera& camera, const ViewSettings& settings,
+                        glm::ivec2 origin, glm::ivec2 size) {
     if (size.x < 1 || size.y < 1) return;  // minimised
     if (!fit_ || fit_->width() != size.x || fit_->height() != size.y) {
         fit_ = std::make_unique<render::RenderTarget>(size.x, size.y);
@@ -23,14 +23,13 @@ void ViewRenderer::draw(FitSession& session, const CageWireframe& wireframe, con
     }
     if (!emptyVertexArray_) emptyVertexArray_.emplace();
 
-    auto& fitter = session.fitter();
     // A mode that does not read a buffer leaves it cleared, so the composite sees background there.
-    if (viewModeNeedsFit(settings.mode)) fitter.render(camera, *fit_);
+    if (viewModeNeedsFit(settings.mode)) source.draw(camera, *fit_);
     else fit_->bindAndClear();
-    if (viewModeNeedsTarget(settings.mode)) session.scene().referenceRenderer.draw(session.programs(), camera, *target_);
+    if (viewModeNeedsTarget(settings.mode) && source.drawReference) source.drawReference(camera, *target_);
     else target_->bindAndClear();
 
-    const maps::MapParameters* maps = fitter.maps();
+    const maps::MapParameters* maps = source.maps;
     const maps::MapEffects effects = maps ? maps->effects() : maps::MapEffects{};
     const bool atlas = maps && maps->appearanceAtlas().present();
     const auto& program = programs_.get(
@@ -62,7 +61,8 @@ void ViewRenderer::draw(FitSession& session, const CageWireframe& wireframe, con
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
 
-    if (settings.cageWireframe) wireframe.draw(programs_, fitter.vertexGroup().theta, camera);
+    if (settings.cageWireframe && source.wireframe && source.cageVertices)
+        source.wireframe->draw(programs_, *source.cageVertices, camera);
 }
 
 }  // namespace subdfit::view

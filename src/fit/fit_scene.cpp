@@ -105,6 +105,14 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
     return settings;
 }
 
+FitOptions withVertexRates(FitOptions options, const mesh::PolygonMesh& cage, const optim::GroupSettings& vertices) {
+    const optim::GroupSettings given = fitSettings(options, cage).vertices;
+    const float edge = mesh::meanEdgeLength(cage);
+    if (vertices.epsilon != given.epsilon) options.epsilon = vertices.epsilon / edge;
+    if (vertices.learningRate != given.learningRate) options.learningRate = vertices.learningRate / edge;
+    return options;
+}
+
 ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets) {
     render::RenderTarget image(targets.resolution(), targets.resolution());
     double loss = 0.0;

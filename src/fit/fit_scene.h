@@ -43,6 +43,12 @@ public:
 CageFitSettings fitSettings(const FitOptions& options, const mesh::PolygonMesh& cage,
                             render::ShadingModel shading = render::ShadingModel::Geometry);
 
+// The options that ask for the vertex ε and learning rate `vertices` holds (fitSettings's inverse:
+// options count them in fractions of `cage`'s mean edge, the group in scene units), e.g. after
+// someone set them by hand. One that fitSettings(options, cage) already gives stays as given,
+// so a value clamped to its pixel cap does not turn into another fraction.
+FitOptions withVertexRates(FitOptions options, const mesh::PolygonMesh& cage, const optim::GroupSettings& vertices);
+
 // How a fit of `reference` shades (--shading, or what its materials call for), and the maps it
 // then has: those of --maps, and with a material the appearance maps that shading reads.
 render::ShadingModel shadingOf(const FitOptions& options, const mesh::PolygonMesh& reference);

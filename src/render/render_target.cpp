@@ -52,4 +52,10 @@ std::vector<glm::vec2> RenderTarget::readPatchUv() const {
     return pixels;
 }
 
+std::vector<float> RenderTarget::readDepth() const {
+    std::vector<float> pixels(size_t(width_) * height_);
+    glGetTextureImage(depth_.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(pixels.size() * sizeof(float)), pixels.data());
+    return pixels;
+}
+
 }  // namespace subdfit::render

@@ -25,6 +25,7 @@ public:
     std::vector<glm::vec4> readColor() const;
     std::vector<int> readFaceId() const;
     std::vector<glm::vec2> readPatchUv() const;
+    std::vector<float> readDepth() const;  // window depth in [0, 1], 1 on background
 
 private:
     int width_, height_;

@@ -75,6 +75,7 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
     Quality q;
     q.bytes = bytes;
     q.files = {{"decimated.glb", bytes}};
+    q.shipped = settings.dir.filename() / path.filename();
     q.details = {{"triangles", decimated.faceCount()}, {"over_budget", bytes > budget}};
     scoreTriangles(programs, scene, decimated, settings, q);
     return q;
@@ -116,6 +117,7 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
     Quality q;
     q.bytes = bytes;
     q.files = {{"gltfpack.glb", bytes}};
+    q.shipped = settings.dir.filename() / output.filename();
     std::string command = "gltfpack -si R";
     for (const auto& flag : flags) command += " " + flag;
     q.details = {{"triangles", packed.faceCount()}, {"over_budget", bytes > budget}, {"command", command}};
@@ -156,6 +158,7 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
                                                   precision)
                                   .bytes}};
     q.bytes = totalBytes(q.files);
+    q.shipped = settings.dir.filename() / dir.filename() / "asset.subd";
     q.details = {{"faces", cage.faceCount()}, {"map_resolution", mapResolution}, {"map_bits", route.bits},
                  {"shading_normal", surface::toString(route.shadingNormal)}};
 

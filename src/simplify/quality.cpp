@@ -15,6 +15,7 @@ nlohmann::json toJson(const Quality& q) {
                         {"mean_distance", q.distance.meanDistance},
                         {"bytes", q.bytes},
                         {"files", q.files}};
+    if (!q.shipped.empty()) j["path"] = q.shipped.generic_string();
     j.update(q.details);
     return j;
 }

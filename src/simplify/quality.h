@@ -28,6 +28,9 @@ struct Quality {
     geometry::SurfaceDistance distance;  // in the reference's units
     std::uintmax_t bytes = 0;
     nlohmann::json files = nlohmann::json::object();  // {shipped file: bytes}
+    // The file a consumer opens (a .glb, or the asset.subd), relative to the output folder:
+    // report.json's `path`, what a viewer shows. Empty: not said.
+    std::filesystem::path shipped;
     nlohmann::json details = nlohmann::json::object();  // what else the report should say
     std::vector<glm::vec4> view;  // held-out view 0 as rendered, for the side-by-side
 };

@@ -54,7 +54,7 @@ struct SimplifyReport {
 };
 
 // report.json: the fit's keys, subdfit's bytes / files / chamfer / hausdorff / mean_distance,
-// `baselines`, `margin_db` (subdfit's held-out PSNR minus each baseline's), `simplify` and, with
+// `baselines` (each with the `path` of its shipped file in DIR), `margin_db` (subdfit's held-out PSNR minus each baseline's), `simplify` and, with
 // a budget, `budget` (its bytes, the candidates tried, the one chosen, `over_budget`).
 nlohmann::json toJson(const SimplifyReport& report);
 

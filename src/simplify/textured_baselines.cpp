@@ -106,6 +106,7 @@ Quality scored(gl::ProgramCache& programs, const fit::FitScene& scene, const std
     Quality q;
     q.bytes = shipped.bytes;
     q.files = {{output.filename().string(), shipped.bytes}};
+    q.shipped = settings.dir.filename() / output.filename();
     q.details = {{"triangles", candidate.faceCount()},
                  {"texture_scale", 1.0 / shipped.divisor},
                  {"texture_bytes", shipped.textureBytes},

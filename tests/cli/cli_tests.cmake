@@ -108,6 +108,7 @@ add_test(NAME cli.simplify.spot
                  -DSTEPS=4 "-DEXTRA=asset.usdz|comparison.png|initial_cage.obj|baselines/decimated.glb|baselines/bake/asset.subd"
                  "-DARGS=simplify|${SUBDFIT_CLI_REFERENCE}|--faces|80|--steps|4|--res|48|--views|2|--holdout-views|1"
                  -P ${SUBDFIT_CLI_SCRIPTS}/expect_success.cmake)
+# Its folder is also the result the viewer's tests show (tests/view/view_tests.cmake).
 set_tests_properties(cli.simplify.spot PROPERTIES LABELS cli TIMEOUT 600 FIXTURES_SETUP simplify_spot)
 
 # What that simplify shipped as USD opens in Pixar's USD with no validation error

@@ -1,18 +1,11 @@
 # Runs subdfit-view under a virtual X server (xvfb-run) for a few frames and checks its
 # screenshot with check_screenshot; with SAVED, also the results it saved on exit.
 #   cmake -DVIEWER=<exe> -DCHECKER=<exe> -DSHOT=<png> -DVIEW_LEFT=<px> -DARGS=<a|b|c>
-#         [-DSAVED=<dir>] -P run_viewer.cmake
+#         [-DSAVED=<dir> [-DSETTINGS=<key=low:high|...>]] -P run_viewer.cmake
+# SETTINGS: report.json's settings.<key> must lie in [low, high].
 # Prints "SKIP:" (the test's SKIP_REGULAR_EXPRESSION) where xvfb-run is not installed.
-foreach(var VIEWER CHECKER SHOT VIEW_LEFT ARGS)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "run_viewer.cmake: -D${var}=... is required")
-  endif()
-endforeach()
-find_program(XVFB_RUN xvfb-run)
-if(NOT XVFB_RUN)
-  message(STATUS "SKIP: xvfb-run not found (Debian: apt-get install xvfb xauth)")
-  return()
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/xvfb_prelude.cmake)
+subdfit_view_prelude(run_viewer.cmake VIEWER CHECKER SHOT VIEW_LEFT ARGS)
 
 get_filename_component(shotFolder "${SHOT}" DIRECTORY)
 file(MAKE_DIRECTORY "${shotFolder}")
@@ -46,4 +39,15 @@ if(SAVED)
   if(NOT finite)
     message(FATAL_ERROR "${SAVED}/report.json: the saved cage is not finite")
   endif()
+  string(REPLACE "|" ";" settings "${SETTINGS}")
+  foreach(setting IN LISTS settings)
+    string(REGEX MATCH "^([a-z_]+)=([^:]+):(.+)$" parsed "${setting}")
+    set(key ${CMAKE_MATCH_1})
+    set(low ${CMAKE_MATCH_2})
+    set(high ${CMAKE_MATCH_3})
+    string(JSON value GET "${report}" settings ${key})
+    if(value LESS low OR value GREATER high)
+      message(FATAL_ERROR "${SAVED}/report.json: settings.${key} is ${value}, expected ${low}..${high}")
+    endif()
+  endforeach()
 endif()

@@ -11,26 +11,35 @@ set(SUBDFIT_VIEW_REFERENCE ${PROJECT_SOURCE_DIR}/assets/spot/spot_triangulated.o
 set(SUBDFIT_VIEW_SMALL --cage ${SUBDFIT_VIEW_CAGE} --reference ${SUBDFIT_VIEW_REFERENCE}
     --res 64 --views 4 --holdout-views 1 --width 640 --height 400)
 
-# subdfit_view_screenshot(NAME [SAVED] ARG...): a screenshot run; with SAVED, --save-on-exit too.
+# subdfit_view_screenshot(NAME [SAVED [SETTINGS key=low:high|...]] ARG...): a screenshot run; with
+# SAVED, --save-on-exit too, and report.json's settings checked against SETTINGS.
 function(subdfit_view_screenshot name)
   set(saved "")
+  set(settings "")
   set(extra ${ARGN})
   if(ARGV1 STREQUAL "SAVED")
     set(saved ${SUBDFIT_VIEW_OUT}/${name}_out)
     list(REMOVE_AT extra 0)
+    list(GET extra 0 next)
+    if(next STREQUAL "SETTINGS")
+      list(GET extra 1 settings)
+      list(REMOVE_AT extra 0 1)
+    endif()
     list(APPEND extra --save-on-exit --out ${saved})
   endif()
   list(JOIN extra "|" args)
   add_test(NAME view.screenshot.${name}
            COMMAND ${CMAKE_COMMAND} -DVIEWER=$<TARGET_FILE:subdfit-view>
                    -DCHECKER=$<TARGET_FILE:subdfit_view_check_screenshot>
-                   -DSHOT=${SUBDFIT_VIEW_OUT}/${name}.png -DVIEW_LEFT=360 -DSAVED=${saved} -DARGS=${args}
-                   -P ${CMAKE_CURRENT_LIST_DIR}/run_viewer.cmake)
+                   -DSHOT=${SUBDFIT_VIEW_OUT}/${name}.png -DVIEW_LEFT=360 -DSAVED=${saved} "-DSETTINGS=${settings}"
+                   -DARGS=${args} -P ${CMAKE_CURRENT_LIST_DIR}/run_viewer.cmake)
   set_tests_properties(view.screenshot.${name} PROPERTIES LABELS view TIMEOUT 120 SKIP_REGULAR_EXPRESSION "SKIP:")
 endfunction()
 
-# The fit, playing for a few frames (it stops at --steps), then saved as `subdfit fit` would.
-subdfit_view_screenshot(fit SAVED ${SUBDFIT_VIEW_SMALL} --steps 3 --frames 5)
+# The fit, playing for a few frames (it stops at --steps), then saved as `subdfit fit` would: its
+# settings say what the command line said (the vertex rates in fractions of the mean edge).
+subdfit_view_screenshot(fit SAVED SETTINGS "epsilon=0.0499:0.0501|learning_rate=0.0999:0.1001"
+                        ${SUBDFIT_VIEW_SMALL} --epsilon 0.05 --lr 0.1 --steps 3 --frames 5)
 # The map variant of the composite pass, the difference heat map and the cage overlay.
 subdfit_view_screenshot(maps_difference ${SUBDFIT_VIEW_SMALL} --maps displacement --steps 2 --frames 3
                         --mode difference --wireframe)
@@ -41,6 +50,20 @@ subdfit_view_screenshot(base_color --cage ${PROJECT_SOURCE_DIR}/assets/osd-shape
                         --reference ${PROJECT_SOURCE_DIR}/assets/gltf/BoxTextured/BoxTextured.glb
                         --res 64 --views 4 --holdout-views 1 --width 640 --height 400 --steps 2 --frames 3
                         --mode base_color)
+
+# A result folder (the short simplify of tests/cli: Spot, its baselines): every column side by
+# side; subdfit's asset on its own is not the reference.
+set(SUBDFIT_VIEW_RESULT ${SUBDFIT_CLI_OUT}/simplify_spot)
+add_test(NAME view.result.columns
+         COMMAND ${CMAKE_COMMAND} -DVIEWER=$<TARGET_FILE:subdfit-view> -DCHECKER=$<TARGET_FILE:subdfit_view_check_screenshot>
+                 -DRESULT=${SUBDFIT_VIEW_RESULT} -DSHOTS=${SUBDFIT_VIEW_OUT}/result
+                 -P ${CMAKE_CURRENT_LIST_DIR}/run_result_view.cmake)
+set_tests_properties(view.result.columns PROPERTIES LABELS view TIMEOUT 180 SKIP_REGULAR_EXPRESSION "SKIP:"
+                     FIXTURES_REQUIRED simplify_spot)
+# The result refined: a fit from its asset and maps against its reference, saved as `fit` would.
+subdfit_view_screenshot(refine SAVED ${SUBDFIT_VIEW_RESULT} --refine --res 48 --views 2 --holdout-views 1 --steps 2
+                        --frames 3 --width 640 --height 400)
+set_tests_properties(view.screenshot.refine PROPERTIES FIXTURES_REQUIRED simplify_spot)
 
 # Refused with one stderr line naming the culprit (tests/cli/expect_failure.cmake), no window needed.
 function(subdfit_view_refuses name expect)
@@ -55,5 +78,9 @@ subdfit_view_refuses(missing_cage ${SUBDFIT_VIEW_OUT}/does_not_exist.obj
                      --cage ${SUBDFIT_VIEW_OUT}/does_not_exist.obj --reference ${SUBDFIT_VIEW_REFERENCE})
 subdfit_view_refuses(map_mode_without_maps --mode --cage ${SUBDFIT_VIEW_CAGE} --reference ${SUBDFIT_VIEW_REFERENCE}
                      --mode displacement)
+# A result that cannot be shown: a damaged asset.subd, a folder that holds no result.
+subdfit_view_refuses(damaged_subd "damaged.subd: checksum mismatch" ${PROJECT_SOURCE_DIR}/tests/data/damaged.subd)
+subdfit_view_refuses(folder_without_result "data: not a subdfit result: no report.json" ${PROJECT_SOURCE_DIR}/tests/data)
+subdfit_view_refuses(neither_result_nor_fit "give a RESULT" --width 640)
 subdfit_view_refuses(appearance_mode_without_material "needs a reference whose material" --cage ${SUBDFIT_VIEW_CAGE}
                      --reference ${SUBDFIT_VIEW_REFERENCE} --mode metallic_roughness)

@@ -1,0 +1,154 @@
+#include "result_scene.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+
+#include "export/subd_decode.h"
+#include "mesh/mesh_loader.h"
+#include "util/error.h"
+
+namespace subdfit::view {
+namespace {
+
+std::string describe(std::uintmax_t bytes, double psnr, double ssim) {
+    char text[96] = "";
+    int n = 0;
+    if (bytes > 0) n += std::snprintf(text + n, sizeof text - n, "%.1f KB", double(bytes) / 1000.0);
+    if (!std::isnan(psnr)) n += std::snprintf(text + n, sizeof text - n, "%s%.2f dB", n ? "  " : "", psnr);
+    if (!std::isnan(ssim)) std::snprintf(text + n, sizeof text - n, "%sSSIM %.3f", n ? "  " : "", ssim);
+    return text;
+}
+
+bool isSubd(const std::filesystem::path& path) {
+    std::string extension = path.extension().string();
+    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return extension == ".subd";
+}
+
+LoadedLevel loadLevel(const std::filesystem::path& path) {
+    LoadedLevel level{.path = path};
+    if (isSubd(path)) level.asset = exporter::readSubd(path);
+    else level.mesh = mesh::triangulated(mesh::loadReference(path));
+    return level;
+}
+
+ColumnInputs fileColumn(const std::filesystem::path& path) {
+    std::error_code ec;
+    const auto bytes = std::filesystem::file_size(path, ec);
+    return {.name = path.filename().string(), .stats = describe(ec ? 0 : bytes, NAN, NAN), .levels = {loadLevel(path)}};
+}
+
+void addFolder(ResultInputs& inputs, const std::filesystem::path& dir) {
+    fit::ResultFolder folder = fit::readResultFolder(dir);
+    if (!folder.reference.empty() && !inputs.folder) {
+        ColumnInputs reference = fileColumn(folder.reference);
+        reference.name = "reference";
+        reference.stats = std::to_string(reference.levels.front().mesh.faceCount()) + " triangles";
+        reference.reference = true;
+        inputs.columns.insert(inputs.columns.begin(), std::move(reference));
+    }
+    for (const auto& entry : folder.entries) {
+        ColumnInputs column{.name = entry.name, .stats = describe(entry.bytes, entry.psnrHoldout, entry.ssimHoldout)};
+        for (const auto& path : entry.levels) column.levels.push_back(loadLevel(path));
+        inputs.columns.push_back(std::move(column));
+    }
+    for (const auto& note : folder.notes) inputs.notes.push_back(dir.filename().string() + ": " + note);
+    if (!inputs.folder) inputs.folder = std::move(folder);
+}
+
+// The frame everything is drawn in: the reference's, as the fit's was; else the first column's.
+scene::SceneFrame frameOf(const ColumnInputs& column) {
+    const LoadedLevel& level = column.levels.front();
+    try {
+        return scene::frameAround(level.asset ? level.asset->cage.positions : level.mesh.positions);
+    } catch (const Error& e) {
+        throw fileError(level.path.string(), e.what());
+    }
+}
+
+// With a reference, everything is shaded as the fit's scene was (settings.shading, or what the
+// reference's materials call for); a file on its own, as its own appearance calls for.
+render::ShadingModel shadingOf(const ResultInputs& inputs, const LoadedLevel& level) {
+    const ColumnInputs& first = inputs.columns.front();
+    if (first.reference) {
+        const std::string asked = inputs.folder ? inputs.folder->settings.value("shading", "auto") : "auto";
+        return asked == "auto" ? render::shadingFor(first.levels.front().mesh) : render::parseShadingModel(asked);
+    }
+    return level.asset ? fit::shadingOf(level.asset->maps) : render::shadingFor(level.mesh);
+}
+
+}  // namespace
+
+ResultInputs loadResultInputs(const std::vector<std::filesystem::path>& results) {
+    ResultInputs inputs;
+    for (const auto& path : results) {
+        std::error_code ec;
+        if (std::filesystem::is_directory(path, ec)) addFolder(inputs, path);
+        else inputs.columns.push_back(fileColumn(path));
+        if (!inputs.title.empty()) inputs.title += ", ";
+        inputs.title += path.string();
+    }
+    SUBDFIT_CHECK(!inputs.columns.empty());
+    inputs.frame = frameOf(inputs.columns.front());
+    return inputs;
+}
+
+ResultColumn::ResultColumn(gl::ProgramCache& programs, const ColumnInputs& inputs, const ResultInputs& scene, int tessLevel)
+    : programs_(programs), inputs_(inputs), scene_(scene), tessLevel_(tessLevel) {
+    build();
+}
+
+void ResultColumn::setLevel(int level) {
+    level_ = std::clamp(level, 0, int(inputs_.levels.size()) - 1);
+    build();
+}
+
+int ResultColumn::tessLevel() const { return asset_ ? asset_->fitter().renderer().tessLevel() : 0; }
+
+void ResultColumn::setTessLevel(int level) {
+    tessLevel_ = level;
+    if (asset_) asset_->setTessLevel(level);
+}
+
+maps::MapEffects ResultColumn::mapEffects() {
+    return asset_ && asset_->fitter().maps() ? asset_->fitter().maps()->effects() : maps::MapEffects{};
+}
+
+void ResultColumn::build() {
+    const LoadedLevel& level = inputs_.levels[size_t(level_)];
+    asset_.reset();
+    mesh_.reset();
+    wireframe_.reset();
+    if (level.asset) {
+        const int tess = tessLevel_ > 0 ? tessLevel_ : exporter::defaultDecodeSegments(*level.asset);
+        asset_ = std::make_unique<fit::ShippedAsset>(programs_, *level.asset, scene_.frame, shadingOf(scene_, level), tess);
+        wireframe_ = std::make_unique<CageWireframe>(asset_->cage());
+        return;
+    }
+    mesh::PolygonMesh triangles = level.mesh;
+    triangles.positions = scene_.frame.toNormalized(triangles.positions);
+    // A baseline without a material (decimation of a plain mesh) is drawn grey, as it was scored.
+    const render::ShadingModel shading =
+        inputs_.reference || triangles.materials ? shadingOf(scene_, level) : render::ShadingModel::Geometry;
+    mesh_ = std::make_unique<render::MeshRenderer>(triangles, shading);
+}
+
+ViewSource ResultColumn::source(ResultColumn* reference) {
+    ViewSource source;
+    if (asset_) {
+        source.draw = [this](const render::Camera& camera, const render::RenderTarget& target) { asset_->draw(camera, target); };
+        source.maps = asset_->fitter().maps();
+        source.wireframe = wireframe_.get();
+        source.cageVertices = &asset_->fitter().vertexGroup().theta;
+    } else {
+        source.draw = [this](const render::Camera& camera, const render::RenderTarget& target) {
+            mesh_->draw(programs_, camera, target);
+        };
+    }
+    if (reference) source.drawReference = reference->source(nullptr).draw;
+    return source;
+}
+
+}  // namespace subdfit::view

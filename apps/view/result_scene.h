@@ -1,0 +1,78 @@
+#pragma once
+// What the result view compares: the reference, subdfit's shipped asset and each baseline (or
+// the files given), each a column drawn in one frame (the reference's) under one camera. The
+// files are read and checked first, with no GL (so a damaged one is refused before a window
+// opens); the columns' GL objects are built once the window's context is current.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "export/subd_format.h"
+#include "fit/result_folder.h"
+#include "fit/shipped_asset.h"
+#include "render/mesh_renderer.h"
+#include "scene/scene_frame.h"
+#include "view_renderer.h"
+
+namespace subdfit::view {
+
+// One file of a column, read: an asset.subd, or triangles (world units) with their appearance.
+struct LoadedLevel {
+    std::filesystem::path path;
+    std::optional<exporter::SubdAsset> asset{};
+    mesh::PolygonMesh mesh{};
+};
+
+struct ColumnInputs {
+    std::string name;   // "reference", "subdfit", a baseline's name, or a file's
+    std::string stats;  // bytes and held-out scores, for the panel and the column's label
+    std::vector<LoadedLevel> levels{};  // finest first; one unless a chain of levels of detail is given
+    bool reference = false;
+};
+
+struct ResultInputs {
+    std::string title;
+    std::vector<ColumnInputs> columns;  // the reference first, when there is one
+    std::vector<std::string> notes;     // what is left out and why
+    std::optional<fit::ResultFolder> folder;  // the first folder given
+    scene::SceneFrame frame;            // the reference's, else the first column's
+};
+
+// Reads every RESULT: a fit or simplify output folder (its reference, asset.subd and baselines),
+// an asset.subd, or a mesh file (.glb, .gltf, .obj, .drc). Throws subdfit::Error "path: problem"
+// for a folder without a result and for a damaged or unreadable file.
+ResultInputs loadResultInputs(const std::vector<std::filesystem::path>& results);
+
+// A column on the GPU, at one level.
+class ResultColumn {
+public:
+    // `tessLevel` 0: decode's default for the asset (its maps' sample density).
+    ResultColumn(gl::ProgramCache& programs, const ColumnInputs& inputs, const ResultInputs& scene, int tessLevel);
+
+    const ColumnInputs& inputs() const { return inputs_; }
+    int level() const { return level_; }
+    void setLevel(int level);
+    // Segments per base-face edge of a subdfit-format column as drawn (0 for triangles).
+    int tessLevel() const;
+    void setTessLevel(int level);
+    bool hasCage() const { return asset_ != nullptr; }
+    maps::MapEffects mapEffects();
+
+    // `reference` (may be null) is what the error view compares with.
+    ViewSource source(ResultColumn* reference);
+
+private:
+    void build();
+
+    gl::ProgramCache& programs_;
+    const ColumnInputs& inputs_;
+    const ResultInputs& scene_;
+    int level_ = 0, tessLevel_;
+    std::unique_ptr<fit::ShippedAsset> asset_;
+    std::unique_ptr<render::MeshRenderer> mesh_;
+    std::unique_ptr<CageWireframe> wireframe_;
+};
+
+}  // namespace subdfit::view
