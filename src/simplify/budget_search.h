@@ -7,6 +7,7 @@
 // within 2 % of the lowest, saving bytes worth the loss, is fitted. The bake stands in for the fit, which starts from it and only improves on it (the
 // fit keeps its best state).
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -54,7 +55,7 @@ struct BudgetSearch {
     maps::MapEffects appearance{};
     std::vector<int> appearanceResolutions{4, 8, 16};
     std::vector<int> appearanceQualities{90};
-    // ... or in the reference's own texture atlas at these sizes (simplify/atlas_bake.h), smallest
+    // ... or in the reference's own texture atlas at these sizes (simplify/bake/atlas_bake.h), smallest
     // first, where the reference allows (atlasSizesFor); such candidates take heights alone.
     std::vector<int> appearanceAtlases;
 };
@@ -88,7 +89,33 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
 // WaterBottle at 20 KB: 28.0 -> 28.9 dB, a 1 936-face cage instead of 761).
 std::vector<int> atlasSizesFor(const mesh::PolygonMesh& reference);
 
-nlohmann::json toJson(const BudgetChoice& choice, std::uintmax_t budget);
+// What an asset.subd ships at once shipWithinBudget has done: bits per map value, the JPEG
+// quality of its appearance images, and its bytes.
+struct BudgetShipment {
+    int mapBits = 0;
+    int appearanceQuality = 0;
+    std::uintmax_t bytes = 0;
+};
+
+// The fitted maps code differently from the baked ones the search measured (and the search
+// does not weigh the appearance maps): when `subd` (`bytes` as written) comes out over `budget`,
+// it is written again with the appearance images at a lower JPEG quality, then with the heights
+// and normals at fewer bits, until it fits or the ladder ends.
+BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t bytes, std::uintmax_t budget,
+                                int mapBits, int appearanceQuality);
+
+// report.json's `budget`: the search and what shipped.
+struct BudgetReport {
+    std::uintmax_t bytes = 0;  // the budget
+    BudgetCandidate chosen;
+    std::vector<BudgetCandidate> tried;
+    double seconds = 0.0;      // the search's
+    BudgetShipment shipped;    // after the fit
+};
+
+// `bytes`, `chosen`, `candidates`, `seconds`, `map_bits` and `appearance_quality` as shipped,
+// and `over_budget`.
+nlohmann::json toJson(const BudgetReport& report);
 
 // "20000", "20K", "20KB", "1.5M", "1.5MB" (K = 1000, M = 10^6; KiB / MiB are 1024-based).
 // Throws subdfit::OptionError("budget", ...) for anything else or a budget under 100 bytes.

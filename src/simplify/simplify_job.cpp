@@ -10,14 +10,14 @@
 #include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
 #include "export/subd_format.h"
-#include "simplify/atlas_bake.h"
-#include "simplify/bake.h"
-#include "simplify/baselines.h"
-#include "simplify/textured_baselines.h"
+#include "simplify/bake/atlas_bake.h"
+#include "simplify/bake/bake.h"
+#include "simplify/compare/baselines.h"
+#include "simplify/compare/textured_baselines.h"
 #include "simplify/budget_search.h"
-#include "simplify/decimate.h"
-#include "simplify/comparison_image.h"
-#include "simplify/initial_cage.h"
+#include "simplify/cage/decimate.h"
+#include "simplify/compare/comparison_image.h"
+#include "simplify/cage/initial_cage.h"
 #include "surface/tessellation.h"
 #include "util/error.h"
 #include "util/warnings.h"
@@ -50,42 +50,18 @@ constexpr int kMostBudgetFaces = 16 * kDefaultFaces;
 // 2 000-face fit does.
 constexpr int kMostFullyFittedFaces = 2 * kDefaultFaces;
 
-// The fitted maps code differently from the baked ones the budget search measured (and the
-// search does not weigh the appearance maps): when the file comes out over, the appearance
-// images get a lower JPEG quality, then the heights and normals fewer bits, until it fits.
-// Returns {"map_bits", "appearance_quality"} as shipped.
-nlohmann::json shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t budget, int mapBits,
-                                int appearanceQuality, fit::FitReport& fitted) {
-    std::uintmax_t& bytes = fitted.exports.at("asset.subd");
-    auto precision = exporter::SubdPrecision::forMapBits(mapBits, appearanceQuality);
-    auto shipped = [&] {
-        return nlohmann::json{{"map_bits", precision.displacementBits}, {"appearance_quality", precision.appearanceQuality}};
-    };
-    if (bytes <= budget) return shipped();
-    const exporter::SubdAsset decoded = exporter::readSubd(subd);
-    std::vector<std::pair<int, int>> ladder;  // (bits, quality), coarser and coarser
-    // Quality in small steps: a JPEG's bytes fall ~5 % a step, and every byte left is detail lost.
-    constexpr int kFewestBits = 6, kLowestQuality = 30, kQualityStep = 5;
-    int quality = appearanceQuality;
-    if (decoded.maps.hasBaseColor() || decoded.maps.hasMetallicRoughness())
-        while (quality - kQualityStep >= kLowestQuality) ladder.emplace_back(mapBits, quality -= kQualityStep);
-    for (int bits = mapBits - 1; bits >= kFewestBits; --bits) ladder.emplace_back(bits, quality);
-    for (size_t k = 0; k < ladder.size(); ++k) {
-        precision = exporter::SubdPrecision::forMapBits(ladder[k].first, ladder[k].second);
-        const auto encoded =
-            exporter::encodeSubd(exporter::shippableAsset(decoded.cage, decoded.maps, precision.positionBits), precision);
-        if (encoded.size() <= budget || k + 1 == ladder.size()) {
-            bytes = exporter::writeBytes(subd, encoded).bytes;
-            if (bytes <= budget) break;
-        }
-    }
-    return shipped();
-}
+// The run decided before it starts, once: the options the fit runs with (with --budget, the
+// search's choice in them), the bake route it is compared with, and the search's report.
+struct SimplifyPlan {
+    fit::FitOptions fit;
+    BakeRoute bakeRoute;
+    std::optional<BudgetReport> budget;
+};
 
-// Scores the fitted scene and both baselines; writes cage.glb, baselines/ and comparison.png
+// Scores the fitted scene and the baselines; writes cage.glb, baselines/ and comparison.png
 // into `out`.
-void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::ProgramCache& programs,
-              const BakeRoute& bakeRoute, fit::FitRun& run, const fit::FitReport& fitted, SimplifyReport& report) {
+void evaluate(const SimplifyOptions& o, const SimplifyPlan& plan, const std::filesystem::path& out,
+              gl::ProgramCache& programs, fit::FitRun& run, SimplifyReport& report) {
     fit::CageFitter& fitter = run.fitter();
     fit::FitScene& scene = run.scene();
     mesh::PolygonMesh cage = scene.cage;
@@ -95,16 +71,16 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
     const int segments = fitter.renderer().tessLevel();
 
     Quality& ours = report.subdfit;
-    shipCage(out / "cage.glb", cageWorld, o.fit.draco);
-    ours.files = shippedFiles(fitted.exports);
+    shipCage(out / "cage.glb", cageWorld, plan.fit.draco);
+    ours.files = shippedFiles(report.fit.exports);
     ours.bytes = totalBytes(ours.files);
     scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
         fitter.render(camera, target);
     }, ours);
     ours.distance = shippedDistance(out / "asset.subd", segments, scene.frame, scene.reference, o.surfaceSamples);
 
-    const BaselineSettings settings{.dir = out / "baselines", .draco = o.fit.draco,
-                                    .compactMaps = o.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments};
+    const BaselineSettings settings{.dir = out / "baselines", .draco = plan.fit.draco,
+                                    .compactMaps = plan.fit.compactMaps, .surfaceSamples = o.surfaceSamples, .segments = segments};
     std::filesystem::create_directories(settings.dir);
     // A material (textured or a plain colour) the triangle baselines must keep, as a user's would.
     if (scene.shading != render::ShadingModel::Geometry && scene.reference.materials) {
@@ -115,12 +91,12 @@ void evaluate(const SimplifyOptions& o, const std::filesystem::path& out, gl::Pr
         report.decimation = decimationBaseline(programs, scene, welded, ours.bytes, settings);
         report.gltfpack = gltfpackBaseline(programs, scene, welded, ours.bytes, settings);
     }
-    report.bake = bakeBaseline(programs, scene, bakeRoute, settings);
-    if (o.budget > 0) report.bake.details["over_budget"] = report.bake.bytes > o.budget;
+    report.bake = bakeBaseline(programs, scene, plan.bakeRoute, settings);
+    if (plan.budget) report.bake.details["over_budget"] = report.bake.bytes > plan.budget->bytes;
     std::vector<const std::vector<glm::vec4>*> columns{&ours.view, &report.decimation.view};
     if (report.gltfpack) columns.push_back(&report.gltfpack->view);
     columns.push_back(&report.bake.view);
-    writeComparison(out / "comparison.png", o.fit.resolution, scene.holdout.readColor(0), columns);
+    writeComparison(out / "comparison.png", plan.fit.resolution, scene.holdout.readColor(0), columns);
 }
 
 // How `parameters`' appearance is baked: its lattice, or its atlas.
@@ -177,74 +153,92 @@ bool widenToHeights(fit::FitRun& run) {
     return true;
 }
 
-// Where the fit starts: without a budget, the initial cage of --faces; with one, the budget
-// search's choice (simplify/budget_search.h), whose maps, resolution and bits go into `o` and
-// `fitOptions`, and whose best candidate with maps is the bake route at those bytes.
-struct Start {
-    nlohmann::json budget;              // the search's report, null without a budget
-    std::optional<BakeRoute> bakeRoute;  // none: the initial cage with the run's maps
-};
+// The bake route of a cage (normalised frame) with the run's own maps.
+BakeRoute bakeRouteOf(const mesh::PolygonMesh& cage, const fit::FitOptions& fit) {
+    return {.cage = cage, .effects = fit.maps, .resolution = fit.mapResolution, .bits = fit.mapBits,
+            .appearanceResolution = fit.appearanceResolution, .appearanceQuality = fit.appearanceQuality,
+            .appearanceAtlas = fit.appearanceAtlas, .shadingNormal = surface::shadingNormalNamed(fit.shadingNormal)};
+}
 
-Start chooseStart(SimplifyOptions& o, fit::FitOptions& fitOptions, gl::ProgramCache& programs, fit::FitScene& scene,
-                  const mesh::PolygonMesh& reference, bool stepsByDevice, const fit::FitHooks& hooks) {
-    Start start;
-    if (o.budget <= 0) {
-        scene.setCage(initialCage(reference, {.faces = o.faces > 0 ? o.faces : kDefaultFaces}));
-        return start;
+// Without a budget the fit starts from the initial cage of --faces, with the options as given.
+SimplifyPlan planByFaces(const SimplifyOptions& o, fit::FitOptions fitOptions, fit::FitScene& scene,
+                         const mesh::PolygonMesh& reference) {
+    scene.setCage(initialCage(reference, {.faces = o.faces > 0 ? o.faces : kDefaultFaces}));
+    BakeRoute route = bakeRouteOf(scene.cage, fitOptions);
+    return {.fit = std::move(fitOptions), .bakeRoute = std::move(route), .budget = std::nullopt};
+}
+
+// What the budget search tries for `o` on `scene`.
+BudgetSearch budgetSearchFor(const SimplifyOptions& o, std::uintmax_t budget, const fit::FitScene& scene) {
+    return {.budget = budget,
+            .faceCounts = o.faces > 0 ? std::vector<int>{o.faces}
+                                      : faceCountsFor(budget, scene.reference.faceCount(), kMostBudgetFaces),
+            .allowedMaps = o.fit.maps,
+            .appearance = {.baseColor = scene.shading != render::ShadingModel::Geometry,
+                           .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness},
+            .appearanceQualities = {o.fit.appearanceQuality},
+            .appearanceAtlases = o.fit.appearanceAtlas > 0 ? std::vector<int>{o.fit.appearanceAtlas}
+                                                          : atlasSizesFor(scene.reference)};
+}
+
+// The search's choice into the fit's options: its maps, their resolution, bits and shading
+// normal, its appearance; and for a dense cage fewer steps, unless --steps was given.
+void applyChoice(const BudgetCandidate& chosen, int cageFaces, bool stepsByDevice, fit::FitOptions& fit) {
+    fit.maps = chosen.maps;
+    if (chosen.appearanceResolution > 0 || chosen.appearanceAtlas > 0) {
+        if (chosen.appearanceResolution > 0) fit.appearanceResolution = chosen.appearanceResolution;
+        fit.appearanceAtlas = chosen.appearanceAtlas;
+        fit.appearanceQuality = chosen.appearanceQuality;
     }
-    const BudgetSearch search{.budget = o.budget,
-                              .faceCounts = o.faces > 0 ? std::vector<int>{o.faces}
-                                                        : faceCountsFor(o.budget, scene.reference.faceCount(), kMostBudgetFaces),
-                              .allowedMaps = o.fit.maps,
-                              .appearance = {.baseColor = scene.shading != render::ShadingModel::Geometry,
-                                             .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness},
-                              .appearanceQualities = {o.fit.appearanceQuality},
-                              .appearanceAtlases = o.fit.appearanceAtlas > 0 ? std::vector<int>{o.fit.appearanceAtlas}
-                                                                              : atlasSizesFor(scene.reference)};
-    if (hooks.note) hooks.note("budget " + std::to_string(o.budget) + " bytes: trying candidates");
-    const auto searchStarted = std::chrono::steady_clock::now();
-    const BudgetChoice choice = searchBudget(programs, scene, reference, search, hooks.note);
-    fitOptions.maps = o.fit.maps = choice.chosen.maps;
-    if (choice.chosen.appearanceResolution > 0 || choice.chosen.appearanceAtlas > 0) {
-        if (choice.chosen.appearanceResolution > 0)
-            fitOptions.appearanceResolution = o.fit.appearanceResolution = choice.chosen.appearanceResolution;
-        fitOptions.appearanceAtlas = o.fit.appearanceAtlas = choice.chosen.appearanceAtlas;
-        fitOptions.appearanceQuality = o.fit.appearanceQuality = choice.chosen.appearanceQuality;
-    }
-    if (choice.chosen.mapResolution > 0) {
-        fitOptions.mapResolution = o.fit.mapResolution = choice.chosen.mapResolution;
-        fitOptions.mapBits = o.fit.mapBits = choice.chosen.mapBits;
-        fitOptions.shadingNormal = o.fit.shadingNormal = surface::toString(choice.chosen.shadingNormal);
+    if (chosen.mapResolution > 0) {
+        fit.mapResolution = chosen.mapResolution;
+        fit.mapBits = chosen.mapBits;
+        fit.shadingNormal = surface::toString(chosen.shadingNormal);
         // The search judged this cage with maps baked onto it as it is: the fit refines that
-        // (moving the cage first would leave what was judged; measured on the relief Spot at
-        // 20 KB: 3.06e-3 mean distance after 400 cage steps and the bake on the fitted cage,
-        // 2.36e-3 refining the judged bake, in half the time).
-        fitOptions.mapsStart = o.fit.mapsStart = 0.0f;
+        // from the start (moving the cage first would leave what was judged).
+        fit.mapsStart = 0.0f;
     }
-    if (const int faces = choice.cageWorld.faceCount(); stepsByDevice && faces > kMostFullyFittedFaces)
-        fitOptions.steps = o.fit.steps = std::max(1, int(std::lround(double(o.fit.steps) * kMostFullyFittedFaces / faces)));
+    if (stepsByDevice && cageFaces > kMostFullyFittedFaces)
+        fit.steps = std::max(1, int(std::lround(double(fit.steps) * kMostFullyFittedFaces / cageFaces)));
+}
+
+// The bake route at the budget's bytes: the search's best candidate with maps, as it is; when
+// none fits, the chosen cage with the cheapest maps the search tries (reported over budget),
+// not the default maps at many times the bytes; with no maps allowed, the chosen cage with the
+// run's own.
+BakeRoute budgetBakeRoute(const BudgetChoice& choice, const BudgetSearch& search, const fit::FitOptions& fit,
+                          const fit::FitScene& scene) {
+    if (!choice.bestWithMaps && !search.allowedMaps.geometric()) return bakeRouteOf(scene.cage, fit);
+    const BudgetCandidate route = choice.bestWithMaps ? *choice.bestWithMaps
+                                                      : BudgetCandidate{.maps = search.allowedMaps,
+                                                                        .mapResolution = search.mapResolutions.front(),
+                                                                        .mapBits = search.mapBits.front()};
+    mesh::PolygonMesh cage = choice.bestWithMaps ? choice.bestWithMapsCage : choice.cageWorld;
+    cage.positions = scene.frame.toNormalized(cage.positions);
+    const bool appearance = route.appearanceResolution > 0 || route.appearanceAtlas > 0;
+    return {.cage = std::move(cage), .effects = route.maps, .resolution = route.mapResolution, .bits = route.mapBits,
+            .appearanceResolution = appearance ? route.appearanceResolution : fit.appearanceResolution,
+            .appearanceQuality = appearance ? route.appearanceQuality : fit.appearanceQuality,
+            .appearanceAtlas = appearance ? route.appearanceAtlas : fit.appearanceAtlas,
+            .shadingNormal = route.shadingNormal};
+}
+
+// With a budget the fit starts from the search's choice (simplify/budget_search.h).
+SimplifyPlan planWithinBudget(const SimplifyOptions& o, std::uintmax_t budget, fit::FitOptions fitOptions,
+                              gl::ProgramCache& programs, fit::FitScene& scene, const mesh::PolygonMesh& reference,
+                              const fit::FitHooks& hooks) {
+    const BudgetSearch search = budgetSearchFor(o, budget, scene);
+    if (hooks.note) hooks.note("budget " + std::to_string(budget) + " bytes: trying candidates");
+    const auto searchStarted = std::chrono::steady_clock::now();
+    BudgetChoice choice = searchBudget(programs, scene, reference, search, hooks.note);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - searchStarted).count();
+    applyChoice(choice.chosen, choice.cageWorld.faceCount(), o.fit.steps == fit::kByDevice, fitOptions);
     scene.setCage(choice.cageWorld);
-    start.budget = toJson(choice, o.budget);
-    start.budget["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - searchStarted).count();
-    // The bake route at these bytes: the search's best candidate with maps, as it is; when none
-    // fits, the chosen cage with the cheapest maps the search tries (reported over budget), not
-    // the default maps at many times the bytes.
-    if (choice.bestWithMaps || search.allowedMaps.geometric()) {
-        const BudgetCandidate route = choice.bestWithMaps ? *choice.bestWithMaps
-                                                          : BudgetCandidate{.maps = search.allowedMaps,
-                                                                            .mapResolution = search.mapResolutions.front(),
-                                                                            .mapBits = search.mapBits.front()};
-        mesh::PolygonMesh bakeCage = choice.bestWithMaps ? choice.bestWithMapsCage : choice.cageWorld;
-        bakeCage.positions = scene.frame.toNormalized(bakeCage.positions);
-        const bool appearance = route.appearanceResolution > 0 || route.appearanceAtlas > 0;
-        start.bakeRoute = BakeRoute{.cage = std::move(bakeCage), .effects = route.maps, .resolution = route.mapResolution,
-                                    .bits = route.mapBits,
-                                    .appearanceResolution = appearance ? route.appearanceResolution : o.fit.appearanceResolution,
-                                    .appearanceQuality = appearance ? route.appearanceQuality : o.fit.appearanceQuality,
-                                    .appearanceAtlas = appearance ? route.appearanceAtlas : o.fit.appearanceAtlas,
-                                    .shadingNormal = route.shadingNormal};
-    }
-    return start;
+    BakeRoute route = budgetBakeRoute(choice, search, fitOptions, scene);
+    return {.fit = std::move(fitOptions),
+            .bakeRoute = std::move(route),
+            .budget = BudgetReport{.bytes = budget, .chosen = choice.chosen, .tried = std::move(choice.tried), .seconds = seconds,
+                                   .shipped = {}}};
 }
 
 // Never a silent loss: an appearance on tiles carries the fitted colours and the reference's
@@ -259,12 +253,43 @@ void warnOfWhatTilesLeaveOut(const std::filesystem::path& path, const mesh::Poly
          " (the look may differ)");
 }
 
+// The appearance starts as the bake onto the starting cage: a grey surface against a coloured
+// target would pull the cage where the colours differ, not the shape. A resumed run has its
+// texels from the checkpoint, but an atlas's corner coordinates and the textures carried
+// unfitted are not parameters: they come from the same bake.
+void startAppearance(fit::FitRun& run, bool resumed) {
+    maps::MapParameters* parameters = run.fitter().maps();
+    if (!parameters || !parameters->effects().appearance()) return;
+    const fit::FitScene& scene = run.scene();
+    const surface::SurfaceMaps baked = bakeAppearance(scene.cage, scene.reference, appearanceBakeOf(*parameters));
+    if (!resumed) run.startFrom(baked);
+    else {
+        if (baked.appearanceAtlas.present()) parameters->setAppearanceUvs(baked.appearanceAtlas.cornerUvs);
+        parameters->setCarriedTextures(baked);
+    }
+}
+
+// The fit's stages, resumed from `checkpoint` when asked: the cage alone; the maps baked onto it;
+// the maps refined on the frozen cage. Unlike `fit`, an interrupted simplify writes no results:
+// they would cost the baselines' time after the user asked to stop, and the checkpoint keeps
+// the steps taken.
+void fitStages(fit::FitRun& run, const std::filesystem::path& checkpoint, bool resume, const fit::FitHooks& hooks) {
+    const bool resumed = resume && run.resume(checkpoint);
+    if (resume && !resumed && hooks.note)
+        hooks.note("no checkpoint at " + checkpoint.string() + " to resume: starting from step 0");
+    startAppearance(run, resumed);
+    if (run.run(checkpoint, hooks, [&](bool fresh) { startMaps(run, fresh); }, [&] { return widenToHeights(run); }) ==
+        fit::StopReason::Cancelled)
+        throw Interrupted("interrupted at step " + std::to_string(run.step()) + " of " +
+                          std::to_string(run.options().steps) + ", checkpointed in " + checkpoint.string());
+}
+
 }  // namespace
 
 void validate(const SimplifyOptions& o) {
     if (o.faces != 0 && (o.faces < 4 || o.faces > 1000000))
         throw OptionError("faces", "must be in 4..1000000, got " + std::to_string(o.faces));
-    if (o.budget != 0 && o.budget < 100) throw OptionError("budget", "must be at least 100 bytes");
+    if (o.budget && *o.budget < 100) throw OptionError("budget", "must be at least 100 bytes");
     if (o.surfaceSamples < 1000) throw OptionError("surface_samples", "must be >= 1000");
     if (o.fit.appearanceAtlas > 0 && o.fit.maps.normalMap)
         throw OptionError("appearance_atlas", "takes heights alone (--maps displacement): the atlas's texture coordinates "
@@ -275,7 +300,7 @@ void validate(const SimplifyOptions& o) {
 nlohmann::json settingsJson(const SimplifyOptions& o) {
     nlohmann::json settings = fit::settingsJson(o.fit);
     settings["faces"] = o.faces;
-    settings["budget"] = o.budget;
+    settings["budget"] = o.budget.value_or(0);  // 0: none, as batch identities have always read it
     settings["surface_samples"] = o.surfaceSamples;
     return settings;
 }
@@ -297,80 +322,50 @@ nlohmann::json toJson(const SimplifyReport& r) {
         report["baselines"]["gltfpack"] = {{"skipped", "gltfpack is not on PATH (Debian: apt-get install gltfpack)"}};
     }
     report["simplify"] = {{"faces_requested", r.facesRequested}, {"reference_triangles", r.fit.referenceTriangles}};
-    if (!r.budget.is_null()) {
-        report["budget"] = r.budget;
-        report["budget"]["over_budget"] = r.subdfit.bytes > r.budget["bytes"].get<std::uintmax_t>();
-    }
+    if (r.budget) report["budget"] = toJson(*r.budget);
     return report;
 }
 
 SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& hooks) {
     validate(options);
-    io::checkOutputFolder(options.fit.out, {.ownMarkers = fit::kFitResultMarkers, .force = options.fit.force});
+    const std::filesystem::path& out = options.fit.out;
+    io::checkOutputFolder(out, {.ownMarkers = fit::kFitResultMarkers, .force = options.fit.force});
     const auto started = std::chrono::steady_clock::now();
-    SimplifyOptions o = options;
-    const mesh::PolygonMesh reference = mesh::loadReference(o.fit.reference);
-    if (o.fit.appearanceAtlas > 0)
+    const mesh::PolygonMesh reference = mesh::loadReference(options.fit.reference);
+    if (options.fit.appearanceAtlas > 0)
         if (const std::string why = atlasUnsuitability(reference); !why.empty())
             throw OptionError("appearance_atlas", "needs a reference whose appearance is one textured material; " +
-                                                      o.fit.reference.string() + ": " + why);
+                                                      options.fit.reference.string() + ": " + why);
 
-    auto context = context::createHeadlessContext(o.fit.glProvider);
-    const std::string chosen = fit::resolveForCurrentDevice(o.fit);
+    auto context = context::createHeadlessContext(options.fit.glProvider);
+    fit::FitOptions fitOptions = options.fit;
+    const std::string chosen = fit::resolveForCurrentDevice(fitOptions);
     if (!chosen.empty() && hooks.note) hooks.note(chosen);
     gl::ProgramCache programs(gl::platformDefines());
-    fit::FitOptions fitOptions = o.fit;
-    fitOptions.cage = o.fit.out / "initial_cage.obj";  // where the report says the cage came from
+    fitOptions.cage = out / "initial_cage.obj";  // where the report says the cage came from
     fit::FitScene scene(fitOptions, programs, {}, reference);
-    const Start start = chooseStart(o, fitOptions, programs, scene, reference, options.fit.steps == fit::kByDevice, hooks);
-    if (scene.shading != render::ShadingModel::Geometry && fitOptions.appearanceAtlas == 0)
-        warnOfWhatTilesLeaveOut(o.fit.reference, reference, o.budget > 0,
+    const SimplifyPlan plan =
+        options.budget ? planWithinBudget(options, *options.budget, std::move(fitOptions), programs, scene, reference, hooks)
+                       : planByFaces(options, std::move(fitOptions), scene, reference);
+    if (scene.shading != render::ShadingModel::Geometry && plan.fit.appearanceAtlas == 0)
+        warnOfWhatTilesLeaveOut(options.fit.reference, reference, plan.budget.has_value(),
                                 scene.shading == render::ShadingModel::MetallicRoughness);
     const mesh::PolygonMesh cage = scene.cageWorld;
-    fit::FitRun run(fitOptions, programs, scene);
-    const auto checkpoint = o.fit.out / "checkpoint.bin";
-    const bool resumed = o.fit.resume && run.resume(checkpoint);
-    if (o.fit.resume && !resumed && hooks.note)
-        hooks.note("no checkpoint at " + checkpoint.string() + " to resume: starting from step 0");
-    // The appearance starts as the bake onto the starting cage: a grey surface against a
-    // coloured target would pull the cage where the colours differ, not the shape.
-    // A resumed run has its texels from the checkpoint, but an atlas's corner coordinates and
-    // the textures carried unfitted are not parameters: they come from the same bake.
-    if (maps::MapParameters* parameters = run.fitter().maps(); parameters && parameters->effects().appearance()) {
-        const surface::SurfaceMaps baked = bakeAppearance(scene.cage, scene.reference, appearanceBakeOf(*parameters));
-        if (!resumed) run.startFrom(baked);
-        else {
-            if (baked.appearanceAtlas.present()) parameters->setAppearanceUvs(baked.appearanceAtlas.cornerUvs);
-            parameters->setCarriedTextures(baked);
-        }
-    }
-
-    // Stages: the cage alone; the maps baked onto it; the maps refined on the frozen cage.
-    // Unlike `fit`, an interrupted simplify writes no results: they would cost the baselines'
-    // time after the user asked to stop, and the checkpoint keeps the steps taken.
-    auto interrupted = [&] {
-        return Interrupted("interrupted at step " + std::to_string(run.step()) + " of " + std::to_string(o.fit.steps) +
-                           ", checkpointed in " + checkpoint.string());
-    };
-    if (run.run(checkpoint, hooks, [&](bool fresh) { startMaps(run, fresh); }, [&] { return widenToHeights(run); }) ==
-        fit::StopReason::Cancelled)
-        throw interrupted();
+    fit::FitRun run(plan.fit, programs, scene);
+    fitStages(run, out / "checkpoint.bin", options.fit.resume, hooks);
 
     // Every result lands in one commit, or none does.
-    io::StagedFolder staged(o.fit.out);
+    io::StagedFolder staged(out);
     mesh::writeObj(staged.path() / "initial_cage.obj", cage);
-    SimplifyReport report{.fit = run.writeResults(staged.path(), *context), .gltfpack = std::nullopt, .facesRequested = o.faces,
-                          .budget = start.budget};
-    if (o.budget > 0) report.budget.update(shipWithinBudget(staged.path() / "asset.subd", o.budget, o.fit.mapBits,
-                                                                  o.fit.appearanceQuality, report.fit));
-    const BakeRoute bakeRoute = start.bakeRoute ? *start.bakeRoute
-                                                : BakeRoute{.cage = scene.cage, .effects = o.fit.maps,
-                                                            .resolution = o.fit.mapResolution, .bits = o.fit.mapBits,
-                                                            .appearanceResolution = o.fit.appearanceResolution,
-                                                            .appearanceQuality = o.fit.appearanceQuality,
-                                                            .appearanceAtlas = o.fit.appearanceAtlas,
-                                                            .shadingNormal = surface::shadingNormalNamed(o.fit.shadingNormal)};
-    evaluate(o, staged.path(), programs, bakeRoute, run, report.fit, report);
+    SimplifyReport report{.fit = run.writeResults(staged.path(), *context), .gltfpack = std::nullopt,
+                          .facesRequested = options.faces, .budget = plan.budget};
+    if (report.budget) {
+        std::uintmax_t& bytes = report.fit.exports.at("asset.subd");
+        report.budget->shipped = shipWithinBudget(staged.path() / "asset.subd", bytes, report.budget->bytes,
+                                                  plan.fit.mapBits, plan.fit.appearanceQuality);
+        bytes = report.budget->shipped.bytes;
+    }
+    evaluate(options, plan, staged.path(), programs, run, report);
     report.fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     io::writeTextAtomically(staged.path() / "report.json", toJson(report).dump(2) + "\n");
     staged.commit();

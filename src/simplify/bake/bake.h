@@ -32,7 +32,7 @@ struct AppearanceBakeOptions {
     int resolution = 16;  // cells per ptex-face edge of the appearance lattice
     float maxDistance = 0.0f;  // as BakeOptions
     // Texels per side of an atlas in the reference's own texture space instead of tiles
-    // (simplify/atlas_bake.h; the reference must be suitable); 0: tiles.
+    // (simplify/bake/atlas_bake.h; the reference must be suitable); 0: tiles.
     int atlas = 0;
     // Tiles: node values fitted so that the lattice matches the material across each cell (the
     // nodes' samples and 2 × 2 more a cell, least squares) rather than point-sampled at the nodes.

@@ -1,4 +1,4 @@
-#include "simplify/comparison_image.h"
+#include "simplify/compare/comparison_image.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
