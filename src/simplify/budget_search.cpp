@@ -20,8 +20,8 @@
 namespace subdfit::simplify {
 namespace {
 
-// A decimated cage costs about this many bytes per triangle in asset.subd (Draco connectivity
-// and 14-bit positions; 2.8 KB for a 1 000-triangle bunny cage): where the ladder starts.
+// A rough price of a bare decimated cage in asset.subd, bytes a triangle (Draco connectivity,
+// 14-bit positions): where the ladder starts. Each candidate's real bytes are then measured.
 constexpr double kBytesPerCageFace = 2.5;
 constexpr double kLadderStep = 1.6;
 constexpr int kLadderLength = 7;
@@ -92,18 +92,15 @@ double lossOn(fit::CageFitter& fitter, std::initializer_list<const scene::Target
     return weighted / views;
 }
 
-// Within this fraction of the lowest monitor loss, fewer bytes win: on the bunny at 100 KB the
-// lowest loss (2 440 faces, T = 4, 10 bits: 84.8 KB) was 1.9 % under the same heights at 8 bits
-// (55.5 KB): 0.08 dB, within the monitor's own noise, for half as many bytes again ...
+// Within this fraction of the lowest monitor loss, fewer bytes win: a difference that small is
+// within the monitor's own noise ...
 constexpr double kLossTolerance = 0.02;
 // ... but only where the bytes saved are worth it: at least this many times the loss given up,
-// both relative. On the relief WaterBottle at 40 KB a bare 6 249-face cage came within 2.0 % of
-// the lowest (1 513 faces with heights) for 0.7 % fewer bytes, and ended 0.35 dB lower.
+// both relative (saving a few bytes for a loss near the tolerance is a loss).
 constexpr double kBytesPerLoss = 5.0;
-// Four monitor views rank candidates this close to the lowest no better than chance: on the Duck
-// at 20 KB they put 126 faces at T = 8 12 % ahead of 320 faces at T = 4, which ended 0.8 dB
-// behind it on the held-out views. Those within this fraction are scored again on the training
-// views too, and the choice among them is made on that score.
+// Four monitor views rank candidates this close to the lowest no better than chance: those
+// within this fraction are scored again on the training views too, and the choice among them is
+// made on that score.
 constexpr double kNearTie = 0.2;
 
 // A candidate within the budget, the cage it was built on and its asset as shipped.
@@ -411,10 +408,8 @@ std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, in
     const double largest = std::min({double(budget) / kBytesPerCageFace, 0.5 * double(referenceTriangles), double(mostFaces)});
     std::vector<int> counts;
     // Above the ladder, as many faces as the reference has triangles where the budget holds them:
-    // a light asset (the WaterBottle's 4 510 triangles at 40 KB, which gltfpack ships whole)
-    // shades best from a cage of its own density (42.3 dB, against 36.7 from half as many faces).
-    // On top of the ladder rather than its start: moving every rung moved the Duck's at 20 KB
-    // off its best (320 faces, grown to 372: 39.81 dB; 642 on the moved ladder: 38.95).
+    // a light asset shades best from a cage of its own density. On top of the ladder rather than
+    // its start, so that the rungs below stay where they are.
     const double denser = std::min({double(budget) / kBytesPerCageFace, double(referenceTriangles), double(mostFaces)});
     if (denser > 1.25 * largest) counts.push_back(int(std::lround(denser)));
     const size_t above = counts.size();

@@ -28,8 +28,7 @@ namespace {
 
 // Baked maps are already close: the fit only refines them, with steps this much smaller than
 // a fit from flat maps takes (each texel's estimate is noisy, and Adam's steps do not shrink
-// with the signal). Measured on Spot (300 faces, T = 4): 0.1 and 0.02 both end within 0.1 dB
-// of the bake itself, 1 loses 5 dB to noise.
+// with the signal).
 constexpr float kRefineRate = 0.02f;
 
 // What subdfit ships: asset.subd (cage and maps, export/subd_format.h). cage.glb, the map
@@ -38,16 +37,13 @@ nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports
     return {{"asset.subd", exports.at("asset.subd")}};
 }
 
-// The budget search's largest cage. A dense bare cage ships for ~2.2 bytes a face and its limit
-// surface shades closer than heights on a coarse one (bunny, 17.4 KB: 8 000 bare faces 37.1 dB,
-// 1 069 faces with T = 3 heights 34.8 dB; at 100 KB, 16 000 bare faces reach in 32 KB the
-// 38.7 dB that 8 000 faces with T = 2 heights reached in 71 KB). Past subdiv::kDenseCageFaces a
-// cage is drawn one isolation level shallower, a quarter of the triangles a step.
+// The budget search's largest cage: a dense bare cage ships cheaply, and its limit surface can
+// shade closer than heights on a coarse one, so the search must be able to reach one. Past
+// subdiv::kDenseCageFaces a cage is drawn one isolation level shallower, which keeps it affordable.
 constexpr int kMostBudgetFaces = 16 * kDefaultFaces;
 // Past this many faces the fit of a budget's cage takes proportionally fewer steps (unless
-// --steps was given): the search's bake is already close (on the relief Spot and the bunny the
-// fit of 2 000-8 000-face cages kept its start), and --budget should cost about what a
-// 2 000-face fit does.
+// --steps was given): the search's bake of a dense cage is already close, and --budget should
+// cost about what a fit of this many faces does.
 constexpr int kMostFullyFittedFaces = 2 * kDefaultFaces;
 
 // The run decided before it starts, once: the options the fit runs with (with --budget, the
@@ -132,8 +128,7 @@ void startMaps(fit::FitRun& run, bool bake) {
     // The bake fits this cage: moving it now would slide the maps off the detail they hold.
     fitter.setOptimised(fitter.vertexGroup(), false);
     // With an appearance, the fit refines it alone first: heights that move beside it can undo
-    // its gain (the Duck at 20 KB, 126 faces, T = 8: held-out 38.95 dB refining the colour alone,
-    // 38.26 = the bake with the heights moving too); widenToHeights lets them in after.
+    // its gain; widenToHeights lets them in after.
     const bool appearance = parameters->effects().appearance();
     for (auto* g : parameters->groups()) {
         const bool appearanceGroup = g == parameters->baseColor() || g == parameters->metallicRoughness();
@@ -143,9 +138,8 @@ void startMaps(fit::FitRun& run, bool bake) {
 }
 
 // Once the appearance has converged, the heights join it for the steps left: where the cage
-// is too coarse for the reference's relief, the images move them past what the bake could (the
-// relief Duck at 20 KB, 476 faces, T = 3: bake 29.56 dB, the colour alone 29.76, then the
-// heights 30.83). The stage ends at its best state, so it never undoes the appearance's gain.
+// is too coarse for the reference's relief, the images move them past what the bake could. The
+// stage ends at its best state, so it never undoes the appearance's gain.
 bool widenToHeights(fit::FitRun& run) {
     auto* parameters = run.fitter().maps();
     if (!parameters || !parameters->effects().appearance() || !parameters->displacement()) return false;

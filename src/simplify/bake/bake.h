@@ -38,8 +38,8 @@ struct AppearanceBakeOptions {
     // nodes' samples and 2 × 2 more a cell, least squares) rather than point-sampled at the nodes.
     bool acrossCells = true;
     // With an atlas: its normal texture also carries the reference's shading normals
-    // (bakeAtlasAppearance). Off by default: on the Duck and the WaterBottle every atlas
-    // candidate of the budget search lost 0–10 % monitor loss with it and grew by 0.7–1.5 KB.
+    // (bakeAtlasAppearance). Off by default: it costs bytes and has not paid for them in the
+    // budget search (docs/measurements.md).
     bool shadingNormals = false;
 };
 
