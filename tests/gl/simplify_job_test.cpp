@@ -127,8 +127,8 @@ TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
         EXPECT_EQ(readBytes(dir / "straight" / map), readBytes(dir / "resumed" / map)) << map;
 }
 
-// Same inputs, same seed, same machine: the same bytes (README, Determinism). G sums in fixed
-// point and every CPU stage is ordered, so nothing varies but the run time.
+// Same inputs, same seed, same machine: the same bytes (docs/architecture.md, Determinism). G
+// sums in fixed point and every CPU stage is ordered, so nothing varies but the run time.
 TEST(SimplifyJob, TwoRunsOfOneSeedWriteTheSameFiles) {
     const auto dir = scratchDir("simplify_repeat");
     mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 4));
