@@ -89,9 +89,9 @@ void evaluate(const SimplifyOptions& o, const SimplifyPlan& plan, const std::fil
     }
     report.bake = bakeBaseline(programs, scene, plan.bakeRoute, settings);
     if (plan.budget) report.bake.details["over_budget"] = report.bake.bytes > plan.budget->bytes;
-    std::vector<const std::vector<glm::vec4>*> columns{&ours.view, &report.decimation.view};
-    if (report.gltfpack) columns.push_back(&report.gltfpack->view);
-    columns.push_back(&report.bake.view);
+    std::vector<ComparisonColumn> columns{{"subdfit", &ours}, {"decimation + Draco", &report.decimation}};
+    if (report.gltfpack) columns.push_back({"gltfpack", &*report.gltfpack});
+    columns.push_back({"bake", &report.bake});
     writeComparison(out / "comparison.png", plan.fit.resolution, scene.holdout.readColor(0), columns);
 }
 
