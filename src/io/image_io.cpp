@@ -36,11 +36,13 @@ const char* formatOf(const unsigned char* p, std::size_t n) {
 // The font every caption is drawn in, as OpenImageIO finds it among the system's fonts.
 constexpr const char* kCaptionFont = "DejaVuSans";
 
-// Draws `texts` into `rgb` (8-bit RGB, rows top-down, as `spec` says). Without the font, warns
-// once and draws nothing.
+// Draws `texts` into `rgb` (8-bit RGB, rows top-down, as `spec` says), clipped to the image.
+// Without the font, warns once and draws nothing.
 void drawTexts(const OIIO::ImageSpec& spec, std::vector<unsigned char>& rgb, const std::vector<ImageText>& texts) {
     OIIO::ImageBuf image(spec, rgb.data());
     for (const ImageText& t : texts) {
+        // OpenImageIO 2.4 aborts on a text whose rows all lie outside the image.
+        if (t.y >= spec.height || t.y + t.size <= 0 || t.x >= spec.width) continue;
         const float colour[3] = {t.colour.r, t.colour.g, t.colour.b};
         if (!OIIO::ImageBufAlgo::render_text(image, t.x, t.y, t.text, t.size, kCaptionFont, colour,
                                              OIIO::ImageBufAlgo::TextAlignX::Left,

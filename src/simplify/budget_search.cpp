@@ -96,7 +96,7 @@ double lossOn(fit::CageFitter& fitter, std::initializer_list<const scene::Target
 // within the monitor's own noise ...
 constexpr double kLossTolerance = 0.02;
 // ... but only where the bytes saved are worth it: at least this many times the loss given up,
-// both relative (saving a few bytes for a loss near the tolerance is a loss).
+// both relative (a few bytes saved are not worth a loss near the tolerance).
 constexpr double kBytesPerLoss = 5.0;
 // Four monitor views rank candidates this close to the lowest no better than chance: those
 // within this fraction are scored again on the training views too, and the choice among them is
@@ -108,7 +108,7 @@ struct Fitting {
     BudgetCandidate candidate;
     std::shared_ptr<const mesh::PolygonMesh> cageWorld;
     std::shared_ptr<const std::vector<unsigned char>> encoded;
-    size_t tried;  // its place in BudgetChoice::tried
+    size_t tried;  // its place in Findings::tried
 };
 
 double monitored(const BudgetCandidate& c) { return c.monitorLoss; }

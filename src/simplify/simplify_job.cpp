@@ -294,7 +294,7 @@ void validate(const SimplifyOptions& o) {
 nlohmann::json settingsJson(const SimplifyOptions& o) {
     nlohmann::json settings = fit::settingsJson(o.fit);
     settings["faces"] = o.faces;
-    settings["budget"] = o.budget.value_or(0);  // 0: none, as batch identities have always read it
+    settings["budget"] = o.budget.value_or(0);  // 0: none, as a batch asset's identity hashes it
     settings["surface_samples"] = o.surfaceSamples;
     return settings;
 }

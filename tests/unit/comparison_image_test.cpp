@@ -58,5 +58,19 @@ TEST(ComparisonImage, EveryColumnAndTheErrorRowAreLabelled) {
     EXPECT_GT(error[0], 100);  // an RMS error of 0.2: red towards yellow
 }
 
+// A picture too small for its captions (as the tests' quick runs make) is written all the same,
+// the captions that do not fit left out.
+TEST(ComparisonImage, ATinyPictureLeavesOutWhatDoesNotFit) {
+    constexpr int kRes = 16;
+    const std::vector<glm::vec4> reference(kRes * kRes, glm::vec4(0.3f, 0.3f, 0.3f, 1.0f));
+    simplify::Quality ours;
+    ours.view = reference;
+    const auto path = scratchDir("comparison_image_tiny") / "comparison.png";
+    simplify::writeComparison(path, kRes, reference, {{"subdfit", &ours}});
+    const io::DecodedImage image = io::readImage(path);
+    EXPECT_EQ(image.width, 2 * kRes);
+    EXPECT_GE(image.height, 2 * kRes);
+}
+
 }  // namespace
 }  // namespace subdfit::test
