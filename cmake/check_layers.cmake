@@ -18,7 +18,21 @@ function(_subdfit_layers_below name out)
   set(${out} ${result} PARENT_SCOPE)
 endfunction()
 
-# `layers`: "name:dep,dep" entries.
+# The layer an `#include "a/b/file.h"` line reaches into: the deepest of `names` whose folder
+# holds the file (a/b, else a), or "" for a folder that is no layer.
+function(_subdfit_layer_of line names out)
+  string(REGEX REPLACE "^#include \"([a-z_/]+)/[^/\"]*\".*" "\\1" folder "${line}")
+  while(NOT folder IN_LIST names AND folder MATCHES "/")
+    string(REGEX REPLACE "/[^/]*$" "" folder "${folder}")
+  endwhile()
+  if(NOT folder IN_LIST names)
+    set(folder "")
+  endif()
+  set(${out} "${folder}" PARENT_SCOPE)
+endfunction()
+
+# `layers`: "name:dep,dep" entries; a name may be a subfolder of another layer's (simplify/cage).
+# Each layer's own files are those directly in its folder.
 function(_subdfit_check source layers)
   set(names "")
   foreach(entry IN LISTS layers)
@@ -40,10 +54,10 @@ function(_subdfit_check source layers)
     list(APPEND allowed ${name})
     file(GLOB files ${source}/${name}/*.h ${source}/${name}/*.cpp)
     foreach(file IN LISTS files)
-      file(STRINGS ${file} includes REGEX "^#include \"[a-z_]+/")
+      file(STRINGS ${file} includes REGEX "^#include \"[a-z_/]+/")
       foreach(line IN LISTS includes)
-        string(REGEX REPLACE "^#include \"([a-z_]+)/.*" "\\1" included "${line}")
-        if(included IN_LIST names AND NOT included IN_LIST allowed)
+        _subdfit_layer_of("${line}" "${names}" included)
+        if(included AND NOT included IN_LIST allowed)
           file(RELATIVE_PATH shown ${source} ${file})
           string(APPEND problems "\n  src/${shown}: ${line} (layer '${name}' does not depend on '${included}')")
         endif()

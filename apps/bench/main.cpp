@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
     auto* stepCostCommand = app.add_subcommand("step-cost", "SGE step time / forward render time, and scaling");
     stepCostCommand->add_option("--out", stepCost.out, "folder for step_cost.csv");
     stepCostCommand->add_option("--repeats", stepCost.repeats, "timed repeats (best of)")->capture_default_str();
-    stepCostCommand->add_option("--gl", stepCost.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+    subdfit::apps::addGlProvider(*stepCostCommand, stepCost.glProvider);
 
     subdfit::bench::LumpySphereOptions lumpy;
     auto* lumpyCommand = app.add_subcommand("lumpy-sphere", "fit a quad-sphere cage to a lumpy sphere (the peer's task)");
@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
     lumpyCommand->add_option("--steps", lumpy.steps, "optimisation steps")->capture_default_str();
     lumpyCommand->add_option("--res", lumpy.resolution, "resolution")->capture_default_str();
     lumpyCommand->add_option("--views", lumpy.views, "training views")->capture_default_str();
-    lumpyCommand->add_option("--gl", lumpy.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+    subdfit::apps::addGlProvider(*lumpyCommand, lumpy.glProvider);
 
     subdfit::bench::SimplifyTradeoffOptions tradeoff;
     auto* simplifyCommand = app.add_subcommand("simplify", "simplify at byte budgets: PSNR and mean surface distance against bytes, vs the baselines");
@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
     simplifyCommand->add_option("--budgets", tradeoff.budgets, "byte budgets")->capture_default_str();
     simplifyCommand->add_option("--steps", tradeoff.steps, "optimisation steps per run (default: the device's)");
     simplifyCommand->add_option("--res", tradeoff.resolution, "render resolution (default: the device's)");
-    simplifyCommand->add_option("--gl", tradeoff.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+    subdfit::apps::addGlProvider(*simplifyCommand, tradeoff.glProvider);
 
     subdfit::bench::ConvergenceOptions convergence;
     auto* convergenceCommand =
@@ -61,13 +61,13 @@ int main(int argc, char** argv) {
     mapsCommand->add_option("--out", mapsGain.out, "output folder")->capture_default_str();
     mapsCommand->add_option("--steps", mapsGain.steps, "optimisation steps per run")->capture_default_str();
     mapsCommand->add_option("--map-res", mapsGain.mapResolution, "map cells per face edge")->capture_default_str();
-    mapsCommand->add_option("--gl", mapsGain.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+    subdfit::apps::addGlProvider(*mapsCommand, mapsGain.glProvider);
 
     subdfit::bench::AccuracyOptions accuracy;
     auto* accuracyCommand = app.add_subcommand("accuracy", "held-out PSNR and Chamfer against wall time, knob by knob");
     accuracyCommand->add_option("--out", accuracy.out, "output folder")->capture_default_str();
     accuracyCommand->add_option("--steps", accuracy.baseSteps, "base step count")->capture_default_str();
-    accuracyCommand->add_option("--gl", accuracy.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+    subdfit::apps::addGlProvider(*accuracyCommand, accuracy.glProvider);
 
     subdfit::bench::ReliefOptions relief;
     auto* reliefCommand = app.add_subcommand("relief", "write a dense reference: a cage's limit surface with fine procedural relief");
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
     auto* gradientCommand = app.add_subcommand("gradient", "SGE gradient quality against cost; per-pixel vs full-image; ε");
     gradientCommand->add_option("--out", gradient.out, "output folder")->capture_default_str();
     gradientCommand->add_option("--samples", gradient.maxSamples, "largest k")->capture_default_str();
-    gradientCommand->add_option("--gl", gradient.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+    subdfit::apps::addGlProvider(*gradientCommand, gradient.glProvider);
 
     subdfit::bench::SoupOptions soup;
     auto* soupCommand = app.add_subcommand("soup", "triangle soup fitted to an image: per-pixel vs full-image SGE (Fig. 2)");
@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
     soupCommand->add_option("--steps", soup.steps, "optimisation steps per estimator")->capture_default_str();
     soupCommand->add_option("--res", soup.resolution, "resolution")->capture_default_str();
     soupCommand->add_option("--seconds", soup.seconds, "step-time budget per estimator (0: none)")->capture_default_str();
-    soupCommand->add_option("--gl", soup.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();
+    subdfit::apps::addGlProvider(*soupCommand, soup.glProvider);
 
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit-bench")) return *exitCode;
     try {

@@ -44,10 +44,9 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
             s.fit.glProvider = o.glProvider;
             s.fit.force = true;
             const auto report = simplify::runSimplify(s);
-            const auto& chosen = report.budget["chosen"];
-            const std::string choice = std::to_string(chosen["faces"].get<int>()) + " faces, " +
-                                       chosen["maps"].get<std::string>() + " T=" +
-                                       std::to_string(chosen["map_resolution"].get<int>());
+            const simplify::BudgetCandidate& chosen = report.budget->chosen;
+            const std::string choice = std::to_string(chosen.faces) + " faces, " + maps::toString(chosen.maps) +
+                                       " T=" + std::to_string(chosen.mapResolution);
             std::vector<std::pair<std::string, const simplify::Quality*>> methods{
                 {"subdfit", &report.subdfit}, {"decimation", &report.decimation}, {"bake", &report.bake}};
             if (report.gltfpack) methods.insert(methods.begin() + 2, {"gltfpack", &*report.gltfpack});

@@ -7,6 +7,7 @@
 
 #include <type_traits>
 
+#include "context/gl_context.h"
 #include "fit/fit_options.h"
 
 namespace subdfit::apps {
@@ -38,6 +39,11 @@ inline void addFitSettings(CLI::App& app, fit::FitOptions& fit) {
             else option->check(CLI::Range(info.min, info.max));  // the core takes kByDevice as "not given"; a user may not
         }
     });
+}
+
+// --gl for a command whose options are its own (the benchmarks): the flag and help of the table's row.
+inline CLI::Option* addGlProvider(CLI::App& app, std::string& provider) {
+    return app.add_option("--gl", provider, context::kGlProviderHelp)->capture_default_str();
 }
 
 inline void addFitOptions(CLI::App& app, fit::FitOptions& fit) {

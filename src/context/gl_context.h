@@ -22,6 +22,9 @@ public:
 // tessellation, compute). Throws subdfit::Error with a clear message otherwise.
 std::unique_ptr<GlContext> createHeadlessContext(const std::string& provider = "auto");
 
+// The names createHeadlessContext takes, as every command's --gl help says them.
+inline constexpr const char* kGlProviderHelp = "GL provider: auto, osmesa, egl";
+
 // Loads GL entry points through `context` and checks version and limits. Used by every
 // provider, the viewer's GLFW one included.
 void loadGl(GlContext& context);

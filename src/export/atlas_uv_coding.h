@@ -14,18 +14,18 @@
 // A quad's corners are predicted by the parallelogram of its other three (else a neighbour, else
 // the value coded last); a triangle's vertex corners by the parallelogram across the edge between
 // its two others when a triangle coded before holds that edge with the same values, else (and an
-// n-gon's) by the one before; then its edge midpoints by
-// the mean of the edge's ends and its centre by the mean of its vertices, which inside a chart is
-// within a fraction of a texel (the face's texture is about affine), so that the two thirds of
-// a triangle cage's values that sit at midpoints and centres cost a few bits each.
+// n-gon's) by the one before; then its edge midpoints by the mean of the edge's ends and its
+// centre by the mean of its vertices, which inside a chart is within a fraction of a texel (the
+// face's texture is about affine), so that the two thirds of a triangle cage's values that sit
+// at midpoints and centres cost a few bits each.
 #include "export/byte_stream.h"
 #include "mesh/polygon_mesh.h"
 #include "surface/appearance_atlas.h"
 
 namespace subdfit::exporter {
 
-// Bits under the point: a quarter of a texel (the fit places corners no better than that: on the
-// WaterBottle 1/16 cost 3.6 KB more for the same image).
+// Bits under the point: a quarter of a texel. The fit places corners no better than that, so
+// finer bits cost bytes for the same image.
 int atlasUvBits(int atlasSize);
 
 void writeAtlasUvs(const mesh::PolygonMesh& cage, const surface::AppearanceAtlas& atlas, ByteWriter& out);

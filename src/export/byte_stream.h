@@ -62,6 +62,12 @@ public:
         const std::uint64_t v = getVarint();
         return std::int64_t(v >> 1) ^ -std::int64_t(v & 1);
     }
+    // An index below `limit`: refused, naming `what` ("crease vertex"), when it is not.
+    int getIndex(std::uint64_t limit, const char* what) {
+        const std::uint64_t v = getVarint();
+        if (v >= limit) throw Error(what_ + ": " + what + " " + std::to_string(v) + " out of range");
+        return int(v);
+    }
     // A count of items that each take at least `minBytes`: refused before anything is allocated
     // when the rest of the data could not hold them.
     std::size_t getCount(std::size_t minBytes, const char* of) {

@@ -88,12 +88,6 @@ Grid readGrid(ByteReader& in) {
     return grid;
 }
 
-int readIndex(ByteReader& in, std::uint64_t limit, const char* what) {
-    const std::uint64_t v = in.getVarint();
-    if (v >= limit) throw Error(in.what() + ": " + what + " " + std::to_string(v) + " out of range");
-    return int(v);
-}
-
 // --- OpenSubdiv tags, in the decoded numbering --------------------------------------------
 
 void writeTags(const mesh::SubdivisionTags& t, const CageCorrespondence& to, ByteWriter& out) {
@@ -127,17 +121,17 @@ void readTags(ByteReader& in, mesh::PolygonMesh& cage) {
     t.hasBoundary = t.hasFaceVaryingBoundary = t.hasCreaseMethod = t.hasTriangles = true;
     t.creases.resize(in.getCount(6, "crease"));
     for (auto& c : t.creases) {
-        c.v0 = readIndex(in, vertices, "crease vertex");
-        c.v1 = readIndex(in, vertices, "crease vertex");
+        c.v0 = in.getIndex(vertices, "crease vertex");
+        c.v1 = in.getIndex(vertices, "crease vertex");
         c.sharpness = in.get<float>();
     }
     t.corners.resize(in.getCount(5, "corner"));
     for (auto& c : t.corners) {
-        c.vertex = readIndex(in, vertices, "corner vertex");
+        c.vertex = in.getIndex(vertices, "corner vertex");
         c.sharpness = in.get<float>();
     }
     t.holes.resize(in.getCount(1, "hole"));
-    for (int& face : t.holes) face = readIndex(in, faces, "hole face");
+    for (int& face : t.holes) face = in.getIndex(faces, "hole face");
 }
 
 // --- plain: positions as they are, indices as deltas ---------------------------------------
@@ -163,7 +157,7 @@ void readPlain(ByteReader& in, const Grid& grid, std::size_t vertices, std::size
     cage.faceSizes.resize(faces);
     std::uint64_t corners = 0;
     for (int& size : cage.faceSizes) {
-        size = readIndex(in, std::uint64_t(mesh::kMaxCageFaceSize) + 1, "face size");
+        size = in.getIndex(std::uint64_t(mesh::kMaxCageFaceSize) + 1, "face size");
         corners += std::uint64_t(size);
     }
     if (corners > in.remaining()) throw Error(in.what() + ": truncated face indices");

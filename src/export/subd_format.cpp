@@ -38,12 +38,6 @@ constexpr std::uint32_t kMaxRawSection = 1u << 30;
 
 std::string tagName(const Tag& tag) { return std::string(tag.begin(), tag.end()); }
 
-int readIndex(ByteReader& in, std::uint64_t limit, const char* what) {
-    const std::uint64_t v = in.getVarint();
-    if (v >= limit) throw Error(in.what() + ": " + what + " " + std::to_string(v) + " out of range");
-    return int(v);
-}
-
 // The first ptex face of every face, then the count: a quad has one, an n-gon n
 // (Far::PtexIndices).
 std::vector<int> firstPtexFaces(const mesh::PolygonMesh& cage) {
@@ -52,9 +46,6 @@ std::vector<int> firstPtexFaces(const mesh::PolygonMesh& cage) {
     return first;
 }
 
-// Node values of `maps` carried onto the decoded cage's layout: each decoded tile takes the
-// values of the tile it came from, turned by the face's rotation (a quad's (i, j) rotates; an
-// n-gon's per-corner tiles are renumbered).
 // Node values on `from` (laid out on `cage`) carried onto `to` (the same resolution, laid out on
 // `decoded`): each decoded tile takes the values of the tile it came from, turned by the face's
 // rotation (a quad's (i, j) rotates; an n-gon's per-corner tiles are renumbered).
@@ -159,7 +150,7 @@ void writeMaps(const surface::TexelLayout& layout, const std::vector<float>& val
 // makes (built on the first map of that lattice, the same for the next).
 void readLattice(ByteReader& in, const mesh::PolygonMesh& cage, surface::TexelLayout& layout) {
     // Tiles have at most 64 cells a side; an atlas lattice is its texture's, up to 16384 texels.
-    const int resolution = readIndex(in, layout.resolution > 0 ? std::uint64_t(layout.resolution) + 1 : 65, "map resolution");
+    const int resolution = in.getIndex(layout.resolution > 0 ? std::uint64_t(layout.resolution) + 1 : 65, "map resolution");
     if (resolution < 1) throw Error(in.what() + ": map resolution 0");
     if (layout.resolution == 0) layout = surface::buildTexelLayout(cage, resolution);
     if (layout.resolution != resolution) throw Error(in.what() + ": the maps disagree on their resolution");

@@ -35,9 +35,8 @@ public:
     // Relaxes towards centroid + restOffsets(cage, ..., restPasses) (< 0: the bare centroid).
     explicit CageRelaxation(const mesh::PolygonMesh& cage, int restPasses = kRestPasses);
 
-    // Three rounds of averaging: on OpenSubdiv's creased shapes noised by 3 % (8 views, 400
-    // steps, --relax 0.1) the vertex error fell on bishop, helmet and single_crease where the
-    // bare centroid left it equal or worse (subdfit-bench recovery; figures in the README).
+    // Three rounds of averaging: on noised creased cages the bare centroid leaves the vertex
+    // error equal or worse where this lowers it (subdfit-bench recovery, docs/measurements.md).
     static constexpr int kRestPasses = 3;
 
     // θ += rate · (tangential move towards the neighbours' centroid), every vertex at once.

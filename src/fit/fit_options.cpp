@@ -1,5 +1,6 @@
 #include "fit/fit_options.h"
 
+#include "context/gl_context.h"
 #include "render/shading_model.h"
 
 #include <algorithm>
@@ -75,7 +76,7 @@ const std::vector<OptionRow>& optionTable() {
         {{"resume", "--resume", "continue from DIR/checkpoint.bin (same inputs and settings)"}, &F::resume},
         {{"force", "--force", "write into --out even if it holds other files"}, &F::force},
         {{"checkpoint_every", "--checkpoint-every", "steps between checkpoints", 1, 1e9}, &F::checkpointEvery},
-        {{"gl", "--gl", "GL provider: auto, osmesa, egl"}, &F::glProvider},
+        {{"gl", "--gl", context::kGlProviderHelp}, &F::glProvider},
         {{"schedule", "--schedule",
           "plateau: halve the step when the fit stalls, stop when converged (steps: the most); anneal: x0.1 over the steps",
           1, 0, false, true, true},

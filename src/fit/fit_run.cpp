@@ -140,8 +140,8 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
         if (decision.action == StepSchedule::Action::Halve) {
             // Clearly worse than the best (not only noisier): back to the best state, with the
             // smaller step. A start that was already close (a limit-interpolated cage, baked
-            // maps) is not left where too large a step took it: a 1 000-face bunny cage's loss
-            // doubled in its first 10 steps and took 300 to come back.
+            // maps) is not left where too large a step took it, which can take hundreds of steps
+            // to come back from.
             if (monitorLoss > kRestoreAbove * schedule_.bestLoss) restoreBest();
             fitter_->setLearningRateScale(schedule.learningRateScale());
         }

@@ -16,7 +16,7 @@ constexpr float kFramedWidth = 2.3f;  // normalised units across the rendered vi
 constexpr float kEpsilonPixels = 0.9f, kStepPixels = 0.45f;
 // And never more than this in the normalised frame, whatever the resolution: beyond it a coarse
 // cage's few vertices each move so much surface per step that the estimate stops pointing
-// downhill (catmark_cube_creases1 at 128² never improved on its noised start).
+// downhill.
 constexpr float kEpsilonMax = 0.008f, kStepMax = 0.004f;
 // The cage edge (a quarter of the scene radius) at and above which --smoothing is λ itself.
 constexpr float kReferenceEdge = 0.25f;

@@ -12,6 +12,7 @@
 #include "io/atomic_file.h"
 #include "io/input_file.h"
 #include "util/error.h"
+#include "util/warnings.h"
 
 namespace subdfit::io {
 namespace {
@@ -30,6 +31,29 @@ const char* formatOf(const unsigned char* p, std::size_t n) {
     if (starts("II*") || starts("MM\0*")) return "tif";
     if (starts("\x76\x2f\x31\x01")) return "exr";
     return nullptr;
+}
+
+// The font every caption is drawn in, as OpenImageIO finds it among the system's fonts.
+constexpr const char* kCaptionFont = "DejaVuSans";
+
+// Draws `texts` into `rgb` (8-bit RGB, rows top-down, as `spec` says), clipped to the image.
+// Without the font, warns once and draws nothing.
+void drawTexts(const OIIO::ImageSpec& spec, std::vector<unsigned char>& rgb, const std::vector<ImageText>& texts) {
+    OIIO::ImageBuf image(spec, rgb.data());
+    for (const ImageText& t : texts) {
+        // OpenImageIO 2.4 aborts on a text whose rows all lie outside the image.
+        if (t.y >= spec.height || t.y + t.size <= 0 || t.x >= spec.width) continue;
+        const float colour[3] = {t.colour.r, t.colour.g, t.colour.b};
+        if (!OIIO::ImageBufAlgo::render_text(image, t.x, t.y, t.text, t.size, kCaptionFont, colour,
+                                             OIIO::ImageBufAlgo::TextAlignX::Left,
+                                             OIIO::ImageBufAlgo::TextAlignY::Top)) {
+            static bool warned = false;
+            if (!warned) warn(std::string("no captions on images: the font ") + kCaptionFont +
+                              " was not found (Debian: apt-get install fonts-dejavu-core)");
+            warned = true;
+            return;
+        }
+    }
 }
 
 }  // namespace
@@ -101,6 +125,11 @@ DecodedImage readImage(const std::filesystem::path& path) {
 }
 
 void writeImage(const std::filesystem::path& path, const std::vector<glm::vec4>& pixels, int width, int height) {
+    writeImage(path, pixels, width, height, {});
+}
+
+void writeImage(const std::filesystem::path& path, const std::vector<glm::vec4>& pixels, int width, int height,
+                const std::vector<ImageText>& texts) {
     std::vector<unsigned char> rgb(size_t(width) * height * 3);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
@@ -108,10 +137,11 @@ void writeImage(const std::filesystem::path& path, const std::vector<glm::vec4>&
             for (int c = 0; c < 3; ++c)
                 rgb[(size_t(y) * width + x) * 3 + c] = (unsigned char)(std::clamp(p[c], 0.0f, 1.0f) * 255.0f + 0.5f);
         }
+    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
+    if (!texts.empty()) drawTexts(spec, rgb, texts);
     writeAtomically(path, [&](const std::filesystem::path& temporary) {
         auto out = OIIO::ImageOutput::create(temporary.string());
         if (!out) throw fileError(path.string(), "no image writer for this extension");
-        OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
         if (!out->open(temporary.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
             !out->close())
             throw fileError(path.string(), "could not write image: " + out->geterror());

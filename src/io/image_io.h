@@ -12,6 +12,21 @@ namespace subdfit::io {
 // extension (PNG, ...), atomically. Throws subdfit::Error naming the file on failure.
 void writeImage(const std::filesystem::path& path, const std::vector<glm::vec4>& pixels, int width, int height);
 
+// A line of text on an image: its top-left corner at pixel (x, y) counted from the image's
+// top-left corner, `size` pixels tall (UTF-8).
+struct ImageText {
+    std::string text;
+    int x = 0, y = 0;
+    int size = 14;
+    glm::vec4 colour{1.0f};
+};
+
+// writeImage with `texts` drawn over the pixels, anti-aliased, in DejaVu Sans (Debian's
+// fonts-dejavu-core, through OpenImageIO and FreeType). Where the font cannot be found, the
+// image is written without them and one warning says so: a caption is not worth a failed run.
+void writeImage(const std::filesystem::path& path, const std::vector<glm::vec4>& pixels, int width, int height,
+                const std::vector<ImageText>& texts);
+
 // An image as 8-bit RGBA, top row first (as files store them).
 struct DecodedImage {
     int width = 0, height = 0;

@@ -84,6 +84,83 @@ void writeStatusOrSay(const fs::path& dir, const std::string& state, const nlohm
     }
 }
 
+// What became of an asset that neither failed nor was interrupted.
+enum class AssetOutcome { Finished, Skipped, RunningElsewhere };
+
+// The identity of `item`; of an unreadable input only its path (simplify will say why, in its status).
+nlohmann::json identityOrPath(const BatchItem& item) {
+    try {
+        return identityOf(item);
+    } catch (const Interrupted&) {
+        throw;
+    } catch (const Error&) {
+        return nlohmann::json{{"input", {{"path", item.options.fit.reference.string()}}}};
+    }
+}
+
+// Simplifies `item` into its partial folder and renames that into place once done.
+void simplifyInto(const BatchItem& item, const AssetPaths& paths, const nlohmann::json& identity,
+                  const fit::FitHooks& hooks, const BatchLog& say) {
+    SimplifyOptions options = item.options;
+    options.fit.out = paths.partial;
+    options.fit.resume = fs::exists(paths.partial / "checkpoint.bin");
+    options.fit.force = true;  // the folder is ours, status.json and all
+    say(item.name + (options.fit.resume ? ": resuming from its checkpoint" : ": starting"));
+    writeStatus(paths.partial, "running", identity);
+    try {
+        const auto report = runSimplify(options, hooks);
+        nlohmann::json details = identity;
+        details.update({{"psnr_holdout", report.fit.holdoutAfter.psnr}, {"bytes", report.subdfit.bytes}});
+        writeStatus(paths.partial, "done", details);
+        fs::remove_all(paths.finished);  // a stale folder: not done, or from another input
+        fs::rename(paths.partial, paths.finished);
+    } catch (const Interrupted&) {
+        writeStatusOrSay(paths.partial, "interrupted", identity, say, item.name);
+        throw;
+    }
+}
+
+// One asset under its lock: skipped when another process holds the lock or when it is done from
+// the same input and settings; otherwise simplified, its partial work kept when it is from the
+// same input. Throws what the simplify throws.
+AssetOutcome runAsset(const BatchItem& item, const fs::path& out, const fit::FitHooks& hooks, const BatchLog& say) {
+    const AssetPaths paths(out, item.name);
+    const auto lock = io::FileLock::tryAcquire(paths.lock);
+    if (!lock) {
+        say(item.name + ": running elsewhere (another process holds its lock), skipped");
+        return AssetOutcome::RunningElsewhere;
+    }
+    // Under the lock, the folders can only change by our hand.
+    const nlohmann::json identity = identityOrPath(item);
+    const nlohmann::json finishedStatus = readStatus(paths.finished);
+    if (stateOf(finishedStatus) == "done") {
+        if (sameIdentity(finishedStatus, identity)) {
+            say(item.name + ": done already, skipped");
+            return AssetOutcome::Skipped;
+        }
+        say(item.name + ": its finished folder was made from another version of the input: redoing it");
+    }
+    if (fs::exists(paths.partial) && !sameIdentity(readStatus(paths.partial), identity)) {
+        say(item.name + ": its partial work was for another version of the input: starting over");
+        fs::remove_all(paths.partial);
+    }
+    fs::create_directories(paths.partial);
+    simplifyInto(item, paths, identity, hooks, say);
+    return AssetOutcome::Finished;
+}
+
+// A failed asset's status, where its work would be, when that folder is ours to write.
+void recordFailure(const BatchItem& item, const fs::path& out, const std::exception& e, const BatchLog& say) {
+    say(item.name + ": failed: " + e.what());
+    const fs::path partial = out / (item.name + ".partial");
+    std::error_code ec;
+    if (io::isStrictlyInside(partial, out) && !fs::is_symlink(fs::symlink_status(partial, ec))) {
+        fs::create_directories(partial, ec);
+        writeStatusOrSay(partial, "failed", {{"error", e.what()}, {"reference", item.options.fit.reference.string()}},
+                         say, item.name);
+    }
+}
+
 }  // namespace
 
 Shard parseShard(const std::string& text) {
@@ -142,7 +219,7 @@ std::vector<std::string> nameItems(std::vector<BatchItem>& items, const std::vec
 
 BatchSummary runBatch(const std::vector<BatchItem>& items, const fs::path& out, Shard shard,
                       const fit::FitHooks& hooks, const BatchLog& log, bool force) {
-    auto say = [&](const std::string& line) { if (log) log(line); };
+    const BatchLog say = [&](const std::string& line) { if (log) log(line); };
     auto stopRequestedHere = [&] { return stopRequested() || (hooks.cancel && hooks.cancel->load()); };
     io::checkOutputFolder(out, {.ownMarkers = {kBatchFolder}, .force = force});
     fs::create_directories(out / kBatchFolder);
@@ -159,71 +236,18 @@ BatchSummary runBatch(const std::vector<BatchItem>& items, const fs::path& out, 
         }
         const BatchItem& item = items[k];
         try {
-            const AssetPaths paths(out, item.name);
-            const auto lock = io::FileLock::tryAcquire(paths.lock);
-            if (!lock) {
-                ++summary.runningElsewhere;
-                say(item.name + ": running elsewhere (another process holds its lock), skipped");
-                continue;
-            }
-            // Under the lock, the folders can only change by our hand.
-            const nlohmann::json identity = [&] {
-                try {
-                    return identityOf(item);
-                } catch (const Interrupted&) {
-                    throw;
-                } catch (const Error&) {  // an unreadable input: simplify will say why, in its status
-                    return nlohmann::json{{"input", {{"path", item.options.fit.reference.string()}}}};
-                }
-            }();
-            const nlohmann::json finishedStatus = readStatus(paths.finished);
-            if (stateOf(finishedStatus) == "done") {
-                if (sameIdentity(finishedStatus, identity)) {
-                    ++summary.skipped;
-                    say(item.name + ": done already, skipped");
-                    continue;
-                }
-                say(item.name + ": its finished folder was made from another version of the input: redoing it");
-            }
-            if (fs::exists(paths.partial) && !sameIdentity(readStatus(paths.partial), identity)) {
-                say(item.name + ": its partial work was for another version of the input: starting over");
-                fs::remove_all(paths.partial);
-            }
-            fs::create_directories(paths.partial);
-
-            SimplifyOptions options = item.options;
-            options.fit.out = paths.partial;
-            options.fit.resume = fs::exists(paths.partial / "checkpoint.bin");
-            options.fit.force = true;  // the folder is ours, status.json and all
-            say(item.name + (options.fit.resume ? ": resuming from its checkpoint" : ": starting"));
-            writeStatus(paths.partial, "running", identity);
-            try {
-                const auto report = runSimplify(options, hooks);
-                nlohmann::json details = identity;
-                details.update({{"psnr_holdout", report.fit.holdoutAfter.psnr}, {"bytes", report.subdfit.bytes}});
-                writeStatus(paths.partial, "done", details);
-                fs::remove_all(paths.finished);  // a stale folder: not done, or from another input
-                fs::rename(paths.partial, paths.finished);
-                ++summary.finished;
-            } catch (const Interrupted&) {
-                writeStatusOrSay(paths.partial, "interrupted", identity, say, item.name);
-                throw;
+            switch (runAsset(item, out, hooks, say)) {
+                case AssetOutcome::Finished: ++summary.finished; break;
+                case AssetOutcome::Skipped: ++summary.skipped; break;
+                case AssetOutcome::RunningElsewhere: ++summary.runningElsewhere; break;
             }
         } catch (const Interrupted& e) {
             say(item.name + ": " + e.what());
             summary.interrupted = true;
             break;
         } catch (const std::exception& e) {
-            // Recorded where the asset's work would be, when that folder is ours to write.
             ++summary.failed;
-            say(item.name + ": failed: " + e.what());
-            const fs::path partial = out / (item.name + ".partial");
-            std::error_code ec;
-            if (io::isStrictlyInside(partial, out) && !fs::is_symlink(fs::symlink_status(partial, ec))) {
-                fs::create_directories(partial, ec);
-                writeStatusOrSay(partial, "failed", {{"error", e.what()}, {"reference", item.options.fit.reference.string()}},
-                                 say, item.name);
-            }
+            recordFailure(item, out, e, say);
         }
     }
     return summary;

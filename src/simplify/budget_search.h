@@ -4,9 +4,11 @@
 // resolutions and bit depths; every candidate is encoded exactly as it would ship (asset.subd:
 // its bytes), decoded again and rendered on the monitor views (its loss); those within 20 % of
 // the lowest are rendered on the training views as well, and of them the smallest whose loss is
-// within 2 % of the lowest, saving bytes worth the loss, is fitted. The bake stands in for the fit, which starts from it and only improves on it (the
-// fit keeps its best state).
+// within 2 % of the lowest, saving bytes worth the loss, is fitted. The bake stands in for the
+// fit, which starts from it and only improves on it (the fit keeps its best state).
+// docs/simplify.md walks through the phases.
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -47,14 +49,12 @@ struct BudgetSearch {
     std::vector<int> mapBits{8, 10};
     // A scene with materials: every candidate carries the appearance maps its shading reads
     // (baked, shipped as JPEG), at one of these resolutions and the first of these qualities at
-    // which the bare cage fits. More choices made the search slower and no better: on the Duck
-    // at 20 KB, resolutions 2-16 and qualities 90-45 chose 514 faces with T = 2 colour (39.61 dB
-    // after the fit, 18.4 KB) over 320 faces with T = 4 (39.48 dB, 16.6 KB), searching for 149 s
-    // instead of 39; on the WaterBottle at 40 KB 36.80 over 36.69 dB, 146 s instead of 16.
+    // which the bare cage fits. More choices make the search several times slower for a tenth
+    // of a dB or less.
     maps::MapEffects appearance{};
     std::vector<int> appearanceResolutions{4, 8, 16};
     std::vector<int> appearanceQualities{90};
-    // ... or in the reference's own texture atlas at these sizes (simplify/atlas_bake.h), smallest
+    // ... or in the reference's own texture atlas at these sizes (simplify/bake/atlas_bake.h), smallest
     // first, where the reference allows (atlasSizesFor); such candidates take heights alone.
     std::vector<int> appearanceAtlases;
 };
@@ -82,13 +82,38 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
                           const std::function<void(const std::string&)>& say = {});
 
 // The atlas sizes worth trying on `reference`: its texture at 1/32, 1/16 and 1/8 of its size (the
-// texture scales the triangle baselines reach at 20-100 KB on the Duck and the WaterBottle, dense
-// or not), 32 to 512 texels; none when its appearance cannot stay in its atlas. 1/32 is what lets
-// heights or a denser cage in beside four textures at tight budgets (a 1.15 M-triangle relief
-// WaterBottle at 20 KB: 28.0 -> 28.9 dB, a 1 936-face cage instead of 761).
+// scales the textured triangle baselines reach at tens of KB), 32 to 512 texels; none when its
+// appearance cannot stay in its atlas. 1/32 leaves room for heights or a denser cage beside
+// several textures at tight budgets.
 std::vector<int> atlasSizesFor(const mesh::PolygonMesh& reference);
 
-nlohmann::json toJson(const BudgetChoice& choice, std::uintmax_t budget);
+// What an asset.subd ships at once shipWithinBudget has done: bits per map value, the JPEG
+// quality of its appearance images, and its bytes.
+struct BudgetShipment {
+    int mapBits = 0;
+    int appearanceQuality = 0;
+    std::uintmax_t bytes = 0;
+};
+
+// The fitted maps code differently from the baked ones the search measured (and the search
+// does not weigh the appearance maps): when `subd` (`bytes` as written) comes out over `budget`,
+// it is written again with the appearance images at a lower JPEG quality, then with the heights
+// and normals at fewer bits, until it fits or the ladder ends.
+BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t bytes, std::uintmax_t budget,
+                                int mapBits, int appearanceQuality);
+
+// report.json's `budget`: the search and what shipped.
+struct BudgetReport {
+    std::uintmax_t bytes = 0;  // the budget
+    BudgetCandidate chosen;
+    std::vector<BudgetCandidate> tried;
+    double seconds = 0.0;      // the search's
+    BudgetShipment shipped;    // after the fit
+};
+
+// `bytes`, `chosen`, `candidates`, `seconds`, `map_bits` and `appearance_quality` as shipped,
+// and `over_budget`.
+nlohmann::json toJson(const BudgetReport& report);
 
 // "20000", "20K", "20KB", "1.5M", "1.5MB" (K = 1000, M = 10^6; KiB / MiB are 1024-based).
 // Throws subdfit::OptionError("budget", ...) for anything else or a budget under 100 bytes.

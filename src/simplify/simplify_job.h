@@ -11,7 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "fit/fit_job.h"
-#include "simplify/quality.h"
+#include "simplify/budget_search.h"
+#include "simplify/compare/quality.h"
 
 namespace subdfit::simplify {
 
@@ -31,7 +32,7 @@ inline fit::FitOptions simplifyFitDefaults() {
 struct SimplifyOptions {
     fit::FitOptions fit = simplifyFitDefaults();  // fit.reference: the dense asset; fit.cage is set by simplify
     int faces = 0;                // triangles of the cage; 0: kDefaultFaces, or chosen by the budget
-    std::uintmax_t budget = 0;    // bytes asset.subd may take (0: none); simplify/budget_search.h
+    std::optional<std::uintmax_t> budget;  // bytes asset.subd may take; simplify/budget_search.h
     int surfaceSamples = 100000;  // per side, for Chamfer and Hausdorff
 };
 
@@ -40,7 +41,7 @@ inline constexpr int kDefaultFaces = 1000;
 // Throws subdfit::Error ("invalid option: ...") before any work.
 void validate(const SimplifyOptions& options);
 
-// The fit's settings and simplify's own (see fit::settingsJson).
+// The fit's settings and simplify's own (see fit::settingsJson); `budget` 0 without one.
 nlohmann::json settingsJson(const SimplifyOptions& options);
 
 // What a simplify did: the fit's report, and subdfit's asset and each baseline measured the
@@ -50,7 +51,7 @@ struct SimplifyReport {
     Quality subdfit{}, decimation{}, bake{};
     std::optional<Quality> gltfpack;  // none when gltfpack is not installed
     int facesRequested = 0;
-    nlohmann::json budget;  // the search (simplify/budget_search.h), null without --budget
+    std::optional<BudgetReport> budget;  // the search and what shipped, with --budget
 };
 
 // report.json: the fit's keys, subdfit's bytes / files / chamfer / hausdorff / mean_distance,

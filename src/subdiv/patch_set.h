@@ -58,8 +58,7 @@ struct PatchSet {
 // How deep a cage is isolated for drawing: 3, or 2 on a dense cage (over kDenseCageFaces faces)
 // with no tag sharper than 2. Each face of such a cage spans ~10 pixels or fewer at 256², where
 // the level-2 end caps differ from level 3's by a fraction of one, and it is drawn with half the
-// segments per face edge (a quarter of the triangles; fit::CageFitter): measured on an
-// 8 000-face bunny cage, 2.2 -> 0.75 s a step on llvmpipe, held-out PSNR 36.95 -> 37.06 dB.
+// segments per face edge (a quarter of the triangles; fit::CageFitter), a step about 3x faster.
 // Semi-sharp creases need one level per unit of sharpness to be drawn as OpenSubdiv evaluates them.
 inline constexpr int kDenseCageFaces = 2000;
 int drawingIsolationLevel(const mesh::PolygonMesh& cage);

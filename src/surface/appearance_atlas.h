@@ -1,10 +1,10 @@
 #pragma once
 // The appearance maps in the reference's own texture space. A textured asset's UV atlas is
 // coherent and smooth, so its textures, downscaled, are what the triangle baselines ship; per-face
-// tiles of colour code the same content far less compactly (the WaterBottle at 40 KB: ~1.6 bytes
-// a node for ~31 dB). With an atlas, each ptex face carries the atlas coordinates of its four
-// corners, the appearance at ptex (u, v) is the texture at their bilinear blend, and the
-// appearance "lattice" is the texture's texel grid: one node per texel, at the texel's centre.
+// tiles of colour code the same content far less compactly. With an atlas, each ptex face
+// carries the atlas coordinates of its four corners, the appearance at ptex (u, v) is the
+// texture at their bilinear blend, and the appearance "lattice" is the texture's texel grid: one
+// node per texel, at the texel's centre.
 #include <glm/mat2x2.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -46,8 +46,8 @@ glm::mat2 atlasUvJacobian(const AppearanceAtlas& atlas, int face, float u, float
 // glTF's TANGENT for a normal texture in the atlas's coordinates at a surface point with unit
 // `normal` and derivatives dPdu, dPdv along the ptex face: xyz along ∂P/∂s (where the surface goes
 // as s grows, t held) in the tangent plane, w = ±1 so that cross(normal, xyz) · w points up the
-// image (against ∂P/∂t): MikkTSpace's convention, which authored tangents such as the
-// WaterBottle's follow, so a viewer shades the carried normal texture as on the reference.
+// image (against ∂P/∂t): MikkTSpace's convention, which authored tangents follow, so a viewer
+// shades the carried normal texture as on the reference.
 // (glsl/patch.frag shades it in the cotangent frame of the gradients of s and t, as it shades the
 // reference: the same where the atlas is conformal.) `fallback` where the coordinates do not
 // vary over the surface.

@@ -10,7 +10,7 @@
 namespace subdfit::surface {
 
 struct ReliefOptions {
-    int segments = 24;              // per cage-face edge: Spot's 180 faces (760 quads once refined) give ~290 000 triangles
+    int segments = 24;              // per cage-face edge
     float amplitude = 0.004f;       // RMS height, a fraction of the bounding-box diagonal
     float shortestWavelength = 0.02f, longestWavelength = 0.06f;  // same units
     int waves = 16;                 // plane waves summed, random directions and phases

@@ -18,6 +18,7 @@
 #include "optim/updates.h"
 #include "render/shading_model.h"
 #include "scene_fixture.h"
+#include "small_simplify.h"
 #include "simplify/simplify_job.h"
 #include "test_paths.h"
 
@@ -209,26 +210,19 @@ TEST(AppearanceEffects, ASceneWithoutMaterialsCompilesAndRunsNoMaterialWork) {
 }
 
 // A small simplify of `reference` into dir/out: 120 faces, T = 2 heights, appearance T = 4, a preview.
-simplify::SimplifyOptions smallSimplify(const std::filesystem::path& reference, const std::filesystem::path& dir, int steps) {
-    simplify::SimplifyOptions o;
-    o.fit.reference = reference;
-    o.fit.out = dir / "out";
-    o.fit.steps = steps;
-    o.fit.views = 4;
-    o.fit.holdoutViews = 2;
-    o.fit.resolution = 64;
+simplify::SimplifyOptions smallColouredSimplify(const std::filesystem::path& reference, const std::filesystem::path& dir,
+                                                int steps) {
+    simplify::SimplifyOptions o = smallSimplify(reference, dir / "out", steps);
     o.fit.mapResolution = 2;
     o.fit.appearanceResolution = 4;
-    o.fit.glProvider = "osmesa";
     o.fit.preview = true;
     o.faces = 120;
-    o.surfaceSamples = 5000;
     return o;
 }
 
 TEST(AppearanceSimplify, TheDuckShipsInColour) {
     const auto dir = scratchDir("appearance_duck");
-    const simplify::SimplifyOptions o = smallSimplify(assetPath("gltf/Duck/Duck.glb"), dir, 30);
+    const simplify::SimplifyOptions o = smallColouredSimplify(assetPath("gltf/Duck/Duck.glb"), dir, 30);
     const auto report = simplify::toJson(simplify::runSimplify(o));
     const auto effects = report["effects"];
     EXPECT_NE(std::find(effects.begin(), effects.end(), "base_color"), effects.end()) << effects;
@@ -266,7 +260,7 @@ TEST(AppearanceSimplify, AGlowOnTilesIsCarriedAndShipped) {
     }
     exporter::writeTexturedGlb(dir / "glow.glb", sphere, mesh::vertexNormals(sphere), {}, false);
 
-    const auto report = simplify::toJson(simplify::runSimplify(smallSimplify(dir / "glow.glb", dir, 10)));
+    const auto report = simplify::toJson(simplify::runSimplify(smallColouredSimplify(dir / "glow.glb", dir, 10)));
     EXPECT_NE(report["shader_variants"].dump().find("SUBDFIT_CARRIED_EMISSIVE"), std::string::npos);
     const auto shipped = exporter::readSubd(dir / "out" / "asset.subd");
     ASSERT_EQ(shipped.maps.emissive.size(), 3 * size_t(shipped.maps.appearanceLayout.nodeCount));

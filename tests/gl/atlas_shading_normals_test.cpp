@@ -10,7 +10,7 @@
 #include "mesh/procedural.h"
 #include "plain_texture.h"
 #include "scene_fixture.h"
-#include "simplify/atlas_bake.h"
+#include "simplify/bake/atlas_bake.h"
 #include "surface/tessellation.h"
 
 namespace subdfit::test {

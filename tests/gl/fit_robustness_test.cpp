@@ -11,7 +11,7 @@
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
 #include "scene_fixture.h"
-#include "simplify/initial_cage.h"
+#include "simplify/cage/initial_cage.h"
 #include "surface/tessellation.h"
 #include "test_paths.h"
 

@@ -12,6 +12,7 @@
 #include "mesh/procedural.h"
 #include "simplify/budget_search.h"
 #include "simplify/simplify_job.h"
+#include "small_simplify.h"
 #include "test_paths.h"
 #include "util/error.h"
 
@@ -21,16 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 
 simplify::SimplifyOptions budgeted(const fs::path& reference, const fs::path& out, std::uintmax_t budget) {
-    simplify::SimplifyOptions o;
-    o.fit.reference = reference;
-    o.fit.out = out;
-    o.fit.steps = 20;
-    o.fit.views = 4;
-    o.fit.holdoutViews = 2;
-    o.fit.resolution = 64;
+    simplify::SimplifyOptions o = smallSimplify(reference, out, 20);
     o.fit.checkpointEvery = 10;
-    o.fit.glProvider = "osmesa";
-    o.surfaceSamples = 5000;
     o.budget = budget;
     return o;
 }

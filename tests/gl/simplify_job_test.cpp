@@ -16,6 +16,7 @@
 #include "simplify/simplify_job.h"
 #include "util/interrupt.h"
 #include "scene_fixture.h"
+#include "small_simplify.h"
 #include "test_paths.h"
 
 namespace subdfit::test {
@@ -23,21 +24,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-simplify::SimplifyOptions smallSimplify(const fs::path& reference, const fs::path& out) {
-    simplify::SimplifyOptions o;
-    o.fit.reference = reference;
-    o.fit.out = out;
-    o.fit.steps = 30;
-    o.fit.views = 4;
-    o.fit.holdoutViews = 2;
-    o.fit.resolution = 64;
-    o.fit.maps = {.displacement = true, .normalMap = true};  // both, so that both are checked
+// 120 faces with heights and normals at T = 2 (both, so that both are checked), a preview.
+simplify::SimplifyOptions smallMappedSimplify(const fs::path& reference, const fs::path& out) {
+    simplify::SimplifyOptions o = smallSimplify(reference, out, 30);
+    o.fit.maps = {.displacement = true, .normalMap = true};
     o.fit.mapResolution = 2;
     o.fit.checkpointEvery = 5;
-    o.fit.glProvider = "osmesa";
     o.fit.preview = true;
     o.faces = 120;
-    o.surfaceSamples = 5000;
     return o;
 }
 
@@ -54,7 +48,7 @@ nlohmann::json readJson(const fs::path& path) {
 TEST(SimplifyJob, ReportMatchesTheFilesAndComparesAtEqualBytes) {
     const auto dir = scratchDir("simplify_job");
     mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 4));
-    const auto report = simplify::toJson(simplify::runSimplify(smallSimplify(dir / "lumpy.obj", dir / "out")));
+    const auto report = simplify::toJson(simplify::runSimplify(smallMappedSimplify(dir / "lumpy.obj", dir / "out")));
 
     // bytes: exactly what the shipped files weigh on disk.
     std::uintmax_t onDisk = 0;
@@ -109,7 +103,7 @@ TEST(SimplifyJob, ReportMatchesTheFilesAndComparesAtEqualBytes) {
 TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
     const auto dir = scratchDir("simplify_resume");
     mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 4));
-    auto options = smallSimplify(dir / "lumpy.obj", dir / "straight");
+    auto options = smallMappedSimplify(dir / "lumpy.obj", dir / "straight");
     options.fit.steps = 20;
     options.fit.mapsStart = 0.5f;  // bake at step 10
     const auto straight = simplify::runSimplify(options).fit;
@@ -136,13 +130,13 @@ TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
         EXPECT_EQ(readBytes(dir / "straight" / map), readBytes(dir / "resumed" / map)) << map;
 }
 
-// Same inputs, same seed, same machine: the same bytes (README, Determinism). G sums in fixed
-// point and every CPU stage is ordered, so nothing varies but the run time.
+// Same inputs, same seed, same machine: the same bytes (docs/architecture.md, Determinism). G
+// sums in fixed point and every CPU stage is ordered, so nothing varies but the run time.
 TEST(SimplifyJob, TwoRunsOfOneSeedWriteTheSameFiles) {
     const auto dir = scratchDir("simplify_repeat");
     mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 4));
-    const auto first = simplify::toJson(simplify::runSimplify(smallSimplify(dir / "lumpy.obj", dir / "first")));
-    const auto second = simplify::toJson(simplify::runSimplify(smallSimplify(dir / "lumpy.obj", dir / "second")));
+    const auto first = simplify::toJson(simplify::runSimplify(smallMappedSimplify(dir / "lumpy.obj", dir / "first")));
+    const auto second = simplify::toJson(simplify::runSimplify(smallMappedSimplify(dir / "lumpy.obj", dir / "second")));
     for (const auto& [name, bytes] : first["files"].items())
         EXPECT_EQ(readBytes(dir / "first" / name), readBytes(dir / "second" / name)) << name;
     for (const char* name : {"cage.obj", "fitted.glb", "initial_cage.obj"})
@@ -156,7 +150,7 @@ TEST(SimplifyBatch, SkipsFinishedResumesInterruptedAndRecordsFailures) {
     mesh::writeObj(dir / "ball.obj", mesh::makeQuadSphere(5));
     std::vector<simplify::BatchItem> items;
     for (const char* name : {"lumpy", "missing", "ball"}) {
-        auto o = smallSimplify(dir / (std::string(name) + ".obj"), {});
+        auto o = smallMappedSimplify(dir / (std::string(name) + ".obj"), {});
         o.fit.steps = 20;
         o.fit.maps = {};
         items.push_back({name, o});

@@ -1,6 +1,6 @@
 #pragma once
 // One material with a white base colour texture on every face: the least a reference needs to
-// keep its appearance in its own atlas (simplify/atlas_bake.h), with nothing to see in it.
+// keep its appearance in its own atlas (simplify/bake/atlas_bake.h), with nothing to see in it.
 #include <memory>
 
 #include "mesh/material.h"

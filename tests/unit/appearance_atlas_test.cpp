@@ -16,7 +16,7 @@
 #include "export/atlas_uv_coding.h"
 #include "export/subd_format.h"
 #include "mesh/procedural.h"
-#include "simplify/atlas_bake.h"
+#include "simplify/bake/atlas_bake.h"
 #include "subdiv/limit_evaluator.h"
 #include "surface/appearance_atlas.h"
 #include "surface/tessellation.h"

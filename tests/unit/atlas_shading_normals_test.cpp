@@ -10,8 +10,8 @@
 
 #include "mesh/procedural.h"
 #include "plain_texture.h"
-#include "simplify/atlas_bake.h"
-#include "simplify/atlas_shading_normals.h"
+#include "simplify/bake/atlas_bake.h"
+#include "simplify/bake/atlas_shading_normals.h"
 #include "surface/displaced_surface.h"
 
 namespace subdfit {

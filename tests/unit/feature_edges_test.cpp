@@ -1,4 +1,4 @@
-// Hard edges of a reference become creases and corners of its cage (simplify/feature_edges.h):
+// Hard edges of a reference become creases and corners of its cage (simplify/cage/feature_edges.h):
 // a flat-shaded box's edges, not the coarse cage's turns over a smooth sphere.
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@
 
 #include "mesh/mesh_geometry.h"
 #include "mesh/procedural.h"
-#include "simplify/decimate.h"
-#include "simplify/feature_edges.h"
-#include "simplify/initial_cage.h"
+#include "simplify/cage/decimate.h"
+#include "simplify/cage/feature_edges.h"
+#include "simplify/cage/initial_cage.h"
 #include "split_triangles.h"
 #include "subdiv/limit_evaluator.h"
 

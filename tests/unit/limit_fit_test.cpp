@@ -1,4 +1,4 @@
-// The least-squares limit fit that finishes the initial cage (simplify/limit_fit.h): it removes
+// The least-squares limit fit that finishes the initial cage (simplify/cage/limit_fit.h): it removes
 // the ripples vertex interpolation leaves, keeps a surface that already fits, moves nothing it
 // cannot see, and stays finite on creased and open cages.
 #include <gtest/gtest.h>
@@ -11,9 +11,9 @@
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
-#include "simplify/decimate.h"
-#include "simplify/initial_cage.h"
-#include "simplify/limit_fit.h"
+#include "simplify/cage/decimate.h"
+#include "simplify/cage/initial_cage.h"
+#include "simplify/cage/limit_fit.h"
 #include "surface/tessellation.h"
 #include "test_paths.h"
 

@@ -12,10 +12,10 @@
 #include "mesh/mesh_geometry.h"
 #include "mesh/material_sampling.h"
 #include "mesh/procedural.h"
-#include "simplify/bake.h"
+#include "simplify/bake/bake.h"
 #include "simplify/batch.h"
-#include "simplify/decimate.h"
-#include "simplify/initial_cage.h"
+#include "simplify/cage/decimate.h"
+#include "simplify/cage/initial_cage.h"
 #include "split_triangles.h"
 #include "subdiv/limit_evaluator.h"
 #include "surface/tessellation.h"
@@ -253,8 +253,8 @@ TEST(SimplifyBake, OnlyTheAskedMapsAreBaked) {
     EXPECT_TRUE(normals.hasNormal());
 }
 
-// The CPU stages of simplify repeat bit for bit (fresh Embree scenes included): what varies
-// between two runs of one seed comes from the GPU's float atomics alone (README, Determinism).
+// The CPU stages of simplify repeat bit for bit (fresh Embree scenes included), so two runs of
+// one seed can differ only through the GPU (docs/architecture.md, Determinism).
 TEST(SimplifyDeterminism, InitialCageBakeAndDistanceRepeatExactly) {
     const mesh::PolygonMesh reference = mesh::triangulated(mesh::makeLumpySphere(4, 0.15f, 4));
     const mesh::PolygonMesh cage = initialCage(reference, {.faces = 80});

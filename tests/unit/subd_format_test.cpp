@@ -1,5 +1,5 @@
 // The shipped .subd file: what is decoded is what was fitted, within the quantisation steps, and
-// anything that is not a whole version-3 file is refused in one line.
+// anything that is not a whole .subd file of a version this subdfit reads is refused in one line.
 #include <gtest/gtest.h>
 
 #include <algorithm>

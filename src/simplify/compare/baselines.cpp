@@ -1,4 +1,4 @@
-#include "simplify/baselines.h"
+#include "simplify/compare/baselines.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -14,8 +14,8 @@
 #include "mesh/mesh_loader.h"
 #include "mesh/mesh_geometry.h"
 #include "render/mesh_renderer.h"
-#include "simplify/bake.h"
-#include "simplify/decimate.h"
+#include "simplify/bake/bake.h"
+#include "simplify/cage/decimate.h"
 #include "surface/tessellation.h"
 #include "util/interrupt.h"
 

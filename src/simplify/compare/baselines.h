@@ -16,7 +16,7 @@
 
 #include "gl/program_cache.h"
 #include "maps/map_parameters.h"
-#include "simplify/quality.h"
+#include "simplify/compare/quality.h"
 
 namespace subdfit::fit {
 class FitScene;

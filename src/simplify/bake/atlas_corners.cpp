@@ -1,4 +1,4 @@
-#include "simplify/atlas_corners.h"
+#include "simplify/bake/atlas_corners.h"
 
 #include <glm/geometric.hpp>
 

@@ -32,14 +32,14 @@ struct AppearanceBakeOptions {
     int resolution = 16;  // cells per ptex-face edge of the appearance lattice
     float maxDistance = 0.0f;  // as BakeOptions
     // Texels per side of an atlas in the reference's own texture space instead of tiles
-    // (simplify/atlas_bake.h; the reference must be suitable); 0: tiles.
+    // (simplify/bake/atlas_bake.h; the reference must be suitable); 0: tiles.
     int atlas = 0;
     // Tiles: node values fitted so that the lattice matches the material across each cell (the
     // nodes' samples and 2 × 2 more a cell, least squares) rather than point-sampled at the nodes.
     bool acrossCells = true;
     // With an atlas: its normal texture also carries the reference's shading normals
-    // (bakeAtlasAppearance). Off by default: on the Duck and the WaterBottle every atlas
-    // candidate of the budget search lost 0–10 % monitor loss with it and grew by 0.7–1.5 KB.
+    // (bakeAtlasAppearance). Off by default: it costs bytes and has not paid for them in the
+    // budget search (docs/measurements.md).
     bool shadingNormals = false;
 };
 

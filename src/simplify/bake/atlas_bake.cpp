@@ -1,6 +1,6 @@
-#include "simplify/atlas_bake.h"
-#include "simplify/atlas_corners.h"
-#include "simplify/atlas_shading_normals.h"
+#include "simplify/bake/atlas_bake.h"
+#include "simplify/bake/atlas_corners.h"
+#include "simplify/bake/atlas_shading_normals.h"
 
 #include <glm/geometric.hpp>
 
@@ -106,6 +106,70 @@ private:
     std::vector<int> ring_;  // the ring a texel is filled in: 0 reached by a chart, kNever beyond the rings
 };
 
+// What of the material an atlas carries beside its colour and metallic-roughness.
+struct AtlasChannels {
+    bool normal = false, occlusion = false, emissive = false;
+};
+
+// The material summed over the samples of one texel's square that a chart covers.
+struct TexelSum {
+    glm::vec3 color{0.0f}, normal{0.0f}, emission{0.0f};
+    glm::vec2 roughnessMetallic{0.0f};
+    float occlusion = 0.0f;
+    int count = 0;
+};
+
+// Texel (i, j) of a size × size atlas, `samples` × `samples` points a texel, where `covered`
+// (chartCoverage at size × samples) says a chart reaches.
+TexelSum sumTexel(const mesh::MaterialSet& set, const mesh::Material& m, AtlasChannels channels,
+                  const std::vector<char>& covered, int size, int samples, int i, int j) {
+    TexelSum sum;
+    for (int b = 0; b < samples; ++b)
+        for (int a = 0; a < samples; ++a) {
+            if (!covered[size_t(j * samples + b) * size_t(size * samples) + size_t(i * samples + a)]) continue;
+            ++sum.count;
+            const glm::vec2 uv((float(i) + (float(a) + 0.5f) / float(samples)) / float(size),
+                               (float(j) + (float(b) + 0.5f) / float(samples)) / float(size));
+            sum.color += glm::vec3(m.baseColorFactor) * glm::vec3(mesh::sampleTexture(set, m.baseColorTexture, uv, true));
+            const glm::vec4 t = mesh::sampleTexture(set, m.metallicRoughnessTexture, uv, false);
+            sum.roughnessMetallic += glm::vec2(m.roughnessFactor * t.g, m.metallicFactor * t.b);
+            if (channels.normal) {
+                glm::vec3 tangent = glm::vec3(mesh::sampleTexture(set, m.normalTexture, uv, false)) * 2.0f - 1.0f;
+                tangent.x *= m.normalScale, tangent.y *= m.normalScale;
+                if (glm::length(tangent) > 1e-6f) sum.normal += glm::normalize(tangent);
+            }
+            if (channels.occlusion)
+                sum.occlusion += 1.0f + m.occlusionStrength * (mesh::sampleTexture(set, m.occlusionTexture, uv, false).r - 1.0f);
+            if (channels.emissive) sum.emission += m.emissiveFactor * glm::vec3(mesh::sampleTexture(set, m.emissiveTexture, uv, true));
+        }
+    return sum;
+}
+
+// An atlas's texel values, row by row, as they are baked.
+struct AtlasTexels {
+    std::vector<float> color, roughnessMetallic, normals, occlusions, emission;
+    std::vector<char> reached;  // by a chart
+
+    explicit AtlasTexels(size_t texels) : color(3 * texels), roughnessMetallic(2 * texels), reached(texels, 0) {}
+
+    // Texel `texel`, the next in order, the mean of `sum` (colours back in sRGB).
+    void add(size_t texel, const TexelSum& sum, AtlasChannels channels) {
+        reached[texel] = sum.count > 0;
+        const float count = float(std::max(sum.count, 1));
+        auto srgb = [](float linear) { return std::clamp(mesh::linearToSrgb(linear), 0.0f, 1.0f); };
+        for (int k = 0; k < 3; ++k) color[3 * texel + size_t(k)] = srgb(sum.color[k] / count);
+        roughnessMetallic[2 * texel] = std::clamp(sum.roughnessMetallic.x / count, 0.0f, 1.0f);
+        roughnessMetallic[2 * texel + 1] = std::clamp(sum.roughnessMetallic.y / count, 0.0f, 1.0f);
+        if (channels.normal) {
+            const glm::vec3 unit = glm::length(sum.normal) > 1e-6f ? glm::normalize(sum.normal) : glm::vec3(0.0f, 0.0f, 1.0f);
+            for (int k = 0; k < 3; ++k) normals.push_back(unit[k] * 0.5f + 0.5f);
+        }
+        if (channels.occlusion) occlusions.push_back(std::clamp(sum.occlusion / count, 0.0f, 1.0f));
+        if (channels.emissive)
+            for (int k = 0; k < 3; ++k) emission.push_back(srgb(sum.emission[k] / count));
+    }
+};
+
 }  // namespace
 
 std::string atlasUnsuitability(const mesh::PolygonMesh& reference) {
@@ -164,7 +228,6 @@ surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const me
                                          maps::MapEffects effects, int size, float maxDistance, bool shadingNormals) {
     SUBDFIT_CHECK(size >= 2 && atlasUnsuitability(reference).empty());
     const mesh::Material& m = *atlasMaterial(reference);
-    const mesh::MaterialSet& set = *reference.materials;
     surface::SurfaceMaps maps;
     maps.appearanceLayout = surface::atlasLattice(size);
     maps.appearanceAtlas = {.size = size,
@@ -174,67 +237,32 @@ surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const me
     // a source texel.
     const int samples = std::clamp((atlasSourceSize(reference) + size - 1) / size, 1, 8);
     const std::vector<char> covered = chartCoverage(reference, size * samples);
-    std::vector<char> reached(size_t(size) * size_t(size), 0);
+    const AtlasChannels channels{.normal = m.normalTexture.present(), .occlusion = m.occlusionTexture.present(),
+                                 .emissive = m.emissiveFactor != glm::vec3(0.0f)};
     const size_t texels = size_t(size) * size_t(size);
-    const bool normal = m.normalTexture.present(), occlusion = m.occlusionTexture.present(),
-               emissive = m.emissiveFactor != glm::vec3(0.0f);
-    std::vector<float> color(3 * texels), roughnessMetallic(2 * texels), normals, occlusions, emission;
+    AtlasTexels baked(texels);
     for (int j = 0; j < size; ++j)
-        for (int i = 0; i < size; ++i) {
-            glm::vec3 c(0.0f), n(0.0f), e(0.0f);
-            glm::vec2 rm(0.0f);
-            float o = 0.0f;
-            int count = 0;
-            for (int b = 0; b < samples; ++b)
-                for (int a = 0; a < samples; ++a) {
-                    if (!covered[size_t(j * samples + b) * size_t(size * samples) + size_t(i * samples + a)]) continue;
-                    ++count;
-                    const glm::vec2 uv((float(i) + (float(a) + 0.5f) / float(samples)) / float(size),
-                                       (float(j) + (float(b) + 0.5f) / float(samples)) / float(size));
-                    c += glm::vec3(m.baseColorFactor) * glm::vec3(mesh::sampleTexture(set, m.baseColorTexture, uv, true));
-                    const glm::vec4 t = mesh::sampleTexture(set, m.metallicRoughnessTexture, uv, false);
-                    rm += glm::vec2(m.roughnessFactor * t.g, m.metallicFactor * t.b);
-                    if (normal) {
-                        glm::vec3 tangent = glm::vec3(mesh::sampleTexture(set, m.normalTexture, uv, false)) * 2.0f - 1.0f;
-                        tangent.x *= m.normalScale, tangent.y *= m.normalScale;
-                        if (glm::length(tangent) > 1e-6f) n += glm::normalize(tangent);
-                    }
-                    if (occlusion) o += 1.0f + m.occlusionStrength * (mesh::sampleTexture(set, m.occlusionTexture, uv, false).r - 1.0f);
-                    if (emissive) e += m.emissiveFactor * glm::vec3(mesh::sampleTexture(set, m.emissiveTexture, uv, true));
-                }
-            const size_t texel = size_t(j) * size_t(size) + size_t(i);
-            reached[texel] = count > 0;
-            count = std::max(count, 1);
-            auto srgb = [](float linear) { return std::clamp(mesh::linearToSrgb(linear), 0.0f, 1.0f); };
-            for (int k = 0; k < 3; ++k) color[3 * texel + size_t(k)] = srgb(c[k] / float(count));
-            roughnessMetallic[2 * texel] = std::clamp(rm.x / float(count), 0.0f, 1.0f);
-            roughnessMetallic[2 * texel + 1] = std::clamp(rm.y / float(count), 0.0f, 1.0f);
-            if (normal) {
-                const glm::vec3 unit = glm::length(n) > 1e-6f ? glm::normalize(n) : glm::vec3(0.0f, 0.0f, 1.0f);
-                for (int k = 0; k < 3; ++k) normals.push_back(unit[k] * 0.5f + 0.5f);
-            }
-            if (occlusion) occlusions.push_back(std::clamp(o / float(count), 0.0f, 1.0f));
-            if (emissive)
-                for (int k = 0; k < 3; ++k) emission.push_back(srgb(e[k] / float(count)));
-        }
+        for (int i = 0; i < size; ++i)
+            baked.add(size_t(j) * size_t(size) + size_t(i),
+                      sumTexel(*reference.materials, m, channels, covered, size, samples, i, j), channels);
     if (shadingNormals) {
-        if (normals.empty())
-            for (size_t t = 0; t < texels; ++t) normals.insert(normals.end(), {0.5f, 0.5f, 1.0f});
-        carryShadingNormals(cage, maps, reference, maxDistance > 0.0f ? maxDistance : mesh::meanEdgeLength(cage), normals);
+        if (baked.normals.empty())
+            for (size_t t = 0; t < texels; ++t) baked.normals.insert(baked.normals.end(), {0.5f, 0.5f, 1.0f});
+        carryShadingNormals(cage, maps, reference, maxDistance > 0.0f ? maxDistance : mesh::meanEdgeLength(cage), baked.normals);
     }
-    const GutterFill fillGutter(reached, size);
-    fillGutter(color, 3);
-    fillGutter(roughnessMetallic, 2);
-    fillGutter(normals, 3);
-    fillGutter(occlusions, 1);
-    fillGutter(emission, 3);
-    if (effects.baseColor) maps.baseColor = std::move(color);
-    if (effects.metallicRoughness) maps.metallicRoughness = std::move(roughnessMetallic);
+    const GutterFill fillGutter(baked.reached, size);
+    fillGutter(baked.color, 3);
+    fillGutter(baked.roughnessMetallic, 2);
+    fillGutter(baked.normals, 3);
+    fillGutter(baked.occlusions, 1);
+    fillGutter(baked.emission, 3);
+    if (effects.baseColor) maps.baseColor = std::move(baked.color);
+    if (effects.metallicRoughness) maps.metallicRoughness = std::move(baked.roughnessMetallic);
     // Occlusion rides in the metallic-roughness image's red channel (glTF's occlusion-roughness-
     // metallic packing), so only a scene with that image keeps it.
-    maps.normalTexture = std::move(normals);
-    if (effects.metallicRoughness) maps.occlusion = std::move(occlusions);
-    maps.emissive = std::move(emission);
+    maps.normalTexture = std::move(baked.normals);
+    if (effects.metallicRoughness) maps.occlusion = std::move(baked.occlusions);
+    maps.emissive = std::move(baked.emission);
     return maps;
 }
 

@@ -1,4 +1,4 @@
-#include "simplify/atlas_shading_normals.h"
+#include "simplify/bake/atlas_shading_normals.h"
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -110,6 +110,84 @@ std::optional<glm::mat3> normalTextureFrame(glm::vec3 dp1, glm::vec3 dp2, glm::v
     return frame;
 }
 
+namespace {
+
+// The reference as the atlas's texels see it: its shading normals and its triangles by where they
+// lie in texture space.
+struct ReferenceInAtlas {
+    const mesh::PolygonMesh& mesh;
+    std::vector<glm::vec3> normals;
+    UvTriangleGrid triangles;
+};
+
+// A point of the reference: its normal texture's frame and its shading normal.
+struct ReferencePoint {
+    glm::mat3 frame;
+    glm::vec3 normal;
+};
+
+// The reference's point at `uv` nearest to `position`, within `maxDistance` (a mirrored atlas
+// maps two places of the reference to one texel).
+std::optional<ReferencePoint> nearestAt(const ReferenceInAtlas& reference, glm::vec2 uv, glm::vec3 position,
+                                        float maxDistance) {
+    const mesh::PolygonMesh& mesh = reference.mesh;
+    const UvTriangleGrid& triangles = reference.triangles;
+    float nearest = maxDistance;
+    std::optional<ReferencePoint> found;
+    for (int f : triangles.near(uv)) {
+        const auto b = barycentric(uv, triangles.uv(f, 0), triangles.uv(f, 1), triangles.uv(f, 2));
+        if (!b) continue;
+        auto vertex = [&](int k) { return size_t(mesh.faceIndices[size_t(3 * f + k)]); };
+        const glm::vec3 p0 = mesh.positions[vertex(0)], p1 = mesh.positions[vertex(1)], p2 = mesh.positions[vertex(2)];
+        const float distance = glm::length(p0 + b->x * (p1 - p0) + b->y * (p2 - p0) - position);
+        if (!(distance < nearest)) continue;
+        glm::vec3 n = (1.0f - b->x - b->y) * reference.normals[vertex(0)] + b->x * reference.normals[vertex(1)] +
+                      b->y * reference.normals[vertex(2)];
+        if (!(glm::length(n) > 1e-6f)) continue;
+        n = glm::normalize(n);
+        const auto frame = normalTextureFrame(p1 - p0, p2 - p0, triangles.uv(f, 1) - triangles.uv(f, 0),
+                                              triangles.uv(f, 2) - triangles.uv(f, 0), n);
+        if (!frame) continue;
+        nearest = distance;
+        found = ReferencePoint{*frame, n};
+    }
+    return found;
+}
+
+// The unit vector that, in the cage's normal texture frame at `ours` (at `st` of the ptex face
+// whose corner coordinates are `c`), shades as the reference's texel `rgb` does at `point`.
+std::optional<glm::vec3> carriedDirection(const surface::SurfaceVertex& ours, const glm::vec2* c, glm::vec2 st,
+                                          const ReferencePoint& point, const float* rgb) {
+    // Renderers turn a normal towards the eye before the texture tilts it, and the frame's third
+    // column turns with it: shade the cage from the side the reference's author faces (the cage
+    // may be wound the other way).
+    const glm::vec3 ourNormal = glm::dot(ours.normal, point.normal) < 0.0f ? -ours.normal : ours.normal;
+    const glm::vec2 duvds = glm::mix(c[1] - c[0], c[2] - c[3], st.y), duvdt = glm::mix(c[3] - c[0], c[2] - c[1], st.x);
+    const auto ourFrame = normalTextureFrame(ours.dPdu, ours.dPdv, duvds, duvdt, ourNormal);
+    if (!ourFrame) return std::nullopt;
+    const glm::vec3 shading = glm::normalize(point.frame * decode(rgb));
+    const glm::vec3 t = glm::inverse(*ourFrame) * shading;
+    if (!(glm::length(t) > 1e-6f) || !std::isfinite(t.x + t.y + t.z)) return std::nullopt;
+    return glm::normalize(t);
+}
+
+// Each texel with a direction summed into it takes their mean, tilted no further than a normal
+// texture can (not past the surface's own plane). Returns which did.
+std::vector<char> writeCarried(const std::vector<glm::vec3>& sum, std::vector<float>& texels) {
+    std::vector<char> carried(sum.size(), 0);
+    for (size_t texel = 0; texel < sum.size(); ++texel) {
+        if (!(glm::length(sum[texel]) > 1e-6f)) continue;
+        glm::vec3 t = glm::normalize(sum[texel]);
+        t.z = std::max(t.z, 0.1f);
+        t = glm::normalize(t);
+        for (int k = 0; k < 3; ++k) texels[3 * texel + size_t(k)] = t[k] * 0.5f + 0.5f;
+        carried[texel] = 1;
+    }
+    return carried;
+}
+
+}  // namespace
+
 std::vector<char> carryShadingNormals(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps,
                                       const mesh::PolygonMesh& reference, float maxDistance,
                                       std::vector<float>& texels) {
@@ -117,14 +195,12 @@ std::vector<char> carryShadingNormals(const mesh::PolygonMesh& cage, const surfa
     const int size = atlas.size;
     SUBDFIT_CHECK(size >= 2 && texels.size() == 3 * size_t(size) * size_t(size));
     SUBDFIT_CHECK(!reference.uvs.empty() && reference.faceCount() * 3 == int(reference.faceIndices.size()));
-    const std::vector<glm::vec3> referenceNormals = mesh::shadingNormals(reference);
-    const UvTriangleGrid triangles(reference, size);
+    const ReferenceInAtlas inAtlas{reference, mesh::shadingNormals(reference), UvTriangleGrid(reference, size)};
     const surface::DisplacedSurface surface(cage, maps);
     SUBDFIT_CHECK(atlas.cornerUvs.size() == 4 * size_t(surface.ptexFaceCount()));
 
     const int grid = size * kSamples;
     std::vector<glm::vec3> sum(size_t(size) * size_t(size), glm::vec3(0.0f));
-    std::vector<char> carried(sum.size(), 0);
     for (int face = 0; face < surface.ptexFaceCount(); ++face) {
         if (!surface.hasSurface(face)) continue;
         const glm::vec2* c = &atlas.cornerUvs[4 * size_t(face)];
@@ -136,57 +212,13 @@ std::vector<char> carryShadingNormals(const mesh::PolygonMesh& cage, const surfa
                 const auto st = inverseBilinear(c, uv);
                 if (!st) continue;
                 const surface::SurfaceVertex ours = surface.at(face, st->x, st->y);
-
-                // The reference's point at these coordinates nearest to ours (a mirrored atlas
-                // maps two places of the reference to one texel).
-                float nearest = maxDistance;
-                glm::mat3 referenceFrame;
-                glm::vec3 referenceNormal;
-                bool found = false;
-                for (int f : triangles.near(uv)) {
-                    const auto b = barycentric(uv, triangles.uv(f, 0), triangles.uv(f, 1), triangles.uv(f, 2));
-                    if (!b) continue;
-                    auto vertex = [&](int k) { return size_t(reference.faceIndices[size_t(3 * f + k)]); };
-                    const glm::vec3 p0 = reference.positions[vertex(0)], p1 = reference.positions[vertex(1)],
-                                    p2 = reference.positions[vertex(2)];
-                    const float distance = glm::length(p0 + b->x * (p1 - p0) + b->y * (p2 - p0) - ours.position);
-                    if (!(distance < nearest)) continue;
-                    glm::vec3 n = (1.0f - b->x - b->y) * referenceNormals[vertex(0)] + b->x * referenceNormals[vertex(1)] +
-                                  b->y * referenceNormals[vertex(2)];
-                    if (!(glm::length(n) > 1e-6f)) continue;
-                    n = glm::normalize(n);
-                    const auto frame = normalTextureFrame(p1 - p0, p2 - p0, triangles.uv(f, 1) - triangles.uv(f, 0),
-                                                          triangles.uv(f, 2) - triangles.uv(f, 0), n);
-                    if (!frame) continue;
-                    nearest = distance, referenceFrame = *frame, referenceNormal = n, found = true;
-                }
-                if (!found) continue;
-                // Renderers turn a normal towards the eye before the texture tilts it, and the
-                // frame's third column turns with it: shade the cage from the side the
-                // reference's author faces (the cage may be wound the other way).
-                const glm::vec3 ourNormal = glm::dot(ours.normal, referenceNormal) < 0.0f ? -ours.normal : ours.normal;
-                const glm::vec2 duvds = glm::mix(c[1] - c[0], c[2] - c[3], st->y), duvdt = glm::mix(c[3] - c[0], c[2] - c[1], st->x);
-                const auto ourFrame = normalTextureFrame(ours.dPdu, ours.dPdv, duvds, duvdt, ourNormal);
-                if (!ourFrame) continue;
-
+                const auto point = nearestAt(inAtlas, uv, ours.position, maxDistance);
+                if (!point) continue;
                 const size_t texel = size_t(y / kSamples) * size_t(size) + size_t(x / kSamples);
-                const glm::vec3 shading = glm::normalize(referenceFrame * decode(&texels[3 * texel]));
-                glm::vec3 t = glm::inverse(*ourFrame) * shading;
-                if (!(glm::length(t) > 1e-6f) || !std::isfinite(t.x + t.y + t.z)) continue;
-                t = glm::normalize(t);
-                sum[texel] += t;
+                if (const auto t = carriedDirection(ours, c, *st, *point, &texels[3 * texel])) sum[texel] += *t;
             }
     }
-    for (size_t texel = 0; texel < sum.size(); ++texel) {
-        if (!(glm::length(sum[texel]) > 1e-6f)) continue;
-        glm::vec3 t = glm::normalize(sum[texel]);
-        // A normal texture tilts a normal, it cannot turn it past the surface's own plane.
-        t.z = std::max(t.z, 0.1f);
-        t = glm::normalize(t);
-        for (int k = 0; k < 3; ++k) texels[3 * texel + size_t(k)] = t[k] * 0.5f + 0.5f;
-        carried[texel] = 1;
-    }
-    return carried;
+    return writeCarried(sum, texels);
 }
 
 }  // namespace subdfit::simplify

@@ -1,4 +1,4 @@
-#include "simplify/limit_fit.h"
+#include "simplify/cage/limit_fit.h"
 
 #include <glm/geometric.hpp>
 

@@ -1,4 +1,4 @@
-#include "simplify/quality.h"
+#include "simplify/compare/quality.h"
 
 #include "export/subd_format.h"
 #include "fit/image_metrics.h"

@@ -4,10 +4,10 @@
 // only approximates its cage, shrinking into it; so the vertices are then moved until the limit
 // surface passes through where they were (limit interpolation), which starts the fit on the
 // reference's surface rather than inside it; then until it lies on the reference across each
-// face in the least-squares sense (simplify/limit_fit.h), which removes the ripples that
+// face in the least-squares sense (simplify/cage/limit_fit.h), which removes the ripples that
 // interpolation leaves between the vertices of a dense triangle cage.
 #include "mesh/polygon_mesh.h"
-#include "simplify/limit_fit.h"
+#include "simplify/cage/limit_fit.h"
 
 namespace subdfit::simplify {
 
@@ -16,7 +16,7 @@ struct InitialCageOptions {
     int evenOutRounds = 3;            // tangential smoothing of decimation's slivers (features stay)
     int interpolationIterations = 16; // P += V − limit(P) sweeps (each ÷~2 the gap)
     LimitFitOptions limitFit{};       // .rounds = 0: the interpolated cage as it is
-    bool hardEdges = true;            // the reference's hard edges as creases (simplify/feature_edges.h)
+    bool hardEdges = true;            // the reference's hard edges as creases (simplify/cage/feature_edges.h)
 };
 
 // `reference` in any units, any polygons. The cage is all triangles, welded, with OpenSubdiv's

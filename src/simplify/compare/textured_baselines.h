@@ -1,5 +1,5 @@
 #pragma once
-// The triangle baselines (simplify/baselines.h) for a reference with an appearance: what a
+// The triangle baselines (simplify/compare/baselines.h) for a reference with an appearance: what a
 // pipeline ships for a textured asset at a byte budget. The texture coordinates survive the
 // decimation (each material decimated on its own, UV seams kept as meshoptimizer keeps
 // borders) and the images are re-encoded (JPEG at quality 85, PNG where they have alpha) at
@@ -10,8 +10,8 @@
 #include <optional>
 
 #include "gl/program_cache.h"
-#include "simplify/baselines.h"
-#include "simplify/quality.h"
+#include "simplify/compare/baselines.h"
+#include "simplify/compare/quality.h"
 
 namespace subdfit::simplify {
 

@@ -1,7 +1,7 @@
 #pragma once
 // The appearance baked into the reference's own texture atlas (surface/appearance_atlas.h): the
 // texels are the reference's textures downscaled, as the triangle baselines ship them; each ptex
-// face of the cage gets the atlas coordinates of its corners (simplify/atlas_corners.h).
+// face of the cage gets the atlas coordinates of its corners (simplify/bake/atlas_corners.h).
 #include <string>
 
 #include "maps/map_effects.h"
@@ -32,7 +32,7 @@ int atlasSourceSize(const mesh::PolygonMesh& reference);
 // `effects`' appearance maps on a size × size atlas (size >= 2) and the corner coordinates of
 // every ptex face of `cage` (both meshes in the same units). The reference must be suitable.
 // With `shadingNormals`, the normal texture (the reference's, or a flat one where it has none)
-// also turns the cage's limit normals into the reference's (simplify/atlas_shading_normals.h).
+// also turns the cage's limit normals into the reference's (simplify/bake/atlas_shading_normals.h).
 surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
                                          maps::MapEffects effects, int size, float maxDistance = 0.0f,
                                          bool shadingNormals = false);

@@ -1,4 +1,4 @@
-#include "simplify/feature_edges.h"
+#include "simplify/cage/feature_edges.h"
 
 #include <algorithm>
 #include <cmath>

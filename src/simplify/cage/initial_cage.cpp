@@ -1,4 +1,4 @@
-#include "simplify/initial_cage.h"
+#include "simplify/cage/initial_cage.h"
 
 #include <cmath>
 #include <algorithm>
@@ -8,9 +8,9 @@
 
 #include "mesh/mesh_adjacency.h"
 #include "mesh/mesh_geometry.h"
-#include "simplify/decimate.h"
-#include "simplify/feature_edges.h"
-#include "simplify/limit_fit.h"
+#include "simplify/cage/decimate.h"
+#include "simplify/cage/feature_edges.h"
+#include "simplify/cage/limit_fit.h"
 #include "subdiv/limit_evaluator.h"
 #include "util/error.h"
 #include "util/interrupt.h"

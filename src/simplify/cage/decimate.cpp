@@ -1,4 +1,4 @@
-#include "simplify/decimate.h"
+#include "simplify/cage/decimate.h"
 
 #include <meshoptimizer.h>
 

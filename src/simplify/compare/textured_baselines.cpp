@@ -1,4 +1,4 @@
-#include "simplify/textured_baselines.h"
+#include "simplify/compare/textured_baselines.h"
 
 #include <meshoptimizer.h>
 

@@ -1,4 +1,4 @@
-#include "simplify/bake.h"
+#include "simplify/bake/bake.h"
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -11,7 +11,7 @@
 #include "geometry/normal_casting.h"
 #include "geometry/surface_queries.h"
 #include "mesh/material_sampling.h"
-#include "simplify/atlas_bake.h"
+#include "simplify/bake/atlas_bake.h"
 #include "mesh/mesh_geometry.h"
 #include "subdiv/limit_evaluator.h"
 #include "util/interrupt.h"
