@@ -17,7 +17,7 @@ declare -A folders=([opensubdiv]=opensubdiv [draco]=draco [libzstd]=zstd [xxhash
 for package in "${!folders[@]}"; do
   folder="$deps/${folders[$package]}"
   [ -f "$folder/.unpacked" ] && continue
-  if ! apt-cache showsrc "$package" 2>/dev/null | grep -q "^Package: $package"; then
+  if ! apt-cache showsrc "$package" 2>/dev/null | grep "^Package: $package" >/dev/null; then
     echo "setup.sh: Debian's source package '$package' is not known to apt: run .ci/setup (it enables deb-src)" >&2
     exit 1
   fi
