@@ -22,3 +22,5 @@ set(web_env WEB=${CMAKE_BINARY_DIR}/web ASSETS=${web_scratch}/assets HOSTILE=${w
             NODE_MODULES=${PROJECT_SOURCE_DIR}/apps/web/node_modules)
 add_test(NAME web.decode COMMAND ${CMAKE_COMMAND} -E env ${web_env} ${SUBDFIT_NODE} --test ${web_tests}/decode_test.mjs)
 set_tests_properties(web.decode PROPERTIES LABELS web FIXTURES_REQUIRED "web_build;web_assets;web_hostile" TIMEOUT 600)
+add_test(NAME web.browser COMMAND ${CMAKE_COMMAND} -E env ${web_env} ${SUBDFIT_NODE} --test ${web_tests}/browser_test.mjs)
+set_tests_properties(web.browser PROPERTIES LABELS web FIXTURES_REQUIRED "web_build;web_assets" TIMEOUT 600)

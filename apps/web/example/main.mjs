@@ -11,6 +11,7 @@ const useGltf = params.get('loader') === 'gltf';
 const src = params.get('src') ?? (useGltf ? 'decoded.glb' : 'asset.subd');
 const size = Number(params.get('size') ?? 0);
 const status = document.getElementById('status');
+if (size) status.classList.add('below');  // a fixed-size canvas shows nothing but the asset
 
 const renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
 renderer.setPixelRatio(size ? 1 : window.devicePixelRatio);
@@ -54,6 +55,7 @@ const ready = load().then((object) => {
   const sphere = frame(object);
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.target.copy(sphere.center);
+  controls.update();
   controls.addEventListener('change', () => renderer.render(scene, camera));
   renderer.render(scene, camera);
   return new Promise((resolve) => requestAnimationFrame(() => {
