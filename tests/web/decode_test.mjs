@@ -99,7 +99,7 @@ test('hostile files are refused quickly, within a bounded memory', async () => {
   // for what the file asked), and the instance decodes the next file.
   const { createDecoderInstance } = await import(path.join(WEB, 'subd_core.mjs'));
   const decoder = await createDecoderInstance(fs.readFileSync(path.join(WEB, 'subd_decoder_wasm.wasm')));
-  const memory = () => decoder.wasm.HEAPU8.length;
+  const memory = () => decoder.memoryBytes();
   const start = memory();
   for (const name of ['too_many_triangles.subd', 'zstd_bomb.subd', 'raw_size_lie.subd']) {
     assert.throws(() => decoder.decode(fs.readFileSync(path.join(HOSTILE, name)), { name }), new RegExp(`^Error: ${name}: `));

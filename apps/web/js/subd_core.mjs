@@ -26,6 +26,11 @@ class DecoderInstance {
     this.broken = false;  // after a trap the instance is not used again
   }
 
+  // The instance's WebAssembly memory: it grows with what a decode needs and never shrinks.
+  memoryBytes() {
+    return this.wasm.HEAPU8.length;
+  }
+
   // bytes: Uint8Array of an asset.subd. Returns the decoded surface (see subd_decoder.d.ts) or
   // throws an Error whose message is one line naming `name`.
   decode(bytes, { triangles = 0, name = 'asset.subd' } = {}) {

@@ -8,6 +8,7 @@
 import { createDecoderInstance } from './subd_core.mjs';
 
 const WASM_FILE = 'subd_decoder_wasm.wasm';
+const KEEP_BYTES = 256 << 20;  // as subd_worker.mjs
 
 export class SubdDecoder {
   // decoderPath: the folder of subd_decoder_wasm.wasm and subd_worker.mjs (default: this
@@ -42,8 +43,13 @@ export class SubdDecoder {
     const options = { triangles, name };
     if (typeof Worker === 'undefined') {
       this.local ??= this.#compile().then(createDecoderInstance);
-      const view = bytes instanceof Uint8Array ? bytes : new Uint8Array(bytes);
-      return (await this.local).decode(view, options);
+      const instance = await this.local;
+      try {
+        return instance.decode(bytes instanceof Uint8Array ? bytes : new Uint8Array(bytes), options);
+      } finally {
+        // WebAssembly memory only grows: a large decode's is let go with its instance.
+        if (instance.broken || instance.memoryBytes() > KEEP_BYTES) this.local = null;
+      }
     }
     const buffer = bytes instanceof ArrayBuffer ? bytes : bytes.slice().buffer;
     const worker = await this.#worker();
