@@ -4,8 +4,9 @@
 // file carries: the browser decodes them. apps/web/js/subd_core.mjs reads the Result.
 #include <emscripten/emscripten.h>
 
+#include <glm/gtc/type_ptr.hpp>
+
 #include <cstdint>
-#include <cstring>
 #include <exception>
 #include <memory>
 #include <new>
@@ -90,6 +91,7 @@ std::unique_ptr<Decoded> decode(std::span<const std::uint8_t> bytes, std::uint64
         textures.emissive |= image.which == AppearanceImage::Emissive;
     }
     out->mesh = exporter::surfaceGltfMesh(asset.cage, asset.maps, textures, segments);
+    if (out->mesh.indices.empty()) throw Error(name + ": nothing to decode: the surface has no triangles");
 
     // What the glb of `decode` embeds, less the images of an appearance it would not draw.
     out->shipped = std::move(shipped.images);
@@ -114,10 +116,10 @@ std::unique_ptr<Decoded> decode(std::span<const std::uint8_t> bytes, std::uint64
     r.indexCount = std::uint32_t(mesh.indices.size());
     r.segments = std::uint32_t(segments);
     r.flags = (mesh.hasTangents() ? kTangents : 0) | (textures.baseColor && textures.occlusion ? kOcclusion : 0);
-    r.positions = &mesh.positions[0].x;
-    r.normals = &mesh.normals[0].x;
-    r.tangents = mesh.hasTangents() ? &mesh.tangents[0].x : nullptr;
-    r.uvs = &mesh.uvs[0].x;
+    r.positions = glm::value_ptr(mesh.positions.front());
+    r.normals = glm::value_ptr(mesh.normals.front());
+    r.tangents = mesh.hasTangents() ? glm::value_ptr(mesh.tangents.front()) : nullptr;
+    r.uvs = glm::value_ptr(mesh.uvs.front());
     r.indices = mesh.indices.data();
     for (int c = 0; c < 4; ++c) r.baseColorFactor[c] = float(material.baseColorFactor[std::size_t(c)]);
     r.metallicFactor = float(material.metallicFactor);
@@ -140,7 +142,6 @@ EMSCRIPTEN_KEEPALIVE Result* subd_decode(const std::uint8_t* bytes, std::uint32_
         if (!(triangles >= 0.0) || triangles > double(subdfit::exporter::kMaxDecodeTriangles))
             throw subdfit::Error("invalid option: triangles: must be in 0.." + std::to_string(subdfit::exporter::kMaxDecodeTriangles));
         auto decoded = decode({bytes, size}, std::uint64_t(triangles), name);
-        if (decoded->mesh.indices.empty()) throw subdfit::Error(std::string(name) + ": nothing to decode: the surface has no triangles");
         Result* result = &decoded->result;
         live.emplace(result, std::move(decoded));
         return result;
