@@ -1,7 +1,8 @@
 // The web decoder in Node (ctest -L web): decode.mjs writes the triangles `subdfit decode`
 // writes for each kind of asset, and refuses damaged or hostile files in one line, quickly and
 // within a bounded memory.
-//   WEB=<build/web> ASSETS=<fixture dir> HOSTILE=<dir> [DEMO=<README demo's asset.subd>] node --test decode_test.mjs
+//   WEB=<build/web> ASSETS=<fixture dir> HOSTILE=<dir> SUBDFIT=<subdfit> NODE_MODULES=<apps/web/node_modules>
+//   [DEMO=<README demo's asset.subd>] node --test decode_test.mjs
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -9,7 +10,13 @@ import path from 'node:path';
 import { test } from 'node:test';
 import { readTriangles, triangleDistance } from './glb.mjs';
 
-const { WEB, ASSETS, HOSTILE, SUBDFIT, DEMO } = process.env;
+const { WEB, ASSETS, HOSTILE, SUBDFIT, DEMO, NODE_MODULES } = process.env;
+// three's meshopt decoder, for a glb `subdfit decode` writes with EXT_meshopt_compression.
+const meshopt = async () => {
+  const { MeshoptDecoder } = await import(path.join(NODE_MODULES, 'three/examples/jsm/libs/meshopt_decoder.module.js'));
+  await MeshoptDecoder.ready;
+  return MeshoptDecoder;
+};
 const scratch = path.join(path.dirname(ASSETS), 'decode-test');
 fs.rmSync(scratch, { recursive: true, force: true });
 fs.mkdirSync(scratch, { recursive: true });
@@ -20,7 +27,7 @@ function decode(input, output, ...extra) {
 }
 
 async function expectSameTriangles(native, web) {
-  const [a, b] = [await readTriangles(native), await readTriangles(web)];
+  const [a, b] = [await readTriangles(native, meshopt), await readTriangles(web)];
   assert.equal(b.indices.length, a.indices.length, 'triangle count');
   assert.equal(b.positions.length, a.positions.length, 'vertex count');
   const distance = triangleDistance(a, b);
