@@ -66,12 +66,16 @@ int main(int argc, char** argv) {
     subdfit::apps::addSimplifySettings(*batchCommand, batchDefaults);
 
     std::filesystem::path decodeInput, decodeOut;
-    int decodeSegments = 0;
+    subdfit::exporter::DecodeDensity decodeDensity;
     auto* decodeCommand = app.add_subcommand("decode", "a shipped asset.subd back to triangles: the displaced limit surface as .glb");
     decodeCommand->add_option("file", decodeInput, "the .subd file")->required();
     decodeCommand->add_option("--out", decodeOut, "the .glb to write")->required();
-    decodeCommand->add_option("--tess", decodeSegments, "segments per face edge (default: the maps' sample density, 8 without maps)")
-        ->check(CLI::Range(1, 64));
+    auto* decodeTess = decodeCommand->add_option("--tess", decodeDensity.segments,
+                                                 "segments per face edge (default: the maps' sample density, 8 without maps)")
+                           ->check(CLI::Range(1, 64));
+    decodeCommand->add_option("--triangles", decodeDensity.triangles, "about this many triangles (the nearest segments per face edge)")
+        ->check(CLI::Range(std::uint64_t(1), subdfit::exporter::kMaxDecodeTriangles))
+        ->excludes(decodeTess);
 
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit")) return *exitCode;
 
@@ -82,7 +86,7 @@ int main(int argc, char** argv) {
     try {
         const subdfit::fit::FitHooks hooks{.progress = printProgress, .cancel = &subdfit::stopRequest(), .note = say("subdfit")};
         if (decodeCommand->parsed()) {
-            const auto written = subdfit::exporter::decodeToGlb(decodeInput, decodeOut, decodeSegments);
+            const auto written = subdfit::exporter::decodeToGlb(decodeInput, decodeOut, decodeDensity);
             std::cout << written.path.string() << "\n";
         }
         if (fitCommand->parsed()) {
