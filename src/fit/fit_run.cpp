@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "fit/asset_export.h"
 #include "fit/checkpoint.h"
@@ -66,6 +67,7 @@ const char* toString(StopReason reason) {
     switch (reason) {
         case StopReason::Reached: return "steps";
         case StopReason::Converged: return "converged";
+        case StopReason::NoGain: return "no_gain";
         case StopReason::Cancelled: return "interrupted";
     }
     return "steps";
@@ -77,7 +79,7 @@ FitRun::FitRun(const FitOptions& options, gl::ProgramCache& programs, FitScene& 
       scene_(scene),
       fitter_(std::make_unique<CageFitter>(programs, scene.cage, fitSettings(options, scene.cage, scene.shading))),
       fingerprint_(checkpointFingerprint(options, scene.cage, scene.reference)),
-      monitorEvery_(std::max(5, options.steps / 50)),
+      monitorEvery_(std::clamp(options.steps / 50, 5, 10)),
       started_(Clock::now()) {
     scoreStart();
 }
@@ -132,8 +134,8 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
     const bool plateau = options_.schedule == "plateau";
     StepSchedule schedule(schedule_);
     // The schedule judges a step by its loss on the monitor views, the start included: the
-    // kept state is never worse than where the stage began.
-    auto monitor = [&] {
+    // kept state is never worse than where the stage began. Returns why the stage ends, if it does.
+    auto monitor = [&]() -> std::optional<StopReason> {
         const double monitorLoss = score(*fitter_, scene_.monitor).loss;
         const StepSchedule::Decision decision = schedule.record(monitorLoss, step());
         if (decision.best) schedule_.bestTheta = readTheta(*fitter_);
@@ -145,7 +147,17 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
             if (monitorLoss > kRestoreAbove * schedule_.bestLoss) restoreBest();
             fitter_->setLearningRateScale(schedule.learningRateScale());
         }
-        return decision.action;
+        if (!schedule_.probationOver && step() - schedule_.stageStart >= probationSteps()) {
+            schedule_.probationOver = true;
+            if (!schedule.paying()) {
+                if (hooks.note)
+                    hooks.note("no gain on the start in " + std::to_string(step() - schedule_.stageStart) +
+                               " steps, and none likely: the stage stops (stop_reason no_gain)");
+                return StopReason::NoGain;
+            }
+        }
+        if (decision.action == StepSchedule::Action::Converged) return StopReason::Converged;
+        return std::nullopt;
     };
     if (plateau && schedule_.bestStep < 0) {
         fitter_->setLearningRateScale(schedule.learningRateScale());
@@ -165,10 +177,11 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
             const double eta = seconds / double(taken - first) * double(options_.steps - taken);
             hooks.progress({taken, options_.steps, fitter_->takeMeanLoss(), seconds, eta});
         }
-        if (plateau && taken % monitorEvery_ == 0 && monitor() == StepSchedule::Action::Converged) {
-            stopReason_ = StopReason::Converged;
-            break;
-        }
+        if (plateau && taken % monitorEvery_ == 0)
+            if (const auto ended = monitor()) {
+                stopReason_ = *ended;
+                break;
+            }
         if (taken % options_.checkpointEvery == 0) saveCheckpoint(checkpoint);
     }
     saveCheckpoint(checkpoint);
@@ -194,13 +207,19 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
     StopReason last = runTo(options_.steps, checkpoint, hooks);
     if (last == StopReason::Cancelled) return last;
     endStage();
-    if (!resumedWidened && fitter_->maps() && last == StopReason::Converged && step() < options_.steps && widen &&
+    const bool stalled = last == StopReason::Converged || last == StopReason::NoGain;
+    if (!resumedWidened && fitter_->maps() && stalled && step() < options_.steps && widen &&
         widen()) {
         widenedStep_ = step();
         last = runTo(options_.steps, checkpoint, hooks);
         if (last != StopReason::Cancelled) endStage();
     }
     return last;
+}
+
+int FitRun::probationSteps() const {
+    const int stageSteps = options_.steps - std::max(0, schedule_.stageStart);
+    return std::max(2 * monitorEvery_, int(std::ceil(kProbation * stageSteps)));
 }
 
 void FitRun::restoreBest() {

@@ -89,6 +89,10 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
     const float density = std::max(1.0f, kReferenceEdge / edge);
     settings.smoothingLambda = o.smoothing * density * density;
     settings.smoothingIterations = std::clamp(int(std::lround(8.0 * std::sqrt(settings.smoothingLambda / 4.0))), 8, 48);
+    settings.vertices.noiseGate = o.noiseGate;
+    for (auto* group : {&settings.maps.displacement, &settings.maps.normalMap, &settings.maps.baseColor,
+                        &settings.maps.metallicRoughness})
+        group->noiseGate = o.noiseGate;
     settings.relaxation = o.relaxation;
     settings.tangentialGradient = o.tangential;
     settings.tessLevel = o.tessLevel;
