@@ -21,7 +21,7 @@ const std::vector<OptionRow>& optionTable() {
         {{"holdout_views", "--holdout-views", "held-out evaluation views", 1, 256, false, true, true}, &F::holdoutViews},
         {{"resolution", "--res", "render resolution in pixels (default: 256, 512 on a GPU)", 16, 4096, false, true, true, true},
          &F::resolution},
-        {{"steps", "--steps", "optimisation steps, the most with --schedule plateau (default: 500, 2000 on a GPU)", 0, 1e9,
+        {{"steps", "--steps", "optimisation steps, the most with --schedule plateau, which stops once converged (default: 4000, 20000 on a GPU)", 0, 1e9,
           false, false, true, true},
          &F::steps},
         {{"views_per_step", "--views-per-step", "views rendered per step", 1, 1024, false, true, true}, &F::viewsPerStep},

@@ -24,7 +24,7 @@ inline constexpr int kByDevice = -1;
 
 struct FitOptions {
     std::filesystem::path cage, reference, out;
-    // By the device unless given (fit/device_defaults.h): 24 views at 256², at most 500 steps on
+    // By the device unless given (fit/device_defaults.h): 24 views at 256², at most 4000 steps on
     // a software rasterizer; more of each on a hardware GPU, where a step costs little.
     int views = kByDevice;   // training views (held-out views come in addition)
     int holdoutViews = 6;

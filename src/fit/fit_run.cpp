@@ -38,9 +38,9 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 std::vector<glm::vec4> renderHoldout(CageFitter& fitter, const FitScene& scene) {
-    render::RenderTarget image(scene.holdout.resolution(), scene.holdout.resolution());
-    fitter.render(scene.holdout.camera(0), image);
-    return image.readColor();
+    return scene.holdout.render(0, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
+        fitter.render(camera, canvas);
+    });
 }
 
 // Every parameter of every group, maps included.
@@ -248,6 +248,7 @@ FitReport FitRun::writeResults(const std::filesystem::path& out, const context::
     const auto afterImage = renderHoldout(*fitter_, scene_);
     r.trainAfter = score(*fitter_, scene_.training);
     r.holdoutAfter = score(*fitter_, scene_.holdout);
+    r.holdoutSamplesPerPixel = scene_.holdout.supersampling() * scene_.holdout.supersampling();
     r.finite = allFinite(*fitter_);
     r.effects = fitter_->maps() ? fitter_->maps()->effects() : maps::MapEffects{};
     for (auto* group : fitter_->groups()) r.parameters.emplace_back(group->name(), group->count());
