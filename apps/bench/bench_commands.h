@@ -29,7 +29,8 @@ int runStepCost(const StepCostOptions& options);
 
 struct LumpySphereOptions {
     std::filesystem::path out = "bench-lumpy-sphere";
-    int steps = 500;
+    int steps = fit::kByDevice;  // the device's cap: the plateau schedule stops the fit once converged
+    float noiseGate = fit::FitOptions{}.noiseGate;
     int resolution = 256;
     int views = 8;
     std::string glProvider = "auto";

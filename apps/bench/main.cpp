@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
     subdfit::bench::LumpySphereOptions lumpy;
     auto* lumpyCommand = app.add_subcommand("lumpy-sphere", "fit a quad-sphere cage to a lumpy sphere (the peer's task)");
     lumpyCommand->add_option("--out", lumpy.out, "output folder")->capture_default_str();
-    lumpyCommand->add_option("--steps", lumpy.steps, "optimisation steps")->capture_default_str();
+    lumpyCommand->add_option("--steps", lumpy.steps, "most optimisation steps (default: the device's)");
+    lumpyCommand->add_option("--noise-gate", lumpy.noiseGate, "the fit's noise gate (0: plain Adam)")->capture_default_str();
     lumpyCommand->add_option("--res", lumpy.resolution, "resolution")->capture_default_str();
     lumpyCommand->add_option("--views", lumpy.views, "training views")->capture_default_str();
     lumpyCommand->add_option("--gl", lumpy.glProvider, "GL provider: auto, osmesa, egl")->capture_default_str();

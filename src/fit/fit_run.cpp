@@ -177,7 +177,8 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
             const double eta = seconds / double(taken - first) * double(options_.steps - taken);
             hooks.progress({taken, options_.steps, fitter_->takeMeanLoss(), seconds, eta});
         }
-        if (plateau && taken % monitorEvery_ == 0)
+        // On probation the monitor looks more often: a start that cannot pay is let go early.
+        if (plateau && taken % (schedule_.probationOver ? monitorEvery_ : kProbationEvery) == 0)
             if (const auto ended = monitor()) {
                 stopReason_ = *ended;
                 break;
@@ -219,7 +220,8 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
 
 int FitRun::probationSteps() const {
     const int stageSteps = options_.steps - std::max(0, schedule_.stageStart);
-    return std::max(2 * monitorEvery_, int(std::ceil(kProbation * stageSteps)));
+    const int share = int(std::ceil(kProbation * stageSteps));
+    return std::max(2 * kProbationEvery, std::min(share, kProbationMeasurements * kProbationEvery));
 }
 
 void FitRun::restoreBest() {

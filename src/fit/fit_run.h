@@ -67,11 +67,12 @@ public:
     float takeMeanLoss() { return fitter_->takeMeanLoss(); }
 
     // Steps until `until` (clamped to the planned steps), until the schedule says the stage has
-    // converged (options.schedule "plateau"), until its probation says it cannot pay (the first
-    // kProbation of the stage's steps brought no gain and make none likely: seconds spent for
-    // nothing), or until hooks.cancel: progress about 50 times a run, a checkpoint every
-    // options.checkpointEvery steps and at the end.
+    // converged (options.schedule "plateau"), until its probation says it cannot pay (its first
+    // kProbation of the stage's steps, or kProbationMeasurements intervals of kProbationEvery
+    // steps if fewer, brought no gain and make none likely: seconds spent for nothing), or until hooks.cancel:
+    // progress about 50 times a run, a checkpoint every options.checkpointEvery steps and at the end.
     static constexpr double kProbation = 0.15;
+    static constexpr int kProbationMeasurements = 5, kProbationEvery = 5;
     StopReason runTo(int until, const std::filesystem::path& checkpoint, const FitHooks& hooks = {});
 
     // The end of a stage: back to the best monitored parameters, if the last are not (so a fit
