@@ -109,6 +109,8 @@ void writeCheckpoint(const std::filesystem::path& path, const std::string& finge
     out.put<std::int32_t>(schedule.halvings);
     out.put<std::uint32_t>(std::uint32_t(schedule.bestTheta.size()));
     for (const auto& theta : schedule.bestTheta) out.putFloats(theta);
+    out.put<std::uint32_t>(std::uint32_t(schedule.startTheta.size()));
+    for (const auto& theta : schedule.startTheta) out.putFloats(theta);
     io::writeTextAtomically(path, std::move(out).finish());
 }
 
@@ -161,6 +163,9 @@ std::optional<FitState> readCheckpoint(const std::filesystem::path& path, const 
     const auto bestGroups = in.get<std::uint32_t>();
     if (bestGroups > groups) in.damaged("bad best-state group count");
     for (std::uint32_t k = 0; k < bestGroups; ++k) schedule.bestTheta.push_back(in.getFloats());
+    const auto startGroups = in.get<std::uint32_t>();
+    if (startGroups > groups) in.damaged("bad start-state group count");
+    for (std::uint32_t k = 0; k < startGroups; ++k) schedule.startTheta.push_back(in.getFloats());
     if (!in.atEnd()) in.damaged("bytes after the schedule");
     return state;
 }

@@ -137,8 +137,10 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
     // kept state is never worse than where the stage began. Returns why the stage ends, if it does.
     auto monitor = [&]() -> std::optional<StopReason> {
         const double monitorLoss = score(*fitter_, scene_.monitor).loss;
+        const bool first = schedule_.stageStart < 0;
         const StepSchedule::Decision decision = schedule.record(monitorLoss, step());
         if (decision.best) schedule_.bestTheta = readTheta(*fitter_);
+        if (first) schedule_.startTheta = readTheta(*fitter_);
         if (decision.action == StepSchedule::Action::Halve) {
             // Clearly worse than the best (not only noisier): back to the best state, with the
             // smaller step. A start that was already close (a limit-interpolated cage, baked
@@ -150,6 +152,12 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
         if (!schedule_.probationOver && step() - schedule_.stageStart >= probationSteps()) {
             schedule_.probationOver = true;
             if (!schedule.paying()) {
+                // A best found on probation is the noise's pick (the monitor views are few):
+                // the stage ends where it started, never below it on other views.
+                schedule_.bestTheta = schedule_.startTheta;
+                schedule_.bestLoss = schedule_.stageLosses.front();
+                schedule_.bestStep = schedule_.stageStart;
+                restoreBest();
                 if (hooks.note)
                     hooks.note("no gain on the start in " + std::to_string(step() - schedule_.stageStart) +
                                " steps, and none likely: the stage stops (stop_reason no_gain)");

@@ -24,6 +24,7 @@ struct ScheduleState {
     bool probationOver = false;
     int halvings = 0;
     std::vector<std::vector<float>> bestTheta{};  // per group, in CageFitter::groups() order; empty: none yet
+    std::vector<std::vector<float>> startTheta{};  // the same at the stage's first measurement
 };
 
 struct FitState {

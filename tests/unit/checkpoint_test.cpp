@@ -35,7 +35,8 @@ FitState sampleState() {
     state.widenedStep = 35;
     state.schedule = {.bestLoss = 0.125, .bestStep = 36, .window = {0.5, 0.25, 0.125}, .stageLosses = {1.0, 0.5},
                       .stageStart = 3, .probationOver = true, .halvings = 2,
-                      .bestTheta = {state.groups[0].theta, state.groups[1].moment1}};
+                      .bestTheta = {state.groups[0].theta, state.groups[1].moment1},
+                      .startTheta = {state.groups[1].theta, state.groups[0].moment1}};
     return state;
 }
 
@@ -86,6 +87,7 @@ TEST_F(Checkpoint, ReadsBackExactly) {
     EXPECT_EQ(read->schedule.probationOver, expected.schedule.probationOver);
     EXPECT_EQ(read->schedule.halvings, expected.schedule.halvings);
     EXPECT_EQ(read->schedule.bestTheta, expected.schedule.bestTheta);
+    EXPECT_EQ(read->schedule.startTheta, expected.schedule.startTheta);
     EXPECT_FALSE(readCheckpoint(path_.parent_path() / "none.bin", "fp"));
 }
 
