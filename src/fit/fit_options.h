@@ -42,7 +42,7 @@ struct FitOptions {
     float smoothing = 4.0f;       // λ of the Laplacian preconditioner (0: off)
     // c of every group's noise gate (optim::GroupSettings::noiseGate): a parameter whose running
     // gradient is within c times its expected noise of 0 barely moves; 0: plain Adam.
-    float noiseGate = 1.0f;
+    float noiseGate = 0.0f;
     float relaxation = 0.0f;      // tangential relaxation of the cage per vertex update (0: off)
     float tangential = 1.0f;      // fraction of the vertex gradient's tangential part kept
     std::string glProvider = "auto";

@@ -59,7 +59,7 @@ StepSchedule::Decision StepSchedule::record(double loss, int step) {
 bool StepSchedule::paying() const {
     // The trend, not the best: on a noisy loss the lowest of a few measurements is below the
     // first by chance.
-    return likelyImproving(lossTrend(state_.stageLosses), kMinImprovement, kConfidence);
+    return likelyImproving(lossTrend(state_.stageLosses), kMinImprovement, kProbationConfidence);
 }
 
 }  // namespace subdfit::fit

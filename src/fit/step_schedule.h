@@ -33,6 +33,9 @@ public:
     static constexpr double kMinImprovement = 0.005;  // relative fall over a window worth going on for
     static constexpr double kConfidence = 0.5;        // standard errors: stall when P(fall >= min) < ~30 %
     static constexpr int kMaxHalvings = 3;
+    // A probation gives the benefit of the doubt: it stops a stage only when even its fall plus
+    // this many standard errors stays short (a poor start's first steps can be erratic).
+    static constexpr double kProbationConfidence = 2.0;
 
     enum class Action { Continue, Halve, Converged };
     struct Decision {
@@ -48,7 +51,7 @@ public:
     float learningRateScale() const { return std::ldexp(1.0f, -state_.halvings); }
 
     // Whether the stage pays: its measurements since its start (at least 3, at most kWindow)
-    // make a fall of kMinImprovement likely. For a fit's probation (FitRun): a start it cannot
+    // leave a fall of kMinImprovement plausible (kProbationConfidence). For a fit's probation (FitRun): a start it cannot
     // improve on is given up early.
     bool paying() const;
 

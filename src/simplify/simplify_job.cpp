@@ -35,6 +35,11 @@ constexpr float kRefineRate = 0.02f;
 // dense one a full step (a sixth of an edge) tilts every normal under the estimator's noise
 // (the relief Spot's 8 000-face cage lost 9 dB held out in its first 10 steps).
 constexpr float kRefineVertexRate = 1.0f / 30.0f;
+// ... and with the noise gate (optim::GroupSettings::noiseGate): near such a start the gradient
+// is mostly noise (docs/optimizer.md: at the refine step, a tenth of a dB lost in 10 steps with
+// it, four times that without). From a poor start the gate only slows the first steps, so
+// `fit` leaves it off.
+constexpr float kRefineNoiseGate = 1.0f;
 
 // What subdfit ships: asset.subd (cage and maps, export/subd_format.h). cage.glb, the map
 // atlases and fitted.glb are conveniences for DCC tools and viewers, not what the budget counts.
@@ -167,6 +172,7 @@ void startMaps(fit::FitRun& run, bool bake) {
         const bool appearanceGroup = g == parameters->baseColor() || g == parameters->metallicRoughness();
         if (appearance && !appearanceGroup) fitter.setOptimised(*g, false);
         fitter.setRates(*g, g->settings().epsilon, (appearanceGroup ? 1.0f : kRefineRate) * g->settings().learningRate);
+        g->settings().noiseGate = kRefineNoiseGate;
     }
 }
 
@@ -334,6 +340,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     fit::FitRun run(fitOptions, programs, scene);
     auto& vertices = run.fitter().vertexGroup();
     run.fitter().setRates(vertices, vertices.settings().epsilon, kRefineVertexRate * vertices.settings().learningRate);
+    vertices.settings().noiseGate = kRefineNoiseGate;
     const auto checkpoint = o.fit.out / "checkpoint.bin";
     const bool resumed = o.fit.resume && run.resume(checkpoint);
     if (o.fit.resume && !resumed && hooks.note)
