@@ -45,7 +45,7 @@ scene::SceneFrame frameOf(const mesh::PolygonMesh& reference) {
 }  // namespace
 
 render::ShadingModel shadingOf(const FitOptions& o, const mesh::PolygonMesh& reference) {
-    return o.shading == "auto" ? render::shadingFor(reference) : render::parseShadingModel(o.shading);
+    return o.shading ? *o.shading : render::shadingFor(reference);
 }
 
 maps::MapEffects mapEffectsOf(const FitOptions& o, render::ShadingModel shading) {
@@ -113,7 +113,7 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
         std::min(settings.maps.displacement.learningRate, kHeightStepSlope * edge / float(std::max(1, o.mapResolution)));
     settings.maps.appearanceResolution = o.appearanceResolution;
     settings.maps.appearanceAtlas = o.appearanceAtlas;
-    settings.maps.shadingNormal = surface::shadingNormalNamed(o.shadingNormal);
+    settings.maps.shadingNormal = o.shadingNormal;
     settings.mapsStartFraction = o.mapsStart;
     return settings;
 }
