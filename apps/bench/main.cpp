@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <tuple>
 
 #include "common/command_line.h"
 #include "common/fit_cli.h"
@@ -95,15 +96,23 @@ int main(int argc, char** argv) {
     soupCommand->add_option("--seconds", soup.seconds, "step-time budget per estimator (0: none)")->capture_default_str();
     subdfit::apps::addGlProvider(*soupCommand, soup.glProvider);
 
+    bool force = false;
+    app.add_flag("--force", force, "write into a non-empty --out folder that holds no earlier results of the command");
+
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit-bench")) return *exitCode;
     try {
-        // --out is checked before minutes of benchmarking, not when the first CSV is written.
-        const std::pair<CLI::App*, const std::filesystem::path*> outputs[] = {
-            {stepCostCommand, &stepCost.out}, {lumpyCommand, &lumpy.out},       {mapsCommand, &mapsGain.out},
-            {simplifyCommand, &tradeoff.out}, {gradientCommand, &gradient.out}, {accuracyCommand, &accuracy.out},
-            {soupCommand, &soup.out}, {convergenceCommand, &convergence.out}, {recoveryCommand, &recovery.out}};
-        for (const auto& [command, out] : outputs)
-            if (command->parsed() && !out->empty()) subdfit::io::checkOutputFolder(*out, {.force = true});
+        // --out is checked before minutes of benchmarking, not when the first CSV is written: a
+        // folder that holds something else (a typo, somebody's files) needs --force; one that
+        // holds the command's own CSV from an earlier run is the command's to update.
+        const std::tuple<CLI::App*, const std::filesystem::path*, const char*> outputs[] = {
+            {stepCostCommand, &stepCost.out, "step_cost.csv"},       {lumpyCommand, &lumpy.out, "lumpy_sphere.csv"},
+            {mapsCommand, &mapsGain.out, "maps_gain.csv"},           {simplifyCommand, &tradeoff.out, "simplify_tradeoff.csv"},
+            {gradientCommand, &gradient.out, "gradient.csv"},        {accuracyCommand, &accuracy.out, "accuracy.csv"},
+            {soupCommand, &soup.out, "soup.csv"},                    {convergenceCommand, &convergence.out, "convergence.csv"},
+            {recoveryCommand, &recovery.out, "recovery.csv"}};
+        for (const auto& [command, out, csv] : outputs)
+            if (command->parsed() && !out->empty())
+                subdfit::io::checkOutputFolder(*out, {.ownMarkers = {csv}, .force = force});
         if (reliefCommand->parsed()) return subdfit::bench::runRelief(relief);
         if (stepCostCommand->parsed()) return subdfit::bench::runStepCost(stepCost);
         if (lumpyCommand->parsed()) return subdfit::bench::runLumpySphere(lumpy);

@@ -14,6 +14,7 @@
 #include "simplify/simplify_job.h"
 #include "util/error.h"
 #include "util/interrupt.h"
+#include "util/printable.h"
 
 namespace {
 
@@ -66,23 +67,30 @@ int main(int argc, char** argv) {
     subdfit::apps::addSimplifySettings(*batchCommand, batchDefaults);
 
     std::filesystem::path decodeInput, decodeOut;
-    subdfit::exporter::DecodeDensity decodeDensity;
+    subdfit::exporter::DensityRequest decodeDensity;
     auto* decodeCommand = app.add_subcommand("decode", "a shipped asset.subd back to triangles: the displaced limit surface as .glb");
     decodeCommand->add_option("file", decodeInput, "the .subd file")->required();
-    decodeCommand->add_option("--out", decodeOut, "the .glb to write")->required();
-    auto* decodeTess = decodeCommand->add_option("--tess", decodeDensity.segments,
-                                                 "segments per face edge (default: the maps' sample density, 8 without maps)")
-                           ->check(CLI::Range(1, 64));
-    decodeCommand->add_option("--triangles", decodeDensity.triangles, "about this many triangles (the nearest segments per face edge)")
-        ->check(CLI::Range(std::uint64_t(1), subdfit::exporter::kMaxDecodeTriangles))
-        ->excludes(decodeTess);
+    decodeCommand->add_option("--out", decodeOut, "the .glb to write (a new file, or a regular file to replace)")->required();
+    auto* tess = decodeCommand->add_option("--tess", decodeDensity.segments, "segments per face edge, 1..64")
+                     ->check(CLI::Range(1, subdfit::exporter::kMaxDecodeSegments));
+    decodeCommand
+        ->add_option("--triangles", decodeDensity.triangles,
+                     "about this many triangles (default: the reference's, as asset.subd records it; at most " +
+                         std::to_string(subdfit::exporter::kMaxDecodeTriangles) + ")")
+        ->check(CLI::Range(std::int64_t(1), subdfit::exporter::kMaxDecodeTriangles))
+        ->excludes(tess);
 
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit")) return *exitCode;
 
     subdfit::installStopSignals();
     const auto say = [](const char* who) {
-        return [who](const std::string& line) { std::fprintf(stderr, "%s: %s\n", who, line.c_str()); };
+        return [who](const std::string& line) { std::fprintf(stderr, "%s: %s\n", who, subdfit::printable(line, 4096).c_str()); };
     };
+    // What an out-of-memory error is about: the file the command reads.
+    const std::filesystem::path input = decodeCommand->parsed()     ? decodeInput
+                                        : simplifyCommand->parsed() ? simplify.fit.reference
+                                        : batchCommand->parsed()    ? manifest
+                                                                    : fit.reference;
     try {
         const subdfit::fit::FitHooks hooks{.progress = printProgress, .cancel = &subdfit::stopRequest(), .note = say("subdfit")};
         if (decodeCommand->parsed()) {
@@ -115,11 +123,12 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "subdfit: %s%s\n", e.what(), simplifyCommand->parsed() ? " (--resume continues)" : "");
         return 130;
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "subdfit: error: out of memory\n");
+        std::fprintf(stderr, "subdfit: error: %s: out of memory\n", subdfit::printable(input.string(), 4096).c_str());
         return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "subdfit: error: %s\n", subdfit::apps::describeError(e).c_str());
-        return 1;
+        std::fprintf(stderr, "subdfit: error: %s\n", subdfit::printable(subdfit::apps::describeError(e), 4096).c_str());
+        // An impossible option is a usage error, whether the parser or the core found it.
+        return dynamic_cast<const subdfit::OptionError*>(&e) ? 2 : 1;
     }
     return subdfit::stopRequested() ? 130 : 0;
 }

@@ -2,6 +2,7 @@
 
 #include "context/gl_context.h"
 #include "render/shading_model.h"
+#include "surface/appearance_atlas.h"
 
 #include <algorithm>
 #include <cmath>
@@ -56,7 +57,7 @@ const std::vector<OptionRow>& optionTable() {
          &F::appearanceResolution},
         {{"appearance_atlas", "--appearance-atlas",
           "simplify: texels per side of the base colour / metallic-roughness in the reference's own UV atlas "
-          "(0 = tiles per face; a reference with one textured material)", 0, 4096, false, true, true},
+          "(0 = tiles per face; a reference with one textured material)", 0, surface::kMaxAtlasSize, false, true, true},
          &F::appearanceAtlas},
         {{"maps_start", "--maps-start", "fraction of the steps before the maps join", 0, 1, false, true, true},
          &F::mapsStart},

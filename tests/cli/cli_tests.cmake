@@ -127,3 +127,10 @@ foreach(script hostile_manifest concurrent_batches signals_and_files)
                    ${SUBDFIT_CLI_CAGE} ${SUBDFIT_CLI_REFERENCE})
   set_tests_properties(cli.service.${script} PROPERTIES LABELS cli TIMEOUT 300)
 endforeach()
+
+# Hostile inputs (tests/cli/hostile_inputs.sh): .subd files that state far more than they hold,
+# `decode --out` at a FIFO, a folder, a symlink or the input, impossible sizes and counts.
+add_test(NAME cli.hostile_inputs
+         COMMAND bash ${SUBDFIT_CLI_SCRIPTS}/hostile_inputs.sh $<TARGET_FILE:subdfit> ${SUBDFIT_CLI_OUT}/hostile_inputs
+                 ${PROJECT_SOURCE_DIR}/tests/data/hostile-subd ${SUBDFIT_CLI_REFERENCE} $<TARGET_FILE:subdfit-bench>)
+set_tests_properties(cli.hostile_inputs PROPERTIES LABELS cli TIMEOUT 300)

@@ -40,7 +40,7 @@ for (const [name, command] of Object.entries(ASSETS)) {
     fs.rmSync(dir, { recursive: true, force: true });
     run([...command, '--out', dir]);
   }
-  for (const [glb, extra] of [['native.glb', []], ['native_5000.glb', ['--triangles', '5000']]])
+  for (const [glb, extra] of [['native.glb', []], ['native_50000.glb', ['--triangles', '50000']]])
     if (!fs.existsSync(path.join(dir, glb))) run(['decode', path.join(dir, 'asset.subd'), '--out', path.join(dir, glb), ...extra]);
   process.stdout.write(`${name}: ${fs.statSync(path.join(dir, 'asset.subd')).size} bytes\n`);
 }
