@@ -64,13 +64,15 @@ DecodeDensity decodeDensity(const SubdOutline& asset, const DensityRequest& requ
     return d;
 }
 
+std::uint64_t decodeOutputBytes(const DecodeDensity& d) {
+    return std::uint64_t(d.vertices) * DecodeCost::kOutputVertex + std::uint64_t(d.triangles) * DecodeCost::kOutputTriangle;
+}
+
 DecodeDensity pricedDensity(const SubdOutline& asset, const DensityRequest& request, DecodeBudget& budget) {
     DecodeDensity density = decodeDensity(asset, request, budget.name());
     const bool asked = request.segments > 0 || request.triangles > 0;
-    const auto bytes = [](const DecodeDensity& d) {
-        return std::uint64_t(d.vertices) * DecodeCost::kOutputVertex + std::uint64_t(d.triangles) * DecodeCost::kOutputTriangle;
-    };
-    while (!asked && density.segments > 1 && !budget.fits(1, bytes(density))) density = densityAt(asset.cage, density.segments - 1);
+    while (!asked && density.segments > 1 && !budget.fits(1, decodeOutputBytes(density)))
+        density = densityAt(asset.cage, density.segments - 1);
     const std::string what = std::to_string(density.triangles) + " triangles (" + std::to_string(density.segments) +
                              (density.segments == 1 ? " segment" : " segments") + " a face edge)";
     budget.spend(std::uint64_t(density.vertices), DecodeCost::kOutputVertex, what);

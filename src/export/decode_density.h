@@ -43,6 +43,9 @@ DecodeDensity densityAt(const mesh::PolygonMesh& cage, int segments);
 DecodeDensity decodeDensity(const SubdOutline& asset, const DensityRequest& request, const std::string& name);
 DecodeDensity decodeDensity(const SubdAsset& asset, const DensityRequest& request, const std::string& name);
 
+// What writing `density` costs a decoder (DecodeCost::kOutputVertex, kOutputTriangle).
+std::uint64_t decodeOutputBytes(const DecodeDensity& density);
+
 // decodeDensity for a file being read (readShippedSubd's `priced`, named by `budget`), with the
 // vertices and triangles a decoder writes at it spent from `budget`: the default gives way to
 // what the budget has left (fewer segments), a density asked for does not (it is refused).

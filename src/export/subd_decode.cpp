@@ -2,23 +2,26 @@
 
 #include <new>
 
-#include "export/decode_budget.h"
 #include "export/surface_glb.h"
 #include "io/atomic_file.h"
 #include "util/error.h"
 
 namespace subdfit::exporter {
 
-WrittenFile decodeToGlb(const std::filesystem::path& subd, const std::filesystem::path& out, const DensityRequest& request) {
+DecodeInput readForDecode(const std::filesystem::path& subd, const DensityRequest& request, DecodeBudget& budget) {
+    DecodeInput input;
+    // The triangles to write are priced with the file, before its maps are built.
+    input.asset = readSubd(subd, &budget, [&](const SubdOutline& outline) { input.density = pricedDensity(outline, request, budget); });
+    return input;
+}
+
+WrittenFile decodeToGlb(const std::filesystem::path& subd, const std::filesystem::path& out, const DensityRequest& request,
+                        MeshCoding coding) {
     io::checkOutputFile(out, subd);
     try {
         DecodeBudget budget(subd.string());
-        DecodeDensity density;
-        // The triangles to write are priced with the file, before its maps are built.
-        const SubdAsset asset = readSubd(subd, &budget, [&](const SubdOutline& outline) {
-            density = pricedDensity(outline, request, budget);
-        });
-        return writeSurfaceGlb(out, asset.cage, asset.maps, density.segments, false);
+        const DecodeInput input = readForDecode(subd, request, budget);
+        return writeSurfaceGlb(out, input.asset.cage, input.asset.maps, input.density.segments, coding);
     } catch (const std::bad_alloc&) {
         throw fileError(subd.string(), "out of memory while decoding it");
     }

@@ -3,18 +3,30 @@
 // displaced limit surface as triangles (with the normal map, if the file has one, as the
 // material's normalTexture), as densely as export/decode_density.h chooses. Reads nothing but the
 // file; what it decodes and writes is priced against one budget (export/decode_budget.h) before
-// it is allocated; `out` is written only over a regular file (or where nothing is).
+// it is allocated; `out` is written only over a regular file (or where nothing is). The LOD chain
+// and the density from an error bound are export/engine/engine_decode.h's.
 #include <filesystem>
 
+#include "export/decode_budget.h"
 #include "export/decode_density.h"
+#include "export/glb_writer.h"
 #include "export/output_file.h"
 #include "export/subd_format.h"
 
 namespace subdfit::exporter {
 
-// Writes `out` (.glb) atomically. Throws subdfit::Error naming the file for a bad input, an
-// impossible density or an output that may not be written (empty, the input itself, a folder,
-// anything but a regular file), before any work.
-WrittenFile decodeToGlb(const std::filesystem::path& subd, const std::filesystem::path& out, const DensityRequest& request = {});
+// A .subd read for decoding: the asset, and the density `request` gets, whose triangles were
+// priced in `budget` with the file's counts before the maps were built.
+struct DecodeInput {
+    SubdAsset asset;
+    DecodeDensity density;
+};
+DecodeInput readForDecode(const std::filesystem::path& subd, const DensityRequest& request, DecodeBudget& budget);
+
+// Writes `out` (.glb) atomically, its mesh stored as `coding` says. Throws subdfit::Error naming
+// the file for a bad input, an impossible density or an output that may not be written (empty,
+// the input itself, a folder, anything but a regular file), before any work.
+WrittenFile decodeToGlb(const std::filesystem::path& subd, const std::filesystem::path& out, const DensityRequest& request = {},
+                        MeshCoding coding = MeshCoding::Meshopt);
 
 }  // namespace subdfit::exporter

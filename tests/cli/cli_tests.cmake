@@ -111,6 +111,13 @@ add_test(NAME cli.simplify.spot
 # Its folder is also the result the viewer's tests show (tests/view/view_tests.cmake).
 set_tests_properties(cli.simplify.spot PROPERTIES LABELS cli TIMEOUT 600 FIXTURES_SETUP simplify_spot)
 
+# What that simplify shipped decodes for engines (tests/cli/decode_for_engines.sh): the default
+# density, a chain of levels of detail, an error bound, bad options.
+add_test(NAME cli.decode.engines
+         COMMAND bash ${SUBDFIT_CLI_SCRIPTS}/decode_for_engines.sh $<TARGET_FILE:subdfit> ${SUBDFIT_CLI_OUT}/decode_engines
+                 ${SUBDFIT_CLI_OUT}/simplify_spot ${SUBDFIT_CLI_REFERENCE})
+set_tests_properties(cli.decode.engines PROPERTIES LABELS cli TIMEOUT 300 FIXTURES_REQUIRED simplify_spot)
+
 # What that simplify shipped as USD opens in Pixar's USD with no validation error
 # (tests/usd/read_usd.py; the usd-core environment .ci/setup makes).
 add_test(NAME usd.simplify_spot

@@ -10,22 +10,7 @@ rm -rf "$out" && mkdir -p "$out/in"
 # Copies: a decode that wrote over its input must not damage the repository's files.
 cp "$data"/*.subd "$out/in/"
 data="$out/in"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-
-# expect CODE TEXT -- ARGS...: exit CODE (any non-zero for "x"), one stderr line containing TEXT,
-# done within 20 s.
-expect() {
-  local code=$1 text=$2
-  shift 3
-  local err
-  err=$(timeout 20 "$subdfit" "$@" 2>&1 >/dev/null)
-  local rc=$?
-  if [ $rc -eq 124 ]; then fail "$*: took more than 20 s"; return; fi
-  if [ "$code" = x ] && [ $rc -eq 0 ] || [ "$code" != x ] && [ $rc -ne "$code" ]; then fail "$*: exit $rc, expected $code"; fi
-  if [ "$(printf '%s\n' "$err" | wc -l)" -ne 1 ]; then fail "$*: stderr is not one line: $err"; fi
-  case $err in *"$text"*) ;; *) fail "$*: stderr does not name '$text': $err" ;; esac
-}
+source "$(dirname "$0")/expect_refusal.sh"
 
 # .subd bombs: refused, naming the file, nothing written.
 for file in plain_2m_quads one_node_at_resolution_64 heights_on_1m_faces zstd_bomb; do

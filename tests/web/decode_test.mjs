@@ -1,6 +1,6 @@
-// The web decoder in Node (ctest -L web): decode.mjs writes the triangles `subdfit decode`
-// writes for each kind of asset, and refuses damaged or hostile files in one line, quickly and
-// within a bounded memory.
+// The web decoder in Node (ctest -L web): decode.mjs writes the triangles `subdfit decode
+// --uncompressed` writes for each kind of asset, and refuses damaged or hostile files in one
+// line, quickly and within a bounded memory.
 //   WEB=<build/web> ASSETS=<fixture dir> HOSTILE=<dir> SUBDFIT=<subdfit> NODE_MODULES=<apps/web/node_modules>
 //   [DEMO=<README demo's asset.subd>] node --test decode_test.mjs
 import assert from 'node:assert/strict';
@@ -57,7 +57,7 @@ for (const kind of kinds) {
 
 test('the README demo: the same triangles as subdfit decode', { skip: !DEMO || !fs.existsSync(DEMO) ? 'no README demo result (README command 1 makes out/relief_spot/asset.subd)' : false }, async () => {
   const native = path.join(scratch, 'demo_native.glb'), web = path.join(scratch, 'demo_web.glb');
-  const run = spawnSync(SUBDFIT, ['decode', DEMO, '--out', native], { encoding: 'utf8' });
+  const run = spawnSync(SUBDFIT, ['decode', DEMO, '--out', native, '--uncompressed'], { encoding: 'utf8' });
   assert.equal(run.status, 0, run.stderr);
   assert.equal(decode(DEMO, web).status, 0);
   await expectSameTriangles(native, web);

@@ -1,6 +1,6 @@
 # The web decoder (apps/web, docs/web.md), labelled `web`: built by a fixture (the `web` target),
 # then checked in Node against `subdfit decode` and in headless Chromium against three's
-# GLTFLoader. Included by tests/CMakeLists.txt where the web target exists.
+# GLTFLoader; and what `subdfit decode` writes for engines, through the Khronos glTF validator. Included by tests/CMakeLists.txt where the web target exists.
 set(web_tests ${CMAKE_CURRENT_LIST_DIR})
 set(web_scratch ${CMAKE_CURRENT_BINARY_DIR}/web)
 
@@ -19,3 +19,5 @@ add_test(NAME web.decode COMMAND ${CMAKE_COMMAND} -E env ${web_env} ${SUBDFIT_NO
 set_tests_properties(web.decode PROPERTIES LABELS web FIXTURES_REQUIRED "web_build;web_assets" TIMEOUT 600)
 add_test(NAME web.browser COMMAND ${CMAKE_COMMAND} -E env ${web_env} ${SUBDFIT_NODE} --test ${web_tests}/browser_test.mjs)
 set_tests_properties(web.browser PROPERTIES LABELS web FIXTURES_REQUIRED "web_build;web_assets" TIMEOUT 600)
+add_test(NAME web.validate COMMAND ${CMAKE_COMMAND} -E env ${web_env} ${SUBDFIT_NODE} --test ${web_tests}/validate_test.mjs)
+set_tests_properties(web.validate PROPERTIES LABELS web FIXTURES_REQUIRED web_assets TIMEOUT 600)
