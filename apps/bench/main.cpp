@@ -96,6 +96,13 @@ int main(int argc, char** argv) {
     soupCommand->add_option("--seconds", soup.seconds, "step-time budget per estimator (0: none)")->capture_default_str();
     subdfit::apps::addGlProvider(*soupCommand, soup.glProvider);
 
+    subdfit::bench::DecodeLodsOptions decodeLods;
+    auto* lodsCommand = app.add_subcommand("lods", "decode --lods: each level's bytes and distances next to gltfpack's at its triangles");
+    lodsCommand->add_option("asset", decodeLods.asset, "an asset.subd")->required();
+    lodsCommand->add_option("--reference", decodeLods.reference, "its dense reference, for gltfpack's levels of it and distances to it");
+    lodsCommand->add_option("--lods", decodeLods.lods, "levels")->capture_default_str()->check(CLI::Range(2, 8));
+    lodsCommand->add_option("--out", decodeLods.out, "output folder")->capture_default_str();
+
     bool force = false;
     app.add_flag("--force", force, "write into a non-empty --out folder that holds no earlier results of the command");
 
@@ -109,7 +116,7 @@ int main(int argc, char** argv) {
             {mapsCommand, &mapsGain.out, "maps_gain.csv"},           {simplifyCommand, &tradeoff.out, "simplify_tradeoff.csv"},
             {gradientCommand, &gradient.out, "gradient.csv"},        {accuracyCommand, &accuracy.out, "accuracy.csv"},
             {soupCommand, &soup.out, "soup.csv"},                    {convergenceCommand, &convergence.out, "convergence.csv"},
-            {recoveryCommand, &recovery.out, "recovery.csv"}};
+            {recoveryCommand, &recovery.out, "recovery.csv"},         {lodsCommand, &decodeLods.out, "decode_lods.csv"}};
         for (const auto& [command, out, csv] : outputs)
             if (command->parsed() && !out->empty())
                 subdfit::io::checkOutputFolder(*out, {.ownMarkers = {csv}, .force = force});
@@ -123,6 +130,7 @@ int main(int argc, char** argv) {
         if (soupCommand->parsed()) return subdfit::bench::runSoup(soup);
         if (convergenceCommand->parsed()) return subdfit::bench::runConvergence(convergence);
         if (recoveryCommand->parsed()) return subdfit::bench::runRecovery(recovery);
+        if (lodsCommand->parsed()) return subdfit::bench::runDecodeLods(decodeLods);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "subdfit-bench: error: %s\n", subdfit::apps::describeError(e).c_str());
         return 1;
