@@ -28,6 +28,9 @@ WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& te
 struct FittedTextures {
     std::vector<unsigned char> normalPng{}, baseColorPng{}, metallicRoughnessPng{}, emissivePng{};
     bool occlusionInMetallicRoughness = false;  // its red channel is the occlusionTexture
+    bool any() const {
+        return !normalPng.empty() || !baseColorPng.empty() || !metallicRoughnessPng.empty() || !emissivePng.empty();
+    }
 };
 WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess, const FittedTextures& textures,
                            bool draco);

@@ -86,6 +86,11 @@ TEST(EngineDecode, ThreeLevelsWhoseErrorsRiseAsTheirTrianglesFall) {
     for (size_t k = 0; k < 3; ++k) {
         EXPECT_EQ(mesh::loadMesh(dir / lods[k]["file"].get<std::string>()).faceCount(), lods[k]["triangles"].get<int>());
         EXPECT_EQ(fs::file_size(dir / lods[k]["file"].get<std::string>()), lods[k]["bytes"].get<std::uintmax_t>());
+        // Heights alone ship no image, so nothing reads texture coordinates or tangents.
+        const auto attributes = glbJson(dir / lods[k]["file"].get<std::string>())["meshes"][0]["primitives"][0]["attributes"];
+        EXPECT_TRUE(attributes.contains("NORMAL"));
+        EXPECT_FALSE(attributes.contains("TEXCOORD_0"));
+        EXPECT_FALSE(attributes.contains("TANGENT"));
         if (k == 0) continue;
         EXPECT_LT(lods[k]["triangles"].get<int>(), lods[k - 1]["triangles"].get<int>());
         EXPECT_LE(lods[k]["triangles"].get<int>(), lods[k - 1]["triangles"].get<int>() / 2 + 1);

@@ -49,8 +49,9 @@ std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, con
         std::vector<std::vector<unsigned char>> encoded;
         std::vector<std::size_t> meshBytes;
         for (LodLevel& level : chain.levels) {
-            // Compact files carry no TANGENT that no normal texture reads.
+            // Compact files carry no TANGENT that no normal texture reads, no TEXCOORD_0 that no image reads.
             if (o.coding == MeshCoding::Meshopt && glb.textures.normalPng.empty()) level.mesh.tangents.clear();
+            if (o.coding == MeshCoding::Meshopt && !glb.textures.any()) level.mesh.uvs.clear();
             encoded.push_back(encodeFittedGlb(level.mesh, glb.textures, o.coding));
             meshBytes.push_back(encodeFittedGlb(level.mesh, {}, o.coding).size());
         }
