@@ -24,7 +24,8 @@ int main(int argc, char** argv) {
     subdfit::bench::LumpySphereOptions lumpy;
     auto* lumpyCommand = app.add_subcommand("lumpy-sphere", "fit a quad-sphere cage to a lumpy sphere (the peer's task)");
     lumpyCommand->add_option("--out", lumpy.out, "output folder")->capture_default_str();
-    lumpyCommand->add_option("--steps", lumpy.steps, "optimisation steps")->capture_default_str();
+    lumpyCommand->add_option("--steps", lumpy.steps, "most optimisation steps (default: the device's)");
+    lumpyCommand->add_option("--noise-gate", lumpy.noiseGate, "the fit's noise gate (0: plain Adam)")->capture_default_str();
     lumpyCommand->add_option("--res", lumpy.resolution, "resolution")->capture_default_str();
     lumpyCommand->add_option("--views", lumpy.views, "training views")->capture_default_str();
     subdfit::apps::addGlProvider(*lumpyCommand, lumpy.glProvider);
@@ -63,6 +64,16 @@ int main(int argc, char** argv) {
     mapsCommand->add_option("--steps", mapsGain.steps, "optimisation steps per run")->capture_default_str();
     mapsCommand->add_option("--map-res", mapsGain.mapResolution, "map cells per face edge")->capture_default_str();
     subdfit::apps::addGlProvider(*mapsCommand, mapsGain.glProvider);
+
+    subdfit::bench::FitGainOptions fitGain;
+    auto* fitGainCommand = app.add_subcommand("fit-gain", "a fit from a good start (a limit-fitted cage, baked maps): held-out dB gain against seconds, variant by variant");
+    fitGainCommand->add_option("--out", fitGain.out, "output folder")->capture_default_str();
+    fitGainCommand->add_option("--cage", fitGain.cage, "the starting cage (world units)");
+    fitGainCommand->add_option("--faces", fitGain.faces, "start from simplify's initial cage of about this many faces instead");
+    fitGainCommand->add_option("--reference", fitGain.reference, "the dense reference")->required();
+    fitGainCommand->add_option("--variant", fitGain.variants, "fit options over the common ones, \"key=value;key=value\" (report.json's keys); one run each");
+    fitGainCommand->add_option("--every", fitGain.every, "steps per turn")->capture_default_str();
+    subdfit::apps::addFitSettings(*fitGainCommand, fitGain.fit);
 
     subdfit::bench::AccuracyOptions accuracy;
     auto* accuracyCommand = app.add_subcommand("accuracy", "held-out PSNR and Chamfer against wall time, knob by knob");
@@ -116,7 +127,8 @@ int main(int argc, char** argv) {
             {mapsCommand, &mapsGain.out, "maps_gain.csv"},           {simplifyCommand, &tradeoff.out, "simplify_tradeoff.csv"},
             {gradientCommand, &gradient.out, "gradient.csv"},        {accuracyCommand, &accuracy.out, "accuracy.csv"},
             {soupCommand, &soup.out, "soup.csv"},                    {convergenceCommand, &convergence.out, "convergence.csv"},
-            {recoveryCommand, &recovery.out, "recovery.csv"},         {lodsCommand, &decodeLods.out, "decode_lods.csv"}};
+            {recoveryCommand, &recovery.out, "recovery.csv"},         {lodsCommand, &decodeLods.out, "decode_lods.csv"},
+            {fitGainCommand, &fitGain.out, "fit_gain.csv"}};
         for (const auto& [command, out, csv] : outputs)
             if (command->parsed() && !out->empty())
                 subdfit::io::checkOutputFolder(*out, {.ownMarkers = {csv}, .force = force});
@@ -131,6 +143,7 @@ int main(int argc, char** argv) {
         if (convergenceCommand->parsed()) return subdfit::bench::runConvergence(convergence);
         if (recoveryCommand->parsed()) return subdfit::bench::runRecovery(recovery);
         if (lodsCommand->parsed()) return subdfit::bench::runDecodeLods(decodeLods);
+        if (fitGainCommand->parsed()) return subdfit::bench::runFitGain(fitGain);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "subdfit-bench: error: %s\n", subdfit::apps::describeError(e).c_str());
         return 1;

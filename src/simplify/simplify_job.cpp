@@ -31,6 +31,13 @@ namespace {
 // a fit from flat maps takes (each texel's estimate is noisy, and Adam's steps do not shrink
 // with the signal).
 constexpr float kRefineRate = 0.02f;
+// The same for the cage's vertices: simplify's cages are limit-fitted to the reference, and on a
+// dense one a full step (a sixth of an edge) tilts every normal under the estimator's noise.
+constexpr float kRefineVertexRate = 1.0f / 30.0f;
+// ... and with the noise gate (optim::GroupSettings::noiseGate): near such a start the gradient
+// is mostly noise. From a poor start the gate only slows the first steps, so `fit` leaves it
+// off (docs/optimizer.md).
+constexpr float kRefineNoiseGate = 1.0f;
 
 // What subdfit ships: asset.subd (cage and maps, export/subd_format.h). asset.usdz, the map
 // atlases and fitted.glb are conveniences for DCC tools and viewers, not what the budget counts.
@@ -129,6 +136,7 @@ void startMaps(fit::FitRun& run, bool bake) {
         const bool appearanceGroup = g == parameters->baseColor() || g == parameters->metallicRoughness();
         if (appearance && !appearanceGroup) fitter.setOptimised(*g, false);
         fitter.setRates(*g, g->settings().epsilon, (appearanceGroup ? 1.0f : kRefineRate) * g->settings().learningRate);
+        g->settings().noiseGate = kRefineNoiseGate;
     }
 }
 
@@ -262,6 +270,13 @@ void startAppearance(fit::FitRun& run, bool resumed) {
 // the maps refined on the frozen cage. Unlike `fit`, an interrupted simplify writes no results:
 // they would cost the baselines' time after the user asked to stop, and the checkpoint keeps
 // the steps taken.
+// Simplify's cage starts limit-fitted: its vertices are refined with the smaller step and the gate.
+void refineGently(fit::CageFitter& fitter) {
+    optim::ParameterGroup& vertices = fitter.vertexGroup();
+    fitter.setRates(vertices, vertices.settings().epsilon, kRefineVertexRate * vertices.settings().learningRate);
+    vertices.settings().noiseGate = kRefineNoiseGate;
+}
+
 void fitStages(fit::FitRun& run, const std::filesystem::path& checkpoint, bool resume, const fit::FitHooks& hooks) {
     const bool resumed = resume && run.resume(checkpoint);
     if (resume && !resumed && hooks.note)
@@ -341,6 +356,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
                                 scene.shading == render::ShadingModel::MetallicRoughness);
     const mesh::PolygonMesh cage = scene.cageWorld;
     fit::FitRun run(plan.fit, programs, scene);
+    refineGently(run.fitter());
     fitStages(run, out / "checkpoint.bin", options.fit.resume, hooks);
 
     // Every result lands in one commit, or none does.
