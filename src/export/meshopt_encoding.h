@@ -4,8 +4,8 @@
 // node's translation and uniform scale, which leaves normals alone; normals and tangents as
 // normalised bytes; texture coordinates as normalised 16-bit integers where they lie in [0, 1],
 // floats elsewhere; indices of 16 bits where the vertices allow) and EXT_meshopt_compression of
-// every stream, after meshoptimizer has ordered the triangles for the vertex cache and the
-// vertices for fetching.
+// every stream, after vertices equal in every quantised attribute are merged and meshoptimizer
+// has ordered the triangles for the vertex cache and the vertices for fetching.
 #include <array>
 
 #include <nlohmann/json.hpp>
