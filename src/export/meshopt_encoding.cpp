@@ -28,15 +28,18 @@ struct Stream {
     int stride, componentType;
     const char* type;
     bool normalized;
+    const char* filter = nullptr;  // EXT_meshopt_compression's, undone by the loader's decoder
 };
 
-std::int8_t snorm8(float v) { return std::int8_t(std::lround(std::clamp(v, -1.0f, 1.0f) * 127.0f)); }
-
+// Unit vectors (w, a tangent's handedness, kept) as normalised bytes in the octahedral filter:
+// two 8-bit coordinates on the octahedron, which the codec packs far better than x, y, z.
 template <typename Vec>
-Stream snorm8Stream(const char* name, const std::vector<Vec>& values, int components, const char* type) {
-    Stream out{name, std::vector<std::uint8_t>(values.size() * 4, 0), 4, kByte, type, true};
+Stream octahedralStream(const char* name, const std::vector<Vec>& values, const char* type) {
+    std::vector<glm::vec4> unit(values.size(), glm::vec4(0.0f));
     for (std::size_t v = 0; v < values.size(); ++v)
-        for (int c = 0; c < components; ++c) out.bytes[4 * v + std::size_t(c)] = std::uint8_t(snorm8(values[v][c]));
+        for (int c = 0; c < Vec::length(); ++c) unit[v][c] = values[v][c];
+    Stream out{name, std::vector<std::uint8_t>(values.size() * 4, 0), 4, kByte, type, true, "OCTAHEDRAL"};
+    meshopt_encodeFilterOct(out.bytes.data(), unit.size(), 4, 8, &unit[0].x);
     return out;
 }
 
@@ -82,8 +85,8 @@ MeshoptPrimitive addMeshoptPrimitive(const GltfMesh& input, BinaryBuilder& binar
         }
     out.translation = {lo.x, lo.y, lo.z};
     out.scale = step;
-    if (input.hasNormals()) streams.push_back(snorm8Stream("NORMAL", input.normals, 3, "VEC3"));
-    if (input.hasTangents()) streams.push_back(snorm8Stream("TANGENT", input.tangents, 4, "VEC4"));
+    if (input.hasNormals()) streams.push_back(octahedralStream("NORMAL", input.normals, "VEC3"));
+    if (input.hasTangents()) streams.push_back(octahedralStream("TANGENT", input.tangents, "VEC4"));
     if (input.hasUvs()) streams.push_back(uvStream(input.uvs));
 
     // Vertices that ship alike (a face border's both sides, where no attribute tells them
@@ -112,7 +115,7 @@ MeshoptPrimitive addMeshoptPrimitive(const GltfMesh& input, BinaryBuilder& binar
         std::vector<unsigned char> compressed(meshopt_encodeVertexBufferBound(n, std::size_t(s.stride)));
         compressed.resize(meshopt_encodeVertexBuffer(compressed.data(), compressed.size(), ordered.data(), n, std::size_t(s.stride)));
         if (compressed.empty()) throw Error("meshopt could not encode a vertex stream");
-        json a = accessor(binary.addMeshoptView(compressed, n, s.stride, "ATTRIBUTES", kArrayBuffer), s.componentType, n, s.type);
+        json a = accessor(binary.addMeshoptView(compressed, n, s.stride, "ATTRIBUTES", kArrayBuffer, s.filter), s.componentType, n, s.type);
         if (s.normalized) a["normalized"] = true;
         if (std::string_view(s.name) == "POSITION") {
             std::array<int, 3> qLo{kSteps, kSteps, kSteps}, qHi{0, 0, 0};

@@ -2,10 +2,11 @@
 // A GltfMesh as engines load it compact, the way gltfpack ships meshes: KHR_mesh_quantization
 // (positions as 14-bit integers on one grid over the mesh's bounding cube, dequantised by the
 // node's translation and uniform scale, which leaves normals alone; normals and tangents as
-// normalised bytes; texture coordinates as normalised 16-bit integers where they lie in [0, 1],
-// floats elsewhere; indices of 16 bits where the vertices allow) and EXT_meshopt_compression of
-// every stream, after vertices equal in every quantised attribute are merged and meshoptimizer
-// has ordered the triangles for the vertex cache and the vertices for fetching.
+// normalised bytes in the octahedral filter; texture coordinates as normalised 16-bit integers
+// where they lie in [0, 1], floats elsewhere; indices of 16 bits where the vertices allow) and
+// EXT_meshopt_compression of every stream, after vertices equal in every quantised attribute are
+// merged and meshoptimizer has ordered the triangles for the vertex cache and the vertices for
+// fetching.
 #include <array>
 
 #include <nlohmann/json.hpp>
