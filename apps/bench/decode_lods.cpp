@@ -49,6 +49,13 @@ bool gltfpack(const std::filesystem::path& program, const std::filesystem::path&
     return std::filesystem::exists(output);
 }
 
+// Distances span decades down to quantisation steps: four significant digits each.
+std::string scientific(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4e", value);
+    return text;
+}
+
 }  // namespace
 
 int runDecodeLods(const DecodeLodsOptions& o) {
@@ -96,8 +103,8 @@ int runDecodeLods(const DecodeLodsOptions& o) {
                     r.method.substr(0, r.method.find(' ')).c_str(), r.lod, r.triangles, r.bytes, r.toFull.meanDistance,
                     r.toFull.hausdorff, r.toReference.meanDistance, r.toReference.hausdorff);
         csv.push_back({r.source, r.method, std::to_string(r.lod), std::to_string(r.triangles), std::to_string(r.bytes),
-                       std::to_string(r.toFull.meanDistance), std::to_string(r.toFull.hausdorff),
-                       std::to_string(r.toReference.meanDistance), std::to_string(r.toReference.hausdorff)});
+                       scientific(r.toFull.meanDistance), scientific(r.toFull.hausdorff),
+                       scientific(r.toReference.meanDistance), scientific(r.toReference.hausdorff)});
     }
     writeCsv(o.out / "decode_lods.csv", csv);
 

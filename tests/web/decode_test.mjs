@@ -8,15 +8,11 @@ import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
-import { readTriangles, triangleDistance } from './glb.mjs';
+import { readTriangles, threeMeshoptDecoder, triangleDistance } from './glb.mjs';
 
 const { WEB, ASSETS, HOSTILE, SUBDFIT, DEMO, NODE_MODULES } = process.env;
 // three's meshopt decoder, for a glb `subdfit decode` writes with EXT_meshopt_compression.
-const meshopt = async () => {
-  const { MeshoptDecoder } = await import(path.join(NODE_MODULES, 'three/examples/jsm/libs/meshopt_decoder.module.js'));
-  await MeshoptDecoder.ready;
-  return MeshoptDecoder;
-};
+const meshopt = threeMeshoptDecoder(NODE_MODULES);
 const scratch = path.join(path.dirname(ASSETS), 'decode-test');
 fs.rmSync(scratch, { recursive: true, force: true });
 fs.mkdirSync(scratch, { recursive: true });

@@ -9,15 +9,11 @@ import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
-import { readTriangles, triangleDistance } from './glb.mjs';
+import { readTriangles, threeMeshoptDecoder, triangleDistance } from './glb.mjs';
 
 const { ASSETS, SUBDFIT, NODE_MODULES } = process.env;
 const validator = await import(path.join(NODE_MODULES, 'gltf-validator/module.mjs'));
-const meshopt = async () => {
-  const { MeshoptDecoder } = await import(path.join(NODE_MODULES, 'three/examples/jsm/libs/meshopt_decoder.module.js'));
-  await MeshoptDecoder.ready;
-  return MeshoptDecoder;
-};
+const meshopt = threeMeshoptDecoder(NODE_MODULES);
 const scratch = path.join(path.dirname(ASSETS), 'validate-test');
 fs.rmSync(scratch, { recursive: true, force: true });
 fs.mkdirSync(scratch, { recursive: true });

@@ -1,13 +1,9 @@
 #include "export/engine/surface_error.h"
 
+#include "surface/tessellation.h"
+
 namespace subdfit::exporter {
 
-mesh::PolygonMesh triangleMeshOf(const GltfMesh& mesh) {
-    mesh::PolygonMesh out;
-    out.positions = mesh.positions;
-    out.faceSizes.assign(mesh.triangleCount(), 3);
-    out.faceIndices.assign(mesh.indices.begin(), mesh.indices.end());
-    return out;
-}
+mesh::PolygonMesh triangleMeshOf(const GltfMesh& mesh) { return surface::triangleMesh(mesh.positions, mesh.indices); }
 
 }  // namespace subdfit::exporter
