@@ -3,10 +3,12 @@
 // in a JSON; the coarsest density within an error bound; bad bounds refused.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <random>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "common/error_bound.h"
@@ -68,6 +70,33 @@ TEST(EngineDecode, MeshoptOutputReadsBackAsTheFloatSurfaceWithinItsQuantisation)
     const auto d = geometry::surfaceDistance(a, b, 20000);
     EXPECT_LE(d.hausdorff, double(step));  // half a step per axis, at most
     EXPECT_GT(d.hausdorff, 0.0);           // and it is quantised
+}
+
+// Normals ship in the octahedral filter and read back (through meshoptimizer's decoder, as
+// engines' do) within a degree or two of the float file's at the same point.
+TEST(EngineDecode, OctahedralNormalsReadBackAsTheFloatOnes) {
+    const auto dir = test::scratchDir("engine_decode_normals");
+    writeSubd(dir / "asset.subd", lumpySphere(3000));
+    decodeForEngines(dir / "asset.subd", dir / "compact.glb", EngineDecodeOptions{});
+    decodeToGlb(dir / "asset.subd", dir / "plain.glb", {}, MeshCoding::Float);
+    const nlohmann::json doc = glbJson(dir / "compact.glb");
+    const int normal = doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"];
+    const int view = doc["accessors"][normal]["bufferView"];
+    EXPECT_EQ(doc["bufferViews"][view]["extensions"]["EXT_meshopt_compression"]["filter"], "OCTAHEDRAL");
+
+    const mesh::PolygonMesh a = mesh::loadReference(dir / "compact.glb"), b = mesh::loadReference(dir / "plain.glb");
+    ASSERT_EQ(a.normals.size(), a.positions.size());
+    ASSERT_EQ(b.normals.size(), b.positions.size());
+    EXPECT_LT(a.positions.size(), b.positions.size());  // without texture coordinates, face borders' twins merge
+    const float near = 1e-3f, cosLimit = std::cos(glm::radians(2.0f));
+    int far = 0;
+    for (size_t v = 0; v < a.positions.size(); ++v) {
+        float best = -1.0f;
+        for (size_t u = 0; u < b.positions.size(); ++u)
+            if (glm::distance(a.positions[v], b.positions[u]) < near) best = std::max(best, glm::dot(a.normals[v], b.normals[u]));
+        far += best < cosLimit;
+    }
+    EXPECT_EQ(far, 0);
 }
 
 TEST(EngineDecode, ThreeLevelsWhoseErrorsRiseAsTheirTrianglesFall) {
