@@ -35,8 +35,8 @@ mesh::PolygonMesh loadedTriangles(const std::filesystem::path& glb) { return mes
 
 // gltfpack -cc -si `ratio` of `input` into `output` (with -sa where its error bound stops it
 // short of the count, as a user held to a count would); false when gltfpack fails.
-bool gltfpack(const std::filesystem::path& program, const std::filesystem::path& input, const std::filesystem::path& output,
-              double ratio, int triangles) {
+bool gltfpack(const std::filesystem::path& program, const std::filesystem::path& input,
+              const std::filesystem::path& output, double ratio, int triangles) {
     char text[32];
     std::snprintf(text, sizeof text, "%.9f", ratio);
     std::vector<std::string> arguments{"-i", input.string(), "-o", output.string(), "-cc"};
@@ -72,7 +72,8 @@ int runDecodeLods(const DecodeLodsOptions& o) {
         o.reference.empty() ? std::nullopt : std::optional(loadedTriangles(o.reference));
 
     std::vector<Row> rows;
-    auto measure = [&](const std::string& source, const std::string& method, int lod, const std::filesystem::path& glb) {
+    auto measure = [&](const std::string& source, const std::string& method, int lod,
+                       const std::filesystem::path& glb) {
         const mesh::PolygonMesh m = loadedTriangles(glb);
         Row row{source, method, lod, m.faceCount(), std::filesystem::file_size(glb)};
         row.toFull = geometry::surfaceDistance(m, full, exporter::kErrorSamples);
@@ -90,7 +91,8 @@ int runDecodeLods(const DecodeLodsOptions& o) {
             measure("gltfpack (decoded)", "simplification of the decoded surface", int(k), decoded);
         if (!reference) continue;
         const auto packed = o.out / ("gltfpack_reference_lod" + std::to_string(k) + ".glb");
-        if (gltfpack(*program, o.reference, packed, std::min(1.0, double(triangles) / double(reference->faceCount())), triangles))
+        const double ratio = std::min(1.0, double(triangles) / double(reference->faceCount()));
+        if (gltfpack(*program, o.reference, packed, ratio, triangles))
             measure("gltfpack (reference)", "simplification of the reference", int(k), packed);
     }
 
@@ -117,11 +119,16 @@ int runDecodeLods(const DecodeLodsOptions& o) {
             s.x.push_back(double(r.bytes));
             s.y.push_back(r.*from.*measure);
         }
-        PlotSpec spec{.title = "subdfit decode --lods and gltfpack -si at its levels' triangles", .xLabel = "bytes", .yLabel = to, .logX = true, .logY = true};
+        PlotSpec spec{.title = "subdfit decode --lods and gltfpack -si at its levels' triangles",
+                      .xLabel = "bytes",
+                      .yLabel = to,
+                      .logX = true,
+                      .logY = true};
         for (auto& [source, s] : series) spec.series.push_back(std::move(s));
         writePlot(o.out / file, spec);
     };
-    plot("lods_max_to_full.png", "largest distance to the full decoded surface", &geometry::SurfaceDistance::hausdorff, &Row::toFull);
+    plot("lods_max_to_full.png", "largest distance to the full decoded surface", &geometry::SurfaceDistance::hausdorff,
+         &Row::toFull);
     if (reference)
         plot("lods_mean_to_reference.png", "mean distance to the reference", &geometry::SurfaceDistance::meanDistance,
              &Row::toReference);

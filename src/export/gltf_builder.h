@@ -42,8 +42,8 @@ public:
     // An EXT_meshopt_compression view: `compressed` goes into buffers[0]; the view itself lies in
     // the fallback buffer (buffers[1], no data: the extension is required), `count` elements of
     // `stride` bytes, `mode` ATTRIBUTES or TRIANGLES, `filter` (if any) the one its decoder undoes.
-    int addMeshoptView(std::span<const unsigned char> compressed, std::size_t count, int stride, const char* mode, int target,
-                       const char* filter = nullptr) {
+    int addMeshoptView(std::span<const unsigned char> compressed, std::size_t count, int stride, const char* mode,
+                       int target, const char* filter = nullptr) {
         data_.resize((data_.size() + 3) & ~size_t(3), 0);
         const std::size_t length = count * std::size_t(stride);
         nlohmann::json view = {{"buffer", 1}, {"byteOffset", fallbackBytes_}, {"byteLength", length}};

@@ -77,7 +77,8 @@ MeshoptPrimitive addMeshoptPrimitive(const GltfMesh& input, BinaryBuilder& binar
     const float side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
     constexpr int kSteps = (1 << kQuantisedPositionBits) - 1;
     const float step = side > 0.0f ? side / float(kSteps) : 1.0f;
-    std::vector<Stream> streams{{"POSITION", std::vector<std::uint8_t>(vertices * 8, 0), 8, kUnsignedShort, "VEC3", false}};
+    std::vector<Stream> streams{
+        {"POSITION", std::vector<std::uint8_t>(vertices * 8, 0), 8, kUnsignedShort, "VEC3", false}};
     for (std::size_t v = 0; v < vertices; ++v)
         for (int c = 0; c < 3; ++c) {
             const auto q = std::uint16_t(std::clamp(int(std::lround((positions[v][c] - lo[c]) / step)), 0, kSteps));
@@ -94,8 +95,8 @@ MeshoptPrimitive addMeshoptPrimitive(const GltfMesh& input, BinaryBuilder& binar
     std::vector<meshopt_Stream> views;
     for (const Stream& s : streams) views.push_back({s.bytes.data(), std::size_t(s.stride), std::size_t(s.stride)});
     std::vector<unsigned> remap(vertices);
-    std::size_t n = meshopt_generateVertexRemapMulti(remap.data(), input.indices.data(), indexCount, vertices, views.data(),
-                                                     views.size());
+    std::size_t n = meshopt_generateVertexRemapMulti(remap.data(), input.indices.data(), indexCount, vertices,
+                                                     views.data(), views.size());
     std::vector<unsigned> indices(indexCount);
     meshopt_remapIndexBuffer(indices.data(), input.indices.data(), indexCount, remap.data());
     meshopt_optimizeVertexCache(indices.data(), indices.data(), indexCount, n);
@@ -109,13 +110,14 @@ MeshoptPrimitive addMeshoptPrimitive(const GltfMesh& input, BinaryBuilder& binar
     meshopt_remapIndexBuffer(indices.data(), indices.data(), indexCount, fetch.data());
 
     for (Stream& s : streams) {
-        std::vector<std::uint8_t> ordered(n * std::size_t(s.stride));
-        meshopt_remapVertexBuffer(ordered.data(), s.bytes.data(), s.bytes.size() / std::size_t(s.stride), std::size_t(s.stride),
-                                  fetch.data());
-        std::vector<unsigned char> compressed(meshopt_encodeVertexBufferBound(n, std::size_t(s.stride)));
-        compressed.resize(meshopt_encodeVertexBuffer(compressed.data(), compressed.size(), ordered.data(), n, std::size_t(s.stride)));
+        const auto stride = std::size_t(s.stride);
+        std::vector<std::uint8_t> ordered(n * stride);
+        meshopt_remapVertexBuffer(ordered.data(), s.bytes.data(), s.bytes.size() / stride, stride, fetch.data());
+        std::vector<unsigned char> compressed(meshopt_encodeVertexBufferBound(n, stride));
+        compressed.resize(meshopt_encodeVertexBuffer(compressed.data(), compressed.size(), ordered.data(), n, stride));
         if (compressed.empty()) throw Error("meshopt could not encode a vertex stream");
-        json a = accessor(binary.addMeshoptView(compressed, n, s.stride, "ATTRIBUTES", kArrayBuffer, s.filter), s.componentType, n, s.type);
+        const int view = binary.addMeshoptView(compressed, n, s.stride, "ATTRIBUTES", kArrayBuffer, s.filter);
+        json a = accessor(view, s.componentType, n, s.type);
         if (s.normalized) a["normalized"] = true;
         if (std::string_view(s.name) == "POSITION") {
             std::array<int, 3> qLo{kSteps, kSteps, kSteps}, qHi{0, 0, 0};

@@ -93,7 +93,8 @@ TEST(EngineDecode, OctahedralNormalsReadBackAsTheFloatOnes) {
     for (size_t v = 0; v < a.positions.size(); ++v) {
         float best = -1.0f;
         for (size_t u = 0; u < b.positions.size(); ++u)
-            if (glm::distance(a.positions[v], b.positions[u]) < near) best = std::max(best, glm::dot(a.normals[v], b.normals[u]));
+            if (glm::distance(a.positions[v], b.positions[u]) < near)
+                best = std::max(best, glm::dot(a.normals[v], b.normals[u]));
         far += best < cosLimit;
     }
     EXPECT_EQ(far, 0);
@@ -116,7 +117,8 @@ TEST(EngineDecode, ThreeLevelsWhoseErrorsRiseAsTheirTrianglesFall) {
         EXPECT_EQ(mesh::loadMesh(dir / lods[k]["file"].get<std::string>()).faceCount(), lods[k]["triangles"].get<int>());
         EXPECT_EQ(fs::file_size(dir / lods[k]["file"].get<std::string>()), lods[k]["bytes"].get<std::uintmax_t>());
         // Heights alone ship no image, so nothing reads texture coordinates or tangents.
-        const auto attributes = glbJson(dir / lods[k]["file"].get<std::string>())["meshes"][0]["primitives"][0]["attributes"];
+        const nlohmann::json level = glbJson(dir / lods[k]["file"].get<std::string>());
+        const auto& attributes = level["meshes"][0]["primitives"][0]["attributes"];
         EXPECT_TRUE(attributes.contains("NORMAL"));
         EXPECT_FALSE(attributes.contains("TEXCOORD_0"));
         EXPECT_FALSE(attributes.contains("TANGENT"));
