@@ -140,4 +140,12 @@ struct SimplifyTradeoffOptions {
 };
 int runSimplifyTradeoff(const SimplifyTradeoffOptions& options);
 
+struct DecodeLodsOptions {
+    std::filesystem::path asset;      // an asset.subd
+    std::filesystem::path reference;  // its dense reference (optional)
+    std::filesystem::path out = "bench-lods";
+    int lods = 4;
+};
+int runDecodeLods(const DecodeLodsOptions& options);
+
 }  // namespace subdfit::bench

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <tuple>
 
 #include "common/command_line.h"
 #include "common/fit_cli.h"
@@ -119,16 +120,31 @@ int main(int argc, char** argv) {
     soupCommand->add_option("--seconds", soup.seconds, "step-time budget per estimator (0: none)")->capture_default_str();
     subdfit::apps::addGlProvider(*soupCommand, soup.glProvider);
 
+    subdfit::bench::DecodeLodsOptions decodeLods;
+    auto* lodsCommand = app.add_subcommand("lods", "decode --lods: each level's bytes and distances next to gltfpack's at its triangles");
+    lodsCommand->add_option("asset", decodeLods.asset, "an asset.subd")->required();
+    lodsCommand->add_option("--reference", decodeLods.reference, "its dense reference, for gltfpack's levels of it and distances to it");
+    lodsCommand->add_option("--lods", decodeLods.lods, "levels")->capture_default_str()->check(CLI::Range(2, 8));
+    lodsCommand->add_option("--out", decodeLods.out, "output folder")->capture_default_str();
+
+    bool force = false;
+    app.add_flag("--force", force, "write into a non-empty --out folder that holds no earlier results of the command");
+
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit-bench")) return *exitCode;
     try {
-        // --out is checked before minutes of benchmarking, not when the first CSV is written.
-        const std::pair<CLI::App*, const std::filesystem::path*> outputs[] = {
-            {stepCostCommand, &stepCost.out}, {lumpyCommand, &lumpy.out},       {mapsCommand, &mapsGain.out},
-            {simplifyCommand, &tradeoff.out}, {gradientCommand, &gradient.out}, {accuracyCommand, &accuracy.out},
-            {soupCommand, &soup.out}, {convergenceCommand, &convergence.out}, {recoveryCommand, &recovery.out},
-            {fitGainCommand, &fitGain.out}};
-        for (const auto& [command, out] : outputs)
-            if (command->parsed() && !out->empty()) subdfit::io::checkOutputFolder(*out, {.force = true});
+        // --out is checked before minutes of benchmarking, not when the first CSV is written: a
+        // folder that holds something else (a typo, somebody's files) needs --force; one that
+        // holds the command's own CSV from an earlier run is the command's to update.
+        const std::tuple<CLI::App*, const std::filesystem::path*, const char*> outputs[] = {
+            {stepCostCommand, &stepCost.out, "step_cost.csv"},       {lumpyCommand, &lumpy.out, "lumpy_sphere.csv"},
+            {mapsCommand, &mapsGain.out, "maps_gain.csv"},           {simplifyCommand, &tradeoff.out, "simplify_tradeoff.csv"},
+            {gradientCommand, &gradient.out, "gradient.csv"},        {accuracyCommand, &accuracy.out, "accuracy.csv"},
+            {soupCommand, &soup.out, "soup.csv"},                    {convergenceCommand, &convergence.out, "convergence.csv"},
+            {recoveryCommand, &recovery.out, "recovery.csv"},         {lodsCommand, &decodeLods.out, "decode_lods.csv"},
+            {fitGainCommand, &fitGain.out, "fit_gain.csv"}};
+        for (const auto& [command, out, csv] : outputs)
+            if (command->parsed() && !out->empty())
+                subdfit::io::checkOutputFolder(*out, {.ownMarkers = {csv}, .force = force});
         if (reliefCommand->parsed()) return subdfit::bench::runRelief(relief);
         if (stepCostCommand->parsed()) return subdfit::bench::runStepCost(stepCost);
         if (lumpyCommand->parsed()) return subdfit::bench::runLumpySphere(lumpy);
@@ -139,6 +155,7 @@ int main(int argc, char** argv) {
         if (soupCommand->parsed()) return subdfit::bench::runSoup(soup);
         if (convergenceCommand->parsed()) return subdfit::bench::runConvergence(convergence);
         if (recoveryCommand->parsed()) return subdfit::bench::runRecovery(recovery);
+        if (lodsCommand->parsed()) return subdfit::bench::runDecodeLods(decodeLods);
         if (fitGainCommand->parsed()) return subdfit::bench::runFitGain(fitGain);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "subdfit-bench: error: %s\n", subdfit::apps::describeError(e).c_str());

@@ -8,12 +8,14 @@
 
 #include "common/command_line.h"
 #include "common/simplify_cli.h"
-#include "export/subd_decode.h"
+#include "common/error_bound.h"
+#include "export/engine/engine_decode.h"
 #include "fit/fit_job.h"
 #include "manifest.h"
 #include "simplify/simplify_job.h"
 #include "util/error.h"
 #include "util/interrupt.h"
+#include "util/printable.h"
 
 namespace {
 
@@ -67,27 +69,61 @@ int main(int argc, char** argv) {
     subdfit::apps::addSimplifySettings(*batchCommand, batchDefaults);
 
     std::filesystem::path decodeInput, decodeOut;
-    subdfit::exporter::DecodeDensity decodeDensity;
+    subdfit::exporter::EngineDecodeOptions decode;
+    bool decodeUncompressed = false;
     auto* decodeCommand = app.add_subcommand("decode", "a shipped asset.subd back to triangles: the displaced limit surface as .glb");
     decodeCommand->add_option("file", decodeInput, "the .subd file")->required();
-    decodeCommand->add_option("--out", decodeOut, "the .glb to write")->required();
-    auto* decodeTess = decodeCommand->add_option("--tess", decodeDensity.segments,
-                                                 "segments per face edge (default: the maps' sample density, 8 without maps)")
-                           ->check(CLI::Range(1, 64));
-    decodeCommand->add_option("--triangles", decodeDensity.triangles, "about this many triangles (the nearest segments per face edge)")
-        ->check(CLI::Range(std::uint64_t(1), subdfit::exporter::kMaxDecodeTriangles))
-        ->excludes(decodeTess);
+    decodeCommand->add_option("--out", decodeOut, "the .glb to write (a new file, or a regular file to replace)")->required();
+    auto* tess = decodeCommand->add_option("--tess", decode.density.segments, "segments per face edge, 1..64")
+                     ->check(CLI::Range(1, subdfit::exporter::kMaxDecodeSegments));
+    auto* triangles = decodeCommand
+        ->add_option("--triangles", decode.density.triangles,
+                     "about this many triangles (default: the reference's, as asset.subd records it; at most " +
+                         std::to_string(subdfit::exporter::kMaxDecodeTriangles) + ")")
+        ->check(CLI::Range(std::int64_t(1), subdfit::exporter::kMaxDecodeTriangles))
+        ->excludes(tess);
+    const CLI::Validator errorBound(
+        [](std::string& text) {
+            std::string problem;
+            return subdfit::apps::parseErrorBound(text, problem) ? std::string() : problem;
+        },
+        "DISTANCE");
+    decodeCommand
+        ->add_option_function<std::string>(
+            "--max-error",
+            [&decode](const std::string& text) {
+                std::string problem;
+                decode.maxError = subdfit::apps::parseErrorBound(text, problem);
+            },
+            "the coarsest density within this distance of the finest decode writes (asset units, or a percentage of "
+            "the bounding box diagonal: 0.1%)")
+        ->check(errorBound)
+        ->excludes(tess)
+        ->excludes(triangles);
+    decodeCommand
+        ->add_option("--lods", decode.lods,
+                     "a chain of K levels of detail, about half the triangles each: OUT, OUT_lod1.glb ... and OUT_lods.json "
+                     "(triangles, bytes, distances, screen sizes)")
+        ->check(CLI::Range(1, subdfit::exporter::kMostLods));
+    decodeCommand->add_flag("--uncompressed", decodeUncompressed,
+                            "float attributes without EXT_meshopt_compression (what the web decoder's decode.mjs writes)");
 
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit")) return *exitCode;
 
     const auto say = [](const char* who) {
-        return [who](const std::string& line) { std::fprintf(stderr, "%s: %s\n", who, line.c_str()); };
+        return [who](const std::string& line) { std::fprintf(stderr, "%s: %s\n", who, subdfit::printable(line, 4096).c_str()); };
     };
+    // What an out-of-memory error is about: the file the command reads.
+    const std::filesystem::path input = decodeCommand->parsed()     ? decodeInput
+                                        : simplifyCommand->parsed() ? simplify.fit.reference
+                                        : batchCommand->parsed()    ? manifest
+                                                                    : fit.reference;
     try {
         const subdfit::fit::FitHooks hooks{.progress = printProgress, .cancel = &subdfit::stopRequest(), .note = say("subdfit")};
         if (decodeCommand->parsed()) {
-            const auto written = subdfit::exporter::decodeToGlb(decodeInput, decodeOut, decodeDensity);
-            std::cout << written.path.string() << "\n";
+            if (decodeUncompressed) decode.coding = subdfit::exporter::MeshCoding::Float;
+            for (const auto& written : subdfit::exporter::decodeForEngines(decodeInput, decodeOut, decode))
+                std::cout << written.path.string() << "\n";
         }
         if (fitCommand->parsed()) {
             const auto report = subdfit::fit::runFit(fit, hooks);
@@ -115,11 +151,12 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "subdfit: %s%s\n", e.what(), simplifyCommand->parsed() ? " (--resume continues)" : "");
         return 130;
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "subdfit: error: out of memory\n");
+        std::fprintf(stderr, "subdfit: error: %s: out of memory\n", subdfit::printable(input.string(), 4096).c_str());
         return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "subdfit: error: %s\n", subdfit::apps::describeError(e).c_str());
-        return 1;
+        std::fprintf(stderr, "subdfit: error: %s\n", subdfit::printable(subdfit::apps::describeError(e), 4096).c_str());
+        // An impossible option is a usage error, whether the parser or the core found it.
+        return dynamic_cast<const subdfit::OptionError*>(&e) ? 2 : 1;
     }
     return subdfit::stopRequested() ? 130 : 0;
 }

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "export/subd_decode.h"
+#include "export/decode_density.h"
 #include "mesh/mesh_loader.h"
 #include "util/error.h"
 
@@ -123,7 +123,7 @@ void ResultColumn::build() {
     mesh_.reset();
     wireframe_.reset();
     if (level.asset) {
-        const int tess = tessLevel_ > 0 ? tessLevel_ : exporter::defaultDecodeSegments(*level.asset);
+        const int tess = tessLevel_ > 0 ? tessLevel_ : exporter::decodeDensity(*level.asset, {}, level.path.string()).segments;
         asset_ = std::make_unique<fit::ShippedAsset>(programs_, *level.asset, scene_.frame, shadingOf(scene_, level), tess);
         wireframe_ = std::make_unique<CageWireframe>(asset_->cage());
         return;

@@ -13,7 +13,6 @@
 namespace subdfit::exporter {
 namespace {
 
-constexpr int kMostAtlasSize = 16384;
 constexpr std::int64_t kLimit = std::int64_t(1) << 40;  // far beyond any coordinate, far from overflow
 
 using Q = std::array<std::int64_t, 2>;  // a quantised coordinate pair
@@ -155,7 +154,7 @@ surface::AppearanceAtlas readAtlasUvs(ByteReader& in, const mesh::PolygonMesh& c
     const surface::TexelLayout points = surface::buildTexelLayout(cage, 1);
     surface::AppearanceAtlas atlas;
     const std::uint64_t size = in.getVarint();
-    if (size < 2 || size > kMostAtlasSize) throw Error(in.what() + ": atlas size " + std::to_string(size) + " out of range");
+    if (size < 2 || size > std::uint64_t(surface::kMaxAtlasSize)) throw Error(in.what() + ": atlas size " + std::to_string(size) + " out of range");
     atlas.size = int(size);
     const int bits = in.get<std::uint8_t>();
     if (bits != atlasUvBits(atlas.size)) throw Error(in.what() + ": " + std::to_string(bits) + " bits for an atlas of " + std::to_string(size));

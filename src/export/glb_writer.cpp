@@ -9,6 +9,7 @@
 #include "export/draco_encoding.h"
 #include "export/glb_container.h"
 #include "export/gltf_builder.h"
+#include "export/meshopt_encoding.h"
 #include "export/surface_mesh.h"
 #include "util/error.h"
 
@@ -76,8 +77,9 @@ std::vector<AttributeSlot> presentAttributes(const GltfMesh& tess, const DracoEn
     return slots;
 }
 
-json document(const GltfMesh& tess, const FittedTextures& textures, bool draco, const json& meshExtras,
+json document(const GltfMesh& tess, const FittedTextures& textures, MeshCoding coding, const json& meshExtras,
               BinaryBuilder& binary) {
+    const bool draco = coding == MeshCoding::Draco;
     const DracoEncodedMesh encoded = draco ? encodeDraco(tess) : DracoEncodedMesh{};
     const auto slots = presentAttributes(tess, encoded);
     json attributes = json::object(), dracoAttributes = json::object();
@@ -89,8 +91,15 @@ json document(const GltfMesh& tess, const FittedTextures& textures, bool draco, 
     json primitive = {{"attributes", attributes}, {"indices", slots.size()}, {"mode", kTriangles}};
     const bool hasMaterial = tess.hasUvs() || !textures.normalPng.empty() || !textures.baseColorPng.empty();
     if (hasMaterial) primitive["material"] = 0;
+    json node = {{"mesh", 0}, {"name", "fitted"}};
 
-    if (draco) {
+    if (coding == MeshCoding::Meshopt) {
+        const MeshoptPrimitive packed = addMeshoptPrimitive(tess, binary, accessors);
+        primitive["attributes"] = packed.attributes;
+        primitive["indices"] = packed.indices;
+        node["translation"] = packed.translation;
+        node["scale"] = {packed.scale, packed.scale, packed.scale};
+    } else if (draco) {
         const int view = binary.addView(encoded.bytes);
         for (const auto& slot : slots) accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, slot.type));
         accessors[0]["min"] = vec3Json(encoded.positionMin);
@@ -116,41 +125,58 @@ json document(const GltfMesh& tess, const FittedTextures& textures, bool draco, 
     json doc = {{"asset", {{"version", "2.0"}, {"generator", "subdfit"}}},
                 {"scene", 0},
                 {"scenes", json::array({{{"nodes", {0}}}})},
-                {"nodes", json::array({{{"mesh", 0}, {"name", "fitted"}}})},
+                {"nodes", json::array({node})},
                 {"meshes", json::array({{{"name", "fitted"}, {"primitives", json::array({primitive})}}})},
                 {"accessors", accessors}};
     if (!meshExtras.empty()) doc["meshes"][0]["extras"] = meshExtras;
     if (hasMaterial) doc["materials"] = json::array({material(textures, doc, binary)});
     if (draco) doc["extensionsUsed"] = doc["extensionsRequired"] = json::array({kDraco});
+    if (coding == MeshCoding::Meshopt) doc["extensionsUsed"] = doc["extensionsRequired"] = json::array({kMeshopt, kQuantization});
     doc["bufferViews"] = binary.views();
-    doc["buffers"] = json::array({{{"byteLength", binary.data().size()}}});
+    doc["buffers"] = binary.buffers();
     return doc;
 }
 
+std::vector<unsigned char> encodeGlb(const GltfMesh& tess, const FittedTextures& textures, MeshCoding coding,
+                                     const json& meshExtras) {
+    checkTessellation(tess);
+    BinaryBuilder binary;
+    const json doc = document(tess, textures, coding, meshExtras, binary);
+    return packGlb(doc, binary.data());
+}
+
 WrittenFile writeGlb(const std::filesystem::path& path, const GltfMesh& tess, const FittedTextures& textures,
-                     bool draco, const json& meshExtras) {
+                     MeshCoding coding, const json& meshExtras) {
     std::vector<unsigned char> bytes;
     try {
-        checkTessellation(tess);
-        BinaryBuilder binary;
-        const json doc = document(tess, textures, draco, meshExtras, binary);
-        bytes = packGlb(doc, binary.data());
+        bytes = encodeGlb(tess, textures, coding, meshExtras);
     } catch (const Error& e) {
         throw fileError(path.string(), e.what());
     }
     return writeBytes(path, bytes);
 }
 
+MeshCoding codingOf(bool draco) { return draco ? MeshCoding::Draco : MeshCoding::Float; }
+
 }  // namespace
 
 WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess,
                            std::span<const unsigned char> normalPng, bool draco) {
-    return writeGlb(path, tess, {.normalPng = {normalPng.begin(), normalPng.end()}}, draco, json::object());
+    return writeGlb(path, tess, {.normalPng = {normalPng.begin(), normalPng.end()}}, codingOf(draco), json::object());
 }
 
 WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess, const FittedTextures& textures,
                            bool draco) {
-    return writeGlb(path, tess, textures, draco, json::object());
+    return writeGlb(path, tess, textures, codingOf(draco), json::object());
+}
+
+std::vector<unsigned char> encodeFittedGlb(const GltfMesh& tess, const FittedTextures& textures, MeshCoding coding) {
+    return encodeGlb(tess, textures, coding, json::object());
+}
+
+WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess, const FittedTextures& textures,
+                           MeshCoding coding) {
+    return writeGlb(path, tess, textures, coding, json::object());
 }
 
 WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
@@ -160,7 +186,7 @@ WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<gl
     mesh.positions = positions;
     mesh.normals = normals;
     mesh.indices = indices;
-    return writeGlb(path, mesh, FittedTextures{}, draco, extras);
+    return writeGlb(path, mesh, FittedTextures{}, codingOf(draco), extras);
 }
 
 }  // namespace subdfit::exporter

@@ -28,9 +28,22 @@ WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& te
 struct FittedTextures {
     std::vector<unsigned char> normalPng{}, baseColorPng{}, metallicRoughnessPng{}, emissivePng{};
     bool occlusionInMetallicRoughness = false;  // its red channel is the occlusionTexture
+    bool any() const {
+        return !normalPng.empty() || !baseColorPng.empty() || !metallicRoughnessPng.empty() || !emissivePng.empty();
+    }
 };
 WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess, const FittedTextures& textures,
                            bool draco);
+
+// How a writer stores the mesh: float accessors as they are; KHR_draco_mesh_compression
+// (export/draco_encoding.h); or KHR_mesh_quantization with EXT_meshopt_compression
+// (export/meshopt_encoding.h), what engines load. The extensions a coding uses are required.
+enum class MeshCoding { Float, Draco, Meshopt };
+
+// The .glb of writeFittedGlb, in memory, with the mesh stored as `coding` says.
+std::vector<unsigned char> encodeFittedGlb(const GltfMesh& tess, const FittedTextures& textures, MeshCoding coding);
+WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess, const FittedTextures& textures,
+                           MeshCoding coding);
 
 // A plain triangle mesh (a cage, a decimated mesh): positions, optional normals, indices;
 // `extras` (if not empty) goes into the mesh's glTF `extras`.

@@ -2,15 +2,17 @@
 
 namespace subdfit::exporter {
 
-GltfMesh gltfMesh(const surface::Tessellation& t, const AtlasLayout& atlas) {
+GltfMesh gltfMesh(const surface::Tessellation& t, const AtlasLayout& atlas) { return gltfMesh(surface::Tessellation(t), atlas); }
+
+GltfMesh gltfMesh(surface::Tessellation&& t, const AtlasLayout& atlas) {
     GltfMesh mesh;
-    mesh.positions = t.positions;
-    mesh.normals = t.normals;
-    mesh.tangents = t.tangents;
-    mesh.indices = t.indices;
     mesh.atlasSize = {atlas.width, atlas.height};
     mesh.uvs.reserve(t.ptex.size());
     for (const surface::PtexPoint& p : t.ptex) mesh.uvs.push_back(atlasUv(atlas, p.face, p.u, p.v));
+    mesh.positions = std::move(t.positions);
+    mesh.normals = std::move(t.normals);
+    mesh.tangents = std::move(t.tangents);
+    mesh.indices = std::move(t.indices);
     return mesh;
 }
 

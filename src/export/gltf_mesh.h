@@ -43,5 +43,8 @@ struct GltfMesh {
 
 // The tessellation with each vertex's ptex (face, u, v) turned into texcoords of `atlas`.
 GltfMesh gltfMesh(const surface::Tessellation& tessellation, const AtlasLayout& atlas);
+// The same, taking the tessellation's positions, normals, tangents and indices instead of
+// copying them (a decode's largest arrays); its ptex coordinates stay.
+GltfMesh gltfMesh(surface::Tessellation&& tessellation, const AtlasLayout& atlas);
 
 }  // namespace subdfit::exporter

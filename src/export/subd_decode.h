@@ -1,40 +1,32 @@
 #pragma once
 // `subdfit decode`: a shipped .subd file back to what any glTF viewer or engine reads, the
 // displaced limit surface as triangles (with the normal map, if the file has one, as the
-// material's normalTexture). Reads nothing but the file.
-#include <cstdint>
+// material's normalTexture), as densely as export/decode_density.h chooses. Reads nothing but the
+// file; what it decodes and writes is priced against one budget (export/decode_budget.h) before
+// it is allocated; `out` is written only over a regular file (or where nothing is). The LOD chain
+// and the density from an error bound are export/engine/engine_decode.h's.
 #include <filesystem>
-#include <string>
 
+#include "export/decode_budget.h"
+#include "export/decode_density.h"
+#include "export/glb_writer.h"
 #include "export/output_file.h"
 #include "export/subd_format.h"
 
 namespace subdfit::exporter {
 
-// The segments per ptex-face edge decode uses by default: one vertex per map node (the
-// density the maps were sampled at), or 8 without maps.
-int defaultDecodeSegments(const SubdAsset& asset);
-
-// The most triangles decode writes: a surface past it is refused before it is tessellated.
-inline constexpr std::uint64_t kMaxDecodeTriangles = std::uint64_t(1) << 24;
-
-// How densely decode tessellates: `segments` per ptex-face edge when given (`--tess`, 1..64),
-// else the nearest to `triangles` triangles (`--triangles`), else the default.
-struct DecodeDensity {
-    int segments = 0;
-    std::uint64_t triangles = 0;
+// A .subd read for decoding: the asset, and the density `request` gets, whose triangles were
+// priced in `budget` with the file's counts before the maps were built.
+struct DecodeInput {
+    SubdAsset asset;
+    DecodeDensity density;
 };
+DecodeInput readForDecode(const std::filesystem::path& subd, const DensityRequest& request, DecodeBudget& budget);
 
-// The triangles `segments` per edge give on `asset` (its ptex faces that have a surface).
-std::uint64_t decodedTriangles(const SubdAsset& asset, int segments);
-
-// The segments `density` asks for on `asset`: the one density choice of `subdfit decode` and the
-// web decoder (apps/web). Throws subdfit::Error naming `name` for a density out of range or a
-// surface of more than kMaxDecodeTriangles.
-int decodeSegments(const SubdAsset& asset, const DecodeDensity& density, const std::string& name);
-
-// Writes `out` (.glb) atomically. Throws subdfit::Error naming the file for a bad input or an
-// impossible tessellation.
-WrittenFile decodeToGlb(const std::filesystem::path& subd, const std::filesystem::path& out, const DecodeDensity& density = {});
+// Writes `out` (.glb) atomically, its mesh stored as `coding` says. Throws subdfit::Error naming
+// the file for a bad input, an impossible density or an output that may not be written (empty,
+// the input itself, a folder, anything but a regular file), before any work.
+WrittenFile decodeToGlb(const std::filesystem::path& subd, const std::filesystem::path& out, const DensityRequest& request = {},
+                        MeshCoding coding = MeshCoding::Meshopt);
 
 }  // namespace subdfit::exporter

@@ -9,12 +9,14 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <tuple>
 
 #include "export/atlas_uv_coding.h"
 #include "export/byte_stream.h"
 #include "export/cage_coding.h"
+#include "export/decode_budget.h"
 #include "export/map_atlas.h"
 #include "export/node_coding.h"
 #include "io/image_header.h"
@@ -24,6 +26,7 @@
 #include "mesh/mesh_validation.h"
 #include "surface/texel_layout.h"
 #include "util/hash.h"
+#include "util/printable.h"
 
 namespace subdfit::exporter {
 namespace {
@@ -36,9 +39,12 @@ constexpr std::uint32_t kMostSections = 8;
 constexpr char kMagic[4] = {'S', 'U', 'B', 'D'};
 constexpr std::uint16_t kLimitShadingFlag = 1;
 constexpr int kZstdLevel = 19;  // the asset is written once and shipped many times
-constexpr std::uint32_t kMaxRawSection = 1u << 30;
+// The largest raw section of a whole asset: a million-face cage plain-coded, a 4096² JPEG.
+constexpr std::uint32_t kMaxRawSection = 1u << 26;
+// What a section's first raw bytes must hold for its counts to be read (varints and a byte).
+constexpr std::size_t kSectionHeadBytes = 64;
 
-std::string tagName(const Tag& tag) { return std::string(tag.begin(), tag.end()); }
+std::string tagName(const Tag& tag) { return printable(std::string_view(tag.data(), tag.size())); }
 
 // The first ptex face of every face, then the count: a quad has one, an n-gon n
 // (Far::PtexIndices).
@@ -149,14 +155,25 @@ void writeMaps(const surface::TexelLayout& layout, const std::vector<float>& val
 }
 
 // A map section's lattice: its resolution and node count, checked against the one the cage
-// makes (built on the first map of that lattice, the same for the next).
+// makes (built on the first map of that lattice, the same for the next). Before it is built,
+// the count is checked against the bounds the cage implies (interior nodes are each tile's own,
+// border ones at most each tile's); its cost was priced with the file's sections.
 void readLattice(ByteReader& in, const mesh::PolygonMesh& cage, surface::TexelLayout& layout) {
-    // Tiles have at most 64 cells a side; an atlas lattice is its texture's, up to 16384 texels.
+    // Tiles have at most 64 cells a side; an atlas lattice is its texture's (surface::kMaxAtlasSize).
     const int resolution = in.getIndex(layout.resolution > 0 ? std::uint64_t(layout.resolution) + 1 : 65, "map resolution");
     if (resolution < 1) throw Error(in.what() + ": map resolution 0");
-    if (layout.resolution == 0) layout = surface::buildTexelLayout(cage, resolution);
+    const std::uint64_t nodes = in.getVarint();
+    if (layout.resolution == 0) {
+        const std::uint64_t ptex = std::uint64_t(firstPtexFaces(cage).back()), side = std::uint64_t(resolution) + 1;
+        const std::uint64_t most = ptex * side * side, fewest = ptex * (side - 2) * (side - 2);
+        if (nodes > most || nodes < fewest)
+            throw Error(in.what() + ": node count " + std::to_string(nodes) + " does not match the cage's texel layout (" +
+                        std::to_string(fewest) + " to " + std::to_string(most) + " nodes at resolution " +
+                        std::to_string(resolution) + ")");
+        layout = surface::buildTexelLayout(cage, resolution);
+    }
     if (layout.resolution != resolution) throw Error(in.what() + ": the maps disagree on their resolution");
-    if (in.getVarint() != std::uint64_t(layout.nodeCount))
+    if (nodes != std::uint64_t(layout.nodeCount))
         throw Error(in.what() + ": node count does not match the cage's texel layout");
 }
 
@@ -199,7 +216,8 @@ void writeAppearance(const surface::SurfaceMaps& maps, AppearanceImage which, in
 }
 
 // An appearance image's section: its lattice (built on the first), its coding and its JPEG,
-// whose header must give the size of the lattice's atlas.
+// whose header must give the size of the lattice's atlas (its pixels were priced with the
+// file's sections; they are not decoded here).
 ShippedImage readAppearance(ByteReader& in, const mesh::PolygonMesh& cage, AppearanceImage which, surface::SurfaceMaps& maps) {
     surface::TexelLayout& layout = maps.appearanceLayout;
     if (maps.appearanceAtlas.present() && layout.resolution == 0) layout = surface::atlasLattice(maps.appearanceAtlas.size);
@@ -209,12 +227,12 @@ ShippedImage readAppearance(ByteReader& in, const mesh::PolygonMesh& cage, Appea
     if (coding != kJpegCoding && !occlusion) throw Error(in.what() + ": unknown appearance coding");
     const auto bytes = in.take(in.getCount(1, "image byte"));
     const AtlasLayout atlas = atlasLayout(layout);
-    const std::optional<io::ImageSize> size = io::jpegSize(bytes);
-    if (!size) throw Error(in.what() + ": not a JPEG image");
-    if (size->width != atlas.width || size->height != atlas.height)
-        throw Error(in.what() + ": the image is " + std::to_string(size->width) + " x " + std::to_string(size->height) +
+    const std::optional<io::ImageHeader> header = io::jpegHeader(bytes);
+    if (!header) throw Error(in.what() + ": not a JPEG image");
+    if (header->width != atlas.width || header->height != atlas.height)
+        throw Error(in.what() + ": the image is " + std::to_string(header->width) + " x " + std::to_string(header->height) +
                     ", the atlas " + std::to_string(atlas.width) + " x " + std::to_string(atlas.height));
-    return {.which = which, .occlusion = occlusion, .width = size->width, .height = size->height,
+    return {.which = which, .occlusion = occlusion, .width = header->width, .height = header->height,
             .bytes = {bytes.begin(), bytes.end()}};
 }
 
@@ -260,11 +278,112 @@ void putSection(ByteWriter& file, const Tag& tag, const std::vector<unsigned cha
     file.putBytes({stored.data(), size});
 }
 
+// The first `n` raw bytes of a section's zstd frame (fewer when it holds fewer), without
+// inflating the rest.
+std::vector<unsigned char> sectionHead(std::span<const unsigned char> stored, std::size_t n) {
+    std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> context(ZSTD_createDCtx(), &ZSTD_freeDCtx);
+    std::vector<unsigned char> head(n);
+    ZSTD_outBuffer out{head.data(), head.size(), 0};
+    ZSTD_inBuffer in{stored.data(), stored.size(), 0};
+    while (out.pos < out.size) {
+        const std::size_t before = out.pos + in.pos;
+        const std::size_t result = ZSTD_decompressStream(context.get(), &out, &in);
+        if (ZSTD_isError(result) || result == 0 || out.pos + in.pos == before) break;
+    }
+    head.resize(out.pos);
+    return head;
+}
+
+// One entry of the section table, read before any section is inflated.
+struct SectionEntry {
+    Tag tag;
+    std::span<const unsigned char> stored;
+    std::uint32_t rawSize = 0;
+    std::vector<unsigned char> head;  // the first raw bytes: the section's counts
+    std::string what() const { return tagName(tag) + " section"; }
+};
+
+// The cage's counts from its section's head, priced; what the section may hold at most.
+std::uint64_t priceCage(const SectionEntry& cage, const std::string& name, DecodeBudget& budget) {
+    ByteReader in(cage.head, name + ": " + cage.what());
+    in.get<std::uint8_t>();
+    const std::uint64_t vertices = in.getVarint(), faces = in.getVarint();
+    if (vertices > std::uint64_t(mesh::kMaxVertices) || faces > std::uint64_t(mesh::kMaxTriangles))
+        throw Error(in.what() + ": more vertices or faces than subdfit reads");
+    budget.spend(faces, DecodeCost::kCageFace, "a cage of " + std::to_string(faces) + " faces");
+    budget.spend(vertices, DecodeCost::kCageVertex, "a cage of " + std::to_string(vertices) + " vertices");
+    // Positions, and per face at most kMaxCageFaceSize corners of an index, a Draco flag, an
+    // edge's crease; per vertex a corner tag; per face a hole (export/cage_coding.h).
+    return kSectionHeadBytes + 30 * vertices + (5 + 1 + 24) * std::uint64_t(mesh::kMaxCageFaceSize) * faces + 8 * faces;
+}
+
+// The costs of the sections after the cage, from their heads, before any is built: each lattice
+// (the maps' tiles, the appearance's tiles or atlas) once, each image at its atlas's size. Returns,
+// per section, what it may hold at most; `mapResolution` receives the maps' tile resolution.
+std::vector<std::uint64_t> priceMaps(const std::vector<SectionEntry>& sections, const mesh::PolygonMesh& cage,
+                                     const std::string& name, DecodeBudget& budget, int& mapResolution) {
+    const std::uint64_t ptex = std::uint64_t(firstPtexFaces(cage).back());
+    std::uint64_t columns = 1;
+    while (columns * columns < ptex) ++columns;
+    const std::uint64_t rows = (ptex + columns - 1) / columns;
+    std::uint64_t atlasSize = 0;
+    bool tilesPriced = false, appearancePriced = false;
+    auto priceTiles = [&](std::uint64_t resolution, bool& priced, const std::string& what) {
+        const std::uint64_t side = std::min<std::uint64_t>(resolution, 64) + 1;
+        if (!priced) budget.spend(ptex * side * side, DecodeCost::kLatticeSlot, what + " of " + std::to_string(ptex * side * side) + " tile nodes");
+        priced = true;
+    };
+    std::vector<std::uint64_t> most(sections.size(), 0);
+    for (size_t k = 1; k < sections.size(); ++k) {
+        const SectionEntry& s = sections[k];
+        ByteReader in(s.head, name + ": " + s.what());
+        constexpr std::uint64_t kHeader = kSectionHeadBytes;
+        if (s.tag == kAtlasUvs) {
+            atlasSize = in.getVarint();
+            if (atlasSize < 2 || atlasSize > std::uint64_t(surface::kMaxAtlasSize))
+                throw Error(in.what() + ": atlas size " + std::to_string(atlasSize) + " out of range (2 to " +
+                            std::to_string(surface::kMaxAtlasSize) + ")");
+            budget.spend(atlasSize * atlasSize, DecodeCost::kAtlasTexel, "an atlas of " + std::to_string(atlasSize) + " x " + std::to_string(atlasSize));
+            budget.spend(4 * ptex, DecodeCost::kLatticeSlot, "the atlas coordinates of " + std::to_string(ptex) + " faces");
+            most[k] = kHeader + 4 * ptex * (10 + 10 + 20);  // per corner a count, an index, a residual pair
+            continue;
+        }
+        const std::uint64_t resolution = in.getVarint(), nodes = std::min(in.getVarint(), std::uint64_t(1) << 40);
+        if (atlasSize == 0 || s.tag == kDisplacement || s.tag == kNormal) {
+            // Interior nodes are each tile's own, border ones at most each tile's.
+            const std::uint64_t side = std::min<std::uint64_t>(resolution, 64) + 1;
+            const std::uint64_t most = ptex * side * side, fewest = resolution > 64 ? 0 : ptex * (side - 2) * (side - 2);
+            if (resolution < 1 || resolution > 64 || nodes > most || nodes < fewest)
+                throw Error(in.what() + ": resolution " + std::to_string(resolution) + " and node count " + std::to_string(nodes) +
+                            " do not match the cage's texel layout (" + std::to_string(fewest) + " to " + std::to_string(most) +
+                            " nodes at resolution 1 to 64)");
+        }
+        if (s.tag == kDisplacement || s.tag == kNormal) {
+            priceTiles(resolution, tilesPriced, "a map lattice");
+            mapResolution = int(resolution);
+            most[k] = kHeader + (s.tag == kNormal ? 2 : 1) * (8 + 2 + 10 * nodes);
+            continue;
+        }
+        std::uint64_t pixels = atlasSize * atlasSize;
+        if (atlasSize == 0) {
+            priceTiles(resolution, appearancePriced, "an appearance lattice");
+            const std::uint64_t tile = resolution + 1;
+            pixels = columns * rows * tile * tile;  // export/map_atlas.h
+        }
+        budget.spend(pixels, DecodeCost::kAtlasPixel, "an image of " + std::to_string(pixels) + " pixels");
+        in.get<std::uint8_t>();  // coding
+        most[k] = kHeader + std::min(in.getVarint(), std::uint64_t(kMaxRawSection));  // the image's bytes
+    }
+    return most;
+}
+
 }  // namespace
 
-SubdAsset shippableAsset(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps, int positionBits) {
+SubdAsset shippableAsset(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps, int positionBits,
+                         std::uint32_t decodeTriangles) {
     const CodedCage coded = encodeCage(cage, positionBits);
-    return SubdAsset{.cage = cage, .maps = carriedMaps(cage, maps, coded.decoded, coded.correspondence)};
+    return SubdAsset{.cage = cage, .maps = carriedMaps(cage, maps, coded.decoded, coded.correspondence),
+                     .decodeTriangles = decodeTriangles};
 }
 
 std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecision& precision) {
@@ -311,19 +430,23 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
     const bool limitShading = maps.hasDisplacement() && maps.shadingNormal == surface::ShadingNormal::Limit;
     file.put<std::uint16_t>(limitShading ? kLimitShadingFlag : 0);
     file.put<std::uint32_t>(std::uint32_t(sections.size()));
+    file.put<std::uint32_t>(asset.decodeTriangles);
     for (const auto& [tag, raw] : sections) putSection(file, tag, raw);
     const auto& bytes = file.bytes();
     file.put<std::uint64_t>(hash64({reinterpret_cast<const char*>(bytes.data()), bytes.size()}));
     return std::move(file.bytes());
 }
 
-ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::string& name) {
+ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::string& name, DecodeBudget* sharedBudget,
+                            const std::function<void(const SubdOutline&)>& priced) {
+    DecodeBudget ownBudget(name);
+    DecodeBudget& budget = sharedBudget ? *sharedBudget : ownBudget;
     if (bytes.size() < 4 || std::memcmp(bytes.data(), kMagic, 4) != 0) throw Error(name + ": not a .subd file");
     if (bytes.size() < 20) throw Error(name + ": truncated");
     ByteReader header(bytes, name);
     header.take(4);
     const auto version = header.get<std::uint16_t>();
-    if (version != kSubdVersion && version != 3 && version != 4)  // the versions differ only in AUVS
+    if (version < 3 || version > kSubdVersion)  // the versions differ in AUVS and the decode triangles
         throw Error(name + ": .subd version " + std::to_string(version) + ", this subdfit reads version " +
                     std::to_string(kSubdVersion));
     const auto body = bytes.first(bytes.size() - 8);
@@ -340,25 +463,55 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
 
     ShippedSubd shipped;
     SubdAsset& asset = shipped.asset;
-    std::vector<Tag> seen;
+    if (version >= 6) asset.decodeTriangles = in.get<std::uint32_t>();
+    // The section table first: tags, sizes and each section's first bytes, so that everything
+    // the file states is checked and priced before anything is inflated or built.
+    std::vector<SectionEntry> sections;
     for (std::uint32_t k = 0; k < count; ++k) {
-        Tag tag;
-        std::memcpy(tag.data(), in.take(4).data(), 4);
-        const auto storedSize = in.get<std::uint32_t>(), rawSize = in.get<std::uint32_t>();
-        if (rawSize > kMaxRawSection) throw Error(name + ": section " + tagName(tag) + " too large");
-        const auto stored = in.take(storedSize);
-        if (ZSTD_getFrameContentSize(stored.data(), stored.size()) != rawSize)
-            throw Error(name + ": section " + tagName(tag) + " does not decompress to its stated size");
-        std::vector<unsigned char> raw(rawSize);
-        const std::size_t got = ZSTD_decompress(raw.data(), raw.size(), stored.data(), stored.size());
-        if (ZSTD_isError(got) || got != rawSize) throw Error(name + ": section " + tagName(tag) + " does not decompress");
-        ByteReader section(raw, name + ": " + tagName(tag) + " section");
-        const bool first = k == 0;
-        if (first != (tag == kCage) || std::find(seen.begin(), seen.end(), tag) != seen.end())
-            throw Error(name + ": section " + tagName(tag) + " out of place");
-        seen.push_back(tag);
-        if (tag == kCage) asset.cage = decodeCage(section);
-        else if (tag == kDisplacement) asset.maps.displacement = readMaps(section, asset.cage, 1, asset.maps.layout);
+        SectionEntry s;
+        std::memcpy(s.tag.data(), in.take(4).data(), 4);
+        const auto storedSize = in.get<std::uint32_t>();
+        s.rawSize = in.get<std::uint32_t>();
+        const bool known = s.tag == kCage || s.tag == kDisplacement || s.tag == kNormal || s.tag == kAtlasUvs ||
+                           s.tag == kBaseColor || s.tag == kMetallicRoughness || s.tag == kNormalTexture || s.tag == kEmissive;
+        if (!known) throw Error(name + ": unknown section " + tagName(s.tag));
+        const bool again = std::any_of(sections.begin(), sections.end(), [&](const SectionEntry& e) { return e.tag == s.tag; });
+        if ((k == 0) != (s.tag == kCage) || again) throw Error(name + ": section " + tagName(s.tag) + " out of place");
+        if (s.rawSize > kMaxRawSection)
+            throw Error(name + ": section " + tagName(s.tag) + " holds " + std::to_string(s.rawSize) + " bytes, more than the " +
+                        std::to_string(kMaxRawSection) + " a section may");
+        s.stored = in.take(storedSize);
+        if (ZSTD_getFrameContentSize(s.stored.data(), s.stored.size()) != s.rawSize)
+            throw Error(name + ": section " + tagName(s.tag) + " does not decompress to its stated size");
+        s.head = sectionHead(s.stored, std::min<std::size_t>(s.rawSize, kSectionHeadBytes));
+        sections.push_back(std::move(s));
+    }
+    if (in.remaining() != 0) throw Error(name + ": trailing bytes after the sections");
+
+    auto inflated = [&](const SectionEntry& s, std::uint64_t most) {
+        if (s.rawSize > most)
+            throw Error(name + ": section " + tagName(s.tag) + " holds " + std::to_string(s.rawSize) +
+                        " bytes, more than its counts allow (" + std::to_string(most) + ")");
+        std::vector<unsigned char> raw(s.rawSize);
+        const std::size_t got = ZSTD_decompress(raw.data(), raw.size(), s.stored.data(), s.stored.size());
+        if (ZSTD_isError(got) || got != s.rawSize) throw Error(name + ": section " + tagName(s.tag) + " does not decompress");
+        return raw;
+    };
+    {
+        const auto raw = inflated(sections[0], priceCage(sections[0], name, budget));
+        ByteReader section(raw, name + ": " + sections[0].what());
+        asset.cage = decodeCage(section);
+        if (section.remaining() != 0) throw Error(section.what() + ": trailing bytes");
+    }
+    int mapResolution = 0;
+    const std::vector<std::uint64_t> most = priceMaps(sections, asset.cage, name, budget, mapResolution);
+    if (priced) priced({.cage = asset.cage, .decodeTriangles = asset.decodeTriangles, .mapResolution = mapResolution});
+
+    for (size_t k = 1; k < sections.size(); ++k) {
+        const Tag& tag = sections[k].tag;
+        const auto raw = inflated(sections[k], most[k]);
+        ByteReader section(raw, name + ": " + sections[k].what());
+        if (tag == kDisplacement) asset.maps.displacement = readMaps(section, asset.cage, 1, asset.maps.layout);
         else if (tag == kNormal) asset.maps.normal = readMaps(section, asset.cage, 2, asset.maps.layout);
         else if (tag == kAtlasUvs) {
             if (asset.maps.appearanceLayout.resolution != 0) throw Error(name + ": section AUVS after the appearance");
@@ -372,12 +525,11 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         } else if (tag == kNormalTexture) {
             if (!asset.maps.appearanceAtlas.present()) throw Error(name + ": section " + tagName(tag) + " without AUVS");
             shipped.images.push_back(readAppearance(section, asset.cage, AppearanceImage::NormalTexture, asset.maps));
-        } else if (tag == kEmissive) {
+        } else {
             shipped.images.push_back(readAppearance(section, asset.cage, AppearanceImage::Emissive, asset.maps));
-        } else throw Error(name + ": unknown section " + tagName(tag));
+        }
         if (section.remaining() != 0) throw Error(section.what() + ": trailing bytes");
     }
-    if (in.remaining() != 0) throw Error(name + ": trailing bytes after the sections");
     const bool appearance = std::any_of(shipped.images.begin(), shipped.images.end(), [](const ShippedImage& image) {
         return image.which == AppearanceImage::BaseColor || image.which == AppearanceImage::MetallicRoughness;
     });
@@ -389,8 +541,9 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
     return shipped;
 }
 
-SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& name) {
-    ShippedSubd shipped = readShippedSubd(bytes, name);
+SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& name, DecodeBudget* budget,
+                     const std::function<void(const SubdOutline&)>& priced) {
+    ShippedSubd shipped = readShippedSubd(bytes, name, budget, priced);
     for (const ShippedImage& image : shipped.images)
         decodeAppearance(image, name + ": " + tagName(tagOf(image.which)) + " section", shipped.asset.maps);
     return std::move(shipped.asset);
@@ -400,9 +553,9 @@ WrittenFile writeSubd(const std::filesystem::path& path, const SubdAsset& asset,
     return writeBytes(path, encodeSubd(asset, precision));
 }
 
-SubdAsset readSubd(const std::filesystem::path& path) {
+SubdAsset readSubd(const std::filesystem::path& path, DecodeBudget* budget, const std::function<void(const SubdOutline&)>& priced) {
     const std::string bytes = io::readInputFile(path);
-    return decodeSubd({reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()}, path.string());
+    return decodeSubd({reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()}, path.string(), budget, priced);
 }
 
 }  // namespace subdfit::exporter

@@ -1,16 +1,14 @@
 #include "export/surface_glb.h"
 
-#include "export/glb_writer.h"
 #include "export/map_atlas.h"
 #include "export/surface_mesh.h"
 
 namespace subdfit::exporter {
 
-WrittenFile writeSurfaceGlb(const std::filesystem::path& path, const mesh::PolygonMesh& cage,
-                            const surface::SurfaceMaps& maps, int segments, bool draco) {
+SurfaceGlb surfaceGlb(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps, int segments) {
     const SurfaceTextures present = SurfaceTextures::of(maps);
-    const GltfMesh mesh = surfaceGltfMesh(cage, maps, present, segments);
-    FittedTextures textures;
+    SurfaceGlb glb{.mesh = surfaceGltfMesh(cage, maps, present, segments), .textures = {}};
+    FittedTextures& textures = glb.textures;
     if (const NormalImage normal = surfaceNormalImage(maps, present); !normal.empty())
         textures.normalPng = encodePng(normal.width, normal.height, 3, normal.rgb.data(), true, "normal.png");
     if (present.baseColor) {
@@ -23,7 +21,13 @@ WrittenFile writeSurfaceGlb(const std::filesystem::path& path, const mesh::Polyg
         if (present.normalTexture) textures.normalPng = encodeAppearancePng(atlas, maps, AppearanceImage::NormalTexture);
         if (present.emissive) textures.emissivePng = encodeAppearancePng(atlas, maps, AppearanceImage::Emissive);
     }
-    return writeFittedGlb(path, mesh, textures, draco);
+    return glb;
+}
+
+WrittenFile writeSurfaceGlb(const std::filesystem::path& path, const mesh::PolygonMesh& cage,
+                            const surface::SurfaceMaps& maps, int segments, MeshCoding coding) {
+    const SurfaceGlb glb = surfaceGlb(cage, maps, segments);
+    return writeFittedGlb(path, glb.mesh, glb.textures, coding);
 }
 
 }  // namespace subdfit::exporter

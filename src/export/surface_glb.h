@@ -3,15 +3,27 @@
 // fitted.glb preview and what `subdfit decode` writes from a shipped asset.subd.
 #include <filesystem>
 
+#include "export/glb_writer.h"
 #include "export/output_file.h"
 #include "mesh/polygon_mesh.h"
 #include "surface/surface_maps.h"
 
 namespace subdfit::exporter {
 
-// `segments` per ptex-face edge; texcoords on the maps' atlas (a one-cell layout without maps,
-// so they still name each face's tile); the normal map, if any, as the normalTexture.
+// What the .glb holds: the tessellation (`segments` per ptex-face edge; texcoords on the maps'
+// atlas, a one-cell layout without maps, so they still name each face's tile) and the
+// material's images (the normal map, if any, as the normalTexture), each PNG-encoded.
+struct SurfaceGlb {
+    GltfMesh mesh;
+    FittedTextures textures;
+};
+SurfaceGlb surfaceGlb(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps, int segments);
+
 WrittenFile writeSurfaceGlb(const std::filesystem::path& path, const mesh::PolygonMesh& cage,
-                            const surface::SurfaceMaps& maps, int segments, bool draco);
+                            const surface::SurfaceMaps& maps, int segments, MeshCoding coding);
+inline WrittenFile writeSurfaceGlb(const std::filesystem::path& path, const mesh::PolygonMesh& cage,
+                                   const surface::SurfaceMaps& maps, int segments, bool draco) {
+    return writeSurfaceGlb(path, cage, maps, segments, draco ? MeshCoding::Draco : MeshCoding::Float);
+}
 
 }  // namespace subdfit::exporter

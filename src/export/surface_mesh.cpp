@@ -30,8 +30,12 @@ SurfaceMaterial surfaceMaterial(const SurfaceTextures& textures) {
 GltfMesh surfaceGltfMesh(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps, const SurfaceTextures& textures,
                          int segments) {
     if (!textures.baseColor) {
-        const auto atlas = atlasLayout(maps.layout.resolution > 0 ? maps.layout : surface::buildTexelLayout(cage, 1));
-        return gltfMesh(surface::tessellate(cage, maps, segments), atlas);
+        // Without maps the texcoords still name each face's tile: a one-cell atlas, whose layout
+        // needs only the number of tiles.
+        surface::TexelLayout tiles;
+        tiles.resolution = 1;
+        for (int n : cage.faceSizes) tiles.ptexFaceCount += n == 4 ? 1 : n;
+        return gltfMesh(surface::tessellate(cage, maps, segments), atlasLayout(maps.layout.resolution > 0 ? maps.layout : tiles));
     }
     if (!maps.appearanceAtlas.present()) return gltfMesh(surface::tessellate(cage, maps, segments), atlasLayout(maps.appearanceLayout));
     // The appearance in the reference's own atlas: the texture as it is, addressed by the
@@ -40,8 +44,8 @@ GltfMesh surfaceGltfMesh(const mesh::PolygonMesh& cage, const surface::SurfaceMa
     // normal texture is in the frame of the atlas coordinates, which the tessellation's
     // TANGENTs give (the fit's frame, not one each viewer derives its own way).
     if (textures.normalMap) throw Error("a fitted normal map beside an appearance atlas");
-    const surface::Tessellation tessellation = surface::tessellate(cage, maps, segments);
-    GltfMesh mesh = gltfMesh(tessellation, atlasLayout(maps.appearanceLayout));
+    surface::Tessellation tessellation = surface::tessellate(cage, maps, segments);
+    GltfMesh mesh = gltfMesh(std::move(tessellation), atlasLayout(maps.appearanceLayout));  // keeps the ptex coordinates
     if (!textures.normalTexture) mesh.tangents.clear();
     for (size_t k = 0; k < mesh.uvs.size(); ++k) {
         const surface::PtexPoint& p = tessellation.ptex[k];

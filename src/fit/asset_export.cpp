@@ -10,7 +10,7 @@
 namespace subdfit::fit {
 
 nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene::SceneFrame& frame,
-                           const mesh::PolygonMesh& fittedWorld) {
+                           const mesh::PolygonMesh& fittedWorld, std::uint32_t referenceTriangles) {
     surface::SurfaceMaps maps = fitter.surfaceMaps();
     for (float& d : maps.displacement) d /= frame.scale;  // heights back to world units
     std::vector<exporter::WrittenFile> written;
@@ -18,7 +18,7 @@ nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene:
     if (o.preview)
         written.push_back(exporter::writeSurfaceGlb(o.out / "fitted.glb", fittedWorld, maps, fitter.renderer().tessLevel(), o.draco));
     const auto precision = exporter::SubdPrecision::forMapBits(o.mapBits, o.appearanceQuality);
-    written.push_back(exporter::writeSubd(o.out / "asset.subd", exporter::shippableAsset(fittedWorld, maps, precision.positionBits),
+    written.push_back(exporter::writeSubd(o.out / "asset.subd", exporter::shippableAsset(fittedWorld, maps, precision.positionBits, referenceTriangles),
                                           precision));
     nlohmann::json files = nlohmann::json::object();
     for (const auto& file : written) files[file.path.filename().string()] = file.bytes;

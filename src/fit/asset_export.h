@@ -5,6 +5,8 @@
 // --preview fitted.glb -- the cage's limit surface tessellated as rendered, displaced, with the
 // normal map, in world units (--draco: Draco-compressed); asset.usdz (--usd), what asset.subd
 // holds as a USD package that DCC tools and renderers open (export/usd_export.h).
+#include <cstdint>
+
 #include <nlohmann/json.hpp>
 
 #include "fit/cage_fitter.h"
@@ -13,9 +15,10 @@
 
 namespace subdfit::fit {
 
-// Returns {file name: bytes} of everything written (each file atomically).
+// Returns {file name: bytes} of everything written (each file atomically). asset.subd records
+// `referenceTriangles` as what it decodes to by default.
 nlohmann::json exportAsset(const FitOptions& options, CageFitter& fitter, const scene::SceneFrame& frame,
-                           const mesh::PolygonMesh& fittedWorld);
+                           const mesh::PolygonMesh& fittedWorld, std::uint32_t referenceTriangles);
 
 // asset.usdz (and asset.usda) of dir/asset.subd as it ships, as options.usd asks, the units those
 // of options.reference's format. Whoever rewrites asset.subd calls it again. Returns {file name: bytes}.

@@ -1,5 +1,7 @@
 #include "fit/fit_options.h"
 
+#include "surface/appearance_atlas.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -83,7 +85,7 @@ const std::vector<OptionRow>& optionTable() {
         {{.key = "appearance_atlas", .flag = "--appearance-atlas",
           .help = "simplify: texels per side of the base colour / metallic-roughness in the reference's own UV atlas "
                   "(0 = tiles per face; a reference with one textured material)",
-          .min = 0, .max = 4096, .resumable = true, .setting = true},
+          .min = 0, .max = surface::kMaxAtlasSize, .resumable = true, .setting = true},
          &F::appearanceAtlas},
         {{.key = "maps_start", .flag = "--maps-start", .help = "fraction of the steps before the maps join",
           .min = 0, .max = 1, .resumable = true, .setting = true},

@@ -290,7 +290,8 @@ FitReport FitRun::writeResults(const std::filesystem::path& out, const context::
     mesh::writeObj(out / "cage.obj", fittedWorld);
     FitOptions exportOptions = options_;
     exportOptions.out = out;
-    const nlohmann::json exports = exportAsset(exportOptions, *fitter_, scene_.frame, fittedWorld);
+    const nlohmann::json exports = exportAsset(exportOptions, *fitter_, scene_.frame, fittedWorld,
+                                                std::uint32_t(scene_.reference.faceCount()));
     for (const auto& [file, bytes] : exports.items()) r.exports[file] = bytes.get<std::uintmax_t>();
     const int res = options_.resolution;
     io::writeImage(out / "before.png", beforeImage_, res, res);

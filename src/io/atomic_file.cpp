@@ -35,7 +35,27 @@ bool syncPath(const fs::path& path, int flags) {
 
 }  // namespace
 
+std::string outputFileProblem(const fs::path& destination) {
+    std::error_code ec;
+    const fs::file_status status = fs::symlink_status(destination, ec);
+    if (ec || !fs::exists(status) || fs::is_regular_file(status)) return "";  // nothing there, or a file to replace
+    if (fs::is_directory(status)) return "is a folder, not a file";
+    if (fs::is_symlink(status)) return "is a symlink: subdfit replaces only regular files";
+    return "is not a regular file (a FIFO, device or socket): subdfit replaces only regular files";
+}
+
+void checkOutputFile(const fs::path& destination, const fs::path& input) {
+    if (destination.empty()) throw Error("the output path is empty");
+    if (const std::string problem = outputFileProblem(destination); !problem.empty())
+        throw fileError(destination.string(), problem);
+    std::error_code ec;
+    if (!input.empty() && fs::equivalent(destination, input, ec))
+        throw fileError(destination.string(), "is the input " + input.string() + ": write the output elsewhere");
+}
+
 AtomicFile::AtomicFile(fs::path destination) : destination_(std::move(destination)) {
+    if (destination_.empty()) throw Error("the output path is empty");
+    if (const std::string problem = outputFileProblem(destination_); !problem.empty()) fail(problem);
     for (int attempt = 0; attempt < 100 && fd_ < 0; ++attempt) {
         temporary_ = temporaryName(destination_);
         fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
@@ -71,6 +91,7 @@ void AtomicFile::commit() {
     } else if (!syncPath(temporary_, O_RDONLY)) {
         fail(std::string("cannot write: ") + std::strerror(errno));
     }
+    if (const std::string problem = outputFileProblem(destination_); !problem.empty()) fail(problem);
     if (::rename(temporary_.c_str(), destination_.c_str()) != 0) fail(std::string("cannot replace: ") + std::strerror(errno));
     temporary_.clear();
     // The rename lives in the folder: sync it too (best effort; some filesystems refuse).

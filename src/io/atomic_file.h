@@ -11,7 +11,16 @@
 
 namespace subdfit::io {
 
-// For writers that stream bytes themselves.
+// Why `destination` may not be written ("" when it may): an output replaces nothing but a
+// regular file (never a folder, a FIFO, a device such as /dev/null, a socket or a symlink).
+std::string outputFileProblem(const std::filesystem::path& destination);
+
+// Throws subdfit::Error naming `destination` when it is empty, is `input` (the same file by any
+// name), or outputFileProblem finds one: a command checks its outputs before it works.
+void checkOutputFile(const std::filesystem::path& destination, const std::filesystem::path& input = {});
+
+// For writers that stream bytes themselves. Refuses (outputFileProblem) when created and again
+// just before the rename.
 class AtomicFile {
 public:
     explicit AtomicFile(std::filesystem::path destination);

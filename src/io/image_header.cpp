@@ -4,7 +4,7 @@
 
 namespace subdfit::io {
 
-std::optional<ImageSize> jpegSize(std::span<const unsigned char> bytes) {
+std::optional<ImageHeader> jpegHeader(std::span<const unsigned char> bytes) {
     // JPEG (ITU T.81 B.1): SOI, then segments FF xx with a 16-bit big-endian length that
     // counts itself; SOF0..SOF15 but DHT (C4), JPG (C8) and DAC (CC) carry the frame size.
     auto u16 = [&](std::size_t at) { return int(bytes[at]) << 8 | int(bytes[at + 1]); };
@@ -22,10 +22,11 @@ std::optional<ImageSize> jpegSize(std::span<const unsigned char> bytes) {
         if (length < 2 || at + 2 + length > bytes.size()) return std::nullopt;
         const bool frame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
         if (frame) {
-            if (length < 7) return std::nullopt;
-            const ImageSize size{u16(at + 7), u16(at + 5)};
-            if (size.width == 0 || size.height == 0) return std::nullopt;
-            return size;
+            // length, precision, height, width, components
+            if (length < 8) return std::nullopt;
+            const ImageHeader header{u16(at + 7), u16(at + 5), int(bytes[at + 9])};
+            if (header.width == 0 || header.height == 0 || header.channels == 0) return std::nullopt;
+            return header;
         }
         at += 2 + length;
     }

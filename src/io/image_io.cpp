@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <memory>
+#include <optional>
 #include <string_view>
 
 #include "io/atomic_file.h"
@@ -56,37 +58,79 @@ void drawTexts(const OIIO::ImageSpec& spec, std::vector<unsigned char>& rgb, con
     }
 }
 
-}  // namespace
-
-DecodedImage decodeImage(const void* data, std::size_t size, const std::string& name) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
+// An OpenImageIO reader on bytes in memory; the proxy must outlive it.
+std::unique_ptr<OIIO::ImageInput> openImage(const unsigned char* bytes, std::size_t size, OIIO::Filesystem::IOMemReader& proxy,
+                                            const std::string& name) {
     const char* format = formatOf(bytes, size);
     if (!format) throw fileError(name, "not an image format subdfit reads (PNG, JPEG, WebP, BMP, GIF, TIFF, EXR)");
-    OIIO::Filesystem::IOMemReader memory(bytes, size);
-    auto in = OIIO::ImageInput::open(std::string("memory.") + format, nullptr, &memory);
+    auto in = OIIO::ImageInput::open(std::string("memory.") + format, nullptr, &proxy);
     if (!in) throw fileError(name, "corrupt image: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1 ||
-        std::int64_t(spec.width) * spec.height > kMaxImagePixels)
-        throw fileError(name, "image of " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+    return in;
+}
+
+ImageHeader checkedHeader(const ImageHeader& header, const std::string& name) {
+    if (header.width <= 0 || header.height <= 0 || header.channels <= 0 || header.pixels() > kMaxImagePixels)
+        throw fileError(name, "image of " + std::to_string(header.width) + " x " + std::to_string(header.height) +
                                   " pixels, more than subdfit reads (" + std::to_string(kMaxImagePixels) + ")");
-    const int channels = spec.nchannels;
-    std::vector<std::uint8_t> pixels(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(channels));
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data()))
-        throw fileError(name, "corrupt image: " + in->geterror());
-    in->close();
-    DecodedImage image{spec.width, spec.height, std::vector<std::uint8_t>(std::size_t(spec.width) * spec.height * 4)};
-    for (std::size_t i = 0, n = std::size_t(spec.width) * spec.height; i < n; ++i) {
-        const std::uint8_t* p = pixels.data() + i * std::size_t(channels);
-        std::uint8_t* q = image.rgba.data() + i * 4;
-        if (channels <= 2) {  // grey, grey + alpha
-            q[0] = q[1] = q[2] = p[0];
-            q[3] = channels == 2 ? p[1] : 255;
-        } else {
-            q[0] = p[0], q[1] = p[1], q[2] = p[2];
-            q[3] = channels >= 4 ? p[3] : 255;
+    return header;
+}
+
+ImageHeader checkedHeader(const OIIO::ImageSpec& spec, const std::string& name) {
+    if (spec.depth > 1) throw fileError(name, "a volume image (depth " + std::to_string(spec.depth) + ")");
+    return checkedHeader(ImageHeader{spec.width, spec.height, spec.nchannels}, name);
+}
+
+}  // namespace
+
+ImageHeader readImageHeader(const void* data, std::size_t size, const std::string& name) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    if (const char* format = formatOf(bytes, size); format && std::string_view(format) == "jpg") {
+        const std::optional<ImageHeader> header = jpegHeader({bytes, size});
+        if (!header) throw fileError(name, "corrupt image: no JPEG frame header");
+        return checkedHeader(*header, name);
+    }
+    OIIO::Filesystem::IOMemReader memory(bytes, size);
+    const auto in = openImage(bytes, size, memory, name);
+    return checkedHeader(in->spec(), name);
+}
+
+void PixelBudget::spend(const ImageHeader& image, const std::string& name) {
+    if (image.pixels() > left_)
+        throw fileError(name, "image of " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                                  " pixels: with the images before it, more than the " + std::to_string(total_) +
+                                  " pixels subdfit decodes for one file");
+    left_ -= image.pixels();
+}
+
+DecodedImage decodeImage(const void* data, std::size_t size, const std::string& name, PixelBudget* budget) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    OIIO::Filesystem::IOMemReader memory(bytes, size);
+    const auto in = openImage(bytes, size, memory, name);
+    const ImageHeader header = checkedHeader(in->spec(), name);
+    if (budget) budget->spend(header, name);
+    const int channels = header.channels;
+    DecodedImage image{header.width, header.height, std::vector<std::uint8_t>(std::size_t(header.pixels()) * 4)};
+    // A strip of rows at a time in the file's channels, expanded into the RGBA buffer.
+    constexpr int kStripRows = 64;
+    std::vector<std::uint8_t> strip(std::size_t(header.width) * std::size_t(channels) * kStripRows);
+    const int yBegin = in->spec().y;
+    for (int y0 = 0; y0 < header.height; y0 += kStripRows) {
+        const int rows = std::min(kStripRows, header.height - y0);
+        if (!in->read_scanlines(0, 0, yBegin + y0, yBegin + y0 + rows, 0, 0, channels, OIIO::TypeDesc::UINT8, strip.data()))
+            throw fileError(name, "corrupt image: " + in->geterror());
+        for (std::size_t i = 0, n = std::size_t(header.width) * std::size_t(rows); i < n; ++i) {
+            const std::uint8_t* p = strip.data() + i * std::size_t(channels);
+            std::uint8_t* q = image.rgba.data() + (std::size_t(y0) * std::size_t(header.width) + i) * 4;
+            if (channels <= 2) {  // grey, grey + alpha
+                q[0] = q[1] = q[2] = p[0];
+                q[3] = channels == 2 ? p[1] : 255;
+            } else {
+                q[0] = p[0], q[1] = p[1], q[2] = p[2];
+                q[3] = channels >= 4 ? p[3] : 255;
+            }
         }
     }
+    in->close();
     return image;
 }
 
@@ -119,9 +163,9 @@ std::vector<std::uint8_t> encodeImage(const DecodedImage& image, int width, int 
     return bytes;
 }
 
-DecodedImage readImage(const std::filesystem::path& path) {
+DecodedImage readImage(const std::filesystem::path& path, PixelBudget* budget) {
     const std::string bytes = readInputFile(path);
-    return decodeImage(bytes.data(), bytes.size(), path.string());
+    return decodeImage(bytes.data(), bytes.size(), path.string(), budget);
 }
 
 void writeImage(const std::filesystem::path& path, const std::vector<glm::vec4>& pixels, int width, int height) {

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "mesh/input_limits.h"
+#include "util/checked_size.h"
 #include "util/error.h"
 
 namespace subdfit::mesh::gltf {
@@ -66,7 +67,16 @@ ElementSpan resolve(const tinygltf::Model& model, int index, int expectedType, c
     span.components = components;
     span.normalized = accessor.normalized;
     span.stride = elementSize;
-    if (accessor.bufferView < 0 || span.count == 0) return span;
+    if (span.count == 0) return span;
+    // Without a buffer view every element is zero (sparse accessors are refused above): nothing a
+    // file needs many of, and a few bytes of JSON must not allocate gigabytes of zeros.
+    constexpr size_t kMostZeroElements = size_t(1) << 16;
+    if (accessor.bufferView < 0) {
+        if (span.count > kMostZeroElements)
+            throw fileError(path, name + " has no buffer view and " + std::to_string(span.count) +
+                                      " elements (all zero), more than " + std::to_string(kMostZeroElements));
+        return span;
+    }
 
     const std::string_view view = bufferViewBytes(model, accessor.bufferView, path);
     const size_t declaredStride = model.bufferViews[size_t(accessor.bufferView)].byteStride;
@@ -76,10 +86,9 @@ ElementSpan resolve(const tinygltf::Model& model, int index, int expectedType, c
                                       " is smaller than its element (" + std::to_string(elementSize) + " bytes)");
         span.stride = declaredStride;
     }
-    // Every quantity is at most the view's length before it is multiplied, so nothing overflows.
     const size_t offset = accessor.byteOffset;
-    const bool fits = offset <= view.size() && span.count <= view.size() &&
-                      (span.count - 1) * span.stride + elementSize <= view.size() - offset;
+    const bool fits = offset <= view.size() && elementSize <= view.size() - offset &&
+                      !productExceeds(span.count - 1, span.stride, view.size() - offset - elementSize);
     if (!fits)
         throw fileError(path, name + " (" + std::to_string(span.count) + " elements at offset " +
                                   std::to_string(offset) + ", stride " + std::to_string(span.stride) +
@@ -172,17 +181,22 @@ std::vector<glm::vec3> readNormals(const tinygltf::Model& model, int accessor, c
 
 namespace {
 
-// Texture coordinates and colours: float, or normalized unsigned byte / short (spec 3.7.2.1).
+// Texture coordinates and colours: float, or normalized unsigned byte / short (spec 3.7.2.1);
+// texture coordinates also (KHR_mesh_quantization) signed, and not normalized (gltfpack's -vt
+// writes them so, scaled back by the texture transform).
 template <int N>
 std::vector<glm::vec<N, float>> readNormalizedAttribute(const tinygltf::Model& model, int accessor, int type,
-                                                        const std::string& path, const char* what) {
+                                                        const std::string& path, const char* what, bool quantized) {
     const ElementSpan span = resolve(model, accessor, type, path);
     const int t = span.componentType;
-    const bool allowed = t == TINYGLTF_COMPONENT_TYPE_FLOAT || (span.normalized && (t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                                                                    t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+    const bool unsignedInteger = t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    const bool signedInteger = t == TINYGLTF_COMPONENT_TYPE_BYTE || t == TINYGLTF_COMPONENT_TYPE_SHORT;
+    const bool allowed = t == TINYGLTF_COMPONENT_TYPE_FLOAT || (span.normalized && unsignedInteger) ||
+                         (quantized && (unsignedInteger || signedInteger));
     if (!allowed)
         throw fileError(path, "accessor " + std::to_string(accessor) + ": " + what +
-                                  " must be float or normalized unsigned byte or short");
+                                  (quantized ? " must be float or (un)signed byte or short"
+                                             : " must be float or normalized unsigned byte or short"));
     glm::vec<N, float> fill(0.0f);
     if constexpr (N == 4) fill.w = 1.0f;  // a VEC3 colour is opaque
     std::vector<glm::vec<N, float>> values(span.count, fill);
@@ -204,11 +218,11 @@ std::vector<glm::vec<N, float>> readNormalizedAttribute(const tinygltf::Model& m
 }  // namespace
 
 std::vector<glm::vec2> readTexCoords(const tinygltf::Model& model, int accessor, const std::string& path) {
-    return readNormalizedAttribute<2>(model, accessor, TINYGLTF_TYPE_VEC2, path, "texture coordinates");
+    return readNormalizedAttribute<2>(model, accessor, TINYGLTF_TYPE_VEC2, path, "texture coordinates", true);
 }
 
 std::vector<glm::vec4> readColors(const tinygltf::Model& model, int accessor, const std::string& path) {
-    return readNormalizedAttribute<4>(model, accessor, TINYGLTF_TYPE_VEC4, path, "colours");
+    return readNormalizedAttribute<4>(model, accessor, TINYGLTF_TYPE_VEC4, path, "colours", false);
 }
 
 std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor, const std::string& path) {

@@ -7,41 +7,22 @@ namespace subdfit::mesh::gltf {
 
 namespace {
 
-namespace fs = std::filesystem;
-
-bool isInside(const fs::path& path, const fs::path& folder) {
-    auto p = path.begin();
-    for (auto f = folder.begin(); f != folder.end(); ++f, ++p)
-        if (p == path.end() || *p != *f) return false;
-    return p != path.end();
-}
-
 FileAccess& self(void* userData) { return *static_cast<FileAccess*>(userData); }
 
 }  // namespace
 
-FileAccess::FileAccess(const fs::path& gltfPath) {
-    std::error_code ec;
-    const fs::path parent = gltfPath.has_parent_path() ? gltfPath.parent_path() : fs::path(".");
-    folder_ = fs::canonical(parent, ec);
-    if (ec) throw fileError(gltfPath.string(), "cannot resolve its folder: " + ec.message());
-    baseDir_ = folder_.string();
-}
+FileAccess::FileAccess(const std::filesystem::path& gltfPath) : folder_(gltfPath, "glTF"), baseDir_(folder_.path().string()) {}
 
 std::string FileAccess::resolve(const std::string& joinedPath) {
     // tinygltf tries baseDir/uri, then ./uri: only the first is ours to allow.
-    const fs::path path = fs::path(joinedPath).lexically_normal();
-    if (!isInside(path, folder_)) return "";
-    std::error_code ec;
-    const fs::path resolved = fs::weakly_canonical(path, ec);
+    const std::filesystem::path path = std::filesystem::path(joinedPath).lexically_normal();
+    if (!folder_.containsLexically(path)) return "";
+    const io::AssetFolder::Resolved resolved = folder_.resolve(path);
     // A missing file is tinygltf's to report ("File not found"), and only a buffer must exist.
-    if (!ec && !fs::exists(fs::symlink_status(resolved, ec))) return "";
-    std::string problem;
-    if (ec) problem = "cannot be resolved: " + ec.message();
-    else if (!isInside(resolved, folder_)) problem = "resolves outside the glTF file's folder";
-    else problem = io::inputFileProblem(resolved);
-    if (problem.empty()) return resolved.string();
-    if (refusal_.empty()) refusal_ = "external file '" + path.lexically_relative(folder_).string() + "' " + problem;
+    if (resolved.missing) return "";
+    if (resolved.problem.empty()) return resolved.file.string();
+    if (refusal_.empty())
+        refusal_ = "external file '" + path.lexically_relative(folder_.path()).string() + "' " + resolved.problem;
     return "";
 }
 

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <string>
 
+#include "io/asset_folder.h"
+
 namespace subdfit::mesh::gltf {
 
 class FileAccess {
@@ -30,7 +32,7 @@ private:
     // and symlinks followed), or "" when it may not be read.
     std::string resolve(const std::string& joinedPath);
 
-    std::filesystem::path folder_;  // canonical
+    io::AssetFolder folder_;
     std::string baseDir_;
     std::string refusal_;
 };

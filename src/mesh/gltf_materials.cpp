@@ -1,10 +1,15 @@
 #include "mesh/gltf_materials.h"
 
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <set>
+#include <string_view>
 
 #include "io/image_io.h"
 #include "util/error.h"
+#include "util/hash.h"
+#include "util/printable.h"
 #include "util/warnings.h"
 
 namespace subdfit::mesh::gltf {
@@ -17,6 +22,12 @@ constexpr const char* kTextureWebp = "EXT_texture_webp";
 
 double number(const tinygltf::Value& v, double fallback) { return v.IsNumber() ? v.GetNumberAsDouble() : fallback; }
 
+std::string shortNumber(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
 Wrap wrapOf(int mode) {
     switch (mode) {
         case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::ClampToEdge;
@@ -27,8 +38,9 @@ Wrap wrapOf(int mode) {
 
 // KHR_texture_transform: translation · rotation · scale applied to (u, v, 1). glTF's v points
 // down, so its "counter-clockwise" rotation is clockwise in a y-up frame: the sign the sample
-// implementations and the Khronos sample model use (KhronosGroup/glTF#1563).
-glm::mat3 textureTransform(const tinygltf::Value& t, int& texCoord) {
+// implementations and the Khronos sample model use (KhronosGroup/glTF#1563). Numbers that are
+// no float (1e300) or no set's index (a texCoord of 1e30) are refused, naming the file.
+glm::mat3 textureTransform(const tinygltf::Value& t, int& texCoord, const std::string& path, const char* slot) {
     const tinygltf::Value& offset = t.Get("offset");
     const tinygltf::Value& scale = t.Get("scale");
     const float r = float(number(t.Get("rotation"), 0.0));
@@ -36,7 +48,14 @@ glm::mat3 textureTransform(const tinygltf::Value& t, int& texCoord) {
                       offset.IsArray() && offset.ArrayLen() == 2 ? number(offset.Get(1), 0.0) : 0.0);
     const glm::vec2 s(scale.IsArray() && scale.ArrayLen() == 2 ? number(scale.Get(0), 1.0) : 1.0,
                       scale.IsArray() && scale.ArrayLen() == 2 ? number(scale.Get(1), 1.0) : 1.0);
-    if (t.Has("texCoord")) texCoord = int(number(t.Get("texCoord"), 0.0));
+    const std::string where = std::string(slot) + "'s " + kTextureTransform;
+    if (!std::isfinite(r + o.x + o.y + s.x + s.y)) throw fileError(path, where + " has a number beyond a float");
+    if (t.Has("texCoord")) {
+        const double set = number(t.Get("texCoord"), -1.0);
+        if (!(set >= 0.0 && set <= 255.0) || set != std::floor(set))
+            throw fileError(path, where + " names texture coordinate set " + shortNumber(set) + ", which cannot exist");
+        texCoord = int(set);
+    }
     const float c = std::cos(r), sn = std::sin(r);
     const glm::mat3 translation(1, 0, 0, 0, 1, 0, o.x, o.y, 1);
     const glm::mat3 rotation(c, -sn, 0, sn, c, 0, 0, 0, 1);
@@ -50,8 +69,8 @@ public:
 
     MaterialSet read() {
         MaterialSet set;
-        for (const tinygltf::Image& image : model_.images) set.images.push_back(imageOf(image, int(set.images.size())));
         for (const tinygltf::Material& m : model_.materials) set.materials.push_back(materialOf(m));
+        set.images = decodedImages(set.materials);
         if (!ignored_.empty()) {
             std::string list;
             for (const auto& what : ignored_) list += (list.empty() ? "" : ", ") + what;
@@ -61,17 +80,55 @@ public:
     }
 
 private:
-    Image imageOf(const tinygltf::Image& image, int index) const {
-        Image out;
-        out.name = image.uri.empty() ? "image " + std::to_string(index) : image.uri;
-        // The decoder always makes 8-bit RGBA; an image tinygltf could not hand it stays empty.
-        if (image.component == 4 && image.bits == 8 && image.width > 0 && image.height > 0 &&
-            image.image.size() == size_t(image.width) * size_t(image.height) * 4) {
-            out.width = image.width;
-            out.height = image.height;
-            out.rgba = image.image;
+    static constexpr TextureRef Material::*kSlots[] = {&Material::baseColorTexture, &Material::metallicRoughnessTexture,
+                                                       &Material::normalTexture, &Material::occlusionTexture,
+                                                       &Material::emissiveTexture};
+
+    std::string imageName(int index) const {
+        const std::string& uri = model_.images[size_t(index)].uri;
+        return path_ + ": " + (uri.empty() || uri.rfind("data:", 0) == 0 ? "image " + std::to_string(index) : "image '" + printable(uri) + "'");
+    }
+
+    // The images the materials use, each decoded once: images with the same bytes (eight naming
+    // one file) become one, whose index the textures then share. Every header is read and the
+    // pixels counted against the file's budget before the first image is decoded.
+    std::vector<Image> decodedImages(std::vector<Material>& materials) const {
+        std::vector<Image> images(model_.images.size());
+        for (size_t i = 0; i < images.size(); ++i) images[i].name = model_.images[i].uri.empty() ? "image " + std::to_string(i) : model_.images[i].uri;
+        std::map<int, int> same;  // used image -> the first with its bytes
+        std::map<std::pair<std::uint64_t, size_t>, std::vector<int>> byContent;
+        for (Material& m : materials)
+            for (TextureRef Material::*slot : kSlots) {
+                TextureRef& ref = m.*slot;
+                if (!ref.present()) continue;
+                if (!same.count(ref.image)) {
+                    const auto& bytes = model_.images[size_t(ref.image)].image;
+                    const std::string_view view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+                    auto& candidates = byContent[{hash64(view), bytes.size()}];
+                    int first = ref.image;
+                    for (int c : candidates)
+                        if (model_.images[size_t(c)].image == bytes) first = c;
+                    if (first == ref.image) candidates.push_back(ref.image);
+                    same[ref.image] = first;
+                }
+                ref.image = same[ref.image];
+            }
+        io::PixelBudget budget;
+        std::set<int> toDecode;
+        for (const auto& [used, first] : same)
+            if (used == first && !model_.images[size_t(used)].image.empty()) {
+                const auto& bytes = model_.images[size_t(used)].image;
+                budget.spend(io::readImageHeader(bytes.data(), bytes.size(), imageName(used)), imageName(used));
+                toDecode.insert(used);
+            }
+        for (int i : toDecode) {
+            const auto& bytes = model_.images[size_t(i)].image;
+            io::DecodedImage decoded = io::decodeImage(bytes.data(), bytes.size(), imageName(i));
+            images[size_t(i)].width = decoded.width;
+            images[size_t(i)].height = decoded.height;
+            images[size_t(i)].rgba = std::move(decoded.rgba);
         }
-        return out;
+        return images;
     }
 
     TextureRef textureOf(int index, int texCoord, const tinygltf::ExtensionMap& extensions, const char* slot) {
@@ -105,7 +162,7 @@ private:
             ref.nearest = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
         }
         if (const auto t = extensions.find(kTextureTransform); t != extensions.end())
-            ref.uvTransform = textureTransform(t->second, texCoord);
+            ref.uvTransform = textureTransform(t->second, texCoord, path_, slot);
         if (texCoord != 0) ignored_.insert(std::string(slot) + " on TEXCOORD_" + std::to_string(texCoord));
         return ref;
     }
@@ -159,23 +216,11 @@ private:
 
 }  // namespace
 
-bool decodeImageForTinygltf(tinygltf::Image* image, int index, std::string* error, std::string*, int, int,
-                            const unsigned char* bytes, int size, void*) {
-    try {
-        // The caller's message names the glTF file; this names the image within it.
-        const std::string name = image->uri.empty() ? "image " + std::to_string(index) : "image '" + image->uri + "'";
-        io::DecodedImage decoded = io::decodeImage(bytes, size_t(std::max(size, 0)), name);
-        image->width = decoded.width;
-        image->height = decoded.height;
-        image->component = 4;
-        image->bits = 8;
-        image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-        image->image = std::move(decoded.rgba);
-        return true;
-    } catch (const Error& e) {
-        if (error) *error = e.what();
-        return false;
-    }
+bool keepImageBytes(tinygltf::Image* image, int, std::string*, std::string*, int, int, const unsigned char* bytes, int size,
+                    void*) {
+    image->image.assign(bytes, bytes + std::max(size, 0));
+    image->width = image->height = image->component = image->bits = 0;
+    return true;
 }
 
 MaterialSet readMaterials(const tinygltf::Model& model, const std::string& path) {

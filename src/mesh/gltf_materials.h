@@ -13,12 +13,15 @@
 
 namespace subdfit::mesh::gltf {
 
-// tinygltf's image callback: decodes each image's bytes (from its buffer view, data URI or a
-// file the loader has already confined to the glTF's folder) with OpenImageIO into 8-bit RGBA.
-bool decodeImageForTinygltf(tinygltf::Image* image, int index, std::string* error, std::string* warning, int, int,
-                            const unsigned char* bytes, int size, void*);
+// tinygltf's image callback: keeps each image's encoded bytes (from its buffer view, data URI or
+// a file the loader has already confined to the glTF's folder) in Image::image, undecoded.
+bool keepImageBytes(tinygltf::Image* image, int index, std::string* error, std::string* warning, int, int,
+                    const unsigned char* bytes, int size, void*);
 
-// Throws subdfit::Error naming `path` for a texture that names a missing image or sampler.
+// The images the materials use are decoded here (readMaterials), once each: their headers first,
+// checked against io::kMaxImagePixelsPerFile together, then their pixels (8-bit RGBA); images
+// no material uses stay empty. Throws subdfit::Error naming `path` (and the image) for a texture
+// that names a missing image or sampler, an image that does not decode, or too many pixels.
 MaterialSet readMaterials(const tinygltf::Model& model, const std::string& path);
 
 }  // namespace subdfit::mesh::gltf

@@ -2,6 +2,7 @@
 
 #include <meshoptimizer.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -9,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "util/checked_size.h"
 #include "util/error.h"
 
 namespace subdfit::mesh::gltf {
@@ -18,8 +20,13 @@ using nlohmann::json;
 
 constexpr const char* kMeshopt = "EXT_meshopt_compression";
 constexpr std::uint32_t kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
-// What one decoded bufferView may take: as much as the largest input a reader accepts.
+// What the decoded bufferViews of one file may take together: as much as the largest input a
+// reader accepts.
 constexpr std::uint64_t kMaxDecodedBytes = std::uint64_t(1) << 31;
+// meshoptimizer's codecs store at least 2 bits for every 16 decoded bytes (a vertex block of
+// zeros); a view declaring more than this many times its compressed bytes cannot be whole, and
+// is refused before its buffer is allocated.
+constexpr std::uint64_t kMaxExpansion = 256;
 
 std::uint32_t readU32(std::string_view bytes, size_t offset) {
     std::uint32_t v;
@@ -43,14 +50,17 @@ std::uint64_t unsignedField(const json& object, const char* key, const std::stri
     return object[key].get<std::uint64_t>();
 }
 
-// One compressed bufferView decoded: `count` elements of `byteStride` bytes.
-std::string decodeView(const json& ext, std::string_view bin, const std::string& where) {
+// One compressed bufferView decoded: `count` elements of `byteStride` bytes, at most `budget`
+// bytes.
+std::string decodeView(const json& ext, std::string_view bin, std::uint64_t budget, const std::string& where) {
     const std::uint64_t offset = unsignedField(ext, "byteOffset", where), length = unsignedField(ext, "byteLength", where),
                         stride = unsignedField(ext, "byteStride", where), count = unsignedField(ext, "count", where);
     if (unsignedField(ext, "buffer", where) != 0)
         throw Error(where + " is compressed in a buffer other than the GLB's binary chunk, which is not read");
     if (offset > bin.size() || length > bin.size() - offset) throw Error(where + " lies outside the binary chunk");
-    if (stride == 0 || stride > 256 || count * stride > kMaxDecodedBytes) throw Error(where + " has an impossible size");
+    if (stride == 0 || stride > 256 || productExceeds(count, stride, std::min(budget, kMaxExpansion * length + 1024)))
+        throw Error(where + " has an impossible size (" + std::to_string(count) + " elements of " + std::to_string(stride) +
+                    " bytes from " + std::to_string(length) + " compressed bytes)");
     const std::string mode = ext.value("mode", ""), filter = ext.value("filter", "NONE");
     std::string out(size_t(count * stride), '\0');
     const auto* source = reinterpret_cast<const unsigned char*>(bin.data() + offset);
@@ -103,7 +113,8 @@ void expandMeshopt(std::string& bytes, const std::string& path) {
         for (size_t v = 0; v < doc["bufferViews"].size(); ++v) {
             json& view = doc["bufferViews"][v];
             if (!view.is_object() || !view.contains("extensions") || !view["extensions"].contains(kMeshopt)) continue;
-            const std::string decoded = decodeView(view["extensions"][kMeshopt], bin, "bufferViews[" + std::to_string(v) + "]");
+            const std::string decoded = decodeView(view["extensions"][kMeshopt], bin, kMaxDecodedBytes - (newBin.size() - bin.size()),
+                                                   "bufferViews[" + std::to_string(v) + "]");
             newBin.append((4 - newBin.size() % 4) % 4, '\0');
             view["buffer"] = std::uint64_t{0};
             view["byteOffset"] = newBin.size();

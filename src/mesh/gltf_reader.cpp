@@ -66,7 +66,7 @@ tinygltf::Model parseModel(const std::filesystem::path& path, bool decodeImages)
     gltf::FileAccess files(path);
     tinygltf::TinyGLTF loader;
     if (decodeImages)
-        loader.SetImageLoader(&gltf::decodeImageForTinygltf, nullptr);
+        loader.SetImageLoader(&gltf::keepImageBytes, nullptr);
     else
         loader.SetImageLoader(&skipImage, nullptr);
     loader.SetFsCallbacks(files.callbacks());

@@ -5,6 +5,7 @@
 // metallic. Other statements (Ka, Ks, illum, bump maps, ...) are named in one warning.
 #include <filesystem>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "mesh/material.h"
@@ -14,12 +15,18 @@ namespace subdfit::mesh::obj {
 struct MaterialLibrary {
     MaterialSet set;
     std::vector<std::string> names;  // set.materials[i] is `newmtl names[i]`
-    int find(const std::string& name) const;  // -1 when absent
+    void add(std::string name);      // a new material of that name
+    int find(const std::string& name) const;  // -1 when absent; the first of a repeated name
+
+private:
+    std::unordered_map<std::string, int> index_;
 };
 
 // Reads every library (names as the OBJ wrote them, relative to `objPath`'s folder, which they
-// may not leave) and the images their maps name. A missing library or image is a warning (the
-// surface renders without it), a malformed one an error naming the file and line.
+// may not leave, symlinks followed: io/asset_folder.h) and the images their maps name (each
+// file decoded once, all within io::kMaxImagePixelsPerFile). A missing library or image is a
+// warning (the surface renders without it); a malformed one, or one outside the folder or not a
+// regular file, an error naming the file and line.
 struct LibraryUse {
     std::string name;
     int line = 0;  // of the mtllib statement

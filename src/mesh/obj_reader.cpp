@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <unordered_map>
 
 #include <glm/geometric.hpp>
 
@@ -93,11 +94,10 @@ private:
         normals_.push_back(n);
     }
 
-    int materialNamed(const std::string& name) {
-        const auto it = std::find(materialNames_.begin(), materialNames_.end(), name);
-        if (it != materialNames_.end()) return int(it - materialNames_.begin());
-        materialNames_.push_back(name);
-        return int(materialNames_.size()) - 1;
+    int materialNamed(std::string name) {
+        const auto [it, fresh] = materialIndex_.try_emplace(std::move(name), int(materialNames_.size()));
+        if (fresh) materialNames_.push_back(it->first);
+        return it->second;
     }
 
     void parseVertex(Tokens& tokens) {
@@ -179,7 +179,7 @@ private:
     // split only by texture coordinates is the texture's, not a hard edge. The tags, which name
     // the file's vertices, no longer apply and are dropped.
     void finishAppearance() {
-        const obj::MaterialLibrary library = obj::readMaterialLibraries(mesh_.sourcePath, libraries_);
+        obj::MaterialLibrary library = obj::readMaterialLibraries(mesh_.sourcePath, libraries_);
         if (!texCoords_.empty() || !normals_.empty()) {
             const std::vector<glm::vec3> smooth = vertexNormals(mesh_);
             std::vector<glm::vec3> positions;
@@ -200,10 +200,12 @@ private:
             mesh_.tags = {};
         }
         if (library.set.materials.empty()) return;
-        auto set = std::make_shared<MaterialSet>(library.set);
+        auto set = std::make_shared<MaterialSet>(std::move(library.set));
+        std::vector<int> materialOfName;  // per usemtl name: into the library, -1 when it lacks the name
+        for (const std::string& name : materialNames_) materialOfName.push_back(library.find(name));
         int grey = -1;
         for (int name : faceMaterialNames_) {
-            int m = name >= 0 ? library.find(materialNames_[size_t(name)]) : -1;
+            int m = name >= 0 ? materialOfName[size_t(name)] : -1;
             if (m < 0) {
                 if (grey < 0) {
                     grey = int(set->materials.size());
@@ -226,6 +228,7 @@ private:
     std::vector<int> cornerTexCoords_, cornerNormals_;  // per face corner, with appearance
     std::vector<int> faceMaterialNames_;   // per face: into materialNames_, -1 before any usemtl
     std::vector<std::string> materialNames_;
+    std::unordered_map<std::string, int> materialIndex_;  // name -> into materialNames_
     std::vector<obj::LibraryUse> libraries_;
     int material_ = -1;
     int maxIndex_ = -1;

@@ -1,5 +1,6 @@
 #include "mesh/point_welder.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -23,6 +24,20 @@ int PointWelder::indexOf(const glm::vec3& p, int& nextIndex) {
             }
     cells_[cellKey(cx, cy, cz)].push_back({p, nextIndex});
     return nextIndex++;
+}
+
+std::vector<glm::vec3> coincidentPointsMerged(const std::vector<glm::vec3>& points) {
+    float extent = 0.0f;
+    for (const glm::vec3& p : points) extent = std::max({extent, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    PointWelder welder(std::max(extent, 1e-30f) * 1e-6f);
+    std::vector<glm::vec3> merged(points.size()), first;
+    int next = 0;
+    for (size_t v = 0; v < points.size(); ++v) {
+        const int index = welder.indexOf(points[v], next);
+        if (index == int(first.size())) first.push_back(points[v]);
+        merged[v] = first[size_t(index)];
+    }
+    return merged;
 }
 
 }  // namespace subdfit::mesh

@@ -24,4 +24,9 @@ private:
     std::unordered_map<long long, std::vector<std::pair<glm::vec3, int>>> cells_;
 };
 
+// `points` with each replaced by the first of them within a millionth of their extent (as
+// surface::weldedMesh welds): a limit point two patches evaluated to rounding becomes one value,
+// so that a quantiser or a simplifier sees one point, not a crack.
+std::vector<glm::vec3> coincidentPointsMerged(const std::vector<glm::vec3>& points);
+
 }  // namespace subdfit::mesh

@@ -463,7 +463,8 @@ BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
     for (size_t k = 0; k < ladder.size(); ++k) {
         precision = exporter::SubdPrecision::forMapBits(ladder[k].first, ladder[k].second);
         const auto encoded =
-            exporter::encodeSubd(exporter::shippableAsset(decoded.cage, decoded.maps, precision.positionBits), precision);
+            exporter::encodeSubd(exporter::shippableAsset(decoded.cage, decoded.maps, precision.positionBits, decoded.decodeTriangles),
+                                 precision);
         if (encoded.size() <= budget || k + 1 == ladder.size()) {
             bytes = exporter::writeBytes(subd, encoded).bytes;
             if (bytes <= budget) break;
@@ -493,30 +494,6 @@ nlohmann::json toJson(const BudgetReport& report) {
             {"map_bits", report.shipped.mapBits},
             {"appearance_quality", report.shipped.appearanceQuality},
             {"over_budget", report.shipped.bytes > report.bytes}};
-}
-
-std::uintmax_t parseByteSize(const std::string& text) {
-    size_t end = 0;
-    double value = 0.0;
-    try {
-        value = std::stod(text, &end);
-    } catch (const std::exception&) {
-        throw OptionError("budget", "must be bytes with an optional K or M suffix (20000, 20KB), got '" + text + "'");
-    }
-    std::string unit = text.substr(end);
-    for (char& c : unit) c = char(std::toupper(static_cast<unsigned char>(c)));
-    double scale = 0.0;
-    if (unit.empty() || unit == "B") scale = 1.0;
-    else if (unit == "K" || unit == "KB") scale = 1e3;
-    else if (unit == "M" || unit == "MB") scale = 1e6;
-    else if (unit == "KIB") scale = 1024.0;
-    else if (unit == "MIB") scale = 1024.0 * 1024.0;
-    const double bytes = value * scale;
-    if (scale == 0.0 || !std::isfinite(bytes))
-        throw OptionError("budget", "must be bytes with an optional K or M suffix (20000, 20KB), got '" + text + "'");
-    if (bytes < 100.0 || bytes > 1e12)
-        throw OptionError("budget", "must be 100 bytes to 1 TB, got '" + text + "'");
-    return std::uintmax_t(std::llround(bytes));
 }
 
 }  // namespace subdfit::simplify

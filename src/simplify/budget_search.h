@@ -115,8 +115,4 @@ struct BudgetReport {
 // and `over_budget`.
 nlohmann::json toJson(const BudgetReport& report);
 
-// "20000", "20K", "20KB", "1.5M", "1.5MB" (K = 1000, M = 10^6; KiB / MiB are 1024-based).
-// Throws subdfit::OptionError("budget", ...) for anything else or a budget under 100 bytes.
-std::uintmax_t parseByteSize(const std::string& text);
-
 }  // namespace subdfit::simplify

@@ -12,7 +12,7 @@
 namespace subdfit::surface {
 
 TexelLayout atlasLattice(int size) {
-    SUBDFIT_CHECK(size >= 2 && size <= 4096);
+    SUBDFIT_CHECK(size >= 2 && size <= kMaxAtlasSize);
     TexelLayout layout;
     layout.resolution = size - 1;
     layout.ptexFaceCount = 1;

@@ -16,6 +16,10 @@
 
 namespace subdfit::surface {
 
+// The largest atlas: texels per side of its square texture. The one limit the options, the
+// .subd reader (export/atlas_uv_coding.h) and the lattice below all check.
+inline constexpr int kMaxAtlasSize = 2048;
+
 struct AppearanceAtlas {
     int size = 0;  // texels per side of the square texture; 0: no atlas (the appearance is on tiles)
     // 4 per ptex face, at ptex (0, 0), (1, 0), (1, 1), (0, 1): glTF texture coordinates (v down

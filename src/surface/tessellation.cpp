@@ -58,11 +58,11 @@ Tessellation tessellate(const mesh::PolygonMesh& cage, const SurfaceMaps& maps, 
     return out;
 }
 
-mesh::PolygonMesh triangleMesh(const Tessellation& t) {
+mesh::PolygonMesh triangleMesh(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices) {
     mesh::PolygonMesh mesh;
-    mesh.positions = t.positions;
-    mesh.faceSizes.assign(t.triangleCount(), 3);
-    mesh.faceIndices.assign(t.indices.begin(), t.indices.end());
+    mesh.positions = positions;
+    mesh.faceSizes.assign(indices.size() / 3, 3);
+    mesh.faceIndices.assign(indices.begin(), indices.end());
     return mesh;
 }
 

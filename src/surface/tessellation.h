@@ -39,8 +39,9 @@ struct Tessellation {
 // Throws subdfit::Error for segments outside 1..1024 or more than 2³² vertices.
 Tessellation tessellate(const mesh::PolygonMesh& cage, const SurfaceMaps& maps, int segments);
 
-// The tessellation's triangles as a mesh (positions and faces only).
-mesh::PolygonMesh triangleMesh(const Tessellation& tessellation);
+// Triangles (three indices each) as a mesh (positions and faces only).
+mesh::PolygonMesh triangleMesh(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices);
+inline mesh::PolygonMesh triangleMesh(const Tessellation& t) { return triangleMesh(t.positions, t.indices); }
 
 // The same with the vertices that coincide along face borders welded, so that vertexNormals()
 // is smooth; triangles collapsed at a pole are dropped.

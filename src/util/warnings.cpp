@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <mutex>
 
+#include "util/printable.h"
+
 namespace subdfit {
 namespace {
 
@@ -14,7 +16,7 @@ WarningSink current;
 void warn(const std::string& message) {
     std::lock_guard lock(mutex);
     if (current) current(message);
-    else std::fprintf(stderr, "subdfit: warning: %s\n", message.c_str());
+    else std::fprintf(stderr, "subdfit: warning: %s\n", printable(message, 4096).c_str());
 }
 
 WarningSink setWarningSink(WarningSink sink) {

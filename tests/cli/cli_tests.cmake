@@ -111,6 +111,13 @@ add_test(NAME cli.simplify.spot
 # Its folder is also the result the viewer's tests show (tests/view/view_tests.cmake).
 set_tests_properties(cli.simplify.spot PROPERTIES LABELS cli TIMEOUT 600 FIXTURES_SETUP simplify_spot)
 
+# What that simplify shipped decodes for engines (tests/cli/decode_for_engines.sh): the default
+# density, a chain of levels of detail, an error bound, bad options.
+add_test(NAME cli.decode.engines
+         COMMAND bash ${SUBDFIT_CLI_SCRIPTS}/decode_for_engines.sh $<TARGET_FILE:subdfit> ${SUBDFIT_CLI_OUT}/decode_engines
+                 ${SUBDFIT_CLI_OUT}/simplify_spot ${SUBDFIT_CLI_REFERENCE})
+set_tests_properties(cli.decode.engines PROPERTIES LABELS cli TIMEOUT 300 FIXTURES_REQUIRED simplify_spot)
+
 # What that simplify shipped as USD opens in Pixar's USD with no validation error
 # (tests/usd/read_usd.py; the usd-core environment .ci/setup makes).
 add_test(NAME usd.simplify_spot
@@ -127,3 +134,10 @@ foreach(script hostile_manifest concurrent_batches signals_and_files)
                    ${SUBDFIT_CLI_CAGE} ${SUBDFIT_CLI_REFERENCE})
   set_tests_properties(cli.service.${script} PROPERTIES LABELS cli TIMEOUT 300)
 endforeach()
+
+# Hostile inputs (tests/cli/hostile_inputs.sh): .subd files that state far more than they hold,
+# `decode --out` at a FIFO, a folder, a symlink or the input, impossible sizes and counts.
+add_test(NAME cli.hostile_inputs
+         COMMAND bash ${SUBDFIT_CLI_SCRIPTS}/hostile_inputs.sh $<TARGET_FILE:subdfit> ${SUBDFIT_CLI_OUT}/hostile_inputs
+                 ${PROJECT_SOURCE_DIR}/tests/data/hostile-subd ${SUBDFIT_CLI_REFERENCE} $<TARGET_FILE:subdfit-bench>)
+set_tests_properties(cli.hostile_inputs PROPERTIES LABELS cli TIMEOUT 300)

@@ -1,6 +1,7 @@
-# CTest fixture: configures and builds tests/fuzz with clang (libFuzzer + ASan/UBSan).
-#   cmake -DSOURCE=<tests/fuzz> -DBINARY=<dir> -DCLANG=<clang++> -P build_fuzzers.cmake
-execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE} -B ${BINARY} -G Ninja -DCMAKE_CXX_COMPILER=${CLANG}
+# CTest fixture: configures and builds tests/fuzz with clang (libFuzzer + ASan/UBSan) or with gcc
+# (replay binaries + GCC's ASan/UBSan).
+#   cmake -DSOURCE=<tests/fuzz> -DBINARY=<dir> -DCOMPILER=<clang++ or g++> -P build_fuzzers.cmake
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE} -B ${BINARY} -G Ninja -DCMAKE_CXX_COMPILER=${COMPILER}
                         -DCMAKE_BUILD_TYPE=RelWithDebInfo
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)

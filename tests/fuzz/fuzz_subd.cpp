@@ -1,9 +1,10 @@
 // The .subd decoder under libFuzzer, three ways:
-//  - raw bytes: any file decodes or throws subdfit::Error, never a crash or a huge allocation
-//    (random bytes mostly stop at the checksum);
-//  - 'S' + bytes: the bytes become the raw contents of a CAGE section (and, after a 0xff, of a
-//    DISP section), wrapped in valid zstd frames and a valid checksum, so the section parsers
-//    themselves see hostile data;
+//  - raw bytes: any file decodes or throws subdfit::Error, never a crash or an allocation past
+//    the fuzz run's limit (random bytes mostly stop at the checksum);
+//  - 'S' + bytes: the bytes, split at each 0xff, become the raw contents of a CAGE section and
+//    then of the sections after it (the second byte picks which: DISP, NORM, AUVS, BCOL, MTRG,
+//    NTEX, EMIS in turn from there), wrapped in valid zstd frames, a current header and a valid
+//    checksum, so the section parsers themselves see hostile data;
 //  - 'R' + bytes: a real file of a cage and maps built from the bytes, with one byte flipped
 //    where the input says: refused, or, if the flip changed nothing, decoded as encoded.
 #include <zstd.h>
@@ -37,9 +38,10 @@ void putSection(subdfit::exporter::ByteWriter& file, const char* tag, const Byte
 Bytes container(const std::vector<std::pair<const char*, Bytes>>& sections) {
     subdfit::exporter::ByteWriter file;
     file.putBytes({reinterpret_cast<const unsigned char*>("SUBD"), 4});
-    file.put<uint16_t>(1);
+    file.put<uint16_t>(subdfit::exporter::kSubdVersion);
     file.put<uint16_t>(0);
     file.put<uint32_t>(uint32_t(sections.size()));
+    file.put<uint32_t>(0);  // decode triangles
     for (const auto& [tag, raw] : sections) putSection(file, tag, raw);
     const auto& bytes = file.bytes();
     file.put<uint64_t>(subdfit::hash64({reinterpret_cast<const char*>(bytes.data()), bytes.size()}));
@@ -56,11 +58,17 @@ void decode(const Bytes& bytes) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    if (size > 0 && data[0] == 'S') {
-        const Bytes body(data + 1, data + size);
-        const auto split = std::find(body.begin(), body.end(), 0xff);
-        std::vector<std::pair<const char*, Bytes>> sections{{"CAGE", Bytes(body.begin(), split)}};
-        if (split != body.end()) sections.push_back({"DISP", Bytes(split + 1, body.end())});
+    if (size > 1 && data[0] == 'S') {
+        static const char* tags[] = {"DISP", "NORM", "AUVS", "BCOL", "MTRG", "NTEX", "EMIS"};
+        const Bytes body(data + 2, data + size);
+        std::vector<std::pair<const char*, Bytes>> sections;
+        auto from = body.begin();
+        for (size_t k = 0; k < 8; ++k) {
+            const auto split = std::find(from, body.end(), 0xff);
+            sections.push_back({k == 0 ? "CAGE" : tags[(data[1] + k - 1) % 7], Bytes(from, split)});
+            if (split == body.end()) break;
+            from = split + 1;
+        }
         decode(container(sections));
         return 0;
     }

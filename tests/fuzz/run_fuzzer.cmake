@@ -1,9 +1,12 @@
 # Runs one libFuzzer target for SECONDS on a scratch copy of its seed corpus (libFuzzer adds the
-# inputs it finds to the corpus folder it is given; the committed seeds stay as they are).
-#   cmake -DFUZZER=<exe> -DSEEDS=<dir> -DWORK=<dir> -DSECONDS=<n> -P run_fuzzer.cmake
+# inputs it finds to the corpus folder it is given; the committed seeds stay as they are). An
+# input that makes one allocation of more than MALLOC_MB, or the process use more than RSS_MB,
+# fails the run: what a small input may cost is bounded, not only whether it crashes.
+#   cmake -DFUZZER=<exe> -DSEEDS=<dir> -DWORK=<dir> -DSECONDS=<n> -DMALLOC_MB=<n> -DRSS_MB=<n> -P run_fuzzer.cmake
 file(REMOVE_RECURSE ${WORK})
 file(COPY ${SEEDS}/ DESTINATION ${WORK}/corpus)
-execute_process(COMMAND ${FUZZER} -max_total_time=${SECONDS} -rss_limit_mb=4096 -print_final_stats=1
+execute_process(COMMAND ${FUZZER} -max_total_time=${SECONDS} -malloc_limit_mb=${MALLOC_MB} -rss_limit_mb=${RSS_MB}
+                        -print_final_stats=1
                         -artifact_prefix=${WORK}/ ${WORK}/corpus
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 string(REGEX MATCH "stat::number_of_executed_units: *[0-9]+" runs "${err}")

@@ -126,17 +126,5 @@ TEST(SimplifyBudget, ABudgetNoCageFitsIsRefusedNamingTheReference) {
     EXPECT_FALSE(fs::exists(dir / "out" / "report.json"));
 }
 
-TEST(ByteSize, ReadsBytesWithKAndMSuffixes) {
-    EXPECT_EQ(simplify::parseByteSize("20000"), 20000u);
-    EXPECT_EQ(simplify::parseByteSize("20KB"), 20000u);
-    EXPECT_EQ(simplify::parseByteSize("20k"), 20000u);
-    EXPECT_EQ(simplify::parseByteSize("1.5MB"), 1500000u);
-    EXPECT_EQ(simplify::parseByteSize("2KiB"), 2048u);
-    EXPECT_THROW(simplify::parseByteSize("20 parsecs"), OptionError);
-    EXPECT_THROW(simplify::parseByteSize("KB"), OptionError);
-    EXPECT_THROW(simplify::parseByteSize("50"), OptionError);
-    EXPECT_THROW(simplify::parseByteSize("nan"), OptionError);
-}
-
 }  // namespace
 }  // namespace subdfit::test

@@ -12,6 +12,7 @@
 
 #include "mesh/gltf_preflight.h"
 #include "mesh/mesh_loader.h"
+#include "bounded_run.h"
 #include "error_message.h"
 #include "test_paths.h"
 #include "util/error.h"
@@ -147,6 +148,18 @@ TEST_F(HostileGltf, AnAccessorCountBeyondTheLimitAllocatesNothing) {
     write(dir_ / "asset" / "scene.gltf", doc.dump());
     const std::string message = refusal(dir_ / "asset" / "scene.gltf");
     EXPECT_NE(message.find("more than"), std::string::npos) << message;
+}
+
+// Within the element limit, still 50 M zeros (600 MB of positions) from a few bytes of JSON.
+TEST_F(HostileGltf, AnAccessorWithoutDataMayNotBeLarge) {
+    json doc = triangleGltf("ok.bin");
+    doc["accessors"][0].erase("bufferView");
+    doc["accessors"][0]["count"] = 50000000;
+    write(dir_ / "asset" / "zeros.gltf", doc.dump());
+    const auto outcome = test::runBounded(std::size_t(256) << 20, 20, [&] { loadMesh(dir_ / "asset" / "zeros.gltf"); });
+    ASSERT_TRUE(outcome.finished) << outcome.problem;
+    EXPECT_NE(outcome.error.find("zeros.gltf"), std::string::npos) << outcome.error;
+    EXPECT_NE(outcome.error.find("no buffer view"), std::string::npos) << outcome.error;
 }
 
 // The file: each node lists the next twice as children, so 30 nodes instance the last

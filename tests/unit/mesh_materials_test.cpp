@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <tuple>
+#include <vector>
 
 #include "io/image_io.h"
 #include "mesh/mesh_loader.h"
@@ -183,6 +186,37 @@ TEST(MeshMaterials, AnMtlMapOutsideTheFolderIsRefused) {
     const std::string message = errorMessage([&] { loadReference(dir / "m.obj"); });
     EXPECT_NE(message.find("m.mtl: line 2"), std::string::npos) << message;
     EXPECT_NE(message.find("outside"), std::string::npos) << message;
+}
+
+
+// KHR_mesh_quantization lets texture coordinates be signed and not normalized (gltfpack -vt):
+// read, as the extension defines them.
+TEST(MeshMaterials, QuantizedTextureCoordinatesAreRead) {
+    const fs::path dir = test::scratchDir("materials_quantized_uvs");
+    writeCheckerPng(dir / "checker.png");
+    for (const auto& [name, normalized, expected] : std::vector<std::tuple<std::string, bool, float>>{
+             {"signed_normalized.gltf", true, -1.0f}, {"signed.gltf", false, -32767.0f}}) {
+        writeText(dir / name, std::string(R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_mesh_quantization"],
+  "buffers":[{"uri":"data:application/octet-stream;base64,BASE64","byteLength":48}],
+  "bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":12}],
+  "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},
+               {"bufferView":1,"componentType":5122,"normalized":NORMALIZED,"count":3,"type":"VEC2"}],
+  "images":[{"uri":"checker.png"}],"textures":[{"source":0}],
+  "materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],
+  "meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"material":0}]}],
+  "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})"));
+        std::string text;
+        {
+            std::ifstream in(dir / name);
+            text.assign(std::istreambuf_iterator<char>(in), {});
+        }
+        text.replace(text.find("BASE64"), 6, "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAP9/AAABgABA");
+        text.replace(text.find("NORMALIZED"), 10, normalized ? "true" : "false");
+        writeText(dir / name, text);
+        const PolygonMesh mesh = loadReference(dir / name);
+        ASSERT_EQ(mesh.uvs.size(), 3u) << name;
+        EXPECT_NEAR(mesh.uvs[2].x, expected, 1e-6f) << name;
+    }
 }
 
 }  // namespace

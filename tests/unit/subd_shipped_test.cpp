@@ -7,7 +7,6 @@
 #include "error_message.h"
 
 #include "export/byte_stream.h"
-#include "export/subd_decode.h"
 #include "export/subd_format.h"
 #include "export/surface_mesh.h"
 #include "io/image_header.h"
@@ -35,11 +34,16 @@ SubdAsset greyAppearance(const mesh::PolygonMesh& cage, int resolution) {
 TEST(ImageHeader, AJpegStatesItsSizeAndNothingElseDoes) {
     const io::DecodedImage image{37, 21, std::vector<std::uint8_t>(37 * 21 * 4, 200)};
     const auto jpeg = io::encodeImage(image, 37, 21, io::ImageFormat::Jpeg, 90);
-    EXPECT_EQ(io::jpegSize(jpeg), (io::ImageSize{37, 21}));
+    EXPECT_EQ(io::jpegHeader(jpeg), (io::ImageHeader{37, 21, 3}));
     const auto png = io::encodeImage(image, 37, 21, io::ImageFormat::Png);
-    EXPECT_FALSE(io::jpegSize(png));
-    EXPECT_FALSE(io::jpegSize(std::span<const unsigned char>(jpeg).first(20)));  // cut before its frame header
-    EXPECT_FALSE(io::jpegSize({}));
+    EXPECT_FALSE(io::jpegHeader(png));
+    EXPECT_FALSE(io::jpegHeader(std::span<const unsigned char>(jpeg).first(20)));  // cut before its frame header
+    EXPECT_FALSE(io::jpegHeader({}));
+    // The reader of every format gives the same header, a PNG's through OpenImageIO.
+    EXPECT_EQ(io::readImageHeader(jpeg.data(), jpeg.size(), "a.jpg"), (io::ImageHeader{37, 21, 3}));
+    EXPECT_EQ(io::readImageHeader(png.data(), png.size(), "a.png").width, 37);
+    EXPECT_EQ(io::readImageHeader(png.data(), png.size(), "a.png").height, 21);
+    EXPECT_THROW(io::readImageHeader(jpeg.data(), 20, "cut.jpg"), Error);
 }
 
 TEST(SubdShipped, TheReaderKeepsTheImagesEncodedAndDecodeSubdDecodesThem) {
@@ -55,7 +59,7 @@ TEST(SubdShipped, TheReaderKeepsTheImagesEncodedAndDecodeSubdDecodesThem) {
     for (const ShippedImage& image : shipped.images) {
         EXPECT_EQ(image.width, atlas.width);
         EXPECT_EQ(image.height, atlas.height);
-        EXPECT_EQ(io::jpegSize(image.bytes), (io::ImageSize{atlas.width, atlas.height}));
+        EXPECT_EQ(io::jpegHeader(image.bytes), (io::ImageHeader{atlas.width, atlas.height, 3}));
     }
     EXPECT_FALSE(shipped.asset.maps.hasBaseColor());  // the values are the caller's to decode
 
@@ -74,6 +78,7 @@ std::vector<unsigned char> withBaseColorJpeg(const std::vector<unsigned char>& f
     out.putBytes(in.take(8));
     const auto count = in.get<std::uint32_t>();
     out.put<std::uint32_t>(count);
+    out.put<std::uint32_t>(in.get<std::uint32_t>());  // decode triangles
     for (std::uint32_t k = 0; k < count; ++k) {
         const auto tag = in.take(4);
         const auto storedSize = in.get<std::uint32_t>(), rawSize = in.get<std::uint32_t>();
@@ -146,28 +151,6 @@ TEST(SubdShipped, TheSurfaceDecodeWritesHasTheMaterialsTexturesAndFactors) {
         EXPECT_LT(uv.y * float(atlas.height), float(atlas.height));
     }
     EXPECT_TRUE(surfaceNormalImage(asset.maps, textures).empty());
-}
-
-TEST(SubdDecode, TheDensityFollowsTrianglesAndStopsAtTheLimit) {
-    const auto cage = mesh::makeQuadSphere(2);  // quads: one ptex face each
-    const SubdAsset asset{.cage = cage, .maps = {}};
-    const std::uint64_t perSegment = decodedTriangles(asset, 1);
-    EXPECT_EQ(perSegment, 2u * std::uint64_t(cage.faceCount()));
-    EXPECT_EQ(decodeSegments(asset, {}, "x"), 8);  // no maps: 8
-    EXPECT_EQ(decodeSegments(asset, {.segments = 5}, "x"), 5);
-    EXPECT_EQ(decodeSegments(asset, {.triangles = perSegment * 9}, "x"), 3);
-    EXPECT_EQ(decodeSegments(asset, {.triangles = 1}, "x"), 1);
-    EXPECT_EQ(decodeSegments(asset, {.triangles = kMaxDecodeTriangles}, "x"), 64);
-    // Enough copies of the cage's faces for 8 segments (the default without maps) to pass the limit.
-    mesh::PolygonMesh big = cage;
-    const std::uint64_t copies = kMaxDecodeTriangles / (perSegment * 64) + 1;
-    for (std::uint64_t c = 1; c < copies; ++c) {
-        big.faceSizes.insert(big.faceSizes.end(), cage.faceSizes.begin(), cage.faceSizes.end());
-        big.faceIndices.insert(big.faceIndices.end(), cage.faceIndices.begin(), cage.faceIndices.end());
-    }
-    ASSERT_GT(decodedTriangles({.cage = big, .maps = {}}, 8), kMaxDecodeTriangles);
-    const std::string message = test::errorMessage([&] { decodeSegments({.cage = big, .maps = {}}, {}, "big.subd"); });
-    EXPECT_EQ(message.rfind("big.subd: 8 segments per face edge give ", 0), 0u) << message;
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // and EXT_meshopt_compression buffer views, so the comparison does not depend on how `subdfit
 // decode` chooses to pack its output.
 import fs from 'node:fs';
+import path from 'node:path';
 
 const COMPONENTS = { SCALAR: 1, VEC2: 2, VEC3: 3, VEC4: 4, MAT4: 16 };
 const TYPES = {
@@ -68,6 +69,15 @@ function localMatrix(node) {
   return [(1 - 2 * (y * y + z * z)) * sx, 2 * (x * y + z * w) * sx, 2 * (x * z - y * w) * sx, 0,
           2 * (x * y - z * w) * sy, (1 - 2 * (x * x + z * z)) * sy, 2 * (y * z + x * w) * sy, 0,
           2 * (x * z + y * w) * sz, 2 * (y * z - x * w) * sz, (1 - 2 * (x * x + y * y)) * sz, 0, tx, ty, tz, 1];
+}
+
+// three's meshopt decoder (from `nodeModules`), as readTriangles asks for it.
+export function threeMeshoptDecoder(nodeModules) {
+  return async () => {
+    const { MeshoptDecoder } = await import(path.join(nodeModules, 'three/examples/jsm/libs/meshopt_decoder.module.js'));
+    await MeshoptDecoder.ready;
+    return MeshoptDecoder;
+  };
 }
 
 // { positions: Float64Array (xyz per vertex), indices: Uint32Array (3 per triangle) } of the

@@ -1,6 +1,7 @@
 // CTest fixture of the web tests: small asset.subd files of each kind the decoder reads, made
-// by this build's subdfit in seconds, with `subdfit decode`'s glb of each (default density and
-// --triangles). Files already there are kept.
+// by this build's subdfit in seconds, with `subdfit decode --uncompressed`'s glb of each (default
+// density and --triangles): float positions, as the web decoder's decode.mjs writes them. Files
+// already there are kept.
 //   SUBDFIT=<subdfit> node make_assets.mjs SOURCE_DIR OUT_DIR
 import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -40,7 +41,8 @@ for (const [name, command] of Object.entries(ASSETS)) {
     fs.rmSync(dir, { recursive: true, force: true });
     run([...command, '--out', dir]);
   }
-  for (const [glb, extra] of [['native.glb', []], ['native_5000.glb', ['--triangles', '5000']]])
-    if (!fs.existsSync(path.join(dir, glb))) run(['decode', path.join(dir, 'asset.subd'), '--out', path.join(dir, glb), ...extra]);
+  for (const [glb, extra] of [['native.glb', []], ['native_50000.glb', ['--triangles', '50000']]])
+    if (!fs.existsSync(path.join(dir, glb)))
+      run(['decode', path.join(dir, 'asset.subd'), '--out', path.join(dir, glb), '--uncompressed', ...extra]);
   process.stdout.write(`${name}: ${fs.statSync(path.join(dir, 'asset.subd')).size} bytes\n`);
 }

@@ -1,7 +1,8 @@
 // The web decoder's entry points: asset.subd bytes in, the surface `subdfit decode` writes out as
-// arrays, through the same reader (readShippedSubd), density choice (decodeSegments) and surface
-// (surfaceGltfMesh, surfaceNormalImage, surfaceMaterial). Appearance images stay the JPEGs the
-// file carries: the browser decodes them. apps/web/js/subd_core.mjs reads the Result.
+// arrays, through the same reader (readShippedSubd), decode budget and density choice
+// (pricedDensity: export/decode_budget.h, export/decode_density.h) and surface (surfaceGltfMesh,
+// surfaceNormalImage, surfaceMaterial). Appearance images stay the JPEGs the file carries: the
+// browser decodes them. apps/web/js/subd_core.mjs reads the Result.
 #include <emscripten/emscripten.h>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -14,7 +15,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "export/subd_decode.h"
+#include "export/decode_budget.h"
+#include "export/decode_density.h"
 #include "export/subd_format.h"
 #include "export/surface_mesh.h"
 #include "util/error.h"
@@ -70,7 +72,7 @@ std::uint32_t roleOf(exporter::AppearanceImage which) {
     return 0;
 }
 
-std::unique_ptr<Decoded> decode(std::span<const std::uint8_t> bytes, std::uint64_t triangles, const std::string& name) {
+std::unique_ptr<Decoded> decode(std::span<const std::uint8_t> bytes, std::int64_t triangles, const std::string& name) {
     auto out = std::make_unique<Decoded>();
     const WarningSink previous = setWarningSink([&](const std::string& line) { out->warnings += line + "\n"; });
     struct Restore {
@@ -78,9 +80,14 @@ std::unique_ptr<Decoded> decode(std::span<const std::uint8_t> bytes, std::uint64
         ~Restore() { setWarningSink(sink); }
     } restore{previous};
 
-    exporter::ShippedSubd shipped = exporter::readShippedSubd(bytes, name);
+    // Every count the file states, and the triangles to write, priced before they are allocated.
+    exporter::DecodeBudget budget(name);
+    exporter::DecodeDensity density;
+    exporter::ShippedSubd shipped = exporter::readShippedSubd(bytes, name, &budget, [&](const exporter::SubdOutline& outline) {
+        density = exporter::pricedDensity(outline, {.triangles = triangles}, budget);
+    });
     const exporter::SubdAsset& asset = shipped.asset;
-    const int segments = exporter::decodeSegments(asset, {.triangles = triangles}, name);
+    const int segments = density.segments;
     exporter::SurfaceTextures textures{.normalMap = asset.maps.hasNormal()};
     for (const auto& image : shipped.images) {
         using exporter::AppearanceImage;
@@ -141,7 +148,7 @@ EMSCRIPTEN_KEEPALIVE Result* subd_decode(const std::uint8_t* bytes, std::uint32_
     try {
         if (!(triangles >= 0.0) || triangles > double(subdfit::exporter::kMaxDecodeTriangles))
             throw subdfit::Error("invalid option: triangles: must be in 0.." + std::to_string(subdfit::exporter::kMaxDecodeTriangles));
-        auto decoded = decode({bytes, size}, std::uint64_t(triangles), name);
+        auto decoded = decode({bytes, size}, std::int64_t(triangles), name);
         Result* result = &decoded->result;
         live.emplace(result, std::move(decoded));
         return result;

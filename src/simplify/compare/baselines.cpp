@@ -154,7 +154,8 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     exporter::writeMapAtlases(dir, bakedWorld, {.compact = settings.compactMaps});
     const auto precision = exporter::SubdPrecision::forMapBits(route.bits, route.appearanceQuality);
     q.files = {{"asset.subd", exporter::writeSubd(dir / "asset.subd",
-                                                  exporter::shippableAsset(cageWorld, bakedWorld, precision.positionBits),
+                                                  exporter::shippableAsset(cageWorld, bakedWorld, precision.positionBits,
+                                                                           std::uint32_t(scene.reference.faceCount())),
                                                   precision)
                                   .bytes}};
     q.bytes = totalBytes(q.files);

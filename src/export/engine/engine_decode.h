@@ -1,0 +1,37 @@
+#pragma once
+// `subdfit decode` as engines want it: the density by default, from --triangles / --tess, or
+// from an error bound (--max-error, error_density.h); optionally a chain of levels of detail
+// (--lods, lod_chain.h) described in a JSON beside them; every mesh quantised and
+// meshopt-compressed unless the caller asks for floats (export/glb_writer.h MeshCoding).
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "export/decode_density.h"
+#include "export/engine/error_density.h"
+#include "export/engine/lod_chain.h"
+#include "export/glb_writer.h"
+#include "export/output_file.h"
+
+namespace subdfit::exporter {
+
+struct EngineDecodeOptions {
+    DensityRequest density;             // --triangles / --tess; 0: the default
+    std::optional<ErrorBound> maxError;  // --max-error, instead of `density`
+    int lods = 0;                       // --lods K: K files and the JSON; 0: one file, no JSON
+    MeshCoding coding = MeshCoding::Meshopt;
+    ScreenSizeRule screenSize{};
+};
+
+// `out` is level 0; level k (k >= 1) goes to `<stem>_lod<k>.glb` beside it, and with --lods the
+// JSON to `<stem>_lods.json`. Every mesh is built and encoded before the first file is written
+// (each atomically). Throws subdfit::Error as decodeToGlb (export/subd_decode.h), and for an
+// error bound that is not positive.
+std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, const std::filesystem::path& out,
+                                          const EngineDecodeOptions& options);
+
+// Where level `k` of `out` goes, and the JSON.
+std::filesystem::path lodPath(const std::filesystem::path& out, int k);
+std::filesystem::path lodJsonPath(const std::filesystem::path& out);
+
+}  // namespace subdfit::exporter

@@ -1,0 +1,54 @@
+#include "export/engine/error_density.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <limits>
+#include <map>
+
+#include "export/engine/surface_error.h"
+#include "geometry/surface_distance.h"
+#include "surface/tessellation.h"
+
+namespace subdfit::exporter {
+namespace {
+
+double diagonalOf(const mesh::PolygonMesh& mesh) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    return mesh.positions.empty() ? 0.0 : double(glm::length(hi - lo));
+}
+
+}  // namespace
+
+ErrorDensity densityWithin(const SubdAsset& asset, const ErrorBound& bound, DecodeBudget& budget) {
+    int finest = kMaxDecodeSegments;
+    while (finest > 1 && (densityAt(asset.cage, finest).triangles > kMaxDecodeTriangles ||
+                          !budget.fits(1, decodeOutputBytes(densityAt(asset.cage, finest)))))
+        --finest;
+    const DecodeDensity reference = densityAt(asset.cage, finest);
+    budget.spend(1, decodeOutputBytes(reference), "the reference tessellation of --max-error (" +
+                                                std::to_string(reference.triangles) + " triangles)");
+    const mesh::PolygonMesh fine = surface::triangleMesh(surface::tessellate(asset.cage, asset.maps, finest));
+    ErrorDensity out{.density = reference, .maxDistance = 0.0,
+                     .bound = bound.ofDiagonal ? bound.value * diagonalOf(fine) : bound.value, .referenceSegments = finest};
+    std::map<int, double> errors{{finest, 0.0}};
+    auto error = [&](int segments) {
+        if (!errors.count(segments)) {
+            const mesh::PolygonMesh coarse = surface::triangleMesh(surface::tessellate(asset.cage, asset.maps, segments));
+            errors[segments] = geometry::surfaceDistance(coarse, fine, kErrorSamples).hausdorff;
+        }
+        return errors[segments];
+    };
+    int lo = 1, hi = finest;  // error(hi) is within the bound
+    while (lo < hi) {
+        const int mid = (lo + hi) / 2;
+        if (error(mid) <= out.bound) hi = mid;
+        else lo = mid + 1;
+    }
+    out.density = densityAt(asset.cage, hi);
+    out.maxDistance = error(hi);
+    return out;
+}
+
+}  // namespace subdfit::exporter

@@ -1,0 +1,105 @@
+#include "export/engine/lod_chain.h"
+
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <limits>
+#include <map>
+#include <tuple>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "export/decode_density.h"
+#include "export/engine/surface_error.h"
+#include "export/surface_mesh.h"
+#include "geometry/surface_distance.h"
+#include "mesh/point_welder.h"
+#include "util/error.h"
+
+namespace subdfit::exporter {
+namespace {
+
+// `full` simplified to at most `triangles`. Its vertices are merged where the material cannot
+// tell them apart (coincident points with the same texture coordinates; without images, every
+// coincident point), so that meshoptimizer sees one surface whose texture seams it keeps.
+GltfMesh simplified(const GltfMesh& full, bool textured, std::size_t triangles) {
+    const std::vector<glm::vec3> positions = mesh::coincidentPointsMerged(full.positions);
+    std::vector<meshopt_Stream> streams{{positions.data(), sizeof(glm::vec3), sizeof(glm::vec3)}};
+    if (textured && full.hasUvs()) streams.push_back({full.uvs.data(), sizeof(glm::vec2), sizeof(glm::vec2)});
+    std::vector<unsigned> remap(full.vertexCount());
+    const std::size_t unique = meshopt_generateVertexRemapMulti(remap.data(), full.indices.data(), full.indices.size(),
+                                                                full.vertexCount(), streams.data(), streams.size());
+    GltfMesh out;
+    out.atlasSize = full.atlasSize;
+    auto gather = [&](const auto& values, auto& into) {
+        if (values.empty()) return;
+        into.resize(unique);
+        meshopt_remapVertexBuffer(into.data(), values.data(), values.size(), sizeof(values[0]), remap.data());
+    };
+    gather(positions, out.positions);
+    gather(full.normals, out.normals);
+    gather(full.tangents, out.tangents);
+    gather(full.uvs, out.uvs);
+    std::vector<unsigned> indices(full.indices.size());
+    meshopt_remapIndexBuffer(indices.data(), full.indices.data(), full.indices.size(), remap.data());
+    out.indices.resize(indices.size());
+    // An error limit of the whole extent: the count decides, the distance is measured afterwards.
+    const float noLimit = 1.0f;
+    out.indices.resize(meshopt_simplify(out.indices.data(), indices.data(), indices.size(), &out.positions[0].x, unique,
+                                        sizeof(glm::vec3), 3 * triangles, noLimit, 0, nullptr));
+    return out;
+}
+
+double boundingRadius(const GltfMesh& mesh) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    return 0.5 * double(glm::length(hi - lo));
+}
+
+}  // namespace
+
+LodChain lodChain(const SubdAsset& asset, GltfMesh full, int segments, int count, const ScreenSizeRule& rule) {
+    SUBDFIT_CHECK(count >= 1 && count <= kMostLods);
+    const SurfaceTextures textures = SurfaceTextures::of(asset.maps);
+    const bool textured = textures.baseColor || textures.normalMap || textures.normalTexture;
+    LodChain chain{.levels = {}, .boundingRadius = boundingRadius(full)};
+    const mesh::PolygonMesh reference = triangleMeshOf(full);
+    chain.levels.push_back({.mesh = std::move(full), .segments = segments});
+    int coarsestSegments = segments;
+    for (int k = 1; k < count; ++k) {
+        const LodLevel& previous = chain.levels.back();
+        const std::size_t target = previous.mesh.triangleCount() / 2;
+        std::vector<LodLevel> candidates;
+        int s = coarsestSegments - 1;
+        while (s >= 1 && std::size_t(densityAt(asset.cage, s).triangles) > target) --s;
+        std::size_t triangles = target;
+        if (s >= 1) {
+            candidates.push_back({.mesh = surfaceGltfMesh(asset.cage, asset.maps, textures, s), .segments = s});
+            triangles = candidates.back().mesh.triangleCount();
+        }
+        candidates.push_back({.mesh = simplified(chain.levels.front().mesh, textured, triangles), .segments = 0});
+        if (candidates.back().mesh.triangleCount() >= previous.mesh.triangleCount()) candidates.pop_back();
+        if (candidates.empty()) break;
+        for (LodLevel& c : candidates) {
+            const auto d = geometry::surfaceDistance(triangleMeshOf(c.mesh), reference, kErrorSamples);
+            c.meanDistance = d.meanDistance;
+            c.maxDistance = d.hausdorff;
+        }
+        auto best = std::min_element(candidates.begin(), candidates.end(), [](const LodLevel& a, const LodLevel& b) {
+            return std::tie(a.maxDistance, a.meanDistance) < std::tie(b.maxDistance, b.meanDistance);
+        });
+        if (best->segments > 0) coarsestSegments = best->segments;
+        chain.levels.push_back(std::move(*best));
+    }
+    for (size_t k = 1; k < chain.levels.size(); ++k) {
+        LodLevel& level = chain.levels[k];
+        const double size = level.maxDistance > 0.0
+                                ? 2.0 * rule.pixelError * chain.boundingRadius / (level.maxDistance * double(rule.screenHeight))
+                                : 1.0;
+        level.screenSize = std::min(size, chain.levels[k - 1].screenSize);
+    }
+    return chain;
+}
+
+}  // namespace subdfit::exporter
