@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "fit/fit_options.h"
+#include "simplify/route.h"
 #include "surface/relief_surface.h"
 
 namespace subdfit::bench {
@@ -109,6 +110,7 @@ struct SimplifyTradeoffOptions {
     int steps = fit::kByDevice;
     int resolution = fit::kByDevice;
     std::string glProvider = "auto";
+    simplify::CompareLevel compare = simplify::CompareLevel::Full;
 };
 int runSimplifyTradeoff(const SimplifyTradeoffOptions& options);
 

@@ -13,8 +13,9 @@ namespace subdfit::apps {
 // Everything but the reference and --out.
 inline void addSimplifySettings(CLI::App& app, simplify::SimplifyOptions& options) {
     app.add_option("--faces", options.faces,
-                   "triangles of the cage (default " + std::to_string(simplify::kDefaultFaces) +
-                       "; with --budget, fixes the cage and the search chooses only the maps)");
+                   "triangles of the cage (default: the budget search's choice; with --budget, fixes the cage and the "
+                   "search chooses only the maps; without, the cage is fitted as asked and weighed against the triangle "
+                   "route at its bytes)");
     // Checked while parsing, so a bad budget is a usage error naming the flag.
     const CLI::Validator byteSize(
         [](std::string& text) {
@@ -28,8 +29,14 @@ inline void addSimplifySettings(CLI::App& app, simplify::SimplifyOptions& option
         "BYTES");
     app.add_option_function<std::string>(
            "--budget", [&options](const std::string& text) { options.budget = simplify::parseByteSize(text); },
-           "bytes asset.subd may take (20000, 20KB, 1.5MB): chooses the cage, maps and bits to fit them")
+           "bytes what ships may take (20000, 20KB, 1.5MB): chooses the cage, maps and bits to fit them, or a triangle "
+           "mesh where one ships better (default: a tenth of the reference compressed, at least 16 KB)")
         ->check(byteSize);
+    app.add_option_function<std::string>(
+           "--compare", [&options](const std::string& text) { options.compare = simplify::parseCompareLevel(text); },
+           "what is compared beside what ships: none (only what chooses the route), fast (+ the triangle baselines' "
+           "files and scores), full (+ the bake route, surface distances, comparison.png; simplify's default)")
+        ->check(CLI::IsMember({"none", "fast", "full"}));
     addFitSettings(app, options.fit);
 }
 

@@ -73,9 +73,11 @@ std::vector<AttributeSlot> presentAttributes(const GltfMesh& tess, const DracoEn
     return slots;
 }
 
-json document(const GltfMesh& tess, const FittedTextures& textures, bool draco, const json& meshExtras,
-              BinaryBuilder& binary) {
-    const DracoEncodedMesh encoded = draco ? encodeDraco(tess) : DracoEncodedMesh{};
+std::optional<DracoBits> dracoIf(bool draco) { return draco ? std::optional<DracoBits>(DracoBits{}) : std::nullopt; }
+
+json document(const GltfMesh& tess, const FittedTextures& textures, const std::optional<DracoBits>& draco,
+              const json& meshExtras, BinaryBuilder& binary) {
+    const DracoEncodedMesh encoded = draco ? encodeDraco(tess, *draco) : DracoEncodedMesh{};
     const auto slots = presentAttributes(tess, encoded);
     json attributes = json::object(), dracoAttributes = json::object();
     json accessors = json::array();
@@ -125,7 +127,7 @@ json document(const GltfMesh& tess, const FittedTextures& textures, bool draco, 
 }
 
 WrittenFile writeGlb(const std::filesystem::path& path, const GltfMesh& tess, const FittedTextures& textures,
-                     bool draco, const json& meshExtras) {
+                     const std::optional<DracoBits>& draco, const json& meshExtras) {
     std::vector<unsigned char> bytes;
     try {
         checkTessellation(tess);
@@ -142,17 +144,23 @@ WrittenFile writeGlb(const std::filesystem::path& path, const GltfMesh& tess, co
 
 WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess,
                            std::span<const unsigned char> normalPng, bool draco) {
-    return writeGlb(path, tess, {.normalPng = {normalPng.begin(), normalPng.end()}}, draco, json::object());
+    return writeGlb(path, tess, {.normalPng = {normalPng.begin(), normalPng.end()}}, dracoIf(draco), json::object());
 }
 
 WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess, const FittedTextures& textures,
                            bool draco) {
-    return writeGlb(path, tess, textures, draco, json::object());
+    return writeGlb(path, tess, textures, dracoIf(draco), json::object());
 }
 
 WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
                          const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices,
                          bool draco, const nlohmann::json& extras) {
+    return writeMeshGlb(path, positions, normals, indices, dracoIf(draco), extras);
+}
+
+WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
+                         const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices,
+                         const std::optional<DracoBits>& draco, const nlohmann::json& extras) {
     GltfMesh mesh;
     mesh.positions = positions;
     mesh.normals = normals;

@@ -16,6 +16,7 @@
 #include "simplify/cage/initial_cage.h"
 #include "util/error.h"
 #include "util/interrupt.h"
+#include "simplify/stage_seconds.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -170,6 +171,7 @@ struct SearchInputs {
 struct Findings {
     std::vector<BudgetCandidate> tried;
     std::vector<Fitting> fitting;
+    StageSeconds phases;  // where the search's seconds went
 };
 
 // A cage as tried: in world units (what ships) and in the normalised frame (what maps are baked onto).
@@ -253,7 +255,9 @@ void scoreOnMonitor(const SearchInputs& in, const mesh::PolygonMesh& cageWorld, 
 BudgetCandidate judge(const SearchInputs& in, Findings& found, const std::shared_ptr<const mesh::PolygonMesh>& cageWorld,
                       surface::SurfaceMaps baked, const MapRecipe& recipe, const Appearance& appearance) {
     baked.setAppearance(appearance.maps);
+    std::optional<TimedStage> timed(std::in_place, found.phases, "encode");
     Shipped shipped = ship(*cageWorld, baked, recipe.bits, appearance.quality, in.scene.frame.scale);
+    timed.emplace(found.phases, "render");
     const bool atlas = appearance.maps.appearanceAtlas.present();
     BudgetCandidate c{.faces = cageWorld->faceCount(), .maps = recipe.effects, .mapResolution = recipe.resolution,
                       .mapBits = recipe.bits, .appearanceResolution = atlas ? 0 : appearance.maps.appearanceLayout.resolution,
@@ -282,8 +286,11 @@ std::vector<Bare> judgeBare(const SearchInputs& in, Findings& found, const Tried
     std::vector<Bare> bare;
     for (size_t a = 0; a < appearances.size(); ++a) {
         const bool withAppearance = appearances[a].resolution > 0 || appearances[a].atlas > 0;
-        Appearance appearance{.maps = withAppearance ? bakeAppearance(cage.normalized, in.scene.reference, appearances[a])
-                                                     : surface::SurfaceMaps{}};
+        Appearance appearance;
+        if (withAppearance) {
+            TimedStage timed(found.phases, "bake");
+            appearance.maps = bakeAppearance(cage.normalized, in.scene.reference, appearances[a]);
+        }
         // Without materials there is no quality to choose (0).
         const std::vector<int> qualities = withAppearance ? in.search.appearanceQualities : std::vector<int>{0};
         BudgetCandidate c;
@@ -329,10 +336,12 @@ void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& ca
             for (int resolution : in.search.mapResolutions) {
                 throwIfStopRequested();
                 auto baked = geometric.find({m, resolution});
-                if (baked == geometric.end())
+                if (baked == geometric.end()) {
+                    TimedStage timed(found.phases, "bake");
                     baked = geometric.emplace(std::make_pair(m, resolution),
                                               bakeMaps(cage.normalized, in.scene.reference, {.effects = mapChoices[m], .resolution = resolution}))
                                 .first;
+                }
                 bool fitted = false;
                 for (int bits : in.search.mapBits) {
                     const MapRecipe recipe{.effects = mapChoices[m], .resolution = resolution, .bits = bits};
@@ -356,7 +365,10 @@ void growBest(const SearchInputs& in, Findings& found) {
     for (int attempt = 0; attempt < 3 && scale > 1.05; ++attempt, scale = 1.0 + 0.6 * (scale - 1.0)) {
         const int faces = std::min(int(std::lround(best.faces * scale)), in.search.faceCounts.front());
         if (faces <= int(best.faces * 1.05)) break;
-        const std::optional<TriedCage> cage = cageOf(in, faces);
+        const std::optional<TriedCage> cage = [&] {
+            TimedStage timed(found.phases, "cages");
+            return cageOf(in, faces);
+        }();
         if (!cage) break;
         Appearance appearance;
         appearance.quality = best.appearanceQuality;
@@ -375,6 +387,7 @@ void growBest(const SearchInputs& in, Findings& found) {
 // Phase five: the near ties settled on the training views too; the chosen candidate, and the
 // best with maps (the bake route at these bytes). Throws when nothing fits.
 BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
+    TimedStage timed(found.phases, "settle");
     const Fitting* chosen = settle(in.programs, in.scene, found.fitting, [](const BudgetCandidate&) { return true; });
     if (!chosen)
         throw fileError(in.referenceWorld.sourcePath, "no cage fits in " + std::to_string(in.search.budget) +
@@ -399,6 +412,7 @@ BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
         }
     }
     choice.tried = std::move(found.tried);
+    choice.phases = found.phases;
     return choice;
 }
 
@@ -427,7 +441,10 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
     const std::vector<maps::MapEffects> mapChoices = mapChoicesOf(search);
     Findings found;
     for (int faces : search.faceCounts) {
-        const std::optional<TriedCage> cage = cageOf(in, faces);
+        const std::optional<TriedCage> cage = [&] {
+            TimedStage timed(found.phases, "cages");
+            return cageOf(in, faces);
+        }();
         if (!cage) continue;  // smaller counts will not do better
         const std::vector<Bare> bare = judgeBare(in, found, *cage, appearances);
         climbMapLadder(in, found, *cage, worthMaps(bare), mapChoices);
@@ -486,13 +503,16 @@ nlohmann::json toJson(const BudgetReport& report) {
     };
     nlohmann::json tried = nlohmann::json::array();
     for (const auto& c : report.tried) tried.push_back(candidate(c));
-    return {{"bytes", report.bytes},
-            {"chosen", candidate(report.chosen)},
-            {"candidates", tried},
-            {"seconds", report.seconds},
-            {"map_bits", report.shipped.mapBits},
-            {"appearance_quality", report.shipped.appearanceQuality},
-            {"over_budget", report.shipped.bytes > report.bytes}};
+    nlohmann::json j{{"bytes", report.bytes},
+                     {"chosen", candidate(report.chosen)},
+                     {"candidates", tried},
+                     {"seconds", report.seconds},
+                     {"seconds_by_phase", report.phases.toJson()},
+                     {"map_bits", report.shipped.mapBits},
+                     {"appearance_quality", report.shipped.appearanceQuality},
+                     {"over_budget", report.shipped.bytes > report.bytes}};
+    if (report.derived) j["derived_from"] = {{"reference_compressed", report.compressedReference}};
+    return j;
 }
 
 std::uintmax_t parseByteSize(const std::string& text) {

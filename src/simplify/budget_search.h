@@ -19,6 +19,7 @@
 #include "fit/fit_scene.h"
 #include "gl/program_cache.h"
 #include "maps/map_effects.h"
+#include "simplify/stage_seconds.h"
 
 namespace subdfit::simplify {
 
@@ -66,6 +67,7 @@ struct BudgetChoice {
     std::optional<BudgetCandidate> bestWithMaps;
     mesh::PolygonMesh bestWithMapsCage;
     std::vector<BudgetCandidate> tried;
+    StageSeconds phases;  // the search's seconds: cages, bake, encode, render, settle
 };
 
 // Face counts worth trying for `budget` bytes on a reference of `referenceTriangles`: from what
@@ -105,14 +107,17 @@ BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
 // report.json's `budget`: the search and what shipped.
 struct BudgetReport {
     std::uintmax_t bytes = 0;  // the budget
+    bool derived = false;      // from the reference (no --budget): route.h's defaultBudget
+    std::uintmax_t compressedReference = 0;  // what it was derived from
     BudgetCandidate chosen;
     std::vector<BudgetCandidate> tried;
     double seconds = 0.0;      // the search's
+    StageSeconds phases;       // and where they went
     BudgetShipment shipped;    // after the fit
 };
 
-// `bytes`, `chosen`, `candidates`, `seconds`, `map_bits` and `appearance_quality` as shipped,
-// and `over_budget`.
+// `bytes` (and, derived, `derived_from`: the reference compressed), `chosen`, `candidates`,
+// `seconds`, `map_bits` and `appearance_quality` as shipped, and `over_budget`.
 nlohmann::json toJson(const BudgetReport& report);
 
 // "20000", "20K", "20KB", "1.5M", "1.5MB" (K = 1000, M = 10^6; KiB / MiB are 1024-based).

@@ -10,6 +10,7 @@
 #include "io/staged_folder.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
+#include "export/glb_writer.h"
 #include "export/subd_format.h"
 #include "simplify/bake/atlas_bake.h"
 #include "simplify/bake/bake.h"
@@ -19,6 +20,8 @@
 #include "simplify/cage/decimate.h"
 #include "simplify/compare/comparison_image.h"
 #include "simplify/cage/initial_cage.h"
+#include "simplify/simplify_plan.h"
+#include "fit/image_metrics.h"
 #include "surface/tessellation.h"
 #include "util/error.h"
 #include "util/warnings.h"
@@ -38,56 +41,95 @@ nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports
     return {{"asset.subd", exports.at("asset.subd")}};
 }
 
-// The budget search's largest cage: a dense bare cage ships cheaply, and its limit surface can
-// shade closer than heights on a coarse one, so the search must be able to reach one. Past
-// subdiv::kDenseCageFaces a cage is drawn one isolation level shallower, which keeps it affordable.
-constexpr int kMostBudgetFaces = 16 * kDefaultFaces;
-// Past this many faces the fit of a budget's cage takes proportionally fewer steps (unless
-// --steps was given): the search's bake of a dense cage is already close, and --budget should
-// cost about what a fit of this many faces does.
-constexpr int kMostFullyFittedFaces = 2 * kDefaultFaces;
+// A reference whose materials the triangle baselines must keep (textured or a plain colour), as
+// a user's would.
+bool withMaterials(const fit::FitScene& scene) {
+    return scene.shading != render::ShadingModel::Geometry && scene.reference.materials != nullptr;
+}
 
-// The run decided before it starts, once: the options the fit runs with (with --budget, the
-// search's choice in them), the bake route it is compared with, and the search's report.
-struct SimplifyPlan {
-    fit::FitOptions fit;
-    BakeRoute bakeRoute;
-    std::optional<BudgetReport> budget;
-};
-
-// Scores the fitted scene and the baselines; writes baselines/ and comparison.png into `out`.
-void evaluate(const SimplifyOptions& o, const SimplifyPlan& plan, const std::filesystem::path& out,
-              gl::ProgramCache& programs, fit::FitRun& run, SimplifyReport& report) {
-    fit::CageFitter& fitter = run.fitter();
-    fit::FitScene& scene = run.scene();
-    const int segments = fitter.renderer().tessLevel();
-
-    Quality& ours = report.subdfit;
-    ours.files = shippedFiles(report.fit.exports);
-    ours.bytes = totalBytes(ours.files);
-    scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
-        fitter.render(camera, target);
-    }, ours);
-    ours.distance = shippedDistance(out / "asset.subd", segments, scene.frame, scene.reference, o.surfaceSamples);
-
-    const BaselineSettings settings{.dir = out / "baselines", .compactMaps = plan.fit.compactMaps,
-                                    .surfaceSamples = o.surfaceSamples, .segments = segments};
-    std::filesystem::create_directories(settings.dir);
-    // A material (textured or a plain colour) the triangle baselines must keep, as a user's would.
-    if (scene.shading != render::ShadingModel::Geometry && scene.reference.materials) {
-        report.decimation = texturedDecimationBaseline(programs, scene, ours.bytes, settings);
-        report.gltfpack = texturedGltfpackBaseline(programs, scene, ours.bytes, settings);
+// The reference whole as the triangle route would ship it, written to `scratch` (then removed):
+// its bytes, what the default budget is made from.
+std::uintmax_t compressedReferenceBytes(const fit::FitScene& scene, const std::filesystem::path& scratch) {
+    std::uintmax_t bytes = 0;
+    if (withMaterials(scene)) {
+        bytes = writeWholeTextured(scene, scratch);
     } else {
         const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
-        report.decimation = decimationBaseline(programs, scene, welded, ours.bytes, settings);
-        report.gltfpack = gltfpackBaseline(programs, scene, welded, ours.bytes, settings);
+        bytes = exporter::writeMeshGlb(scratch, scene.frame.toWorld(welded.positions), {},
+                                       {welded.faceIndices.begin(), welded.faceIndices.end()}, exporter::DracoBits{})
+                    .bytes;
     }
-    report.bake = bakeBaseline(programs, scene, plan.bakeRoute, settings);
-    if (plan.budget) report.bake.details["over_budget"] = report.bake.bytes > plan.budget->bytes;
-    std::vector<ComparisonColumn> columns{{"subdfit", &ours}, {"decimation + Draco", &report.decimation}};
+    std::filesystem::remove(scratch);
+    return bytes;
+}
+
+// The triangle baselines at `budget`: decimation + Draco always (the route weighs it), gltfpack
+// unless --compare none. Their files go to settings.dir.
+struct TriangleBaselines {
+    std::optional<Quality> decimation, gltfpack;
+    bool gltfpackMissing = false;
+    bool holdsWholeReference = false;  // the decimation ships every triangle (and texel) of the reference
+};
+
+TriangleBaselines triangleBaselines(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
+                                    const BaselineSettings& settings, CompareLevel level) {
+    std::filesystem::create_directories(settings.dir);
+    TriangleBaselines t;
+    int wholeTriangles = 0;
+    if (withMaterials(scene)) {
+        t.decimation = texturedDecimationBaseline(programs, scene, budget, settings);
+        if (level != CompareLevel::None) t.gltfpack = texturedGltfpackBaseline(programs, scene, budget, settings);
+        wholeTriangles = scene.reference.faceCount();
+        t.holdsWholeReference = t.decimation->details.value("texture_scale", 0.0) == 1.0;
+    } else {
+        const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
+        t.decimation = decimationBaseline(programs, scene, welded, budget, settings);
+        if (level != CompareLevel::None) t.gltfpack = gltfpackBaseline(programs, scene, welded, budget, settings);
+        wholeTriangles = welded.faceCount();
+        t.holdsWholeReference = true;
+    }
+    t.holdsWholeReference = t.holdsWholeReference && !t.decimation->details.value("over_budget", true) &&
+                            t.decimation->details.value("triangles", 0) >= wholeTriangles;
+    t.gltfpackMissing = level != CompareLevel::None && !t.gltfpack;
+    return t;
+}
+
+// The triangle route ships: its file, as the baseline wrote it, becomes DIR/asset.glb; what ships
+// is measured as that baseline was.
+Quality shipTriangles(const TriangleChoice& triangles, const std::filesystem::path& out) {
+    std::filesystem::copy_file(out / triangles.quality->shipped, out / "asset.glb",
+                               std::filesystem::copy_options::overwrite_existing);
+    Quality shipped = *triangles.quality;
+    shipped.files = {{"asset.glb", shipped.bytes}};
+    shipped.shipped = "asset.glb";
+    return shipped;
+}
+
+// The fitted cage, as shipped (asset.subd): held-out scores and, with a full comparison, its
+// surface distance.
+Quality scoreCage(fit::FitRun& run, const fit::FitReport& fitted, const std::filesystem::path& out, const SimplifyOptions& o) {
+    Quality ours;
+    ours.files = shippedFiles(fitted.exports);
+    ours.bytes = totalBytes(ours.files);
+    ours.shipped = "asset.subd";
+    scoreHoldout(run.scene().holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
+        run.fitter().render(camera, target);
+    }, ours);
+    if (o.compare == CompareLevel::Full)
+        ours.distance = shippedDistance(out / "asset.subd", run.fitter().renderer().tessLevel(), run.scene().frame,
+                                        run.scene().reference, o.surfaceSamples);
+    return ours;
+}
+
+// comparison.png: one held-out view of the reference, what shipped and each baseline.
+void writeComparisonImage(const SimplifyReport& report, int resolution, const fit::FitScene& scene,
+                          const std::filesystem::path& out) {
+    std::vector<ComparisonColumn> columns{{"subdfit", &report.subdfit}};
+    if (report.cage) columns.push_back({"fitted cage", &*report.cage});
+    if (report.decimation) columns.push_back({"decimation + Draco", &*report.decimation});
     if (report.gltfpack) columns.push_back({"gltfpack", &*report.gltfpack});
-    columns.push_back({"bake", &report.bake});
-    writeComparison(out / "comparison.png", plan.fit.resolution, scene.holdout.readColor(0), columns);
+    if (report.bake) columns.push_back({"bake", &*report.bake});
+    writeComparison(out / "comparison.png", resolution, scene.holdout.readColor(0), columns);
 }
 
 // How `parameters`' appearance is baked: its lattice, or its atlas.
@@ -140,94 +182,6 @@ bool widenToHeights(fit::FitRun& run) {
     if (!parameters || !parameters->effects().appearance() || !parameters->displacement()) return false;
     run.fitter().setOptimised(*parameters->displacement(), true);
     return true;
-}
-
-// The bake route of a cage (normalised frame) with the run's own maps.
-BakeRoute bakeRouteOf(const mesh::PolygonMesh& cage, const fit::FitOptions& fit) {
-    return {.cage = cage, .effects = fit.maps, .resolution = fit.mapResolution, .bits = fit.mapBits,
-            .appearanceResolution = fit.appearanceResolution, .appearanceQuality = fit.appearanceQuality,
-            .appearanceAtlas = fit.appearanceAtlas, .shadingNormal = surface::shadingNormalNamed(fit.shadingNormal)};
-}
-
-// Without a budget the fit starts from the initial cage of --faces, with the options as given.
-SimplifyPlan planByFaces(const SimplifyOptions& o, fit::FitOptions fitOptions, fit::FitScene& scene,
-                         const mesh::PolygonMesh& reference) {
-    scene.setCage(initialCage(reference, {.faces = o.faces > 0 ? o.faces : kDefaultFaces}));
-    BakeRoute route = bakeRouteOf(scene.cage, fitOptions);
-    return {.fit = std::move(fitOptions), .bakeRoute = std::move(route), .budget = std::nullopt};
-}
-
-// What the budget search tries for `o` on `scene`.
-BudgetSearch budgetSearchFor(const SimplifyOptions& o, std::uintmax_t budget, const fit::FitScene& scene) {
-    return {.budget = budget,
-            .faceCounts = o.faces > 0 ? std::vector<int>{o.faces}
-                                      : faceCountsFor(budget, scene.reference.faceCount(), kMostBudgetFaces),
-            .allowedMaps = o.fit.maps,
-            .appearance = {.baseColor = scene.shading != render::ShadingModel::Geometry,
-                           .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness},
-            .appearanceQualities = {o.fit.appearanceQuality},
-            .appearanceAtlases = o.fit.appearanceAtlas > 0 ? std::vector<int>{o.fit.appearanceAtlas}
-                                                          : atlasSizesFor(scene.reference)};
-}
-
-// The search's choice into the fit's options: its maps, their resolution, bits and shading
-// normal, its appearance; and for a dense cage fewer steps, unless --steps was given.
-void applyChoice(const BudgetCandidate& chosen, int cageFaces, bool stepsByDevice, fit::FitOptions& fit) {
-    fit.maps = chosen.maps;
-    if (chosen.appearanceResolution > 0 || chosen.appearanceAtlas > 0) {
-        if (chosen.appearanceResolution > 0) fit.appearanceResolution = chosen.appearanceResolution;
-        fit.appearanceAtlas = chosen.appearanceAtlas;
-        fit.appearanceQuality = chosen.appearanceQuality;
-    }
-    if (chosen.mapResolution > 0) {
-        fit.mapResolution = chosen.mapResolution;
-        fit.mapBits = chosen.mapBits;
-        fit.shadingNormal = surface::toString(chosen.shadingNormal);
-        // The search judged this cage with maps baked onto it as it is: the fit refines that
-        // from the start (moving the cage first would leave what was judged).
-        fit.mapsStart = 0.0f;
-    }
-    if (stepsByDevice && cageFaces > kMostFullyFittedFaces)
-        fit.steps = std::max(1, int(std::lround(double(fit.steps) * kMostFullyFittedFaces / cageFaces)));
-}
-
-// The bake route at the budget's bytes: the search's best candidate with maps, as it is; when
-// none fits, the chosen cage with the cheapest maps the search tries (reported over budget),
-// not the default maps at many times the bytes; with no maps allowed, the chosen cage with the
-// run's own.
-BakeRoute budgetBakeRoute(const BudgetChoice& choice, const BudgetSearch& search, const fit::FitOptions& fit,
-                          const fit::FitScene& scene) {
-    if (!choice.bestWithMaps && !search.allowedMaps.geometric()) return bakeRouteOf(scene.cage, fit);
-    const BudgetCandidate route = choice.bestWithMaps ? *choice.bestWithMaps
-                                                      : BudgetCandidate{.maps = search.allowedMaps,
-                                                                        .mapResolution = search.mapResolutions.front(),
-                                                                        .mapBits = search.mapBits.front()};
-    mesh::PolygonMesh cage = choice.bestWithMaps ? choice.bestWithMapsCage : choice.cageWorld;
-    cage.positions = scene.frame.toNormalized(cage.positions);
-    const bool appearance = route.appearanceResolution > 0 || route.appearanceAtlas > 0;
-    return {.cage = std::move(cage), .effects = route.maps, .resolution = route.mapResolution, .bits = route.mapBits,
-            .appearanceResolution = appearance ? route.appearanceResolution : fit.appearanceResolution,
-            .appearanceQuality = appearance ? route.appearanceQuality : fit.appearanceQuality,
-            .appearanceAtlas = appearance ? route.appearanceAtlas : fit.appearanceAtlas,
-            .shadingNormal = route.shadingNormal};
-}
-
-// With a budget the fit starts from the search's choice (simplify/budget_search.h).
-SimplifyPlan planWithinBudget(const SimplifyOptions& o, std::uintmax_t budget, fit::FitOptions fitOptions,
-                              gl::ProgramCache& programs, fit::FitScene& scene, const mesh::PolygonMesh& reference,
-                              const fit::FitHooks& hooks) {
-    const BudgetSearch search = budgetSearchFor(o, budget, scene);
-    if (hooks.note) hooks.note("budget " + std::to_string(budget) + " bytes: trying candidates");
-    const auto searchStarted = std::chrono::steady_clock::now();
-    BudgetChoice choice = searchBudget(programs, scene, reference, search, hooks.note);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - searchStarted).count();
-    applyChoice(choice.chosen, choice.cageWorld.faceCount(), o.fit.steps == fit::kByDevice, fitOptions);
-    scene.setCage(choice.cageWorld);
-    BakeRoute route = budgetBakeRoute(choice, search, fitOptions, scene);
-    return {.fit = std::move(fitOptions),
-            .bakeRoute = std::move(route),
-            .budget = BudgetReport{.bytes = budget, .chosen = choice.chosen, .tried = std::move(choice.tried), .seconds = seconds,
-                                   .shipped = {}}};
 }
 
 // Never a silent loss: an appearance on tiles carries the fitted colours and the reference's
@@ -291,26 +245,54 @@ nlohmann::json settingsJson(const SimplifyOptions& o) {
     settings["faces"] = o.faces;
     settings["budget"] = o.budget.value_or(0);  // 0: none, as a batch asset's identity hashes it
     settings["surface_samples"] = o.surfaceSamples;
+    settings["compare"] = toString(o.compare);
     return settings;
 }
 
 nlohmann::json toJson(const SimplifyReport& r) {
-    nlohmann::json report = fit::toJson(r.fit);
-    nlohmann::json ours = toJson(r.subdfit);
-    ours.erase("psnr_holdout");  // the fit's report has it already, from the same views
-    report.update(ours);
-    report["baselines"] = {{"decimation", toJson(r.decimation)}, {"bake", toJson(r.bake)}};
-    report["margin_db"] = {{"decimation", r.subdfit.psnrHoldout - r.decimation.psnrHoldout},
-                           {"bake", r.subdfit.psnrHoldout - r.bake.psnrHoldout}};
-    report["comparison_columns"] = {"reference", "subdfit", "decimation", "bake"};
-    if (r.gltfpack) {
-        report["baselines"]["gltfpack"] = toJson(*r.gltfpack);
-        report["margin_db"]["gltfpack"] = r.subdfit.psnrHoldout - r.gltfpack->psnrHoldout;
-        report["comparison_columns"] = {"reference", "subdfit", "decimation", "gltfpack", "bake"};
-    } else {
-        report["baselines"]["gltfpack"] = {{"skipped", "gltfpack is not on PATH (Debian: apt-get install gltfpack)"}};
+    nlohmann::json report =
+        r.fit ? fit::toJson(*r.fit)
+              : nlohmann::json{{"settings", r.settings},
+                               {"reference", {{"path", r.reference.string()}, {"triangles", r.referenceTriangles}}}};
+    // What shipped (where the cage did, its held-out PSNR is the fit's, from the same views).
+    nlohmann::json shipped = toJson(r.subdfit);
+    shipped.erase("path");  // `route` names it
+    report.update(shipped);
+    report["seconds"] = r.seconds;
+    report["seconds_by_stage"] = r.stages.toJson();
+
+    nlohmann::json route = toJson(r.route), weighed = nlohmann::json::object();
+    auto weigh = [&](const char* name, const Quality& q) {
+        weighed[name] = {{"psnr_holdout", q.psnrHoldout}, {"bytes", q.bytes}};
+    };
+    if (r.fit) weigh("cage", r.cage ? *r.cage : r.subdfit);
+    if (r.decimation) weigh("decimation", *r.decimation);
+    if (r.gltfpack) weigh("gltfpack", *r.gltfpack);
+    route["weighed"] = weighed;
+    report["route"] = route;
+
+    if (r.compare != CompareLevel::None) {
+        nlohmann::json baselines = nlohmann::json::object(), margins = nlohmann::json::object();
+        nlohmann::json columns = {"reference", "subdfit"};
+        auto add = [&](const char* name, const std::optional<Quality>& q) {
+            if (!q) return;
+            baselines[name] = toJson(*q);
+            margins[name] = r.subdfit.psnrHoldout - q->psnrHoldout;
+            columns.push_back(name);
+        };
+        add("cage", r.cage);
+        add("decimation", r.decimation);
+        add("gltfpack", r.gltfpack);
+        add("bake", r.bake);
+        if (r.gltfpackMissing)
+            baselines["gltfpack"] = {{"skipped", "gltfpack is not on PATH (Debian: apt-get install gltfpack)"}};
+        report["baselines"] = baselines;
+        report["margin_db"] = margins;
+        report["comparison_columns"] = columns;
     }
-    report["simplify"] = {{"faces_requested", r.facesRequested}, {"reference_triangles", r.fit.referenceTriangles}};
+    report["simplify"] = {{"faces_requested", r.facesRequested},
+                          {"reference_triangles", r.referenceTriangles},
+                          {"compare", toString(r.compare)}};
     if (r.budget) report["budget"] = toJson(*r.budget);
     return report;
 }
@@ -320,6 +302,11 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     const std::filesystem::path& out = options.fit.out;
     io::checkOutputFolder(out, {.ownMarkers = fit::kFitResultMarkers, .force = options.fit.force});
     const auto started = std::chrono::steady_clock::now();
+    SimplifyReport report;
+    report.facesRequested = options.faces;
+    report.compare = options.compare;
+    report.reference = options.fit.reference;
+    StageSeconds& stages = report.stages;
     const mesh::PolygonMesh reference = mesh::loadReference(options.fit.reference);
     if (options.fit.appearanceAtlas > 0)
         if (const std::string why = atlasUnsuitability(reference); !why.empty())
@@ -332,33 +319,113 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     if (!chosen.empty() && hooks.note) hooks.note(chosen);
     gl::ProgramCache programs(gl::platformDefines());
     fitOptions.cage = out / "initial_cage.obj";  // where the report says the cage came from
+    report.settings = fit::settingsJson(fitOptions);
     fit::FitScene scene(fitOptions, programs, {}, reference);
-    const SimplifyPlan plan =
-        options.budget ? planWithinBudget(options, *options.budget, std::move(fitOptions), programs, scene, reference, hooks)
-                       : planByFaces(options, std::move(fitOptions), scene, reference);
-    if (scene.shading != render::ShadingModel::Geometry && plan.fit.appearanceAtlas == 0)
-        warnOfWhatTilesLeaveOut(options.fit.reference, reference, plan.budget.has_value(),
-                                scene.shading == render::ShadingModel::MetallicRoughness);
-    const mesh::PolygonMesh cage = scene.cageWorld;
-    fit::FitRun run(plan.fit, programs, scene);
-    fitStages(run, out / "checkpoint.bin", options.fit.resume, hooks);
+    report.referenceTriangles = scene.reference.faceCount();
+    stages.lap("load");
 
     // Every result lands in one commit, or none does.
     io::StagedFolder staged(out);
-    mesh::writeObj(staged.path() / "initial_cage.obj", cage);
-    SimplifyReport report{.fit = run.writeResults(staged.path(), *context), .gltfpack = std::nullopt,
-                          .facesRequested = options.faces, .budget = plan.budget};
-    if (report.budget) {
-        std::uintmax_t& bytes = report.fit.exports.at("asset.subd");
-        report.budget->shipped = shipWithinBudget(staged.path() / "asset.subd", bytes, report.budget->bytes,
-                                                  plan.fit.mapBits, plan.fit.appearanceQuality);
-        bytes = report.budget->shipped.bytes;
-        // The USD export follows asset.subd, which may have been coded again.
-        const nlohmann::json usd = fit::exportUsd(plan.fit, staged.path());
-        for (const auto& [name, usdBytes] : usd.items()) report.fit.exports[name] = usdBytes.get<std::uintmax_t>();
+    BaselineSettings baselineSettings{.dir = staged.path() / "baselines", .compactMaps = fitOptions.compactMaps,
+                                      .surfaceSamples = options.surfaceSamples,
+                                      .distance = options.compare == CompareLevel::Full};
+    // The budget: as given; without one (and without --faces), derived from the reference.
+    std::optional<std::uintmax_t> budget = options.budget;
+    std::uintmax_t compressed = 0;
+    if (!budget && options.faces == 0) {
+        compressed = compressedReferenceBytes(scene, staged.path() / "reference.glb");
+        budget = defaultBudget(compressed);
+        if (hooks.note)
+            hooks.note("no --budget: " + std::to_string(*budget) + " bytes (the reference compressed: " +
+                       std::to_string(compressed) + ")");
+        stages.lap("default_budget");
     }
-    evaluate(options, plan, staged.path(), programs, run, report);
-    report.fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+    // The triangle route at the budget, before any cage: what a cage must beat.
+    TriangleBaselines triangles;
+    std::optional<Route> route;
+    if (budget) {
+        triangles = triangleBaselines(programs, scene, *budget, baselineSettings, options.compare);
+        stages.lap("triangle_route");
+        route = routeBeforeFit(bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
+                                                 triangles.gltfpack ? &*triangles.gltfpack : nullptr),
+                               triangles.holdsWholeReference, std::nullopt);
+    }
+    std::optional<SimplifyPlan> plan;
+    if (!route) {
+        plan = budget ? planWithinBudget(options, *budget, std::move(fitOptions), programs, scene, reference, hooks.note)
+                      : planByFaces(options, std::move(fitOptions), scene, reference);
+        stages.lap(budget ? "search" : "initial_cage");
+        if (plan->budget) {
+            plan->budget->derived = !options.budget;
+            plan->budget->compressedReference = compressed;
+            route = routeBeforeFit(bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
+                                                     triangles.gltfpack ? &*triangles.gltfpack : nullptr),
+                                   false, fit::psnrFromLoss(plan->budget->chosen.monitorLoss));
+        }
+    }
+    report.budget = plan ? plan->budget : std::nullopt;
+
+    if (!route) {
+        if (scene.shading != render::ShadingModel::Geometry && plan->fit.appearanceAtlas == 0)
+            warnOfWhatTilesLeaveOut(options.fit.reference, reference, plan->budget.has_value(),
+                                    scene.shading == render::ShadingModel::MetallicRoughness);
+        const mesh::PolygonMesh cage = scene.cageWorld;
+        fit::FitRun run(plan->fit, programs, scene);
+        fitStages(run, out / "checkpoint.bin", options.fit.resume, hooks);
+        stages.lap("fit");
+
+        mesh::writeObj(staged.path() / "initial_cage.obj", cage);
+        report.fit = run.writeResults(staged.path(), *context);
+        if (report.budget) {
+            std::uintmax_t& bytes = report.fit->exports.at("asset.subd");
+            report.budget->shipped = shipWithinBudget(staged.path() / "asset.subd", bytes, report.budget->bytes,
+                                                      plan->fit.mapBits, plan->fit.appearanceQuality);
+            bytes = report.budget->shipped.bytes;
+            // The USD export follows asset.subd, which may have been coded again.
+            const nlohmann::json usd = fit::exportUsd(plan->fit, staged.path());
+            for (const auto& [name, usdBytes] : usd.items()) report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
+        }
+        stages.lap("exports");
+        report.subdfit = scoreCage(run, *report.fit, staged.path(), options);
+        stages.lap("metrics");
+        // With --faces alone, the triangle route is weighed at the cage's bytes.
+        if (!budget) {
+            triangles = triangleBaselines(programs, scene, report.subdfit.bytes, baselineSettings, options.compare);
+            stages.lap("triangle_route");
+        }
+        const TriangleChoice best = bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
+                                                      triangles.gltfpack ? &*triangles.gltfpack : nullptr);
+        report.route = chooseRoute(report.subdfit, best);
+        if (report.route.shipped != "cage") {
+            report.cage = report.subdfit;
+            report.cage->shipped = "asset.subd";
+            report.subdfit = shipTriangles(best, staged.path());
+        }
+        if (options.compare == CompareLevel::Full) {
+            baselineSettings.segments = run.fitter().renderer().tessLevel();
+            report.bake = bakeBaseline(programs, scene, plan->bakeRoute, baselineSettings);
+            if (plan->budget) report.bake->details["over_budget"] = report.bake->bytes > plan->budget->bytes;
+            stages.lap("baseline_bake");
+        }
+    } else {
+        report.route = *route;
+        report.subdfit = shipTriangles(bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
+                                                         triangles.gltfpack ? &*triangles.gltfpack : nullptr),
+                                       staged.path());
+    }
+    report.decimation = std::move(triangles.decimation);
+    report.gltfpack = std::move(triangles.gltfpack);
+    report.gltfpackMissing = triangles.gltfpackMissing;
+    // Weighed by the route (report.json's route.weighed), not kept as baselines.
+    if (options.compare == CompareLevel::None) std::filesystem::remove_all(baselineSettings.dir);
+    if (options.compare == CompareLevel::Full) {
+        writeComparisonImage(report, options.fit.resolution > 0 ? options.fit.resolution : scene.holdout.resolution(), scene,
+                             staged.path());
+        stages.lap("comparison_image");
+    }
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (report.fit) report.fit->seconds = report.seconds;
     io::writeTextAtomically(staged.path() / "report.json", toJson(report).dump(2) + "\n");
     staged.commit();
     return report;

@@ -106,7 +106,7 @@ TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
     auto options = smallMappedSimplify(dir / "lumpy.obj", dir / "straight");
     options.fit.steps = 20;
     options.fit.mapsStart = 0.5f;  // bake at step 10
-    const auto straight = simplify::runSimplify(options).fit;
+    const auto straight = *simplify::runSimplify(options).fit;
 
     options.fit.out = dir / "resumed";
     std::atomic<bool> cancel{false};
@@ -118,7 +118,7 @@ TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
     EXPECT_FALSE(fs::exists(dir / "resumed" / "report.json"));
     EXPECT_FALSE(fs::exists(dir / "resumed" / "initial_cage.obj"));
     options.fit.resume = true;
-    const auto resumed = simplify::runSimplify(options).fit;
+    const auto resumed = *simplify::runSimplify(options).fit;
     EXPECT_EQ(resumed.resumedFromStep, 14);
 
     const auto a = mesh::loadMesh(dir / "straight" / "cage.obj").positions;
