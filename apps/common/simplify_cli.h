@@ -37,6 +37,11 @@ inline void addSimplifySettings(CLI::App& app, simplify::SimplifyOptions& option
            "what is compared beside what ships: none (only what chooses the route), fast (+ the triangle baselines' "
            "files and scores), full (+ the bake route, surface distances, comparison.png; simplify's default)")
         ->check(CLI::IsMember({"none", "fast", "full"}));
+    app.add_option_function<std::string>(
+           "--route", [&options](const std::string& text) { options.cageOnly = text == "cage"; },
+           "auto: ship the cage only where it wins, else the better triangle mesh (default); cage: ship the fitted cage "
+           "whatever the triangle route scores")
+        ->check(CLI::IsMember({"auto", "cage"}));
     addFitSettings(app, options.fit);
 }
 

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <tuple>
 
 #include "export/subd_format.h"
 #include "simplify/bake/atlas_bake.h"
@@ -99,6 +100,9 @@ constexpr double kLossTolerance = 0.02;
 // ... but only where the bytes saved are worth it: at least this many times the loss given up,
 // both relative (a few bytes saved are not worth a loss near the tolerance).
 constexpr double kBytesPerLoss = 5.0;
+// A rung predicted over this many times the budget is not tried: the prediction (map bytes per
+// face, measured on another cage) errs by a few per cent.
+constexpr double kPredictedOver = 1.25;
 // Four monitor views rank candidates this close to the lowest no better than chance: those
 // within this fraction are scored again on the training views too, and the choice among them is
 // made on that score.
@@ -172,6 +176,9 @@ struct Findings {
     std::vector<BudgetCandidate> tried;
     std::vector<Fitting> fitting;
     StageSeconds phases;  // where the search's seconds went
+    // Map bytes a cage face costs, by (map choice, resolution, bits), as last measured.
+    std::map<std::tuple<size_t, int, int>, double> mapBytesPerFace;
+    bool moreBitsPay = true;  // until a rung's extra bits fail to lower its loss
 };
 
 // A cage as tried: in world units (what ships) and in the normalised frame (what maps are baked onto).
@@ -326,30 +333,49 @@ std::vector<const Bare*> worthMaps(const std::vector<Bare>& bare) {
 // Phase three on a cage: the map ladder on each appearance worth it, each choice of maps at each
 // resolution, coarsest first, and at each bit depth while it fits: more bits and finer maps
 // only cost more, so a rung over the budget ends its ladder. Maps are baked once per (choice,
-// resolution) on the cage.
-void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& cage, const std::vector<const Bare*>& worth,
-                    const std::vector<maps::MapEffects>& mapChoices) {
-    std::map<std::pair<size_t, int>, surface::SurfaceMaps> geometric;
-    for (const Bare* b : worth) {
-        for (size_t m = 0; m < mapChoices.size(); ++m) {
-            if (b->inAtlas && mapChoices[m].normalMap) continue;  // an atlas takes heights alone
-            for (int resolution : in.search.mapResolutions) {
-                throwIfStopRequested();
-                auto baked = geometric.find({m, resolution});
-                if (baked == geometric.end()) {
-                    TimedStage timed(found.phases, "bake");
-                    baked = geometric.emplace(std::make_pair(m, resolution),
-                                              bakeMaps(cage.normalized, in.scene.reference, {.effects = mapChoices[m], .resolution = resolution}))
-                                .first;
+// resolution) on the cage. Two rules spare work that cannot pay:
+//  - a rung whose bytes the rungs measured on other cages predict well over the budget (map
+//    bytes grow in proportion to the faces) ends its ladder unbaked;
+//  - once more bits have failed to lower a rung's loss by more than kLossTolerance, no rung
+//    tries them again (preferred() would never choose them: more bytes for a loss within it).
+void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& cage, const Bare& bare,
+                    const std::vector<maps::MapEffects>& mapChoices,
+                    std::map<std::pair<size_t, int>, surface::SurfaceMaps>& geometric) {
+    const int faces = cage.world->faceCount();
+    for (size_t m = 0; m < mapChoices.size(); ++m) {
+        if (bare.inAtlas && mapChoices[m].normalMap) continue;  // an atlas takes heights alone
+        for (int resolution : in.search.mapResolutions) {
+            throwIfStopRequested();
+            const auto rung = std::make_tuple(m, resolution, in.search.mapBits.front());
+            if (const auto measured = found.mapBytesPerFace.find(rung); measured != found.mapBytesPerFace.end()) {
+                const double predicted = double(bare.candidate.bytes) + measured->second * faces;
+                if (predicted > kPredictedOver * double(in.search.budget)) {
+                    if (in.say) in.say(describe(bare.candidate) + ": maps T=" + std::to_string(resolution) +
+                                       " predicted over budget, not tried");
+                    break;
                 }
-                bool fitted = false;
-                for (int bits : in.search.mapBits) {
-                    const MapRecipe recipe{.effects = mapChoices[m], .resolution = resolution, .bits = bits};
-                    if (!fits(in.search, judge(in, found, cage.world, baked->second, recipe, b->appearance))) break;
-                    fitted = true;
-                }
-                if (!fitted) break;
             }
+            auto baked = geometric.find({m, resolution});
+            if (baked == geometric.end()) {
+                TimedStage timed(found.phases, "bake");
+                baked = geometric.emplace(std::make_pair(m, resolution),
+                                          bakeMaps(cage.normalized, in.scene.reference, {.effects = mapChoices[m], .resolution = resolution}))
+                            .first;
+            }
+            bool fitted = false;
+            double fewerBitsLoss = 0.0;
+            for (int bits : in.search.mapBits) {
+                if (fitted && !found.moreBitsPay) break;
+                const MapRecipe recipe{.effects = mapChoices[m], .resolution = resolution, .bits = bits};
+                const BudgetCandidate c = judge(in, found, cage.world, baked->second, recipe, bare.appearance);
+                found.mapBytesPerFace[std::make_tuple(m, resolution, bits)] =
+                    double(c.bytes > bare.candidate.bytes ? c.bytes - bare.candidate.bytes : 0) / faces;
+                if (!fits(in.search, c)) break;
+                if (fitted && c.monitorLoss > (1.0 - kLossTolerance) * fewerBitsLoss) found.moreBitsPay = false;
+                fitted = true;
+                fewerBitsLoss = c.monitorLoss;
+            }
+            if (!fitted) break;
         }
     }
 }
@@ -412,7 +438,6 @@ BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
         }
     }
     choice.tried = std::move(found.tried);
-    choice.phases = found.phases;
     return choice;
 }
 
@@ -447,10 +472,13 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
         }();
         if (!cage) continue;  // smaller counts will not do better
         const std::vector<Bare> bare = judgeBare(in, found, *cage, appearances);
-        climbMapLadder(in, found, *cage, worthMaps(bare), mapChoices);
+        std::map<std::pair<size_t, int>, surface::SurfaceMaps> geometric;  // baked once per (choice, resolution)
+        for (const Bare* b : worthMaps(bare)) climbMapLadder(in, found, *cage, *b, mapChoices, geometric);
     }
     growBest(in, found);
-    return settleChoice(in, found);
+    BudgetChoice choice = settleChoice(in, found);
+    choice.phases = found.phases;
+    return choice;
 }
 
 std::vector<int> atlasSizesFor(const mesh::PolygonMesh& reference) {

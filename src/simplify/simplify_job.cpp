@@ -246,6 +246,7 @@ nlohmann::json settingsJson(const SimplifyOptions& o) {
     settings["budget"] = o.budget.value_or(0);  // 0: none, as a batch asset's identity hashes it
     settings["surface_samples"] = o.surfaceSamples;
     settings["compare"] = toString(o.compare);
+    settings["route"] = o.cageOnly ? "cage" : "auto";
     return settings;
 }
 
@@ -292,7 +293,9 @@ nlohmann::json toJson(const SimplifyReport& r) {
     }
     report["simplify"] = {{"faces_requested", r.facesRequested},
                           {"reference_triangles", r.referenceTriangles},
-                          {"compare", toString(r.compare)}};
+                          {"compare", toString(r.compare)},
+                          {"budget", r.budgetBytes},
+                          {"budget_derived", r.budgetDerived}};
     if (r.budget) report["budget"] = toJson(*r.budget);
     return report;
 }
@@ -341,15 +344,18 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
         stages.lap("default_budget");
     }
 
+    report.budgetBytes = budget.value_or(0);
+    report.budgetDerived = budget && !options.budget;
     // The triangle route at the budget, before any cage: what a cage must beat.
     TriangleBaselines triangles;
     std::optional<Route> route;
     if (budget) {
         triangles = triangleBaselines(programs, scene, *budget, baselineSettings, options.compare);
         stages.lap("triangle_route");
-        route = routeBeforeFit(bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
-                                                 triangles.gltfpack ? &*triangles.gltfpack : nullptr),
-                               triangles.holdsWholeReference, std::nullopt);
+        if (!options.cageOnly)
+            route = routeBeforeFit(bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
+                                                     triangles.gltfpack ? &*triangles.gltfpack : nullptr),
+                                   triangles.holdsWholeReference, std::nullopt);
     }
     std::optional<SimplifyPlan> plan;
     if (!route) {
@@ -359,9 +365,10 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
         if (plan->budget) {
             plan->budget->derived = !options.budget;
             plan->budget->compressedReference = compressed;
-            route = routeBeforeFit(bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
-                                                     triangles.gltfpack ? &*triangles.gltfpack : nullptr),
-                                   false, fit::psnrFromLoss(plan->budget->chosen.monitorLoss));
+            if (!options.cageOnly)
+                route = routeBeforeFit(bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
+                                                         triangles.gltfpack ? &*triangles.gltfpack : nullptr),
+                                       false, fit::psnrFromLoss(plan->budget->chosen.monitorLoss));
         }
     }
     report.budget = plan ? plan->budget : std::nullopt;
@@ -396,7 +403,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
         }
         const TriangleChoice best = bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
                                                       triangles.gltfpack ? &*triangles.gltfpack : nullptr);
-        report.route = chooseRoute(report.subdfit, best);
+        report.route = options.cageOnly ? Route{.why = "--route cage"} : chooseRoute(report.subdfit, best);
         if (report.route.shipped != "cage") {
             report.cage = report.subdfit;
             report.cage->shipped = "asset.subd";

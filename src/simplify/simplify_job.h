@@ -41,6 +41,10 @@ struct SimplifyOptions {
     std::optional<std::uintmax_t> budget;
     int surfaceSamples = 100000;  // per side, for Chamfer and Hausdorff
     CompareLevel compare = CompareLevel::Full;
+    // Whether what ships is the better route, or the fitted cage whatever the triangle route
+    // scores (a user who needs a subdivision surface to edit or animate); the triangle route is
+    // weighed and reported either way.
+    bool cageOnly = false;
 };
 
 // The cage size the budget search's limits are scaled from (simplify_job.cpp).
@@ -65,6 +69,8 @@ struct SimplifyReport {
     bool gltfpackMissing = false;       // asked for, but gltfpack is not on PATH
     int facesRequested = 0;
     std::optional<BudgetReport> budget;  // the search and what shipped, with a budget
+    std::uintmax_t budgetBytes = 0;      // the budget the routes were weighed at (0: the cage's bytes, --faces alone)
+    bool budgetDerived = false;          // from the reference (route.h's defaultBudget)
     CompareLevel compare = CompareLevel::Full;
     std::filesystem::path reference;
     int referenceTriangles = 0;

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "error_message.h"
 #include "export/subd_format.h"
@@ -20,6 +22,11 @@ namespace subdfit::test {
 namespace {
 
 namespace fs = std::filesystem;
+
+std::string readBytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 simplify::SimplifyOptions budgeted(const fs::path& reference, const fs::path& out, std::uintmax_t budget) {
     simplify::SimplifyOptions o = smallSimplify(reference, out, 20);
@@ -87,11 +94,31 @@ TEST(SimplifyBudget, ShipsWithinTheBudgetAndListsTheCandidates) {
         const auto shipped = exporter::readSubd(dir / "out" / "asset.subd");
         EXPECT_EQ(surface::toString(shipped.maps.shadingNormal), budget["chosen"]["shading_normal"].get<std::string>());
     }
-    // The decimation baseline is held to the same bytes.
-    EXPECT_LE(report["baselines"]["decimation"]["bytes"].get<std::uintmax_t>(), report["bytes"].get<std::uintmax_t>());
+    // The triangle baselines are held to the budget; a dense reference at a budget this tight
+    // ships its cage, which leads them on the held-out views.
+    EXPECT_LE(report["baselines"]["decimation"]["bytes"].get<std::uintmax_t>(), kBudget);
+    EXPECT_EQ(report["route"]["shipped"], "cage") << report["route"].dump();
+    for (const char* baseline : {"decimation", "gltfpack"})
+        if (report["baselines"][baseline].contains("psnr_holdout")) {
+            EXPECT_GE(report["margin_db"][baseline].get<double>(), 0.0) << baseline;
+        }
     // The bake route says whether it fits too (it is the best candidate with maps when one fits).
     const auto& bake = report["baselines"]["bake"];
     EXPECT_EQ(bake["over_budget"].get<bool>(), bake["bytes"].get<std::uintmax_t>() > kBudget);
+
+    // --compare none ships the same asset, and writes no baselines, no comparison, no distances.
+    auto production = budgeted(dir / "lumpy.obj", dir / "none", kBudget);
+    production.compare = simplify::CompareLevel::None;
+    const auto none = simplify::toJson(simplify::runSimplify(production));
+    EXPECT_EQ(none["route"]["shipped"], "cage");
+    EXPECT_EQ(readBytes(dir / "none" / "asset.subd"), readBytes(dir / "out" / "asset.subd"));
+    EXPECT_FALSE(fs::exists(dir / "none" / "baselines"));
+    EXPECT_FALSE(fs::exists(dir / "none" / "comparison.png"));
+    EXPECT_FALSE(none.contains("baselines"));
+    EXPECT_EQ(none["chamfer"].get<double>(), 0.0);
+    EXPECT_TRUE(none["route"]["weighed"].contains("decimation"));
+    EXPECT_FALSE(none["seconds_by_stage"].contains("baseline_bake"));
+    EXPECT_TRUE(fs::exists(dir / "out" / "comparison.png"));
 }
 
 // A light faceted reference (flat triangles, shaded with smooth vertex normals): heights baked
@@ -104,6 +131,7 @@ TEST(SimplifyBudget, HeightsOnAFacetedReferenceShadeWithTheLimitNormal) {
     auto o = budgeted(dir / "faceted.obj", dir / "out", 4000);
     o.fit.resolution = 128;
     o.fit.maps = {.displacement = true};
+    o.cageOnly = true;  // it ships whole as triangles otherwise: this is about the cage the search finds
     const auto report = simplify::toJson(simplify::runSimplify(o));
     int ownDensity = 0;
     for (const auto& c : report["budget"]["candidates"]) {

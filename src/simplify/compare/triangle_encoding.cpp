@@ -12,9 +12,9 @@
 namespace subdfit::simplify {
 namespace {
 
-// Below this many bits a position moves by more than a pixel of a 256² view of the whole asset.
-constexpr int kFewestPositionBits = 10;
-constexpr int kPositionBitsLadder[] = {14, 12, 11, 10};
+// At 8 bits a position moves by up to about a pixel of a 256² view of the whole asset.
+constexpr int kFewestPositionBits = 8;
+constexpr int kPositionBitsLadder[] = {14, 12, 11, 10, 9, 8};
 
 }  // namespace
 

@@ -62,7 +62,7 @@ struct EncodedChoice {
 };
 
 // The encoding that scores best on the monitor views at the budget, each at the most triangles
-// that fit: from `start`, fewer position bits one at a time (down to 10) while that scores
+// that fit: from `start`, fewer position bits (12, 11, 10, 9, 8) while that scores
 // better, then the normals the other way (shipped or not) at the best bits. `path` is the file
 // `ship` writes; it is left holding the choice.
 EncodedChoice bestEncoding(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget, int most,
