@@ -146,12 +146,17 @@ const Fitting* preferred(const std::vector<Fitting>& fitting, Keep keep, Loss lo
 }
 
 // preferred() among those `keep` accepts within kNearTie of the lowest monitor loss, on their
-// loss over the monitor and training views (scored here where not yet).
+// loss over the monitor and training views (scored here where not yet). A lone leader has no tie
+// to settle: it is chosen as it is.
 template <class Keep>
 const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, std::vector<Fitting>& fitting, Keep keep) {
     const Fitting* lowest = lowestOf(fitting, keep, monitored);
     if (!lowest) return nullptr;
     const double within = (1.0 + kNearTie) * lowest->candidate.monitorLoss;
+    const auto near = std::count_if(fitting.begin(), fitting.end(), [&](const Fitting& f) {
+        return keep(f.candidate) && f.candidate.monitorLoss <= within;
+    });
+    if (near == 1) return lowest;
     for (Fitting& f : fitting) {
         if (!keep(f.candidate) || f.candidate.monitorLoss > within || f.candidate.settledLoss > 0.0) continue;
         throwIfStopRequested();
@@ -423,8 +428,9 @@ BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
     BudgetChoice choice;
     choice.chosen = chosen->candidate;
     choice.cageWorld = *chosen->cageWorld;
-    if (const Fitting* withMaps =
-            settle(in.programs, in.scene, found.fitting, [](const BudgetCandidate& c) { return c.maps.any(); })) {
+    if (const Fitting* withMaps = in.search.bestWithMaps ? settle(in.programs, in.scene, found.fitting,
+                                                                 [](const BudgetCandidate& c) { return c.maps.any(); })
+                                                         : nullptr) {
         choice.bestWithMaps = withMaps->candidate;
         choice.bestWithMapsCage = *withMaps->cageWorld;
     }

@@ -48,7 +48,8 @@ BudgetSearch budgetSearchFor(const SimplifyOptions& o, std::uintmax_t budget, co
                            .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness},
             .appearanceQualities = {o.fit.appearanceQuality},
             .appearanceAtlases = o.fit.appearanceAtlas > 0 ? std::vector<int>{o.fit.appearanceAtlas}
-                                                          : atlasSizesFor(scene.reference)};
+                                                          : atlasSizesFor(scene.reference),
+            .bestWithMaps = o.compare == CompareLevel::Full};
 }
 
 // The search's choice into the fit's options: its maps, their resolution, bits and shading
