@@ -60,12 +60,16 @@ Route chooseRoute(const Quality& cage, const TriangleChoice& triangles) {
                                         " on the held-out views at the budget");
 }
 
-std::optional<Route> routeBeforeFit(const TriangleChoice& triangles, bool wholeReference,
+std::optional<Route> routeBeforeFit(const TriangleChoice& triangles, Holds holds,
                                     std::optional<double> candidateMonitorPsnr) {
     if (!triangles.quality) return std::nullopt;
-    if (wholeReference)
+    if (holds == Holds::Whole)
         return triangleRoute(triangles, "the reference fits the budget whole (" +
                                             std::to_string(triangles.quality->bytes) + " bytes compressed): nothing to simplify");
+    if (holds == Holds::EveryTriangle)
+        return triangleRoute(triangles, "decimation holds every triangle of the reference within the budget, which a "
+                                        "cage's limit surface only approximates (" + triangles.name +
+                                            " scores best of the triangle routes): no cage tried");
     if (!candidateMonitorPsnr) return std::nullopt;
     const double lead = triangles.quality->details.value("monitor_psnr", 0.0) - *candidateMonitorPsnr;
     if (lead > kMostFitGainDb)

@@ -52,10 +52,14 @@ TriangleChoice bestTriangleRoute(const Quality* decimation, const Quality* gltfp
 // The cage, unless `triangles` scores better on the held-out views at the budget.
 Route chooseRoute(const Quality& cage, const TriangleChoice& triangles);
 
-// Before any fit: the triangle route, when it holds the whole reference (`wholeReference`), or
-// when it leads the chosen cage candidate (`candidateMonitorPsnr`, once the search has chosen one)
-// on the monitor views by more than a fit gains.
-std::optional<Route> routeBeforeFit(const TriangleChoice& triangles, bool wholeReference,
+// How much of the reference the triangle route holds within the budget.
+enum class Holds { Part, EveryTriangle, Whole };  // Whole: every triangle and every texel
+
+// Before any fit: the triangle route, when it holds every triangle of the reference (a cage's
+// limit surface only approximates them, and its appearance comes from the same textures), or
+// when it leads the chosen cage candidate (`candidateMonitorPsnr`, once the search has chosen
+// one) on the monitor views by more than a fit gains.
+std::optional<Route> routeBeforeFit(const TriangleChoice& triangles, Holds holds,
                                     std::optional<double> candidateMonitorPsnr);
 
 nlohmann::json toJson(const Route& route);

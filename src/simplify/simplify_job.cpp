@@ -1,6 +1,7 @@
 #include "simplify/simplify_job.h"
 
 #include <chrono>
+#include <limits>
 
 #include "fit/asset_export.h"
 #include "fit/device_defaults.h"
@@ -68,7 +69,7 @@ std::uintmax_t compressedReferenceBytes(const fit::FitScene& scene, const std::f
 struct TriangleBaselines {
     std::optional<Quality> decimation, gltfpack;
     bool gltfpackMissing = false;
-    bool holdsWholeReference = false;  // the decimation ships every triangle (and texel) of the reference
+    Holds holds = Holds::Part;  // of the reference, by the decimation
 };
 
 TriangleBaselines triangleBaselines(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
@@ -76,20 +77,23 @@ TriangleBaselines triangleBaselines(gl::ProgramCache& programs, const fit::FitSc
     std::filesystem::create_directories(settings.dir);
     TriangleBaselines t;
     int wholeTriangles = 0;
+    bool everyTexel = true;
     if (withMaterials(scene)) {
         t.decimation = texturedDecimationBaseline(programs, scene, budget, settings);
         if (level != CompareLevel::None) t.gltfpack = texturedGltfpackBaseline(programs, scene, budget, settings);
         wholeTriangles = scene.reference.faceCount();
-        t.holdsWholeReference = t.decimation->details.value("texture_scale", 0.0) == 1.0;
+        everyTexel = t.decimation->details.value("texture_scale", 0.0) == 1.0;
     } else {
         const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
         t.decimation = decimationBaseline(programs, scene, welded, budget, settings);
         if (level != CompareLevel::None) t.gltfpack = gltfpackBaseline(programs, scene, welded, budget, settings);
-        wholeTriangles = welded.faceCount();
-        t.holdsWholeReference = true;
+        // The welded decimation shades smooth: where the reference splits its vertices (hard
+        // edges, a box), holding every triangle is not holding its look, and a creased cage may win.
+        wholeTriangles = welded.vertexCount() >= scene.reference.vertexCount() ? welded.faceCount()
+                                                                                 : std::numeric_limits<int>::max();
     }
-    t.holdsWholeReference = t.holdsWholeReference && !t.decimation->details.value("over_budget", true) &&
-                            t.decimation->details.value("triangles", 0) >= wholeTriangles;
+    if (!t.decimation->details.value("over_budget", true) && t.decimation->details.value("triangles", 0) >= wholeTriangles)
+        t.holds = everyTexel ? Holds::Whole : Holds::EveryTriangle;
     t.gltfpackMissing = level != CompareLevel::None && !t.gltfpack;
     return t;
 }
@@ -355,7 +359,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
         if (!options.cageOnly)
             route = routeBeforeFit(bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
                                                      triangles.gltfpack ? &*triangles.gltfpack : nullptr),
-                                   triangles.holdsWholeReference, std::nullopt);
+                                   triangles.holds, std::nullopt);
     }
     std::optional<SimplifyPlan> plan;
     if (!route) {
@@ -368,7 +372,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
             if (!options.cageOnly)
                 route = routeBeforeFit(bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
                                                          triangles.gltfpack ? &*triangles.gltfpack : nullptr),
-                                       false, fit::psnrFromLoss(plan->budget->chosen.monitorLoss));
+                                       Holds::Part, fit::psnrFromLoss(plan->budget->chosen.monitorLoss));
         }
     }
     report.budget = plan ? plan->budget : std::nullopt;

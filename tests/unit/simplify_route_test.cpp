@@ -41,16 +41,20 @@ TEST(SimplifyRoute, ATriangleRouteOverTheBudgetIsNeverShipped) {
     EXPECT_EQ(simplify::chooseRoute(scored(10.0, 100), simplify::bestTriangleRoute(&over, nullptr)).shipped, "cage");
 }
 
-TEST(SimplifyRoute, BeforeTheFitTrianglesShipWhenWholeOrFarAhead) {
+TEST(SimplifyRoute, BeforeTheFitTrianglesShipWhenTheyHoldEveryTriangleOrLeadFar) {
     Quality decimation = scored(40.0, 5000);
     decimation.details["monitor_psnr"] = 40.0;
     const auto best = simplify::bestTriangleRoute(&decimation, nullptr);
-    const auto whole = simplify::routeBeforeFit(best, /*wholeReference=*/true, std::nullopt);
+    using simplify::Holds;
+    const auto whole = simplify::routeBeforeFit(best, Holds::Whole, std::nullopt);
     ASSERT_TRUE(whole);
     EXPECT_NE(whole->why.find("whole"), std::string::npos) << whole->why;
-    EXPECT_FALSE(simplify::routeBeforeFit(best, false, std::nullopt));
-    EXPECT_FALSE(simplify::routeBeforeFit(best, false, 40.0 - simplify::kMostFitGainDb + 0.1));
-    EXPECT_TRUE(simplify::routeBeforeFit(best, false, 40.0 - simplify::kMostFitGainDb - 0.1));
+    const auto everyTriangle = simplify::routeBeforeFit(best, Holds::EveryTriangle, std::nullopt);
+    ASSERT_TRUE(everyTriangle);
+    EXPECT_NE(everyTriangle->why.find("every triangle"), std::string::npos) << everyTriangle->why;
+    EXPECT_FALSE(simplify::routeBeforeFit(best, Holds::Part, std::nullopt));
+    EXPECT_FALSE(simplify::routeBeforeFit(best, Holds::Part, 40.0 - simplify::kMostFitGainDb + 0.1));
+    EXPECT_TRUE(simplify::routeBeforeFit(best, Holds::Part, 40.0 - simplify::kMostFitGainDb - 0.1));
 }
 
 TEST(SimplifyRoute, TheDefaultBudgetIsATenthOfTheReferenceCompressedNeverMoreThanIt) {
