@@ -100,15 +100,15 @@ EncodedChoice bestEncoding(gl::ProgramCache& programs, const fit::FitScene& scen
         return better;
     };
     attempt(start);
+    VertexEncoding flipped = start;
+    flipped.normals = !flipped.normals;
+    attempt(flipped);
     for (int bits : kPositionBitsLadder) {
         if (bits >= start.positionBits || bits < kFewestPositionBits) continue;
         VertexEncoding fewer = best.encoding;
         fewer.positionBits = bits;
         if (!attempt(fewer)) break;
     }
-    VertexEncoding flipped = best.encoding;
-    flipped.normals = !flipped.normals;
-    attempt(flipped);
     if (!(last == best.encoding)) best.bytes = ship(best.encoding, best.triangles);
     return best;
 }

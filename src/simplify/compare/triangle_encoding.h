@@ -62,8 +62,8 @@ struct EncodedChoice {
 };
 
 // The encoding that scores best on the monitor views at the budget, each at the most triangles
-// that fit: from `start`, fewer position bits (12, 11, 10, 9, 8) while that scores
-// better, then the normals the other way (shipped or not) at the best bits. `path` is the file
+// that fit: `start` and `start` with its normals the other way (shipped or not), then, from the
+// better, fewer position bits (12, 11, 10, 9, 8) while that scores better. `path` is the file
 // `ship` writes; it is left holding the choice.
 EncodedChoice bestEncoding(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget, int most,
                            const std::filesystem::path& path, const ShipEncoded& ship, VertexEncoding start,
