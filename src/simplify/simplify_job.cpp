@@ -390,12 +390,15 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
         report.fit = run.writeResults(staged.path(), *context);
         if (report.budget) {
             std::uintmax_t& bytes = report.fit->exports.at("asset.subd");
+            const std::uintmax_t fitted = bytes;
             report.budget->shipped = shipWithinBudget(staged.path() / "asset.subd", bytes, report.budget->bytes,
                                                       plan->fit.mapBits, plan->fit.appearanceQuality);
             bytes = report.budget->shipped.bytes;
-            // The USD export follows asset.subd, which may have been coded again.
-            const nlohmann::json usd = fit::exportUsd(plan->fit, staged.path());
-            for (const auto& [name, usdBytes] : usd.items()) report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
+            // The USD export follows asset.subd, where that was coded again.
+            if (fitted > report.budget->bytes) {
+                const nlohmann::json usd = fit::exportUsd(plan->fit, staged.path());
+                for (const auto& [name, usdBytes] : usd.items()) report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
+            }
         }
         stages.lap("exports");
         report.subdfit = scoreCage(run, *report.fit, staged.path(), options);
