@@ -171,6 +171,7 @@ struct SearchInputs {
     gl::ProgramCache& programs;
     const fit::FitScene& scene;
     const mesh::PolygonMesh& referenceWorld;  // what cages are decimated from
+    const CageSource& cages;                  // ... prepared once
     const BudgetSearch& search;
     const std::function<void(const std::string&)>& say;
 };
@@ -213,7 +214,7 @@ bool fits(const BudgetSearch& search, const BudgetCandidate& c) { return c.bytes
 std::optional<TriedCage> cageOf(const SearchInputs& in, int faces) {
     throwIfStopRequested();
     try {
-        auto world = std::make_shared<const mesh::PolygonMesh>(initialCage(in.referenceWorld, {.faces = faces}));
+        auto world = std::make_shared<const mesh::PolygonMesh>(in.cages.cage({.faces = faces}));
         mesh::PolygonMesh normalized = *world;
         normalized.positions = in.scene.frame.toNormalized(world->positions);
         return TriedCage{std::move(world), std::move(normalized)};
@@ -467,10 +468,15 @@ std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, in
 BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene,
                           const mesh::PolygonMesh& referenceWorld, const BudgetSearch& search,
                           const std::function<void(const std::string&)>& say) {
-    const SearchInputs in{programs, scene, referenceWorld, search, say};
+    Findings found;
+    std::optional<CageSource> cages;
+    {
+        TimedStage timed(found.phases, "cages");
+        cages.emplace(referenceWorld);
+    }
+    const SearchInputs in{programs, scene, referenceWorld, *cages, search, say};
     const std::vector<AppearanceBakeOptions> appearances = appearancesOf(search);
     const std::vector<maps::MapEffects> mapChoices = mapChoicesOf(search);
-    Findings found;
     for (int faces : search.faceCounts) {
         const std::optional<TriedCage> cage = [&] {
             TimedStage timed(found.phases, "cages");
