@@ -35,6 +35,8 @@ ResultFolder readResultFolder(const std::filesystem::path& dir) {
     if (!std::filesystem::is_directory(dir, ec)) throw fileError(dir.string(), "not a folder");
     if (!std::filesystem::exists(dir / "report.json", ec))
         throw fileError(dir.string(), "not a subdfit result: no report.json in it");
+    if (!std::filesystem::exists(dir / "asset.subd", ec) && !std::filesystem::exists(dir / "asset.glb", ec))
+        throw fileError(dir.string(), "not a subdfit result: no asset.subd (nor a triangle route's asset.glb) in it");
     nlohmann::json report;
     try {
         report = nlohmann::json::parse(io::readInputFile(dir / "report.json"));
