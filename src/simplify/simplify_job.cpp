@@ -1,7 +1,6 @@
 #include "simplify/simplify_job.h"
 
 #include <chrono>
-#include <limits>
 
 #include "fit/asset_export.h"
 #include "fit/device_defaults.h"
@@ -11,17 +10,15 @@
 #include "io/staged_folder.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
-#include "export/glb_writer.h"
 #include "export/subd_format.h"
 #include "simplify/bake/atlas_bake.h"
 #include "simplify/bake/bake.h"
 #include "simplify/compare/baselines.h"
-#include "simplify/compare/textured_baselines.h"
 #include "simplify/budget_search.h"
-#include "simplify/cage/decimate.h"
 #include "simplify/compare/comparison_image.h"
 #include "simplify/cage/initial_cage.h"
 #include "simplify/simplify_plan.h"
+#include "simplify/triangle_route.h"
 #include "fit/image_metrics.h"
 #include "surface/tessellation.h"
 #include "util/error.h"
@@ -40,73 +37,6 @@ constexpr float kRefineRate = 0.02f;
 // atlases and fitted.glb are conveniences for DCC tools and viewers, not what the budget counts.
 nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports) {
     return {{"asset.subd", exports.at("asset.subd")}};
-}
-
-// A reference whose materials the triangle baselines must keep (textured or a plain colour), as
-// a user's would.
-bool withMaterials(const fit::FitScene& scene) {
-    return scene.shading != render::ShadingModel::Geometry && scene.reference.materials != nullptr;
-}
-
-// The reference whole as the triangle route would ship it, written to `scratch` (then removed):
-// its bytes, what the default budget is made from.
-std::uintmax_t compressedReferenceBytes(const fit::FitScene& scene, const std::filesystem::path& scratch) {
-    std::uintmax_t bytes = 0;
-    if (withMaterials(scene)) {
-        bytes = writeWholeTextured(scene, scratch);
-    } else {
-        const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
-        bytes = exporter::writeMeshGlb(scratch, scene.frame.toWorld(welded.positions), {},
-                                       {welded.faceIndices.begin(), welded.faceIndices.end()}, exporter::DracoBits{})
-                    .bytes;
-    }
-    std::filesystem::remove(scratch);
-    return bytes;
-}
-
-// The triangle baselines at `budget`: decimation + Draco always (the route weighs it), gltfpack
-// unless --compare none. Their files go to settings.dir.
-struct TriangleBaselines {
-    std::optional<Quality> decimation, gltfpack;
-    bool gltfpackMissing = false;
-    Holds holds = Holds::Part;  // of the reference, by the decimation
-};
-
-TriangleBaselines triangleBaselines(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
-                                    const BaselineSettings& settings, CompareLevel level) {
-    std::filesystem::create_directories(settings.dir);
-    TriangleBaselines t;
-    int wholeTriangles = 0;
-    bool everyTexel = true;
-    if (withMaterials(scene)) {
-        t.decimation = texturedDecimationBaseline(programs, scene, budget, settings);
-        if (level != CompareLevel::None) t.gltfpack = texturedGltfpackBaseline(programs, scene, budget, settings);
-        wholeTriangles = scene.reference.faceCount();
-        everyTexel = t.decimation->details.value("texture_scale", 0.0) == 1.0;
-    } else {
-        const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
-        t.decimation = decimationBaseline(programs, scene, welded, budget, settings);
-        if (level != CompareLevel::None) t.gltfpack = gltfpackBaseline(programs, scene, welded, budget, settings);
-        // The welded decimation shades smooth: where the reference splits its vertices (hard
-        // edges, a box), holding every triangle is not holding its look, and a creased cage may win.
-        wholeTriangles = welded.vertexCount() >= scene.reference.vertexCount() ? welded.faceCount()
-                                                                                 : std::numeric_limits<int>::max();
-    }
-    if (!t.decimation->details.value("over_budget", true) && t.decimation->details.value("triangles", 0) >= wholeTriangles)
-        t.holds = everyTexel ? Holds::Whole : Holds::EveryTriangle;
-    t.gltfpackMissing = level != CompareLevel::None && !t.gltfpack;
-    return t;
-}
-
-// The triangle route ships: its file, as the baseline wrote it, becomes DIR/asset.glb; what ships
-// is measured as that baseline was.
-Quality shipTriangles(const TriangleChoice& triangles, const std::filesystem::path& out) {
-    std::filesystem::copy_file(out / triangles.quality->shipped, out / "asset.glb",
-                               std::filesystem::copy_options::overwrite_existing);
-    Quality shipped = *triangles.quality;
-    shipped.files = {{"asset.glb", shipped.bytes}};
-    shipped.shipped = "asset.glb";
-    return shipped;
 }
 
 // The fitted cage, as shipped (asset.subd): held-out scores and, with a full comparison, its
@@ -229,6 +159,69 @@ void fitStages(fit::FitRun& run, const std::filesystem::path& checkpoint, bool r
         fit::StopReason::Cancelled)
         throw Interrupted("interrupted at step " + std::to_string(run.step()) + " of " +
                           std::to_string(run.options().steps) + ", checkpointed in " + checkpoint.string());
+}
+
+// What one run works with, from the reference's load to its commit.
+struct RunInputs {
+    const SimplifyOptions& options;
+    const fit::FitHooks& hooks;
+    gl::ProgramCache& programs;
+    fit::FitScene& scene;
+    const mesh::PolygonMesh& reference;
+    const context::GlContext& context;
+    const std::filesystem::path& staged;
+    BaselineSettings& baselines;
+    SimplifyReport& report;
+};
+
+// Fits the plan's cage, writes its results into the staging folder, and weighs it against the
+// triangle route (made here at the cage's bytes when there is no budget): the better ships. With
+// --compare full, the bake route too.
+void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& triangles, std::optional<std::uintmax_t> budget) {
+    const SimplifyOptions& options = in.options;
+    SimplifyReport& report = in.report;
+    StageSeconds& stages = report.stages;
+    if (in.scene.shading != render::ShadingModel::Geometry && plan.fit.appearanceAtlas == 0)
+        warnOfWhatTilesLeaveOut(options.fit.reference, in.reference, plan.budget.has_value(),
+                                in.scene.shading == render::ShadingModel::MetallicRoughness);
+    const mesh::PolygonMesh cage = in.scene.cageWorld;
+    fit::FitRun run(plan.fit, in.programs, in.scene);
+    fitStages(run, options.fit.out / "checkpoint.bin", options.fit.resume, in.hooks);
+    stages.lap("fit");
+
+    mesh::writeObj(in.staged / "initial_cage.obj", cage);
+    report.fit = run.writeResults(in.staged, in.context);
+    if (report.budget) {
+        std::uintmax_t& bytes = report.fit->exports.at("asset.subd");
+        const std::uintmax_t fitted = bytes;
+        report.budget->shipped = shipWithinBudget(in.staged / "asset.subd", bytes, report.budget->bytes, plan.fit.mapBits,
+                                                  plan.fit.appearanceQuality);
+        bytes = report.budget->shipped.bytes;
+        // The USD export follows asset.subd, where that was coded again.
+        if (fitted > report.budget->bytes) {
+            const nlohmann::json usd = fit::exportUsd(plan.fit, in.staged);
+            for (const auto& [name, usdBytes] : usd.items()) report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
+        }
+    }
+    stages.lap("exports");
+    report.subdfit = scoreCage(run, *report.fit, in.staged, options);
+    stages.lap("metrics");
+    if (!budget) {
+        triangles = triangleBaselines(in.programs, in.scene, report.subdfit.bytes, in.baselines, options.compare);
+        stages.lap("triangle_route");
+    }
+    const TriangleChoice best = triangles.best();
+    report.route = options.cageOnly ? Route{.why = "--route cage"} : chooseRoute(report.subdfit, best);
+    if (report.route.shipped != "cage") {
+        report.cage = report.subdfit;
+        report.subdfit = shipTriangles(best, in.staged);
+    }
+    if (options.compare == CompareLevel::Full) {
+        in.baselines.segments = run.fitter().renderer().tessLevel();
+        report.bake = bakeBaseline(in.programs, in.scene, plan.bakeRoute, in.baselines);
+        if (plan.budget) report.bake->details["over_budget"] = report.bake->bytes > plan.budget->bytes;
+        stages.lap("baseline_bake");
+    }
 }
 
 }  // namespace
@@ -357,8 +350,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
         triangles = triangleBaselines(programs, scene, *budget, baselineSettings, options.compare);
         stages.lap("triangle_route");
         if (!options.cageOnly)
-            route = routeBeforeFit(bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
-                                                     triangles.gltfpack ? &*triangles.gltfpack : nullptr),
+            route = routeBeforeFit(triangles.best(),
                                    triangles.holds, std::nullopt);
     }
     std::optional<SimplifyPlan> plan;
@@ -370,63 +362,18 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
             plan->budget->derived = !options.budget;
             plan->budget->compressedReference = compressed;
             if (!options.cageOnly)
-                route = routeBeforeFit(bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
-                                                         triangles.gltfpack ? &*triangles.gltfpack : nullptr),
+                route = routeBeforeFit(triangles.best(),
                                        Holds::Part, fit::psnrFromLoss(plan->budget->chosen.monitorLoss));
         }
     }
     report.budget = plan ? plan->budget : std::nullopt;
 
     if (!route) {
-        if (scene.shading != render::ShadingModel::Geometry && plan->fit.appearanceAtlas == 0)
-            warnOfWhatTilesLeaveOut(options.fit.reference, reference, plan->budget.has_value(),
-                                    scene.shading == render::ShadingModel::MetallicRoughness);
-        const mesh::PolygonMesh cage = scene.cageWorld;
-        fit::FitRun run(plan->fit, programs, scene);
-        fitStages(run, out / "checkpoint.bin", options.fit.resume, hooks);
-        stages.lap("fit");
-
-        mesh::writeObj(staged.path() / "initial_cage.obj", cage);
-        report.fit = run.writeResults(staged.path(), *context);
-        if (report.budget) {
-            std::uintmax_t& bytes = report.fit->exports.at("asset.subd");
-            const std::uintmax_t fitted = bytes;
-            report.budget->shipped = shipWithinBudget(staged.path() / "asset.subd", bytes, report.budget->bytes,
-                                                      plan->fit.mapBits, plan->fit.appearanceQuality);
-            bytes = report.budget->shipped.bytes;
-            // The USD export follows asset.subd, where that was coded again.
-            if (fitted > report.budget->bytes) {
-                const nlohmann::json usd = fit::exportUsd(plan->fit, staged.path());
-                for (const auto& [name, usdBytes] : usd.items()) report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
-            }
-        }
-        stages.lap("exports");
-        report.subdfit = scoreCage(run, *report.fit, staged.path(), options);
-        stages.lap("metrics");
-        // With --faces alone, the triangle route is weighed at the cage's bytes.
-        if (!budget) {
-            triangles = triangleBaselines(programs, scene, report.subdfit.bytes, baselineSettings, options.compare);
-            stages.lap("triangle_route");
-        }
-        const TriangleChoice best = bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
-                                                      triangles.gltfpack ? &*triangles.gltfpack : nullptr);
-        report.route = options.cageOnly ? Route{.why = "--route cage"} : chooseRoute(report.subdfit, best);
-        if (report.route.shipped != "cage") {
-            report.cage = report.subdfit;
-            report.cage->shipped = "asset.subd";
-            report.subdfit = shipTriangles(best, staged.path());
-        }
-        if (options.compare == CompareLevel::Full) {
-            baselineSettings.segments = run.fitter().renderer().tessLevel();
-            report.bake = bakeBaseline(programs, scene, plan->bakeRoute, baselineSettings);
-            if (plan->budget) report.bake->details["over_budget"] = report.bake->bytes > plan->budget->bytes;
-            stages.lap("baseline_bake");
-        }
+        fitAndWeigh({options, hooks, programs, scene, reference, *context, staged.path(), baselineSettings, report}, *plan,
+                    triangles, budget);
     } else {
         report.route = *route;
-        report.subdfit = shipTriangles(bestTriangleRoute(triangles.decimation ? &*triangles.decimation : nullptr,
-                                                         triangles.gltfpack ? &*triangles.gltfpack : nullptr),
-                                       staged.path());
+        report.subdfit = shipTriangles(triangles.best(), staged.path());
     }
     report.decimation = std::move(triangles.decimation);
     report.gltfpack = std::move(triangles.gltfpack);
