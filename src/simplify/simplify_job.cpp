@@ -174,6 +174,57 @@ struct RunInputs {
     SimplifyReport& report;
 };
 
+// The bytes a run aims at: --budget as given; without one (and without --faces), derived from
+// the reference compressed.
+struct TargetBudget {
+    std::optional<std::uintmax_t> bytes;
+    std::uintmax_t compressedReference = 0;  // 0 unless derived
+};
+
+TargetBudget targetBudget(const SimplifyOptions& options, const fit::FitScene& scene, const std::filesystem::path& staged,
+                          const fit::FitHooks& hooks, StageSeconds& stages) {
+    if (options.budget || options.faces != 0) return {.bytes = options.budget};
+    const std::uintmax_t compressed = compressedReferenceBytes(scene, staged / "reference.glb");
+    const std::uintmax_t budget = defaultBudget(compressed);
+    if (hooks.note)
+        hooks.note("no --budget: " + std::to_string(budget) + " bytes (the reference compressed: " +
+                   std::to_string(compressed) + ")");
+    stages.lap("default_budget");
+    return {.bytes = budget, .compressedReference = compressed};
+}
+
+// What is known before any fit: the triangle route at the budget (what a cage must beat), and
+// either the route that ships without a cage tried or the cage's plan.
+struct PreFit {
+    TriangleBaselines triangles;
+    std::optional<Route> route;
+    std::optional<SimplifyPlan> plan;
+};
+
+PreFit decideBeforeFit(const SimplifyOptions& options, fit::FitOptions fitOptions, const TargetBudget& target,
+                       gl::ProgramCache& programs, fit::FitScene& scene, const mesh::PolygonMesh& reference,
+                       const BaselineSettings& baselines, const fit::FitHooks& hooks, StageSeconds& stages) {
+    PreFit decided;
+    const std::optional<std::uintmax_t>& budget = target.bytes;
+    if (budget) {
+        decided.triangles = triangleBaselines(programs, scene, *budget, baselines, options.compare);
+        stages.lap("triangle_route");
+        if (!options.cageOnly) decided.route = routeBeforeFit(decided.triangles.best(), decided.triangles.holds, std::nullopt);
+        if (decided.route) return decided;
+    }
+    decided.plan = budget ? planWithinBudget(options, *budget, std::move(fitOptions), programs, scene, reference, hooks.note)
+                          : planByFaces(options, std::move(fitOptions), scene, reference);
+    stages.lap(budget ? "search" : "initial_cage");
+    if (auto& planned = decided.plan->budget) {
+        planned->derived = !options.budget;
+        planned->compressedReference = target.compressedReference;
+        if (!options.cageOnly)
+            decided.route = routeBeforeFit(decided.triangles.best(), Holds::Part,
+                                           fit::psnrFromLoss(planned->chosen.monitorLoss));
+    }
+    return decided;
+}
+
 // Fits the plan's cage, writes its results into the staging folder, and weighs it against the
 // triangle route (made here at the cage's bytes when there is no budget): the better ships. With
 // --compare full, the bake route too.
@@ -329,51 +380,19 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     BaselineSettings baselineSettings{.dir = staged.path() / "baselines", .compactMaps = fitOptions.compactMaps,
                                       .surfaceSamples = options.surfaceSamples,
                                       .distance = options.compare == CompareLevel::Full};
-    // The budget: as given; without one (and without --faces), derived from the reference.
-    std::optional<std::uintmax_t> budget = options.budget;
-    std::uintmax_t compressed = 0;
-    if (!budget && options.faces == 0) {
-        compressed = compressedReferenceBytes(scene, staged.path() / "reference.glb");
-        budget = defaultBudget(compressed);
-        if (hooks.note)
-            hooks.note("no --budget: " + std::to_string(*budget) + " bytes (the reference compressed: " +
-                       std::to_string(compressed) + ")");
-        stages.lap("default_budget");
-    }
-
-    report.budgetBytes = budget.value_or(0);
-    report.budgetDerived = budget && !options.budget;
-    // The triangle route at the budget, before any cage: what a cage must beat.
-    TriangleBaselines triangles;
-    std::optional<Route> route;
-    if (budget) {
-        triangles = triangleBaselines(programs, scene, *budget, baselineSettings, options.compare);
-        stages.lap("triangle_route");
-        if (!options.cageOnly)
-            route = routeBeforeFit(triangles.best(),
-                                   triangles.holds, std::nullopt);
-    }
-    std::optional<SimplifyPlan> plan;
-    if (!route) {
-        plan = budget ? planWithinBudget(options, *budget, std::move(fitOptions), programs, scene, reference, hooks.note)
-                      : planByFaces(options, std::move(fitOptions), scene, reference);
-        stages.lap(budget ? "search" : "initial_cage");
-        if (plan->budget) {
-            plan->budget->derived = !options.budget;
-            plan->budget->compressedReference = compressed;
-            if (!options.cageOnly)
-                route = routeBeforeFit(triangles.best(),
-                                       Holds::Part, fit::psnrFromLoss(plan->budget->chosen.monitorLoss));
-        }
-    }
-    report.budget = plan ? plan->budget : std::nullopt;
-
-    if (!route) {
-        fitAndWeigh({options, hooks, programs, scene, reference, *context, staged.path(), baselineSettings, report}, *plan,
-                    triangles, budget);
-    } else {
-        report.route = *route;
+    const TargetBudget target = targetBudget(options, scene, staged.path(), hooks, stages);
+    report.budgetBytes = target.bytes.value_or(0);
+    report.budgetDerived = target.bytes && !options.budget;
+    PreFit decided = decideBeforeFit(options, std::move(fitOptions), target, programs, scene, reference, baselineSettings,
+                                     hooks, stages);
+    TriangleBaselines& triangles = decided.triangles;
+    report.budget = decided.plan ? decided.plan->budget : std::nullopt;
+    if (decided.route) {
+        report.route = *decided.route;
         report.subdfit = shipTriangles(triangles.best(), staged.path());
+    } else {
+        fitAndWeigh({options, hooks, programs, scene, reference, *context, staged.path(), baselineSettings, report},
+                    *decided.plan, triangles, target.bytes);
     }
     report.decimation = std::move(triangles.decimation);
     report.gltfpack = std::move(triangles.gltfpack);
