@@ -10,6 +10,9 @@
 #define SUBDFIT_SSBO_MOMENT1 4          // Adam m
 #define SUBDFIT_SSBO_MOMENT2 5          // Adam v
 #define SUBDFIT_SSBO_GRADIENT_SMOOTH 6  // preconditioned gradient (ping-pong partner of g)
+// Adam v shared by a whole group (shared_moment.comp). Shares θ+'s binding point: the update
+// passes never read θ±.
+#define SUBDFIT_SSBO_GROUP_MOMENT2 SUBDFIT_SSBO_THETA_PLUS
 
 // Subdivision tables (subdiv::PatchSet).
 #define SUBDFIT_SSBO_STENCIL_SOURCE 7   // control points the stencils read (θ, θ+ or θ−)

@@ -7,7 +7,7 @@
 layout(local_size_x = 256) in;
 
 layout(std430, binding = SUBDFIT_SSBO_GRADIENT_SMOOTH) readonly buffer Gradient { float gradient[]; };
-layout(std430, binding = SUBDFIT_SSBO_MOMENT2) buffer Moment2 { float moment2[]; };
+layout(std430, binding = SUBDFIT_SSBO_GROUP_MOMENT2) buffer GroupMoment2 { float groupMoment2; };
 
 uniform uint uCount;
 uniform float uBeta2;
@@ -27,5 +27,5 @@ void main() {
         if (lane < stride) partial[lane] += partial[lane + stride];
         barrier();
     }
-    if (lane == 0u) moment2[0] = mix(partial[0] / float(max(uCount, 1u)), moment2[0], uBeta2);
+    if (lane == 0u) groupMoment2 = mix(partial[0] / float(max(uCount, 1u)), groupMoment2, uBeta2);
 }

@@ -85,7 +85,7 @@ int runAccuracy(const AccuracyOptions& o) {
                 knob.apply(fit, value);
                 fit.out = o.out / "runs" / (asset.name + "_" + knob.name + "_" + std::to_string(value));
                 const auto report = fit::runFit(fit);
-                const auto decoded = exporter::decodeToGlb(fit.out / "asset.subd", fit.out / "decoded.glb", fit.tessLevel);
+                const auto decoded = exporter::decodeToGlb(fit.out / "asset.subd", fit.out / "decoded.glb", {.segments = fit.tessLevel});
                 const auto shipped = mesh::triangulated(mesh::loadMesh(decoded.path));
                 const double chamfer = geometry::surfaceDistance(shipped, asset.reference, 50000).chamferL2Squared;
                 const Result r{asset.name, knob.name, value, report.fitSeconds,

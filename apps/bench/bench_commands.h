@@ -30,7 +30,8 @@ int runStepCost(const StepCostOptions& options);
 
 struct LumpySphereOptions {
     std::filesystem::path out = "bench-lumpy-sphere";
-    int steps = 500;
+    int steps = fit::kByDevice;  // the device's cap: the plateau schedule stops the fit once converged
+    float noiseGate = fit::FitOptions{}.noiseGate;
     int resolution = 256;
     int views = 8;
     std::string glProvider = "auto";
@@ -68,6 +69,16 @@ struct RecoveryOptions {
     std::uint32_t noiseSeed = 11;
 };
 int runRecovery(const RecoveryOptions& options);
+
+struct FitGainOptions {
+    std::filesystem::path out = "bench-fit-gain";
+    std::filesystem::path cage, reference;  // a good start (e.g. simplify's initial_cage.obj) and its dense reference
+    int faces = 0;                          // > 0: start from simplify's initial cage of this many faces instead
+    fit::FitOptions fit;                    // common to every variant; with --maps, baked onto the cage first
+    std::vector<std::string> variants;      // "key=value;key=value" over fit (report.json's option keys)
+    int every = 10;                         // steps per turn (and between held-out scores)
+};
+int runFitGain(const FitGainOptions& options);
 
 struct MapsGainOptions {
     std::filesystem::path out = "bench-maps";

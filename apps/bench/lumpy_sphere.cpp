@@ -27,6 +27,7 @@ int runLumpySphere(const LumpySphereOptions& o) {
     fit.reference = o.out / "lumpy_sphere.obj";
     fit.out = o.out / "fit";
     fit.steps = o.steps;
+    fit.noiseGate = o.noiseGate;
     fit.resolution = o.resolution;
     fit.views = o.views;
     fit.glProvider = o.glProvider;
@@ -37,8 +38,8 @@ int runLumpySphere(const LumpySphereOptions& o) {
     const auto fitted = mesh::loadMesh(fit.out / "cage.obj");
     const auto after = geometry::surfaceDistance(surface::limitMesh(fitted, 8), reference);
 
-    std::printf("lumpy sphere: %d-face cage, %d-triangle reference, %d views at %d^2, %d steps\n", cage.faceCount(),
-                reference.faceCount(), o.views, o.resolution, report.steps);
+    std::printf("lumpy sphere: %d-face cage, %d-triangle reference, %d views at %d^2, %d steps (%s)\n", cage.faceCount(),
+                reference.faceCount(), o.views, o.resolution, report.steps, report.stopReason.c_str());
     std::printf("%-8s %14s %14s %12s\n", "", "chamfer L2^2", "mean dist", "hausdorff");
     std::printf("%-8s %14.3e %14.3e %12.3e\n", "before", before.chamferL2Squared, before.meanDistance, before.hausdorff);
     std::printf("%-8s %14.3e %14.3e %12.3e\n", "after", after.chamferL2Squared, after.meanDistance, after.hausdorff);

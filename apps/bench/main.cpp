@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
     subdfit::bench::LumpySphereOptions lumpy;
     auto* lumpyCommand = app.add_subcommand("lumpy-sphere", "fit a quad-sphere cage to a lumpy sphere (the peer's task)");
     lumpyCommand->add_option("--out", lumpy.out, "output folder")->capture_default_str();
-    lumpyCommand->add_option("--steps", lumpy.steps, "optimisation steps")->capture_default_str();
+    lumpyCommand->add_option("--steps", lumpy.steps, "most optimisation steps (default: the device's)");
+    lumpyCommand->add_option("--noise-gate", lumpy.noiseGate, "the fit's noise gate (0: plain Adam)")->capture_default_str();
     lumpyCommand->add_option("--res", lumpy.resolution, "resolution")->capture_default_str();
     lumpyCommand->add_option("--views", lumpy.views, "training views")->capture_default_str();
     subdfit::apps::addGlProvider(*lumpyCommand, lumpy.glProvider);
@@ -66,6 +67,16 @@ int main(int argc, char** argv) {
     mapsCommand->add_option("--map-res", mapsGain.mapResolution, "map cells per face edge")->capture_default_str();
     subdfit::apps::addGlProvider(*mapsCommand, mapsGain.glProvider);
 
+    subdfit::bench::FitGainOptions fitGain;
+    auto* fitGainCommand = app.add_subcommand("fit-gain", "a fit from a good start (a limit-fitted cage, baked maps): held-out dB gain against seconds, variant by variant");
+    fitGainCommand->add_option("--out", fitGain.out, "output folder")->capture_default_str();
+    fitGainCommand->add_option("--cage", fitGain.cage, "the starting cage (world units)");
+    fitGainCommand->add_option("--faces", fitGain.faces, "start from simplify's initial cage of about this many faces instead");
+    fitGainCommand->add_option("--reference", fitGain.reference, "the dense reference")->required();
+    fitGainCommand->add_option("--variant", fitGain.variants, "fit options over the common ones, \"key=value;key=value\" (report.json's keys); one run each");
+    fitGainCommand->add_option("--every", fitGain.every, "steps per turn")->capture_default_str();
+    subdfit::apps::addFitSettings(*fitGainCommand, fitGain.fit);
+
     subdfit::bench::AccuracyOptions accuracy;
     auto* accuracyCommand = app.add_subcommand("accuracy", "held-out PSNR and Chamfer against wall time, knob by knob");
     accuracyCommand->add_option("--out", accuracy.out, "output folder")->capture_default_str();
@@ -104,7 +115,8 @@ int main(int argc, char** argv) {
         const std::pair<CLI::App*, const std::filesystem::path*> outputs[] = {
             {stepCostCommand, &stepCost.out}, {lumpyCommand, &lumpy.out},       {mapsCommand, &mapsGain.out},
             {simplifyCommand, &tradeoff.out}, {gradientCommand, &gradient.out}, {accuracyCommand, &accuracy.out},
-            {soupCommand, &soup.out}, {convergenceCommand, &convergence.out}, {recoveryCommand, &recovery.out}};
+            {soupCommand, &soup.out}, {convergenceCommand, &convergence.out}, {recoveryCommand, &recovery.out},
+            {fitGainCommand, &fitGain.out}};
         for (const auto& [command, out] : outputs)
             if (command->parsed() && !out->empty()) subdfit::io::checkOutputFolder(*out, {.force = true});
         if (reliefCommand->parsed()) return subdfit::bench::runRelief(relief);
@@ -117,6 +129,7 @@ int main(int argc, char** argv) {
         if (soupCommand->parsed()) return subdfit::bench::runSoup(soup);
         if (convergenceCommand->parsed()) return subdfit::bench::runConvergence(convergence);
         if (recoveryCommand->parsed()) return subdfit::bench::runRecovery(recovery);
+        if (fitGainCommand->parsed()) return subdfit::bench::runFitGain(fitGain);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "subdfit-bench: error: %s\n", subdfit::apps::describeError(e).c_str());
         return 1;

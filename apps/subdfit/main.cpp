@@ -49,6 +49,7 @@ void printProgress(const subdfit::fit::Progress& p) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    subdfit::installStopSignals();  // first: a service may stop a run at any moment
     CLI::App app{"subdfit: fit Catmull-Clark cages (and maps) to renders of a reference"};
     app.require_subcommand(1);
 
@@ -74,23 +75,26 @@ int main(int argc, char** argv) {
     subdfit::apps::addSimplifySettings(*batchCommand, batchDefaults);
 
     std::filesystem::path decodeInput, decodeOut;
-    int decodeSegments = 0;
+    subdfit::exporter::DecodeDensity decodeDensity;
     auto* decodeCommand = app.add_subcommand("decode", "a shipped asset.subd back to triangles: the displaced limit surface as .glb");
     decodeCommand->add_option("file", decodeInput, "the .subd file")->required();
     decodeCommand->add_option("--out", decodeOut, "the .glb to write")->required();
-    decodeCommand->add_option("--tess", decodeSegments, "segments per face edge (default: the maps' sample density, 8 without maps)")
-        ->check(CLI::Range(1, 64));
+    auto* decodeTess = decodeCommand->add_option("--tess", decodeDensity.segments,
+                                                 "segments per face edge (default: the maps' sample density, 8 without maps)")
+                           ->check(CLI::Range(1, 64));
+    decodeCommand->add_option("--triangles", decodeDensity.triangles, "about this many triangles (the nearest segments per face edge)")
+        ->check(CLI::Range(std::uint64_t(1), subdfit::exporter::kMaxDecodeTriangles))
+        ->excludes(decodeTess);
 
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit")) return *exitCode;
 
-    subdfit::installStopSignals();
     const auto say = [](const char* who) {
         return [who](const std::string& line) { std::fprintf(stderr, "%s: %s\n", who, line.c_str()); };
     };
     try {
         const subdfit::fit::FitHooks hooks{.progress = printProgress, .cancel = &subdfit::stopRequest(), .note = say("subdfit")};
         if (decodeCommand->parsed()) {
-            const auto written = subdfit::exporter::decodeToGlb(decodeInput, decodeOut, decodeSegments);
+            const auto written = subdfit::exporter::decodeToGlb(decodeInput, decodeOut, decodeDensity);
             std::cout << written.path.string() << "\n";
         }
         if (fitCommand->parsed()) {

@@ -9,6 +9,7 @@
 #include "export/draco_encoding.h"
 #include "export/glb_container.h"
 #include "export/gltf_builder.h"
+#include "export/surface_mesh.h"
 #include "util/error.h"
 
 namespace subdfit::exporter {
@@ -25,7 +26,12 @@ void checkTessellation(const GltfMesh& tess) {
 
 // The material, and the textures it names in `doc` (images in buffer views of `binary`).
 json material(const FittedTextures& t, json& doc, BinaryBuilder& binary) {
-    json pbr = {{"baseColorFactor", {0.5, 0.5, 0.5, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}};
+    const SurfaceMaterial factors = surfaceMaterial({.baseColor = !t.baseColorPng.empty(),
+                                                     .metallicRoughness = !t.metallicRoughnessPng.empty(),
+                                                     .emissive = !t.emissivePng.empty()});
+    json pbr = {{"baseColorFactor", factors.baseColorFactor},
+                {"metallicFactor", factors.metallicFactor},
+                {"roughnessFactor", factors.roughnessFactor}};
     json m = {{"name", "subdfit"}};
     auto texture = [&](const std::vector<unsigned char>& png, const char* name) {
         const int view = binary.addView(png);
@@ -40,11 +46,8 @@ json material(const FittedTextures& t, json& doc, BinaryBuilder& binary) {
         return json{{"index", doc["textures"].size() - 1}};
     };
     if (!t.baseColorPng.empty()) {
-        pbr["baseColorFactor"] = {1.0, 1.0, 1.0, 1.0};
         pbr["baseColorTexture"] = texture(t.baseColorPng, "base_color");
-        pbr["roughnessFactor"] = 1.0;
         if (!t.metallicRoughnessPng.empty()) {
-            pbr["metallicFactor"] = 1.0;
             pbr["metallicRoughnessTexture"] = texture(t.metallicRoughnessPng, "metallic_roughness");
             if (t.occlusionInMetallicRoughness) m["occlusionTexture"] = pbr["metallicRoughnessTexture"];
         }
@@ -52,7 +55,7 @@ json material(const FittedTextures& t, json& doc, BinaryBuilder& binary) {
     if (!t.normalPng.empty()) m["normalTexture"] = texture(t.normalPng, "normal");
     if (!t.emissivePng.empty()) {
         m["emissiveTexture"] = texture(t.emissivePng, "emissive");
-        m["emissiveFactor"] = {1.0, 1.0, 1.0};
+        m["emissiveFactor"] = factors.emissiveFactor;
     }
     m["pbrMetallicRoughness"] = pbr;
     return m;

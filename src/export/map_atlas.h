@@ -7,6 +7,10 @@
 // interpolates exactly the four nodes surface::sampleBilinear would, and never reaches a
 // neighbouring tile (no mips: each tile is a separate chart). Shared border nodes are simply
 // written into every tile that uses them.
+//
+// The encoders (encodePng, encodeNormalPng, encodeAppearancePng, writeMapAtlases) are in
+// map_images.cpp, through OpenImageIO; the layout and pixels in map_atlas.cpp, which the web
+// decoder (apps/web) compiles too.
 #include <cstdint>
 #include <filesystem>
 #include <span>

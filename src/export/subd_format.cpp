@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <tuple>
 
 #include "export/atlas_uv_coding.h"
@@ -16,6 +17,7 @@
 #include "export/cage_coding.h"
 #include "export/map_atlas.h"
 #include "export/node_coding.h"
+#include "io/image_header.h"
 #include "io/image_io.h"
 #include "io/input_file.h"
 #include "mesh/input_limits.h"
@@ -196,8 +198,9 @@ void writeAppearance(const surface::SurfaceMaps& maps, AppearanceImage which, in
     out.putBytes({jpeg.data(), jpeg.size()});
 }
 
-// Reads an appearance image into `maps` (its lattice built on the first).
-void readAppearance(ByteReader& in, const mesh::PolygonMesh& cage, AppearanceImage which, surface::SurfaceMaps& maps) {
+// An appearance image's section: its lattice (built on the first), its coding and its JPEG,
+// whose header must give the size of the lattice's atlas.
+ShippedImage readAppearance(ByteReader& in, const mesh::PolygonMesh& cage, AppearanceImage which, surface::SurfaceMaps& maps) {
     surface::TexelLayout& layout = maps.appearanceLayout;
     if (maps.appearanceAtlas.present() && layout.resolution == 0) layout = surface::atlasLattice(maps.appearanceAtlas.size);
     readLattice(in, cage, layout);
@@ -206,21 +209,45 @@ void readAppearance(ByteReader& in, const mesh::PolygonMesh& cage, AppearanceIma
     if (coding != kJpegCoding && !occlusion) throw Error(in.what() + ": unknown appearance coding");
     const auto bytes = in.take(in.getCount(1, "image byte"));
     const AtlasLayout atlas = atlasLayout(layout);
-    const io::DecodedImage image = io::decodeImage(bytes.data(), bytes.size(), in.what());
-    if (image.width != atlas.width || image.height != atlas.height)
-        throw Error(in.what() + ": the image is " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+    const std::optional<io::ImageSize> size = io::jpegSize(bytes);
+    if (!size) throw Error(in.what() + ": not a JPEG image");
+    if (size->width != atlas.width || size->height != atlas.height)
+        throw Error(in.what() + ": the image is " + std::to_string(size->width) + " x " + std::to_string(size->height) +
                     ", the atlas " + std::to_string(atlas.width) + " x " + std::to_string(atlas.height));
+    return {.which = which, .occlusion = occlusion, .width = size->width, .height = size->height,
+            .bytes = {bytes.begin(), bytes.end()}};
+}
+
+Tag tagOf(AppearanceImage which) {
+    switch (which) {
+        case AppearanceImage::BaseColor: return kBaseColor;
+        case AppearanceImage::MetallicRoughness: return kMetallicRoughness;
+        case AppearanceImage::NormalTexture: return kNormalTexture;
+        case AppearanceImage::Emissive: return kEmissive;
+    }
+    throw Error("unknown appearance image");
+}
+
+// A shipped image's pixels as the node values of its kind in `maps` (whose appearance lattice
+// the reader built); `what` names its section in errors.
+void decodeAppearance(const ShippedImage& shipped, const std::string& what, surface::SurfaceMaps& maps) {
+    const io::DecodedImage image = io::decodeImage(shipped.bytes.data(), shipped.bytes.size(), what);
+    if (image.width != shipped.width || image.height != shipped.height)
+        throw Error(what + ": the image decodes to " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                    ", its header says " + std::to_string(shipped.width) + " x " + std::to_string(shipped.height));
+    const surface::TexelLayout& layout = maps.appearanceLayout;
     std::vector<std::uint8_t> rgb(size_t(image.width) * size_t(image.height) * 3);
     for (size_t p = 0; p < rgb.size() / 3; ++p)
         for (int c = 0; c < 3; ++c) rgb[3 * p + size_t(c)] = image.rgba[4 * p + size_t(c)];
-    std::vector<float> values = nodesFromAppearancePixels(atlas, layout, rgb, which);
-    switch (which) {
+    const AtlasLayout atlas = atlasLayout(layout);
+    std::vector<float> values = nodesFromAppearancePixels(atlas, layout, rgb, shipped.which);
+    switch (shipped.which) {
         case AppearanceImage::BaseColor: maps.baseColor = std::move(values); break;
         case AppearanceImage::MetallicRoughness: maps.metallicRoughness = std::move(values); break;
         case AppearanceImage::NormalTexture: maps.normalTexture = std::move(values); break;
         case AppearanceImage::Emissive: maps.emissive = std::move(values); break;
     }
-    if (occlusion) maps.occlusion = occlusionFromPixels(atlas, layout, rgb);
+    if (shipped.occlusion) maps.occlusion = occlusionFromPixels(atlas, layout, rgb);
 }
 
 void putSection(ByteWriter& file, const Tag& tag, const std::vector<unsigned char>& raw) {
@@ -290,7 +317,7 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
     return std::move(file.bytes());
 }
 
-SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& name) {
+ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::string& name) {
     if (bytes.size() < 4 || std::memcmp(bytes.data(), kMagic, 4) != 0) throw Error(name + ": not a .subd file");
     if (bytes.size() < 20) throw Error(name + ": truncated");
     ByteReader header(bytes, name);
@@ -311,7 +338,8 @@ SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& na
     const auto count = in.get<std::uint32_t>();
     if (count < 1 || count > kMostSections) throw Error(name + ": " + std::to_string(count) + " sections");
 
-    SubdAsset asset;
+    ShippedSubd shipped;
+    SubdAsset& asset = shipped.asset;
     std::vector<Tag> seen;
     for (std::uint32_t k = 0; k < count; ++k) {
         Tag tag;
@@ -337,23 +365,35 @@ SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& na
             if (version == 4)
                 throw Error(name + ": .subd version 4 atlas coordinates (a development format); simplify the asset again");
             asset.maps.appearanceAtlas = readAtlasUvs(section, asset.cage);
-        } else if (tag == kBaseColor) readAppearance(section, asset.cage, AppearanceImage::BaseColor, asset.maps);
-        else if (tag == kMetallicRoughness) readAppearance(section, asset.cage, AppearanceImage::MetallicRoughness, asset.maps);
-        else if (tag == kNormalTexture) {
+        } else if (tag == kBaseColor) {
+            shipped.images.push_back(readAppearance(section, asset.cage, AppearanceImage::BaseColor, asset.maps));
+        } else if (tag == kMetallicRoughness) {
+            shipped.images.push_back(readAppearance(section, asset.cage, AppearanceImage::MetallicRoughness, asset.maps));
+        } else if (tag == kNormalTexture) {
             if (!asset.maps.appearanceAtlas.present()) throw Error(name + ": section " + tagName(tag) + " without AUVS");
-            readAppearance(section, asset.cage, AppearanceImage::NormalTexture, asset.maps);
-        } else if (tag == kEmissive) readAppearance(section, asset.cage, AppearanceImage::Emissive, asset.maps);
-        else throw Error(name + ": unknown section " + tagName(tag));
+            shipped.images.push_back(readAppearance(section, asset.cage, AppearanceImage::NormalTexture, asset.maps));
+        } else if (tag == kEmissive) {
+            shipped.images.push_back(readAppearance(section, asset.cage, AppearanceImage::Emissive, asset.maps));
+        } else throw Error(name + ": unknown section " + tagName(tag));
         if (section.remaining() != 0) throw Error(section.what() + ": trailing bytes");
     }
     if (in.remaining() != 0) throw Error(name + ": trailing bytes after the sections");
-    if (asset.maps.appearanceAtlas.present() && !asset.maps.hasBaseColor() && !asset.maps.hasMetallicRoughness())
-        throw Error(name + ": atlas coordinates without an appearance");
+    const bool appearance = std::any_of(shipped.images.begin(), shipped.images.end(), [](const ShippedImage& image) {
+        return image.which == AppearanceImage::BaseColor || image.which == AppearanceImage::MetallicRoughness;
+    });
+    if (asset.maps.appearanceAtlas.present() && !appearance) throw Error(name + ": atlas coordinates without an appearance");
     if (flags & kLimitShadingFlag) {
         if (!asset.maps.hasDisplacement()) throw Error(name + ": limit shading flagged without a displacement");
         asset.maps.shadingNormal = surface::ShadingNormal::Limit;
     }
-    return asset;
+    return shipped;
+}
+
+SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& name) {
+    ShippedSubd shipped = readShippedSubd(bytes, name);
+    for (const ShippedImage& image : shipped.images)
+        decodeAppearance(image, name + ": " + tagName(tagOf(image.which)) + " section", shipped.asset.maps);
+    return std::move(shipped.asset);
 }
 
 WrittenFile writeSubd(const std::filesystem::path& path, const SubdAsset& asset, const SubdPrecision& precision) {

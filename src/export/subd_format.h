@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "export/map_atlas.h"
 #include "export/output_file.h"
 #include "mesh/polygon_mesh.h"
 #include "surface/surface_maps.h"
@@ -42,6 +43,28 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
 // `name` names the data in errors. Throws subdfit::Error ("name: problem") for anything that is
 // not a whole, checksummed version-3, 4 or 5 file whose cage and maps are sound.
 SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& name);
+
+// An appearance image (BCOL, MTRG, NTEX, EMIS) as the file carries it, still encoded: its size is
+// read from its header and checked against its lattice's atlas, its pixels are not decoded.
+struct ShippedImage {
+    AppearanceImage which = AppearanceImage::BaseColor;
+    bool occlusion = false;  // a metallic-roughness image whose red channel is the occlusion
+    int width = 0, height = 0;
+    const char* mimeType = "image/jpeg";
+    std::vector<unsigned char> bytes;
+};
+
+// A .subd file read whole but for its appearance images' pixels: the cage, the geometric maps,
+// the appearance's lattice and atlas coordinates (no appearance values), and the images.
+struct ShippedSubd {
+    SubdAsset asset;
+    std::vector<ShippedImage> images;  // in the file's order, each kind at most once
+};
+
+// What decodeSubd reads before it decodes the images (with OpenImageIO): the one reader of the
+// format, shared with the web decoder (apps/web), which leaves the images to the browser.
+// Throws subdfit::Error as decodeSubd.
+ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::string& name);
 
 WrittenFile writeSubd(const std::filesystem::path& path, const SubdAsset& asset, const SubdPrecision& precision = {});
 SubdAsset readSubd(const std::filesystem::path& path);

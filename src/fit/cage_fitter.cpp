@@ -221,7 +221,8 @@ void CageFitter::setVertices(const std::vector<glm::vec3>& positions) {
 CageFitter::State CageFitter::state() {
     State state{.steps = steps_, .samples = samples_};
     for (auto* g : groups())
-        state.groups.push_back({g->theta.read<float>(), g->moment1.read<float>(), g->moment2.read<float>(), g->adamSteps});
+        state.groups.push_back({g->theta.read<float>(), g->moment1.read<float>(), g->moment2.read<float>(),
+                                g->groupMoment2.read<float>().at(0), g->adamSteps});
     state.learningRateScale = scaleOverride_.value_or(-1.0f);
     state.mapsStartStep = mapsStartOverride_.value_or(-1);
     return state;
@@ -243,6 +244,7 @@ void CageFitter::restore(const State& state) {
         g.theta.upload(saved.theta.data(), bytes);
         g.moment1.upload(saved.moment1.data(), bytes);
         g.moment2.upload(saved.moment2.data(), bytes);
+        g.groupMoment2.upload(&saved.groupMoment2, sizeof(float));
         g.adamSteps = saved.adamSteps;
     }
     steps_ = state.steps;

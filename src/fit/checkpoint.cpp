@@ -13,7 +13,7 @@ namespace subdfit::fit {
 namespace {
 
 // The last byte is the format version: a reader refuses any other.
-constexpr std::string_view kMagic{"SDFTCKP5", 8};
+constexpr std::string_view kMagic{"SDFTCKP6", 8};
 constexpr std::string_view kMagicFamily{"SDFTCKP", 7};
 
 class Writer {
@@ -26,9 +26,11 @@ public:
         put<std::uint64_t>(data.size());
         bytes_.append(data);
     }
-    void putFloats(const std::vector<float>& values) {
-        putBytes({reinterpret_cast<const char*>(values.data()), values.size() * sizeof(float)});
+    template <class T>
+    void putArray(const std::vector<T>& values) {
+        putBytes({reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T)});
     }
+    void putFloats(const std::vector<float>& values) { putArray(values); }
     // The payload followed by its checksum.
     std::string finish() && {
         put<std::uint64_t>(hash64(bytes_));
@@ -52,13 +54,15 @@ public:
         return value;
     }
     std::string_view getBytes() { return take(get<std::uint64_t>()); }
-    std::vector<float> getFloats() {
+    template <class T>
+    std::vector<T> getArray() {
         const std::string_view bytes = getBytes();
-        if (bytes.size() % sizeof(float) != 0) damaged("a float array of " + std::to_string(bytes.size()) + " bytes");
-        std::vector<float> values(bytes.size() / sizeof(float));
+        if (bytes.size() % sizeof(T) != 0) damaged("an array of " + std::to_string(bytes.size()) + " bytes");
+        std::vector<T> values(bytes.size() / sizeof(T));
         std::memcpy(values.data(), bytes.data(), bytes.size());
         return values;
     }
+    std::vector<float> getFloats() { return getArray<float>(); }
     bool atEnd() const { return rest_.empty(); }
     [[noreturn]] void damaged(const std::string& what) const {
         throw fileError(path_, "damaged checkpoint (" + what + "); remove it to start over");
@@ -90,6 +94,7 @@ void writeCheckpoint(const std::filesystem::path& path, const std::string& finge
         out.putFloats(group.theta);
         out.putFloats(group.moment1);
         out.putFloats(group.moment2);
+        out.put<float>(group.groupMoment2);
     }
     out.put<float>(state.learningRateScale);
     out.put<std::int32_t>(state.mapsStartStep);
@@ -97,10 +102,15 @@ void writeCheckpoint(const std::filesystem::path& path, const std::string& finge
     const ScheduleState& schedule = state.schedule;
     out.put<double>(schedule.bestLoss);
     out.put<std::int32_t>(schedule.bestStep);
-    out.put<std::int32_t>(schedule.sinceImprovement);
+    out.putArray(schedule.window);
+    out.putArray(schedule.stageLosses);
+    out.put<std::int32_t>(schedule.stageStart);
+    out.put<std::uint8_t>(schedule.probationOver ? 1 : 0);
     out.put<std::int32_t>(schedule.halvings);
     out.put<std::uint32_t>(std::uint32_t(schedule.bestTheta.size()));
     for (const auto& theta : schedule.bestTheta) out.putFloats(theta);
+    out.put<std::uint32_t>(std::uint32_t(schedule.startTheta.size()));
+    for (const auto& theta : schedule.startTheta) out.putFloats(theta);
     io::writeTextAtomically(path, std::move(out).finish());
 }
 
@@ -135,6 +145,7 @@ std::optional<FitState> readCheckpoint(const std::filesystem::path& path, const 
         group.theta = in.getFloats();
         group.moment1 = in.getFloats();
         group.moment2 = in.getFloats();
+        group.groupMoment2 = in.get<float>();
         state.groups.push_back(std::move(group));
     }
     state.learningRateScale = in.get<float>();
@@ -144,11 +155,17 @@ std::optional<FitState> readCheckpoint(const std::filesystem::path& path, const 
     ScheduleState& schedule = state.schedule;
     schedule.bestLoss = in.get<double>();
     schedule.bestStep = in.get<std::int32_t>();
-    schedule.sinceImprovement = in.get<std::int32_t>();
+    schedule.window = in.getArray<double>();
+    schedule.stageLosses = in.getArray<double>();
+    schedule.stageStart = in.get<std::int32_t>();
+    schedule.probationOver = in.get<std::uint8_t>() != 0;
     schedule.halvings = in.get<std::int32_t>();
     const auto bestGroups = in.get<std::uint32_t>();
     if (bestGroups > groups) in.damaged("bad best-state group count");
     for (std::uint32_t k = 0; k < bestGroups; ++k) schedule.bestTheta.push_back(in.getFloats());
+    const auto startGroups = in.get<std::uint32_t>();
+    if (startGroups > groups) in.damaged("bad start-state group count");
+    for (std::uint32_t k = 0; k < startGroups; ++k) schedule.startTheta.push_back(in.getFloats());
     if (!in.atEnd()) in.damaged("bytes after the schedule");
     return state;
 }

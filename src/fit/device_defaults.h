@@ -13,8 +13,10 @@ namespace subdfit::fit {
 struct DeviceDefaults {
     int views, resolution, steps;
 };
-inline constexpr DeviceDefaults kSoftwareDefaults{.views = 24, .resolution = 256, .steps = 500};
-inline constexpr DeviceDefaults kGpuDefaults{.views = 48, .resolution = 512, .steps = 2000};
+// `steps` is a cap, not a plan: the plateau schedule ends a fit once it has converged (or, from
+// a start it cannot improve on, after its probation), so the cap only has to be generous.
+inline constexpr DeviceDefaults kSoftwareDefaults{.views = 24, .resolution = 256, .steps = 4000};
+inline constexpr DeviceDefaults kGpuDefaults{.views = 48, .resolution = 512, .steps = 20000};
 
 // True unless GL_RENDERER names a software rasterizer (llvmpipe, softpipe, swrast, ...).
 bool isHardwareRenderer(const std::string& renderer);

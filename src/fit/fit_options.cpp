@@ -22,7 +22,7 @@ const std::vector<OptionRow>& optionTable() {
         {{"holdout_views", "--holdout-views", "held-out evaluation views", 1, 256, false, true, true}, &F::holdoutViews},
         {{"resolution", "--res", "render resolution in pixels (default: 256, 512 on a GPU)", 16, 4096, false, true, true, true},
          &F::resolution},
-        {{"steps", "--steps", "optimisation steps, the most with --schedule plateau (default: 500, 2000 on a GPU)", 0, 1e9,
+        {{"steps", "--steps", "optimisation steps, the most with --schedule plateau, which stops once converged (default: 4000, 20000 on a GPU)", 0, 1e9,
           false, false, true, true},
          &F::steps},
         {{"views_per_step", "--views-per-step", "views rendered per step", 1, 1024, false, true, true}, &F::viewsPerStep},
@@ -36,6 +36,10 @@ const std::vector<OptionRow>& optionTable() {
          &F::learningRate},
         {{"smoothing", "--smoothing", "Laplacian preconditioner λ (0 = off); on cages with edges under 1/4 of the scene radius, x (1/4 / edge)^2", 0, 1e6, false, true, true},
          &F::smoothing},
+        {{"noise_gate", "--noise-gate",
+          "noise gate c: a parameter's step shrinks to 0 as its mean gradient falls to c times its noise (0 = plain Adam)",
+          0, 100, false, true, true},
+         &F::noiseGate},
         {{"relaxation", "--relax", "tangential relaxation of the cage per step (0 = off)", 0, 1, false, true, true},
          &F::relaxation},
         {{"tangential", "--tangential", "fraction of the vertex gradient along the surface kept (1 = all)", 0, 1,
@@ -117,6 +121,25 @@ std::string optionFlag(const std::string& key) {
     for (const auto& row : detail::optionTable())
         if (key == row.info.key) return row.info.flag;
     return "";
+}
+
+void setOption(FitOptions& options, const std::string& key, const std::string& value) {
+    bool found = false;
+    forEachOption(options, [&](const OptionInfo& info, auto& field) {
+        using T = std::decay_t<decltype(field)>;
+        if (key != info.key) return;
+        found = true;
+        try {
+            if constexpr (std::is_same_v<T, bool>) field = value == "1" || value == "true";
+            else if constexpr (std::is_same_v<T, std::string>) field = value;
+            else if constexpr (std::is_same_v<T, maps::MapEffects>) field = maps::parseMapEffects(value);
+            else if constexpr (std::is_same_v<T, float>) field = std::stof(value);
+            else field = T(std::stoll(value));
+        } catch (const std::exception&) {
+            throw OptionError(key, "cannot read '" + value + "'");
+        }
+    });
+    if (!found) throw OptionError(key, "is not a fit option");
 }
 
 void validate(const FitOptions& o) {

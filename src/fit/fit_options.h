@@ -24,7 +24,7 @@ inline constexpr int kByDevice = -1;
 
 struct FitOptions {
     std::filesystem::path cage, reference, out;
-    // By the device unless given (fit/device_defaults.h): 24 views at 256², at most 500 steps on
+    // By the device unless given (fit/device_defaults.h): 24 views at 256², at most 4000 steps on
     // a software rasterizer; more of each on a hardware GPU, where a step costs little.
     int views = kByDevice;   // training views (held-out views come in addition)
     int holdoutViews = 6;
@@ -40,6 +40,9 @@ struct FitOptions {
     float epsilon = 0.08f;
     float learningRate = 0.15f;
     float smoothing = 4.0f;       // λ of the Laplacian preconditioner (0: off)
+    // c of every group's noise gate (optim::GroupSettings::noiseGate): a parameter whose running
+    // gradient is within c times its expected noise of 0 barely moves; 0: plain Adam.
+    float noiseGate = 0.0f;
     float relaxation = 0.0f;      // tangential relaxation of the cage per vertex update (0: off)
     float tangential = 1.0f;      // fraction of the vertex gradient's tangential part kept
     std::string glProvider = "auto";
@@ -104,6 +107,10 @@ void forEachOption(Options& options, Visitor&& visit) {
 
 // The flag of an option key ("" when it has none).
 std::string optionFlag(const std::string& key);
+
+// Sets the option `key` (report.json's name) from text, e.g. ("noise_gate", "2"). Throws
+// OptionError for an unknown key or a value that does not parse; ranges are validate()'s.
+void setOption(FitOptions& options, const std::string& key, const std::string& value);
 
 // Throws OptionError for anything out of range, before any work. Options still kByDevice pass.
 void validate(const FitOptions& options);

@@ -33,6 +33,8 @@ nlohmann::json toJson(const FitReport& r) {
         {"psnr_train", r.trainAfter.psnr},
         {"psnr_holdout_initial", r.holdoutBefore.psnr},
         {"psnr_holdout", r.holdoutAfter.psnr},
+        // How the held-out views are scored: each pixel the mean of this many samples (anti-aliased).
+        {"holdout_samples_per_pixel", r.holdoutSamplesPerPixel},
         {"finite", r.finite},
         {"effects", effects},
         {"parameters", parameters},

@@ -27,6 +27,7 @@ struct FitReport {
     double seconds = 0.0;        // the whole run: scene, fit, scoring
     double fitSeconds = 0.0;     // the steps alone
     ViewSetScore trainBefore, trainAfter, holdoutBefore, holdoutAfter;
+    int holdoutSamplesPerPixel = 1;  // the held-out targets' supersampling, squared
     bool finite = true;          // every parameter of every group
     maps::MapEffects effects;
     std::vector<std::pair<std::string, int>> parameters;  // per group: name, count
@@ -37,7 +38,7 @@ struct FitReport {
     std::string glProvider;
     std::vector<gl::ProgramVariant> shaderVariants;  // every program the run compiled
     std::map<std::string, std::uintmax_t> exports;   // file name -> bytes
-    std::string stopReason = "steps";  // steps, converged or interrupted
+    std::string stopReason = "steps";  // steps, converged, no_gain or interrupted
     int bestStep = -1;                 // the step whose parameters were kept (plateau schedule)
 
     bool interrupted() const { return stopReason == "interrupted"; }

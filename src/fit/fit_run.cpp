@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "fit/asset_export.h"
 #include "fit/checkpoint.h"
@@ -37,9 +38,9 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 std::vector<glm::vec4> renderHoldout(CageFitter& fitter, const FitScene& scene) {
-    render::RenderTarget image(scene.holdout.resolution(), scene.holdout.resolution());
-    fitter.render(scene.holdout.camera(0), image);
-    return image.readColor();
+    return scene.holdout.render(0, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
+        fitter.render(camera, canvas);
+    });
 }
 
 // Every parameter of every group, maps included.
@@ -66,6 +67,7 @@ const char* toString(StopReason reason) {
     switch (reason) {
         case StopReason::Reached: return "steps";
         case StopReason::Converged: return "converged";
+        case StopReason::NoGain: return "no_gain";
         case StopReason::Cancelled: return "interrupted";
     }
     return "steps";
@@ -77,7 +79,7 @@ FitRun::FitRun(const FitOptions& options, gl::ProgramCache& programs, FitScene& 
       scene_(scene),
       fitter_(std::make_unique<CageFitter>(programs, scene.cage, fitSettings(options, scene.cage, scene.shading))),
       fingerprint_(checkpointFingerprint(options, scene.cage, scene.reference)),
-      monitorEvery_(std::max(5, options.steps / 50)),
+      monitorEvery_(std::clamp(options.steps / 50, 5, 10)),
       started_(Clock::now()) {
     scoreStart();
 }
@@ -132,11 +134,13 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
     const bool plateau = options_.schedule == "plateau";
     StepSchedule schedule(schedule_);
     // The schedule judges a step by its loss on the monitor views, the start included: the
-    // kept state is never worse than where the stage began.
-    auto monitor = [&] {
+    // kept state is never worse than where the stage began. Returns why the stage ends, if it does.
+    auto monitor = [&]() -> std::optional<StopReason> {
         const double monitorLoss = score(*fitter_, scene_.monitor).loss;
+        const bool first = schedule_.stageStart < 0;
         const StepSchedule::Decision decision = schedule.record(monitorLoss, step());
         if (decision.best) schedule_.bestTheta = readTheta(*fitter_);
+        if (first) schedule_.startTheta = readTheta(*fitter_);
         if (decision.action == StepSchedule::Action::Halve) {
             // Clearly worse than the best (not only noisier): back to the best state, with the
             // smaller step. A start that was already close (a limit-interpolated cage, baked
@@ -145,7 +149,23 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
             if (monitorLoss > kRestoreAbove * schedule_.bestLoss) restoreBest();
             fitter_->setLearningRateScale(schedule.learningRateScale());
         }
-        return decision.action;
+        if (!schedule_.probationOver && step() - schedule_.stageStart >= probationSteps()) {
+            schedule_.probationOver = true;
+            if (!schedule.paying()) {
+                // A best found on probation is the noise's pick (the monitor views are few):
+                // the stage ends where it started, never below it on other views.
+                schedule_.bestTheta = schedule_.startTheta;
+                schedule_.bestLoss = schedule_.stageLosses.front();
+                schedule_.bestStep = schedule_.stageStart;
+                restoreBest();
+                if (hooks.note)
+                    hooks.note("no gain on the start in " + std::to_string(step() - schedule_.stageStart) +
+                               " steps, and none likely: the stage stops (stop_reason no_gain)");
+                return StopReason::NoGain;
+            }
+        }
+        if (decision.action == StepSchedule::Action::Converged) return StopReason::Converged;
+        return std::nullopt;
     };
     if (plateau && schedule_.bestStep < 0) {
         fitter_->setLearningRateScale(schedule.learningRateScale());
@@ -165,10 +185,12 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
             const double eta = seconds / double(taken - first) * double(options_.steps - taken);
             hooks.progress({taken, options_.steps, fitter_->takeMeanLoss(), seconds, eta});
         }
-        if (plateau && taken % monitorEvery_ == 0 && monitor() == StepSchedule::Action::Converged) {
-            stopReason_ = StopReason::Converged;
-            break;
-        }
+        // On probation the monitor looks more often: a start that cannot pay is let go early.
+        if (plateau && taken % (schedule_.probationOver ? monitorEvery_ : kProbationEvery) == 0)
+            if (const auto ended = monitor()) {
+                stopReason_ = *ended;
+                break;
+            }
         if (taken % options_.checkpointEvery == 0) saveCheckpoint(checkpoint);
     }
     saveCheckpoint(checkpoint);
@@ -194,13 +216,20 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
     StopReason last = runTo(options_.steps, checkpoint, hooks);
     if (last == StopReason::Cancelled) return last;
     endStage();
-    if (!resumedWidened && fitter_->maps() && last == StopReason::Converged && step() < options_.steps && widen &&
+    const bool stalled = last == StopReason::Converged || last == StopReason::NoGain;
+    if (!resumedWidened && fitter_->maps() && stalled && step() < options_.steps && widen &&
         widen()) {
         widenedStep_ = step();
         last = runTo(options_.steps, checkpoint, hooks);
         if (last != StopReason::Cancelled) endStage();
     }
     return last;
+}
+
+int FitRun::probationSteps() const {
+    const int stageSteps = options_.steps - std::max(0, schedule_.stageStart);
+    const int share = int(std::ceil(kProbation * stageSteps));
+    return std::max(2 * kProbationEvery, std::min(share, kProbationMeasurements * kProbationEvery));
 }
 
 void FitRun::restoreBest() {
@@ -229,6 +258,7 @@ FitReport FitRun::writeResults(const std::filesystem::path& out, const context::
     const auto afterImage = renderHoldout(*fitter_, scene_);
     r.trainAfter = score(*fitter_, scene_.training);
     r.holdoutAfter = score(*fitter_, scene_.holdout);
+    r.holdoutSamplesPerPixel = scene_.holdout.supersampling() * scene_.holdout.supersampling();
     r.finite = allFinite(*fitter_);
     r.effects = fitter_->maps() ? fitter_->maps()->effects() : maps::MapEffects{};
     for (auto* group : fitter_->groups()) r.parameters.emplace_back(group->name(), group->count());

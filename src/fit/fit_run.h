@@ -35,8 +35,9 @@ struct FitHooks {
 // fitter lacks, or values the maps lack, are left alone).
 void writeMaps(CageFitter& fitter, const surface::SurfaceMaps& maps);
 
-// Why a run of steps ended.
-enum class StopReason { Reached, Converged, Cancelled };
+// Why a run of steps ended: its step count; the schedule found it converged; its probation
+// found it could not improve on its start (FitRun::runTo); the user stopped it.
+enum class StopReason { Reached, Converged, NoGain, Cancelled };
 const char* toString(StopReason reason);
 
 class FitRun {
@@ -55,7 +56,9 @@ public:
     void saveCheckpoint(const std::filesystem::path& checkpoint);
 
     int step() const { return fitter_->stepsTaken(); }
-    bool done() const { return step() >= options_.steps || stopReason_ == StopReason::Converged; }
+    bool done() const {
+        return step() >= options_.steps || stopReason_ == StopReason::Converged || stopReason_ == StopReason::NoGain;
+    }
     StopReason stopReason() const { return stopReason_; }
 
     // One step: its views, its perturbation samples, the update. With `measureLoss` the step also
@@ -64,8 +67,12 @@ public:
     float takeMeanLoss() { return fitter_->takeMeanLoss(); }
 
     // Steps until `until` (clamped to the planned steps), until the schedule says the stage has
-    // converged (options.schedule "plateau"), or until hooks.cancel: progress about 50 times a
-    // run, a checkpoint every options.checkpointEvery steps and at the end.
+    // converged (options.schedule "plateau"), until its probation says it cannot pay (its first
+    // kProbation of the stage's steps, or kProbationMeasurements intervals of kProbationEvery
+    // steps if fewer, brought no gain and make none likely: seconds spent for nothing), or until hooks.cancel:
+    // progress about 50 times a run, a checkpoint every options.checkpointEvery steps and at the end.
+    static constexpr double kProbation = 0.15;
+    static constexpr int kProbationMeasurements = 5, kProbationEvery = 5;
     StopReason runTo(int until, const std::filesystem::path& checkpoint, const FitHooks& hooks = {});
 
     // The end of a stage: back to the best monitored parameters, if the last are not (so a fit
@@ -109,6 +116,7 @@ private:
     int bestStep_ = -1;  // of the last stage ended
     int widenedStep_ = -1;  // when run() widened its last stage; < 0: not (yet)
     void restoreBest();  // θ of every group back to the best monitored state
+    int probationSteps() const;  // of the stage under way
     StopReason stopReason_ = StopReason::Reached;
     int monitorEvery_;
     std::chrono::steady_clock::time_point started_;

@@ -12,6 +12,9 @@ namespace subdfit::fit {
 namespace {
 
 constexpr int kMonitorViews = 4;
+// The held-out views are scored as a viewer shows them: 4 × 4 samples a pixel, box-filtered
+// (scene/target_set.h). The fit itself compares single samples, whose ids its gradient needs.
+constexpr int kHoldoutSupersampling = 4;
 constexpr float kFramedWidth = 2.3f;  // normalised units across the rendered view
 constexpr float kEpsilonPixels = 0.9f, kStepPixels = 0.45f;
 // And never more than this in the normalised frame, whatever the resolution: beyond it a coarse
@@ -62,7 +65,7 @@ FitScene::FitScene(const FitOptions& o, gl::ProgramCache& programs, mesh::Polygo
       referenceRenderer(reference, shading),
       training(programs, referenceRenderer, render::orbitCameras(o.views, o.seed), o.resolution),
       holdout(programs, referenceRenderer, render::orbitCameras(o.holdoutViews, o.seed ^ 0x9e3779b9u),
-              o.resolution),
+              o.resolution, kHoldoutSupersampling),
       monitor(programs, referenceRenderer, render::orbitCameras(kMonitorViews, o.seed ^ 0x85ebca6bu), o.resolution) {}
 
 void FitScene::setCage(mesh::PolygonMesh cageWorldIn) {
@@ -89,6 +92,10 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
     const float density = std::max(1.0f, kReferenceEdge / edge);
     settings.smoothingLambda = o.smoothing * density * density;
     settings.smoothingIterations = std::clamp(int(std::lround(8.0 * std::sqrt(settings.smoothingLambda / 4.0))), 8, 48);
+    settings.vertices.noiseGate = o.noiseGate;
+    for (auto* group : {&settings.maps.displacement, &settings.maps.normalMap, &settings.maps.baseColor,
+                        &settings.maps.metallicRoughness})
+        group->noiseGate = o.noiseGate;
     settings.relaxation = o.relaxation;
     settings.tangentialGradient = o.tangential;
     settings.tessLevel = o.tessLevel;
@@ -114,11 +121,12 @@ FitOptions withVertexRates(FitOptions options, const mesh::PolygonMesh& cage, co
 }
 
 ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets) {
-    render::RenderTarget image(targets.resolution(), targets.resolution());
     double loss = 0.0;
     for (int i = 0; i < targets.size(); ++i) {
-        fitter.render(targets.camera(i), image);
-        loss += meanPixelLoss(image.readColor(), targets.readColor(i));
+        const auto image = targets.render(i, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
+            fitter.render(camera, canvas);
+        });
+        loss += meanPixelLoss(image, targets.readColor(i));
     }
     loss /= std::max(1, targets.size());
     return {loss, psnrFromLoss(loss)};

@@ -30,7 +30,8 @@ public:
     mesh::PolygonMesh reference;  // normalised, triangulated
     render::MeshRenderer referenceRenderer;
     scene::TargetSet training;
-    // Another rotation of the view lattice, so no held-out view coincides with a training view.
+    // Another rotation of the view lattice, so no held-out view coincides with a training view;
+    // supersampled: scored as a viewer shows them (anti-aliased).
     scene::TargetSet holdout;
     // A third, for the step schedule (fit/step_schedule.h): when the fit decides on its own
     // progress, it must not look at the views it is judged on.

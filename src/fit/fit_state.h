@@ -9,17 +9,22 @@ namespace subdfit::fit {
 
 struct GroupState {
     std::vector<float> theta{}, moment1{}, moment2{};
+    float groupMoment2 = 0.0f;  // the second moment shared by the group (its own moments: moment2)
     int adamSteps = 0;
 };
 
 // Where the step schedule (fit/step_schedule.h) stands: the best monitored loss so far and the
-// parameters that gave it, how long since it improved, how often the step was halved.
+// parameters that gave it, the measurements its decisions weigh, how often the step was halved.
 struct ScheduleState {
     double bestLoss = std::numeric_limits<double>::infinity();
     int bestStep = -1;
-    int sinceImprovement = 0;  // monitor evaluations
+    std::vector<double> window{};       // the last monitored losses since the last halving
+    std::vector<double> stageLosses{};  // the stage's first few, for its probation
+    int stageStart = -1;                // the step of its first measurement
+    bool probationOver = false;
     int halvings = 0;
     std::vector<std::vector<float>> bestTheta{};  // per group, in CageFitter::groups() order; empty: none yet
+    std::vector<std::vector<float>> startTheta{};  // the same at the stage's first measurement
 };
 
 struct FitState {

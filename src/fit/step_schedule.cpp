@@ -1,23 +1,65 @@
 #include "fit/step_schedule.h"
 
+#include <algorithm>
+
 namespace subdfit::fit {
 
+LossTrend lossTrend(const std::vector<double>& losses) {
+    const size_t n = losses.size();
+    if (n < 3) return {};
+    double meanX = 0.0, meanY = 0.0;
+    for (size_t k = 0; k < n; ++k) {
+        meanX += double(k);
+        meanY += losses[k];
+    }
+    meanX /= double(n);
+    meanY /= double(n);
+    double sxx = 0.0, sxy = 0.0;
+    for (size_t k = 0; k < n; ++k) {
+        sxx += (double(k) - meanX) * (double(k) - meanX);
+        sxy += (double(k) - meanX) * (losses[k] - meanY);
+    }
+    const double slope = sxy / sxx;
+    double residuals = 0.0;
+    for (size_t k = 0; k < n; ++k) {
+        const double r = losses[k] - (meanY + slope * (double(k) - meanX));
+        residuals += r * r;
+    }
+    const double slopeError = std::sqrt(residuals / double(n - 2) / sxx);
+    if (!(meanY > 0.0) || !std::isfinite(slope)) return {};
+    // Over the span of the series, relative to its level.
+    const double span = double(n - 1) / meanY;
+    return {-slope * span, slopeError * span};
+}
+
+bool likelyImproving(const LossTrend& trend, double minFall, double confidence) {
+    return std::isfinite(trend.standardError) && trend.fall + confidence * trend.standardError >= minFall;
+}
+
 StepSchedule::Decision StepSchedule::record(double loss, int step) {
-    const bool best = std::isfinite(loss) && loss < state_.bestLoss;
-    const bool significant = best && loss < state_.bestLoss * (1.0 - kMinImprovement);
+    const bool finite = std::isfinite(loss);
+    const bool best = finite && loss < state_.bestLoss;
     if (best) {
         state_.bestLoss = loss;
         state_.bestStep = step;
     }
-    if (significant) {
-        state_.sinceImprovement = 0;
-        return {best, Action::Continue};
-    }
-    if (++state_.sinceImprovement < kPatience) return {best, Action::Continue};
-    state_.sinceImprovement = 0;
+    if (state_.stageStart < 0) state_.stageStart = step;
+    if (!finite) loss = state_.window.empty() ? 0.0 : state_.window.back();
+    if (state_.stageLosses.size() < size_t(kWindow)) state_.stageLosses.push_back(loss);
+    state_.window.push_back(loss);
+    if (state_.window.size() > size_t(kWindow)) state_.window.erase(state_.window.begin());
+    if (state_.window.size() < size_t(kWindow)) return {best, Action::Continue};
+    if (likelyImproving(lossTrend(state_.window), kMinImprovement, kConfidence)) return {best, Action::Continue};
+    state_.window.clear();
     if (state_.halvings >= kMaxHalvings) return {best, Action::Converged};
     ++state_.halvings;
     return {best, Action::Halve};
+}
+
+bool StepSchedule::paying() const {
+    // The trend, not the best: on a noisy loss the lowest of a few measurements is below the
+    // first by chance.
+    return likelyImproving(lossTrend(state_.stageLosses), kMinImprovement, kProbationConfidence);
 }
 
 }  // namespace subdfit::fit

@@ -1,22 +1,41 @@
 #pragma once
 // When a fit takes smaller steps and when it stops. Every few steps the loss of a few monitor
 // views (another rotation of the view lattice than the training and the held-out views) is
-// measured, and the parameters that gave the best one are kept. When it has not improved by
-// kMinImprovement for kPatience measurements, the step is halved; after kMaxHalvings halvings
-// (1/8 of the step, about where the old ×0.1 annealing ended) a further plateau ends the stage:
-// it has converged. A poor start keeps the full step as long as it pays; a good one stops early.
-// (FitRun returns to the best state at each halving.)
+// measured, and the parameters that gave the best one are kept. That loss is noisy (the
+// parameters jitter under the estimator's noise), so no single comparison decides: a line is
+// fitted to the last kWindow measurements, and the fit is still improving while a relative fall
+// of kMinImprovement over the window stays likely (the fitted fall plus kConfidence standard
+// errors reaches it). When it is not, the step is halved and a fresh window starts; after
+// kMaxHalvings halvings a further stall ends the stage: it has converged. A poor start keeps
+// the full step as long as it pays; a good one stops early. (FitRun returns to the best state
+// at each halving.)
 #include <cmath>
+#include <vector>
 
 #include "fit/fit_state.h"
 
 namespace subdfit::fit {
 
+// A least-squares line through a series of losses, one per measurement: the relative fall it
+// shows over the series' span and that fall's standard error (infinite with fewer than 3).
+struct LossTrend {
+    double fall = 0.0, standardError = INFINITY;
+};
+LossTrend lossTrend(const std::vector<double>& losses);
+
+// Whether `trend` leaves a relative fall of at least `minFall` likely: its estimate plus
+// `confidence` standard errors reaches it.
+bool likelyImproving(const LossTrend& trend, double minFall, double confidence);
+
 class StepSchedule {
 public:
-    static constexpr int kPatience = 4;
-    static constexpr double kMinImprovement = 0.005;  // relative
+    static constexpr int kWindow = 10;                // measurements per decision
+    static constexpr double kMinImprovement = 0.005;  // relative fall over a window worth going on for
+    static constexpr double kConfidence = 0.5;        // standard errors: stall when P(fall >= min) < ~30 %
     static constexpr int kMaxHalvings = 3;
+    // A probation gives the benefit of the doubt: it stops a stage only when even its fall plus
+    // this many standard errors stays short (a poor start's first steps can be erratic).
+    static constexpr double kProbationConfidence = 2.0;
 
     enum class Action { Continue, Halve, Converged };
     struct Decision {
@@ -30,6 +49,11 @@ public:
     Decision record(double loss, int step);
 
     float learningRateScale() const { return std::ldexp(1.0f, -state_.halvings); }
+
+    // Whether the stage pays: its measurements since its start (at least 3, at most kWindow)
+    // leave a fall of kMinImprovement plausible (kProbationConfidence). For a fit's probation (FitRun): a start it cannot
+    // improve on is given up early.
+    bool paying() const;
 
     // A new stage (the maps joining): the full step again, and a best loss of its own.
     void restart() { state_ = ScheduleState{}; }

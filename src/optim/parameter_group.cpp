@@ -12,6 +12,7 @@ ParameterGroup::ParameterGroup(GroupKind kind, std::string name, const std::vect
       gradientSmooth(theta.bytes()),
       moment1(theta.bytes()),
       moment2(theta.bytes()),
+      groupMoment2(sizeof(float)),
       gradientSum(2 * theta.bytes()),
       kind_(kind),
       name_(std::move(name)),

@@ -21,6 +21,9 @@ struct GroupSettings {
     // One Adam second moment for the whole group instead of one per parameter: keeps a
     // preconditioned (smoothed) gradient's step smooth. Used for cage vertices.
     bool sharedMoment = false;
+    // c of the noise gate (glsl/adam.comp): the step shrinks where the gradient's running mean is
+    // within c times its expected noise of 0; 0: plain Adam.
+    float noiseGate = 0.0f;
 };
 
 class ParameterGroup {
@@ -37,6 +40,7 @@ public:
     GroupSettings& settings() { return settings_; }
 
     gl::Buffer theta, thetaPlus, thetaMinus, gradient, gradientSmooth, moment1, moment2;
+    gl::Buffer groupMoment2;  // one float: the second moment shared by the group (sharedMoment)
     // What G accumulates, in fixed point (glsl/fixed_point.glsl: two uints per parameter) so that
     // the sum does not depend on the order of the GPU's atomics; resolved into `gradient`.
     gl::Buffer gradientSum;

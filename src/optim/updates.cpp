@@ -13,8 +13,15 @@ const gl::ProgramSpec kPerturb{"perturb", {{GL_COMPUTE_SHADER, "perturb.comp"}}}
 const gl::ProgramSpec kResolve{"resolve_gradient", {{GL_COMPUTE_SHADER, "resolve_gradient.comp"}}};
 const gl::ProgramSpec kPrecondition{"precondition", {{GL_COMPUTE_SHADER, "precondition.comp"}}};
 const gl::ProgramSpec kSharedMoment{"shared_moment", {{GL_COMPUTE_SHADER, "shared_moment.comp"}}};
-const gl::ProgramSpec kAdam{"adam", {{GL_COMPUTE_SHADER, "adam.comp"}}, {"SUBDFIT_ADAM_SHARED_MOMENT"}};
-constexpr gl::VariantBits kAdamSharedMoment = 1u << 0;
+const gl::ProgramSpec kAdam{"adam", {{GL_COMPUTE_SHADER, "adam.comp"}}, {"SUBDFIT_ADAM_SHARED_MOMENT", "SUBDFIT_ADAM_NOISE_GATE"}};
+constexpr gl::VariantBits kAdamSharedMoment = 1u << 0, kAdamNoiseGate = 1u << 1;
+
+// The share of white noise's variance that Adam's bias-corrected first moment keeps after t
+// steps: Var(m̂) / σ² = (1 − β)(1 + β^t) / ((1 + β)(1 − β^t)); 1 at the first step.
+float noiseShare(float beta1, int steps) {
+    const double b = beta1, bt = std::pow(b, steps);
+    return float((1.0 - b) * (1.0 + bt) / ((1.0 + b) * (1.0 - bt)));
+}
 
 }  // namespace
 
@@ -78,11 +85,12 @@ void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffe
         reduce.set("uCount", unsigned(group.count()));
         reduce.set("uBeta2", s.beta2);
         gradient.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
-        group.moment2.bindStorage(SUBDFIT_SSBO_MOMENT2);
+        group.groupMoment2.bindStorage(SUBDFIT_SSBO_GROUP_MOMENT2);
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
-    const auto& program = programs.get(kAdam, s.sharedMoment ? kAdamSharedMoment : 0);
+    const auto& program =
+        programs.get(kAdam, (s.sharedMoment ? kAdamSharedMoment : 0) | (s.noiseGate > 0.0f ? kAdamNoiseGate : 0));
     program.use();
     program.set("uCount", unsigned(group.count()));
     program.set("uLearningRate", learningRate);
@@ -91,10 +99,15 @@ void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffe
     program.set("uBiasCorrection1", 1.0f - std::pow(s.beta1, float(group.adamSteps)));
     program.set("uBiasCorrection2", 1.0f - std::pow(s.beta2, float(group.adamSteps)));
     program.set("uAdamEpsilon", 1e-12f);
+    if (s.noiseGate > 0.0f) {
+        program.set("uNoiseShare", noiseShare(s.beta1, group.adamSteps));
+        program.set("uGateStrength", s.noiseGate);
+    }
     group.theta.bindStorage(SUBDFIT_SSBO_THETA);
     gradient.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
     group.moment1.bindStorage(SUBDFIT_SSBO_MOMENT1);
     group.moment2.bindStorage(SUBDFIT_SSBO_MOMENT2);
+    if (s.sharedMoment) group.groupMoment2.bindStorage(SUBDFIT_SSBO_GROUP_MOMENT2);
     glDispatchCompute(groupsOf(group.count(), 256), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     group.gradient.clearToZero();

@@ -32,6 +32,13 @@ namespace {
 // a fit from flat maps takes (each texel's estimate is noisy, and Adam's steps do not shrink
 // with the signal).
 constexpr float kRefineRate = 0.02f;
+// The same for the cage's vertices: simplify's cages are limit-fitted to the reference, and on a
+// dense one a full step (a sixth of an edge) tilts every normal under the estimator's noise.
+constexpr float kRefineVertexRate = 1.0f / 30.0f;
+// ... and with the noise gate (optim::GroupSettings::noiseGate): near such a start the gradient
+// is mostly noise. From a poor start the gate only slows the first steps, so `fit` leaves it
+// off (docs/optimizer.md).
+constexpr float kRefineNoiseGate = 1.0f;
 
 // What subdfit ships: asset.subd (cage and maps, export/subd_format.h). asset.usdz, the map
 // atlases and fitted.glb are conveniences for DCC tools and viewers, not what the budget counts.
@@ -105,6 +112,7 @@ void startMaps(fit::FitRun& run, bool bake) {
         const bool appearanceGroup = g == parameters->baseColor() || g == parameters->metallicRoughness();
         if (appearance && !appearanceGroup) fitter.setOptimised(*g, false);
         fitter.setRates(*g, g->settings().epsilon, (appearanceGroup ? 1.0f : kRefineRate) * g->settings().learningRate);
+        g->settings().noiseGate = kRefineNoiseGate;
     }
 }
 
@@ -144,6 +152,13 @@ void startAppearance(fit::FitRun& run, bool resumed) {
         if (baked.appearanceAtlas.present()) parameters->setAppearanceUvs(baked.appearanceAtlas.cornerUvs);
         parameters->setCarriedTextures(baked);
     }
+}
+
+// Simplify's cage starts limit-fitted: its vertices are refined with the smaller step and the gate.
+void refineGently(fit::CageFitter& fitter) {
+    optim::ParameterGroup& vertices = fitter.vertexGroup();
+    fitter.setRates(vertices, vertices.settings().epsilon, kRefineVertexRate * vertices.settings().learningRate);
+    vertices.settings().noiseGate = kRefineNoiseGate;
 }
 
 // The fit's stages, resumed from `checkpoint` when asked: the cage alone; the maps baked onto it;
@@ -237,6 +252,7 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
                                 in.scene.shading == render::ShadingModel::MetallicRoughness);
     const mesh::PolygonMesh cage = in.scene.cageWorld;
     fit::FitRun run(plan.fit, in.programs, in.scene);
+    refineGently(run.fitter());
     fitStages(run, options.fit.out / "checkpoint.bin", options.fit.resume, in.hooks);
     stages.lap("fit");
 

@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 FitState sampleState() {
     FitState state{.steps = 42, .samples = 7};
     for (int g = 0; g < 2; ++g) {
-        GroupState group{.adamSteps = 40 + g};
+        GroupState group{.groupMoment2 = 0.5f + float(g), .adamSteps = 40 + g};
         for (int i = 0; i < 30; ++i) {
             group.theta.push_back(float(i) * 0.25f - float(g));
             group.moment1.push_back(float(i) * 1e-3f);
@@ -33,8 +33,10 @@ FitState sampleState() {
     state.learningRateScale = 0.25f;
     state.mapsStartStep = 30;
     state.widenedStep = 35;
-    state.schedule = {.bestLoss = 0.125, .bestStep = 36, .sinceImprovement = 2, .halvings = 2,
-                      .bestTheta = {state.groups[0].theta, state.groups[1].moment1}};
+    state.schedule = {.bestLoss = 0.125, .bestStep = 36, .window = {0.5, 0.25, 0.125}, .stageLosses = {1.0, 0.5},
+                      .stageStart = 3, .probationOver = true, .halvings = 2,
+                      .bestTheta = {state.groups[0].theta, state.groups[1].moment1},
+                      .startTheta = {state.groups[1].theta, state.groups[0].moment1}};
     return state;
 }
 
@@ -71,6 +73,7 @@ TEST_F(Checkpoint, ReadsBackExactly) {
         EXPECT_EQ(read->groups[g].theta, expected.groups[g].theta);
         EXPECT_EQ(read->groups[g].moment1, expected.groups[g].moment1);
         EXPECT_EQ(read->groups[g].moment2, expected.groups[g].moment2);
+        EXPECT_EQ(read->groups[g].groupMoment2, expected.groups[g].groupMoment2);
         EXPECT_EQ(read->groups[g].adamSteps, expected.groups[g].adamSteps);
     }
     EXPECT_EQ(read->learningRateScale, expected.learningRateScale);
@@ -78,9 +81,13 @@ TEST_F(Checkpoint, ReadsBackExactly) {
     EXPECT_EQ(read->widenedStep, expected.widenedStep);
     EXPECT_EQ(read->schedule.bestLoss, expected.schedule.bestLoss);
     EXPECT_EQ(read->schedule.bestStep, expected.schedule.bestStep);
-    EXPECT_EQ(read->schedule.sinceImprovement, expected.schedule.sinceImprovement);
+    EXPECT_EQ(read->schedule.window, expected.schedule.window);
+    EXPECT_EQ(read->schedule.stageLosses, expected.schedule.stageLosses);
+    EXPECT_EQ(read->schedule.stageStart, expected.schedule.stageStart);
+    EXPECT_EQ(read->schedule.probationOver, expected.schedule.probationOver);
     EXPECT_EQ(read->schedule.halvings, expected.schedule.halvings);
     EXPECT_EQ(read->schedule.bestTheta, expected.schedule.bestTheta);
+    EXPECT_EQ(read->schedule.startTheta, expected.schedule.startTheta);
     EXPECT_FALSE(readCheckpoint(path_.parent_path() / "none.bin", "fp"));
 }
 
@@ -108,7 +115,7 @@ TEST_F(Checkpoint, TruncationOtherVersionsAndOtherSettingsAreRefused) {
 // A count of 2^40 floats behind a valid checksum: the reader must see that the file cannot
 // hold them instead of allocating 4 TB.
 TEST_F(Checkpoint, ACountBeyondTheFileAllocatesNothing) {
-    std::string payload = "SDFTCKP5";
+    std::string payload = "SDFTCKP6";
     auto put = [&](auto value) { payload.append(reinterpret_cast<const char*>(&value), sizeof value); };
     put(std::uint64_t(2));
     payload += "fp";

@@ -27,12 +27,10 @@ std::uintmax_t totalBytes(const nlohmann::json& files) {
 }
 
 void scoreHoldout(const scene::TargetSet& holdout, const DrawFunction& draw, Quality& quality) {
-    const render::RenderTarget image(holdout.resolution(), holdout.resolution());
     double loss = 0.0, similarity = 0.0;
     quality.psnrViews.clear();
     for (int i = 0; i < holdout.size(); ++i) {
-        draw(holdout.camera(i), image);
-        auto pixels = image.readColor();
+        auto pixels = holdout.render(i, draw);  // as the targets were made (anti-aliased)
         const auto target = holdout.readColor(i);
         const double viewLoss = fit::meanPixelLoss(pixels, target);
         loss += viewLoss;

@@ -43,8 +43,8 @@ std::uintmax_t totalBytes(const nlohmann::json& files);
 // Renders one camera into a target: how a candidate is drawn.
 using DrawFunction = std::function<void(const render::Camera&, const render::RenderTarget&)>;
 
-// Mean-loss PSNR and mean SSIM of `draw` over every held-out view; view 0's image goes to
-// `quality.view`.
+// Mean-loss PSNR and mean SSIM of `draw` over every held-out view, drawn as the targets were
+// (supersampled when they are); view 0's image goes to `quality.view`.
 void scoreHoldout(const scene::TargetSet& holdout, const DrawFunction& draw, Quality& quality);
 
 // Surface distance of `candidate` (triangles, normalised frame) to `reference` (same), reported

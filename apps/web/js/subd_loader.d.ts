@@ -1,0 +1,21 @@
+// Types of subd_loader.mjs: asset.subd in three.js.
+import { BufferGeometry, Loader, LoadingManager, Mesh, MeshStandardMaterial } from 'three';
+
+export class SubdLoader extends Loader<Mesh<BufferGeometry, MeshStandardMaterial>> {
+  constructor(manager?: LoadingManager);
+  /** The folder of subd_decoder_wasm.wasm and subd_worker.mjs (default: subd_loader.mjs's). */
+  setDecoderPath(path: string): this;
+  /** The most files decoded at once (default 4). */
+  setWorkerLimit(limit: number): this;
+  /** About how many triangles (0: the density `subdfit decode` uses by default). */
+  setTriangles(triangles: number): this;
+  load(
+    url: string,
+    onLoad: (mesh: Mesh<BufferGeometry, MeshStandardMaterial>) => void,
+    onProgress?: (event: ProgressEvent) => void,
+    onError?: (error: unknown) => void,
+  ): void;
+  /** An asset.subd's bytes to a Mesh; `name` names the file in errors. */
+  parse(buffer: ArrayBuffer, name?: string): Promise<Mesh<BufferGeometry, MeshStandardMaterial>>;
+  dispose(): this;
+}

@@ -1,0 +1,144 @@
+// A three.js loader for asset.subd, shaped as three's own (DRACOLoader, GLTFLoader):
+//
+//   const loader = new SubdLoader().setDecoderPath('/subdfit/');
+//   scene.add(await loader.loadAsync('asset.subd'));
+//
+// It builds the Mesh and MeshStandardMaterial that three's GLTFLoader builds from the glb of
+// `subdfit decode` for the same file: the same triangles, the same material factors, the same
+// textures (the JPEGs the file carries, decoded by the browser as GLTFLoader decodes images).
+import {
+  BufferAttribute, BufferGeometry, ClampToEdgeWrapping, DataTexture, FileLoader, ImageBitmapLoader, LinearFilter,
+  LinearSRGBColorSpace, Loader, Mesh, MeshStandardMaterial, RGBAFormat, SRGBColorSpace, Texture, TextureLoader,
+  UnsignedByteType,
+} from 'three';
+import { SubdDecoder } from './subd_decoder.mjs';
+
+export class SubdLoader extends Loader {
+  constructor(manager) {
+    super(manager);
+    this.decoderPath = new URL('./', import.meta.url).href;
+    this.workerLimit = 4;
+    this.triangles = 0;
+    this.decoder = null;
+  }
+
+  // The folder of subd_decoder_wasm.wasm and subd_worker.mjs (default: this module's).
+  setDecoderPath(path) {
+    this.decoderPath = path;
+    return this;
+  }
+
+  setWorkerLimit(limit) {
+    this.workerLimit = limit;
+    return this;
+  }
+
+  // About how many triangles to decode (0: the density `subdfit decode` uses by default).
+  setTriangles(triangles) {
+    this.triangles = triangles;
+    return this;
+  }
+
+  load(url, onLoad, onProgress, onError) {
+    const fail = (error) => {
+      if (onError) onError(error);
+      else console.error(error);
+      this.manager.itemError(url);
+    };
+    const file = new FileLoader(this.manager);
+    file.setPath(this.path);
+    file.setResponseType('arraybuffer');
+    file.setRequestHeader(this.requestHeader);
+    file.setWithCredentials(this.withCredentials);
+    file.load(url, (buffer) => {
+      this.parse(buffer, url.split('/').pop() || url).then(onLoad, fail);
+    }, onProgress, onError);
+  }
+
+  // An asset.subd's bytes to a Mesh. `name` names the file in errors.
+  async parse(buffer, name = 'asset.subd') {
+    this.decoder ??= new SubdDecoder({ decoderPath: this.decoderPath, workerLimit: this.workerLimit });
+    const decoded = await this.decoder.decode(buffer, { triangles: this.triangles, name });
+    const mesh = new Mesh(geometryOf(decoded), await materialOf(decoded, this));
+    mesh.name = name;
+    mesh.userData.subd = { segments: decoded.segments, triangles: decoded.indices.length / 3, warnings: decoded.warnings };
+    return mesh;
+  }
+
+  dispose() {
+    this.decoder?.dispose();
+    this.decoder = null;
+    return this;
+  }
+}
+
+function geometryOf(decoded) {
+  const geometry = new BufferGeometry();
+  geometry.setAttribute('position', new BufferAttribute(decoded.positions, 3));
+  geometry.setAttribute('normal', new BufferAttribute(decoded.normals, 3));
+  if (decoded.tangents) geometry.setAttribute('tangent', new BufferAttribute(decoded.tangents, 4));
+  geometry.setAttribute('uv', new BufferAttribute(decoded.uvs, 2));
+  geometry.setIndex(new BufferAttribute(decoded.indices, 1));
+  geometry.computeBoundingBox();
+  geometry.computeBoundingSphere();
+  return geometry;
+}
+
+async function materialOf(decoded, loader) {
+  const m = decoded.material;
+  const material = new MeshStandardMaterial({
+    metalness: m.metallicFactor,
+    roughness: m.roughnessFactor,
+  });
+  material.name = 'subdfit';
+  material.color.setRGB(m.baseColorFactor[0], m.baseColorFactor[1], m.baseColorFactor[2], LinearSRGBColorSpace);
+  material.opacity = m.baseColorFactor[3];
+  material.emissive.setRGB(m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2], LinearSRGBColorSpace);
+  const images = decoded.images;
+  const [baseColor, metallicRoughness, normal, emissive] = await Promise.all(
+    [images.baseColor, images.metallicRoughness, images.normal, images.emissive].map((image) => textureOf(image, loader)));
+  if (baseColor) {
+    baseColor.colorSpace = SRGBColorSpace;
+    material.map = baseColor;
+  }
+  if (metallicRoughness) {
+    material.metalnessMap = material.roughnessMap = metallicRoughness;
+    if (m.occlusionInMetallicRoughness) material.aoMap = metallicRoughness;
+  }
+  if (normal) material.normalMap = normal;
+  if (emissive) {
+    emissive.colorSpace = SRGBColorSpace;
+    material.emissiveMap = emissive;
+  }
+  material.needsUpdate = true;
+  return material;
+}
+
+// A texture as GLTFLoader makes one for the glb's images: an ImageBitmap where the browser has
+// createImageBitmap (a plain image elsewhere), not flipped, sampled linearly without mipmaps
+// and clamped (each atlas tile is its own chart).
+async function textureOf(image, loader) {
+  if (!image) return null;
+  let texture;
+  if (image.pixels) {
+    texture = new DataTexture(image.pixels, image.width, image.height, RGBAFormat, UnsignedByteType);
+  } else {
+    const url = URL.createObjectURL(new Blob([image.bytes], { type: image.mimeType }));
+    try {
+      const images = typeof createImageBitmap === 'undefined' ? new TextureLoader(loader.manager)
+                                                               : new ImageBitmapLoader(loader.manager);
+      const loaded = await images.loadAsync(url);
+      texture = loaded.isTexture ? loaded : new Texture(loaded);
+    } finally {
+      URL.revokeObjectURL(url);
+    }
+    if (texture.image.width !== image.width || texture.image.height !== image.height)
+      throw new Error(`an image of ${texture.image.width} x ${texture.image.height}, not ${image.width} x ${image.height}`);
+  }
+  texture.flipY = false;
+  texture.magFilter = texture.minFilter = LinearFilter;
+  texture.wrapS = texture.wrapT = ClampToEdgeWrapping;
+  texture.generateMipmaps = false;
+  texture.needsUpdate = true;
+  return texture;
+}
