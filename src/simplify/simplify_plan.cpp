@@ -24,7 +24,7 @@ constexpr int kMostFullyFittedFaces = 2 * kDefaultFaces;
 BakeRoute bakeRouteOf(const mesh::PolygonMesh& cage, const fit::FitOptions& fit) {
     return {.cage = cage, .effects = fit.maps, .resolution = fit.mapResolution, .bits = fit.mapBits,
             .appearanceResolution = fit.appearanceResolution, .appearanceQuality = fit.appearanceQuality,
-            .appearanceAtlas = fit.appearanceAtlas, .shadingNormal = surface::shadingNormalNamed(fit.shadingNormal)};
+            .appearanceAtlas = fit.appearanceAtlas, .shadingNormal = fit.shadingNormal};
 }
 
 }  // namespace
@@ -64,7 +64,7 @@ void applyChoice(const BudgetCandidate& chosen, int cageFaces, bool stepsByDevic
     if (chosen.mapResolution > 0) {
         fit.mapResolution = chosen.mapResolution;
         fit.mapBits = chosen.mapBits;
-        fit.shadingNormal = surface::toString(chosen.shadingNormal);
+        fit.shadingNormal = chosen.shadingNormal;
         // The search judged this cage with maps baked onto it as it is: the fit refines that
         // from the start (moving the cage first would leave what was judged).
         fit.mapsStart = 0.0f;
