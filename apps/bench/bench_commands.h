@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "fit/fit_options.h"
+#include "simplify/route.h"
 #include "surface/relief_surface.h"
 
 namespace subdfit::bench {
@@ -137,6 +138,7 @@ struct SimplifyTradeoffOptions {
     int steps = fit::kByDevice;
     int resolution = fit::kByDevice;
     context::GlProvider glProvider = context::GlProvider::Auto;
+    simplify::CompareLevel compare = simplify::CompareLevel::Full;
 };
 int runSimplifyTradeoff(const SimplifyTradeoffOptions& options);
 

@@ -37,12 +37,15 @@ int main(int argc, char** argv) {
     subdfit::apps::addGlProvider(*lumpyCommand, lumpy.glProvider);
 
     subdfit::bench::SimplifyTradeoffOptions tradeoff;
-    auto* simplifyCommand = app.add_subcommand("simplify", "simplify at byte budgets: PSNR and mean surface distance against bytes, vs the baselines");
+    auto* simplifyCommand = app.add_subcommand("simplify", "simplify at byte budgets: PSNR and mean surface distance against bytes, vs the baselines; seconds by stage");
     simplifyCommand->add_option("--out", tradeoff.out, "output folder")->capture_default_str();
     simplifyCommand->add_option("--reference", tradeoff.references, "dense assets (default: the relief Spot)");
     simplifyCommand->add_option("--budgets", tradeoff.budgets, "byte budgets")->capture_default_str();
     simplifyCommand->add_option("--steps", tradeoff.steps, "optimisation steps per run (default: the device's)");
     simplifyCommand->add_option("--res", tradeoff.resolution, "render resolution (default: the device's)");
+    simplifyCommand->add_option_function<std::string>(
+        "--compare", [&](const std::string& text) { tradeoff.compare = subdfit::simplify::parseCompareLevel(text); },
+        "what each run compares: none, fast or full (default)")->check(CLI::IsMember({"none", "fast", "full"}));
     subdfit::apps::addGlProvider(*simplifyCommand, tradeoff.glProvider);
 
     subdfit::bench::ConvergenceOptions convergence;

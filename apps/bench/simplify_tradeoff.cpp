@@ -29,6 +29,7 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
     if (references.empty()) references.push_back(reliefReference(o.out));
     std::vector<std::vector<std::string>> rows{{"reference", "budget", "method", "bytes", "psnr_holdout", "ssim_holdout",
                                                 "mean_distance", "chamfer", "hausdorff", "seconds", "chosen"}};
+    std::vector<std::vector<std::string>> stageRows{{"reference", "budget", "route", "stage", "seconds"}};
     std::printf("%-18s %8s  %-10s %8s %9s %7s %13s %9s  %s\n", "reference", "budget", "method", "bytes", "PSNR dB",
                 "SSIM", "mean distance", "seconds", "chosen");
     for (const auto& reference : references) {
@@ -43,15 +44,21 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
             s.fit.resolution = o.resolution;
             s.fit.glProvider = o.glProvider;
             s.fit.force = true;
+            s.compare = o.compare;
             const auto report = simplify::runSimplify(s);
-            const simplify::BudgetCandidate& chosen = report.budget->chosen;
-            const std::string choice = std::to_string(chosen.faces) + " faces, " + maps::toString(chosen.maps) +
-                                       " T=" + std::to_string(chosen.mapResolution);
-            std::vector<std::pair<std::string, const simplify::Quality*>> methods{
-                {"subdfit", &report.subdfit}, {"decimation", &report.decimation}, {"bake", &report.bake}};
-            if (report.gltfpack) methods.insert(methods.begin() + 2, {"gltfpack", &*report.gltfpack});
+            std::string choice = report.route.shipped;
+            if (report.route.shipped == "cage" && report.budget) {
+                const simplify::BudgetCandidate& chosen = report.budget->chosen;
+                choice = std::to_string(chosen.faces) + " faces, " + maps::toString(chosen.maps) + " T=" +
+                         std::to_string(chosen.mapResolution);
+            }
+            std::vector<std::pair<std::string, const simplify::Quality*>> methods{{"subdfit", &report.subdfit}};
+            for (const auto& [method, q] : {std::pair<const char*, const std::optional<simplify::Quality>*>{"cage", &report.cage},
+                                            {"decimation", &report.decimation}, {"gltfpack", &report.gltfpack}, {"bake", &report.bake}})
+                if (*q && (method != std::string("decimation") || o.compare != simplify::CompareLevel::None))
+                    methods.emplace_back(method, &**q);
             for (const auto& [method, q] : methods) {
-                const double seconds = method == "subdfit" ? report.fit.seconds : 0.0;
+                const double seconds = method == "subdfit" ? report.seconds : 0.0;
                 const std::string chosenText = method == "subdfit" ? choice : "";
                 std::printf("%-18.18s %8ju  %-10s %8ju %9.2f %7.4f %13.4e %9.1f  %s\n", name.c_str(), budget,
                             method.c_str(), q->bytes, q->psnrHoldout, q->ssimHoldout, q->distance.meanDistance, seconds,
@@ -70,7 +77,15 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
                 psnr[method].y.push_back(q->psnrHoldout);
                 distance[method].y.push_back(q->distance.meanDistance);
             }
+            // Where the seconds went, stage by stage.
+            std::printf("%-18.18s %8ju  seconds by stage:", name.c_str(), budget);
+            for (const auto& [stage, seconds] : report.stages.stages()) {
+                std::printf(" %s %.1f", stage.c_str(), seconds);
+                stageRows.push_back({name, std::to_string(budget), report.route.shipped, stage, std::to_string(seconds)});
+            }
+            std::printf(" (total %.1f)\n", report.seconds);
             writeCsv(o.out / "simplify_tradeoff.csv", rows);  // after every run: a long sweep keeps what it did
+            writeCsv(o.out / "simplify_stages.csv", stageRows);
         }
         auto plot = [&](const std::string& file, const char* yLabel, bool logY, std::map<std::string, Series>& series) {
             PlotSpec spec;

@@ -12,8 +12,9 @@ namespace subdfit::apps {
 // Everything but the reference and --out.
 inline void addSimplifySettings(CLI::App& app, simplify::SimplifyOptions& options) {
     app.add_option("--faces", options.faces,
-                   "triangles of the cage, 4..1000000 (default " + std::to_string(simplify::kDefaultFaces) +
-                       "; with --budget, fixes the cage and the search chooses only the maps)")
+                   "triangles of the cage, 4..1000000 (default: the budget search's choice; with --budget, fixes the "
+                   "cage and the search chooses only the maps; without, the cage is fitted as asked and weighed against "
+                   "the triangle route at its bytes)")
         ->check(CLI::Range(4, 1000000));
     // Checked while parsing, so a bad budget is a usage error naming the flag.
     const CLI::Validator byteSize(
@@ -28,8 +29,19 @@ inline void addSimplifySettings(CLI::App& app, simplify::SimplifyOptions& option
                std::string problem;
                options.budget = parseByteSize(text, problem).value_or(0);
            },
-           "bytes asset.subd may take, 100 B to 1 TB (20000, 20KB, 1.5MB, 2G): chooses the cage, maps and bits to fit them")
+           "bytes what ships may take, 100 B to 1 TB (20000, 20KB, 1.5MB, 2G): chooses the cage, maps and bits to fit "
+           "them, or a triangle mesh where one ships better (default: a tenth of the reference compressed, at least 16 KB)")
         ->check(byteSize);
+    app.add_option_function<std::string>(
+           "--compare", [&options](const std::string& text) { options.compare = simplify::parseCompareLevel(text); },
+           "what is compared beside what ships: none (only what chooses the route), fast (+ the triangle baselines' "
+           "files and scores), full (+ the bake route, surface distances, comparison.png; simplify's default)")
+        ->check(CLI::IsMember({"none", "fast", "full"}));
+    app.add_option_function<std::string>(
+           "--route", [&options](const std::string& text) { options.cageOnly = text == "cage"; },
+           "auto: ship the cage only where it wins, else the better triangle mesh (default); cage: ship the fitted cage "
+           "whatever the triangle route scores")
+        ->check(CLI::IsMember({"auto", "cage"}));
     addFitSettings(app, options.fit);
 }
 

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 #include "common/command_line.h"
 #include "common/simplify_cli.h"
@@ -25,15 +26,21 @@ void printSummary(const subdfit::fit::FitReport& r) {
 }
 
 void printComparison(const subdfit::simplify::SimplifyReport& r) {
+    std::fprintf(stderr, "shipped %s (%s): %s\n", r.route.path.string().c_str(), r.route.shipped.c_str(), r.route.why.c_str());
     std::fprintf(stderr, "%-11s %10s %12s %8s %14s %12s\n", "", "bytes", "PSNR (dB)", "SSIM", "mean distance", "Chamfer");
-    auto row = [](const char* name, const subdfit::simplify::Quality& q) {
-        std::fprintf(stderr, "%-11s %10llu %12.2f %8.4f %14.4e %12.4e\n", name, (unsigned long long)q.bytes, q.psnrHoldout,
-                     q.ssimHoldout, q.distance.meanDistance, q.distance.chamferL2Squared);
+    auto row = [](const char* name, const std::optional<subdfit::simplify::Quality>& q) {
+        if (!q) return;
+        std::fprintf(stderr, "%-11s %10llu %12.2f %8.4f %14.4e %12.4e\n", name, (unsigned long long)q->bytes, q->psnrHoldout,
+                     q->ssimHoldout, q->distance.meanDistance, q->distance.chamferL2Squared);
     };
     row("subdfit", r.subdfit);
+    row("cage", r.cage);
     row("decimation", r.decimation);
-    if (r.gltfpack) row("gltfpack", *r.gltfpack);
+    row("gltfpack", r.gltfpack);
     row("bake", r.bake);
+    std::fprintf(stderr, "seconds by stage:");
+    for (const auto& [stage, seconds] : r.stages.stages()) std::fprintf(stderr, " %s %.1f", stage.c_str(), seconds);
+    std::fprintf(stderr, "\n");
 }
 
 void printProgress(const subdfit::fit::Progress& p) {
@@ -60,6 +67,7 @@ int main(int argc, char** argv) {
     subdfit::apps::addSimplifySettings(*simplifyCommand, simplify);
 
     subdfit::simplify::SimplifyOptions batchDefaults;
+    batchDefaults.compare = subdfit::simplify::CompareLevel::Fast;  // a batch compares less, by default
     std::filesystem::path manifest, batchOut;
     std::string shard = "0/1";
     auto* batchCommand = app.add_subcommand("batch", "simplify every asset of a manifest; resumable, shardable");
@@ -132,7 +140,7 @@ int main(int argc, char** argv) {
         }
         if (simplifyCommand->parsed()) {
             const auto report = subdfit::simplify::runSimplify(simplify, hooks);
-            printSummary(report.fit);
+            if (report.fit) printSummary(*report.fit);
             printComparison(report);
             std::cout << (simplify.fit.out / "report.json").string() << "\n";
         }
@@ -145,6 +153,11 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "batch: %d finished, %d skipped (done), %d running elsewhere, %d failed, %d in other shards%s\n",
                          summary.finished, summary.skipped, summary.runningElsewhere, summary.failed,
                          summary.otherShards, summary.interrupted ? ", interrupted" : "");
+            if (!summary.routes.empty()) {
+                std::fprintf(stderr, "batch: routes shipped:");
+                for (const auto& [route, count] : summary.routes) std::fprintf(stderr, " %s %d", route.c_str(), count);
+                std::fprintf(stderr, "\n");
+            }
             if (summary.failed > 0) return 1;
         }
     } catch (const subdfit::Interrupted& e) {

@@ -18,10 +18,13 @@ FitInputs loadFitInputs(const fit::FitOptions& options) {
 FitInputs refineInputs(const ResultInputs& result, fit::FitOptions& options) {
     const ColumnInputs* reference = nullptr;
     const ColumnInputs* ours = nullptr;
+    const ColumnInputs* fittedCage = nullptr;  // beside a triangle route that shipped instead
     for (const auto& column : result.columns) {
         if (column.reference) reference = &column;
         if (column.name == "subdfit" && column.levels.front().asset) ours = &column;
+        if (column.name == "cage" && column.levels.front().asset) fittedCage = &column;
     }
+    if (!ours) ours = fittedCage;
     if (!result.folder || !reference || !ours)
         throw Error(result.title + ": nothing to refine: --refine takes a fit or simplify folder whose reference is there");
     const exporter::SubdAsset& asset = *ours->levels.front().asset;

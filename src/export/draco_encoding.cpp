@@ -15,7 +15,7 @@
 namespace subdfit::exporter {
 namespace {
 
-constexpr int kPositionBits = 14, kNormalBits = 10, kGenericBits = 10, kMinTexcoordBits = 12;
+constexpr int kGenericBits = 10, kMinTexcoordBits = 12;
 constexpr int kSpeed = 5;  // Draco's middle ground between size and encode/decode time
 
 // Adds a float attribute with one value per point; returns its unique id.
@@ -80,7 +80,8 @@ void describeDecoded(DracoEncodedMesh& encoded) {
 
 }  // namespace
 
-DracoEncodedMesh encodeDraco(const GltfMesh& tess) {
+DracoEncodedMesh encodeDraco(const GltfMesh& tess, DracoBits bits) {
+    SUBDFIT_CHECK(bits.position >= 1 && bits.position <= 30 && bits.normal >= 1 && bits.normal <= 30);
     SUBDFIT_CHECK(tess.vertexCount() > 0 && tess.triangleCount() > 0);
     SUBDFIT_CHECK(tess.attributesConsistent());
     DracoEncodedMesh encoded;
@@ -88,8 +89,8 @@ DracoEncodedMesh encodeDraco(const GltfMesh& tess) {
 
     draco::Encoder encoder;
     encoder.SetSpeedOptions(kSpeed, kSpeed);
-    encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, kPositionBits);
-    encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, kNormalBits);
+    encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, bits.position);
+    encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, bits.normal);
     encoder.SetAttributeQuantization(draco::GeometryAttribute::GENERIC, kGenericBits);
     encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, texcoordBits(tess.atlasSize));
     draco::EncoderBuffer buffer;

@@ -18,10 +18,15 @@ struct DracoEncodedMesh {
     glm::vec3 positionMin{0.0f}, positionMax{0.0f};
 };
 
-// Quantisation: position 14 bits, normal 10, tangent (a generic attribute) 10, texcoord 12 or
-// more -- enough that the texcoord error stays below 1/64 texel of tess.atlasSize, since half
-// a texel would already sample the neighbouring tile. Speed 5. Throws subdfit::Error when
-// Draco fails.
-DracoEncodedMesh encodeDraco(const GltfMesh& tess);
+// Quantisation of positions and normals, bits per component.
+struct DracoBits {
+    int position = 14, normal = 10;
+};
+
+// Quantisation: positions and normals as `bits` says, tangent (a generic attribute) 10 bits,
+// texcoord 12 or more -- enough that the texcoord error stays below 1/64 texel of
+// tess.atlasSize, since half a texel would already sample the neighbouring tile. Speed 5.
+// Throws subdfit::Error when Draco fails.
+DracoEncodedMesh encodeDraco(const GltfMesh& tess, DracoBits bits = {});
 
 }  // namespace subdfit::exporter

@@ -77,10 +77,10 @@ std::vector<AttributeSlot> presentAttributes(const GltfMesh& tess, const DracoEn
     return slots;
 }
 
-json document(const GltfMesh& tess, const FittedTextures& textures, MeshCoding coding, const json& meshExtras,
-              BinaryBuilder& binary) {
+json document(const GltfMesh& tess, const FittedTextures& textures, MeshCoding coding, DracoBits dracoBits,
+              const json& meshExtras, BinaryBuilder& binary) {
     const bool draco = coding == MeshCoding::Draco;
-    const DracoEncodedMesh encoded = draco ? encodeDraco(tess) : DracoEncodedMesh{};
+    const DracoEncodedMesh encoded = draco ? encodeDraco(tess, dracoBits) : DracoEncodedMesh{};
     const auto slots = presentAttributes(tess, encoded);
     json attributes = json::object(), dracoAttributes = json::object();
     json accessors = json::array();
@@ -138,18 +138,18 @@ json document(const GltfMesh& tess, const FittedTextures& textures, MeshCoding c
 }
 
 std::vector<unsigned char> encodeGlb(const GltfMesh& tess, const FittedTextures& textures, MeshCoding coding,
-                                     const json& meshExtras) {
+                                     DracoBits dracoBits, const json& meshExtras) {
     checkTessellation(tess);
     BinaryBuilder binary;
-    const json doc = document(tess, textures, coding, meshExtras, binary);
+    const json doc = document(tess, textures, coding, dracoBits, meshExtras, binary);
     return packGlb(doc, binary.data());
 }
 
 WrittenFile writeGlb(const std::filesystem::path& path, const GltfMesh& tess, const FittedTextures& textures,
-                     MeshCoding coding, const json& meshExtras) {
+                     MeshCoding coding, const json& meshExtras, DracoBits dracoBits = {}) {
     std::vector<unsigned char> bytes;
     try {
-        bytes = encodeGlb(tess, textures, coding, meshExtras);
+        bytes = encodeGlb(tess, textures, coding, dracoBits, meshExtras);
     } catch (const Error& e) {
         throw fileError(path.string(), e.what());
     }
@@ -171,7 +171,7 @@ WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& te
 }
 
 std::vector<unsigned char> encodeFittedGlb(const GltfMesh& tess, const FittedTextures& textures, MeshCoding coding) {
-    return encodeGlb(tess, textures, coding, json::object());
+    return encodeGlb(tess, textures, coding, DracoBits{}, json::object());
 }
 
 WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess, const FittedTextures& textures,
@@ -182,11 +182,18 @@ WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& te
 WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
                          const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices,
                          bool draco, const nlohmann::json& extras) {
+    return writeMeshGlb(path, positions, normals, indices, draco ? std::optional<DracoBits>(DracoBits{}) : std::nullopt,
+                        extras);
+}
+
+WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
+                         const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices,
+                         const std::optional<DracoBits>& draco, const nlohmann::json& extras) {
     GltfMesh mesh;
     mesh.positions = positions;
     mesh.normals = normals;
     mesh.indices = indices;
-    return writeGlb(path, mesh, FittedTextures{}, codingOf(draco), extras);
+    return writeGlb(path, mesh, FittedTextures{}, codingOf(draco.has_value()), extras, draco.value_or(DracoBits{}));
 }
 
 }  // namespace subdfit::exporter

@@ -3,11 +3,13 @@
 // tangents and atlas texcoords, and a plain grey material whose normalTexture is the fitted
 // normal atlas -- viewable in any glTF viewer.
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "export/draco_encoding.h"
 #include "export/gltf_mesh.h"
 #include "export/output_file.h"
 
@@ -50,5 +52,9 @@ WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& te
 WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
                          const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices,
                          bool draco, const nlohmann::json& extras = nlohmann::json::object());
+// The same, Draco-coded at `draco`'s quantisation when given.
+WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
+                         const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices,
+                         const std::optional<DracoBits>& draco, const nlohmann::json& extras = nlohmann::json::object());
 
 }  // namespace subdfit::exporter

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include <glm/common.hpp>
 
@@ -40,7 +41,7 @@ GltfMesh primitiveOf(const mesh::PolygonMesh& triangles, const std::vector<glm::
             if (remap[v] == std::numeric_limits<std::uint32_t>::max()) {
                 remap[v] = std::uint32_t(out.positions.size());
                 out.positions.push_back(triangles.positions[v]);
-                out.normals.push_back(normals[v]);
+                if (!normals.empty()) out.normals.push_back(normals[v]);
                 if (!triangles.uvs.empty()) out.uvs.push_back(glm::vec2(uvTransform * glm::vec3(triangles.uvs[v], 1.0f)));
             }
             out.indices.push_back(remap[v]);
@@ -49,10 +50,12 @@ GltfMesh primitiveOf(const mesh::PolygonMesh& triangles, const std::vector<glm::
     return out;
 }
 
-// POSITION, NORMAL and (with uvs) TEXCOORD_0 at consecutive accessors from `first`.
-json attributesFrom(size_t first, bool uvs) {
-    json attributes = {{"POSITION", first}, {"NORMAL", first + 1}};
-    if (uvs) attributes["TEXCOORD_0"] = first + 2;
+// POSITION, NORMAL (when there are normals) and TEXCOORD_0 (when there are uvs) at consecutive
+// accessors from `first`.
+json attributesFrom(size_t first, bool normals, bool uvs) {
+    json attributes = {{"POSITION", first}};
+    if (normals) attributes["NORMAL"] = ++first;
+    if (uvs) attributes["TEXCOORD_0"] = ++first;
     return attributes;
 }
 
@@ -118,9 +121,10 @@ private:
 };
 
 std::vector<unsigned char> document(const mesh::PolygonMesh& triangles, const std::vector<glm::vec3>& normals,
-                                    const std::vector<EncodedImage>& images, bool draco) {
+                                    const std::vector<EncodedImage>& images, const std::optional<DracoBits>& draco) {
     SUBDFIT_CHECK(triangles.materials && triangles.faceMaterials.size() == size_t(triangles.faceCount()));
-    SUBDFIT_CHECK(normals.size() == triangles.positions.size());
+    SUBDFIT_CHECK(normals.empty() || normals.size() == triangles.positions.size());
+    const bool hasNormals = !normals.empty();
     const mesh::MaterialSet& set = *triangles.materials;
     glm::ivec2 largest(1, 1);
     for (const auto& image : set.images) largest = glm::max(largest, glm::ivec2(image.width, image.height));
@@ -135,18 +139,21 @@ std::vector<unsigned char> document(const mesh::PolygonMesh& triangles, const st
         materials.push_back(textures.material(material));
         const auto first = accessors.size();
         if (draco) {
-            const DracoEncodedMesh encoded = encodeDraco(part);
+            const DracoEncodedMesh encoded = encodeDraco(part, *draco);
             const int view = binary.addView(encoded.bytes);
-            json ids = {{"POSITION", encoded.position}, {"NORMAL", encoded.normal}};
+            json ids = {{"POSITION", encoded.position}};
             accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC3"));
             accessors.back()["min"] = vec3Json(encoded.positionMin);
             accessors.back()["max"] = vec3Json(encoded.positionMax);
-            accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC3"));
+            if (hasNormals) {
+                ids["NORMAL"] = encoded.normal;
+                accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC3"));
+            }
             if (part.hasUvs()) {
                 ids["TEXCOORD_0"] = encoded.texcoord;
                 accessors.push_back(accessor(-1, kFloat, encoded.vertexCount, "VEC2"));
             }
-            primitive["attributes"] = attributesFrom(first, part.hasUvs());
+            primitive["attributes"] = attributesFrom(first, hasNormals, part.hasUvs());
             primitive["indices"] = accessors.size();
             accessors.push_back(accessor(-1, kUnsignedInt, encoded.triangleCount * 3, "SCALAR"));
             primitive["extensions"][kDraco] = {{"bufferView", view}, {"attributes", ids}};
@@ -157,9 +164,9 @@ std::vector<unsigned char> document(const mesh::PolygonMesh& triangles, const st
             accessors.push_back(accessor(binary.addArray(part.positions, kArrayBuffer), kFloat, n, "VEC3"));
             accessors.back()["min"] = vec3Json(lo);
             accessors.back()["max"] = vec3Json(hi);
-            accessors.push_back(accessor(binary.addArray(part.normals, kArrayBuffer), kFloat, n, "VEC3"));
+            if (hasNormals) accessors.push_back(accessor(binary.addArray(part.normals, kArrayBuffer), kFloat, n, "VEC3"));
             if (part.hasUvs()) accessors.push_back(accessor(binary.addArray(part.uvs, kArrayBuffer), kFloat, n, "VEC2"));
-            primitive["attributes"] = attributesFrom(first, part.hasUvs());
+            primitive["attributes"] = attributesFrom(first, hasNormals, part.hasUvs());
             primitive["indices"] = accessors.size();
             accessors.push_back(
                 accessor(binary.addArray(part.indices, kElementArrayBuffer), kUnsignedInt, part.indices.size(), "SCALAR"));
@@ -185,6 +192,12 @@ std::vector<unsigned char> document(const mesh::PolygonMesh& triangles, const st
 
 WrittenFile writeTexturedGlb(const std::filesystem::path& path, const mesh::PolygonMesh& triangles,
                              const std::vector<glm::vec3>& normals, const std::vector<EncodedImage>& images, bool draco) {
+    return writeTexturedGlb(path, triangles, normals, images, draco ? std::optional<DracoBits>(DracoBits{}) : std::nullopt);
+}
+
+WrittenFile writeTexturedGlb(const std::filesystem::path& path, const mesh::PolygonMesh& triangles,
+                             const std::vector<glm::vec3>& normals, const std::vector<EncodedImage>& images,
+                             const std::optional<DracoBits>& draco) {
     std::vector<unsigned char> bytes;
     try {
         bytes = document(triangles, normals, images, draco);

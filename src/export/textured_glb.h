@@ -3,9 +3,11 @@
 // what the triangle baselines ship when the reference has an appearance (decimation keeps the
 // texture coordinates, the images are re-encoded at the scale the budget allows).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "export/draco_encoding.h"
 #include "export/output_file.h"
 #include "mesh/polygon_mesh.h"
 
@@ -17,11 +19,15 @@ struct EncodedImage {
 };
 
 // `triangles` (triangulated, with faceMaterials and materials, uvs if it has any; in the units to write),
-// `normals` per vertex, `images[i]` the encoding of materials->images[i]. Each material's
+// `normals` per vertex (none: the file has none), `images[i]` the encoding of materials->images[i]. Each material's
 // KHR_texture_transform is applied to its primitive's texture coordinates (that of its base
 // colour texture; a material whose textures disagree keeps the base colour's). With `draco`
 // every primitive is KHR_draco_mesh_compression-coded. Throws subdfit::Error "path: problem".
 WrittenFile writeTexturedGlb(const std::filesystem::path& path, const mesh::PolygonMesh& triangles,
                              const std::vector<glm::vec3>& normals, const std::vector<EncodedImage>& images, bool draco);
+// The same, Draco-coded at `draco`'s quantisation when given.
+WrittenFile writeTexturedGlb(const std::filesystem::path& path, const mesh::PolygonMesh& triangles,
+                             const std::vector<glm::vec3>& normals, const std::vector<EncodedImage>& images,
+                             const std::optional<DracoBits>& draco);
 
 }  // namespace subdfit::exporter

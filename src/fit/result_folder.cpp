@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "io/input_file.h"
+#include "io/output_folder.h"
 #include "util/error.h"
 
 namespace subdfit::fit {
@@ -32,9 +33,10 @@ std::vector<std::string> baselineOrder(const nlohmann::json& report, const nlohm
 ResultFolder readResultFolder(const std::filesystem::path& dir) {
     std::error_code ec;
     if (!std::filesystem::is_directory(dir, ec)) throw fileError(dir.string(), "not a folder");
-    for (const char* required : {"report.json", "asset.subd"})
-        if (!std::filesystem::exists(dir / required, ec))
-            throw fileError(dir.string(), std::string("not a subdfit result: no ") + required + " in it");
+    if (!std::filesystem::exists(dir / "report.json", ec))
+        throw fileError(dir.string(), "not a subdfit result: no report.json in it");
+    if (!std::filesystem::exists(dir / "asset.subd", ec) && !std::filesystem::exists(dir / "asset.glb", ec))
+        throw fileError(dir.string(), "not a subdfit result: no asset.subd (nor a triangle route's asset.glb) in it");
     nlohmann::json report;
     try {
         report = nlohmann::json::parse(io::readInputFile(dir / "report.json"));
@@ -43,10 +45,22 @@ ResultFolder readResultFolder(const std::filesystem::path& dir) {
     }
     if (!report.is_object()) throw fileError((dir / "report.json").string(), "not a subdfit report");
 
-    ResultFolder folder{.dir = dir};
+    // What shipped: asset.subd, or the triangle mesh simplify's `route` names.
+    std::filesystem::path shippedFile = "asset.subd";
+    if (const auto route = report.find("route"); route != report.end() && route->is_object() &&
+                                                 route->contains("path") && (*route)["path"].is_string()) {
+        shippedFile = (*route)["path"].get<std::string>();
+        if (!io::isStrictlyInside(dir / shippedFile, dir))
+            throw fileError((dir / "report.json").string(), "its route names a file outside the folder");
+    }
+    if (!std::filesystem::exists(dir / shippedFile, ec))
+        throw fileError(dir.string(), "not a subdfit result: no " + shippedFile.string() + " in it");
+
+    ResultFolder folder;
+    folder.dir = dir;
     folder.settings = report.value("settings", nlohmann::json::object());
     // simplify's report counts the shipped bytes; a fit's lists what it exported.
-    ShippedEntry ours{.name = "subdfit", .levels = {dir / "asset.subd"}};
+    ShippedEntry ours{.name = "subdfit", .levels = {dir / shippedFile}};
     ours.bytes = bytesOf(numberOr(report, "bytes", 0.0));
     if (const auto exports = report.find("exports"); ours.bytes == 0 && exports != report.end() && exports->is_object())
         ours.bytes = bytesOf(numberOr(*exports, "asset.subd", 0.0));

@@ -1,6 +1,6 @@
 #pragma once
 // What a `subdfit fit` or `subdfit simplify` output folder holds, read back from its report.json:
-// the shipped asset.subd with its bytes and held-out scores, the reference it was fitted to, and
+// what shipped (asset.subd, or simplify's triangle route) with its bytes and held-out scores, the reference it was fitted to, and
 // (simplify) each baseline's shipped file, measured the same way. Reads no mesh: whoever shows
 // or compares them opens what they need.
 #include <cstdint>
@@ -32,7 +32,8 @@ struct ResultFolder {
 };
 
 // Throws subdfit::Error "DIR: problem" when DIR is not a folder holding a result (report.json and
-// asset.subd) or its report.json cannot be read as a report. Baselines whose file is missing,
+// what shipped: asset.subd, or the file report.json's `route` names) or its report.json cannot be
+// read as a report. Baselines whose file is missing,
 // and a reference that has moved, are left out with a note.
 ResultFolder readResultFolder(const std::filesystem::path& dir);
 

@@ -84,8 +84,13 @@ void writeStatusOrSay(const fs::path& dir, const std::string& state, const nlohm
     }
 }
 
-// What became of an asset that neither failed nor was interrupted.
+// What became of an asset that neither failed nor was interrupted, and the route it shipped
+// (finished now or before; empty when not known).
 enum class AssetOutcome { Finished, Skipped, RunningElsewhere };
+struct AssetResult {
+    AssetOutcome outcome;
+    std::string route;
+};
 
 // The identity of `item`; of an unreadable input only its path (simplify will say why, in its status).
 nlohmann::json identityOrPath(const BatchItem& item) {
@@ -98,8 +103,8 @@ nlohmann::json identityOrPath(const BatchItem& item) {
     }
 }
 
-// Simplifies `item` into its partial folder and renames that into place once done.
-void simplifyInto(const BatchItem& item, const AssetPaths& paths, const nlohmann::json& identity,
+// Simplifies `item` into its partial folder and renames that into place once done; the route it shipped.
+std::string simplifyInto(const BatchItem& item, const AssetPaths& paths, const nlohmann::json& identity,
                   const fit::FitHooks& hooks, const BatchLog& say) {
     SimplifyOptions options = item.options;
     options.fit.out = paths.partial;
@@ -110,10 +115,12 @@ void simplifyInto(const BatchItem& item, const AssetPaths& paths, const nlohmann
     try {
         const auto report = runSimplify(options, hooks);
         nlohmann::json details = identity;
-        details.update({{"psnr_holdout", report.fit.holdoutAfter.psnr}, {"bytes", report.subdfit.bytes}});
+        details.update({{"psnr_holdout", report.subdfit.psnrHoldout}, {"bytes", report.subdfit.bytes},
+                        {"route", report.route.shipped}});
         writeStatus(paths.partial, "done", details);
         fs::remove_all(paths.finished);  // a stale folder: not done, or from another input
         fs::rename(paths.partial, paths.finished);
+        return report.route.shipped;
     } catch (const Interrupted&) {
         writeStatusOrSay(paths.partial, "interrupted", identity, say, item.name);
         throw;
@@ -123,12 +130,12 @@ void simplifyInto(const BatchItem& item, const AssetPaths& paths, const nlohmann
 // One asset under its lock: skipped when another process holds the lock or when it is done from
 // the same input and settings; otherwise simplified, its partial work kept when it is from the
 // same input. Throws what the simplify throws.
-AssetOutcome runAsset(const BatchItem& item, const fs::path& out, const fit::FitHooks& hooks, const BatchLog& say) {
+AssetResult runAsset(const BatchItem& item, const fs::path& out, const fit::FitHooks& hooks, const BatchLog& say) {
     const AssetPaths paths(out, item.name);
     const auto lock = io::FileLock::tryAcquire(paths.lock);
     if (!lock) {
         say(item.name + ": running elsewhere (another process holds its lock), skipped");
-        return AssetOutcome::RunningElsewhere;
+        return {AssetOutcome::RunningElsewhere, ""};
     }
     // Under the lock, the folders can only change by our hand.
     const nlohmann::json identity = identityOrPath(item);
@@ -136,7 +143,8 @@ AssetOutcome runAsset(const BatchItem& item, const fs::path& out, const fit::Fit
     if (stateOf(finishedStatus) == "done") {
         if (sameIdentity(finishedStatus, identity)) {
             say(item.name + ": done already, skipped");
-            return AssetOutcome::Skipped;
+            const auto route = finishedStatus.find("route");
+            return {AssetOutcome::Skipped, route != finishedStatus.end() && route->is_string() ? route->get<std::string>() : ""};
         }
         say(item.name + ": its finished folder was made from another version of the input: redoing it");
     }
@@ -145,8 +153,7 @@ AssetOutcome runAsset(const BatchItem& item, const fs::path& out, const fit::Fit
         fs::remove_all(paths.partial);
     }
     fs::create_directories(paths.partial);
-    simplifyInto(item, paths, identity, hooks, say);
-    return AssetOutcome::Finished;
+    return {AssetOutcome::Finished, simplifyInto(item, paths, identity, hooks, say)};
 }
 
 // A failed asset's status, where its work would be, when that folder is ours to write.
@@ -236,11 +243,13 @@ BatchSummary runBatch(const std::vector<BatchItem>& items, const fs::path& out, 
         }
         const BatchItem& item = items[k];
         try {
-            switch (runAsset(item, out, hooks, say)) {
+            const AssetResult result = runAsset(item, out, hooks, say);
+            switch (result.outcome) {
                 case AssetOutcome::Finished: ++summary.finished; break;
                 case AssetOutcome::Skipped: ++summary.skipped; break;
                 case AssetOutcome::RunningElsewhere: ++summary.runningElsewhere; break;
             }
+            if (!result.route.empty()) ++summary.routes[result.route];
         } catch (const Interrupted& e) {
             say(item.name + ": " + e.what());
             summary.interrupted = true;

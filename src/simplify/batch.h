@@ -15,6 +15,7 @@
 //    from their checkpoints.
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,9 @@ std::vector<std::string> nameItems(std::vector<BatchItem>& items, const std::vec
 struct BatchSummary {
     int finished = 0, skipped = 0, failed = 0, otherShards = 0, runningElsewhere = 0;
     bool interrupted = false;
+    // Of the assets finished or skipped as done: how many shipped each route ("cage",
+    // "decimation", "gltfpack"; simplify/route.h).
+    std::map<std::string, int> routes;
 };
 
 // Announces each asset it starts or skips.

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <tuple>
 
 #include "export/subd_format.h"
 #include "simplify/bake/atlas_bake.h"
@@ -16,6 +17,7 @@
 #include "simplify/cage/initial_cage.h"
 #include "util/error.h"
 #include "util/interrupt.h"
+#include "simplify/stage_seconds.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -98,6 +100,9 @@ constexpr double kLossTolerance = 0.02;
 // ... but only where the bytes saved are worth it: at least this many times the loss given up,
 // both relative (a few bytes saved are not worth a loss near the tolerance).
 constexpr double kBytesPerLoss = 5.0;
+// A rung predicted over this many times the budget is not tried: the prediction (map bytes per
+// face, measured on another cage) errs by a few per cent.
+constexpr double kPredictedOver = 1.25;
 // Four monitor views rank candidates this close to the lowest no better than chance: those
 // within this fraction are scored again on the training views too, and the choice among them is
 // made on that score.
@@ -141,12 +146,17 @@ const Fitting* preferred(const std::vector<Fitting>& fitting, Keep keep, Loss lo
 }
 
 // preferred() among those `keep` accepts within kNearTie of the lowest monitor loss, on their
-// loss over the monitor and training views (scored here where not yet).
+// loss over the monitor and training views (scored here where not yet). A lone leader has no tie
+// to settle: it is chosen as it is.
 template <class Keep>
 const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, std::vector<Fitting>& fitting, Keep keep) {
     const Fitting* lowest = lowestOf(fitting, keep, monitored);
     if (!lowest) return nullptr;
     const double within = (1.0 + kNearTie) * lowest->candidate.monitorLoss;
+    const auto near = std::count_if(fitting.begin(), fitting.end(), [&](const Fitting& f) {
+        return keep(f.candidate) && f.candidate.monitorLoss <= within;
+    });
+    if (near == 1) return lowest;
     for (Fitting& f : fitting) {
         if (!keep(f.candidate) || f.candidate.monitorLoss > within || f.candidate.settledLoss > 0.0) continue;
         throwIfStopRequested();
@@ -161,6 +171,7 @@ struct SearchInputs {
     gl::ProgramCache& programs;
     const fit::FitScene& scene;
     const mesh::PolygonMesh& referenceWorld;  // what cages are decimated from
+    const CageSource& cages;                  // ... prepared once
     const BudgetSearch& search;
     const std::function<void(const std::string&)>& say;
 };
@@ -170,6 +181,10 @@ struct SearchInputs {
 struct Findings {
     std::vector<BudgetCandidate> tried;
     std::vector<Fitting> fitting;
+    StageSeconds phases;  // where the search's seconds went
+    // Map bytes a cage face costs, by (map choice, resolution, bits), as last measured.
+    std::map<std::tuple<size_t, int, int>, double> mapBytesPerFace;
+    bool moreBitsPay = true;  // until a rung's extra bits fail to lower its loss
 };
 
 // A cage as tried: in world units (what ships) and in the normalised frame (what maps are baked onto).
@@ -199,7 +214,7 @@ bool fits(const BudgetSearch& search, const BudgetCandidate& c) { return c.bytes
 std::optional<TriedCage> cageOf(const SearchInputs& in, int faces) {
     throwIfStopRequested();
     try {
-        auto world = std::make_shared<const mesh::PolygonMesh>(initialCage(in.referenceWorld, {.faces = faces}));
+        auto world = std::make_shared<const mesh::PolygonMesh>(in.cages.cage({.faces = faces}));
         mesh::PolygonMesh normalized = *world;
         normalized.positions = in.scene.frame.toNormalized(world->positions);
         return TriedCage{std::move(world), std::move(normalized)};
@@ -253,7 +268,9 @@ void scoreOnMonitor(const SearchInputs& in, const mesh::PolygonMesh& cageWorld, 
 BudgetCandidate judge(const SearchInputs& in, Findings& found, const std::shared_ptr<const mesh::PolygonMesh>& cageWorld,
                       surface::SurfaceMaps baked, const MapRecipe& recipe, const Appearance& appearance) {
     baked.setAppearance(appearance.maps);
+    std::optional<TimedStage> timed(std::in_place, found.phases, "encode");
     Shipped shipped = ship(*cageWorld, baked, recipe.bits, appearance.quality, in.scene.frame.scale);
+    timed.emplace(found.phases, "render");
     const bool atlas = appearance.maps.appearanceAtlas.present();
     BudgetCandidate c{.faces = cageWorld->faceCount(), .maps = recipe.effects, .mapResolution = recipe.resolution,
                       .mapBits = recipe.bits, .appearanceResolution = atlas ? 0 : appearance.maps.appearanceLayout.resolution,
@@ -282,8 +299,11 @@ std::vector<Bare> judgeBare(const SearchInputs& in, Findings& found, const Tried
     std::vector<Bare> bare;
     for (size_t a = 0; a < appearances.size(); ++a) {
         const bool withAppearance = appearances[a].resolution > 0 || appearances[a].atlas > 0;
-        Appearance appearance{.maps = withAppearance ? bakeAppearance(cage.normalized, in.scene.reference, appearances[a])
-                                                     : surface::SurfaceMaps{}};
+        Appearance appearance;
+        if (withAppearance) {
+            TimedStage timed(found.phases, "bake");
+            appearance.maps = bakeAppearance(cage.normalized, in.scene.reference, appearances[a]);
+        }
         // Without materials there is no quality to choose (0).
         const std::vector<int> qualities = withAppearance ? in.search.appearanceQualities : std::vector<int>{0};
         BudgetCandidate c;
@@ -319,28 +339,49 @@ std::vector<const Bare*> worthMaps(const std::vector<Bare>& bare) {
 // Phase three on a cage: the map ladder on each appearance worth it, each choice of maps at each
 // resolution, coarsest first, and at each bit depth while it fits: more bits and finer maps
 // only cost more, so a rung over the budget ends its ladder. Maps are baked once per (choice,
-// resolution) on the cage.
-void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& cage, const std::vector<const Bare*>& worth,
-                    const std::vector<maps::MapEffects>& mapChoices) {
-    std::map<std::pair<size_t, int>, surface::SurfaceMaps> geometric;
-    for (const Bare* b : worth) {
-        for (size_t m = 0; m < mapChoices.size(); ++m) {
-            if (b->inAtlas && mapChoices[m].normalMap) continue;  // an atlas takes heights alone
-            for (int resolution : in.search.mapResolutions) {
-                throwIfStopRequested();
-                auto baked = geometric.find({m, resolution});
-                if (baked == geometric.end())
-                    baked = geometric.emplace(std::make_pair(m, resolution),
-                                              bakeMaps(cage.normalized, in.scene.reference, {.effects = mapChoices[m], .resolution = resolution}))
-                                .first;
-                bool fitted = false;
-                for (int bits : in.search.mapBits) {
-                    const MapRecipe recipe{.effects = mapChoices[m], .resolution = resolution, .bits = bits};
-                    if (!fits(in.search, judge(in, found, cage.world, baked->second, recipe, b->appearance))) break;
-                    fitted = true;
+// resolution) on the cage. Two rules spare work that cannot pay:
+//  - a rung whose bytes the rungs measured on other cages predict well over the budget (map
+//    bytes grow in proportion to the faces) ends its ladder unbaked;
+//  - once more bits have failed to lower a rung's loss by more than kLossTolerance, no rung
+//    tries them again (preferred() would never choose them: more bytes for a loss within it).
+void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& cage, const Bare& bare,
+                    const std::vector<maps::MapEffects>& mapChoices,
+                    std::map<std::pair<size_t, int>, surface::SurfaceMaps>& geometric) {
+    const int faces = cage.world->faceCount();
+    for (size_t m = 0; m < mapChoices.size(); ++m) {
+        if (bare.inAtlas && mapChoices[m].normalMap) continue;  // an atlas takes heights alone
+        for (int resolution : in.search.mapResolutions) {
+            throwIfStopRequested();
+            const auto rung = std::make_tuple(m, resolution, in.search.mapBits.front());
+            if (const auto measured = found.mapBytesPerFace.find(rung); measured != found.mapBytesPerFace.end()) {
+                const double predicted = double(bare.candidate.bytes) + measured->second * faces;
+                if (predicted > kPredictedOver * double(in.search.budget)) {
+                    if (in.say) in.say(describe(bare.candidate) + ": maps T=" + std::to_string(resolution) +
+                                       " predicted over budget, not tried");
+                    break;
                 }
-                if (!fitted) break;
             }
+            auto baked = geometric.find({m, resolution});
+            if (baked == geometric.end()) {
+                TimedStage timed(found.phases, "bake");
+                baked = geometric.emplace(std::make_pair(m, resolution),
+                                          bakeMaps(cage.normalized, in.scene.reference, {.effects = mapChoices[m], .resolution = resolution}))
+                            .first;
+            }
+            bool fitted = false;
+            double fewerBitsLoss = 0.0;
+            for (int bits : in.search.mapBits) {
+                if (fitted && !found.moreBitsPay) break;
+                const MapRecipe recipe{.effects = mapChoices[m], .resolution = resolution, .bits = bits};
+                const BudgetCandidate c = judge(in, found, cage.world, baked->second, recipe, bare.appearance);
+                found.mapBytesPerFace[std::make_tuple(m, resolution, bits)] =
+                    double(c.bytes > bare.candidate.bytes ? c.bytes - bare.candidate.bytes : 0) / faces;
+                if (!fits(in.search, c)) break;
+                if (fitted && c.monitorLoss > (1.0 - kLossTolerance) * fewerBitsLoss) found.moreBitsPay = false;
+                fitted = true;
+                fewerBitsLoss = c.monitorLoss;
+            }
+            if (!fitted) break;
         }
     }
 }
@@ -356,7 +397,10 @@ void growBest(const SearchInputs& in, Findings& found) {
     for (int attempt = 0; attempt < 3 && scale > 1.05; ++attempt, scale = 1.0 + 0.6 * (scale - 1.0)) {
         const int faces = std::min(int(std::lround(best.faces * scale)), in.search.faceCounts.front());
         if (faces <= int(best.faces * 1.05)) break;
-        const std::optional<TriedCage> cage = cageOf(in, faces);
+        const std::optional<TriedCage> cage = [&] {
+            TimedStage timed(found.phases, "cages");
+            return cageOf(in, faces);
+        }();
         if (!cage) break;
         Appearance appearance;
         appearance.quality = best.appearanceQuality;
@@ -375,6 +419,7 @@ void growBest(const SearchInputs& in, Findings& found) {
 // Phase five: the near ties settled on the training views too; the chosen candidate, and the
 // best with maps (the bake route at these bytes). Throws when nothing fits.
 BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
+    TimedStage timed(found.phases, "settle");
     const Fitting* chosen = settle(in.programs, in.scene, found.fitting, [](const BudgetCandidate&) { return true; });
     if (!chosen)
         throw fileError(in.referenceWorld.sourcePath, "no cage fits in " + std::to_string(in.search.budget) +
@@ -384,8 +429,9 @@ BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
     BudgetChoice choice;
     choice.chosen = chosen->candidate;
     choice.cageWorld = *chosen->cageWorld;
-    if (const Fitting* withMaps =
-            settle(in.programs, in.scene, found.fitting, [](const BudgetCandidate& c) { return c.maps.any(); })) {
+    if (const Fitting* withMaps = in.search.bestWithMaps ? settle(in.programs, in.scene, found.fitting,
+                                                                 [](const BudgetCandidate& c) { return c.maps.any(); })
+                                                         : nullptr) {
         choice.bestWithMaps = withMaps->candidate;
         choice.bestWithMapsCage = *withMaps->cageWorld;
     }
@@ -422,18 +468,29 @@ std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, in
 BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene,
                           const mesh::PolygonMesh& referenceWorld, const BudgetSearch& search,
                           const std::function<void(const std::string&)>& say) {
-    const SearchInputs in{programs, scene, referenceWorld, search, say};
+    Findings found;
+    std::optional<CageSource> cages;
+    {
+        TimedStage timed(found.phases, "cages");
+        cages.emplace(referenceWorld);
+    }
+    const SearchInputs in{programs, scene, referenceWorld, *cages, search, say};
     const std::vector<AppearanceBakeOptions> appearances = appearancesOf(search);
     const std::vector<maps::MapEffects> mapChoices = mapChoicesOf(search);
-    Findings found;
     for (int faces : search.faceCounts) {
-        const std::optional<TriedCage> cage = cageOf(in, faces);
+        const std::optional<TriedCage> cage = [&] {
+            TimedStage timed(found.phases, "cages");
+            return cageOf(in, faces);
+        }();
         if (!cage) continue;  // smaller counts will not do better
         const std::vector<Bare> bare = judgeBare(in, found, *cage, appearances);
-        climbMapLadder(in, found, *cage, worthMaps(bare), mapChoices);
+        std::map<std::pair<size_t, int>, surface::SurfaceMaps> geometric;  // baked once per (choice, resolution)
+        for (const Bare* b : worthMaps(bare)) climbMapLadder(in, found, *cage, *b, mapChoices, geometric);
     }
     growBest(in, found);
-    return settleChoice(in, found);
+    BudgetChoice choice = settleChoice(in, found);
+    choice.phases = found.phases;
+    return choice;
 }
 
 std::vector<int> atlasSizesFor(const mesh::PolygonMesh& reference) {
@@ -487,13 +544,16 @@ nlohmann::json toJson(const BudgetReport& report) {
     };
     nlohmann::json tried = nlohmann::json::array();
     for (const auto& c : report.tried) tried.push_back(candidate(c));
-    return {{"bytes", report.bytes},
-            {"chosen", candidate(report.chosen)},
-            {"candidates", tried},
-            {"seconds", report.seconds},
-            {"map_bits", report.shipped.mapBits},
-            {"appearance_quality", report.shipped.appearanceQuality},
-            {"over_budget", report.shipped.bytes > report.bytes}};
+    nlohmann::json j{{"bytes", report.bytes},
+                     {"chosen", candidate(report.chosen)},
+                     {"candidates", tried},
+                     {"seconds", report.seconds},
+                     {"seconds_by_phase", report.phases.toJson()},
+                     {"map_bits", report.shipped.mapBits},
+                     {"appearance_quality", report.shipped.appearanceQuality},
+                     {"over_budget", report.shipped.bytes > report.bytes}};
+    if (report.derived) j["derived_from"] = {{"reference_compressed", report.compressedReference}};
+    return j;
 }
 
 }  // namespace subdfit::simplify

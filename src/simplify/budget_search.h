@@ -2,9 +2,9 @@
 // `simplify --budget`: which asset to fit so that what ships fits the bytes. A small
 // rate-distortion search: cages of several face counts, each bare and with baked maps at a few
 // resolutions and bit depths; every candidate is encoded exactly as it would ship (asset.subd:
-// its bytes), decoded again and rendered on the monitor views (its loss); those within 20 % of
-// the lowest are rendered on the training views as well, and of them the smallest whose loss is
-// within 2 % of the lowest, saving bytes worth the loss, is fitted. The bake stands in for the
+// its bytes), decoded again and rendered on the monitor views (its loss); where several lie
+// within 20 % of the lowest, they are rendered on the training views as well, and of them the
+// smallest whose loss is within 2 % of the lowest, saving bytes worth the loss, is fitted. The bake stands in for the
 // fit, which starts from it and only improves on it (the fit keeps its best state).
 // docs/simplify.md walks through the phases.
 #include <cstdint>
@@ -19,6 +19,7 @@
 #include "fit/fit_scene.h"
 #include "gl/program_cache.h"
 #include "maps/map_effects.h"
+#include "simplify/stage_seconds.h"
 
 namespace subdfit::simplify {
 
@@ -57,15 +58,19 @@ struct BudgetSearch {
     // ... or in the reference's own texture atlas at these sizes (simplify/bake/atlas_bake.h), smallest
     // first, where the reference allows (atlasSizesFor); such candidates take heights alone.
     std::vector<int> appearanceAtlases;
+    // Whether to settle the best candidate with maps too (the bake baseline's, --compare full).
+    bool bestWithMaps = true;
 };
 
 struct BudgetChoice {
     BudgetCandidate chosen;
     mesh::PolygonMesh cageWorld;  // the chosen candidate's cage
-    // The best candidate with maps within the budget (the bake route at these bytes), if any.
+    // The best candidate with maps within the budget (the bake route at these bytes), if any and
+    // if asked for.
     std::optional<BudgetCandidate> bestWithMaps;
     mesh::PolygonMesh bestWithMapsCage;
     std::vector<BudgetCandidate> tried;
+    StageSeconds phases;  // the search's seconds: cages, bake, encode, render, settle
 };
 
 // Face counts worth trying for `budget` bytes on a reference of `referenceTriangles`: from what
@@ -105,14 +110,17 @@ BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
 // report.json's `budget`: the search and what shipped.
 struct BudgetReport {
     std::uintmax_t bytes = 0;  // the budget
+    bool derived = false;      // from the reference (no --budget): route.h's defaultBudget
+    std::uintmax_t compressedReference = 0;  // what it was derived from
     BudgetCandidate chosen;
     std::vector<BudgetCandidate> tried;
     double seconds = 0.0;      // the search's
+    StageSeconds phases;       // and where they went
     BudgetShipment shipped;    // after the fit
 };
 
-// `bytes`, `chosen`, `candidates`, `seconds`, `map_bits` and `appearance_quality` as shipped,
-// and `over_budget`.
+// `bytes` (and, derived, `derived_from`: the reference compressed), `chosen`, `candidates`,
+// `seconds`, `map_bits` and `appearance_quality` as shipped, and `over_budget`.
 nlohmann::json toJson(const BudgetReport& report);
 
 }  // namespace subdfit::simplify

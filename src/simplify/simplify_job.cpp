@@ -14,11 +14,12 @@
 #include "simplify/bake/atlas_bake.h"
 #include "simplify/bake/bake.h"
 #include "simplify/compare/baselines.h"
-#include "simplify/compare/textured_baselines.h"
 #include "simplify/budget_search.h"
-#include "simplify/cage/decimate.h"
 #include "simplify/compare/comparison_image.h"
 #include "simplify/cage/initial_cage.h"
+#include "simplify/simplify_plan.h"
+#include "simplify/triangle_route.h"
+#include "fit/image_metrics.h"
 #include "surface/tessellation.h"
 #include "util/error.h"
 #include "util/warnings.h"
@@ -45,56 +46,31 @@ nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports
     return {{"asset.subd", exports.at("asset.subd")}};
 }
 
-// The budget search's largest cage: a dense bare cage ships cheaply, and its limit surface can
-// shade closer than heights on a coarse one, so the search must be able to reach one. Past
-// subdiv::kDenseCageFaces a cage is drawn one isolation level shallower, which keeps it affordable.
-constexpr int kMostBudgetFaces = 16 * kDefaultFaces;
-// Past this many faces the fit of a budget's cage takes proportionally fewer steps (unless
-// --steps was given): the search's bake of a dense cage is already close, and --budget should
-// cost about what a fit of this many faces does.
-constexpr int kMostFullyFittedFaces = 2 * kDefaultFaces;
-
-// The run decided before it starts, once: the options the fit runs with (with --budget, the
-// search's choice in them), the bake route it is compared with, and the search's report.
-struct SimplifyPlan {
-    fit::FitOptions fit;
-    BakeRoute bakeRoute;
-    std::optional<BudgetReport> budget;
-};
-
-// Scores the fitted scene and the baselines; writes baselines/ and comparison.png into `out`.
-void evaluate(const SimplifyOptions& o, const SimplifyPlan& plan, const std::filesystem::path& out,
-              gl::ProgramCache& programs, fit::FitRun& run, SimplifyReport& report) {
-    fit::CageFitter& fitter = run.fitter();
-    fit::FitScene& scene = run.scene();
-    const int segments = fitter.renderer().tessLevel();
-
-    Quality& ours = report.subdfit;
-    ours.files = shippedFiles(report.fit.exports);
+// The fitted cage, as shipped (asset.subd): held-out scores and, with a full comparison, its
+// surface distance.
+Quality scoreCage(fit::FitRun& run, const fit::FitReport& fitted, const std::filesystem::path& out, const SimplifyOptions& o) {
+    Quality ours;
+    ours.files = shippedFiles(fitted.exports);
     ours.bytes = totalBytes(ours.files);
-    scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
-        fitter.render(camera, target);
+    ours.shipped = "asset.subd";
+    scoreHoldout(run.scene().holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
+        run.fitter().render(camera, target);
     }, ours);
-    ours.distance = shippedDistance(out / "asset.subd", segments, scene.frame, scene.reference, o.surfaceSamples);
+    if (o.compare == CompareLevel::Full)
+        ours.distance = shippedDistance(out / "asset.subd", run.fitter().renderer().tessLevel(), run.scene().frame,
+                                        run.scene().reference, o.surfaceSamples);
+    return ours;
+}
 
-    const BaselineSettings settings{.dir = out / "baselines", .compactMaps = plan.fit.compactMaps,
-                                    .surfaceSamples = o.surfaceSamples, .segments = segments};
-    std::filesystem::create_directories(settings.dir);
-    // A material (textured or a plain colour) the triangle baselines must keep, as a user's would.
-    if (scene.shading != render::ShadingModel::Geometry && scene.reference.materials) {
-        report.decimation = texturedDecimationBaseline(programs, scene, ours.bytes, settings);
-        report.gltfpack = texturedGltfpackBaseline(programs, scene, ours.bytes, settings);
-    } else {
-        const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
-        report.decimation = decimationBaseline(programs, scene, welded, ours.bytes, settings);
-        report.gltfpack = gltfpackBaseline(programs, scene, welded, ours.bytes, settings);
-    }
-    report.bake = bakeBaseline(programs, scene, plan.bakeRoute, settings);
-    if (plan.budget) report.bake.details["over_budget"] = report.bake.bytes > plan.budget->bytes;
-    std::vector<ComparisonColumn> columns{{"subdfit", &ours}, {"decimation + Draco", &report.decimation}};
+// comparison.png: one held-out view of the reference, what shipped and each baseline.
+void writeComparisonImage(const SimplifyReport& report, int resolution, const fit::FitScene& scene,
+                          const std::filesystem::path& out) {
+    std::vector<ComparisonColumn> columns{{"subdfit", &report.subdfit}};
+    if (report.cage) columns.push_back({"fitted cage", &*report.cage});
+    if (report.decimation) columns.push_back({"decimation + Draco", &*report.decimation});
     if (report.gltfpack) columns.push_back({"gltfpack", &*report.gltfpack});
-    columns.push_back({"bake", &report.bake});
-    writeComparison(out / "comparison.png", plan.fit.resolution, scene.holdout.readColor(0), columns);
+    if (report.bake) columns.push_back({"bake", &*report.bake});
+    writeComparison(out / "comparison.png", resolution, scene.holdout.readColor(0), columns);
 }
 
 // How `parameters`' appearance is baked: its lattice, or its atlas.
@@ -150,94 +126,6 @@ bool widenToHeights(fit::FitRun& run) {
     return true;
 }
 
-// The bake route of a cage (normalised frame) with the run's own maps.
-BakeRoute bakeRouteOf(const mesh::PolygonMesh& cage, const fit::FitOptions& fit) {
-    return {.cage = cage, .effects = fit.maps, .resolution = fit.mapResolution, .bits = fit.mapBits,
-            .appearanceResolution = fit.appearanceResolution, .appearanceQuality = fit.appearanceQuality,
-            .appearanceAtlas = fit.appearanceAtlas, .shadingNormal = fit.shadingNormal};
-}
-
-// Without a budget the fit starts from the initial cage of --faces, with the options as given.
-SimplifyPlan planByFaces(const SimplifyOptions& o, fit::FitOptions fitOptions, fit::FitScene& scene,
-                         const mesh::PolygonMesh& reference) {
-    scene.setCage(initialCage(reference, {.faces = o.faces > 0 ? o.faces : kDefaultFaces}));
-    BakeRoute route = bakeRouteOf(scene.cage, fitOptions);
-    return {.fit = std::move(fitOptions), .bakeRoute = std::move(route), .budget = std::nullopt};
-}
-
-// What the budget search tries for `o` on `scene`.
-BudgetSearch budgetSearchFor(const SimplifyOptions& o, std::uintmax_t budget, const fit::FitScene& scene) {
-    return {.budget = budget,
-            .faceCounts = o.faces > 0 ? std::vector<int>{o.faces}
-                                      : faceCountsFor(budget, scene.reference.faceCount(), kMostBudgetFaces),
-            .allowedMaps = o.fit.maps,
-            .appearance = {.baseColor = scene.shading != render::ShadingModel::Geometry,
-                           .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness},
-            .appearanceQualities = {o.fit.appearanceQuality},
-            .appearanceAtlases = o.fit.appearanceAtlas > 0 ? std::vector<int>{o.fit.appearanceAtlas}
-                                                          : atlasSizesFor(scene.reference)};
-}
-
-// The search's choice into the fit's options: its maps, their resolution, bits and shading
-// normal, its appearance; and for a dense cage fewer steps, unless --steps was given.
-void applyChoice(const BudgetCandidate& chosen, int cageFaces, bool stepsByDevice, fit::FitOptions& fit) {
-    fit.maps = chosen.maps;
-    if (chosen.appearanceResolution > 0 || chosen.appearanceAtlas > 0) {
-        if (chosen.appearanceResolution > 0) fit.appearanceResolution = chosen.appearanceResolution;
-        fit.appearanceAtlas = chosen.appearanceAtlas;
-        fit.appearanceQuality = chosen.appearanceQuality;
-    }
-    if (chosen.mapResolution > 0) {
-        fit.mapResolution = chosen.mapResolution;
-        fit.mapBits = chosen.mapBits;
-        fit.shadingNormal = chosen.shadingNormal;
-        // The search judged this cage with maps baked onto it as it is: the fit refines that
-        // from the start (moving the cage first would leave what was judged).
-        fit.mapsStart = 0.0f;
-    }
-    if (stepsByDevice && cageFaces > kMostFullyFittedFaces)
-        fit.steps = std::max(1, int(std::lround(double(fit.steps) * kMostFullyFittedFaces / cageFaces)));
-}
-
-// The bake route at the budget's bytes: the search's best candidate with maps, as it is; when
-// none fits, the chosen cage with the cheapest maps the search tries (reported over budget),
-// not the default maps at many times the bytes; with no maps allowed, the chosen cage with the
-// run's own.
-BakeRoute budgetBakeRoute(const BudgetChoice& choice, const BudgetSearch& search, const fit::FitOptions& fit,
-                          const fit::FitScene& scene) {
-    if (!choice.bestWithMaps && !search.allowedMaps.geometric()) return bakeRouteOf(scene.cage, fit);
-    const BudgetCandidate route = choice.bestWithMaps ? *choice.bestWithMaps
-                                                      : BudgetCandidate{.maps = search.allowedMaps,
-                                                                        .mapResolution = search.mapResolutions.front(),
-                                                                        .mapBits = search.mapBits.front()};
-    mesh::PolygonMesh cage = choice.bestWithMaps ? choice.bestWithMapsCage : choice.cageWorld;
-    cage.positions = scene.frame.toNormalized(cage.positions);
-    const bool appearance = route.appearanceResolution > 0 || route.appearanceAtlas > 0;
-    return {.cage = std::move(cage), .effects = route.maps, .resolution = route.mapResolution, .bits = route.mapBits,
-            .appearanceResolution = appearance ? route.appearanceResolution : fit.appearanceResolution,
-            .appearanceQuality = appearance ? route.appearanceQuality : fit.appearanceQuality,
-            .appearanceAtlas = appearance ? route.appearanceAtlas : fit.appearanceAtlas,
-            .shadingNormal = route.shadingNormal};
-}
-
-// With a budget the fit starts from the search's choice (simplify/budget_search.h).
-SimplifyPlan planWithinBudget(const SimplifyOptions& o, std::uintmax_t budget, fit::FitOptions fitOptions,
-                              gl::ProgramCache& programs, fit::FitScene& scene, const mesh::PolygonMesh& reference,
-                              const fit::FitHooks& hooks) {
-    const BudgetSearch search = budgetSearchFor(o, budget, scene);
-    if (hooks.note) hooks.note("budget " + std::to_string(budget) + " bytes: trying candidates");
-    const auto searchStarted = std::chrono::steady_clock::now();
-    BudgetChoice choice = searchBudget(programs, scene, reference, search, hooks.note);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - searchStarted).count();
-    applyChoice(choice.chosen, choice.cageWorld.faceCount(), o.fit.steps == fit::kByDevice, fitOptions);
-    scene.setCage(choice.cageWorld);
-    BakeRoute route = budgetBakeRoute(choice, search, fitOptions, scene);
-    return {.fit = std::move(fitOptions),
-            .bakeRoute = std::move(route),
-            .budget = BudgetReport{.bytes = budget, .chosen = choice.chosen, .tried = std::move(choice.tried), .seconds = seconds,
-                                   .shipped = {}}};
-}
-
 // Never a silent loss: an appearance on tiles carries the fitted colours and the reference's
 // emission and occlusion, not its normal texture (that rides along only in its own atlas).
 void warnOfWhatTilesLeaveOut(const std::filesystem::path& path, const mesh::PolygonMesh& reference, bool searched,
@@ -266,10 +154,6 @@ void startAppearance(fit::FitRun& run, bool resumed) {
     }
 }
 
-// The fit's stages, resumed from `checkpoint` when asked: the cage alone; the maps baked onto it;
-// the maps refined on the frozen cage. Unlike `fit`, an interrupted simplify writes no results:
-// they would cost the baselines' time after the user asked to stop, and the checkpoint keeps
-// the steps taken.
 // Simplify's cage starts limit-fitted: its vertices are refined with the smaller step and the gate.
 void refineGently(fit::CageFitter& fitter) {
     optim::ParameterGroup& vertices = fitter.vertexGroup();
@@ -277,6 +161,10 @@ void refineGently(fit::CageFitter& fitter) {
     vertices.settings().noiseGate = kRefineNoiseGate;
 }
 
+// The fit's stages, resumed from `checkpoint` when asked: the cage alone; the maps baked onto it;
+// the maps refined on the frozen cage. Unlike `fit`, an interrupted simplify writes no results:
+// they would cost the baselines' time after the user asked to stop, and the checkpoint keeps
+// the steps taken.
 void fitStages(fit::FitRun& run, const std::filesystem::path& checkpoint, bool resume, const fit::FitHooks& hooks) {
     const bool resumed = resume && run.resume(checkpoint);
     if (resume && !resumed && hooks.note)
@@ -286,6 +174,121 @@ void fitStages(fit::FitRun& run, const std::filesystem::path& checkpoint, bool r
         fit::StopReason::Cancelled)
         throw Interrupted("interrupted at step " + std::to_string(run.step()) + " of " +
                           std::to_string(run.options().steps) + ", checkpointed in " + checkpoint.string());
+}
+
+// What one run works with, from the reference's load to its commit.
+struct RunInputs {
+    const SimplifyOptions& options;
+    const fit::FitHooks& hooks;
+    gl::ProgramCache& programs;
+    fit::FitScene& scene;
+    const mesh::PolygonMesh& reference;
+    const context::GlContext& context;
+    const std::filesystem::path& staged;
+    BaselineSettings& baselines;
+    SimplifyReport& report;
+};
+
+// The bytes a run aims at: --budget as given; without one (and without --faces), derived from
+// the reference compressed.
+struct TargetBudget {
+    std::optional<std::uintmax_t> bytes;
+    std::uintmax_t compressedReference = 0;  // 0 unless derived
+};
+
+TargetBudget targetBudget(const SimplifyOptions& options, const fit::FitScene& scene, const std::filesystem::path& staged,
+                          const fit::FitHooks& hooks, StageSeconds& stages) {
+    if (options.budget || options.faces != 0) return {.bytes = options.budget};
+    const std::uintmax_t compressed = compressedReferenceBytes(scene, staged / "reference.glb");
+    const std::uintmax_t budget = defaultBudget(compressed);
+    if (hooks.note)
+        hooks.note("no --budget: " + std::to_string(budget) + " bytes (the reference compressed: " +
+                   std::to_string(compressed) + ")");
+    stages.lap("default_budget");
+    return {.bytes = budget, .compressedReference = compressed};
+}
+
+// What is known before any fit: the triangle route at the budget (what a cage must beat), and
+// either the route that ships without a cage tried or the cage's plan.
+struct PreFit {
+    TriangleBaselines triangles;
+    std::optional<Route> route;
+    std::optional<SimplifyPlan> plan;
+};
+
+PreFit decideBeforeFit(const SimplifyOptions& options, fit::FitOptions fitOptions, const TargetBudget& target,
+                       gl::ProgramCache& programs, fit::FitScene& scene, const mesh::PolygonMesh& reference,
+                       const BaselineSettings& baselines, const fit::FitHooks& hooks, StageSeconds& stages) {
+    PreFit decided;
+    const std::optional<std::uintmax_t>& budget = target.bytes;
+    if (budget) {
+        decided.triangles = triangleBaselines(programs, scene, *budget, baselines, options.compare);
+        stages.lap("triangle_route");
+        if (!options.cageOnly) decided.route = routeBeforeFit(decided.triangles.best(), decided.triangles.holds, std::nullopt);
+        if (decided.route) return decided;
+    }
+    decided.plan = budget ? planWithinBudget(options, *budget, std::move(fitOptions), programs, scene, reference, hooks.note)
+                          : planByFaces(options, std::move(fitOptions), scene, reference);
+    stages.lap(budget ? "search" : "initial_cage");
+    if (auto& planned = decided.plan->budget) {
+        planned->derived = !options.budget;
+        planned->compressedReference = target.compressedReference;
+        if (!options.cageOnly)
+            decided.route = routeBeforeFit(decided.triangles.best(), Holds::Part,
+                                           fit::psnrFromLoss(planned->chosen.monitorLoss));
+    }
+    return decided;
+}
+
+// Fits the plan's cage, writes its results into the staging folder, and weighs it against the
+// triangle route (made here at the cage's bytes when there is no budget): the better ships. With
+// --compare full, the bake route too.
+void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& triangles, std::optional<std::uintmax_t> budget) {
+    const SimplifyOptions& options = in.options;
+    SimplifyReport& report = in.report;
+    StageSeconds& stages = report.stages;
+    if (in.scene.shading != render::ShadingModel::Geometry && plan.fit.appearanceAtlas == 0)
+        warnOfWhatTilesLeaveOut(options.fit.reference, in.reference, plan.budget.has_value(),
+                                in.scene.shading == render::ShadingModel::MetallicRoughness);
+    const mesh::PolygonMesh cage = in.scene.cageWorld;
+    fit::FitRun run(plan.fit, in.programs, in.scene);
+    refineGently(run.fitter());
+    fitStages(run, options.fit.out / "checkpoint.bin", options.fit.resume, in.hooks);
+    stages.lap("fit");
+
+    mesh::writeObj(in.staged / "initial_cage.obj", cage);
+    report.fit = run.writeResults(in.staged, in.context);
+    if (report.budget) {
+        std::uintmax_t& bytes = report.fit->exports.at("asset.subd");
+        const std::uintmax_t fitted = bytes;
+        report.budget->shipped = shipWithinBudget(in.staged / "asset.subd", bytes, report.budget->bytes, plan.fit.mapBits,
+                                                  plan.fit.appearanceQuality);
+        bytes = report.budget->shipped.bytes;
+        // The USD export follows asset.subd, where that was coded again.
+        if (fitted > report.budget->bytes) {
+            const nlohmann::json usd = fit::exportUsd(plan.fit, in.staged);
+            for (const auto& [name, usdBytes] : usd.items()) report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
+        }
+    }
+    stages.lap("exports");
+    report.subdfit = scoreCage(run, *report.fit, in.staged, options);
+    stages.lap("metrics");
+    if (!budget) {
+        triangles = triangleBaselines(in.programs, in.scene, report.subdfit.bytes, in.baselines, options.compare);
+        stages.lap("triangle_route");
+    }
+    const TriangleChoice best = triangles.best();
+    report.route = options.cageOnly ? Route{.why = "--route cage"} : chooseRoute(report.subdfit, best);
+    if (report.route.shipped != "cage") {
+        report.cage = report.subdfit;
+        report.subdfit = shipTriangles(best, in.staged);
+    }
+    if (options.compare == CompareLevel::Full) {
+        in.baselines.segments = run.fitter().renderer().tessLevel();
+        report.bake = bakeBaseline(in.programs, in.scene, plan.bakeRoute, in.baselines);
+        if (plan.budget) report.bake->details["over_budget"] = report.bake->bytes > plan.budget->bytes;
+        stages.lap("baseline_bake");
+    }
 }
 
 }  // namespace
@@ -306,26 +309,57 @@ nlohmann::json settingsJson(const SimplifyOptions& o) {
     settings["faces"] = o.faces;
     settings["budget"] = o.budget.value_or(0);  // 0: none, as a batch asset's identity hashes it
     settings["surface_samples"] = o.surfaceSamples;
+    settings["compare"] = toString(o.compare);
+    settings["route"] = o.cageOnly ? "cage" : "auto";
     return settings;
 }
 
 nlohmann::json toJson(const SimplifyReport& r) {
-    nlohmann::json report = fit::toJson(r.fit);
-    nlohmann::json ours = toJson(r.subdfit);
-    ours.erase("psnr_holdout");  // the fit's report has it already, from the same views
-    report.update(ours);
-    report["baselines"] = {{"decimation", toJson(r.decimation)}, {"bake", toJson(r.bake)}};
-    report["margin_db"] = {{"decimation", r.subdfit.psnrHoldout - r.decimation.psnrHoldout},
-                           {"bake", r.subdfit.psnrHoldout - r.bake.psnrHoldout}};
-    report["comparison_columns"] = {"reference", "subdfit", "decimation", "bake"};
-    if (r.gltfpack) {
-        report["baselines"]["gltfpack"] = toJson(*r.gltfpack);
-        report["margin_db"]["gltfpack"] = r.subdfit.psnrHoldout - r.gltfpack->psnrHoldout;
-        report["comparison_columns"] = {"reference", "subdfit", "decimation", "gltfpack", "bake"};
-    } else {
-        report["baselines"]["gltfpack"] = {{"skipped", "gltfpack is not on PATH (Debian: apt-get install gltfpack)"}};
+    nlohmann::json report =
+        r.fit ? fit::toJson(*r.fit)
+              : nlohmann::json{{"settings", r.settings},
+                               {"reference", {{"path", r.reference.string()}, {"triangles", r.referenceTriangles}}}};
+    // What shipped (where the cage did, its held-out PSNR is the fit's, from the same views).
+    nlohmann::json shipped = toJson(r.subdfit);
+    shipped.erase("path");  // `route` names it
+    report.update(shipped);
+    report["seconds"] = r.seconds;
+    report["seconds_by_stage"] = r.stages.toJson();
+
+    nlohmann::json route = toJson(r.route), weighed = nlohmann::json::object();
+    auto weigh = [&](const char* name, const Quality& q) {
+        weighed[name] = {{"psnr_holdout", q.psnrHoldout}, {"bytes", q.bytes}};
+    };
+    if (r.fit) weigh("cage", r.cage ? *r.cage : r.subdfit);
+    if (r.decimation) weigh("decimation", *r.decimation);
+    if (r.gltfpack) weigh("gltfpack", *r.gltfpack);
+    route["weighed"] = weighed;
+    report["route"] = route;
+
+    if (r.compare != CompareLevel::None) {
+        nlohmann::json baselines = nlohmann::json::object(), margins = nlohmann::json::object();
+        nlohmann::json columns = {"reference", "subdfit"};
+        auto add = [&](const char* name, const std::optional<Quality>& q) {
+            if (!q) return;
+            baselines[name] = toJson(*q);
+            margins[name] = r.subdfit.psnrHoldout - q->psnrHoldout;
+            columns.push_back(name);
+        };
+        add("cage", r.cage);
+        add("decimation", r.decimation);
+        add("gltfpack", r.gltfpack);
+        add("bake", r.bake);
+        if (r.gltfpackMissing)
+            baselines["gltfpack"] = {{"skipped", "gltfpack is not on PATH (Debian: apt-get install gltfpack)"}};
+        report["baselines"] = baselines;
+        report["margin_db"] = margins;
+        report["comparison_columns"] = columns;
     }
-    report["simplify"] = {{"faces_requested", r.facesRequested}, {"reference_triangles", r.fit.referenceTriangles}};
+    report["simplify"] = {{"faces_requested", r.facesRequested},
+                          {"reference_triangles", r.referenceTriangles},
+                          {"compare", toString(r.compare)},
+                          {"budget", r.budgetBytes},
+                          {"budget_derived", r.budgetDerived}};
     if (r.budget) report["budget"] = toJson(*r.budget);
     return report;
 }
@@ -335,6 +369,11 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     const std::filesystem::path& out = options.fit.out;
     io::checkOutputFolder(out, {.ownMarkers = fit::kFitResultMarkers, .force = options.fit.force});
     const auto started = std::chrono::steady_clock::now();
+    SimplifyReport report;
+    report.facesRequested = options.faces;
+    report.compare = options.compare;
+    report.reference = options.fit.reference;
+    StageSeconds& stages = report.stages;
     const mesh::PolygonMesh reference = mesh::loadReference(options.fit.reference);
     if (options.fit.appearanceAtlas > 0)
         if (const std::string why = atlasUnsuitability(reference); !why.empty())
@@ -347,34 +386,42 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     if (!chosen.empty() && hooks.note) hooks.note(chosen);
     gl::ProgramCache programs(gl::platformDefines());
     fitOptions.cage = out / "initial_cage.obj";  // where the report says the cage came from
+    report.settings = fit::settingsJson(fitOptions);
     fit::FitScene scene(fitOptions, programs, {}, reference);
-    const SimplifyPlan plan =
-        options.budget ? planWithinBudget(options, *options.budget, std::move(fitOptions), programs, scene, reference, hooks)
-                       : planByFaces(options, std::move(fitOptions), scene, reference);
-    if (scene.shading != render::ShadingModel::Geometry && plan.fit.appearanceAtlas == 0)
-        warnOfWhatTilesLeaveOut(options.fit.reference, reference, plan.budget.has_value(),
-                                scene.shading == render::ShadingModel::MetallicRoughness);
-    const mesh::PolygonMesh cage = scene.cageWorld;
-    fit::FitRun run(plan.fit, programs, scene);
-    refineGently(run.fitter());
-    fitStages(run, out / "checkpoint.bin", options.fit.resume, hooks);
+    report.referenceTriangles = scene.reference.faceCount();
+    stages.lap("load");
 
     // Every result lands in one commit, or none does.
     io::StagedFolder staged(out);
-    mesh::writeObj(staged.path() / "initial_cage.obj", cage);
-    SimplifyReport report{.fit = run.writeResults(staged.path(), *context), .gltfpack = std::nullopt,
-                          .facesRequested = options.faces, .budget = plan.budget};
-    if (report.budget) {
-        std::uintmax_t& bytes = report.fit.exports.at("asset.subd");
-        report.budget->shipped = shipWithinBudget(staged.path() / "asset.subd", bytes, report.budget->bytes,
-                                                  plan.fit.mapBits, plan.fit.appearanceQuality);
-        bytes = report.budget->shipped.bytes;
-        // The USD export follows asset.subd, which may have been coded again.
-        const nlohmann::json usd = fit::exportUsd(plan.fit, staged.path());
-        for (const auto& [name, usdBytes] : usd.items()) report.fit.exports[name] = usdBytes.get<std::uintmax_t>();
+    BaselineSettings baselineSettings{.dir = staged.path() / "baselines", .compactMaps = fitOptions.compactMaps,
+                                      .surfaceSamples = options.surfaceSamples,
+                                      .distance = options.compare == CompareLevel::Full};
+    const TargetBudget target = targetBudget(options, scene, staged.path(), hooks, stages);
+    report.budgetBytes = target.bytes.value_or(0);
+    report.budgetDerived = target.bytes && !options.budget;
+    PreFit decided = decideBeforeFit(options, std::move(fitOptions), target, programs, scene, reference, baselineSettings,
+                                     hooks, stages);
+    TriangleBaselines& triangles = decided.triangles;
+    report.budget = decided.plan ? decided.plan->budget : std::nullopt;
+    if (decided.route) {
+        report.route = *decided.route;
+        report.subdfit = shipTriangles(triangles.best(), staged.path());
+    } else {
+        fitAndWeigh({options, hooks, programs, scene, reference, *context, staged.path(), baselineSettings, report},
+                    *decided.plan, triangles, target.bytes);
     }
-    evaluate(options, plan, staged.path(), programs, run, report);
-    report.fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    report.decimation = std::move(triangles.decimation);
+    report.gltfpack = std::move(triangles.gltfpack);
+    report.gltfpackMissing = triangles.gltfpackMissing;
+    // Weighed by the route (report.json's route.weighed), not kept as baselines.
+    if (options.compare == CompareLevel::None) std::filesystem::remove_all(baselineSettings.dir);
+    if (options.compare == CompareLevel::Full) {
+        writeComparisonImage(report, options.fit.resolution > 0 ? options.fit.resolution : scene.holdout.resolution(), scene,
+                             staged.path());
+        stages.lap("comparison_image");
+    }
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (report.fit) report.fit->seconds = report.seconds;
     io::writeTextAtomically(staged.path() / "report.json", toJson(report).dump(2) + "\n");
     staged.commit();
     return report;

@@ -13,10 +13,13 @@
 #include "fit/fit_job.h"
 #include "simplify/budget_search.h"
 #include "simplify/compare/quality.h"
+#include "simplify/route.h"
+#include "simplify/stage_seconds.h"
 
 namespace subdfit::simplify {
 
-// What `simplify` changes of a fit's defaults: a displacement map (shading normals come from its
+// What `simplify` changes of a fit's defaults (with --faces and no budget; a budget's search
+// chooses these): a displacement map (shading normals come from its
 // derivatives: in every budget search so far a normal map cost more than it gave), at a
 // resolution a light asset can afford, shipped compact; and the cage fitted alone for most of
 // the run, since the maps are baked onto it and only refined (see simplify_job.cpp).
@@ -31,11 +34,20 @@ inline fit::FitOptions simplifyFitDefaults() {
 
 struct SimplifyOptions {
     fit::FitOptions fit = simplifyFitDefaults();  // fit.reference: the dense asset; fit.cage is set by simplify
-    int faces = 0;                // triangles of the cage; 0: kDefaultFaces, or chosen by the budget
-    std::optional<std::uintmax_t> budget;  // bytes asset.subd may take; simplify/budget_search.h
+    int faces = 0;                // triangles of the cage; 0: chosen by the budget
+    // Bytes what ships may take (simplify/budget_search.h). Without it or `faces`, defaultBudget()
+    // of the reference; with `faces` alone, the cage is fitted as asked and the triangle route
+    // weighed at its bytes.
+    std::optional<std::uintmax_t> budget;
     int surfaceSamples = 100000;  // per side, for Chamfer and Hausdorff
+    CompareLevel compare = CompareLevel::Full;
+    // Whether what ships is the better route, or the fitted cage whatever the triangle route
+    // scores (a user who needs a subdivision surface to edit or animate); the triangle route is
+    // weighed and reported either way.
+    bool cageOnly = false;
 };
 
+// The cage size the budget search's limits are scaled from (simplify_job.cpp).
 inline constexpr int kDefaultFaces = 1000;
 
 // Throws subdfit::Error ("invalid option: ...") before any work.
@@ -44,22 +56,38 @@ void validate(const SimplifyOptions& options);
 // The fit's settings and simplify's own (see fit::settingsJson); `budget` 0 without one.
 nlohmann::json settingsJson(const SimplifyOptions& options);
 
-// What a simplify did: the fit's report, and subdfit's asset and each baseline measured the
-// same way at the same byte budget.
+// What a simplify did: the route it shipped, the fit's report when a cage was fitted, and what
+// shipped and each baseline measured the same way at the same byte budget.
 struct SimplifyReport {
-    fit::FitReport fit;
-    Quality subdfit{}, decimation{}, bake{};
-    std::optional<Quality> gltfpack;  // none when gltfpack is not installed
+    nlohmann::json settings;            // fit::settingsJson of the run's options
+    std::optional<fit::FitReport> fit;  // none when a triangle route shipped before any fit
+    Route route;
+    Quality subdfit{};                  // what shipped: the fitted cage, or the triangle route
+    std::optional<Quality> cage;        // the fitted cage, where a triangle route shipped after its fit
+    // The baselines (the triangle ones at the budget); which are made is --compare's to say.
+    std::optional<Quality> decimation, gltfpack, bake;
+    bool gltfpackMissing = false;       // asked for, but gltfpack is not on PATH
     int facesRequested = 0;
-    std::optional<BudgetReport> budget;  // the search and what shipped, with --budget
+    std::optional<BudgetReport> budget;  // the search and what shipped, with a budget
+    std::uintmax_t budgetBytes = 0;      // the budget the routes were weighed at (0: the cage's bytes, --faces alone)
+    bool budgetDerived = false;          // from the reference (route.h's defaultBudget)
+    CompareLevel compare = CompareLevel::Full;
+    std::filesystem::path reference;
+    int referenceTriangles = 0;
+    StageSeconds stages;
+    double seconds = 0.0;                // the whole run
 };
 
-// report.json: the fit's keys, subdfit's bytes / files / chamfer / hausdorff / mean_distance,
-// `baselines` (each with the `path` of its shipped file in DIR), `margin_db` (subdfit's held-out PSNR minus each baseline's), `simplify` and, with
-// a budget, `budget` (its bytes, the candidates tried, the one chosen, `over_budget`).
+// report.json: the fit's keys (when one ran); what shipped: `route` (shipped, path, why, and the
+// held-out PSNR and bytes of each route weighed), bytes / files / psnr_holdout / ssim_holdout /
+// chamfer / hausdorff / mean_distance; `baselines` (each with the `path` of its shipped file in
+// DIR; the fitted cage among them where it did not ship) and `margin_db` (the shipped held-out
+// PSNR minus each baseline's), unless --compare none; `simplify`; `seconds_by_stage`; and with a
+// budget, `budget` (its bytes, whether derived, the candidates tried, the one chosen, `over_budget`).
 nlohmann::json toJson(const SimplifyReport& report);
 
-// Checks DIR (io::checkOutputFolder), loads, fits with DIR/checkpoint.bin as its checkpoint
+// Checks DIR (io::checkOutputFolder), loads, chooses the route (route.h), fits a cage where one
+// may win with DIR/checkpoint.bin as its checkpoint
 // (resumed with options.fit.resume), and writes every result through DIR/.staging-PID/ in one
 // commit. Throws subdfit::Error for bad options or inputs before anything is written, and
 // Interrupted (no results, the checkpoint kept) when hooks.cancel or a stop request ends the fit.

@@ -48,7 +48,10 @@ nlohmann::json readJson(const fs::path& path) {
 TEST(SimplifyJob, ReportMatchesTheFilesAndComparesAtEqualBytes) {
     const auto dir = scratchDir("simplify_job");
     mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 4));
-    const auto report = simplify::toJson(simplify::runSimplify(smallMappedSimplify(dir / "lumpy.obj", dir / "out")));
+    auto options = smallMappedSimplify(dir / "lumpy.obj", dir / "out");
+    options.cageOnly = true;  // what a fitted cage ships, whether or not the triangle route scores better
+    const auto report = simplify::toJson(simplify::runSimplify(options));
+    EXPECT_EQ(report["route"]["shipped"], "cage");
 
     // bytes: exactly what the shipped files weigh on disk.
     std::uintmax_t onDisk = 0;
@@ -71,7 +74,7 @@ TEST(SimplifyJob, ReportMatchesTheFilesAndComparesAtEqualBytes) {
 
     const auto& decimation = report["baselines"]["decimation"];
     const auto& bake = report["baselines"]["bake"];
-    EXPECT_LE(decimation["bytes"].get<std::uintmax_t>(), onDisk);
+    EXPECT_LE(decimation["bytes"].get<std::uintmax_t>(), onDisk);  // --faces alone: the route is weighed at the cage's bytes
     EXPECT_GT(decimation["triangles"].get<int>(), 120);  // the maps' bytes buy it more triangles
     EXPECT_EQ(fs::file_size(dir / "out" / "baselines" / "decimated.glb"), decimation["bytes"].get<std::uintmax_t>());
     // The bake ships the same cage and map formats: within a few percent of subdfit's bytes.
@@ -106,7 +109,7 @@ TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
     auto options = smallMappedSimplify(dir / "lumpy.obj", dir / "straight");
     options.fit.steps = 20;
     options.fit.mapsStart = 0.5f;  // bake at step 10
-    const auto straight = simplify::runSimplify(options).fit;
+    const auto straight = *simplify::runSimplify(options).fit;
 
     options.fit.out = dir / "resumed";
     std::atomic<bool> cancel{false};
@@ -118,7 +121,7 @@ TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
     EXPECT_FALSE(fs::exists(dir / "resumed" / "report.json"));
     EXPECT_FALSE(fs::exists(dir / "resumed" / "initial_cage.obj"));
     options.fit.resume = true;
-    const auto resumed = simplify::runSimplify(options).fit;
+    const auto resumed = *simplify::runSimplify(options).fit;
     EXPECT_EQ(resumed.resumedFromStep, 14);
 
     const auto a = mesh::loadMesh(dir / "straight" / "cage.obj").positions;
@@ -180,6 +183,11 @@ TEST(SimplifyBatch, SkipsFinishedResumesInterruptedAndRecordsFailures) {
     // A plain re-run resumes the interrupted asset, finishes the others, still fails the bad one.
     const auto second = simplify::runBatch(items, out, {});
     EXPECT_EQ(second.finished, 2);
+    // Each finished asset counts the route it shipped, and its status says which.
+    int routed = 0;
+    for (const auto& [route, count] : second.routes) routed += count;
+    EXPECT_EQ(routed, 2);
+    EXPECT_EQ(second.routes.count(readJson(out / "ball" / "status.json")["route"].get<std::string>()), 1u);
     EXPECT_EQ(second.failed, 1);
     EXPECT_FALSE(fs::exists(out / "lumpy.partial"));
     EXPECT_EQ(readJson(out / "lumpy" / "status.json")["state"], "done");
@@ -192,6 +200,7 @@ TEST(SimplifyBatch, SkipsFinishedResumesInterruptedAndRecordsFailures) {
     // And once more: nothing left to do but the failure.
     const auto third = simplify::runBatch(items, out, {});
     EXPECT_EQ(third.skipped, 2);
+    EXPECT_EQ(third.routes, second.routes);  // skipped as done, counted from their status
     EXPECT_EQ(third.finished, 0);
     EXPECT_EQ(third.failed, 1);
 }

@@ -58,16 +58,16 @@ struct PositionHash {
 };
 
 // The reference's hard edges as a graph on its welded vertices, and its sharp boundary corners.
-struct ReferenceFeatures {
+struct Features {
     std::unordered_map<glm::vec3, int, PositionHash> vertexAt;  // welded vertex of a position
     std::vector<glm::vec3> positions;                           // per welded vertex
     std::vector<std::vector<int>> hardNeighbors;                // per welded vertex
     std::vector<char> corner;                                   // per welded vertex
 };
 
-ReferenceFeatures referenceFeatures(const mesh::PolygonMesh& reference, const FeatureAngles& angles) {
+Features referenceFeatures(const mesh::PolygonMesh& reference, const FeatureAngles& angles) {
     const float hard = glm::radians(angles.edgeDegrees), turning = glm::radians(angles.boundaryDegrees);
-    ReferenceFeatures features;
+    Features features;
     std::vector<int> welded(reference.positions.size());
     for (size_t v = 0; v < reference.positions.size(); ++v) {
         const auto [it, added] = features.vertexAt.emplace(reference.positions[v], int(features.positions.size()));
@@ -116,7 +116,7 @@ ReferenceFeatures referenceFeatures(const mesh::PolygonMesh& reference, const Fe
 }
 
 // Whether hard edges lead from `from` to `to` within `most` of length (Dijkstra, bounded).
-bool hardChain(const ReferenceFeatures& features, int from, int to, float most) {
+bool hardChain(const Features& features, int from, int to, float most) {
     std::unordered_map<int, float> reached{{from, 0.0f}};
     using Entry = std::pair<float, int>;
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
@@ -140,8 +140,20 @@ bool hardChain(const ReferenceFeatures& features, int from, int to, float most) 
 
 }  // namespace
 
+// What HardEdges keeps, by a name its header can declare.
+struct ReferenceFeatures : Features {};
+
+HardEdges::HardEdges(const mesh::PolygonMesh& reference, const FeatureAngles& angles)
+    : features_(std::make_shared<const ReferenceFeatures>(ReferenceFeatures{referenceFeatures(reference, angles)})),
+      angles_(angles) {}
+
 FeatureCount tagFeatures(mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference, const FeatureAngles& angles) {
-    const ReferenceFeatures features = referenceFeatures(reference, angles);
+    return HardEdges(reference, angles).tag(cage);
+}
+
+FeatureCount HardEdges::tag(mesh::PolygonMesh& cage) const {
+    const Features& features = *features_;
+    const FeatureAngles& angles = angles_;
     std::vector<int> onReference(cage.positions.size(), -1);
     for (size_t v = 0; v < cage.positions.size(); ++v)
         if (const auto it = features.vertexAt.find(cage.positions[v]); it != features.vertexAt.end()) onReference[v] = it->second;

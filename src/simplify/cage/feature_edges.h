@@ -9,6 +9,8 @@
 // angle. The reference decides, not the cage (a coarse cage over a smooth part turns sharply at
 // its edges too), and its own shading, not its facets (a 4 K-triangle duck meets at 50° along
 // its beak, and is shaded smooth there).
+#include <memory>
+
 #include "mesh/polygon_mesh.h"
 
 namespace subdfit::simplify {
@@ -29,5 +31,19 @@ struct FeatureCount {
 // `cage`: triangles whose vertices lie at vertices of `reference`, as decimation leaves them; a
 // cage vertex found nowhere on it takes part in no feature.
 FeatureCount tagFeatures(mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference, const FeatureAngles& angles = {});
+
+struct ReferenceFeatures;
+
+// The same, with the reference's hard edges and corners found once for the cages of any number
+// of face counts (the budget search's).
+class HardEdges {
+public:
+    explicit HardEdges(const mesh::PolygonMesh& reference, const FeatureAngles& angles = {});
+    FeatureCount tag(mesh::PolygonMesh& cage) const;
+
+private:
+    std::shared_ptr<const ReferenceFeatures> features_;
+    FeatureAngles angles_;
+};
 
 }  // namespace subdfit::simplify

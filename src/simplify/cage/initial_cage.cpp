@@ -116,7 +116,18 @@ std::vector<glm::vec3> limitPositionsOfVertices(const mesh::PolygonMesh& cage, c
 }
 
 mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialCageOptions& options) {
-    const mesh::PolygonMesh welded = weldedTriangles(reference);
+    return CageSource(reference, options.hardEdges).cage(options);
+}
+
+CageSource::CageSource(const mesh::PolygonMesh& reference, bool hardEdges)
+    : reference_(reference), welded_(weldedTriangles(reference)),
+      surface_(std::make_unique<geometry::SurfaceQueries>(welded_)) {
+    if (hardEdges) hardEdges_.emplace(mesh::triangulated(reference));
+}
+
+mesh::PolygonMesh CageSource::cage(const InitialCageOptions& options) const {
+    const mesh::PolygonMesh& reference = reference_;
+    const mesh::PolygonMesh& welded = welded_;
     mesh::PolygonMesh cage = decimate(welded, options.faces);
     cage.tags.triangles = mesh::TriangleSubdivision::Smooth;
     cage.tags.hasTriangles = true;
@@ -125,7 +136,7 @@ mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialC
     if (cage.faceCount() < 2)
         throw fileError(reference.sourcePath, "too few faces survive decimation to make a cage");
     // While the decimated vertices still lie on the reference, where its hard edges are.
-    if (options.hardEdges) tagFeatures(cage, mesh::triangulated(reference));
+    if (options.hardEdges && hardEdges_) hardEdges_->tag(cage);
 
     evenOutTriangles(cage, options.evenOutRounds);
     // Jacobi on limit(P) = V: the limit masks are convex combinations with the vertex itself
@@ -139,7 +150,7 @@ mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialC
     }
     // Interpolation pins the vertices; between them an approximating surface overshoots
     // (ripples on a dense triangle cage). The least-squares fit over whole faces settles it.
-    fitLimitToSurface(cage, welded, options.limitFit);
+    fitLimitToSurface(cage, welded, *surface_, options.limitFit);
     for (const glm::vec3& p : cage.positions)
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
             throw fileError(reference.sourcePath, "limit interpolation of the decimated cage diverged");

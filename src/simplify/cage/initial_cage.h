@@ -6,7 +6,12 @@
 // reference's surface rather than inside it; then until it lies on the reference across each
 // face in the least-squares sense (simplify/cage/limit_fit.h), which removes the ripples that
 // interpolation leaves between the vertices of a dense triangle cage.
+#include <memory>
+#include <optional>
+
+#include "geometry/surface_queries.h"
 #include "mesh/polygon_mesh.h"
+#include "simplify/cage/feature_edges.h"
 #include "simplify/cage/limit_fit.h"
 
 namespace subdfit::simplify {
@@ -24,6 +29,20 @@ struct InitialCageOptions {
 // boundaries interpolated with their corners, and the reference's hard edges as sharp creases. Throws subdfit::Error naming the reference when
 // the result is not a usable cage.
 mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialCageOptions& options);
+
+// A reference prepared once for cages of any number of face counts (the budget search's): welded,
+// its hard edges found, its surface ready for the limit fit's rays. cage() is initialCage().
+class CageSource {
+public:
+    explicit CageSource(const mesh::PolygonMesh& reference, bool hardEdges = true);
+    mesh::PolygonMesh cage(const InitialCageOptions& options) const;
+
+private:
+    const mesh::PolygonMesh& reference_;
+    mesh::PolygonMesh welded_;
+    std::optional<HardEdges> hardEdges_;
+    std::unique_ptr<geometry::SurfaceQueries> surface_;  // of welded_
+};
 
 // Where each base vertex of `cage` lies on its limit surface at `positions` (one per vertex).
 std::vector<glm::vec3> limitPositionsOfVertices(const mesh::PolygonMesh& cage, const std::vector<glm::vec3>& positions);

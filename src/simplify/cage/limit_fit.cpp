@@ -41,11 +41,16 @@ Samples samplesOf(const subdiv::LimitEvaluator& limit, int samplesPerEdge) {
 
 LimitFitReport fitLimitToSurface(mesh::PolygonMesh& cage, const mesh::PolygonMesh& referenceTriangles,
                                  const LimitFitOptions& options) {
+    if (options.rounds <= 0 || referenceTriangles.faceCount() == 0) return {};
+    return fitLimitToSurface(cage, referenceTriangles, geometry::SurfaceQueries(referenceTriangles), options);
+}
+
+LimitFitReport fitLimitToSurface(mesh::PolygonMesh& cage, const mesh::PolygonMesh& referenceTriangles,
+                                 const geometry::SurfaceQueries& surface, const LimitFitOptions& options) {
     LimitFitReport report;
     if (options.rounds <= 0 || referenceTriangles.faceCount() == 0) return report;
     const subdiv::LimitEvaluator limit(cage);
     const Samples L = samplesOf(limit, std::max(1, options.samplesPerEdge));
-    const geometry::SurfaceQueries surface(referenceTriangles);
     const float reach = options.reach * mesh::meanEdgeLength(cage);
     report.samples = int(L.size());
 

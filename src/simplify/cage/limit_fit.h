@@ -10,6 +10,7 @@
 // normal equations (LᵀL + μI) ΔP = Lᵀ(t − LP) by preconditioned conjugate gradients: L holds the
 // limit stencils of the samples over the cage vertices, so the surface, linear in P, moves
 // towards the hits in one solve. Samples whose ray finds no reference nearby pull nothing.
+#include "geometry/surface_queries.h"
 #include "mesh/polygon_mesh.h"
 
 namespace subdfit::simplify {
@@ -31,5 +32,8 @@ struct LimitFitReport {
 // topology is kept. Vertices no sample sees stay where they are.
 LimitFitReport fitLimitToSurface(mesh::PolygonMesh& cage, const mesh::PolygonMesh& referenceTriangles,
                                  const LimitFitOptions& options = {});
+// The same on a reference whose ray queries are built already (`surface`, of referenceTriangles).
+LimitFitReport fitLimitToSurface(mesh::PolygonMesh& cage, const mesh::PolygonMesh& referenceTriangles,
+                                 const geometry::SurfaceQueries& surface, const LimitFitOptions& options = {});
 
 }  // namespace subdfit::simplify

@@ -1,6 +1,10 @@
 #include "simplify/compare/baselines.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
+#include <map>
+#include <unordered_map>
 #include <cstdio>
 #include <functional>
 
@@ -28,57 +32,112 @@ std::vector<std::uint32_t> indicesOf(const mesh::PolygonMesh& triangles) {
 
 }  // namespace
 
-int mostWithinBudget(int fewest, int most, std::uintmax_t budget, const std::function<std::uintmax_t(int)>& ship) {
-    int lo = std::min(fewest, most), hi = most;
-    while (lo < hi) {
-        const int mid = lo + (hi - lo + 1) / 2;
-        if (ship(mid) <= budget) lo = mid;
-        else hi = mid - 1;
-    }
-    ship(lo);
-    return lo;
-}
-
 namespace {
 
-// A triangle baseline (normalised frame) scored as every baseline is: rendered with smooth
-// normals on the held-out views, and its surface distance to the reference.
-void scoreTriangles(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& triangles,
-                    const BaselineSettings& settings, Quality& q) {
-    const render::MeshRenderer renderer(triangles.positions, mesh::vertexNormals(triangles),
-                                        std::vector<unsigned>(triangles.faceIndices.begin(), triangles.faceIndices.end()));
+// The reference's own smooth normals where decimation kept its vertices: meshoptimizer keeps a
+// subset of the vertices where they were, so a kept vertex is found by its position.
+class ReferenceNormals {
+public:
+    explicit ReferenceNormals(const mesh::PolygonMesh& welded) : normals_(mesh::vertexNormals(welded)) {
+        index_.reserve(welded.positions.size());
+        for (size_t v = 0; v < welded.positions.size(); ++v) index_.emplace(keyOf(welded.positions[v]), std::uint32_t(v));
+    }
+    std::vector<glm::vec3> at(const mesh::PolygonMesh& decimated) const {
+        std::vector<glm::vec3> normals = mesh::vertexNormals(decimated);  // where a vertex is not the reference's
+        for (size_t v = 0; v < decimated.positions.size(); ++v)
+            if (const auto it = index_.find(keyOf(decimated.positions[v])); it != index_.end()) normals[v] = normals_[it->second];
+        return normals;
+    }
+
+private:
+    using Key = std::array<std::uint32_t, 3>;
+    struct KeyHash {
+        size_t operator()(const Key& k) const {
+            return size_t(k[0]) * 0x9E3779B97F4A7C15ull ^ size_t(k[1]) * 0xC2B2AE3D27D4EB4Full ^ size_t(k[2]) * 0x165667B19E3779F9ull;
+        }
+    };
+    static Key keyOf(const glm::vec3& p) { return {std::bit_cast<std::uint32_t>(p.x), std::bit_cast<std::uint32_t>(p.y), std::bit_cast<std::uint32_t>(p.z)}; }
+    std::vector<glm::vec3> normals_;
+    std::unordered_map<Key, std::uint32_t, KeyHash> index_;
+};
+
+// Decimations by triangle count: the encodings tried land on the same counts again and again.
+class Decimations {
+public:
+    explicit Decimations(const mesh::PolygonMesh& welded) : welded_(welded) {}
+    const mesh::PolygonMesh& at(int triangles) {
+        if (const auto it = made_.find(triangles); it != made_.end()) return it->second;
+        if (made_.size() >= kKept) made_.clear();
+        return made_.emplace(triangles, decimate(welded_, triangles)).first->second;
+    }
+
+private:
+    static constexpr size_t kKept = 12;
+    const mesh::PolygonMesh& welded_;
+    std::map<int, mesh::PolygonMesh> made_;
+};
+
+// Where a budget's triangle count is first looked for: about two bytes a triangle.
+int firstGuess(std::uintmax_t budget, int most) { return int(std::min<std::uintmax_t>(std::uintmax_t(most), budget / 2 + 1)); }
+
+// The file as held-out views and (when asked) the surface distance see it.
+void scoreShipped(gl::ProgramCache& programs, const fit::FitScene& scene, const std::filesystem::path& path,
+                  const BaselineSettings& settings, Quality& q) {
+    const mesh::PolygonMesh shipped = readBack(path, scene);
+    const render::MeshRenderer renderer(shipped, scene.shading);
     scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
         renderer.draw(programs, camera, target);
     }, q);
-    q.distance = worldDistance(triangles, scene.reference, scene.frame, settings.surfaceSamples);
+    if (settings.distance) q.distance = worldDistance(shipped, scene.reference, scene.frame, settings.surfaceSamples);
+    q.details["triangles"] = shipped.faceCount();
 }
-
-// Never fewer triangles than a closed shape needs.
-constexpr int kFewestTriangles = 12;
 
 }  // namespace
 
 Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& welded,
                            std::uintmax_t budget, const BaselineSettings& settings) {
     const auto path = settings.dir / "decimated.glb";
-    mesh::PolygonMesh decimated;
-    std::uintmax_t bytes = 0;
-    mostWithinBudget(kFewestTriangles, welded.faceCount(), budget, [&](int triangles) {
+    Decimations decimations(welded);
+    const ReferenceNormals referenceNormals(welded);
+    const auto ship = [&](const VertexEncoding& encoding, int triangles) {
         throwIfStopRequested();
-        decimated = decimate(welded, triangles);
-        const auto normals = mesh::vertexNormals(decimated);  // normalised or not, the same unit normals
-        bytes = exporter::writeMeshGlb(path, scene.frame.toWorld(decimated.positions), normals, indicesOf(decimated),
-                                       /*draco=*/true)
-                    .bytes;
-        return bytes;
-    });
+        const mesh::PolygonMesh& decimated = decimations.at(triangles);
+        const auto normals = encoding.normals ? referenceNormals.at(decimated) : std::vector<glm::vec3>{};
+        return exporter::writeMeshGlb(path, scene.frame.toWorld(decimated.positions), normals, indicesOf(decimated),
+                                      exporter::DracoBits{.position = encoding.positionBits, .normal = encoding.normalBits})
+            .bytes;
+    };
+    const EncodedChoice chosen = bestEncoding(programs, scene, budget, welded.faceCount(), path, ship,
+                                              {.positionBits = 14, .normals = false}, firstGuess(budget, welded.faceCount()));
     Quality q;
-    q.bytes = bytes;
-    q.files = {{"decimated.glb", bytes}};
+    q.bytes = chosen.bytes;
+    q.files = {{"decimated.glb", chosen.bytes}};
     q.shipped = settings.dir.filename() / path.filename();
-    q.details = {{"triangles", decimated.faceCount()}, {"over_budget", bytes > budget}};
-    scoreTriangles(programs, scene, decimated, settings, q);
+    q.details = {{"over_budget", chosen.bytes > budget}, {"encoding", toJson(chosen.encoding)},
+                 {"monitor_psnr", chosen.monitorPsnr}, {"encodings_tried", chosen.tried}};
+    scoreShipped(programs, scene, path, settings, q);
     return q;
+}
+
+std::uintmax_t runGltfpack(const std::filesystem::path& gltfpack, const std::filesystem::path& input,
+                           const std::filesystem::path& output, double ratio, const VertexEncoding& encoding,
+                           const std::vector<std::string>& extra) {
+    throwIfStopRequested();
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9f", ratio);
+    std::vector<std::string> arguments{"-i", input.string(), "-o", output.string(), "-si", text,
+                                       "-vp", std::to_string(encoding.positionBits)};
+    arguments.insert(arguments.end(), extra.begin(), extra.end());
+    const int status = io::runProgram(gltfpack, arguments);
+    if (status != 0 || !std::filesystem::exists(output))
+        throw Error(gltfpack.string() + " -si " + text + " failed (exit " + std::to_string(status) + ")");
+    return std::filesystem::file_size(output);
+}
+
+std::string gltfpackCommand(const VertexEncoding& encoding, const std::vector<std::string>& flags) {
+    std::string command = "gltfpack -si R -vp " + std::to_string(encoding.positionBits);
+    for (const auto& flag : flags) command += " " + flag;
+    return command + (encoding.normals ? " (input with normals)" : " (input without normals)");
 }
 
 std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::FitScene& scene,
@@ -86,42 +145,35 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
                                         const BaselineSettings& settings) {
     const auto gltfpack = io::findProgram("gltfpack");
     if (!gltfpack) return std::nullopt;
-    // gltfpack gets what the decimation gets: the welded reference with smooth normals.
-    const auto input = settings.dir / "gltfpack_input.glb", output = settings.dir / "gltfpack.glb";
-    exporter::writeMeshGlb(input, scene.frame.toWorld(welded.positions), mesh::vertexNormals(welded), indicesOf(welded),
+    // gltfpack gets what the decimation gets: the welded reference, with its smooth normals or none.
+    const auto withNormals = settings.dir / "gltfpack_input.glb", without = settings.dir / "gltfpack_input_bare.glb";
+    const auto output = settings.dir / "gltfpack.glb";
+    exporter::writeMeshGlb(withNormals, scene.frame.toWorld(welded.positions), mesh::vertexNormals(welded), indicesOf(welded),
                            /*draco=*/false);
+    exporter::writeMeshGlb(without, scene.frame.toWorld(welded.positions), {}, indicesOf(welded), /*draco=*/false);
     // gltfpack's simplifier stops where its error bound says the shape would suffer; a user
     // held to a budget it cannot reach that way adds -sa (aggressive), and so does this.
-    std::uintmax_t bytes = 0;
     std::vector<std::string> flags{"-cc"};
-    auto ship = [&](int triangles) {
-        throwIfStopRequested();
-        char ratio[32];
-        std::snprintf(ratio, sizeof ratio, "%.9f", double(triangles) / double(welded.faceCount()));
-        std::vector<std::string> arguments{"-i", input.string(), "-o", output.string(), "-si", ratio};
-        arguments.insert(arguments.end(), flags.begin(), flags.end());
-        const int status = io::runProgram(*gltfpack, arguments);
-        if (status != 0 || !std::filesystem::exists(output))
-            throw Error(gltfpack->string() + " -si " + ratio + " failed (exit " + std::to_string(status) + ")");
-        bytes = std::filesystem::file_size(output);
-        return bytes;
+    const auto ship = [&](const VertexEncoding& encoding, int triangles) {
+        return runGltfpack(*gltfpack, encoding.normals ? withNormals : without, output,
+                           double(triangles) / double(welded.faceCount()), encoding, flags);
     };
-    mostWithinBudget(kFewestTriangles, welded.faceCount(), budget, ship);
-    if (bytes > budget) {
+    EncodedChoice chosen = bestEncoding(programs, scene, budget, welded.faceCount(), output, ship, {.positionBits = 14, .normals = true, .normalBits = kGltfpackNormalBits},
+                                        firstGuess(budget, welded.faceCount()));
+    if (chosen.bytes > budget) {
         flags.push_back("-sa");
-        mostWithinBudget(kFewestTriangles, welded.faceCount(), budget, ship);
+        chosen = bestEncoding(programs, scene, budget, welded.faceCount(), output, ship, {.positionBits = 14, .normals = true, .normalBits = kGltfpackNormalBits},
+                              firstGuess(budget, welded.faceCount()));
     }
-    std::filesystem::remove(input);
-    mesh::PolygonMesh packed = mesh::triangulated(mesh::loadMesh(output));
-    packed.positions = scene.frame.toNormalized(packed.positions);
+    std::filesystem::remove(withNormals);
+    std::filesystem::remove(without);
     Quality q;
-    q.bytes = bytes;
-    q.files = {{"gltfpack.glb", bytes}};
+    q.bytes = chosen.bytes;
+    q.files = {{"gltfpack.glb", chosen.bytes}};
     q.shipped = settings.dir.filename() / output.filename();
-    std::string command = "gltfpack -si R";
-    for (const auto& flag : flags) command += " " + flag;
-    q.details = {{"triangles", packed.faceCount()}, {"over_budget", bytes > budget}, {"command", command}};
-    scoreTriangles(programs, scene, packed, settings, q);
+    q.details = {{"over_budget", chosen.bytes > budget}, {"command", gltfpackCommand(chosen.encoding, flags)},
+                 {"encoding", toJson(chosen.encoding)}, {"monitor_psnr", chosen.monitorPsnr}, {"encodings_tried", chosen.tried}};
+    scoreShipped(programs, scene, output, settings, q);
     return q;
 }
 
@@ -177,7 +229,8 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
         bakedScene.render(camera, target);
     }, q);
-    q.distance = shippedDistance(dir / "asset.subd", settings.segments, scene.frame, scene.reference, settings.surfaceSamples);
+    if (settings.distance)
+        q.distance = shippedDistance(dir / "asset.subd", settings.segments, scene.frame, scene.reference, settings.surfaceSamples);
     return q;
 }
 

@@ -1,11 +1,13 @@
 #pragma once
-// The two ways a technical artist would simplify an asset without subdfit, at the byte budget
-// subdfit's result ships in:
+// The ways a technical artist would simplify an asset without subdfit, at a byte budget, each
+// the strongest honest version of itself (docs/simplify.md says which options each searches):
 //  (a) decimation + Draco: the reference decimated (meshoptimizer) to as many triangles as fit
-//      the budget, shipped as a Draco-compressed GLB with smooth normals (14-bit positions,
-//      10-bit normals), which is what a web or game pipeline would run;
-//  (b) gltfpack (Debian's, when on PATH): `gltfpack -si R -cc` at the largest ratio R whose
-//      output fits the budget, which is what a web or game developer would run;
+//      the budget, shipped as a Draco-compressed GLB, its position bits and whether it ships
+//      normals (the reference's own, where they pay) searched on the monitor views, which is
+//      what a web or game pipeline would run;
+//  (b) gltfpack (Debian's, when on PATH): `gltfpack -si R -cc -vp B` at the largest ratio R whose
+//      output fits the budget, B and normals searched the same way, which is what a web or game
+//      developer would run;
 //  (c) the bake route: a cage (the initial one, or the budget search's best with maps) with maps
 //      ray-cast from the reference onto its limit surface, no optimisation, shipped in subdfit's
 //      own format (BakeRoute says how).
@@ -13,10 +15,13 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "gl/program_cache.h"
 #include "maps/map_parameters.h"
 #include "simplify/compare/quality.h"
+#include "simplify/compare/triangle_encoding.h"
 
 namespace subdfit::fit {
 class FitScene;
@@ -29,6 +34,7 @@ struct BaselineSettings {
     bool compactMaps = true;     // and maps
     int surfaceSamples = 100000; // per side, for the surface distance
     int segments = 8;            // tessellation of limit surfaces for the surface distance
+    bool distance = true;        // measure the surface distance (the comparison's; not what a route needs)
 };
 
 // The bake route's recipe: a cage (normalised frame) and how the maps baked onto it ship,
@@ -54,13 +60,19 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
                                         const mesh::PolygonMesh& welded, std::uintmax_t budget,
                                         const BaselineSettings& settings);
 
+// gltfpack's -vn default: the bits its normals ship at.
+inline constexpr int kGltfpackNormalBits = 8;
+
+// gltfpack on `input`, simplified to `ratio` of its triangles (-si), positions at
+// encoding.positionBits (-vp), with `extra` flags; its output's bytes. Throws when it fails.
+std::uintmax_t runGltfpack(const std::filesystem::path& gltfpack, const std::filesystem::path& input,
+                           const std::filesystem::path& output, double ratio, const VertexEncoding& encoding,
+                           const std::vector<std::string>& extra);
+// The command line that made a gltfpack baseline, as the report says it.
+std::string gltfpackCommand(const VertexEncoding& encoding, const std::vector<std::string>& flags);
+
 // Writes dir/bake/{asset.subd, maps}.
 Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const BakeRoute& route,
                      const BaselineSettings& settings);
-
-// The most triangles in [fewest, most] whose shipped file (`ship` writes it, returns its bytes)
-// fits `budget`: bytes grow with triangles. At `fewest` when even that is over (the report then
-// says so: a .glb's own header and JSON weigh hundreds of bytes). The file is left as shipped.
-int mostWithinBudget(int fewest, int most, std::uintmax_t budget, const std::function<std::uintmax_t(int)>& ship);
 
 }  // namespace subdfit::simplify

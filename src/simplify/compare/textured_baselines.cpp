@@ -19,7 +19,6 @@
 namespace subdfit::simplify {
 namespace {
 
-constexpr int kFewestTriangles = 12;
 constexpr int kTextureDivisors[] = {1, 2, 4, 8, 16, 32, 64};
 
 // The images of `set` at 1/divisor of their size: JPEG unless they have alpha.
@@ -42,61 +41,53 @@ std::vector<exporter::EncodedImage> encodedAt(const mesh::MaterialSet& set, int 
     return out;
 }
 
-// A shipped textured file as the renderer and the distance see it: read back (so the lossy
-// images count), in the scene's frame.
-mesh::PolygonMesh readBack(const std::filesystem::path& path, const fit::FitScene& scene) {
-    mesh::PolygonMesh m = mesh::triangulated(mesh::loadReference(path));
-    m.positions = scene.frame.toNormalized(m.positions);
-    return m;
-}
-
-double psnrOn(gl::ProgramCache& programs, const scene::TargetSet& views, const mesh::PolygonMesh& candidate,
-              render::ShadingModel shading) {
-    const render::MeshRenderer renderer(candidate, shading);
-    Quality q;
-    scoreHoldout(views, [&](const render::Camera& camera, const render::RenderTarget& target) {
-        renderer.draw(programs, camera, target);
-    }, q);
-    return q.psnrHoldout;
-}
-
-// The texture scale search both baselines share: `ship(divisor, images, triangles)` writes the
-// candidate and returns its bytes; the best on the monitor views is shipped again last.
+// The texture scale and vertex coding search both baselines share: `ship(encoding, images,
+// triangles)` writes the candidate and returns its bytes. Each texture scale, at the starting
+// encoding, gets the most triangles that fit and is scored on the monitor views; at the best
+// scale the encodings are searched (triangle_encoding.h), and the file is left holding the choice.
 struct Shipped {
     int divisor = 1, triangles = 0;
     std::uintmax_t bytes = 0, textureBytes = 0;
+    EncodedChoice choice;
 };
-using ShipFunction =
-    std::function<std::uintmax_t(int divisor, const std::vector<exporter::EncodedImage>& images, int triangles)>;
+using ShipFunction = std::function<std::uintmax_t(const VertexEncoding& encoding,
+                                                  const std::vector<exporter::EncodedImage>& images, int triangles)>;
 
 Shipped bestScale(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
-                  const std::filesystem::path& output, const ShipFunction& ship) {
+                  const std::filesystem::path& output, const VertexEncoding& start, const ShipFunction& ship) {
     const int most = scene.reference.faceCount();
     std::optional<Shipped> best;
     double bestPsnr = -1.0;
     for (int divisor : kTextureDivisors) {
         throwIfStopRequested();
-        Shipped candidate{.divisor = divisor};
+        Shipped candidate{.divisor = divisor, .choice = {}};
         const auto images = encodedAt(*scene.reference.materials, divisor, candidate.textureBytes);
         if (candidate.textureBytes >= budget) continue;
-        candidate.triangles =
-            mostWithinBudget(kFewestTriangles, most, budget, [&](int triangles) { return candidate.bytes = ship(divisor, images, triangles); });
+        candidate.triangles = mostWithinBudget(kFewestTriangles, most, budget, [&](int triangles) {
+            return candidate.bytes = ship(start, images, triangles);
+        }, best ? std::optional<int>(best->triangles) : std::nullopt);
         if (candidate.bytes > budget && best) continue;
-        const double psnr = psnrOn(programs, scene.monitor, readBack(output, scene), scene.shading);
-        if (!best || (candidate.bytes <= budget && psnr > bestPsnr) || best->bytes > budget) {
+        const double psnr = monitorPsnr(programs, scene, readBack(output, scene));
+        const bool better = !best || (candidate.bytes <= budget && psnr > bestPsnr) || best->bytes > budget;
+        if (better) {
             best = candidate;
             bestPsnr = psnr;
         }
-        // Halving the textures frees at most 3/4 of their bytes: once they are a small share of
-        // the budget, smaller ones cannot buy the geometry anything.
-        if (candidate.textureBytes < budget / 16) break;
+        // Scores rise and then fall as the textures shrink: past the peak, smaller ones only lose.
+        // And halving them frees at most 3/4 of their bytes: once they are a small share of the
+        // budget, smaller ones cannot buy the geometry anything.
+        if ((!better && candidate.bytes <= budget) || candidate.textureBytes < budget / 16) break;
     }
     if (!best) {  // even the smallest images do not fit: the smallest there is, over budget
-        best = Shipped{.divisor = kTextureDivisors[std::size(kTextureDivisors) - 1]};
+        best = Shipped{.divisor = kTextureDivisors[std::size(kTextureDivisors) - 1], .choice = {}};
         best->triangles = kFewestTriangles;
     }
     const auto images = encodedAt(*scene.reference.materials, best->divisor, best->textureBytes);
-    best->bytes = ship(best->divisor, images, best->triangles);
+    best->choice = bestEncoding(programs, scene, budget, most, output, [&](const VertexEncoding& encoding, int triangles) {
+        return ship(encoding, images, triangles);
+    }, start, best->triangles);
+    best->triangles = best->choice.triangles;
+    best->bytes = best->choice.bytes;
     return *best;
 }
 
@@ -110,12 +101,15 @@ Quality scored(gl::ProgramCache& programs, const fit::FitScene& scene, const std
     q.details = {{"triangles", candidate.faceCount()},
                  {"texture_scale", 1.0 / shipped.divisor},
                  {"texture_bytes", shipped.textureBytes},
-                 {"over_budget", shipped.bytes > budget}};
+                 {"over_budget", shipped.bytes > budget},
+                 {"encoding", toJson(shipped.choice.encoding)},
+                 {"monitor_psnr", shipped.choice.monitorPsnr},
+                 {"encodings_tried", shipped.choice.tried}};
     const render::MeshRenderer renderer(candidate, scene.shading);
     scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
         renderer.draw(programs, camera, target);
     }, q);
-    q.distance = worldDistance(candidate, scene.reference, scene.frame, settings.surfaceSamples);
+    if (settings.distance) q.distance = worldDistance(candidate, scene.reference, scene.frame, settings.surfaceSamples);
     return q;
 }
 
@@ -164,15 +158,27 @@ mesh::PolygonMesh decimateTextured(const mesh::PolygonMesh& triangles, int targe
     return out;
 }
 
+std::uintmax_t writeWholeTextured(const fit::FitScene& scene, const std::filesystem::path& path) {
+    std::uintmax_t textureBytes = 0;
+    mesh::PolygonMesh world = scene.reference;
+    world.positions = scene.frame.toWorld(world.positions);
+    return exporter::writeTexturedGlb(path, world, mesh::shadingNormals(scene.reference),
+                                      encodedAt(*scene.reference.materials, 1, textureBytes), exporter::DracoBits{})
+        .bytes;
+}
+
 Quality texturedDecimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
                                    const BaselineSettings& settings) {
     const auto output = settings.dir / "decimated.glb";
-    const Shipped shipped = bestScale(programs, scene, budget, output, [&](int, const auto& images, int triangles) {
+    const Shipped shipped = bestScale(programs, scene, budget, output, {.positionBits = 14, .normals = true},
+                                      [&](const VertexEncoding& encoding, const auto& images, int triangles) {
         throwIfStopRequested();
         mesh::PolygonMesh decimated = decimateTextured(scene.reference, triangles);
-        const auto normals = mesh::shadingNormals(decimated);
+        const auto normals = encoding.normals ? mesh::shadingNormals(decimated) : std::vector<glm::vec3>{};
         decimated.positions = scene.frame.toWorld(decimated.positions);
-        return exporter::writeTexturedGlb(output, decimated, normals, images, /*draco=*/true).bytes;
+        return exporter::writeTexturedGlb(output, decimated, normals, images,
+                                          exporter::DracoBits{.position = encoding.positionBits, .normal = encoding.normalBits})
+            .bytes;
     });
     return scored(programs, scene, output, shipped, budget, settings);
 }
@@ -185,33 +191,32 @@ std::optional<Quality> texturedGltfpackBaseline(gl::ProgramCache& programs, cons
     mesh::PolygonMesh world = scene.reference;
     world.positions = scene.frame.toWorld(world.positions);
     const auto normals = mesh::shadingNormals(scene.reference);
-    int writtenDivisor = 0;
-    std::vector<std::string> flags{"-cc"};
-    auto ship = [&](int divisor, const std::vector<exporter::EncodedImage>& images, int triangles) -> std::uintmax_t {
-        throwIfStopRequested();
-        if (divisor != writtenDivisor) {  // the input holds the images at one scale
-            exporter::writeTexturedGlb(input, world, normals, images, /*draco=*/false);
-            writtenDivisor = divisor;
-        }
-        char ratio[32];
-        std::snprintf(ratio, sizeof ratio, "%.9f", double(triangles) / double(scene.reference.faceCount()));
-        std::vector<std::string> arguments{"-i", input.string(), "-o", output.string(), "-si", ratio};
-        arguments.insert(arguments.end(), flags.begin(), flags.end());
-        const int status = io::runProgram(*gltfpack, arguments);
-        if (status != 0 || !std::filesystem::exists(output))
-            throw Error(gltfpack->string() + " -si " + ratio + " failed (exit " + std::to_string(status) + ")");
-        return std::filesystem::file_size(output);
+    // The input holds the images at one scale, with normals or not: written again when that changes.
+    std::optional<std::vector<std::vector<unsigned char>>> writtenImages;
+    bool writtenNormals = false;
+    auto imageBytes = [](const std::vector<exporter::EncodedImage>& images) {
+        std::vector<std::vector<unsigned char>> bytes;
+        for (const auto& image : images) bytes.push_back(image.bytes);
+        return bytes;
     };
-    Shipped shipped = bestScale(programs, scene, budget, output, ship);
+    std::vector<std::string> flags{"-cc"};
+    auto ship = [&](const VertexEncoding& encoding, const std::vector<exporter::EncodedImage>& images, int triangles) {
+        if (auto bytes = imageBytes(images); bytes != writtenImages || encoding.normals != writtenNormals) {
+            exporter::writeTexturedGlb(input, world, encoding.normals ? normals : std::vector<glm::vec3>{}, images, /*draco=*/false);
+            writtenImages = std::move(bytes);
+            writtenNormals = encoding.normals;
+        }
+        return runGltfpack(*gltfpack, input, output, double(triangles) / double(scene.reference.faceCount()), encoding, flags);
+    };
+    const VertexEncoding start{.positionBits = 14, .normals = true, .normalBits = kGltfpackNormalBits};
+    Shipped shipped = bestScale(programs, scene, budget, output, start, ship);
     if (shipped.bytes > budget) {  // as the plain baseline: -sa when -si alone cannot get there
         flags.push_back("-sa");
-        shipped = bestScale(programs, scene, budget, output, ship);
+        shipped = bestScale(programs, scene, budget, output, start, ship);
     }
     std::filesystem::remove(input);
     Quality q = scored(programs, scene, output, shipped, budget, settings);
-    std::string command = "gltfpack -si R";
-    for (const auto& flag : flags) command += " " + flag;
-    q.details["command"] = command + " (textures scaled by subdfit)";
+    q.details["command"] = gltfpackCommand(shipped.choice.encoding, flags) + " (textures scaled by subdfit)";
     return q;
 }
 

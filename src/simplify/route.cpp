@@ -1,0 +1,86 @@
+#include "simplify/route.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "util/error.h"
+
+namespace subdfit::simplify {
+namespace {
+
+std::string decibels(double db) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f dB", db);
+    return text;
+}
+
+// A triangle route ships as asset.glb (its .glb as the baseline wrote it).
+Route triangleRoute(const TriangleChoice& triangles, std::string why) {
+    return {.shipped = triangles.name, .path = "asset.glb", .why = std::move(why)};
+}
+
+}  // namespace
+
+const char* toString(CompareLevel level) {
+    switch (level) {
+        case CompareLevel::None: return "none";
+        case CompareLevel::Fast: return "fast";
+        case CompareLevel::Full: break;
+    }
+    return "full";
+}
+
+CompareLevel parseCompareLevel(const std::string& text) {
+    for (CompareLevel level : {CompareLevel::None, CompareLevel::Fast, CompareLevel::Full})
+        if (text == toString(level)) return level;
+    throw OptionError("compare", "must be none, fast or full, got '" + text + "'");
+}
+
+std::uintmax_t defaultBudget(std::uintmax_t compressedReference) {
+    return std::min(compressedReference, std::max(compressedReference / 10, kSmallestDefaultBudget));
+}
+
+TriangleChoice bestTriangleRoute(const Quality* decimation, const Quality* gltfpack) {
+    TriangleChoice best;
+    for (const auto& [name, q] : {std::pair<const char*, const Quality*>{"decimation", decimation}, {"gltfpack", gltfpack}}) {
+        if (!q || q->details.value("over_budget", false)) continue;
+        if (!best.quality || q->psnrHoldout > best.quality->psnrHoldout) best = {name, q};
+    }
+    return best;
+}
+
+Route chooseRoute(const Quality& cage, const TriangleChoice& triangles) {
+    if (!triangles.quality)
+        return {.why = "no triangle route fits the budget"};
+    const double lead = cage.psnrHoldout - triangles.quality->psnrHoldout;
+    if (lead >= 0.0)
+        return {.why = "the cage leads the best triangle route (" + triangles.name + ") by " + decibels(lead) +
+                       " on the held-out views at the budget"};
+    return triangleRoute(triangles, triangles.name + " leads the fitted cage by " + decibels(-lead) +
+                                        " on the held-out views at the budget");
+}
+
+std::optional<Route> routeBeforeFit(const TriangleChoice& triangles, Holds holds,
+                                    std::optional<double> candidateMonitorPsnr) {
+    if (!triangles.quality) return std::nullopt;
+    if (holds == Holds::Whole)
+        return triangleRoute(triangles, "the reference fits the budget whole (" +
+                                            std::to_string(triangles.quality->bytes) + " bytes compressed): nothing to simplify");
+    if (holds == Holds::EveryTriangle)
+        return triangleRoute(triangles, "decimation holds every triangle of the reference within the budget, which a "
+                                        "cage's limit surface only approximates (" + triangles.name +
+                                            " scores best of the triangle routes): no cage tried");
+    if (!candidateMonitorPsnr) return std::nullopt;
+    const double lead = triangles.quality->details.value("monitor_psnr", 0.0) - *candidateMonitorPsnr;
+    if (lead > kMostFitGainDb)
+        return triangleRoute(triangles, triangles.name + " leads the best cage candidate by " + decibels(lead) +
+                                            " on the monitor views, more than a fit gains (" + decibels(kMostFitGainDb) +
+                                            "): no cage fitted");
+    return std::nullopt;
+}
+
+nlohmann::json toJson(const Route& route) {
+    return {{"shipped", route.shipped}, {"path", route.path.generic_string()}, {"why", route.why}};
+}
+
+}  // namespace subdfit::simplify

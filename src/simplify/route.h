@@ -1,0 +1,67 @@
+#pragma once
+// What `simplify` ships: its fitted cage only where that wins. Where the reference is already
+// light, or a triangle mesh (the reference decimated, Draco- or meshopt-compressed, with its
+// materials) ships better at the budget, that triangle mesh ships instead, and report.json's
+// `route` says which and why. How much of the comparison is also made is `--compare`'s to say.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "simplify/compare/quality.h"
+
+namespace subdfit::simplify {
+
+// How much comparison a run makes beside what it ships:
+//  none: only what chooses the route (decimation + Draco at the budget, on the held-out views);
+//        no baselines/ folder, no comparison.png, no surface distances;
+//  fast: the triangle baselines too (gltfpack), each with its files and held-out scores;
+//  full: also the bake route, the surface distances and comparison.png.
+enum class CompareLevel { None, Fast, Full };
+const char* toString(CompareLevel level);
+// Throws subdfit::OptionError("compare", ...) for anything but none, fast and full.
+CompareLevel parseCompareLevel(const std::string& text);
+
+// Without --budget or --faces: a tenth of the reference compressed (what the triangle route ships
+// holding all of it), never under kSmallestDefaultBudget, and never over the reference compressed:
+// a light reference gets its whole self, which nothing simplified beats.
+inline constexpr std::uintmax_t kSmallestDefaultBudget = 16000;
+std::uintmax_t defaultBudget(std::uintmax_t compressedReference);
+
+// What shipped and why.
+struct Route {
+    std::string shipped = "cage";         // "cage", "decimation" or "gltfpack"
+    std::filesystem::path path = "asset.subd";  // in the output folder
+    std::string why;
+};
+
+// A cage's fit gains at most this much over the candidate it starts from on the monitor views
+// (docs/results.md): a triangle route ahead of the chosen candidate by more is shipped unfitted.
+inline constexpr double kMostFitGainDb = 1.5;
+
+// The triangle route that scores best on the held-out views of those given (any may be null),
+// with its name; none when none is given.
+struct TriangleChoice {
+    std::string name;
+    const Quality* quality = nullptr;
+};
+TriangleChoice bestTriangleRoute(const Quality* decimation, const Quality* gltfpack);
+
+// The cage, unless `triangles` scores better on the held-out views at the budget.
+Route chooseRoute(const Quality& cage, const TriangleChoice& triangles);
+
+// How much of the reference the triangle route holds within the budget.
+enum class Holds { Part, EveryTriangle, Whole };  // Whole: every triangle and every texel
+
+// Before any fit: the triangle route, when it holds every triangle of the reference (a cage's
+// limit surface only approximates them, and its appearance comes from the same textures), or
+// when it leads the chosen cage candidate (`candidateMonitorPsnr`, once the search has chosen
+// one) on the monitor views by more than a fit gains.
+std::optional<Route> routeBeforeFit(const TriangleChoice& triangles, Holds holds,
+                                    std::optional<double> candidateMonitorPsnr);
+
+nlohmann::json toJson(const Route& route);
+
+}  // namespace subdfit::simplify

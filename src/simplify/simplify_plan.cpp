@@ -1,0 +1,117 @@
+#include "simplify/simplify_plan.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "simplify/bake/atlas_bake.h"
+#include "simplify/cage/initial_cage.h"
+#include "surface/surface_maps.h"
+
+namespace subdfit::simplify {
+namespace {
+
+// The budget search's largest cage: a dense bare cage ships cheaply, and its limit surface can
+// shade closer than heights on a coarse one, so the search must be able to reach one. Past
+// subdiv::kDenseCageFaces a cage is drawn one isolation level shallower, which keeps it affordable.
+constexpr int kMostBudgetFaces = 16 * kDefaultFaces;
+// Past this many faces the fit of a budget's cage takes proportionally fewer steps (unless
+// --steps was given): the search's bake of a dense cage is already close, and --budget should
+// cost about what a fit of this many faces does.
+constexpr int kMostFullyFittedFaces = 2 * kDefaultFaces;
+
+// The bake route of a cage (normalised frame) with the run's own maps.
+BakeRoute bakeRouteOf(const mesh::PolygonMesh& cage, const fit::FitOptions& fit) {
+    return {.cage = cage, .effects = fit.maps, .resolution = fit.mapResolution, .bits = fit.mapBits,
+            .appearanceResolution = fit.appearanceResolution, .appearanceQuality = fit.appearanceQuality,
+            .appearanceAtlas = fit.appearanceAtlas, .shadingNormal = fit.shadingNormal};
+}
+
+}  // namespace
+
+SimplifyPlan planByFaces(const SimplifyOptions& o, fit::FitOptions fitOptions, fit::FitScene& scene,
+                         const mesh::PolygonMesh& reference) {
+    scene.setCage(initialCage(reference, {.faces = o.faces > 0 ? o.faces : kDefaultFaces}));
+    BakeRoute route = bakeRouteOf(scene.cage, fitOptions);
+    return {.fit = std::move(fitOptions), .bakeRoute = std::move(route), .budget = std::nullopt};
+}
+
+namespace {
+
+// What the budget search tries for `o` on `scene`.
+BudgetSearch budgetSearchFor(const SimplifyOptions& o, std::uintmax_t budget, const fit::FitScene& scene) {
+    return {.budget = budget,
+            .faceCounts = o.faces > 0 ? std::vector<int>{o.faces}
+                                      : faceCountsFor(budget, scene.reference.faceCount(), kMostBudgetFaces),
+            .allowedMaps = o.fit.maps,
+            .appearance = {.baseColor = scene.shading != render::ShadingModel::Geometry,
+                           .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness},
+            .appearanceQualities = {o.fit.appearanceQuality},
+            .appearanceAtlases = o.fit.appearanceAtlas > 0 ? std::vector<int>{o.fit.appearanceAtlas}
+                                                          : atlasSizesFor(scene.reference),
+            .bestWithMaps = o.compare == CompareLevel::Full};
+}
+
+// The search's choice into the fit's options: its maps, their resolution, bits and shading
+// normal, its appearance; and for a dense cage fewer steps, unless --steps was given.
+void applyChoice(const BudgetCandidate& chosen, int cageFaces, bool stepsByDevice, fit::FitOptions& fit) {
+    fit.maps = chosen.maps;
+    if (chosen.appearanceResolution > 0 || chosen.appearanceAtlas > 0) {
+        if (chosen.appearanceResolution > 0) fit.appearanceResolution = chosen.appearanceResolution;
+        fit.appearanceAtlas = chosen.appearanceAtlas;
+        fit.appearanceQuality = chosen.appearanceQuality;
+    }
+    if (chosen.mapResolution > 0) {
+        fit.mapResolution = chosen.mapResolution;
+        fit.mapBits = chosen.mapBits;
+        fit.shadingNormal = chosen.shadingNormal;
+        // The search judged this cage with maps baked onto it as it is: the fit refines that
+        // from the start (moving the cage first would leave what was judged).
+        fit.mapsStart = 0.0f;
+    }
+    if (stepsByDevice && cageFaces > kMostFullyFittedFaces)
+        fit.steps = std::max(1, int(std::lround(double(fit.steps) * kMostFullyFittedFaces / cageFaces)));
+}
+
+// The bake route at the budget's bytes: the search's best candidate with maps, as it is; when
+// none fits, the chosen cage with the cheapest maps the search tries (reported over budget),
+// not the default maps at many times the bytes; with no maps allowed, the chosen cage with the
+// run's own.
+BakeRoute budgetBakeRoute(const BudgetChoice& choice, const BudgetSearch& search, const fit::FitOptions& fit,
+                          const fit::FitScene& scene) {
+    if (!choice.bestWithMaps && !search.allowedMaps.geometric()) return bakeRouteOf(scene.cage, fit);
+    const BudgetCandidate route = choice.bestWithMaps ? *choice.bestWithMaps
+                                                      : BudgetCandidate{.maps = search.allowedMaps,
+                                                                        .mapResolution = search.mapResolutions.front(),
+                                                                        .mapBits = search.mapBits.front()};
+    mesh::PolygonMesh cage = choice.bestWithMaps ? choice.bestWithMapsCage : choice.cageWorld;
+    cage.positions = scene.frame.toNormalized(cage.positions);
+    const bool appearance = route.appearanceResolution > 0 || route.appearanceAtlas > 0;
+    return {.cage = std::move(cage), .effects = route.maps, .resolution = route.mapResolution, .bits = route.mapBits,
+            .appearanceResolution = appearance ? route.appearanceResolution : fit.appearanceResolution,
+            .appearanceQuality = appearance ? route.appearanceQuality : fit.appearanceQuality,
+            .appearanceAtlas = appearance ? route.appearanceAtlas : fit.appearanceAtlas,
+            .shadingNormal = route.shadingNormal};
+}
+
+}  // namespace
+
+SimplifyPlan planWithinBudget(const SimplifyOptions& o, std::uintmax_t budget, fit::FitOptions fitOptions,
+                              gl::ProgramCache& programs, fit::FitScene& scene, const mesh::PolygonMesh& reference,
+                              const std::function<void(const std::string&)>& say) {
+    const BudgetSearch search = budgetSearchFor(o, budget, scene);
+    if (say) say("budget " + std::to_string(budget) + " bytes: trying candidates");
+    const auto searchStarted = std::chrono::steady_clock::now();
+    BudgetChoice choice = searchBudget(programs, scene, reference, search, say);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - searchStarted).count();
+    applyChoice(choice.chosen, choice.cageWorld.faceCount(), o.fit.steps == fit::kByDevice, fitOptions);
+    scene.setCage(choice.cageWorld);
+    BakeRoute route = budgetBakeRoute(choice, search, fitOptions, scene);
+    return {.fit = std::move(fitOptions),
+            .bakeRoute = std::move(route),
+            .budget = BudgetReport{.bytes = budget, .chosen = choice.chosen, .tried = std::move(choice.tried), .seconds = seconds,
+                                   .phases = choice.phases, .shipped = {}}};
+}
+
+
+}  // namespace subdfit::simplify

@@ -1,0 +1,34 @@
+#pragma once
+// The run `simplify` decides before its fit, once: the options the fit runs with (with a budget,
+// the search's choice in them), the bake route it is compared with, and the search's report. The
+// fit, the baselines and report.json then read the plan; nothing is decided twice.
+#include <cstdint>
+#include <optional>
+
+#include <functional>
+#include <string>
+
+#include "fit/fit_scene.h"
+#include "simplify/budget_search.h"
+#include "simplify/compare/baselines.h"
+#include "simplify/simplify_job.h"
+
+namespace subdfit::simplify {
+
+struct SimplifyPlan {
+    fit::FitOptions fit;
+    BakeRoute bakeRoute;
+    std::optional<BudgetReport> budget;
+};
+
+// Without a budget the fit starts from the initial cage of --faces, with the options as given.
+SimplifyPlan planByFaces(const SimplifyOptions& options, fit::FitOptions fitOptions, fit::FitScene& scene,
+                         const mesh::PolygonMesh& reference);
+
+// With a budget the fit starts from the search's choice (simplify/budget_search.h); `say` reports
+// its candidates.
+SimplifyPlan planWithinBudget(const SimplifyOptions& options, std::uintmax_t budget, fit::FitOptions fitOptions,
+                              gl::ProgramCache& programs, fit::FitScene& scene, const mesh::PolygonMesh& reference,
+                              const std::function<void(const std::string&)>& say);
+
+}  // namespace subdfit::simplify

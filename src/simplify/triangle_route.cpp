@@ -1,0 +1,69 @@
+#include "simplify/triangle_route.h"
+
+#include <limits>
+
+#include "export/glb_writer.h"
+#include "simplify/cage/decimate.h"
+#include "simplify/compare/textured_baselines.h"
+
+namespace subdfit::simplify {
+namespace {
+
+// A reference whose materials the triangle baselines must keep (textured or a plain colour), as
+// a user's would.
+bool withMaterials(const fit::FitScene& scene) {
+    return scene.shading != render::ShadingModel::Geometry && scene.reference.materials != nullptr;
+}
+
+}  // namespace
+
+std::uintmax_t compressedReferenceBytes(const fit::FitScene& scene, const std::filesystem::path& scratch) {
+    std::uintmax_t bytes = 0;
+    if (withMaterials(scene)) {
+        bytes = writeWholeTextured(scene, scratch);
+    } else {
+        const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
+        bytes = exporter::writeMeshGlb(scratch, scene.frame.toWorld(welded.positions), {},
+                                       {welded.faceIndices.begin(), welded.faceIndices.end()}, exporter::DracoBits{})
+                    .bytes;
+    }
+    std::filesystem::remove(scratch);
+    return bytes;
+}
+
+TriangleBaselines triangleBaselines(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
+                                    const BaselineSettings& settings, CompareLevel level) {
+    std::filesystem::create_directories(settings.dir);
+    TriangleBaselines t;
+    int wholeTriangles = 0;
+    bool everyTexel = true;
+    if (withMaterials(scene)) {
+        t.decimation = texturedDecimationBaseline(programs, scene, budget, settings);
+        if (level != CompareLevel::None) t.gltfpack = texturedGltfpackBaseline(programs, scene, budget, settings);
+        wholeTriangles = scene.reference.faceCount();
+        everyTexel = t.decimation->details.value("texture_scale", 0.0) == 1.0;
+    } else {
+        const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
+        t.decimation = decimationBaseline(programs, scene, welded, budget, settings);
+        if (level != CompareLevel::None) t.gltfpack = gltfpackBaseline(programs, scene, welded, budget, settings);
+        // The welded decimation shades smooth: where the reference splits its vertices (hard
+        // edges, a box), holding every triangle is not holding its look, and a creased cage may win.
+        wholeTriangles = welded.vertexCount() >= scene.reference.vertexCount() ? welded.faceCount()
+                                                                                 : std::numeric_limits<int>::max();
+    }
+    if (!t.decimation->details.value("over_budget", true) && t.decimation->details.value("triangles", 0) >= wholeTriangles)
+        t.holds = everyTexel ? Holds::Whole : Holds::EveryTriangle;
+    t.gltfpackMissing = level != CompareLevel::None && !t.gltfpack;
+    return t;
+}
+
+Quality shipTriangles(const TriangleChoice& triangles, const std::filesystem::path& out) {
+    std::filesystem::copy_file(out / triangles.quality->shipped, out / "asset.glb",
+                               std::filesystem::copy_options::overwrite_existing);
+    Quality shipped = *triangles.quality;
+    shipped.files = {{"asset.glb", shipped.bytes}};
+    shipped.shipped = "asset.glb";
+    return shipped;
+}
+
+}  // namespace subdfit::simplify

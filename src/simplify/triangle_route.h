@@ -1,0 +1,39 @@
+#pragma once
+// The triangle route of one simplify: the triangle baselines at its budget (what a cage must
+// beat, and what ships where none does), the reference compressed (what a default budget is made
+// from), and shipping the winner as DIR/asset.glb.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+
+#include "fit/fit_scene.h"
+#include "gl/program_cache.h"
+#include "simplify/compare/baselines.h"
+#include "simplify/route.h"
+
+namespace subdfit::simplify {
+
+// The reference whole as the triangle route would ship it, written to `scratch` (then removed):
+// its bytes, what the default budget is made from.
+std::uintmax_t compressedReferenceBytes(const fit::FitScene& scene, const std::filesystem::path& scratch);
+
+// The triangle baselines at a budget: decimation + Draco always (the route weighs it), gltfpack
+// unless --compare none.
+struct TriangleBaselines {
+    std::optional<Quality> decimation, gltfpack;
+    bool gltfpackMissing = false;
+    Holds holds = Holds::Part;  // of the reference, by the decimation
+    TriangleChoice best() const {
+        return bestTriangleRoute(decimation ? &*decimation : nullptr, gltfpack ? &*gltfpack : nullptr);
+    }
+};
+
+// Their files go to settings.dir.
+TriangleBaselines triangleBaselines(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
+                                    const BaselineSettings& settings, CompareLevel level);
+
+// The triangle route ships: its file, as the baseline wrote it under `out`, becomes out/asset.glb;
+// what ships is measured as that baseline was.
+Quality shipTriangles(const TriangleChoice& triangles, const std::filesystem::path& out);
+
+}  // namespace subdfit::simplify
