@@ -140,8 +140,9 @@ void CageFitter::update() {
             maps_->update(programs_, *g, learningRate);
         }
     }
+    // Only the groups sampled since the last update have sums to clear.
+    for (auto* g : pendingUpdate_) g->gradientSum.clearToZero();
     pendingUpdate_.clear();
-    for (auto* g : groups()) g->gradientSum.clearToZero();
     ++steps_;
 }
 

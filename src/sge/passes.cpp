@@ -33,12 +33,19 @@ std::vector<int> transposeOffsets(const std::vector<int>& offsets, const std::ve
     return counts;
 }
 
+// Each row's columns in increasing order (gradient.comp merges two rows); the rows stay as they are.
+std::vector<int> sortedRows(const std::vector<int>& offsets, std::vector<int> indices) {
+    for (size_t row = 0; row + 1 < offsets.size(); ++row)
+        std::sort(indices.begin() + offsets[row], indices.begin() + offsets[row + 1]);
+    return indices;
+}
+
 }  // namespace
 
 FaceVertexTable::FaceVertexTable(const std::vector<int>& faceOffsets, const std::vector<int>& faceVertices,
                                  int vertexCount_)
     : offsets(gl::Buffer::fromVector(faceOffsets)),
-      indices(gl::Buffer::fromVector(faceVertices)),
+      indices(gl::Buffer::fromVector(sortedRows(faceOffsets, faceVertices))),
       faceDelta(GLsizeiptr(std::max<size_t>(1, faceOffsets.size())) * 2 * sizeof(std::uint32_t)),
       vertexCount(vertexCount_) {
     std::vector<int> vertexFaceIndices;
@@ -80,7 +87,7 @@ void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group
         glBindTextureUnit(SUBDFIT_UNIT_UV_MINUS, in.minus->patchUv().id());
         in.maps->bindFaceNodes();
     }
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    // The renders wrote through the framebuffer, which later commands see without a barrier.
     glDispatchCompute(groupsOf(in.plus->width(), 16), groupsOf(in.plus->height(), 16), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
