@@ -42,6 +42,7 @@ void printProgress(const subdfit::fit::Progress& p) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    subdfit::installStopSignals();  // first: a service may stop a run at any moment
     CLI::App app{"subdfit: fit Catmull-Clark cages (and maps) to renders of a reference"};
     app.require_subcommand(1);
 
@@ -79,7 +80,6 @@ int main(int argc, char** argv) {
 
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit")) return *exitCode;
 
-    subdfit::installStopSignals();
     const auto say = [](const char* who) {
         return [who](const std::string& line) { std::fprintf(stderr, "%s: %s\n", who, line.c_str()); };
     };
