@@ -23,7 +23,7 @@ int writeReliefReference(const ReliefOptions& options);
 struct StepCostOptions {
     std::filesystem::path out;
     int repeats = 15;
-    std::string glProvider = "auto";
+    context::GlProvider glProvider = context::GlProvider::Auto;
     std::vector<int> resolutions{128, 256, 512};
     bool scaling = true;  // also the table of step time against parameter count
 };
@@ -35,7 +35,7 @@ struct LumpySphereOptions {
     float noiseGate = fit::FitOptions{}.noiseGate;
     int resolution = 256;
     int views = 8;
-    std::string glProvider = "auto";
+    context::GlProvider glProvider = context::GlProvider::Auto;
 };
 int runLumpySphere(const LumpySphereOptions& options);
 
@@ -85,14 +85,14 @@ struct MapsGainOptions {
     std::filesystem::path out = "bench-maps";
     int steps = 800;
     int mapResolution = 8;
-    std::string glProvider = "auto";
+    context::GlProvider glProvider = context::GlProvider::Auto;
 };
 int runMapsGain(const MapsGainOptions& options);
 
 struct AccuracyOptions {
     std::filesystem::path out = "bench-accuracy";
     int baseSteps = 400;
-    std::string glProvider = "auto";
+    context::GlProvider glProvider = context::GlProvider::Auto;
 };
 int runAccuracy(const AccuracyOptions& options);
 
@@ -101,7 +101,7 @@ struct GradientOptions {
     int maxSamples = 256;
     int sweepSamples = 64;
     float epsilon = 0.008f;  // the fit's default vertex ε; also the finite-difference step
-    std::string glProvider = "auto";
+    context::GlProvider glProvider = context::GlProvider::Auto;
 };
 int runGradientQuality(const GradientOptions& options);
 
@@ -111,7 +111,7 @@ struct SoupOptions {
     int steps = 250;
     int resolution = 512;
     double seconds = 0.0;  // step time per estimator (0: no limit); with --steps, whichever ends first
-    std::string glProvider = "auto";
+    context::GlProvider glProvider = context::GlProvider::Auto;
 };
 int runSoup(const SoupOptions& options);
 
@@ -121,7 +121,7 @@ struct SimplifyTradeoffOptions {
     std::vector<std::uintmax_t> budgets{2000, 5000, 10000, 20000, 50000, 100000, 200000};
     int steps = fit::kByDevice;
     int resolution = fit::kByDevice;
-    std::string glProvider = "auto";
+    context::GlProvider glProvider = context::GlProvider::Auto;
 };
 int runSimplifyTradeoff(const SimplifyTradeoffOptions& options);
 

@@ -12,6 +12,23 @@
 
 namespace subdfit::apps {
 
+// A flag whose words are parsed here, once: the core only ever sees the value.
+template <fit::WordOption T>
+CLI::Option* addWordOption(CLI::App& app, const fit::OptionInfo& info, T& field) {
+    return app
+        .add_option_function<std::string>(
+            info.flag,
+            [&field, &info](const std::string& text) {
+                try {
+                    fit::readOptionText(info, field, text);
+                } catch (const OptionError& e) {
+                    throw CLI::ValidationError(info.flag, e.problem());
+                }
+            },
+            info.help)
+        ->default_str(fit::optionText(field));
+}
+
 // Every option of the table that has a flag.
 inline void addFitSettings(CLI::App& app, fit::FitOptions& fit) {
     fit::forEachOption(fit, [&](const fit::OptionInfo& info, auto& field) {
@@ -20,19 +37,8 @@ inline void addFitSettings(CLI::App& app, fit::FitOptions& fit) {
         if (flag.empty()) return;
         if constexpr (std::is_same_v<T, bool>) {
             app.add_flag(flag, field, info.help);
-        } else if constexpr (std::is_same_v<T, maps::MapEffects>) {
-            // Parsed here, once: the core only ever sees the effects.
-            app.add_option_function<std::string>(
-                   flag,
-                   [&field, flag](const std::string& text) {
-                       try {
-                           field = maps::parseMapEffects(text);
-                       } catch (const Error& e) {
-                           throw CLI::ValidationError(flag, e.what());
-                       }
-                   },
-                   info.help)
-                ->default_str(maps::toString(field));
+        } else if constexpr (fit::WordOption<T>) {
+            addWordOption(app, info, field);
         } else {
             auto* option = app.add_option(flag, field, info.help);
             if (!info.byDevice) option->capture_default_str();
@@ -41,9 +47,9 @@ inline void addFitSettings(CLI::App& app, fit::FitOptions& fit) {
     });
 }
 
-// --gl for a command whose options are its own (the benchmarks): the flag and help of the table's row.
-inline CLI::Option* addGlProvider(CLI::App& app, std::string& provider) {
-    return app.add_option("--gl", provider, context::kGlProviderHelp)->capture_default_str();
+// --gl for a command whose options are its own (the benchmarks), as the table's row says it.
+inline CLI::Option* addGlProvider(CLI::App& app, context::GlProvider& provider) {
+    return addWordOption(app, *fit::findOption("gl"), provider);
 }
 
 inline void addFitOptions(CLI::App& app, fit::FitOptions& fit) {

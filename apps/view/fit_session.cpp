@@ -30,7 +30,7 @@ FitInputs refineInputs(const ResultInputs& result, fit::FitOptions& options) {
     options.reference = result.folder->reference;
     options.maps = {.displacement = maps.hasDisplacement(), .normalMap = maps.hasNormal()};
     if (maps.layout.resolution > 0) options.mapResolution = maps.layout.resolution;
-    options.shadingNormal = surface::toString(maps.shadingNormal);
+    options.shadingNormal = maps.shadingNormal;
     options.appearanceAtlas = maps.appearanceAtlas.size;
     if (!maps.appearanceAtlas.present() && maps.appearanceLayout.resolution > 0)
         options.appearanceResolution = maps.appearanceLayout.resolution;
@@ -38,7 +38,7 @@ FitInputs refineInputs(const ResultInputs& result, fit::FitOptions& options) {
     const nlohmann::json& settings = result.folder->settings;
     options.mapBits = settings.value("map_bits", options.mapBits);
     options.appearanceQuality = settings.value("appearance_quality", options.appearanceQuality);
-    options.shading = settings.value("shading", options.shading);
+    if (settings.contains("shading")) fit::setOption(options, "shading", settings["shading"].get<std::string>());
     options.compactMaps = settings.value("compact_maps", options.compactMaps);
     options.mapsStart = 0.0f;  // the maps are already fitted: they refine with the cage from the start
     return {.cage = asset.cage, .reference = reference->levels.front().mesh, .start = maps};

@@ -74,7 +74,8 @@ render::ShadingModel shadingOf(const ResultInputs& inputs, const LoadedLevel& le
     const ColumnInputs& first = inputs.columns.front();
     if (first.reference) {
         const std::string asked = inputs.folder ? inputs.folder->settings.value("shading", "auto") : "auto";
-        return asked == "auto" ? render::shadingFor(first.levels.front().mesh) : render::parseShadingModel(asked);
+        if (const auto model = parseNamed<render::ShadingModel>(asked)) return *model;
+        return render::shadingFor(first.levels.front().mesh);  // "auto"
     }
     return level.asset ? fit::shadingOf(level.asset->maps) : render::shadingFor(level.mesh);
 }

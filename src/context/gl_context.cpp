@@ -33,20 +33,18 @@ void loadGl(GlContext& context) {
         throw Error(context.providerName() + ": tessellation or compute support is missing");
 }
 
-std::unique_ptr<GlContext> createHeadlessContext(const std::string& provider) {
+std::unique_ptr<GlContext> createHeadlessContext(GlProvider provider) {
     std::unique_ptr<GlContext> context;
-    if (provider == "osmesa") {
-        context = createOsmesaContext();
-    } else if (provider == "egl") {
-        context = createEglContext();
-    } else if (provider == "auto") {
-        try {
-            context = createOsmesaContext();
-        } catch (const Error&) {
-            context = createEglContext();
-        }
-    } else {
-        throw Error("unknown GL provider '" + provider + "' (use osmesa, egl or auto)");
+    switch (provider) {
+        case GlProvider::Osmesa: context = createOsmesaContext(); break;
+        case GlProvider::Egl: context = createEglContext(); break;
+        case GlProvider::Auto:
+            try {
+                context = createOsmesaContext();
+            } catch (const Error&) {
+                context = createEglContext();
+            }
+            break;
     }
     loadGl(*context);
     return context;

@@ -5,6 +5,8 @@
 #include <memory>
 #include <string>
 
+#include "util/named_enum.h"
+
 namespace subdfit::context {
 
 using GlProc = void (*)();
@@ -17,13 +19,13 @@ public:
     virtual std::string providerName() const = 0;
 };
 
-// Creates a context by provider name ("osmesa", "egl", or "auto": OSMesa, else EGL), makes it
-// current, loads GL through it and checks that it has what subdfit needs (4.5 core,
-// tessellation, compute). Throws subdfit::Error with a clear message otherwise.
-std::unique_ptr<GlContext> createHeadlessContext(const std::string& provider = "auto");
+// Where a headless context comes from; Auto: OSMesa, else EGL.
+enum class GlProvider { Auto, Osmesa, Egl };
 
-// The names createHeadlessContext takes, as every command's --gl help says them.
-inline constexpr const char* kGlProviderHelp = "GL provider: auto, osmesa, egl";
+// Creates a context from `provider`, makes it current, loads GL through it and checks that it
+// has what subdfit needs (4.5 core, tessellation, compute). Throws subdfit::Error with a clear
+// message otherwise.
+std::unique_ptr<GlContext> createHeadlessContext(GlProvider provider = GlProvider::Auto);
 
 // Loads GL entry points through `context` and checks version and limits. Used by every
 // provider, the viewer's GLFW one included.
@@ -37,3 +39,11 @@ struct GlInfo {
 GlInfo currentGlInfo();
 
 }  // namespace subdfit::context
+
+template <>
+struct subdfit::EnumNames<subdfit::context::GlProvider> {
+    using P = context::GlProvider;
+    static constexpr std::array names{std::pair{P::Auto, std::string_view("auto")},
+                                      std::pair{P::Osmesa, std::string_view("osmesa")},
+                                      std::pair{P::Egl, std::string_view("egl")}};
+};

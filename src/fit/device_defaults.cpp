@@ -27,7 +27,7 @@ std::string resolveDeviceDefaults(FitOptions& o, const std::string& renderer) {
     if (!chose) return "";
     return renderer + (hardware ? " (GPU)" : " (software)") + ": " + std::to_string(o.views) + " views at " +
            std::to_string(o.resolution) + "², at most " + std::to_string(o.steps) + " steps" +
-           (o.schedule == "plateau" ? " (it stops once converged)" : "") +
+           (o.schedule == Schedule::Plateau ? " (it stops once converged)" : "") +
            (hardware ? " (--views, --res, --steps override)" : "");
 }
 

@@ -1,8 +1,5 @@
 #include "fit/fit_options.h"
 
-#include "context/gl_context.h"
-#include "render/shading_model.h"
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -15,75 +12,109 @@ namespace detail {
 
 const std::vector<OptionRow>& optionTable() {
     using F = FitOptions;
-    // key, flag, help, range, resumable, setting
     static const std::vector<OptionRow> rows = {
-        {{"views", "--views", "training views on a sphere (default: 24, 48 on a GPU)", 1, 1024, false, true, true, true},
+        {{.key = "views", .flag = "--views", .help = "training views on a sphere (default: 24, 48 on a GPU)",
+          .min = 1, .max = 1024, .resumable = true, .setting = true, .byDevice = true},
          &F::views},
-        {{"holdout_views", "--holdout-views", "held-out evaluation views", 1, 256, false, true, true}, &F::holdoutViews},
-        {{"resolution", "--res", "render resolution in pixels (default: 256, 512 on a GPU)", 16, 4096, false, true, true, true},
+        {{.key = "holdout_views", .flag = "--holdout-views", .help = "held-out evaluation views",
+          .min = 1, .max = 256, .resumable = true, .setting = true},
+         &F::holdoutViews},
+        {{.key = "resolution", .flag = "--res", .help = "render resolution in pixels (default: 256, 512 on a GPU)",
+          .min = 16, .max = 4096, .resumable = true, .setting = true, .byDevice = true},
          &F::resolution},
-        {{"steps", "--steps", "optimisation steps, the most with --schedule plateau, which stops once converged (default: 4000, 20000 on a GPU)", 0, 1e9,
-          false, false, true, true},
+        {{.key = "steps", .flag = "--steps",
+          .help = "optimisation steps, the most with --schedule plateau, which stops once converged (default: 4000, 20000 on a GPU)",
+          .min = 0, .max = 1e9, .setting = true, .byDevice = true},
          &F::steps},
-        {{"views_per_step", "--views-per-step", "views rendered per step", 1, 1024, false, true, true}, &F::viewsPerStep},
-        {{"samples_per_step", "--samples-per-step", "perturbations averaged per step", 1, 64, false, true, true},
+        {{.key = "views_per_step", .flag = "--views-per-step", .help = "views rendered per step",
+          .min = 1, .max = 1024, .resumable = true, .setting = true},
+         &F::viewsPerStep},
+        {{.key = "samples_per_step", .flag = "--samples-per-step", .help = "perturbations averaged per step",
+          .min = 1, .max = 64, .resumable = true, .setting = true},
          &F::samplesPerStep},
-        {{"tess_level", "--tess", "tessellation segments per face edge (half on cages of over 2 000 faces)", 1, 64, false, true, true}, &F::tessLevel},
-        {{"seed", "--seed", "random seed (views, perturbations)", 1, 0, false, true, true}, &F::seed},
-        {{"epsilon", "--epsilon", "vertex perturbation, a fraction of the cage's mean edge (at most ~1 pixel)", 0, 1, true, true, true},
+        {{.key = "tess_level", .flag = "--tess",
+          .help = "tessellation segments per face edge (half on cages of over 2 000 faces)",
+          .min = 1, .max = 64, .resumable = true, .setting = true},
+         &F::tessLevel},
+        {{.key = "seed", .flag = "--seed", .help = "random seed (views, perturbations)", .resumable = true, .setting = true},
+         &F::seed},
+        {{.key = "epsilon", .flag = "--epsilon",
+          .help = "vertex perturbation, a fraction of the cage's mean edge (at most ~1 pixel)",
+          .min = 0, .max = 1, .openRange = true, .resumable = true, .setting = true},
          &F::epsilon},
-        {{"learning_rate", "--lr", "vertex learning rate, a fraction of the cage's mean edge (at most ~0.5 pixel)", 0, 1, true, true, true},
+        {{.key = "learning_rate", .flag = "--lr",
+          .help = "vertex learning rate, a fraction of the cage's mean edge (at most ~0.5 pixel)",
+          .min = 0, .max = 1, .openRange = true, .resumable = true, .setting = true},
          &F::learningRate},
-        {{"smoothing", "--smoothing", "Laplacian preconditioner λ (0 = off); on cages with edges under 1/4 of the scene radius, x (1/4 / edge)^2", 0, 1e6, false, true, true},
+        {{.key = "smoothing", .flag = "--smoothing",
+          .help = "Laplacian preconditioner λ (0 = off); on cages with edges under 1/4 of the scene radius, x (1/4 / edge)^2",
+          .min = 0, .max = 1e6, .resumable = true, .setting = true},
          &F::smoothing},
-        {{"noise_gate", "--noise-gate",
-          "noise gate c: a parameter's step shrinks to 0 as its mean gradient falls to c times its noise (0 = plain Adam)",
-          0, 100, false, true, true},
+        {{.key = "noise_gate", .flag = "--noise-gate",
+          .help = "noise gate c: a parameter's step shrinks to 0 as its mean gradient falls to c times its noise (0 = plain Adam)",
+          .min = 0, .max = 100, .resumable = true, .setting = true},
          &F::noiseGate},
-        {{"relaxation", "--relax", "tangential relaxation of the cage per step (0 = off)", 0, 1, false, true, true},
+        {{.key = "relaxation", .flag = "--relax", .help = "tangential relaxation of the cage per step (0 = off)",
+          .min = 0, .max = 1, .resumable = true, .setting = true},
          &F::relaxation},
-        {{"tangential", "--tangential", "fraction of the vertex gradient along the surface kept (1 = all)", 0, 1,
-          false, true, true},
+        {{.key = "tangential", .flag = "--tangential",
+          .help = "fraction of the vertex gradient along the surface kept (1 = all)",
+          .min = 0, .max = 1, .resumable = true, .setting = true},
          &F::tangential},
-        {{"shading", "--shading", "auto (what the reference's materials call for), geometry, unlit, lambert, pbr", 1, 0,
-          false, true, true},
+        {{.key = "shading", .flag = "--shading",
+          .help = "auto (what the reference's materials call for), geometry, unlit, lambert, pbr",
+          .resumable = true, .setting = true},
          &F::shading},
-        {{"maps", "--maps", "maps to fit: none, displacement, normal, displacement,normal", 1, 0, false, true, true},
+        {{.key = "maps", .flag = "--maps", .help = "maps to fit: none, displacement, normal, displacement,normal",
+          .resumable = true, .setting = true},
          &F::maps},
-        {{"map_resolution", "--map-res", "map cells per face edge", 1, 64, false, true, true}, &F::mapResolution},
-        {{"shading_normal", "--shading-normal",
-          "what shades displaced heights: displaced (their slopes tilt the normal) or limit (the limit surface's "
-          "normal, the heights only place it); simplify --budget chooses", 1, 0, false, true, true},
+        {{.key = "map_resolution", .flag = "--map-res", .help = "map cells per face edge",
+          .min = 1, .max = 64, .resumable = true, .setting = true},
+         &F::mapResolution},
+        {{.key = "shading_normal", .flag = "--shading-normal",
+          .help = "what shades displaced heights: displaced (their slopes tilt the normal) or limit (the limit "
+                  "surface's normal, the heights only place it); simplify --budget chooses",
+          .resumable = true, .setting = true},
          &F::shadingNormal},
-        {{"appearance_resolution", "--appearance-res",
-          "base colour / metallic-roughness cells per face edge (scenes with materials)", 1, 64, false, true, true},
+        {{.key = "appearance_resolution", .flag = "--appearance-res",
+          .help = "base colour / metallic-roughness cells per face edge (scenes with materials)",
+          .min = 1, .max = 64, .resumable = true, .setting = true},
          &F::appearanceResolution},
-        {{"appearance_atlas", "--appearance-atlas",
-          "simplify: texels per side of the base colour / metallic-roughness in the reference's own UV atlas "
-          "(0 = tiles per face; a reference with one textured material)", 0, 4096, false, true, true},
+        {{.key = "appearance_atlas", .flag = "--appearance-atlas",
+          .help = "simplify: texels per side of the base colour / metallic-roughness in the reference's own UV atlas "
+                  "(0 = tiles per face; a reference with one textured material)",
+          .min = 0, .max = 4096, .resumable = true, .setting = true},
          &F::appearanceAtlas},
-        {{"maps_start", "--maps-start", "fraction of the steps before the maps join", 0, 1, false, true, true},
+        {{.key = "maps_start", .flag = "--maps-start", .help = "fraction of the steps before the maps join",
+          .min = 0, .max = 1, .resumable = true, .setting = true},
          &F::mapsStart},
-        {{"map_bits", "--map-bits", "bits per map value in asset.subd, over each channel's range", 4, 16, false, false, true},
+        {{.key = "map_bits", .flag = "--map-bits", .help = "bits per map value in asset.subd, over each channel's range",
+          .min = 4, .max = 16, .setting = true},
          &F::mapBits},
-        {{"appearance_quality", "--appearance-quality",
-          "JPEG quality (1-100) of the base colour / metallic-roughness images in asset.subd", 1, 100, false, false, true},
+        {{.key = "appearance_quality", .flag = "--appearance-quality",
+          .help = "JPEG quality (1-100) of the base colour / metallic-roughness images in asset.subd",
+          .min = 1, .max = 100, .setting = true},
          &F::appearanceQuality},
-        {{"preview", "--preview", "also write fitted.glb: the displaced limit surface, --tess segments per face edge",
-          1, 0, false, false, true},
+        {{.key = "preview", .flag = "--preview",
+          .help = "also write fitted.glb: the displaced limit surface, --tess segments per face edge", .setting = true},
          &F::preview},
-        {{"draco", "--draco", "compress the exported meshes with Draco", 1, 0, false, false, true}, &F::draco},
-        {{"usd", "--usd", "USD export of the shipped asset: usdz (asset.usdz), usdz,usda (and the layer's text beside it), none",
-          1, 0, false, false, true},
+        {{.key = "draco", .flag = "--draco", .help = "compress the exported meshes with Draco", .setting = true},
+         &F::draco},
+        {{.key = "usd", .flag = "--usd",
+          .help = "USD export of the shipped asset: usdz (asset.usdz), usdz,usda (and the layer's text beside it), none",
+          .setting = true},
          &F::usd},
-        {{"compact_maps", "", "ship maps as HALF EXR and 8-bit PNG", 1, 0, false, false, true}, &F::compactMaps},
-        {{"resume", "--resume", "continue from DIR/checkpoint.bin (same inputs and settings)"}, &F::resume},
-        {{"force", "--force", "write into --out even if it holds other files"}, &F::force},
-        {{"checkpoint_every", "--checkpoint-every", "steps between checkpoints", 1, 1e9}, &F::checkpointEvery},
-        {{"gl", "--gl", context::kGlProviderHelp}, &F::glProvider},
-        {{"schedule", "--schedule",
-          "plateau: halve the step when the fit stalls, stop when converged (steps: the most); anneal: x0.1 over the steps",
-          1, 0, false, true, true},
+        {{.key = "compact_maps", .flag = "", .help = "ship maps as HALF EXR and 8-bit PNG", .setting = true},
+         &F::compactMaps},
+        {{.key = "resume", .flag = "--resume", .help = "continue from DIR/checkpoint.bin (same inputs and settings)"},
+         &F::resume},
+        {{.key = "force", .flag = "--force", .help = "write into --out even if it holds other files"}, &F::force},
+        {{.key = "checkpoint_every", .flag = "--checkpoint-every", .help = "steps between checkpoints", .min = 1, .max = 1e9},
+         &F::checkpointEvery},
+        {{.key = "gl", .flag = "--gl", .help = "GL provider: auto (OSMesa, else EGL), osmesa, egl"}, &F::glProvider},
+        {{.key = "schedule", .flag = "--schedule",
+          .help = "plateau: halve the step when the fit stalls, stop when converged (steps: the most); anneal: x0.1 over the steps",
+          .resumable = true, .setting = true},
          &F::schedule},
     };
     return rows;
@@ -111,16 +142,21 @@ void checkRange(const OptionInfo& info, T value) {
 
 template <class T>
 nlohmann::json toJson(const T& value) {
-    if constexpr (std::is_same_v<T, maps::MapEffects>) return maps::toString(value);
+    if constexpr (WordOption<T>) return optionText(value);
     else return value;
 }
 
 }  // namespace
 
-std::string optionFlag(const std::string& key) {
+const OptionInfo* findOption(std::string_view key) {
     for (const auto& row : detail::optionTable())
-        if (key == row.info.key) return row.info.flag;
-    return "";
+        if (key == row.info.key) return &row.info;
+    return nullptr;
+}
+
+std::string optionFlag(const std::string& key) {
+    const OptionInfo* info = findOption(key);
+    return info ? info->flag : "";
 }
 
 void setOption(FitOptions& options, const std::string& key, const std::string& value) {
@@ -131,10 +167,11 @@ void setOption(FitOptions& options, const std::string& key, const std::string& v
         found = true;
         try {
             if constexpr (std::is_same_v<T, bool>) field = value == "1" || value == "true";
-            else if constexpr (std::is_same_v<T, std::string>) field = value;
-            else if constexpr (std::is_same_v<T, maps::MapEffects>) field = maps::parseMapEffects(value);
+            else if constexpr (WordOption<T>) readOptionText(info, field, value);
             else if constexpr (std::is_same_v<T, float>) field = std::stof(value);
             else field = T(std::stoll(value));
+        } catch (const OptionError&) {
+            throw;
         } catch (const std::exception&) {
             throw OptionError(key, "cannot read '" + value + "'");
         }
@@ -146,20 +183,7 @@ void validate(const FitOptions& o) {
     forEachOption(o, [](const OptionInfo& info, const auto& value) { checkRange(info, value); });
     if (o.views != kByDevice && o.viewsPerStep > o.views) throw OptionError("views_per_step", "must be at most views (" + std::to_string(o.views) + ")");
     if (o.out.empty()) throw OptionError("out", "is required");
-    if (o.shading != "auto") {
-        try {
-            render::parseShadingModel(o.shading);
-        } catch (const Error& e) {
-            throw OptionError("shading", e.what());
-        }
-    }
     if (o.appearanceAtlas == 1) throw OptionError("appearance_atlas", "must be 0 (tiles) or at least 2 texels");
-    if (o.shadingNormal != "displaced" && o.shadingNormal != "limit")
-        throw OptionError("shading_normal", "must be displaced or limit, got '" + o.shadingNormal + "'");
-    if (o.usd != "usdz" && o.usd != "usdz,usda" && o.usd != "none")
-        throw OptionError("usd", "must be usdz, usdz,usda or none, got '" + o.usd + "'");
-    if (o.schedule != "plateau" && o.schedule != "anneal")
-        throw OptionError("schedule", "must be plateau or anneal, got '" + o.schedule + "'");
 }
 
 void validateResolved(const FitOptions& o) {

@@ -7,20 +7,49 @@
 // must reproduce exactly (the view schedule).
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "context/gl_context.h"
 #include "maps/map_effects.h"
 #include "mesh/polygon_mesh.h"
+#include "render/shading_model.h"
+#include "surface/surface_maps.h"
 #include "util/error.h"
+#include "util/named_enum.h"
 
 namespace subdfit::fit {
 
 // An option the device chooses unless it was given: see resolveDeviceDefaults().
 inline constexpr int kByDevice = -1;
+
+// How the step size follows the fit (fit/step_schedule.h): Plateau halves it when the monitored
+// loss stalls and stops once converged, `steps` being the most; Anneal takes exactly `steps`
+// steps, the step annealed x0.1 over them.
+enum class Schedule { Plateau, Anneal };
+
+// What the USD export writes beside asset.subd (export/usd_export.h).
+enum class UsdExport { Usdz, UsdzAndUsda, None };
+
+}  // namespace subdfit::fit
+
+template <>
+struct subdfit::EnumNames<subdfit::fit::Schedule> {
+    static constexpr std::array names{std::pair{fit::Schedule::Plateau, std::string_view("plateau")},
+                                      std::pair{fit::Schedule::Anneal, std::string_view("anneal")}};
+};
+template <>
+struct subdfit::EnumNames<subdfit::fit::UsdExport> {
+    static constexpr std::array names{std::pair{fit::UsdExport::Usdz, std::string_view("usdz")},
+                                      std::pair{fit::UsdExport::UsdzAndUsda, std::string_view("usdz,usda")},
+                                      std::pair{fit::UsdExport::None, std::string_view("none")}};
+};
+
+namespace subdfit::fit {
 
 struct FitOptions {
     std::filesystem::path cage, reference, out;
@@ -45,14 +74,12 @@ struct FitOptions {
     float noiseGate = 0.0f;
     float relaxation = 0.0f;      // tangential relaxation of the cage per vertex update (0: off)
     float tangential = 1.0f;      // fraction of the vertex gradient's tangential part kept
-    std::string glProvider = "auto";
-    // How the scene is shaded (render/shading_model.h): "auto" takes what the reference's
-    // materials call for; "geometry", "unlit", "lambert" or "pbr" overrides it.
-    std::string shading = "auto";
+    context::GlProvider glProvider = context::GlProvider::Auto;
+    // How the scene is shaded; nothing ("auto"): what the reference's materials call for.
+    std::optional<render::ShadingModel> shading;
     maps::MapEffects maps;        // none by default
     int mapResolution = 8;        // cells per ptex-face edge of each map tile
-    // What shades the displaced surface (surface::ShadingNormal): "displaced" or "limit".
-    std::string shadingNormal = "displaced";
+    surface::ShadingNormal shadingNormal = surface::ShadingNormal::Displaced;  // what shades the displaced surface
     int appearanceResolution = 16;  // ... of the appearance maps (base colour, metallic-roughness)
     // simplify: texels per side of the appearance maps in the reference's own texture atlas
     // (surface/appearance_atlas.h); 0: per-face tiles of appearanceResolution.
@@ -62,17 +89,12 @@ struct FitOptions {
     int appearanceQuality = 90;   // JPEG quality of the appearance images in asset.subd
     bool preview = false;         // also write fitted.glb: the displaced limit surface, tessLevel per face edge
     bool draco = false;           // fitted.glb with KHR_draco_mesh_compression
-    // The USD export of asset.subd (export/usd_export.h): "usdz" (asset.usdz), "usdz,usda" (and
-    // the layer's text beside it) or "none".
-    std::string usd = "usdz";
+    UsdExport usd = UsdExport::Usdz;
     bool compactMaps = false;     // ship maps as HALF EXR and 8-bit PNG (export/map_atlas.h)
     bool resume = false;          // continue from out/checkpoint.bin when it exists
     bool force = false;           // write into a non-empty folder that holds no subdfit results
     int checkpointEvery = 100;    // steps between checkpoints (also written on interrupt and at the end)
-    // "plateau": halve the step when the monitored loss stalls, stop when it has converged
-    // (fit/step_schedule.h), `steps` being the most it may take; "anneal": exactly `steps`
-    // steps, the step annealed ×0.1 over them.
-    std::string schedule = "plateau";
+    Schedule schedule = Schedule::Plateau;
 };
 
 // One row of the table.
@@ -88,8 +110,11 @@ struct OptionInfo {
 };
 
 namespace detail {
-using OptionMember = std::variant<int FitOptions::*, std::uint32_t FitOptions::*, float FitOptions::*,
-                                  bool FitOptions::*, std::string FitOptions::*, maps::MapEffects FitOptions::*>;
+using OptionMember =
+    std::variant<int FitOptions::*, std::uint32_t FitOptions::*, float FitOptions::*, bool FitOptions::*,
+                 maps::MapEffects FitOptions::*, std::optional<render::ShadingModel> FitOptions::*,
+                 surface::ShadingNormal FitOptions::*, Schedule FitOptions::*, UsdExport FitOptions::*,
+                 context::GlProvider FitOptions::*>;
 struct OptionRow {
     OptionInfo info;
     OptionMember member;
@@ -98,13 +123,49 @@ const std::vector<OptionRow>& optionTable();
 }  // namespace detail
 
 // Calls visit(info, field) for every option, `field` a reference to the member of `options` the
-// row describes (int, std::uint32_t, float, bool, std::string or maps::MapEffects).
+// row describes: a number, a bool, or a value spelt as words (WordOption).
 template <class Options, class Visitor>
 void forEachOption(Options& options, Visitor&& visit) {
     for (const auto& row : detail::optionTable())
         std::visit([&](auto member) { visit(row.info, options.*member); }, row.member);
 }
 
+// An option spelt as words rather than a number: the maps, and every NamedEnum (an optional one
+// spells "not given" as "auto").
+template <class T>
+concept WordOption = std::is_same_v<T, maps::MapEffects> || NamedEnum<T> ||
+                     (requires { typename T::value_type; } && NamedEnum<typename T::value_type> &&
+                      std::is_same_v<T, std::optional<typename T::value_type>>);
+
+template <WordOption T>
+std::string optionText(const T& value) {
+    if constexpr (std::is_same_v<T, maps::MapEffects>) return maps::toString(value);
+    else return std::string(nameOf(value));
+}
+
+// Reads `text` into `field`; throws OptionError(key, "must be ..., got '...'") when it names nothing.
+template <WordOption T>
+void readOptionText(const OptionInfo& info, T& field, const std::string& text) {
+    if constexpr (std::is_same_v<T, maps::MapEffects>) {
+        try {
+            field = maps::parseMapEffects(text);
+        } catch (const Error& e) {
+            throw OptionError(info.key, e.what());
+        }
+    } else if constexpr (NamedEnum<T>) {
+        const auto value = parseNamed<T>(text);
+        if (!value) throw OptionError(info.key, "must be " + namesOf<T>() + ", got '" + text + "'");
+        field = *value;
+    } else {
+        using E = typename T::value_type;
+        if (text == kAutoName) field = std::nullopt;
+        else if (const auto value = parseNamed<E>(text)) field = *value;
+        else throw OptionError(info.key, "must be " + namesOf<E>(true) + ", got '" + text + "'");
+    }
+}
+
+// The row of an option key, or nullptr.
+const OptionInfo* findOption(std::string_view key);
 // The flag of an option key ("" when it has none).
 std::string optionFlag(const std::string& key);
 

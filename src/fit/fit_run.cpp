@@ -131,7 +131,7 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
     const int first = step();
     const auto began = Clock::now();
     const int reportEvery = std::max(1, options_.steps / 50);
-    const bool plateau = options_.schedule == "plateau";
+    const bool plateau = options_.schedule == Schedule::Plateau;
     StepSchedule schedule(schedule_);
     // The schedule judges a step by its loss on the monitor views, the start included: the
     // kept state is never worse than where the stage began. Returns why the stage ends, if it does.
@@ -238,7 +238,7 @@ void FitRun::restoreBest() {
 }
 
 void FitRun::endStage() {
-    if (options_.schedule != "plateau" || schedule_.bestTheta.empty()) return;
+    if (options_.schedule != Schedule::Plateau || schedule_.bestTheta.empty()) return;
     // Measured once more: the last steps may have been better than any monitored before.
     const double last = score(*fitter_, scene_.monitor).loss;
     if (!(last <= schedule_.bestLoss)) restoreBest();

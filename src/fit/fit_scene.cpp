@@ -41,7 +41,7 @@ scene::SceneFrame frameOf(const mesh::PolygonMesh& reference) {
 }  // namespace
 
 render::ShadingModel shadingOf(const FitOptions& o, const mesh::PolygonMesh& reference) {
-    return o.shading == "auto" ? render::shadingFor(reference) : render::parseShadingModel(o.shading);
+    return o.shading ? *o.shading : render::shadingFor(reference);
 }
 
 maps::MapEffects mapEffectsOf(const FitOptions& o, render::ShadingModel shading) {
@@ -107,7 +107,7 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
     settings.maps.resolution = o.mapResolution;
     settings.maps.appearanceResolution = o.appearanceResolution;
     settings.maps.appearanceAtlas = o.appearanceAtlas;
-    settings.maps.shadingNormal = surface::shadingNormalNamed(o.shadingNormal);
+    settings.maps.shadingNormal = o.shadingNormal;
     settings.mapsStartFraction = o.mapsStart;
     return settings;
 }

@@ -6,22 +6,6 @@
 
 namespace subdfit::render {
 
-const char* toString(ShadingModel model) {
-    switch (model) {
-        case ShadingModel::Geometry: return "geometry";
-        case ShadingModel::Unlit: return "unlit";
-        case ShadingModel::Lambert: return "lambert";
-        case ShadingModel::MetallicRoughness: return "pbr";
-    }
-    return "geometry";
-}
-
-ShadingModel parseShadingModel(const std::string& text) {
-    for (ShadingModel m : {ShadingModel::Geometry, ShadingModel::Unlit, ShadingModel::Lambert, ShadingModel::MetallicRoughness})
-        if (text == toString(m)) return m;
-    throw Error("shading '" + text + "' is not one of auto, geometry, unlit, lambert, pbr");
-}
-
 ShadingModel shadingFor(const mesh::PolygonMesh& reference) {
     if (!reference.materials) return ShadingModel::Geometry;
     std::vector<char> used(reference.materials->materials.size(), 0);

@@ -6,6 +6,7 @@
 
 #include "gl/program_cache.h"
 #include "mesh/polygon_mesh.h"
+#include "util/named_enum.h"
 
 namespace subdfit::render {
 
@@ -15,10 +16,6 @@ enum class ShadingModel {
     Lambert,            // base colour, diffuse only, under the neutral light rig
     MetallicRoughness,  // glTF's BRDF: GGX specular + Lambert diffuse, under the neutral rig
 };
-
-const char* toString(ShadingModel model);  // "geometry", "unlit", "lambert", "pbr"
-// The inverse; "auto" is the caller's (shadingFor). Throws subdfit::Error naming what it got.
-ShadingModel parseShadingModel(const std::string& text);
 
 // What a reference calls for: Geometry without materials or colours, Unlit when every material
 // is unlit, MetallicRoughness when a material is metallic, less than fully rough or has a
@@ -31,3 +28,12 @@ inline const std::vector<std::string> kShadingDefines{"SUBDFIT_SHADING_UNLIT", "
 gl::VariantBits shadingBits(ShadingModel model);
 
 }  // namespace subdfit::render
+
+template <>
+struct subdfit::EnumNames<subdfit::render::ShadingModel> {
+    using M = render::ShadingModel;
+    static constexpr std::array names{std::pair{M::Geometry, std::string_view("geometry")},
+                                      std::pair{M::Unlit, std::string_view("unlit")},
+                                      std::pair{M::Lambert, std::string_view("lambert")},
+                                      std::pair{M::MetallicRoughness, std::string_view("pbr")}};
+};

@@ -476,7 +476,7 @@ nlohmann::json toJson(const BudgetReport& report) {
     auto candidate = [](const BudgetCandidate& c) {
         nlohmann::json j{{"faces", c.faces}, {"maps", maps::toString(c.maps)}, {"map_resolution", c.mapResolution},
                          {"map_bits", c.mapBits}, {"bytes", c.bytes}};
-        if (c.maps.displacement && c.monitorLoss > 0.0) j["shading_normal"] = surface::toString(c.shadingNormal);
+        if (c.maps.displacement && c.monitorLoss > 0.0) j["shading_normal"] = nameOf(c.shadingNormal);
         if (c.appearanceResolution > 0) j["appearance_resolution"] = c.appearanceResolution;
         if (c.appearanceAtlas > 0) j["appearance_atlas"] = c.appearanceAtlas;
         if (c.appearanceQuality > 0) j["appearance_quality"] = c.appearanceQuality;

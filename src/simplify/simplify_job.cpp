@@ -154,7 +154,7 @@ bool widenToHeights(fit::FitRun& run) {
 BakeRoute bakeRouteOf(const mesh::PolygonMesh& cage, const fit::FitOptions& fit) {
     return {.cage = cage, .effects = fit.maps, .resolution = fit.mapResolution, .bits = fit.mapBits,
             .appearanceResolution = fit.appearanceResolution, .appearanceQuality = fit.appearanceQuality,
-            .appearanceAtlas = fit.appearanceAtlas, .shadingNormal = surface::shadingNormalNamed(fit.shadingNormal)};
+            .appearanceAtlas = fit.appearanceAtlas, .shadingNormal = fit.shadingNormal};
 }
 
 // Without a budget the fit starts from the initial cage of --faces, with the options as given.
@@ -190,7 +190,7 @@ void applyChoice(const BudgetCandidate& chosen, int cageFaces, bool stepsByDevic
     if (chosen.mapResolution > 0) {
         fit.mapResolution = chosen.mapResolution;
         fit.mapBits = chosen.mapBits;
-        fit.shadingNormal = surface::toString(chosen.shadingNormal);
+        fit.shadingNormal = chosen.shadingNormal;
         // The search judged this cage with maps baked onto it as it is: the fit refines that
         // from the start (moving the cage first would leave what was judged).
         fit.mapsStart = 0.0f;

@@ -6,6 +6,7 @@
 
 #include "surface/appearance_atlas.h"
 #include "surface/texel_layout.h"
+#include "util/named_enum.h"
 
 namespace subdfit::surface {
 
@@ -14,11 +15,16 @@ namespace subdfit::surface {
 // placing the surface: a light reference's flat triangles shaded with smooth vertex normals,
 // whose facets heights baked onto them would otherwise copy into the shading.
 enum class ShadingNormal { Displaced, Limit };
-inline const char* toString(ShadingNormal s) { return s == ShadingNormal::Limit ? "limit" : "displaced"; }
-// The inverse of toString, for text already checked to be one of the two.
-inline ShadingNormal shadingNormalNamed(std::string_view name) {
-    return name == "limit" ? ShadingNormal::Limit : ShadingNormal::Displaced;
-}
+
+}  // namespace subdfit::surface
+
+template <>
+struct subdfit::EnumNames<subdfit::surface::ShadingNormal> {
+    static constexpr std::array names{std::pair{surface::ShadingNormal::Displaced, std::string_view("displaced")},
+                                      std::pair{surface::ShadingNormal::Limit, std::string_view("limit")}};
+};
+
+namespace subdfit::surface {
 
 struct SurfaceMaps {
     TexelLayout layout;  // resolution 0: no maps at all

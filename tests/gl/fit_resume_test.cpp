@@ -25,7 +25,7 @@ fit::FitOptions smallFit(const std::filesystem::path& dir, const std::string& na
     o.holdoutViews = 1;
     o.resolution = 48;
     o.checkpointEvery = 7;
-    o.glProvider = "osmesa";
+    o.glProvider = context::GlProvider::Osmesa;
     return o;
 }
 

@@ -87,7 +87,7 @@ TEST(ScaleFreeSettings, DenseCageFitsAtLeastAsWellAsASparseOne) {
         mesh::PolygonMesh cage = mesh::makeQuadSphere(n);
         for (auto& p : cage.positions) p *= 0.9f;
         fit::FitOptions o = defaultsWith(12, 128, 100, "dense_" + std::to_string(n));
-        o.schedule = "anneal";  // exactly the same number of steps for both
+        o.schedule = fit::Schedule::Anneal;  // exactly the same number of steps for both
         fit::FitScene scene(o, programs(), cage, reference);
         fit::FitRun run(o, programs(), scene);
         run.run(o.out / "checkpoint.bin");

@@ -38,7 +38,7 @@ void expectNoGlError() {
 
 int main(int argc, char** argv) {
     ::testing::InitGoogleTest(&argc, argv);
-    subdfit::test::sharedContext = subdfit::context::createHeadlessContext("osmesa");
+    subdfit::test::sharedContext = subdfit::context::createHeadlessContext(subdfit::context::GlProvider::Osmesa);
     subdfit::test::sharedPrograms = std::make_unique<subdfit::gl::ProgramCache>(subdfit::test::platformDefines());
     subdfit::test::installSharedContextListener();
     const int result = RUN_ALL_TESTS();

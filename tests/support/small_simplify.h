@@ -17,7 +17,7 @@ inline simplify::SimplifyOptions smallSimplify(const std::filesystem::path& refe
     o.fit.views = 4;
     o.fit.holdoutViews = 2;
     o.fit.resolution = 64;
-    o.fit.glProvider = "osmesa";
+    o.fit.glProvider = context::GlProvider::Osmesa;
     o.surfaceSamples = 5000;
     return o;
 }

@@ -160,7 +160,7 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     q.bytes = totalBytes(q.files);
     q.shipped = settings.dir.filename() / dir.filename() / "asset.subd";
     q.details = {{"faces", cage.faceCount()}, {"map_resolution", mapResolution}, {"map_bits", route.bits},
-                 {"shading_normal", surface::toString(route.shadingNormal)}};
+                 {"shading_normal", nameOf(route.shadingNormal)}};
 
     // Rendered by the fitter's own renderer with the baked values in its map groups.
     fit::CageFitSettings rendering;
