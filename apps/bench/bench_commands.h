@@ -36,6 +36,13 @@ struct LumpySphereOptions {
     int resolution = 256;
     int views = 8;
     context::GlProvider glProvider = context::GlProvider::Auto;
+    // The case: the lumpy sphere's bumps, their height (radius 1) and the seed placing them; the
+    // cage's quads per cube-face edge (6: 216 quads).
+    int bumps = 12;
+    float amplitude = 0.15f;
+    std::uint32_t lumpsSeed = 1;
+    int cageDivisions = 6;
+    std::uint32_t seed = 1;  // the fit's (views, perturbations)
 };
 int runLumpySphere(const LumpySphereOptions& options);
 
@@ -83,9 +90,19 @@ int runFitGain(const FitGainOptions& options);
 
 struct MapsGainOptions {
     std::filesystem::path out = "bench-maps";
-    int steps = 800;
-    int mapResolution = 8;
-    context::GlProvider glProvider = context::GlProvider::Auto;
+    // The case: a cage and a reference; a cage alone: its limit surface with a relief of this
+    // RMS height (a fraction of the bounding-box diagonal) as the reference; neither: a sphere
+    // covered in small bumps over the ~200-quad sphere cage.
+    std::filesystem::path cage, reference;
+    float reliefAmplitude = 0.006f;
+    std::uint32_t reliefSeed = 1;
+    fit::FitOptions fit = [] {
+        fit::FitOptions f;
+        f.steps = 800;
+        return f;
+    }();
+    // The maps each compared with a vertex-only fit ("none"), in turn.
+    std::vector<std::string> compared{"displacement", "displacement,normal"};
 };
 int runMapsGain(const MapsGainOptions& options);
 

@@ -26,6 +26,10 @@ double bestMilliseconds(int repeats, Work&& work) {
 // Peak resident set size of this process, MiB (VmHWM).
 double peakResidentMiB();
 
+// CPU seconds this process has used so far, every thread (llvmpipe's included), user and system:
+// on a shared machine, what a run cost beside its wall time.
+double processCpuSeconds();
+
 // Writes rows (first row = header) as CSV, atomically.
 void writeCsv(const std::filesystem::path& path, const std::vector<std::vector<std::string>>& rows);
 

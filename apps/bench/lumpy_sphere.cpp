@@ -16,8 +16,8 @@ namespace subdfit::bench {
 
 int runLumpySphere(const LumpySphereOptions& o) {
     std::filesystem::create_directories(o.out);
-    const auto reference = mesh::makeLumpySphere(5, 0.15f, 1);
-    const auto cage = mesh::makeQuadSphere(6);
+    const auto reference = mesh::makeLumpySphere(5, o.amplitude, o.lumpsSeed, o.bumps);
+    const auto cage = mesh::makeQuadSphere(o.cageDivisions);
     mesh::writeObj(o.out / "lumpy_sphere.obj", reference);
     mesh::writeObj(o.out / "quad_sphere_cage.obj", cage);
 
@@ -31,6 +31,8 @@ int runLumpySphere(const LumpySphereOptions& o) {
     fit.resolution = o.resolution;
     fit.views = o.views;
     fit.glProvider = o.glProvider;
+    fit.seed = o.seed;
+    fit.force = true;
     const auto report = fit::runFit(fit, {.progress = [](const fit::Progress& p) {
         std::fprintf(stderr, "step %d/%d  loss %.4e  %.1f s  ETA %.0f s\n", p.step, p.steps, double(p.loss), p.seconds,
                      p.etaSeconds);
@@ -43,8 +45,8 @@ int runLumpySphere(const LumpySphereOptions& o) {
     std::printf("%-8s %14s %14s %12s\n", "", "chamfer L2^2", "mean dist", "hausdorff");
     std::printf("%-8s %14.3e %14.3e %12.3e\n", "before", before.chamferL2Squared, before.meanDistance, before.hausdorff);
     std::printf("%-8s %14.3e %14.3e %12.3e\n", "after", after.chamferL2Squared, after.meanDistance, after.hausdorff);
-    std::printf("fit_seconds=%.1f total_seconds=%.1f psnr_holdout=%.2f\n", report.fitSeconds,
-                report.seconds, report.holdoutAfter.psnr);
+    std::printf("fit_seconds=%.1f total_seconds=%.1f cpu_seconds=%.1f psnr_holdout=%.2f\n", report.fitSeconds,
+                report.seconds, processCpuSeconds(), report.holdoutAfter.psnr);
     writeCsv(o.out / "lumpy_sphere.csv",
              {{"stage", "seconds", "chamfer_l2sq", "mean_distance", "hausdorff", "psnr_holdout"},
               {"before", "0", std::to_string(before.chamferL2Squared), std::to_string(before.meanDistance),

@@ -29,6 +29,12 @@ int main(int argc, char** argv) {
     lumpyCommand->add_option("--noise-gate", lumpy.noiseGate, "the fit's noise gate (0: plain Adam)")->capture_default_str();
     lumpyCommand->add_option("--res", lumpy.resolution, "resolution")->capture_default_str();
     lumpyCommand->add_option("--views", lumpy.views, "training views")->capture_default_str();
+    lumpyCommand->add_option("--bumps", lumpy.bumps, "bumps of the lumpy sphere")->capture_default_str();
+    lumpyCommand->add_option("--amplitude", lumpy.amplitude, "their height (sphere radius 1)")->capture_default_str();
+    lumpyCommand->add_option("--lumps-seed", lumpy.lumpsSeed, "the seed placing them")->capture_default_str();
+    lumpyCommand->add_option("--cage-divisions", lumpy.cageDivisions, "the sphere cage's quads per cube-face edge")
+        ->capture_default_str()->check(CLI::Range(2, 32));
+    lumpyCommand->add_option("--seed", lumpy.seed, "the fit's seed (views, perturbations)")->capture_default_str();
     subdfit::apps::addGlProvider(*lumpyCommand, lumpy.glProvider);
 
     subdfit::bench::SimplifyTradeoffOptions tradeoff;
@@ -62,9 +68,16 @@ int main(int argc, char** argv) {
     subdfit::bench::MapsGainOptions mapsGain;
     auto* mapsCommand = app.add_subcommand("maps", "held-out PSNR, time and bytes with and without maps");
     mapsCommand->add_option("--out", mapsGain.out, "output folder")->capture_default_str();
-    mapsCommand->add_option("--steps", mapsGain.steps, "optimisation steps per run")->capture_default_str();
-    mapsCommand->add_option("--map-res", mapsGain.mapResolution, "map cells per face edge")->capture_default_str();
-    subdfit::apps::addGlProvider(*mapsCommand, mapsGain.glProvider);
+    mapsCommand->add_option("--cage", mapsGain.cage, "the cage (default: the ~200-quad sphere cage)");
+    mapsCommand->add_option("--reference", mapsGain.reference,
+                            "the reference (default: with --cage, its limit surface with a relief; else a bumpy sphere)");
+    mapsCommand->add_option("--relief-amplitude", mapsGain.reliefAmplitude,
+                            "with --cage alone: the relief's RMS height, a fraction of the bounding-box diagonal")
+        ->capture_default_str();
+    mapsCommand->add_option("--relief-seed", mapsGain.reliefSeed, "with --cage alone: the seed of the relief's waves")
+        ->capture_default_str();
+    mapsCommand->add_option("--compare", mapsGain.compared, "maps each compared with a vertex-only fit")->capture_default_str();
+    subdfit::apps::addFitSettings(*mapsCommand, mapsGain.fit);
 
     subdfit::bench::FitGainOptions fitGain;
     auto* fitGainCommand = app.add_subcommand("fit-gain", "a fit from a good start (a limit-fitted cage, baked maps): held-out dB gain against seconds, variant by variant");

@@ -93,6 +93,7 @@ void FitRun::scoreStart() {
 void FitRun::startFrom(const surface::SurfaceMaps& maps) {
     SUBDFIT_CHECK(step() == 0);
     writeMaps(*fitter_, maps);
+    mapsGiven_ = true;
     scoreStart();
 }
 
@@ -204,8 +205,13 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
         const StopReason cage = runTo(fitter_->mapsStartStep(), checkpoint, hooks);
         if (cage == StopReason::Cancelled) return cage;
         if (!pastStart) {
-            endStage();
+            // The cage goes on beside the maps: at the full step again it would undo, while the
+            // maps start, what its last halvings settled.
+            endStage(/*keepStep=*/true);
             if (step() < fitter_->mapsStartStep()) fitter_->startMapsNow();  // the cage converged early
+            // Maps that join from zero are a poor start, not a near-optimal one the fit may fail
+            // to improve: their stage has no probation (while they rise from zero the loss is flat).
+            if (!mapsGiven_) schedule_.probationOver = true;
         }
         if (startMaps) startMaps(!pastStart);
     }
@@ -237,14 +243,16 @@ void FitRun::restoreBest() {
     for (size_t k = 0; k < groups.size() && k < schedule_.bestTheta.size(); ++k) groups[k]->write(schedule_.bestTheta[k]);
 }
 
-void FitRun::endStage() {
+void FitRun::endStage(bool keepStep) {
     if (options_.schedule != Schedule::Plateau || schedule_.bestTheta.empty()) return;
     // Measured once more: the last steps may have been better than any monitored before.
     const double last = score(*fitter_, scene_.monitor).loss;
     if (!(last <= schedule_.bestLoss)) restoreBest();
     bestStep_ = schedule_.bestStep;
+    const int halvings = keepStep ? schedule_.halvings : 0;
     StepSchedule(schedule_).restart();
-    fitter_->setLearningRateScale(1.0f);
+    schedule_.halvings = halvings;
+    fitter_->setLearningRateScale(StepSchedule(schedule_).learningRateScale());
 }
 
 FitReport FitRun::writeResults(const std::filesystem::path& out, const context::GlContext& context) {

@@ -76,8 +76,9 @@ public:
     StopReason runTo(int until, const std::filesystem::path& checkpoint, const FitHooks& hooks = {});
 
     // The end of a stage: back to the best monitored parameters, if the last are not (so a fit
-    // never ends worse than it started), and a fresh schedule for what follows.
-    void endStage();
+    // never ends worse than it started), and a fresh schedule for what follows: at the full step,
+    // or with `keepStep` at the step this stage's halvings reached.
+    void endStage(bool keepStep = false);
 
     // The whole fit in its stages: the cage alone until the maps' planned start (or until it has
     // converged), then with the maps, each stage ending at its best state. `startMaps` (if any)
@@ -115,6 +116,7 @@ private:
     ScheduleState schedule_;
     int bestStep_ = -1;  // of the last stage ended
     int widenedStep_ = -1;  // when run() widened its last stage; < 0: not (yet)
+    bool mapsGiven_ = false;  // startFrom set the maps (a bake): their stage starts near its optimum
     void restoreBest();  // θ of every group back to the best monitored state
     int probationSteps() const;  // of the stage under way
     StopReason stopReason_ = StopReason::Reached;

@@ -23,6 +23,10 @@ constexpr float kEpsilonPixels = 0.9f, kStepPixels = 0.45f;
 constexpr float kEpsilonMax = 0.008f, kStepMax = 0.004f;
 // The cage edge (a quarter of the scene radius) at and above which --smoothing is λ itself.
 constexpr float kReferenceEdge = 0.25f;
+// A displacement step moves a height by at most this fraction of a map cell's width: what the
+// images see of a height is mostly its slope (the shading normal), and a step that tilts every
+// normal by a few degrees turns the estimator's noise into a rough, darkened surface.
+constexpr float kHeightStepSlope = 0.03f;
 
 mesh::PolygonMesh normalized(mesh::PolygonMesh mesh, const scene::SceneFrame& frame) {
     mesh.positions = frame.toNormalized(mesh.positions);
@@ -105,6 +109,8 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
     settings.mapEffects = mapEffectsOf(o, shading);
     settings.shading = shading;
     settings.maps.resolution = o.mapResolution;
+    settings.maps.displacement.learningRate =
+        std::min(settings.maps.displacement.learningRate, kHeightStepSlope * edge / float(std::max(1, o.mapResolution)));
     settings.maps.appearanceResolution = o.appearanceResolution;
     settings.maps.appearanceAtlas = o.appearanceAtlas;
     settings.maps.shadingNormal = o.shadingNormal;
