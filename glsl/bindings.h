@@ -31,7 +31,7 @@
 #define SUBDFIT_SSBO_ADJACENCY_INDICES 17
 #define SUBDFIT_SSBO_LOSS 18            // 256 float slots whose sum is the mean per-pixel loss
 #define SUBDFIT_SSBO_SMOOTH_IN 19       // Jacobi iterate read by the preconditioner
-#define SUBDFIT_SSBO_FACE_DELTA 20      // Σ Δ_p/(2ε) per ptex face over the pixels crediting its vertices (fixed point)
+#define SUBDFIT_SSBO_FACE_DELTA 20      // Σ Δ_p/(2ε) per ptex face over pixels whose ± faces agree (fixed point)
 #define SUBDFIT_SSBO_VERTEX_FACE_OFFSETS 21  // base vertex -> ptex faces it reaches (CSR)
 #define SUBDFIT_SSBO_VERTEX_FACE_INDICES 22
 

@@ -4,12 +4,10 @@
 // under the pixel's (u, v) in either render), g_i += Δ_p / (2 s_i ε). Where the two renders saw different faces
 // (silhouettes, occlusion) both faces' vertices get the difference: that is what moves edges.
 //
-// s_i does not depend on the pixel, so Σ_p Δ_p s_i / 2ε = s_i Σ_p Δ_p / 2ε over the pixels that
-// credit a face's vertices: each such pixel only adds into a per-face sum (one atomic per pixel
-// instead of one per contributing parameter), and scatter_faces.comp hands each face's sum to its
-// vertices. A pixel whose two renders saw two different faces f+ and f− adds into f+'s sum and
-// credits directly only the vertices of f− that f+ lacks (a few: neighbouring faces share most of
-// their stencils' vertices).
+// s_i does not depend on the pixel, so for the common case (both renders saw the same face f)
+// Σ_p Δ_p s_i / 2ε = s_i Σ_p Δ_p / 2ε: those pixels only add into a per-face sum (one atomic
+// per pixel instead of one per contributing parameter), and scatter_faces.comp hands each
+// face's sum to its vertices. Pixels whose faces differ take the direct path with the union.
 #include "bindings.h"
 #include "hash.glsl"
 #include "atomics.glsl"
@@ -24,8 +22,6 @@ layout(binding = SUBDFIT_UNIT_FACE_MINUS) uniform isampler2D faceMinus;
 layout(binding = SUBDFIT_UNIT_TARGET) uniform sampler2DArray targets;
 
 layout(std430, binding = SUBDFIT_SSBO_FACE_VERTEX_OFFSETS) readonly buffer FaceOffsets { int faceVertexOffsets[]; };
-// Each face's vertices in increasing order (sge::FaceVertexTable), so a difference of two faces
-// is one merge.
 layout(std430, binding = SUBDFIT_SSBO_FACE_VERTEX_INDICES) readonly buffer FaceIndices { int faceVertexIndices[]; };
 // Gradient terms in fixed point, so that a run repeats exactly; the loss is only reported.
 SUBDFIT_DECLARE_FIXED_ACCUMULATOR(Gradient, SUBDFIT_SSBO_GRADIENT_SUM, gradient, addGradient)
@@ -61,14 +57,15 @@ uniform float uEpsilon;
 uniform float uLossScale;  // 1 / (pixels × views), so the loss is a per-pixel mean
 uniform int uMeasureLoss;  // 0: skip the loss (most steps only need the gradient)
 
-// The vertices of `face` that `other` lacks get the difference directly.
-void addFaceVerticesNotIn(int face, int other, float scaledDelta) {
-    int j = faceVertexOffsets[other];
-    int otherEnd = faceVertexOffsets[other + 1];
+void addFaceVertices(int face, float scaledDelta, int skipFace) {
     for (int k = faceVertexOffsets[face]; k < faceVertexOffsets[face + 1]; ++k) {
         int v = faceVertexIndices[k];
-        while (j < otherEnd && faceVertexIndices[j] < v) ++j;
-        if (j < otherEnd && faceVertexIndices[j] == v) continue;
+        if (skipFace >= 0) {  // the union: a vertex already credited through the other face
+            bool credited = false;
+            for (int j = faceVertexOffsets[skipFace]; j < faceVertexOffsets[skipFace + 1]; ++j)
+                credited = credited || faceVertexIndices[j] == v;
+            if (credited) continue;
+        }
         for (uint c = 0u; c < 3u; ++c) {
             uint i = 3u * uint(v) + c;
             // 1 / s_i = s_i for signs ±1.
@@ -132,9 +129,12 @@ void main() {
         // every parameter (scatter_faces.comp reads this one sum for all vertices).
         addFaceDelta(0u, scaledDelta);
 #else
-        // One face, or the same face in both renders: its sum. Two faces: the union.
-        addFaceDelta(uint(fp >= 0 ? fp : fm), scaledDelta);
-        if (fp >= 0 && fm >= 0 && fp != fm) addFaceVerticesNotIn(fm, fp, scaledDelta);
+        if (fp == fm) {
+            addFaceDelta(uint(fp), scaledDelta);
+        } else {
+            if (fp >= 0) addFaceVertices(fp, scaledDelta, -1);
+            if (fm >= 0) addFaceVertices(fm, scaledDelta, fp);
+        }
 #endif
     }
     // The loss goes to one of 256 slots by lane: a single float taking every pixel would

@@ -33,19 +33,12 @@ std::vector<int> transposeOffsets(const std::vector<int>& offsets, const std::ve
     return counts;
 }
 
-// Each row's columns in increasing order (gradient.comp merges two rows); the rows stay as they are.
-std::vector<int> sortedRows(const std::vector<int>& offsets, std::vector<int> indices) {
-    for (size_t row = 0; row + 1 < offsets.size(); ++row)
-        std::sort(indices.begin() + offsets[row], indices.begin() + offsets[row + 1]);
-    return indices;
-}
-
 }  // namespace
 
 FaceVertexTable::FaceVertexTable(const std::vector<int>& faceOffsets, const std::vector<int>& faceVertices,
                                  int vertexCount_)
     : offsets(gl::Buffer::fromVector(faceOffsets)),
-      indices(gl::Buffer::fromVector(sortedRows(faceOffsets, faceVertices))),
+      indices(gl::Buffer::fromVector(faceVertices)),
       faceDelta(GLsizeiptr(std::max<size_t>(1, faceOffsets.size())) * 2 * sizeof(std::uint32_t)),
       vertexCount(vertexCount_) {
     std::vector<int> vertexFaceIndices;

@@ -19,7 +19,7 @@ namespace subdfit::sge {
 // Which base vertices reach which ptex face, both ways (CSR), plus the per-face Δ sums of G.
 struct FaceVertexTable {
     FaceVertexTable(const std::vector<int>& faceOffsets, const std::vector<int>& faceVertices, int vertexCount);
-    gl::Buffer offsets, indices;              // ptex face -> base vertices, each face's in increasing order
+    gl::Buffer offsets, indices;              // ptex face -> base vertices
     gl::Buffer vertexOffsets, vertexFaces;    // base vertex -> ptex faces
     gl::Buffer faceDelta;                     // one fixed-point sum (two uints) per ptex face
     int vertexCount;
