@@ -6,7 +6,7 @@
 #define SUBDFIT_SSBO_THETA 0            // θ
 #define SUBDFIT_SSBO_THETA_PLUS 1       // θ + s⊙ε
 #define SUBDFIT_SSBO_THETA_MINUS 2      // θ − s⊙ε
-#define SUBDFIT_SSBO_GRADIENT 3         // g (float), resolved from the sums of G, cleared by Adam
+#define SUBDFIT_SSBO_GRADIENT 3         // g (float), resolved from the sums of G
 #define SUBDFIT_SSBO_MOMENT1 4          // Adam m
 #define SUBDFIT_SSBO_MOMENT2 5          // Adam v
 #define SUBDFIT_SSBO_GRADIENT_SMOOTH 6  // preconditioned gradient (ping-pong partner of g)
@@ -15,11 +15,14 @@
 #define SUBDFIT_SSBO_GROUP_MOMENT2 SUBDFIT_SSBO_THETA_PLUS
 
 // Subdivision tables (subdiv::PatchSet).
-#define SUBDFIT_SSBO_STENCIL_SOURCE 7   // control points the stencils read (θ, θ+ or θ−)
+#define SUBDFIT_SSBO_STENCIL_SOURCE 7   // control points the stencils read (θ or θ+)
 #define SUBDFIT_SSBO_STENCIL_OFFSETS 8
 #define SUBDFIT_SSBO_STENCIL_INDICES 9
 #define SUBDFIT_SSBO_STENCIL_WEIGHTS 10
 #define SUBDFIT_SSBO_POINTS 11          // base + refined + local points, 3 floats each
+// A second set evaluated in the same dispatch (θ− beside θ+).
+#define SUBDFIT_SSBO_STENCIL_SECOND_SOURCE 38
+#define SUBDFIT_SSBO_SECOND_POINTS 39
 #define SUBDFIT_SSBO_PATCH_INFO 12      // ivec4 {cv offset, patch type, param0, param1}
 #define SUBDFIT_SSBO_PATCH_CVS 13
 #define SUBDFIT_SSBO_FACE_VERTEX_OFFSETS 14  // ptex face -> base vertices (CSR)

@@ -25,6 +25,8 @@ struct StepCostOptions {
     std::filesystem::path out;
     int repeats = 15;
     context::GlProvider glProvider = context::GlProvider::Auto;
+    std::vector<int> resolutions{128, 256, 512};
+    bool scaling = true;  // also the table of step time against parameter count
 };
 int runStepCost(const StepCostOptions& options);
 

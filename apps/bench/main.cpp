@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
     auto* stepCostCommand = app.add_subcommand("step-cost", "SGE step time / forward render time, and scaling");
     stepCostCommand->add_option("--out", stepCost.out, "folder for step_cost.csv");
     stepCostCommand->add_option("--repeats", stepCost.repeats, "timed repeats (best of)")->capture_default_str();
+    stepCostCommand->add_option("--res", stepCost.resolutions, "resolutions timed")->capture_default_str();
+    stepCostCommand->add_flag("!--no-scaling", stepCost.scaling, "skip the table against parameter count");
     subdfit::apps::addGlProvider(*stepCostCommand, stepCost.glProvider);
 
     subdfit::bench::LumpySphereOptions lumpy;

@@ -1,16 +1,22 @@
 // `subdfit-bench step-cost`: one SGE step's time over one forward render's time, measured in the
-// same run (two renders are the floor, so the goal is <= 2.2), at a few resolutions; and how the
-// step time scales with the number of parameters.
+// same run (two renders are the floor, so the goal is <= 2.2), at a few resolutions; what a step
+// asks of the GL besides its renders (dispatches, barriers, clears, synchronisations, program
+// switches: the fixed costs that bound a fast GPU), counted per step; and how the step time
+// scales with the number of parameters.
 #include <glad/gl.h>
+
+#include <unistd.h>
 
 #include <cstdio>
 
-#include "bench_common.h"
-#include "gl/platform_defines.h"
-#include "io/atomic_file.h"
 #include "bench_commands.h"
+#include "bench_common.h"
 #include "context/gl_context.h"
 #include "fit/cage_fitter.h"
+#include "fit/fit_run.h"
+#include "gl/platform_defines.h"
+#include "gl_call_counter.h"
+#include "io/atomic_file.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
 #include "render/mesh_renderer.h"
@@ -23,6 +29,9 @@ struct Timing {
     double accumulateMs, updateMs;  // the step's halves: P + 2R + G, then preconditioner + Adam
 };
 
+// The views of the step-cost scene: one per step, as in a fit.
+const int kViews[] = {0};
+
 Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const render::MeshRenderer& reference,
                 int resolution, int repeats) {
     const scene::TargetSet targets(programs, reference, render::orbitCameras(8, 1), resolution);
@@ -30,8 +39,7 @@ Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const
     settings.resolution = resolution;
     fit::CageFitter fitter(programs, cage, settings);
     const render::RenderTarget image(resolution, resolution);
-    const int views[] = {0};
-    fitter.step(targets, views);  // compile and warm up
+    fitter.step(targets, kViews);  // compile and warm up
     fitter.render(targets.camera(0), image);
     glFinish();
     Timing t{};
@@ -42,18 +50,91 @@ Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const
     });
     // As in a fit, where only a few steps per progress report measure the loss.
     t.stepMs = bestMilliseconds(repeats, [&] {
-        fitter.step(targets, views, false);
+        fitter.step(targets, kViews, false);
         glFinish();
     });
     t.accumulateMs = bestMilliseconds(repeats, [&] {
-        fitter.accumulate(targets, views, false);
+        fitter.accumulate(targets, kViews, false);
         glFinish();
     });
-    t.updateMs = bestMilliseconds(repeats, [&] {
-        fitter.update();
+    fitter.update();
+    // Each update after a sample of its own (an update with nothing sampled does nothing).
+    t.updateMs = 1e30;
+    for (int k = 0; k < repeats; ++k) {
+        fitter.accumulate(targets, kViews, false);
         glFinish();
-    });
+        t.updateMs = std::min(t.updateMs, bestMilliseconds(1, [&] {
+                                  fitter.update();
+                                  glFinish();
+                              }));
+    }
     return t;
+}
+
+struct CountedPass {
+    std::string name;
+    GlCallCounts counts;
+    double perSteps = 1.0;  // the counts are over this many steps
+};
+
+// The GL calls of one forward render and of one step of each kind (a vertex turn, a texel turn),
+// warmed up first so that no compilation is counted.
+std::vector<CountedPass> countSteps(gl::ProgramCache& programs, const mesh::PolygonMesh& cage,
+                                    const render::MeshRenderer& reference) {
+    constexpr int kResolution = 128;  // the counts do not depend on it
+    const scene::TargetSet targets(programs, reference, render::orbitCameras(8, 1), kResolution);
+    const render::RenderTarget image(kResolution, kResolution);
+    std::vector<CountedPass> passes;
+
+    fit::CageFitSettings settings;
+    settings.resolution = kResolution;
+    fit::CageFitter fitter(programs, cage, settings);
+    fitter.step(targets, kViews, false);
+    fitter.render(targets.camera(0), image);
+    glFinish();
+    {
+        GlCallCounter counter;
+        fitter.render(targets.camera(0), image);
+        passes.push_back({"forward render", counter.take()});
+        fitter.step(targets, kViews, false);
+        passes.push_back({"step, vertex turn", counter.take()});
+        fitter.step(targets, kViews, true);
+        passes.push_back({"step measuring the loss", counter.take()});
+        fitter.takeMeanLoss();
+        passes.push_back({"loss readback (per report)", counter.take()});
+    }
+
+    // With displacement and normal maps, from the first step: turns alternate vertices / a map.
+    settings.mapEffects = {.displacement = true, .normalMap = true};
+    fit::CageFitter mapped(programs, cage, settings);
+    for (int warm = 0; warm < 4; ++warm) mapped.step(targets, kViews, false);
+    glFinish();
+    {
+        GlCallCounter counter;
+        mapped.step(targets, kViews, false);
+        passes.push_back({"maps scene, vertex turn", counter.take()});
+        mapped.step(targets, kViews, false);
+        passes.push_back({"maps scene, texel turn", counter.take()});
+    }
+    return passes;
+}
+
+// Per step of a fit as `subdfit fit` runs it (views taking turns, loss for progress, the plateau
+// schedule's monitor renders and checkpoints), averaged over its first steps.
+CountedPass countFitLoop(gl::ProgramCache& programs, const mesh::PolygonMesh& cage,
+                         const mesh::PolygonMesh& reference, const std::filesystem::path& scratch) {
+    fit::FitOptions options;
+    options.views = 8;
+    options.resolution = 128;
+    options.steps = 500;
+    options.out = scratch;
+    fit::FitScene scene(options, programs, cage, reference);
+    fit::FitRun run(options, programs, scene);
+    constexpr int kSteps = 60;
+    run.runTo(5, scratch / "checkpoint.bin");  // compile and warm up
+    GlCallCounter counter;
+    run.runTo(5 + kSteps, scratch / "checkpoint.bin");
+    return {"fit loop (mean per step)", counter.take(), double(kSteps)};
 }
 
 }  // namespace
@@ -78,12 +159,10 @@ int runStepCost(const StepCostOptions& o) {
                            std::to_string(o.repeats) + "; quad-sphere cage of " + std::to_string(cage.faceCount()) +
                            " faces. Two renders are the floor (2.0).\n\n| resolution | render ms | step ms | ratio |\n"
                            "|---|---|---|---|\n";
-    char line[160];
-    double defaultRatio = 0.0;
-    for (int resolution : {128, 256, 512}) {
+    char line[240];
+    for (int resolution : o.resolutions) {
         const auto t = timeCage(programs, cage, referenceRenderer, resolution, o.repeats);
         const double ratio = t.stepMs / t.renderMs;
-        if (resolution == 256) defaultRatio = ratio;
         std::printf("%10d %12.2f %12.2f %8.2f %14.2f %10.2f\n", resolution, t.renderMs, t.stepMs, ratio,
                     t.accumulateMs, t.updateMs);
         std::snprintf(line, sizeof line, "| %d² | %.2f | %.2f | %.2f |\n", resolution, t.renderMs, t.stepMs, ratio);
@@ -91,12 +170,51 @@ int runStepCost(const StepCostOptions& o) {
         rows.push_back({"resolution", std::to_string(cage.faceCount()), std::to_string(3 * cage.vertexCount()),
                         std::to_string(resolution), std::to_string(t.renderMs), std::to_string(t.stepMs),
                         std::to_string(ratio)});
+        std::printf("step_cost_ratio_%d=%.2f\n", resolution, ratio);
+    }
+
+    // What the GL is asked per step: calls, not time, so the figures hold on any device.
+    auto passes = countSteps(programs, cage, referenceRenderer);
+    {
+        // The fit loop's checkpoints go to a folder of their own, removed after.
+        const auto scratch = std::filesystem::temp_directory_path() / ("subdfit-step-cost-" + std::to_string(getpid()));
+        passes.push_back(countFitLoop(programs, cage, reference, scratch));
+        std::filesystem::remove_all(scratch);
+    }
+    const auto names = GlCallCounts::names();
+    std::printf("\nGL calls per step (quad-sphere cage, one view per step)\n%-28s", "");
+    markdown += "\nGL calls per step (one view per step):\n\n| |";
+    for (const auto& name : names) {
+        std::printf(" %9.9s", name.c_str());
+        markdown += " " + name + " |";
+    }
+    markdown += "\n|---|" + [&] {
+        std::string cells;
+        for (size_t k = 0; k < names.size(); ++k) cells += "---|";
+        return cells;
+    }() + "\n";
+    std::printf("\n");
+    std::vector<std::vector<std::string>> countRows{{"pass"}};
+    countRows.front().insert(countRows.front().end(), names.begin(), names.end());
+    for (const auto& pass : passes) {
+        std::printf("%-28s", pass.name.c_str());
+        markdown += "| " + pass.name + " |";
+        countRows.push_back({pass.name});
+        for (long value : pass.counts.values()) {
+            const double perStep = double(value) / pass.perSteps;
+            std::snprintf(line, sizeof line, pass.perSteps == 1.0 ? "%.0f" : "%.1f", perStep);
+            std::printf(" %9s", line);
+            markdown += std::string(" ") + line + " |";
+            countRows.back().push_back(line);
+        }
+        std::printf("\n");
+        markdown += "\n";
     }
 
     std::printf("\nscaling at 256^2: step time against parameter count\n");
     std::printf("%10s %12s %12s %12s %8s\n", "faces", "parameters", "render ms", "step ms", "ratio");
     markdown += "\nScaling at 256²:\n\n| faces | parameters | render ms | step ms | ratio |\n|---|---|---|---|---|\n";
-    for (int n : {4, 8, 16, 32}) {
+    for (int n : o.scaling ? std::vector<int>{4, 8, 16, 32} : std::vector<int>{}) {
         const auto sphere = mesh::makeQuadSphere(n);
         const auto t = timeCage(programs, sphere, referenceRenderer, 256, o.repeats);
         std::printf("%10d %12d %12.2f %12.2f %8.2f\n", sphere.faceCount(), 3 * sphere.vertexCount(), t.renderMs,
@@ -111,10 +229,10 @@ int runStepCost(const StepCostOptions& o) {
     if (!o.out.empty()) {
         std::filesystem::create_directories(o.out);
         writeCsv(o.out / "step_cost.csv", rows);
+        writeCsv(o.out / "step_calls.csv", countRows);
         io::writeTextAtomically(o.out / "step_cost.md", markdown);
     }
     std::printf("peak_rss_mib=%.0f\n", peakResidentMiB());
-    std::printf("step_cost_ratio=%.2f\n", defaultRatio);
     return 0;
 }
 

@@ -96,8 +96,10 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     if (std::find(pendingUpdate_.begin(), pendingUpdate_.end(), perturbed) == pendingUpdate_.end())
         pendingUpdate_.push_back(perturbed);
     const bool verticesPerturbed = perturbed->kind() == optim::GroupKind::Vertices;
-    stencils_.evaluate(programs_, verticesPerturbed ? vertices_.thetaPlus : vertices_.theta, pointsPlus_);
-    if (verticesPerturbed) stencils_.evaluate(programs_, vertices_.thetaMinus, pointsMinus_);
+    if (verticesPerturbed)
+        stencils_.evaluate(programs_, vertices_.thetaPlus, pointsPlus_, vertices_.thetaMinus, pointsMinus_);
+    else
+        stencils_.evaluate(programs_, vertices_.theta, pointsPlus_);
     const gl::Buffer& minusPoints = verticesPerturbed ? pointsMinus_ : pointsPlus_;
     const float pixels = float(settings_.resolution) * float(settings_.resolution);
     const auto mapsPlus = maps_ ? maps_->forRaster(maps::ParameterVersion::Plus, perturbed) : render::PatchMaps{};
@@ -140,8 +142,9 @@ void CageFitter::update() {
             maps_->update(programs_, *g, learningRate);
         }
     }
+    // Only the groups sampled since the last update have sums to clear.
+    for (auto* g : pendingUpdate_) g->gradientSum.clearToZero();
     pendingUpdate_.clear();
-    for (auto* g : groups()) g->gradientSum.clearToZero();
     ++steps_;
 }
 

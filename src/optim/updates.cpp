@@ -110,7 +110,6 @@ void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffe
     if (s.sharedMoment) group.groupMoment2.bindStorage(SUBDFIT_SSBO_GROUP_MOMENT2);
     glDispatchCompute(groupsOf(group.count(), 256), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    group.gradient.clearToZero();
 }
 
 }  // namespace subdfit::optim

@@ -29,8 +29,8 @@ void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjac
                   float lambda, int iterations, gl::Buffer& scratch);
 
 // Adam on θ from `gradient` (group.gradient, or group.gradientSmooth after preconditioning),
-// with step size `learningRate` (the group's, annealed by the caller); then clears the raw
-// gradient for the next step.
+// with step size `learningRate` (the group's, annealed by the caller). The raw gradient is left
+// as it is: the next resolveGradient overwrites all of it.
 void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffer& gradient, float learningRate);
 
 }  // namespace subdfit::optim

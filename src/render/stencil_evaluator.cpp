@@ -17,16 +17,29 @@ StencilEvaluator::StencilEvaluator(const subdiv::PatchSet& patches)
 
 void StencilEvaluator::evaluate(gl::ProgramCache& programs, const gl::Buffer& controlPoints,
                                 const gl::Buffer& points) const {
+    dispatch(programs, controlPoints, points, controlPoints, points, 1);
+}
+
+void StencilEvaluator::evaluate(gl::ProgramCache& programs, const gl::Buffer& controlPoints, const gl::Buffer& points,
+                                const gl::Buffer& secondControlPoints, const gl::Buffer& secondPoints) const {
+    dispatch(programs, controlPoints, points, secondControlPoints, secondPoints, 2);
+}
+
+void StencilEvaluator::dispatch(gl::ProgramCache& programs, const gl::Buffer& controlPoints, const gl::Buffer& points,
+                                const gl::Buffer& secondControlPoints, const gl::Buffer& secondPoints,
+                                int sets) const {
     const auto& program = programs.get(kStencilEval);
     program.use();
     program.set("uBaseCount", baseCount_);
     program.set("uPointCount", pointCount_);
     controlPoints.bindStorage(SUBDFIT_SSBO_STENCIL_SOURCE);
+    secondControlPoints.bindStorage(SUBDFIT_SSBO_STENCIL_SECOND_SOURCE);
     offsets_.bindStorage(SUBDFIT_SSBO_STENCIL_OFFSETS);
     indices_.bindStorage(SUBDFIT_SSBO_STENCIL_INDICES);
     weights_.bindStorage(SUBDFIT_SSBO_STENCIL_WEIGHTS);
     points.bindStorage(SUBDFIT_SSBO_POINTS);
-    glDispatchCompute(GLuint((pointCount_ + 127) / 128), 1, 1);
+    secondPoints.bindStorage(SUBDFIT_SSBO_SECOND_POINTS);
+    glDispatchCompute(GLuint((pointCount_ + 127) / 128), GLuint(sets), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Applies a PatchSet's stencils on the GPU: control points (θ, θ+ or θ−) -> every point the
+// Applies a PatchSet's stencils on the GPU: control points (θ, or θ+ and θ−) -> every point the
 // patches read. One dispatch, no readback.
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
@@ -16,8 +16,15 @@ public:
     gl::Buffer makePointBuffer() const { return gl::Buffer(GLsizeiptr(pointCount_) * 3 * sizeof(float)); }
 
     void evaluate(gl::ProgramCache& programs, const gl::Buffer& controlPoints, const gl::Buffer& points) const;
+    // Two sets in the one dispatch (a step's θ+ and θ−).
+    void evaluate(gl::ProgramCache& programs, const gl::Buffer& controlPoints, const gl::Buffer& points,
+                  const gl::Buffer& secondControlPoints, const gl::Buffer& secondPoints) const;
 
 private:
+    // `sets` rows of work groups: 1 evaluates the first set only (the second's bindings unused).
+    void dispatch(gl::ProgramCache& programs, const gl::Buffer& controlPoints, const gl::Buffer& points,
+                  const gl::Buffer& secondControlPoints, const gl::Buffer& secondPoints, int sets) const;
+
     int baseCount_, pointCount_;
     gl::Buffer offsets_, indices_, weights_;
 };

@@ -80,7 +80,7 @@ void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group
         glBindTextureUnit(SUBDFIT_UNIT_UV_MINUS, in.minus->patchUv().id());
         in.maps->bindFaceNodes();
     }
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    // The renders wrote through the framebuffer, which later commands see without a barrier.
     glDispatchCompute(groupsOf(in.plus->width(), 16), groupsOf(in.plus->height(), 16), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
