@@ -11,15 +11,17 @@
 namespace subdfit::test {
 namespace {
 
-double heldOutLoss(const std::string& name, maps::MapEffects effects) {
+double heldOutLoss(const std::string& name, maps::MapEffects effects, std::uint32_t seed) {
     fit::FitOptions o;
     o.out = scratchDir(name);
     o.steps = 240;
+    o.seed = seed;
     o.views = 6;
     o.holdoutViews = 3;
     o.resolution = 96;
     o.maps = effects;
     o.mapResolution = 8;
+    o.mapsStart = 0.1f;  // what the map buys, given the steps to buy it
     // 96 quads under 80 small bumps: the cage can round the sphere, not raise the bumps. A map
     // cell spans about two pixels.
     fit::FitScene scene(o, programs(), mesh::makeQuadSphere(4), mesh::makeLumpySphere(5, 0.05f, 7, 80, 0.005f, 0.015f));
@@ -30,8 +32,13 @@ double heldOutLoss(const std::string& name, maps::MapEffects effects) {
 }
 
 TEST(MapsGain, ADisplacementMapEndsBelowAVertexOnlyFitOnHeldOutViews) {
-    const double vertexOnly = heldOutLoss("maps_gain_none", maps::parseMapEffects("none"));
-    const double displaced = heldOutLoss("maps_gain_displacement", maps::parseMapEffects("displacement"));
+    // Summed over two seeds: one fit's path is chaotic enough that a rounding difference between
+    // CPUs moves its loss by a tenth.
+    double vertexOnly = 0.0, displaced = 0.0;
+    for (std::uint32_t seed : {1u, 2u}) {
+        vertexOnly += heldOutLoss("maps_gain_none", maps::parseMapEffects("none"), seed);
+        displaced += heldOutLoss("maps_gain_displacement", maps::parseMapEffects("displacement"), seed);
+    }
     // 1.5 dB: the loss at most 0.71 of the vertex-only fit's.
     EXPECT_LT(displaced, 0.71 * vertexOnly) << "vertex-only " << vertexOnly << ", displaced " << displaced;
 }
