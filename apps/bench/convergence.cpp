@@ -40,8 +40,8 @@ int runConvergence(const ConvergenceOptions& o) {
     auto context = context::createHeadlessContext(options.glProvider);
     if (const std::string chosen = fit::resolveForCurrentDevice(options); !chosen.empty()) std::printf("%s\n", chosen.c_str());
     gl::ProgramCache programs(gl::platformDefines());
-    fit::FitScene scene(options, programs, cage, reference);
-    fit::FitRun run(options, programs, scene);
+    fit::FitScene scene(fit::resolved(options), programs, cage, reference);
+    fit::FitRun run(fit::resolved(options), programs, scene);
     std::printf("cage mean edge (normalised frame) %.4f\n", mesh::meanEdgeLength(scene.cage));
 
     std::printf("convergence: %d-quad sphere cage at %.0f %% of a %d-triangle lumpy sphere; %d views at %d^2, %d steps\n",

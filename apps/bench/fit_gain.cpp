@@ -55,7 +55,7 @@ int runFitGain(const FitGainOptions& o) {
     gl::ProgramCache programs(gl::platformDefines());
     const mesh::PolygonMesh reference = mesh::loadReference(o.reference);
     const mesh::PolygonMesh cage = o.faces > 0 ? simplify::initialCage(reference, {.faces = o.faces}) : mesh::loadMesh(o.cage);
-    fit::FitScene scene(base, programs, cage, reference);
+    fit::FitScene scene(fit::resolved(base), programs, cage, reference);
     const bool baked = base.maps.geometric();
     surface::SurfaceMaps maps;
     if (baked) {
@@ -67,7 +67,7 @@ int runFitGain(const FitGainOptions& o) {
         fit::FitOptions options = variantOptions(base, variant);
         options.out = o.out / ("run" + std::to_string(contenders.size()));
         std::filesystem::remove(options.out / "checkpoint.bin");
-        auto run = std::make_unique<fit::FitRun>(options, programs, scene);
+        auto run = std::make_unique<fit::FitRun>(fit::resolved(options), programs, scene);
         if (baked) {
             run->startFrom(maps);
             auto& fitter = run->fitter();

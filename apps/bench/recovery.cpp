@@ -68,16 +68,16 @@ int runRecovery(const RecoveryOptions& given) {
         // Noise in world units, a fraction of the reference's radius.
         mesh::PolygonMesh noisedWorld = truthWorld;
         {
-            fit::FitScene probe(options, programs, truthWorld, referenceWorld);
+            fit::FitScene probe(fit::resolved(options), programs, truthWorld, referenceWorld);
             std::mt19937 rng(o.noiseSeed);
             std::normal_distribution<float> normal(0.0f, o.sigma / probe.frame.scale);
             for (auto& p : noisedWorld.positions) p += glm::vec3(normal(rng), normal(rng), normal(rng));
         }
-        fit::FitScene scene(options, programs, noisedWorld, referenceWorld);
+        fit::FitScene scene(fit::resolved(options), programs, noisedWorld, referenceWorld);
         const auto truth = scene.frame.toNormalized(truthWorld.positions);
         mesh::PolygonMesh truthSurface = referenceWorld;
         truthSurface.positions = scene.frame.toNormalized(referenceWorld.positions);
-        fit::FitRun run(options, programs, scene);
+        fit::FitRun run(fit::resolved(options), programs, scene);
         const Measure before = measure(run, truth, truthSurface);
         const auto start = std::chrono::steady_clock::now();
         const fit::StopReason reason = run.run(o.out / "checkpoint.bin");

@@ -128,8 +128,8 @@ CountedPass countFitLoop(gl::ProgramCache& programs, const mesh::PolygonMesh& ca
     options.resolution = 128;
     options.steps = 500;
     options.out = scratch;
-    fit::FitScene scene(options, programs, cage, reference);
-    fit::FitRun run(options, programs, scene);
+    fit::FitScene scene(fit::resolved(options), programs, cage, reference);
+    fit::FitRun run(fit::resolved(options), programs, scene);
     constexpr int kSteps = 60;
     run.runTo(5, scratch / "checkpoint.bin");  // compile and warm up
     GlCallCounter counter;

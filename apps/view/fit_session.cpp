@@ -52,8 +52,9 @@ FitSession::FitSession(const fit::FitOptions& given, FitInputs inputs) : program
     fit::FitOptions options = given;
     if (const std::string chosen = fit::resolveForCurrentDevice(options); !chosen.empty())
         std::fprintf(stderr, "subdfit-view: %s\n", chosen.c_str());
-    scene_ = std::make_unique<fit::FitScene>(options, programs_, std::move(inputs.cage), inputs.reference);
-    run_ = std::make_unique<fit::FitRun>(options, programs_, *scene_);
+    const fit::ResolvedFitOptions checked = fit::resolved(options);
+    scene_ = std::make_unique<fit::FitScene>(checked, programs_, std::move(inputs.cage), inputs.reference);
+    run_ = std::make_unique<fit::FitRun>(checked, programs_, *scene_);
     if (inputs.start) run_->startFrom(fit::normalizedMaps(*inputs.start, scene_->frame));
     meanEdge_ = mesh::meanEdgeLength(scene_->cage);
     if (options.resume) run_->resume(options.out / "checkpoint.bin");

@@ -19,8 +19,9 @@ FitReport runFit(const FitOptions& options, const FitHooks& hooks) {
     FitOptions o = options;
     const std::string chosen = resolveForCurrentDevice(o);
     gl::ProgramCache programs(gl::platformDefines());
-    FitScene scene(o, programs);
-    FitRun run(o, programs, scene);
+    const ResolvedFitOptions checked = resolved(o);
+    FitScene scene(checked, programs);
+    FitRun run(checked, programs, scene);
     if (!chosen.empty() && hooks.note) hooks.note(chosen);  // once the inputs have loaded: a bad one gets one line
     const auto checkpoint = o.out / "checkpoint.bin";
     if (o.resume && !run.resume(checkpoint) && hooks.note)

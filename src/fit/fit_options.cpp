@@ -188,13 +188,14 @@ void validate(const FitOptions& o) {
     if (o.appearanceAtlas == 1) throw OptionError("appearance_atlas", "must be 0 (tiles) or at least 2 texels");
 }
 
-void validateResolved(const FitOptions& o) {
+ResolvedFitOptions resolved(FitOptions o) {
     validate(o);
     forEachOption(o, [](const OptionInfo& info, const auto& value) {
         if constexpr (std::is_same_v<std::decay_t<decltype(value)>, int>)
             if (info.byDevice && value == kByDevice)
                 throw OptionError(info.key, "left to the device, but no device chose it (resolveDeviceDefaults)");
     });
+    return ResolvedFitOptions(std::move(o));
 }
 
 nlohmann::json settingsJson(const FitOptions& o) {

@@ -175,8 +175,21 @@ void setOption(FitOptions& options, const std::string& key, const std::string& v
 
 // Throws OptionError for anything out of range, before any work. Options still kByDevice pass.
 void validate(const FitOptions& options);
-// validate(), and no option left kByDevice: what a fit needs before it is built.
-void validateResolved(const FitOptions& options);
+
+// Options that passed validate() with no option left kByDevice (fit/device_defaults.h chooses
+// them): what FitScene and FitRun are built from, so neither checks again. Only resolved() makes one.
+class ResolvedFitOptions {
+public:
+    const FitOptions& operator*() const { return options_; }
+    const FitOptions* operator->() const { return &options_; }
+
+private:
+    explicit ResolvedFitOptions(FitOptions options) : options_(std::move(options)) {}
+    friend ResolvedFitOptions resolved(FitOptions options);
+    FitOptions options_;
+};
+// Throws OptionError for an option out of range or still left to the device.
+ResolvedFitOptions resolved(FitOptions options);
 
 // The options whose rows say `setting`, by key: what report.json's settings record and what
 // tells one run's output from another's.

@@ -73,13 +73,13 @@ const char* toString(StopReason reason) {
     return "steps";
 }
 
-FitRun::FitRun(const FitOptions& options, gl::ProgramCache& programs, FitScene& scene)
-    : options_((validateResolved(options), options)),
+FitRun::FitRun(const ResolvedFitOptions& options, gl::ProgramCache& programs, FitScene& scene)
+    : options_(*options),
       programs_(programs),
       scene_(scene),
-      fitter_(std::make_unique<CageFitter>(programs, scene.cage, fitSettings(options, scene.cage, scene.shading))),
-      fingerprint_(checkpointFingerprint(options, scene.cage, scene.reference)),
-      monitorEvery_(std::clamp(options.steps / 50, 5, 10)),
+      fitter_(std::make_unique<CageFitter>(programs, scene.cage, fitSettings(options_, scene.cage, scene.shading))),
+      fingerprint_(checkpointFingerprint(options_, scene.cage, scene.reference)),
+      monitorEvery_(std::clamp(options_.steps / 50, 5, 10)),
       started_(Clock::now()) {
     scoreStart();
 }

@@ -44,7 +44,7 @@ class FitRun {
 public:
     // Builds the fitter and scores the starting state (the report's "before"). Needs the
     // scene's GL context current; `programs` and `scene` must outlive the run.
-    FitRun(const FitOptions& options, gl::ProgramCache& programs, FitScene& scene);
+    FitRun(const ResolvedFitOptions& options, gl::ProgramCache& programs, FitScene& scene);
 
     // Continues from `checkpoint` if it exists: true when it did. Throws subdfit::Error naming
     // the file when it is damaged or was written for other inputs or settings.

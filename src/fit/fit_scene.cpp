@@ -55,13 +55,16 @@ maps::MapEffects mapEffectsOf(const FitOptions& o, render::ShadingModel shading)
     return effects;
 }
 
-FitScene::FitScene(const FitOptions& options, gl::ProgramCache& programs)
-    : FitScene(options, programs, mesh::loadMesh(options.cage), mesh::loadReference(options.reference)) {}
+FitScene::FitScene(const ResolvedFitOptions& options, gl::ProgramCache& programs)
+    : FitScene(options, programs, mesh::loadMesh(options->cage), mesh::loadReference(options->reference)) {}
+
+FitScene::FitScene(const ResolvedFitOptions& resolvedOptions, gl::ProgramCache& programs, mesh::PolygonMesh cageWorldIn,
+                   const mesh::PolygonMesh& referenceWorld)
+    : FitScene(*resolvedOptions, programs, std::move(cageWorldIn), referenceWorld, Checked{}) {}
 
 FitScene::FitScene(const FitOptions& o, gl::ProgramCache& programs, mesh::PolygonMesh cageWorldIn,
-                   const mesh::PolygonMesh& referenceWorld)
-    // Checked before any member reads views or resolution (they may still be left to the device).
-    : frame((validateResolved(o), frameOf(referenceWorld))),
+                   const mesh::PolygonMesh& referenceWorld, Checked)
+    : frame(frameOf(referenceWorld)),
       shading(shadingOf(o, referenceWorld)),
       cageWorld(std::move(cageWorldIn)),
       cage(normalized(cageWorld, frame)),

@@ -14,9 +14,9 @@ namespace subdfit::fit {
 class FitScene {
 public:
     // Loads options.cage and options.reference. Throws subdfit::Error "path: problem".
-    FitScene(const FitOptions& options, gl::ProgramCache& programs);
+    FitScene(const ResolvedFitOptions& options, gl::ProgramCache& programs);
     // From meshes already in memory (world units; the reference need not be triangulated).
-    FitScene(const FitOptions& options, gl::ProgramCache& programs, mesh::PolygonMesh cageWorld,
+    FitScene(const ResolvedFitOptions& options, gl::ProgramCache& programs, mesh::PolygonMesh cageWorld,
              const mesh::PolygonMesh& referenceWorld);
 
     // Another cage (world units) on the same reference and targets: `simplify` renders its
@@ -36,6 +36,11 @@ public:
     // A third, for the step schedule (fit/step_schedule.h): when the fit decides on its own
     // progress, it must not look at the views it is judged on.
     scene::TargetSet monitor;
+
+private:
+    struct Checked {};
+    FitScene(const FitOptions& options, gl::ProgramCache& programs, mesh::PolygonMesh cageWorld,
+             const mesh::PolygonMesh& referenceWorld, Checked);
 };
 
 // The fitter settings `options` ask for on `cage` (normalised frame) under `shading`: the vertex

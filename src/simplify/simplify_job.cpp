@@ -251,7 +251,7 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
         warnOfWhatTilesLeaveOut(options.fit.reference, in.reference, plan.budget.has_value(),
                                 in.scene.shading == render::ShadingModel::MetallicRoughness);
     const mesh::PolygonMesh cage = in.scene.cageWorld;
-    fit::FitRun run(plan.fit, in.programs, in.scene);
+    fit::FitRun run(fit::resolved(plan.fit), in.programs, in.scene);
     refineGently(run.fitter());
     fitStages(run, options.fit.out / "checkpoint.bin", options.fit.resume, in.hooks);
     stages.lap("fit");
@@ -387,7 +387,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     gl::ProgramCache programs(gl::platformDefines());
     fitOptions.cage = out / "initial_cage.obj";  // where the report says the cage came from
     report.settings = fit::settingsJson(fitOptions);
-    fit::FitScene scene(fitOptions, programs, {}, reference);
+    fit::FitScene scene(fit::resolved(fitOptions), programs, {}, reference);
     report.referenceTriangles = scene.reference.faceCount();
     stages.lap("load");
 

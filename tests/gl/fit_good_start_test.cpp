@@ -35,8 +35,8 @@ TEST(FitFromAGoodStart, NeverEndsBelowItsStart) {
     const auto dir = scratchDir("good_start");
     const fit::FitOptions o = smallFit(dir);
     const GoodStart start;
-    fit::FitScene scene(o, programs(), start.cage, start.reference);
-    fit::FitRun run(o, programs(), scene);
+    fit::FitScene scene(fit::resolved(o), programs(), start.cage, start.reference);
+    fit::FitRun run(fit::resolved(o), programs(), scene);
     const auto monitorBefore = fit::score(run.fitter(), scene.monitor);
     const auto holdoutBefore = fit::score(run.fitter(), scene.holdout);
     const auto stopped = run.run(dir / "checkpoint.bin");
@@ -53,8 +53,8 @@ TEST(FitFromAGoodStart, GainsWhereTheStartLeavesRoom) {
     GoodStart start;
     // The same cage, its vertices moved off by a fifth of an edge: room the images can see.
     start.cage.positions = noised(start.cage.positions, 0.2f * mesh::meanEdgeLength(start.cage), 5);
-    fit::FitScene scene(o, programs(), start.cage, start.reference);
-    fit::FitRun run(o, programs(), scene);
+    fit::FitScene scene(fit::resolved(o), programs(), start.cage, start.reference);
+    fit::FitRun run(fit::resolved(o), programs(), scene);
     const double before = fit::score(run.fitter(), scene.monitor).loss;
     const auto stopped = run.run(dir / "checkpoint.bin");
     EXPECT_NE(stopped, fit::StopReason::NoGain);
@@ -74,8 +74,8 @@ TEST(FitFromAGoodStart, ADefaultFitStillImprovingAt500StepsGoesOn) {
     ASSERT_GT(o.steps, 500);
     mesh::PolygonMesh cage = mesh::makeQuadSphere(3);
     for (auto& p : cage.positions) p *= 0.6f;
-    fit::FitScene scene(o, programs(), cage, mesh::makeLumpySphere(4, 0.1f, 2));
-    fit::FitRun run(o, programs(), scene);
+    fit::FitScene scene(fit::resolved(o), programs(), cage, mesh::makeLumpySphere(4, 0.1f, 2));
+    fit::FitRun run(fit::resolved(o), programs(), scene);
     run.runTo(400, dir / "checkpoint.bin");
     const double at400 = fit::score(run.fitter(), scene.monitor).loss;
     run.runTo(500, dir / "checkpoint.bin");

@@ -50,13 +50,13 @@ TEST_P(CreasedCageRecovery, VertexErrorAndSurfaceDistanceFall) {
     fit::FitOptions o = defaultsWith(8, 128, 300, std::string("recovery_") + GetParam());
     mesh::PolygonMesh noisedWorld = truthWorld;
     {
-        fit::FitScene probe(o, programs(), truthWorld, referenceWorld);
+        fit::FitScene probe(fit::resolved(o), programs(), truthWorld, referenceWorld);
         noisedWorld.positions = probe.frame.toWorld(noised(probe.cage.positions, 0.03f, 11));
     }
-    fit::FitScene scene(o, programs(), noisedWorld, referenceWorld);
+    fit::FitScene scene(fit::resolved(o), programs(), noisedWorld, referenceWorld);
     const auto truth = normalised(truthWorld, scene).positions;
     const auto truthSurface = normalised(referenceWorld, scene);
-    fit::FitRun run(o, programs(), scene);
+    fit::FitRun run(fit::resolved(o), programs(), scene);
 
     const double vertexBefore = rmsDistance(run.fitter().vertices(), truth);
     const double surfaceBefore = surfaceError(run, truthSurface);
@@ -88,8 +88,8 @@ TEST(ScaleFreeSettings, DenseCageFitsAtLeastAsWellAsASparseOne) {
         for (auto& p : cage.positions) p *= 0.9f;
         fit::FitOptions o = defaultsWith(12, 128, 100, "dense_" + std::to_string(n));
         o.schedule = fit::Schedule::Anneal;  // exactly the same number of steps for both
-        fit::FitScene scene(o, programs(), cage, reference);
-        fit::FitRun run(o, programs(), scene);
+        fit::FitScene scene(fit::resolved(o), programs(), cage, reference);
+        fit::FitRun run(fit::resolved(o), programs(), scene);
         run.run(o.out / "checkpoint.bin");
         const double chamfer = surfaceError(run, scene.reference);
         std::printf("%d faces: Chamfer %.3e after %d steps\n", cage.faceCount(), chamfer, run.step());
@@ -108,8 +108,8 @@ TEST(KeepBest, DenseLimitInterpolatedCageNeverEndsWorseThanItStarted) {
     const auto cage = simplify::initialCage(reference, {.faces = 5000});
     fit::FitOptions o = defaultsWith(6, 128, 20, "keep_best");
     o.tessLevel = 2;  // 15 000 ptex faces already: llvmpipe's time goes to triangles
-    fit::FitScene scene(o, programs(), cage, reference);
-    fit::FitRun run(o, programs(), scene);
+    fit::FitScene scene(fit::resolved(o), programs(), cage, reference);
+    fit::FitRun run(fit::resolved(o), programs(), scene);
     const double before = fit::score(run.fitter(), scene.holdout).loss;
     run.run(o.out / "checkpoint.bin");
     const double after = fit::score(run.fitter(), scene.holdout).loss;

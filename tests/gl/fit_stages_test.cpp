@@ -30,14 +30,14 @@ fit::FitOptions stagedFit(const std::filesystem::path& dir) {
 }
 
 fit::FitScene stagedScene(const fit::FitOptions& o) {
-    return fit::FitScene(o, programs(), mesh::makeQuadSphere(2), mesh::makeLumpySphere(4, 0.15f, 4));
+    return fit::FitScene(fit::resolved(o), programs(), mesh::makeQuadSphere(2), mesh::makeLumpySphere(4, 0.15f, 4));
 }
 
 TEST(FitStages, AWidenedStageStartsAfterConvergenceAndEndsNoWorse) {
     const auto dir = scratchDir("fit_stages");
     const fit::FitOptions o = stagedFit(dir);
     fit::FitScene scene = stagedScene(o);
-    fit::FitRun run(o, programs(), scene);
+    fit::FitRun run(fit::resolved(o), programs(), scene);
 
     // The heights alone once the maps join; the cage is let back in when they have converged.
     auto& fitter = run.fitter();
@@ -68,7 +68,7 @@ TEST(FitStages, AResumedWidenedStageEndsWhereAStraightRunDoes) {
     int widenedAt = -1;
     auto fit = [&](const std::filesystem::path& checkpoint, bool resume, const fit::FitHooks& hooks,
                    std::atomic<bool>* cancelWhenWidened = nullptr) {
-        auto run = std::make_unique<fit::FitRun>(o, programs(), scene);
+        auto run = std::make_unique<fit::FitRun>(fit::resolved(o), programs(), scene);
         if (resume) {
             EXPECT_TRUE(run->resume(checkpoint));
         }
@@ -110,8 +110,8 @@ TEST(FitStages, AFitWithoutMapsIsNeverWidened) {
     // halvings on any CPU (llvmpipe's arithmetic differs between CPUs, and the lumpy sphere
     // converged past step 1 500 on some).
     const mesh::PolygonMesh cage = mesh::makeQuadSphere(2);
-    fit::FitScene scene(o, programs(), cage, surface::limitMesh(cage, 8));
-    fit::FitRun run(o, programs(), scene);
+    fit::FitScene scene(fit::resolved(o), programs(), cage, surface::limitMesh(cage, 8));
+    fit::FitRun run(fit::resolved(o), programs(), scene);
     bool widened = false;
     const auto stopped = run.run(dir / "checkpoint.bin", {}, {}, [&] { return widened = true; });
     EXPECT_EQ(stopped, fit::StopReason::NoGain);

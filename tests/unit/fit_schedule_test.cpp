@@ -138,9 +138,9 @@ TEST(DeviceDefaults, AFitRefusesOptionsNoDeviceChose) {
     FitOptions o;
     o.out = "out";
     EXPECT_NO_THROW(validate(o));
-    EXPECT_THROW(validateResolved(o), OptionError);
+    EXPECT_THROW(resolved(o), OptionError);
     resolveDeviceDefaults(o, "llvmpipe");
-    EXPECT_NO_THROW(validateResolved(o));
+    EXPECT_NO_THROW(resolved(o));
 }
 
 }  // namespace
