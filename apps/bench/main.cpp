@@ -45,9 +45,7 @@ int main(int argc, char** argv) {
     simplifyCommand->add_option("--budgets", tradeoff.budgets, "byte budgets")->capture_default_str();
     simplifyCommand->add_option("--steps", tradeoff.steps, "optimisation steps per run (default: the device's)");
     simplifyCommand->add_option("--res", tradeoff.resolution, "render resolution (default: the device's)");
-    simplifyCommand->add_option_function<std::string>(
-        "--compare", [&](const std::string& text) { tradeoff.compare = subdfit::simplify::parseCompareLevel(text); },
-        "what each run compares: none, fast or full (default)")->check(CLI::IsMember({"none", "fast", "full"}));
+    subdfit::apps::addNamedOption(*simplifyCommand, "--compare", tradeoff.compare, "what each run compares: none, fast or full");
     subdfit::apps::addGlProvider(*simplifyCommand, tradeoff.glProvider);
 
     subdfit::bench::ConvergenceOptions convergence;

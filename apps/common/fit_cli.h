@@ -29,6 +29,21 @@ CLI::Option* addWordOption(CLI::App& app, const fit::OptionInfo& info, T& field)
         ->default_str(fit::optionText(field));
 }
 
+// A flag of a command's own (not the fit table's) whose value is one of an enum's words.
+template <NamedEnum E>
+CLI::Option* addNamedOption(CLI::App& app, const std::string& flag, E& field, const std::string& help) {
+    return app
+        .add_option_function<std::string>(
+            flag,
+            [&field, flag](const std::string& text) {
+                const auto value = parseNamed<E>(text);
+                if (!value) throw CLI::ValidationError(flag, "must be " + namesOf<E>() + ", got '" + text + "'");
+                field = *value;
+            },
+            help)
+        ->default_str(std::string(nameOf(field)));
+}
+
 // Every option of the table that has a flag.
 inline void addFitSettings(CLI::App& app, fit::FitOptions& fit) {
     fit::forEachOption(fit, [&](const fit::OptionInfo& info, auto& field) {

@@ -32,11 +32,9 @@ inline void addSimplifySettings(CLI::App& app, simplify::SimplifyOptions& option
            "bytes what ships may take, 100 B to 1 TB (20000, 20KB, 1.5MB, 2G): chooses the cage, maps and bits to fit "
            "them, or a triangle mesh where one ships better (default: a tenth of the reference compressed, at least 16 KB)")
         ->check(byteSize);
-    app.add_option_function<std::string>(
-           "--compare", [&options](const std::string& text) { options.compare = simplify::parseCompareLevel(text); },
-           "what is compared beside what ships: none (only what chooses the route), fast (+ the triangle baselines' "
-           "files and scores), full (+ the bake route, surface distances, comparison.png; simplify's default)")
-        ->check(CLI::IsMember({"none", "fast", "full"}));
+    addNamedOption(app, "--compare", options.compare,
+                   "what is compared beside what ships: none (only what chooses the route), fast (+ the triangle "
+                   "baselines' files and scores), full (+ the bake route, surface distances, comparison.png)");
     app.add_option_function<std::string>(
            "--route", [&options](const std::string& text) { options.cageOnly = text == "cage"; },
            "auto: ship the cage only where it wins, else the better triangle mesh (default); cage: ship the fitted cage "

@@ -21,21 +21,6 @@ Route triangleRoute(const TriangleChoice& triangles, std::string why) {
 
 }  // namespace
 
-const char* toString(CompareLevel level) {
-    switch (level) {
-        case CompareLevel::None: return "none";
-        case CompareLevel::Fast: return "fast";
-        case CompareLevel::Full: break;
-    }
-    return "full";
-}
-
-CompareLevel parseCompareLevel(const std::string& text) {
-    for (CompareLevel level : {CompareLevel::None, CompareLevel::Fast, CompareLevel::Full})
-        if (text == toString(level)) return level;
-    throw OptionError("compare", "must be none, fast or full, got '" + text + "'");
-}
-
 std::uintmax_t defaultBudget(std::uintmax_t compressedReference) {
     return std::min(compressedReference, std::max(compressedReference / 10, kSmallestDefaultBudget));
 }

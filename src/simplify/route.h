@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "simplify/compare/quality.h"
+#include "util/named_enum.h"
 
 namespace subdfit::simplify {
 
@@ -20,9 +21,6 @@ namespace subdfit::simplify {
 //  fast: the triangle baselines too (gltfpack), each with its files and held-out scores;
 //  full: also the bake route, the surface distances and comparison.png.
 enum class CompareLevel { None, Fast, Full };
-const char* toString(CompareLevel level);
-// Throws subdfit::OptionError("compare", ...) for anything but none, fast and full.
-CompareLevel parseCompareLevel(const std::string& text);
 
 // Without --budget or --faces: a tenth of the reference compressed (what the triangle route ships
 // holding all of it), never under kSmallestDefaultBudget, and never over the reference compressed:
@@ -65,3 +63,11 @@ std::optional<Route> routeBeforeFit(const TriangleChoice& triangles, Holds holds
 nlohmann::json toJson(const Route& route);
 
 }  // namespace subdfit::simplify
+
+template <>
+struct subdfit::EnumNames<subdfit::simplify::CompareLevel> {
+    using L = simplify::CompareLevel;
+    static constexpr std::array names{std::pair{L::None, std::string_view("none")},
+                                      std::pair{L::Fast, std::string_view("fast")},
+                                      std::pair{L::Full, std::string_view("full")}};
+};

@@ -309,7 +309,7 @@ nlohmann::json settingsJson(const SimplifyOptions& o) {
     settings["faces"] = o.faces;
     settings["budget"] = o.budget.value_or(0);  // 0: none, as a batch asset's identity hashes it
     settings["surface_samples"] = o.surfaceSamples;
-    settings["compare"] = toString(o.compare);
+    settings["compare"] = nameOf(o.compare);
     settings["route"] = o.cageOnly ? "cage" : "auto";
     return settings;
 }
@@ -357,7 +357,7 @@ nlohmann::json toJson(const SimplifyReport& r) {
     }
     report["simplify"] = {{"faces_requested", r.facesRequested},
                           {"reference_triangles", r.referenceTriangles},
-                          {"compare", toString(r.compare)},
+                          {"compare", nameOf(r.compare)},
                           {"budget", r.budgetBytes},
                           {"budget_derived", r.budgetDerived}};
     if (r.budget) report["budget"] = toJson(*r.budget);

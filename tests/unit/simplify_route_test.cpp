@@ -64,10 +64,11 @@ TEST(SimplifyRoute, TheDefaultBudgetIsATenthOfTheReferenceCompressedNeverMoreTha
 }
 
 TEST(SimplifyRoute, CompareLevelsParseAndRefuse) {
-    EXPECT_EQ(simplify::parseCompareLevel("none"), simplify::CompareLevel::None);
-    EXPECT_EQ(simplify::parseCompareLevel("fast"), simplify::CompareLevel::Fast);
-    EXPECT_EQ(simplify::parseCompareLevel("full"), simplify::CompareLevel::Full);
-    EXPECT_THROW(simplify::parseCompareLevel("most"), OptionError);
+    EXPECT_EQ(parseNamed<simplify::CompareLevel>("none"), simplify::CompareLevel::None);
+    EXPECT_EQ(parseNamed<simplify::CompareLevel>("fast"), simplify::CompareLevel::Fast);
+    EXPECT_EQ(parseNamed<simplify::CompareLevel>("full"), simplify::CompareLevel::Full);
+    EXPECT_EQ(parseNamed<simplify::CompareLevel>("most"), std::nullopt);
+    EXPECT_EQ(nameOf(simplify::CompareLevel::Fast), "fast");
 }
 
 // bytes(t) = header + rate · t, probed as a shipping function would be.
