@@ -364,6 +364,20 @@ nlohmann::json toJson(const SimplifyReport& r) {
     return report;
 }
 
+namespace {
+
+// The reference, refused where --appearance-atlas asks for what it cannot give.
+mesh::PolygonMesh loadReference(const SimplifyOptions& options) {
+    mesh::PolygonMesh reference = mesh::loadReference(options.fit.reference);
+    if (options.fit.appearanceAtlas > 0)
+        if (const std::string why = atlasUnsuitability(reference); !why.empty())
+            throw OptionError("appearance_atlas", "needs a reference whose appearance is one textured material; " +
+                                                      options.fit.reference.string() + ": " + why);
+    return reference;
+}
+
+}  // namespace
+
 SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& hooks) {
     validate(options);
     const std::filesystem::path& out = options.fit.out;
@@ -374,11 +388,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     report.compare = options.compare;
     report.reference = options.fit.reference;
     StageSeconds& stages = report.stages;
-    const mesh::PolygonMesh reference = mesh::loadReference(options.fit.reference);
-    if (options.fit.appearanceAtlas > 0)
-        if (const std::string why = atlasUnsuitability(reference); !why.empty())
-            throw OptionError("appearance_atlas", "needs a reference whose appearance is one textured material; " +
-                                                      options.fit.reference.string() + ": " + why);
+    const mesh::PolygonMesh reference = loadReference(options);
 
     auto context = context::createHeadlessContext(options.fit.glProvider);
     fit::FitOptions fitOptions = options.fit;
