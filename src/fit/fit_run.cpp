@@ -88,6 +88,7 @@ void FitRun::scoreStart() {
     beforeImage_ = renderHoldout(*fitter_, scene_);
     trainBefore_ = score(*fitter_, scene_.training);
     holdoutBefore_ = score(*fitter_, scene_.holdout);
+    scoredTheta_ = readTheta(*fitter_);
 }
 
 void FitRun::startFrom(const surface::SurfaceMaps& maps) {
@@ -106,6 +107,7 @@ bool FitRun::resume(const std::filesystem::path& checkpoint) {
         throw fileError(checkpoint.string(), e.what());
     }
     resumedFromStep_ = saved->steps;
+    scoredTheta_.clear();  // what the caller sets after a resume (carried textures) was not drawn
     schedule_ = saved->schedule;
     widenedStep_ = saved->widenedStep;
     return true;
@@ -263,9 +265,12 @@ FitReport FitRun::writeResults(const std::filesystem::path& out, const context::
     r.fitSeconds = fitSeconds_;
     r.trainBefore = trainBefore_;
     r.holdoutBefore = holdoutBefore_;
-    const auto afterImage = renderHoldout(*fitter_, scene_);
-    r.trainAfter = score(*fitter_, scene_.training);
-    r.holdoutAfter = score(*fitter_, scene_.holdout);
+    // A fit that ended where it started (a start it could not improve) is drawn as it was: its
+    // scores are the start's, without rendering every view again.
+    const bool atStart = !scoredTheta_.empty() && readTheta(*fitter_) == scoredTheta_;
+    const auto afterImage = atStart ? beforeImage_ : renderHoldout(*fitter_, scene_);
+    r.trainAfter = atStart ? trainBefore_ : score(*fitter_, scene_.training);
+    r.holdoutAfter = atStart ? holdoutBefore_ : score(*fitter_, scene_.holdout);
     r.holdoutSamplesPerPixel = scene_.holdout.supersampling() * scene_.holdout.supersampling();
     r.finite = allFinite(*fitter_);
     r.effects = fitter_->maps() ? fitter_->maps()->effects() : maps::MapEffects{};
@@ -315,6 +320,7 @@ void FitRun::setTessLevel(int level) {
     }
     fitter_ = std::move(rebuilt);
     options_ = options;
+    scoredTheta_.clear();  // drawn at another level
 }
 
 }  // namespace subdfit::fit

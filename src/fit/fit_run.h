@@ -126,6 +126,7 @@ private:
     void scoreStart();
     ViewSetScore trainBefore_, holdoutBefore_;
     std::vector<glm::vec4> beforeImage_;  // held-out view 0 before fitting
+    std::vector<std::vector<float>> scoredTheta_;  // the θ those scores are of (empty: not to be reused)
 };
 
 }  // namespace subdfit::fit
