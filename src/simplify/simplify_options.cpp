@@ -8,9 +8,9 @@
 namespace subdfit::simplify {
 namespace detail {
 
-const std::vector<SimplifyOptionRow>& simplifyOptionTable() {
+const std::vector<fit::TableRow<SimplifyMember>>& simplifyOptionTable() {
     using S = SimplifyOptions;
-    static const std::vector<SimplifyOptionRow> rows = {
+    static const std::vector<fit::TableRow<SimplifyMember>> rows = {
         {{.key = "faces", .flag = "--faces",
           .help = "triangles of the cage, 4..1000000 (default: the budget search's choice; with --budget, fixes the "
                   "cage and the search chooses only the maps; without, the cage is fitted as asked and weighed against "

@@ -61,24 +61,18 @@ struct SimplifyOptions {
 inline constexpr int kLeastFaces = 4, kMostFaces = 1000000;
 
 namespace detail {
-// A row: fit::OptionInfo and the member it describes. An optional
-// number is "not given" unless set, 0 in the settings; the optional byte count is a size.
+// An optional number is "not given" unless set, 0 in the settings; the optional byte count is a size.
 using SimplifyMember = std::variant<int SimplifyOptions::*, std::optional<int> SimplifyOptions::*,
                                     std::optional<std::uintmax_t> SimplifyOptions::*, CompareLevel SimplifyOptions::*,
                                     RouteChoice SimplifyOptions::*>;
-struct SimplifyOptionRow {
-    fit::OptionInfo info;
-    SimplifyMember member;
-};
-const std::vector<SimplifyOptionRow>& simplifyOptionTable();
+const std::vector<fit::TableRow<SimplifyMember>>& simplifyOptionTable();
 }  // namespace detail
 
 // Calls visit(info, field) for each of simplify's own options (not the fit's), as
 // fit::forEachOption does.
 template <class Options, class Visitor>
 void forEachSimplifyOption(Options& options, Visitor&& visit) {
-    for (const auto& row : detail::simplifyOptionTable())
-        std::visit([&](auto member) { visit(row.info, options.*member); }, row.member);
+    fit::forEachRow(detail::simplifyOptionTable(), options, visit);
 }
 
 // Throws subdfit::Error ("invalid option: ...") before any work.
