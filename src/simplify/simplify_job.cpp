@@ -53,9 +53,7 @@ Quality scoreCage(fit::FitRun& run, const fit::FitReport& fitted, const std::fil
     ours.files = shippedFiles(fitted.exports);
     ours.bytes = totalBytes(ours.files);
     ours.shipped = "asset.subd";
-    scoreHoldout(run.scene().holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
-        run.fitter().render(camera, target);
-    }, ours);
+    setHoldout(fitted.holdoutAfter, ours);  // the fitted state, as asset.subd holds it
     if (o.compare == CompareLevel::Full)
         ours.distance = shippedDistance(out / "asset.subd", run.fitter().renderer().tessLevel(), run.scene().frame,
                                         run.scene().reference, o.surfaceSamples);
