@@ -110,9 +110,10 @@ constexpr double kPredictedOver = 1.25;
 // within this fraction are scored again on the training views too, and the choice among them is
 // made on that score.
 constexpr double kNearTie = 0.2;
-// The training views are drawn in blocks of this many, and the settling ends once the leader is
-// clearly ahead: every other candidate's loss over the views drawn, view for view, at least
-// kLossTolerance above the leader's by this many standard errors.
+// The training views are drawn in blocks of this many, and the settling ends once the choice is
+// clear: the leader's loss below every other candidate's, view for view, by this many standard
+// errors, and by kLossTolerance more for a candidate of fewer bytes (which preferred() would
+// otherwise take).
 constexpr int kSettleBlock = 4;
 constexpr double kClearlyAhead = 3.0;
 
@@ -172,15 +173,17 @@ double settledLossOf(const Fitting& f, int monitorViews, size_t views) {
 }
 
 // Whether the lowest of `near` on the first `views` training views leads each other clearly
-// (kClearlyAhead standard errors of their view-for-view differences beyond kLossTolerance).
+// (kClearlyAhead standard errors of their view-for-view differences, beyond kLossTolerance for
+// one of fewer bytes): then more views would not change what preferred() chooses.
 bool clearlyAhead(const std::vector<Fitting*>& near, int monitorViews, size_t views) {
     if (views < 2 * size_t(kSettleBlock)) return false;
     const Fitting* leader = *std::min_element(near.begin(), near.end(), [&](const Fitting* a, const Fitting* b) {
         return settledLossOf(*a, monitorViews, views) < settledLossOf(*b, monitorViews, views);
     });
-    const double margin = kLossTolerance * settledLossOf(*leader, monitorViews, views);
+    const double tolerance = kLossTolerance * settledLossOf(*leader, monitorViews, views);
     return std::all_of(near.begin(), near.end(), [&](const Fitting* f) {
         if (f == leader) return true;
+        const double margin = f->candidate.bytes < leader->candidate.bytes ? tolerance : 0.0;
         double sum = 0.0, squares = 0.0;
         for (size_t v = 0; v < views; ++v) {
             const double d = f->trainingLoss[v] - leader->trainingLoss[v];
