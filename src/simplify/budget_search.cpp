@@ -227,7 +227,10 @@ const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, st
                     scene.training.readColor(view)));
             }
     }
-    for (Fitting* f : near) f->candidate.settledLoss = settledLossOf(*f, scene.monitor.size(), views);
+    for (Fitting* f : near) {
+        f->candidate.settledLoss = settledLossOf(*f, scene.monitor.size(), views);
+        f->candidate.settledViews = int(views);
+    }
     return preferred(fitting, [&](const BudgetCandidate& c) { return keep(c) && c.monitorLoss <= within; }, settled);
 }
 
@@ -517,9 +520,11 @@ BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
     for (const Fitting& f : found.fitting) {
         if (f.candidate.settledLoss <= 0.0) continue;
         found.tried[f.tried].settledLoss = f.candidate.settledLoss;
+        found.tried[f.tried].settledViews = f.candidate.settledViews;
         if (in.say) {
             char line[80];
-            std::snprintf(line, sizeof line, ": loss %.4g on the monitor and training views", f.candidate.settledLoss);
+            std::snprintf(line, sizeof line, ": loss %.4g on the monitor and %d training views", f.candidate.settledLoss,
+                          f.candidate.settledViews);
             in.say(describe(f.candidate) + line);
         }
     }
@@ -614,7 +619,10 @@ nlohmann::json toJson(const BudgetReport& report) {
         if (c.appearanceAtlas > 0) j["appearance_atlas"] = c.appearanceAtlas;
         if (c.appearanceQuality > 0) j["appearance_quality"] = c.appearanceQuality;
         if (c.monitorLoss > 0.0) j["monitor_loss"] = c.monitorLoss;
-        if (c.settledLoss > 0.0) j["settled_loss"] = c.settledLoss;
+        if (c.settledLoss > 0.0) {
+            j["settled_loss"] = c.settledLoss;
+            j["settled_views"] = c.settledViews;
+        }
         return j;
     };
     nlohmann::json tried = nlohmann::json::array();

@@ -36,8 +36,10 @@ struct BudgetCandidate {
     int appearanceAtlas = 0;       // texels per side of the appearance in the reference's atlas; 0: tiles
     std::uintmax_t bytes = 0;   // of its asset.subd
     double monitorLoss = 0.0;   // of the decoded asset; 0 when over budget (not rendered)
-    // Over the monitor and training views, for those near the lowest monitor loss; 0 otherwise.
+    // Over the monitor views and `settledViews` training views, for those near the lowest monitor
+    // loss; 0 otherwise.
     double settledLoss = 0.0;
+    int settledViews = 0;
 };
 
 struct BudgetSearch {
