@@ -3,7 +3,11 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <filesystem>
+#include <functional>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "common/command_line.h"
 #include "common/fit_cli.h"
@@ -15,17 +19,35 @@ int main(int argc, char** argv) {
     CLI::App app{"subdfit-bench: what accuracy costs in time"};
     app.require_subcommand(1);
 
+    // Each subcommand runs its options struct; addOut registers its --out with the CSV that marks
+    // the folder as the command's own, so the folder is checked before minutes of benchmarking
+    // (a typo or somebody's files need --force; the command's CSV from an earlier run it updates).
+    std::vector<std::pair<CLI::App*, std::function<int()>>> runs;
+    std::vector<std::tuple<CLI::App*, const std::filesystem::path*, const char*>> outputs;
+    const auto command = [&]<class Options>(const char* name, const char* what, Options& options,
+                                            int (*run)(const Options&)) {
+        CLI::App* subcommand = app.add_subcommand(name, what);
+        runs.emplace_back(subcommand, [&options, run] { return run(options); });
+        return subcommand;
+    };
+    const auto addOut = [&](CLI::App* subcommand, std::filesystem::path& out, const char* csv, const char* help) {
+        outputs.emplace_back(subcommand, &out, csv);
+        return subcommand->add_option("--out", out, help);
+    };
+
     subdfit::bench::StepCostOptions stepCost;
-    auto* stepCostCommand = app.add_subcommand("step-cost", "SGE step time / forward render time, and scaling");
-    stepCostCommand->add_option("--out", stepCost.out, "folder for step_cost.csv");
+    auto* stepCostCommand =
+        command("step-cost", "SGE step time / forward render time, and scaling", stepCost, subdfit::bench::runStepCost);
+    addOut(stepCostCommand, stepCost.out, "step_cost.csv", "folder for step_cost.csv");
     stepCostCommand->add_option("--repeats", stepCost.repeats, "timed repeats (best of)")->capture_default_str();
     stepCostCommand->add_option("--res", stepCost.resolutions, "resolutions timed")->capture_default_str();
     stepCostCommand->add_flag("!--no-scaling", stepCost.scaling, "skip the table against parameter count");
     subdfit::apps::addGlProvider(*stepCostCommand, stepCost.glProvider);
 
     subdfit::bench::LumpySphereOptions lumpy;
-    auto* lumpyCommand = app.add_subcommand("lumpy-sphere", "fit a quad-sphere cage to a lumpy sphere (the peer's task)");
-    lumpyCommand->add_option("--out", lumpy.out, "output folder")->capture_default_str();
+    auto* lumpyCommand = command("lumpy-sphere", "fit a quad-sphere cage to a lumpy sphere (the peer's task)", lumpy,
+                                 subdfit::bench::runLumpySphere);
+    addOut(lumpyCommand, lumpy.out, "lumpy_sphere.csv", "output folder")->capture_default_str();
     lumpyCommand->add_option("--steps", lumpy.steps, "most optimisation steps (default: the device's)");
     lumpyCommand->add_option("--noise-gate", lumpy.noiseGate, "the fit's noise gate (0: plain Adam)")->capture_default_str();
     lumpyCommand->add_option("--res", lumpy.resolution, "resolution")->capture_default_str();
@@ -39,8 +61,11 @@ int main(int argc, char** argv) {
     subdfit::apps::addGlProvider(*lumpyCommand, lumpy.glProvider);
 
     subdfit::bench::SimplifyTradeoffOptions tradeoff;
-    auto* simplifyCommand = app.add_subcommand("simplify", "simplify at byte budgets: PSNR and mean surface distance against bytes, vs the baselines; seconds by stage");
-    simplifyCommand->add_option("--out", tradeoff.out, "output folder")->capture_default_str();
+    auto* simplifyCommand = command(
+        "simplify",
+        "simplify at byte budgets: PSNR and mean surface distance against bytes, vs the baselines; seconds by stage",
+        tradeoff, subdfit::bench::runSimplifyTradeoff);
+    addOut(simplifyCommand, tradeoff.out, "simplify_tradeoff.csv", "output folder")->capture_default_str();
     simplifyCommand->add_option("--reference", tradeoff.references, "dense assets (default: the relief Spot)");
     simplifyCommand->add_option("--budgets", tradeoff.budgets, "byte budgets")->capture_default_str();
     simplifyCommand->add_option("--steps", tradeoff.steps, "optimisation steps per run (default: the device's)");
@@ -50,8 +75,9 @@ int main(int argc, char** argv) {
 
     subdfit::bench::ConvergenceOptions convergence;
     auto* convergenceCommand =
-        app.add_subcommand("convergence", "a sphere cage 30 % small fitted to a lumpy sphere: Chamfer against time");
-    convergenceCommand->add_option("--out", convergence.out, "output folder")->capture_default_str();
+        command("convergence", "a sphere cage 30 % small fitted to a lumpy sphere: Chamfer against time", convergence,
+                subdfit::bench::runConvergence);
+    addOut(convergenceCommand, convergence.out, "convergence.csv", "output folder")->capture_default_str();
     convergenceCommand->add_option("--start-scale", convergence.startScale, "the cage's size against the reference's")
         ->capture_default_str();
     convergenceCommand->add_option("--every", convergence.every, "steps between Chamfer measurements")->capture_default_str();
@@ -61,15 +87,17 @@ int main(int argc, char** argv) {
     subdfit::apps::addFitSettings(*convergenceCommand, convergence.fit);
 
     subdfit::bench::RecoveryOptions recovery;
-    auto* recoveryCommand = app.add_subcommand("recovery", "noised (creased) cages fitted back to their own limit surface");
-    recoveryCommand->add_option("--out", recovery.out, "output folder")->capture_default_str();
+    auto* recoveryCommand = command("recovery", "noised (creased) cages fitted back to their own limit surface",
+                                    recovery, subdfit::bench::runRecovery);
+    addOut(recoveryCommand, recovery.out, "recovery.csv", "output folder")->capture_default_str();
     recoveryCommand->add_option("--shapes", recovery.shapes, "cages (OBJ with OpenSubdiv tags)")->capture_default_str();
     recoveryCommand->add_option("--sigma", recovery.sigma, "noise, a fraction of the scene radius")->capture_default_str();
     subdfit::apps::addFitSettings(*recoveryCommand, recovery.fit);
 
     subdfit::bench::MapsGainOptions mapsGain;
-    auto* mapsCommand = app.add_subcommand("maps", "held-out PSNR, time and bytes with and without maps");
-    mapsCommand->add_option("--out", mapsGain.out, "output folder")->capture_default_str();
+    auto* mapsCommand =
+        command("maps", "held-out PSNR, time and bytes with and without maps", mapsGain, subdfit::bench::runMapsGain);
+    addOut(mapsCommand, mapsGain.out, "maps_gain.csv", "output folder")->capture_default_str();
     mapsCommand->add_option("--cage", mapsGain.cage, "the cage (default: the ~200-quad sphere cage)");
     mapsCommand->add_option("--reference", mapsGain.reference,
                             "the reference (default: with --cage, its limit surface with a relief; else a bumpy sphere)");
@@ -82,8 +110,11 @@ int main(int argc, char** argv) {
     subdfit::apps::addFitSettings(*mapsCommand, mapsGain.fit);
 
     subdfit::bench::FitGainOptions fitGain;
-    auto* fitGainCommand = app.add_subcommand("fit-gain", "a fit from a good start (a limit-fitted cage, baked maps): held-out dB gain against seconds, variant by variant");
-    fitGainCommand->add_option("--out", fitGain.out, "output folder")->capture_default_str();
+    auto* fitGainCommand = command("fit-gain",
+                                   "a fit from a good start (a limit-fitted cage, baked maps): held-out dB gain "
+                                   "against seconds, variant by variant",
+                                   fitGain, subdfit::bench::runFitGain);
+    addOut(fitGainCommand, fitGain.out, "fit_gain.csv", "output folder")->capture_default_str();
     fitGainCommand->add_option("--cage", fitGain.cage, "the starting cage (world units)");
     fitGainCommand->add_option("--faces", fitGain.faces, "start from simplify's initial cage of about this many faces instead");
     fitGainCommand->add_option("--reference", fitGain.reference, "the dense reference")->required();
@@ -92,13 +123,16 @@ int main(int argc, char** argv) {
     subdfit::apps::addFitSettings(*fitGainCommand, fitGain.fit);
 
     subdfit::bench::AccuracyOptions accuracy;
-    auto* accuracyCommand = app.add_subcommand("accuracy", "held-out PSNR and Chamfer against wall time, knob by knob");
-    accuracyCommand->add_option("--out", accuracy.out, "output folder")->capture_default_str();
+    auto* accuracyCommand = command("accuracy", "held-out PSNR and Chamfer against wall time, knob by knob", accuracy,
+                                    subdfit::bench::runAccuracy);
+    addOut(accuracyCommand, accuracy.out, "accuracy.csv", "output folder")->capture_default_str();
     accuracyCommand->add_option("--steps", accuracy.baseSteps, "base step count")->capture_default_str();
     subdfit::apps::addGlProvider(*accuracyCommand, accuracy.glProvider);
 
     subdfit::bench::ReliefOptions relief;
-    auto* reliefCommand = app.add_subcommand("relief", "write a dense reference: a cage's limit surface with fine procedural relief");
+    auto* reliefCommand =
+        command("relief", "write a dense reference: a cage's limit surface with fine procedural relief", relief,
+                subdfit::bench::runRelief);
     reliefCommand->add_option("--cage", relief.cage, "cage whose limit surface is the base")->capture_default_str();
     reliefCommand->add_option("--out", relief.out, "the .glb to write")->capture_default_str();
     reliefCommand->add_option("--mesh", relief.mesh, "a textured triangle asset (.gltf, .glb, .obj) to split and relieve instead");
@@ -109,14 +143,16 @@ int main(int argc, char** argv) {
     reliefCommand->add_option("--seed", relief.relief.seed, "seed of the relief's waves")->capture_default_str();
 
     subdfit::bench::GradientOptions gradient;
-    auto* gradientCommand = app.add_subcommand("gradient", "SGE gradient quality against cost; per-pixel vs full-image; ε");
-    gradientCommand->add_option("--out", gradient.out, "output folder")->capture_default_str();
+    auto* gradientCommand = command("gradient", "SGE gradient quality against cost; per-pixel vs full-image; ε",
+                                    gradient, subdfit::bench::runGradientQuality);
+    addOut(gradientCommand, gradient.out, "gradient.csv", "output folder")->capture_default_str();
     gradientCommand->add_option("--samples", gradient.maxSamples, "largest k")->capture_default_str();
     subdfit::apps::addGlProvider(*gradientCommand, gradient.glProvider);
 
     subdfit::bench::SoupOptions soup;
-    auto* soupCommand = app.add_subcommand("soup", "triangle soup fitted to an image: per-pixel vs full-image SGE (Fig. 2)");
-    soupCommand->add_option("--out", soup.out, "output folder")->capture_default_str();
+    auto* soupCommand = command("soup", "triangle soup fitted to an image: per-pixel vs full-image SGE (Fig. 2)", soup,
+                                subdfit::bench::runSoup);
+    addOut(soupCommand, soup.out, "soup.csv", "output folder")->capture_default_str();
     soupCommand->add_option("--triangles", soup.triangles, "triangles (12 parameters each)")->capture_default_str();
     soupCommand->add_option("--steps", soup.steps, "optimisation steps per estimator")->capture_default_str();
     soupCommand->add_option("--res", soup.resolution, "resolution")->capture_default_str();
@@ -124,42 +160,24 @@ int main(int argc, char** argv) {
     subdfit::apps::addGlProvider(*soupCommand, soup.glProvider);
 
     subdfit::bench::DecodeLodsOptions decodeLods;
-    auto* lodsCommand = app.add_subcommand("lods", "decode --lods: each level's bytes and distances next to gltfpack's at its triangles");
+    auto* lodsCommand =
+        command("lods", "decode --lods: each level's bytes and distances next to gltfpack's at its triangles",
+                decodeLods, subdfit::bench::runDecodeLods);
     lodsCommand->add_option("asset", decodeLods.asset, "an asset.subd")->required();
     lodsCommand->add_option("--reference", decodeLods.reference, "its dense reference, for gltfpack's levels of it and distances to it");
     lodsCommand->add_option("--lods", decodeLods.lods, "levels")->capture_default_str()->check(CLI::Range(2, 8));
-    lodsCommand->add_option("--out", decodeLods.out, "output folder")->capture_default_str();
+    addOut(lodsCommand, decodeLods.out, "decode_lods.csv", "output folder")->capture_default_str();
 
     bool force = false;
     app.add_flag("--force", force, "write into a non-empty --out folder that holds no earlier results of the command");
 
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit-bench")) return *exitCode;
     try {
-        // --out is checked before minutes of benchmarking, not when the first CSV is written: a
-        // folder that holds something else (a typo, somebody's files) needs --force; one that
-        // holds the command's own CSV from an earlier run is the command's to update.
-        const std::tuple<CLI::App*, const std::filesystem::path*, const char*> outputs[] = {
-            {stepCostCommand, &stepCost.out, "step_cost.csv"},       {lumpyCommand, &lumpy.out, "lumpy_sphere.csv"},
-            {mapsCommand, &mapsGain.out, "maps_gain.csv"},           {simplifyCommand, &tradeoff.out, "simplify_tradeoff.csv"},
-            {gradientCommand, &gradient.out, "gradient.csv"},        {accuracyCommand, &accuracy.out, "accuracy.csv"},
-            {soupCommand, &soup.out, "soup.csv"},                    {convergenceCommand, &convergence.out, "convergence.csv"},
-            {recoveryCommand, &recovery.out, "recovery.csv"},         {lodsCommand, &decodeLods.out, "decode_lods.csv"},
-            {fitGainCommand, &fitGain.out, "fit_gain.csv"}};
-        for (const auto& [command, out, csv] : outputs)
-            if (command->parsed() && !out->empty())
+        for (const auto& [subcommand, out, csv] : outputs)
+            if (subcommand->parsed() && !out->empty())
                 subdfit::io::checkOutputFolder(*out, {.ownMarkers = {csv}, .force = force});
-        if (reliefCommand->parsed()) return subdfit::bench::runRelief(relief);
-        if (stepCostCommand->parsed()) return subdfit::bench::runStepCost(stepCost);
-        if (lumpyCommand->parsed()) return subdfit::bench::runLumpySphere(lumpy);
-        if (mapsCommand->parsed()) return subdfit::bench::runMapsGain(mapsGain);
-        if (simplifyCommand->parsed()) return subdfit::bench::runSimplifyTradeoff(tradeoff);
-        if (gradientCommand->parsed()) return subdfit::bench::runGradientQuality(gradient);
-        if (accuracyCommand->parsed()) return subdfit::bench::runAccuracy(accuracy);
-        if (soupCommand->parsed()) return subdfit::bench::runSoup(soup);
-        if (convergenceCommand->parsed()) return subdfit::bench::runConvergence(convergence);
-        if (recoveryCommand->parsed()) return subdfit::bench::runRecovery(recovery);
-        if (lodsCommand->parsed()) return subdfit::bench::runDecodeLods(decodeLods);
-        if (fitGainCommand->parsed()) return subdfit::bench::runFitGain(fitGain);
+        for (const auto& [subcommand, run] : runs)
+            if (subcommand->parsed()) return run();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "subdfit-bench: error: %s\n", subdfit::apps::describeError(e).c_str());
         return 1;

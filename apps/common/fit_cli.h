@@ -44,22 +44,26 @@ CLI::Option* addNamedOption(CLI::App& app, const std::string& flag, E& field, co
         ->default_str(std::string(nameOf(field)));
 }
 
+// One row's flag, as the type of its field says: a bool is a switch, words are read by
+// readOptionText, a number shows its default (or, left to the device, its range).
+template <class T>
+void addTableOption(CLI::App& app, const fit::OptionInfo& info, T& field) {
+    const std::string flag = info.flag;
+    if (flag.empty()) return;
+    if constexpr (std::is_same_v<T, bool>) {
+        app.add_flag(flag, field, info.help);
+    } else if constexpr (fit::WordOption<T>) {
+        addWordOption(app, info, field);
+    } else {
+        auto* option = app.add_option(flag, field, info.help);
+        if (!info.byDevice) option->capture_default_str();
+        else option->check(CLI::Range(info.min, info.max));  // the core takes kByDevice as "not given"; a user may not
+    }
+}
+
 // Every option of the table that has a flag.
 inline void addFitSettings(CLI::App& app, fit::FitOptions& fit) {
-    fit::forEachOption(fit, [&](const fit::OptionInfo& info, auto& field) {
-        using T = std::decay_t<decltype(field)>;
-        const std::string flag = info.flag;
-        if (flag.empty()) return;
-        if constexpr (std::is_same_v<T, bool>) {
-            app.add_flag(flag, field, info.help);
-        } else if constexpr (fit::WordOption<T>) {
-            addWordOption(app, info, field);
-        } else {
-            auto* option = app.add_option(flag, field, info.help);
-            if (!info.byDevice) option->capture_default_str();
-            else option->check(CLI::Range(info.min, info.max));  // the core takes kByDevice as "not given"; a user may not
-        }
-    });
+    fit::forEachOption(fit, [&](const fit::OptionInfo& info, auto& field) { addTableOption(app, info, field); });
 }
 
 // --gl for a command whose options are its own (the benchmarks), as the table's row says it.

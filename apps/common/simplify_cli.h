@@ -1,22 +1,21 @@
 #pragma once
 // The options of one `simplify`: on the command line of `subdfit simplify`, and on each line of
-// a `subdfit batch` manifest (where they override the batch's own).
+// a `subdfit batch` manifest (where they override the batch's own). Registered from simplify's
+// table (simplify/simplify_options.h), then the fit's.
 #include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <type_traits>
 
 #include "common/byte_size.h"
 #include "common/fit_cli.h"
-#include "simplify/simplify_job.h"
+#include "simplify/simplify_options.h"
 
 namespace subdfit::apps {
 
-// Everything but the reference and --out.
-inline void addSimplifySettings(CLI::App& app, simplify::SimplifyOptions& options) {
-    app.add_option("--faces", options.faces,
-                   "triangles of the cage, 4..1000000 (default: the budget search's choice; with --budget, fixes the "
-                   "cage and the search chooses only the maps; without, the cage is fitted as asked and weighed against "
-                   "the triangle route at its bytes)")
-        ->check(CLI::Range(4, 1000000));
-    // Checked while parsing, so a bad budget is a usage error naming the flag.
+// A byte size (`--budget`), checked while parsing so that a bad one is a usage error naming the flag.
+inline void addByteSizeOption(CLI::App& app, const fit::OptionInfo& info, std::optional<std::uintmax_t>& field) {
     const CLI::Validator byteSize(
         [](std::string& text) {
             std::string problem;
@@ -24,22 +23,29 @@ inline void addSimplifySettings(CLI::App& app, simplify::SimplifyOptions& option
         },
         "BYTES");
     app.add_option_function<std::string>(
-           "--budget",
-           [&options](const std::string& text) {
+           info.flag,
+           [&field](const std::string& text) {
                std::string problem;
-               options.budget = parseByteSize(text, problem).value_or(0);
+               field = parseByteSize(text, problem).value_or(0);
            },
-           "bytes what ships may take, 100 B to 1 TB (20000, 20KB, 1.5MB, 2G): chooses the cage, maps and bits to fit "
-           "them, or a triangle mesh where one ships better (default: a tenth of the reference compressed, at least 16 KB)")
+           info.help)
         ->check(byteSize);
-    addNamedOption(app, "--compare", options.compare,
-                   "what is compared beside what ships: none (only what chooses the route), fast (+ the triangle "
-                   "baselines' files and scores), full (+ the bake route, surface distances, comparison.png)");
-    app.add_option_function<std::string>(
-           "--route", [&options](const std::string& text) { options.cageOnly = text == "cage"; },
-           "auto: ship the cage only where it wins, else the better triangle mesh (default); cage: ship the fitted cage "
-           "whatever the triangle route scores")
-        ->check(CLI::IsMember({"auto", "cage"}));
+}
+
+// Everything but the reference and --out. An optional number has no default to show: not
+// given, the run chooses it.
+inline void addSimplifySettings(CLI::App& app, simplify::SimplifyOptions& options) {
+    simplify::forEachSimplifyOption(options, [&](const fit::OptionInfo& info, auto& field) {
+        using T = std::decay_t<decltype(field)>;
+        if constexpr (std::is_same_v<T, std::optional<std::uintmax_t>>) {
+            addByteSizeOption(app, info, field);
+        } else if constexpr (std::is_same_v<T, std::optional<int>>) {
+            app.add_option_function<int>(info.flag, [&field](int value) { field = value; }, info.help)
+                ->check(CLI::Range(int(info.min), int(info.max)));
+        } else {
+            addTableOption(app, info, field);
+        }
+    });
     addFitSettings(app, options.fit);
 }
 

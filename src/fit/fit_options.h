@@ -109,25 +109,36 @@ struct OptionInfo {
     bool byDevice = false;        // kByDevice until resolveDeviceDefaults() (fit/device_defaults.h)
 };
 
+// A row of a table of options: its OptionInfo and the member it describes, `Member` a
+// std::variant of pointers to members of one options struct.
+template <class Member>
+struct TableRow {
+    OptionInfo info;
+    Member member;
+};
+
+// Calls visit(info, field) for every row of `rows`, `field` a reference to the member of
+// `options` the row describes.
+template <class Row, class Options, class Visitor>
+void forEachRow(const std::vector<Row>& rows, Options& options, Visitor&& visit) {
+    for (const auto& row : rows) std::visit([&](auto member) { visit(row.info, options.*member); }, row.member);
+}
+
 namespace detail {
 using OptionMember =
     std::variant<int FitOptions::*, std::uint32_t FitOptions::*, float FitOptions::*, bool FitOptions::*,
                  maps::MapEffects FitOptions::*, std::optional<render::ShadingModel> FitOptions::*,
                  surface::ShadingNormal FitOptions::*, Schedule FitOptions::*, UsdExport FitOptions::*,
                  context::GlProvider FitOptions::*>;
-struct OptionRow {
-    OptionInfo info;
-    OptionMember member;
-};
+using OptionRow = TableRow<OptionMember>;
 const std::vector<OptionRow>& optionTable();
 }  // namespace detail
 
-// Calls visit(info, field) for every option, `field` a reference to the member of `options` the
-// row describes: a number, a bool, or a value spelt as words (WordOption).
+// Calls visit(info, field) for every option: `field` a number, a bool, or a value spelt as words
+// (WordOption).
 template <class Options, class Visitor>
 void forEachOption(Options& options, Visitor&& visit) {
-    for (const auto& row : detail::optionTable())
-        std::visit([&](auto member) { visit(row.info, options.*member); }, row.member);
+    forEachRow(detail::optionTable(), options, visit);
 }
 
 // An option spelt as words rather than a number: the maps, and every NamedEnum (an optional one

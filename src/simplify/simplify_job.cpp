@@ -198,7 +198,7 @@ struct TargetBudget {
 
 TargetBudget targetBudget(const SimplifyOptions& options, const fit::FitScene& scene, const std::filesystem::path& staged,
                           const fit::FitHooks& hooks, StageSeconds& stages) {
-    if (options.budget || options.faces != 0) return {.bytes = options.budget};
+    if (options.budget || options.faces) return {.bytes = options.budget};
     const std::uintmax_t compressed = compressedReferenceBytes(scene, staged / "reference.glb");
     const std::uintmax_t budget = defaultBudget(compressed);
     if (hooks.note)
@@ -224,7 +224,8 @@ PreFit decideBeforeFit(const SimplifyOptions& options, fit::FitOptions fitOption
     if (budget) {
         decided.triangles = triangleBaselines(programs, scene, *budget, baselines, options.compare);
         stages.lap("triangle_route");
-        if (!options.cageOnly) decided.route = routeBeforeFit(decided.triangles.best(), decided.triangles.holds, std::nullopt);
+        if (options.route == RouteChoice::Auto)
+            decided.route = routeBeforeFit(decided.triangles.best(), decided.triangles.holds, std::nullopt);
         if (decided.route) return decided;
     }
     decided.plan = budget ? planWithinBudget(options, *budget, std::move(fitOptions), programs, scene, reference, hooks.note)
@@ -233,7 +234,7 @@ PreFit decideBeforeFit(const SimplifyOptions& options, fit::FitOptions fitOption
     if (auto& planned = decided.plan->budget) {
         planned->derived = !options.budget;
         planned->compressedReference = target.compressedReference;
-        if (!options.cageOnly)
+        if (options.route == RouteChoice::Auto)
             decided.route = routeBeforeFit(decided.triangles.best(), Holds::Part,
                                            fit::psnrFromLoss(planned->chosen.monitorLoss));
     }
@@ -278,7 +279,7 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
         stages.lap("triangle_route");
     }
     const TriangleChoice best = triangles.best();
-    report.route = options.cageOnly ? Route{.why = "--route cage"} : chooseRoute(report.subdfit, best);
+    report.route = options.route == RouteChoice::Cage ? Route{.why = "--route cage"} : chooseRoute(report.subdfit, best);
     if (report.route.shipped != "cage") {
         report.cage = report.subdfit;
         report.subdfit = shipTriangles(best, in.staged);
@@ -292,27 +293,6 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
 }
 
 }  // namespace
-
-void validate(const SimplifyOptions& o) {
-    if (o.faces != 0 && (o.faces < 4 || o.faces > 1000000))
-        throw OptionError("faces", "must be in 4..1000000, got " + std::to_string(o.faces));
-    if (o.budget && *o.budget < 100) throw OptionError("budget", "must be at least 100 bytes");
-    if (o.surfaceSamples < 1000) throw OptionError("surface_samples", "must be >= 1000");
-    if (o.fit.appearanceAtlas > 0 && o.fit.maps.normalMap)
-        throw OptionError("appearance_atlas", "takes heights alone (--maps displacement): the atlas's texture coordinates "
-                                              "leave the shipped glTF no room for a normal map on tiles");
-    fit::validate(o.fit);
-}
-
-nlohmann::json settingsJson(const SimplifyOptions& o) {
-    nlohmann::json settings = fit::settingsJson(o.fit);
-    settings["faces"] = o.faces;
-    settings["budget"] = o.budget.value_or(0);  // 0: none, as a batch asset's identity hashes it
-    settings["surface_samples"] = o.surfaceSamples;
-    settings["compare"] = nameOf(o.compare);
-    settings["route"] = o.cageOnly ? "cage" : "auto";
-    return settings;
-}
 
 nlohmann::json toJson(const SimplifyReport& r) {
     nlohmann::json report =
@@ -384,7 +364,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     io::checkOutputFolder(out, {.ownMarkers = fit::kFitResultMarkers, .force = options.fit.force});
     const auto started = std::chrono::steady_clock::now();
     SimplifyReport report;
-    report.facesRequested = options.faces;
+    report.facesRequested = options.faces.value_or(0);
     report.compare = options.compare;
     report.reference = options.fit.reference;
     StageSeconds& stages = report.stages;

@@ -14,47 +14,13 @@
 #include "simplify/budget_search.h"
 #include "simplify/compare/quality.h"
 #include "simplify/route.h"
+#include "simplify/simplify_options.h"
 #include "simplify/stage_seconds.h"
 
 namespace subdfit::simplify {
 
-// What `simplify` changes of a fit's defaults (with --faces and no budget; a budget's search
-// chooses these): a displacement map (shading normals come from its
-// derivatives: in every budget search so far a normal map cost more than it gave), at a
-// resolution a light asset can afford, shipped compact; and the cage fitted alone for most of
-// the run, since the maps are baked onto it and only refined (see simplify_job.cpp).
-inline fit::FitOptions simplifyFitDefaults() {
-    fit::FitOptions o;
-    o.maps = {.displacement = true};
-    o.mapResolution = 4;
-    o.mapsStart = 0.8f;
-    o.compactMaps = true;
-    return o;
-}
-
-struct SimplifyOptions {
-    fit::FitOptions fit = simplifyFitDefaults();  // fit.reference: the dense asset; fit.cage is set by simplify
-    int faces = 0;                // triangles of the cage; 0: chosen by the budget
-    // Bytes what ships may take (simplify/budget_search.h). Without it or `faces`, defaultBudget()
-    // of the reference; with `faces` alone, the cage is fitted as asked and the triangle route
-    // weighed at its bytes.
-    std::optional<std::uintmax_t> budget;
-    int surfaceSamples = 100000;  // per side, for Chamfer and Hausdorff
-    CompareLevel compare = CompareLevel::Full;
-    // Whether what ships is the better route, or the fitted cage whatever the triangle route
-    // scores (a user who needs a subdivision surface to edit or animate); the triangle route is
-    // weighed and reported either way.
-    bool cageOnly = false;
-};
-
 // The cage size the budget search's limits are scaled from (simplify_job.cpp).
 inline constexpr int kDefaultFaces = 1000;
-
-// Throws subdfit::Error ("invalid option: ...") before any work.
-void validate(const SimplifyOptions& options);
-
-// The fit's settings and simplify's own (see fit::settingsJson); `budget` 0 without one.
-nlohmann::json settingsJson(const SimplifyOptions& options);
 
 // What a simplify did: the route it shipped, the fit's report when a cage was fitted, and what
 // shipped and each baseline measured the same way at the same byte budget.

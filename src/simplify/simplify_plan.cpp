@@ -31,7 +31,7 @@ BakeRoute bakeRouteOf(const mesh::PolygonMesh& cage, const fit::FitOptions& fit)
 
 SimplifyPlan planByFaces(const SimplifyOptions& o, fit::FitOptions fitOptions, fit::FitScene& scene,
                          const mesh::PolygonMesh& reference) {
-    scene.setCage(initialCage(reference, {.faces = o.faces > 0 ? o.faces : kDefaultFaces}));
+    scene.setCage(initialCage(reference, {.faces = o.faces.value_or(kDefaultFaces)}));
     BakeRoute route = bakeRouteOf(scene.cage, fitOptions);
     return {.fit = std::move(fitOptions), .bakeRoute = std::move(route), .budget = std::nullopt};
 }
@@ -41,7 +41,7 @@ namespace {
 // What the budget search tries for `o` on `scene`.
 BudgetSearch budgetSearchFor(const SimplifyOptions& o, std::uintmax_t budget, const fit::FitScene& scene) {
     return {.budget = budget,
-            .faceCounts = o.faces > 0 ? std::vector<int>{o.faces}
+            .faceCounts = o.faces ? std::vector<int>{*o.faces}
                                       : faceCountsFor(budget, scene.reference.faceCount(), kMostBudgetFaces),
             .allowedMaps = o.fit.maps,
             .appearance = {.baseColor = scene.shading != render::ShadingModel::Geometry,

@@ -147,7 +147,7 @@ TEST(SimplifyBudget, HeightsOnAFacetedReferenceShadeWithTheLimitNormal) {
     auto o = budgeted(dir / "faceted.obj", dir / "out", 4000);
     o.fit.resolution = 128;
     o.fit.maps = {.displacement = true};
-    o.cageOnly = true;  // it ships whole as triangles otherwise: this is about the cage the search finds
+    o.route = simplify::RouteChoice::Cage;  // it ships whole as triangles otherwise: this is about the cage the search finds
     const auto report = simplify::toJson(simplify::runSimplify(o));
     int ownDensity = 0;
     for (const auto& c : report["budget"]["candidates"]) {

@@ -49,7 +49,7 @@ TEST(SimplifyJob, ReportMatchesTheFilesAndComparesAtEqualBytes) {
     const auto dir = scratchDir("simplify_job");
     mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 4));
     auto options = smallMappedSimplify(dir / "lumpy.obj", dir / "out");
-    options.cageOnly = true;  // what a fitted cage ships, whether or not the triangle route scores better
+    options.route = simplify::RouteChoice::Cage;  // what a fitted cage ships, whether or not the triangle route scores better
     const auto report = simplify::toJson(simplify::runSimplify(options));
     EXPECT_EQ(report["route"]["shipped"], "cage");
 
