@@ -108,6 +108,7 @@ bool FitRun::resume(const std::filesystem::path& checkpoint) {
     resumedFromStep_ = saved->steps;
     schedule_ = saved->schedule;
     widenedStep_ = saved->widenedStep;
+    if (options_.schedule == Schedule::Plateau) applyStep();
     return true;
 }
 
@@ -148,7 +149,7 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
             // maps) is not left where too large a step took it, which can take hundreds of steps
             // to come back from.
             if (monitorLoss > kRestoreAbove * schedule_.bestLoss) restoreBest();
-            fitter_->setLearningRateScale(schedule.learningRateScale());
+            applyStep();
         }
         if (!schedule_.probationOver && step() - schedule_.stageStart >= probationSteps()) {
             schedule_.probationOver = true;
@@ -169,7 +170,7 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
         return std::nullopt;
     };
     if (plateau && schedule_.bestStep < 0) {
-        fitter_->setLearningRateScale(schedule.learningRateScale());
+        applyStep();
         monitor();
     }
     stopReason_ = StopReason::Reached;
@@ -249,10 +250,18 @@ void FitRun::endStage(bool keepStep) {
     const double last = score(*fitter_, scene_.monitor).loss;
     if (!(last <= schedule_.bestLoss)) restoreBest();
     bestStep_ = schedule_.bestStep;
-    const int halvings = keepStep ? schedule_.halvings : 0;
+    // The cage keeps its step as halvings carried; the stage's own schedule (the maps') starts at
+    // the full step with every halving still to come.
+    const int carried = keepStep ? schedule_.halvings + schedule_.carriedHalvings : 0;
     StepSchedule(schedule_).restart();
-    schedule_.halvings = halvings;
-    fitter_->setLearningRateScale(StepSchedule(schedule_).learningRateScale());
+    schedule_.carriedHalvings = carried;
+    applyStep();
+}
+
+void FitRun::applyStep() {
+    const StepSchedule schedule(schedule_);
+    fitter_->setLearningRateScale(schedule.learningRateScale());
+    fitter_->setVertexRateFactor(schedule.vertexRateScale() / schedule.learningRateScale());
 }
 
 FitReport FitRun::writeResults(const std::filesystem::path& out, const context::GlContext& context) {
@@ -315,6 +324,7 @@ void FitRun::setTessLevel(int level) {
     }
     fitter_ = std::move(rebuilt);
     options_ = options;
+    if (options_.schedule == Schedule::Plateau && schedule_.stageStart >= 0) applyStep();
 }
 
 }  // namespace subdfit::fit
