@@ -71,9 +71,8 @@ struct RecoveryOptions {
     fit::FitOptions fit = [] {
         fit::FitOptions f;
         f.views = 8;
-        f.steps = 400;
         return f;
-    }();
+    }();  // steps: the device's cap; the plateau schedule stops each fit once converged
     float sigma = 0.03f;  // noise, a fraction of the scene radius
     std::uint32_t noiseSeed = 11;
 };
@@ -97,11 +96,7 @@ struct MapsGainOptions {
     std::filesystem::path cage, reference;
     float reliefAmplitude = 0.006f;
     std::uint32_t reliefSeed = 1;
-    fit::FitOptions fit = [] {
-        fit::FitOptions f;
-        f.steps = 800;
-        return f;
-    }();
+    fit::FitOptions fit;  // steps: the device's cap; the plateau schedule stops each fit once converged
     // The maps each compared with a vertex-only fit ("none"), in turn.
     std::vector<std::string> compared{"displacement", "displacement,normal"};
 };

@@ -136,7 +136,7 @@ void CageFitter::update() {
                                 settings_.smoothingIterations, smoothScratch_);
             if (relaxation_)
                 relaxation_->projectGradient(programs_, vertices_.theta, vertices_.gradientSmooth, settings_.tangentialGradient);
-            optim::adamStep(programs_, vertices_, vertices_.gradientSmooth, learningRate);
+            optim::adamStep(programs_, vertices_, vertices_.gradientSmooth, learningRate * vertexRateFactor_);
             if (relaxation_) relaxation_->apply(programs_, vertices_.theta, settings_.relaxation);
         } else {
             maps_->update(programs_, *g, learningRate);

@@ -97,6 +97,10 @@ public:
     // exponential annealing to a tenth over the planned steps.
     float learningRateScale() const;
     void setLearningRateScale(float scale) { scaleOverride_ = scale; }
+    // A further factor on the vertices' learning rate alone (a schedule's: the step the cage had
+    // reached when the maps joined from zero at the full step).
+    void setVertexRateFactor(float factor) { vertexRateFactor_ = factor; }
+    float vertexRateFactor() const { return vertexRateFactor_; }
     // The maps join from the next step on (a stage that converged before their planned start).
     void startMapsNow() { mapsStartOverride_ = steps_; }
     // A group left out of the turns keeps its θ and Adam moments until it is optimised again.
@@ -115,6 +119,7 @@ public:
 
 private:
     std::optional<float> scaleOverride_;
+    float vertexRateFactor_ = 1.0f;
     std::optional<int> mapsStartOverride_;
 
     gl::ProgramCache& programs_;

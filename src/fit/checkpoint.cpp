@@ -13,7 +13,7 @@ namespace subdfit::fit {
 namespace {
 
 // The last byte is the format version: a reader refuses any other.
-constexpr std::string_view kMagic{"SDFTCKP6", 8};
+constexpr std::string_view kMagic{"SDFTCKP7", 8};
 constexpr std::string_view kMagicFamily{"SDFTCKP", 7};
 
 class Writer {
@@ -107,6 +107,7 @@ void writeCheckpoint(const std::filesystem::path& path, const std::string& finge
     out.put<std::int32_t>(schedule.stageStart);
     out.put<std::uint8_t>(schedule.probationOver ? 1 : 0);
     out.put<std::int32_t>(schedule.halvings);
+    out.put<std::int32_t>(schedule.carriedHalvings);
     out.put<std::uint32_t>(std::uint32_t(schedule.bestTheta.size()));
     for (const auto& theta : schedule.bestTheta) out.putFloats(theta);
     out.put<std::uint32_t>(std::uint32_t(schedule.startTheta.size()));
@@ -160,6 +161,8 @@ std::optional<FitState> readCheckpoint(const std::filesystem::path& path, const 
     schedule.stageStart = in.get<std::int32_t>();
     schedule.probationOver = in.get<std::uint8_t>() != 0;
     schedule.halvings = in.get<std::int32_t>();
+    schedule.carriedHalvings = in.get<std::int32_t>();
+    if (schedule.halvings < 0 || schedule.carriedHalvings < 0) in.damaged("bad halving count");
     const auto bestGroups = in.get<std::uint32_t>();
     if (bestGroups > groups) in.damaged("bad best-state group count");
     for (std::uint32_t k = 0; k < bestGroups; ++k) schedule.bestTheta.push_back(in.getFloats());

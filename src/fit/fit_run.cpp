@@ -103,6 +103,7 @@ bool FitRun::resume(const std::filesystem::path& checkpoint) {
     scoredTheta_.clear();  // what the caller sets after a resume (carried textures) was not drawn
     schedule_ = saved->schedule;
     widenedStep_ = saved->widenedStep;
+    if (options_.schedule == Schedule::Plateau) applyStep();
     return true;
 }
 
@@ -144,7 +145,7 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
             // maps) is not left where too large a step took it, which can take hundreds of steps
             // to come back from.
             if (monitorLoss > kRestoreAbove * schedule_.bestLoss) restoreBest();
-            fitter_->setLearningRateScale(schedule.learningRateScale());
+            applyStep();
         }
         if (!schedule_.probationOver && step() - schedule_.stageStart >= probationSteps()) {
             schedule_.probationOver = true;
@@ -165,7 +166,7 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
         return std::nullopt;
     };
     if (plateau && schedule_.bestStep < 0) {
-        fitter_->setLearningRateScale(schedule.learningRateScale());
+        applyStep();
         monitor();
     }
     stopReason_ = StopReason::Reached;
@@ -245,10 +246,18 @@ void FitRun::endStage(bool keepStep) {
     // Measured once more: the last steps may have been better than any monitored before.
     if (!atBest_ && !(score(*fitter_, scene_.monitor).loss <= schedule_.bestLoss)) restoreBest();
     bestStep_ = schedule_.bestStep;
-    const int halvings = keepStep ? schedule_.halvings : 0;
+    // The cage keeps its step as halvings carried; the stage's own schedule (the maps') starts at
+    // the full step with every halving still to come.
+    const int carried = keepStep ? schedule_.halvings + schedule_.carriedHalvings : 0;
     StepSchedule(schedule_).restart();
-    schedule_.halvings = halvings;
-    fitter_->setLearningRateScale(StepSchedule(schedule_).learningRateScale());
+    schedule_.carriedHalvings = carried;
+    applyStep();
+}
+
+void FitRun::applyStep() {
+    const StepSchedule schedule(schedule_);
+    fitter_->setLearningRateScale(schedule.learningRateScale());
+    fitter_->setVertexRateFactor(schedule.vertexRateScale() / schedule.learningRateScale());
 }
 
 FitReport FitRun::writeResults(const std::filesystem::path& out, const context::GlContext& context) {
@@ -314,6 +323,7 @@ void FitRun::setTessLevel(int level) {
     fitter_ = std::move(rebuilt);
     options_ = options;
     scoredTheta_.clear();  // drawn at another level
+    if (options_.schedule == Schedule::Plateau && schedule_.stageStart >= 0) applyStep();
 }
 
 }  // namespace subdfit::fit

@@ -107,6 +107,9 @@ public:
     gl::ProgramCache& programs() { return programs_; }
 
 private:
+    // The schedule's step onto the fitter: the stage's for every group, times the cage's carried halvings for the vertices.
+    void applyStep();
+
     FitOptions options_;
     gl::ProgramCache& programs_;
     FitScene& scene_;

@@ -49,6 +49,8 @@ public:
     Decision record(double loss, int step);
 
     float learningRateScale() const { return std::ldexp(1.0f, -state_.halvings); }
+    // The cage's: it also keeps the halvings it carried into this stage.
+    float vertexRateScale() const { return std::ldexp(1.0f, -(state_.halvings + state_.carriedHalvings)); }
 
     // Whether the stage pays: its measurements since its start (at least 3, at most kWindow)
     // leave a fall of kMinImprovement plausible (kProbationConfidence). For a fit's probation (FitRun): a start it cannot

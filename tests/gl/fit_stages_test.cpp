@@ -1,12 +1,15 @@
-// The fit's stages: one widened after its predecessor converged ends no worse than it began.
+// The fit's stages: maps joining a converged cage at their full step, and one widened after its
+// predecessor converged ending no worse than it began.
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <memory>
 #include <utility>
 
 #include "fit/fit_run.h"
 #include "fit/fit_scene.h"
+#include "fit/step_schedule.h"
 #include "gl_test_context.h"
 #include "mesh/procedural.h"
 #include "surface/tessellation.h"
@@ -56,6 +59,31 @@ TEST(FitStages, AWidenedStageStartsAfterConvergenceAndEndsNoWorse) {
     EXPECT_LT(widenedAt, o.steps);
     EXPECT_GT(run.step(), widenedAt);
     EXPECT_LE(fit::score(fitter, scene.monitor).loss, lossWhenWidened);
+    expectNoGlError();
+}
+
+// Maps that join a cage which converged before their planned start begin at the full step, with
+// every halving still theirs to take; the cage keeps the step its halvings reached.
+TEST(FitStages, MapsJoiningAConvergedCageStartAtTheFullStep) {
+    const auto dir = scratchDir("fit_stages_join");
+    fit::FitOptions o = stagedFit(dir);
+    o.mapsStart = 0.9f;
+    fit::FitScene scene = stagedScene(o);
+    fit::FitRun run(fit::resolved(o), programs(), scene);
+    auto& fitter = run.fitter();
+    std::atomic<bool> cancel{false};
+    float mapsScale = 0.0f, cageFactor = 0.0f;
+    int joinedAt = -1;
+    run.run(dir / "checkpoint.bin", {.cancel = &cancel}, [&](bool) {
+        joinedAt = run.step();
+        mapsScale = fitter.learningRateScale();
+        cageFactor = fitter.vertexRateFactor();
+        cancel = true;
+    });
+    ASSERT_GE(joinedAt, 0);
+    ASSERT_LT(joinedAt, int(0.9f * float(o.steps))) << "the cage did not converge before the maps' planned start";
+    EXPECT_EQ(mapsScale, 1.0f);
+    EXPECT_EQ(cageFactor, std::ldexp(1.0f, -fit::StepSchedule::kMaxHalvings));
     expectNoGlError();
 }
 

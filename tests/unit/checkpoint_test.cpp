@@ -34,7 +34,7 @@ FitState sampleState() {
     state.mapsStartStep = 30;
     state.widenedStep = 35;
     state.schedule = {.bestLoss = 0.125, .bestStep = 36, .window = {0.5, 0.25, 0.125}, .stageLosses = {1.0, 0.5},
-                      .stageStart = 3, .probationOver = true, .halvings = 2,
+                      .stageStart = 3, .probationOver = true, .halvings = 2, .carriedHalvings = 3,
                       .bestTheta = {state.groups[0].theta, state.groups[1].moment1},
                       .startTheta = {state.groups[1].theta, state.groups[0].moment1}};
     return state;
@@ -86,6 +86,7 @@ TEST_F(Checkpoint, ReadsBackExactly) {
     EXPECT_EQ(read->schedule.stageStart, expected.schedule.stageStart);
     EXPECT_EQ(read->schedule.probationOver, expected.schedule.probationOver);
     EXPECT_EQ(read->schedule.halvings, expected.schedule.halvings);
+    EXPECT_EQ(read->schedule.carriedHalvings, expected.schedule.carriedHalvings);
     EXPECT_EQ(read->schedule.bestTheta, expected.schedule.bestTheta);
     EXPECT_EQ(read->schedule.startTheta, expected.schedule.startTheta);
     EXPECT_FALSE(readCheckpoint(path_.parent_path() / "none.bin", "fp"));
@@ -115,7 +116,7 @@ TEST_F(Checkpoint, TruncationOtherVersionsAndOtherSettingsAreRefused) {
 // A count of 2^40 floats behind a valid checksum: the reader must see that the file cannot
 // hold them instead of allocating 4 TB.
 TEST_F(Checkpoint, ACountBeyondTheFileAllocatesNothing) {
-    std::string payload = "SDFTCKP6";
+    std::string payload = "SDFTCKP7";
     auto put = [&](auto value) { payload.append(reinterpret_cast<const char*>(&value), sizeof value); };
     put(std::uint64_t(2));
     payload += "fp";
