@@ -550,10 +550,10 @@ std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, in
 }
 
 BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene,
-                          const mesh::PolygonMesh& referenceWorld, const BudgetSearch& search,
+                          const mesh::PolygonMesh& referenceWorld, const BudgetSearch& search, CageLadder& cages,
                           const std::function<void(const std::string&)>& say) {
+    SUBDFIT_CHECK(cages.size() == search.faceCounts.size());
     Findings found;
-    CageLadder cages(referenceWorld, search.faceCounts);
     const SearchInputs in{programs, scene, referenceWorld, cages, search, say};
     const std::vector<AppearanceBakeOptions> appearances = appearancesOf(search);
     const std::vector<maps::MapEffects> mapChoices = mapChoicesOf(search);

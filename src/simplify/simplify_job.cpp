@@ -219,6 +219,9 @@ PreFit decideBeforeFit(const SimplifyOptions& options, fit::FitOptions fitOption
                        const BaselineSettings& baselines, const fit::FitHooks& hooks, StageSeconds& stages) {
     PreFit decided;
     const std::optional<std::uintmax_t>& budget = target.bytes;
+    // The search's cages are CPU work: built from now on, beside the triangle route's.
+    std::optional<CageLadder> cages;
+    if (budget) cages.emplace(reference, budgetFaceCounts(options, *budget, scene));
     if (budget) {
         decided.triangles = triangleBaselines(programs, scene, *budget, baselines, options.compare);
         stages.lap("triangle_route");
@@ -226,7 +229,8 @@ PreFit decideBeforeFit(const SimplifyOptions& options, fit::FitOptions fitOption
             decided.route = routeBeforeFit(decided.triangles.best(), decided.triangles.holds, std::nullopt);
         if (decided.route) return decided;
     }
-    decided.plan = budget ? planWithinBudget(options, *budget, std::move(fitOptions), programs, scene, reference, hooks.note)
+    decided.plan = budget ? planWithinBudget(options, *budget, std::move(fitOptions), programs, scene, reference, *cages,
+                                             hooks.note)
                           : planByFaces(options, std::move(fitOptions), scene, reference);
     stages.lap(budget ? "search" : "initial_cage");
     if (auto& planned = decided.plan->budget) {
