@@ -23,7 +23,7 @@ int writeReliefReference(const ReliefOptions& options);
 
 struct StepCostOptions {
     std::filesystem::path out;
-    int repeats = 15;
+    int repeats = 40;  // interleaved rounds
     context::GlProvider glProvider = context::GlProvider::Auto;
     std::vector<int> resolutions{128, 256, 512};
     bool scaling = true;  // also the table of step time against parameter count

@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     auto* stepCostCommand =
         command("step-cost", "SGE step time / forward render time, and scaling", stepCost, subdfit::bench::runStepCost);
     addOut(stepCostCommand, stepCost.out, "step_cost.csv", "folder for step_cost.csv");
-    stepCostCommand->add_option("--repeats", stepCost.repeats, "timed repeats (best of)")->capture_default_str();
+    stepCostCommand->add_option("--repeats", stepCost.repeats, "interleaved rounds (forward render, step, step in halves)")->capture_default_str();
     stepCostCommand->add_option("--res", stepCost.resolutions, "resolutions timed")->capture_default_str();
     stepCostCommand->add_flag("!--no-scaling", stepCost.scaling, "skip the table against parameter count");
     subdfit::apps::addGlProvider(*stepCostCommand, stepCost.glProvider);

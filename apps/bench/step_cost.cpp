@@ -7,7 +7,9 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
+#include <functional>
 
 #include "bench_commands.h"
 #include "bench_common.h"
@@ -16,6 +18,7 @@
 #include "fit/fit_run.h"
 #include "gl/platform_defines.h"
 #include "gl_call_counter.h"
+#include "interleaved_timing.h"
 #include "io/atomic_file.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
@@ -24,16 +27,19 @@
 namespace subdfit::bench {
 namespace {
 
+// One scene's timings over interleaved rounds (forward render, step, step in halves): medians in
+// ms, and the step / render ratio taken within each round.
 struct Timing {
     double renderMs, stepMs;
     double accumulateMs, updateMs;  // the step's halves: P + 2R + G, then preconditioner + Adam
+    Spread ratio, cpuRatio;         // wall time, and the process's CPU time (llvmpipe's threads count in)
 };
 
 // The views of the step-cost scene: one per step, as in a fit.
 const int kViews[] = {0};
 
 Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const render::MeshRenderer& reference,
-                int resolution, int repeats) {
+                int resolution, int rounds) {
     const scene::TargetSet targets(programs, reference, render::orbitCameras(8, 1), resolution);
     fit::CageFitSettings settings;
     settings.resolution = resolution;
@@ -42,33 +48,37 @@ Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const
     fitter.step(targets, kViews);  // compile and warm up
     fitter.render(targets.camera(0), image);
     glFinish();
-    Timing t{};
-    // The forward render a plain (non-differentiable) pipeline pays: stencils + tessellated raster.
-    t.renderMs = bestMilliseconds(repeats, [&] {
-        fitter.render(targets.camera(0), image);
-        glFinish();
-    });
-    // As in a fit, where only a few steps per progress report measure the loss.
-    t.stepMs = bestMilliseconds(repeats, [&] {
-        fitter.step(targets, kViews, false);
-        glFinish();
-    });
-    t.accumulateMs = bestMilliseconds(repeats, [&] {
-        fitter.accumulate(targets, kViews, false);
-        glFinish();
-    });
-    fitter.update();
-    // Each update after a sample of its own (an update with nothing sampled does nothing).
-    t.updateMs = 1e30;
-    for (int k = 0; k < repeats; ++k) {
-        fitter.accumulate(targets, kViews, false);
-        glFinish();
-        t.updateMs = std::min(t.updateMs, bestMilliseconds(1, [&] {
-                                  fitter.update();
-                                  glFinish();
-                              }));
-    }
-    return t;
+    std::vector<double> accumulateMs;
+    const std::function<void()> workloads[] = {
+        // The forward render a plain (non-differentiable) pipeline pays: stencils + tessellated raster.
+        [&] {
+            fitter.render(targets.camera(0), image);
+            glFinish();
+        },
+        // As in a fit, where only a few steps per progress report measure the loss.
+        [&] {
+            fitter.step(targets, kViews, false);
+            glFinish();
+        },
+        [&] {
+            const auto start = std::chrono::steady_clock::now();
+            fitter.accumulate(targets, kViews, false);
+            glFinish();
+            accumulateMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+            fitter.update();
+            glFinish();
+        }};
+    const auto samples = timeInterleaved(rounds, workloads);
+    const auto& render = samples[0];
+    const auto& step = samples[1];
+    std::vector<double> updateMs;
+    for (size_t k = 0; k < accumulateMs.size(); ++k) updateMs.push_back(samples[2].wallMs[k] - accumulateMs[k]);
+    return {spreadOf(render.wallMs).median,
+            spreadOf(step.wallMs).median,
+            spreadOf(accumulateMs).median,
+            spreadOf(updateMs).median,
+            spreadOf(perRoundRatios(step.wallMs, render.wallMs)),
+            spreadOf(perRoundRatios(step.cpuMs, render.cpuMs))};
 }
 
 struct CountedPass {
@@ -148,29 +158,44 @@ int runStepCost(const StepCostOptions& o) {
                                                  {reference.faceIndices.begin(), reference.faceIndices.end()});
     std::printf("renderer: %s\n", info.renderer.c_str());
 
-    std::vector<std::vector<std::string>> rows{{"table", "cage_faces", "parameters", "resolution", "render_ms", "step_ms", "ratio"}};
+    std::vector<std::vector<std::string>> rows{{"table", "cage_faces", "parameters", "resolution", "render_ms", "step_ms",
+                                                "ratio", "ratio_q1", "ratio_q3", "ratio_ci_low", "ratio_ci_high",
+                                                "cpu_ratio", "cpu_ratio_q1", "cpu_ratio_q3"}};
+    auto addRow = [&](const char* table, const mesh::PolygonMesh& mesh, int resolution, const Timing& t) {
+        std::vector<std::string> row{table, std::to_string(mesh.faceCount()), std::to_string(3 * mesh.vertexCount()),
+                                     std::to_string(resolution)};
+        for (double value : {t.renderMs, t.stepMs, t.ratio.median, t.ratio.q1, t.ratio.q3, t.ratio.low, t.ratio.high,
+                             t.cpuRatio.median, t.cpuRatio.q1, t.cpuRatio.q3})
+            row.push_back(std::to_string(value));
+        rows.push_back(row);
+    };
     const auto cage = mesh::makeQuadSphere(6);
-    std::printf("\nstep cost, quad-sphere cage (%d faces, %d parameters), best of %d\n", cage.faceCount(),
-                3 * cage.vertexCount(), o.repeats);
-    std::printf("%10s %12s %12s %8s %14s %10s\n", "resolution", "render ms", "step ms", "ratio", "P+2R+G ms",
-                "Adam ms");
+    std::printf("\nstep cost, quad-sphere cage (%d faces, %d parameters), %d interleaved rounds: medians, the ratio\n"
+                "per round with its quartiles and the median's 95%% interval; CPU: the process's CPU time\n",
+                cage.faceCount(), 3 * cage.vertexCount(), o.repeats);
+    std::printf("%10s %10s %10s %6s %11s %11s %10s %11s %10s %9s\n", "resolution", "render ms", "step ms", "ratio",
+                "quartiles", "95% median", "CPU ratio", "quartiles", "P+2R+G ms", "update ms");
     // The same tables as Markdown, for summaries (subdfit-bench accuracy folds this file in).
-    std::string markdown = "## Step cost (" + info.renderer + ")\n\nOne SGE step over one forward render, best of " +
-                           std::to_string(o.repeats) + "; quad-sphere cage of " + std::to_string(cage.faceCount()) +
-                           " faces. Two renders are the floor (2.0).\n\n| resolution | render ms | step ms | ratio |\n"
-                           "|---|---|---|---|\n";
-    char line[240];
+    std::string markdown = "## Step cost (" + info.renderer + ")\n\nOne SGE step over one forward render, " +
+                           std::to_string(o.repeats) +
+                           " interleaved rounds (medians; the ratio per round, with its quartiles and the median's "
+                           "95 % interval; CPU: the process's CPU time); quad-sphere cage of " +
+                           std::to_string(cage.faceCount()) +
+                           " faces. Two renders are the floor (2.0).\n\n| resolution | render ms | step ms | ratio | "
+                           "quartiles | median's 95 % | CPU ratio |\n|---|---|---|---|---|---|---|\n";
+    char line[320];
     for (int resolution : o.resolutions) {
         const auto t = timeCage(programs, cage, referenceRenderer, resolution, o.repeats);
-        const double ratio = t.stepMs / t.renderMs;
-        std::printf("%10d %12.2f %12.2f %8.2f %14.2f %10.2f\n", resolution, t.renderMs, t.stepMs, ratio,
-                    t.accumulateMs, t.updateMs);
-        std::snprintf(line, sizeof line, "| %d² | %.2f | %.2f | %.2f |\n", resolution, t.renderMs, t.stepMs, ratio);
+        std::printf("%10d %10.2f %10.2f %6.2f %5.2f-%5.2f %5.2f-%5.2f %10.2f %5.2f-%5.2f %10.2f %9.2f\n", resolution,
+                    t.renderMs, t.stepMs, t.ratio.median, t.ratio.q1, t.ratio.q3, t.ratio.low, t.ratio.high,
+                    t.cpuRatio.median, t.cpuRatio.q1, t.cpuRatio.q3, t.accumulateMs, t.updateMs);
+        std::snprintf(line, sizeof line, "| %d² | %.2f | %.2f | %.2f | %.2f-%.2f | %.2f-%.2f | %.2f (%.2f-%.2f) |\n",
+                      resolution, t.renderMs, t.stepMs, t.ratio.median, t.ratio.q1, t.ratio.q3, t.ratio.low,
+                      t.ratio.high, t.cpuRatio.median, t.cpuRatio.q1, t.cpuRatio.q3);
         markdown += line;
-        rows.push_back({"resolution", std::to_string(cage.faceCount()), std::to_string(3 * cage.vertexCount()),
-                        std::to_string(resolution), std::to_string(t.renderMs), std::to_string(t.stepMs),
-                        std::to_string(ratio)});
-        std::printf("step_cost_ratio_%d=%.2f\n", resolution, ratio);
+        addRow("resolution", cage, resolution, t);
+        std::printf("step_cost_ratio_%d=%.2f\nstep_cost_ratio_quartiles_%d=%.2f-%.2f\nstep_cost_cpu_ratio_%d=%.2f\n",
+                    resolution, t.ratio.median, resolution, t.ratio.q1, t.ratio.q3, resolution, t.cpuRatio.median);
     }
 
     // What the GL is asked per step: calls, not time, so the figures hold on any device.
@@ -211,20 +236,20 @@ int runStepCost(const StepCostOptions& o) {
         markdown += "\n";
     }
 
-    std::printf("\nscaling at 256^2: step time against parameter count\n");
-    std::printf("%10s %12s %12s %12s %8s\n", "faces", "parameters", "render ms", "step ms", "ratio");
+    // Fewer rounds: the larger cages' renders take longer, and only the trend matters here.
+    const int scalingRounds = std::max(5, o.repeats / 4);
+    std::printf("\nscaling at 256^2: step time against parameter count (%d rounds)\n", scalingRounds);
+    std::printf("%10s %12s %12s %12s %8s %11s\n", "faces", "parameters", "render ms", "step ms", "ratio", "quartiles");
     markdown += "\nScaling at 256²:\n\n| faces | parameters | render ms | step ms | ratio |\n|---|---|---|---|---|\n";
     for (int n : o.scaling ? std::vector<int>{4, 8, 16, 32} : std::vector<int>{}) {
         const auto sphere = mesh::makeQuadSphere(n);
-        const auto t = timeCage(programs, sphere, referenceRenderer, 256, o.repeats);
-        std::printf("%10d %12d %12.2f %12.2f %8.2f\n", sphere.faceCount(), 3 * sphere.vertexCount(), t.renderMs,
-                    t.stepMs, t.stepMs / t.renderMs);
+        const auto t = timeCage(programs, sphere, referenceRenderer, 256, scalingRounds);
+        std::printf("%10d %12d %12.2f %12.2f %8.2f %5.2f-%5.2f\n", sphere.faceCount(), 3 * sphere.vertexCount(),
+                    t.renderMs, t.stepMs, t.ratio.median, t.ratio.q1, t.ratio.q3);
         std::snprintf(line, sizeof line, "| %d | %d | %.2f | %.2f | %.2f |\n", sphere.faceCount(),
-                      3 * sphere.vertexCount(), t.renderMs, t.stepMs, t.stepMs / t.renderMs);
+                      3 * sphere.vertexCount(), t.renderMs, t.stepMs, t.ratio.median);
         markdown += line;
-        rows.push_back({"scaling", std::to_string(sphere.faceCount()), std::to_string(3 * sphere.vertexCount()),
-                        "256", std::to_string(t.renderMs), std::to_string(t.stepMs),
-                        std::to_string(t.stepMs / t.renderMs)});
+        addRow("scaling", sphere, 256, t);
     }
     if (!o.out.empty()) {
         std::filesystem::create_directories(o.out);

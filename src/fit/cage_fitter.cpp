@@ -57,8 +57,9 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
       pointsMinus_(stencils_.makePointBuffer()),
       smoothScratch_(vertices_.gradient.bytes()),
       loss_(sizeof(float) * kLossSlots),
-      plus_(settings.resolution, settings.resolution),
-      minus_(settings.resolution, settings.resolution) {}
+      // Only a texel group's turn reads the renders' (u, v).
+      plus_(settings.resolution, settings.resolution, settings.mapEffects.any()),
+      minus_(settings.resolution, settings.resolution, settings.mapEffects.any()) {}
 
 std::vector<optim::ParameterGroup*> CageFitter::groups() {
     std::vector<optim::ParameterGroup*> out{&vertices_};

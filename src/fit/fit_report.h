@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include <glm/vec4.hpp>
 #include <nlohmann/json.hpp>
 
 #include "context/gl_context.h"
@@ -20,13 +21,23 @@ struct ViewSetScore {
     double loss = 0.0, psnr = 0.0;
 };
 
+// The held-out views as a report shows them: besides the mean loss and its PSNR, each view's
+// PSNR (one bad view can decide the mean, and this says which), their mean SSIM, and view 0 as
+// drawn (before.png, after.png, the comparison image).
+struct HoldoutScore : ViewSetScore {
+    std::vector<double> psnrViews;
+    double ssim = 0.0;
+    std::vector<glm::vec4> firstView;
+};
+
 struct FitReport {
     FitOptions options;          // as run: settings and paths
     int steps = 0;               // steps taken in all, those before a resume included
     int resumedFromStep = 0;     // 0 when not resumed
     double seconds = 0.0;        // the whole run: scene, fit, scoring
     double fitSeconds = 0.0;     // the steps alone
-    ViewSetScore trainBefore, trainAfter, holdoutBefore, holdoutAfter;
+    ViewSetScore trainBefore, trainAfter;
+    HoldoutScore holdoutBefore, holdoutAfter;
     int holdoutSamplesPerPixel = 1;  // the held-out targets' supersampling, squared
     bool finite = true;          // every parameter of every group
     maps::MapEffects effects;

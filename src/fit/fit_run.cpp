@@ -37,12 +37,6 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-std::vector<glm::vec4> renderHoldout(CageFitter& fitter, const FitScene& scene) {
-    return scene.holdout.render(0, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
-        fitter.render(camera, canvas);
-    });
-}
-
 // Every parameter of every group, maps included.
 bool allFinite(CageFitter& fitter) {
     for (auto* group : fitter.groups())
@@ -85,9 +79,9 @@ FitRun::FitRun(const ResolvedFitOptions& options, gl::ProgramCache& programs, Fi
 }
 
 void FitRun::scoreStart() {
-    beforeImage_ = renderHoldout(*fitter_, scene_);
     trainBefore_ = score(*fitter_, scene_.training);
-    holdoutBefore_ = score(*fitter_, scene_.holdout);
+    holdoutBefore_ = scoreHoldout(*fitter_, scene_.holdout);
+    scoredTheta_ = readTheta(*fitter_);
 }
 
 void FitRun::startFrom(const surface::SurfaceMaps& maps) {
@@ -106,6 +100,7 @@ bool FitRun::resume(const std::filesystem::path& checkpoint) {
         throw fileError(checkpoint.string(), e.what());
     }
     resumedFromStep_ = saved->steps;
+    scoredTheta_.clear();  // what the caller sets after a resume (carried textures) was not drawn
     schedule_ = saved->schedule;
     widenedStep_ = saved->widenedStep;
     if (options_.schedule == Schedule::Plateau) applyStep();
@@ -125,6 +120,7 @@ void FitRun::advance(bool measureLoss) {
     const auto views = viewsForStep(options_, step());
     for (int sample = 0; sample < options_.samplesPerStep; ++sample) fitter_->accumulate(scene_.training, views, measureLoss);
     fitter_->update();
+    atBest_ = false;
     fitSeconds_ += secondsSince(began);
 }
 
@@ -242,13 +238,13 @@ int FitRun::probationSteps() const {
 void FitRun::restoreBest() {
     const auto groups = fitter_->groups();
     for (size_t k = 0; k < groups.size() && k < schedule_.bestTheta.size(); ++k) groups[k]->write(schedule_.bestTheta[k]);
+    atBest_ = true;
 }
 
 void FitRun::endStage(bool keepStep) {
     if (options_.schedule != Schedule::Plateau || schedule_.bestTheta.empty()) return;
     // Measured once more: the last steps may have been better than any monitored before.
-    const double last = score(*fitter_, scene_.monitor).loss;
-    if (!(last <= schedule_.bestLoss)) restoreBest();
+    if (!atBest_ && !(score(*fitter_, scene_.monitor).loss <= schedule_.bestLoss)) restoreBest();
     bestStep_ = schedule_.bestStep;
     // The cage keeps its step as halvings carried; the stage's own schedule (the maps') starts at
     // the full step with every halving still to come.
@@ -272,9 +268,11 @@ FitReport FitRun::writeResults(const std::filesystem::path& out, const context::
     r.fitSeconds = fitSeconds_;
     r.trainBefore = trainBefore_;
     r.holdoutBefore = holdoutBefore_;
-    const auto afterImage = renderHoldout(*fitter_, scene_);
-    r.trainAfter = score(*fitter_, scene_.training);
-    r.holdoutAfter = score(*fitter_, scene_.holdout);
+    // A fit that ended where it started (a start it could not improve) is drawn as it was: its
+    // scores are the start's, without rendering every view again.
+    const bool atStart = !scoredTheta_.empty() && readTheta(*fitter_) == scoredTheta_;
+    r.trainAfter = atStart ? trainBefore_ : score(*fitter_, scene_.training);
+    r.holdoutAfter = atStart ? holdoutBefore_ : scoreHoldout(*fitter_, scene_.holdout);
     r.holdoutSamplesPerPixel = scene_.holdout.supersampling() * scene_.holdout.supersampling();
     r.finite = allFinite(*fitter_);
     r.effects = fitter_->maps() ? fitter_->maps()->effects() : maps::MapEffects{};
@@ -303,8 +301,8 @@ FitReport FitRun::writeResults(const std::filesystem::path& out, const context::
                                                 std::uint32_t(scene_.reference.faceCount()));
     for (const auto& [file, bytes] : exports.items()) r.exports[file] = bytes.get<std::uintmax_t>();
     const int res = options_.resolution;
-    io::writeImage(out / "before.png", beforeImage_, res, res);
-    io::writeImage(out / "after.png", afterImage, res, res);
+    io::writeImage(out / "before.png", holdoutBefore_.firstView, res, res);
+    io::writeImage(out / "after.png", r.holdoutAfter.firstView, res, res);
     io::writeImage(out / "target.png", scene_.holdout.readColor(0), res, res);
     r.seconds = secondsSince(started_);
     return r;
@@ -324,6 +322,7 @@ void FitRun::setTessLevel(int level) {
     }
     fitter_ = std::move(rebuilt);
     options_ = options;
+    scoredTheta_.clear();  // drawn at another level
     if (options_.schedule == Schedule::Plateau && schedule_.stageStart >= 0) applyStep();
 }
 

@@ -121,14 +121,16 @@ private:
     int widenedStep_ = -1;  // when run() widened its last stage; < 0: not (yet)
     bool mapsGiven_ = false;  // startFrom set the maps (a bake): their stage starts near its optimum
     void restoreBest();  // θ of every group back to the best monitored state
+    bool atBest_ = false;  // restored to the best state, and no step since
     int probationSteps() const;  // of the stage under way
     StopReason stopReason_ = StopReason::Reached;
     int monitorEvery_;
     std::chrono::steady_clock::time_point started_;
     double fitSeconds_ = 0.0;
     void scoreStart();
-    ViewSetScore trainBefore_, holdoutBefore_;
-    std::vector<glm::vec4> beforeImage_;  // held-out view 0 before fitting
+    ViewSetScore trainBefore_;
+    HoldoutScore holdoutBefore_;
+    std::vector<std::vector<float>> scoredTheta_;  // the θ those scores are of (empty: not to be reused)
 };
 
 }  // namespace subdfit::fit

@@ -141,4 +141,29 @@ ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets) {
     return {loss, psnrFromLoss(loss)};
 }
 
+HoldoutScore scoreHoldout(const scene::TargetSet& holdout, const scene::TargetSet::Draw& draw) {
+    HoldoutScore score;
+    double similarity = 0.0;
+    for (int i = 0; i < holdout.size(); ++i) {
+        auto pixels = holdout.render(i, draw);
+        const auto target = holdout.readColor(i);
+        const double viewLoss = meanPixelLoss(pixels, target);
+        score.loss += viewLoss;
+        score.psnrViews.push_back(psnrFromLoss(viewLoss));
+        similarity += structuralSimilarity(pixels, target, holdout.resolution(), holdout.resolution());
+        if (i == 0) score.firstView = std::move(pixels);
+    }
+    const int views = std::max(1, holdout.size());
+    score.loss /= views;
+    score.psnr = psnrFromLoss(score.loss);
+    score.ssim = similarity / views;
+    return score;
+}
+
+HoldoutScore scoreHoldout(CageFitter& fitter, const scene::TargetSet& holdout) {
+    return scoreHoldout(holdout, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
+        fitter.render(camera, canvas);
+    });
+}
+
 }  // namespace subdfit::fit

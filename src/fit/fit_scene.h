@@ -63,4 +63,9 @@ maps::MapEffects mapEffectsOf(const FitOptions& options, render::ShadingModel sh
 // Mean loss and PSNR of the fitter's current scene over every view of `targets`.
 ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets);
 
+// The held-out score of whatever `draw` draws over every view of `holdout`, drawn as its targets
+// were (supersampled when they are).
+HoldoutScore scoreHoldout(const scene::TargetSet& holdout, const scene::TargetSet::Draw& draw);
+HoldoutScore scoreHoldout(CageFitter& fitter, const scene::TargetSet& holdout);
+
 }  // namespace subdfit::fit

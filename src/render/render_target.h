@@ -12,7 +12,9 @@ namespace subdfit::render {
 
 class RenderTarget {
 public:
-    RenderTarget(int width, int height);
+    // Without `patchUv`, for passes whose readers never need (u, v) (a fit without maps): that
+    // attachment is not made, cleared or written.
+    RenderTarget(int width, int height, bool patchUv = true);
 
     void bindAndClear() const;  // binds the FBO, sets the viewport, clears to background
     int width() const { return width_; }
@@ -20,7 +22,7 @@ public:
 
     const gl::Texture& color() const { return color_; }
     const gl::Texture& faceId() const { return faceId_; }
-    const gl::Texture& patchUv() const { return patchUv_; }
+    const gl::Texture& patchUv() const;
 
     std::vector<glm::vec4> readColor() const;
     std::vector<int> readFaceId() const;

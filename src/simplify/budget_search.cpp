@@ -7,13 +7,16 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <memory>
 #include <optional>
 #include <tuple>
 
 #include "export/subd_format.h"
+#include "fit/image_metrics.h"
 #include "simplify/bake/atlas_bake.h"
 #include "simplify/bake/bake.h"
+#include "simplify/cage/cage_ladder.h"
 #include "simplify/cage/initial_cage.h"
 #include "util/error.h"
 #include "util/interrupt.h"
@@ -107,6 +110,12 @@ constexpr double kPredictedOver = 1.25;
 // within this fraction are scored again on the training views too, and the choice among them is
 // made on that score.
 constexpr double kNearTie = 0.2;
+// The training views are drawn in blocks of this many, and the settling ends once the choice is
+// clear: the leader's loss below every other candidate's, view for view, by this many standard
+// errors, and by kLossTolerance more for a candidate of fewer bytes (which preferred() would
+// otherwise take).
+constexpr int kSettleBlock = 4;
+constexpr double kClearlyAhead = 3.0;
 
 // A candidate within the budget, the cage it was built on and its asset as shipped.
 struct Fitting {
@@ -114,6 +123,7 @@ struct Fitting {
     std::shared_ptr<const mesh::PolygonMesh> cageWorld;
     std::shared_ptr<const std::vector<unsigned char>> encoded;
     size_t tried;  // its place in Findings::tried
+    std::vector<double> trainingLoss;  // on the training views drawn so far, in settling order
 };
 
 double monitored(const BudgetCandidate& c) { return c.monitorLoss; }
@@ -145,25 +155,83 @@ const Fitting* preferred(const std::vector<Fitting>& fitting, Keep keep, Loss lo
     return best;
 }
 
+// The training views in settling order: a stride through them, so that each block looks from
+// all around rather than from one band of the orbit.
+std::vector<int> settlingOrder(int views) {
+    std::vector<int> order;
+    int stride = std::max(1, int(std::lround(0.618 * views)));
+    while (std::gcd(stride, views) != 1) ++stride;
+    for (int k = 0; k < views; ++k) order.push_back(int((std::int64_t(k) * stride) % views));
+    return order;
+}
+
+// The loss over the monitor views and the first `views` training views drawn.
+double settledLossOf(const Fitting& f, int monitorViews, size_t views) {
+    double sum = f.candidate.monitorLoss * monitorViews;
+    for (size_t v = 0; v < views; ++v) sum += f.trainingLoss[v];
+    return sum / double(monitorViews + int(views));
+}
+
+// Whether the lowest of `near` on the first `views` training views leads each other clearly
+// (kClearlyAhead standard errors of their view-for-view differences, beyond kLossTolerance for
+// one of fewer bytes): then more views would not change what preferred() chooses.
+bool clearlyAhead(const std::vector<Fitting*>& near, int monitorViews, size_t views) {
+    if (views < 2 * size_t(kSettleBlock)) return false;
+    const Fitting* leader = *std::min_element(near.begin(), near.end(), [&](const Fitting* a, const Fitting* b) {
+        return settledLossOf(*a, monitorViews, views) < settledLossOf(*b, monitorViews, views);
+    });
+    const double tolerance = kLossTolerance * settledLossOf(*leader, monitorViews, views);
+    return std::all_of(near.begin(), near.end(), [&](const Fitting* f) {
+        if (f == leader) return true;
+        const double margin = f->candidate.bytes < leader->candidate.bytes ? tolerance : 0.0;
+        double sum = 0.0, squares = 0.0;
+        for (size_t v = 0; v < views; ++v) {
+            const double d = f->trainingLoss[v] - leader->trainingLoss[v];
+            sum += d;
+            squares += d * d;
+        }
+        const double n = double(views), mean = sum / n;
+        const double standardError = std::sqrt(std::max(0.0, squares / n - mean * mean) / (n - 1.0));
+        return mean - kClearlyAhead * standardError > margin;
+    });
+}
+
 // preferred() among those `keep` accepts within kNearTie of the lowest monitor loss, on their
-// loss over the monitor and training views (scored here where not yet). A lone leader has no tie
-// to settle: it is chosen as it is.
+// loss over the monitor and training views. The training views are drawn a block at a time, each
+// near candidate on the same views, until one clearly leads or all are drawn. A lone leader has
+// no tie to settle: it is chosen as it is.
 template <class Keep>
 const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, std::vector<Fitting>& fitting, Keep keep) {
     const Fitting* lowest = lowestOf(fitting, keep, monitored);
     if (!lowest) return nullptr;
     const double within = (1.0 + kNearTie) * lowest->candidate.monitorLoss;
-    const auto near = std::count_if(fitting.begin(), fitting.end(), [&](const Fitting& f) {
-        return keep(f.candidate) && f.candidate.monitorLoss <= within;
-    });
-    if (near == 1) return lowest;
-    for (Fitting& f : fitting) {
-        if (!keep(f.candidate) || f.candidate.monitorLoss > within || f.candidate.settledLoss > 0.0) continue;
-        throwIfStopRequested();
-        const auto shipped = exporter::decodeSubd(*f.encoded, "budget candidate");
-        f.candidate.settledLoss = lossOn(*drawnAsFitted(programs, scene, shipped), {&scene.monitor, &scene.training});
+    std::vector<Fitting*> near;
+    for (Fitting& f : fitting)
+        if (keep(f.candidate) && f.candidate.monitorLoss <= within) near.push_back(&f);
+    if (near.size() == 1) return lowest;
+    const std::vector<int> order = settlingOrder(scene.training.size());
+    std::map<const Fitting*, std::unique_ptr<fit::CageFitter>> drawn;
+    size_t views = 0;
+    while (views < order.size() && !clearlyAhead(near, scene.monitor.size(), views)) {
+        views = std::min(order.size(), views + size_t(kSettleBlock));
+        for (Fitting* f : near)
+            for (size_t v = f->trainingLoss.size(); v < views; ++v) {
+                throwIfStopRequested();
+                auto& fitter = drawn[f];
+                if (!fitter) fitter = drawnAsFitted(programs, scene, exporter::decodeSubd(*f->encoded, "budget candidate"));
+                const int view = order[v];
+                f->trainingLoss.push_back(fit::meanPixelLoss(
+                    scene.training.render(view, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
+                        fitter->render(camera, canvas);
+                    }),
+                    scene.training.readColor(view)));
+            }
     }
-    return preferred(fitting, [&](const BudgetCandidate& c) { return keep(c) && c.settledLoss > 0.0; }, settled);
+    for (Fitting* f : near) {
+        f->candidate.settledLoss = settledLossOf(*f, scene.monitor.size(), views);
+        f->candidate.settledViews = int(views);
+    }
+    return preferred(fitting, [&](const BudgetCandidate& c) { return keep(c) && c.monitorLoss <= within; }, settled);
 }
 
 // What the search works on, the same for its whole run.
@@ -171,7 +239,7 @@ struct SearchInputs {
     gl::ProgramCache& programs;
     const fit::FitScene& scene;
     const mesh::PolygonMesh& referenceWorld;  // what cages are decimated from
-    const CageSource& cages;                  // ... prepared once
+    CageLadder& cages;                        // ... built ahead of the search, on a thread of their own
     const BudgetSearch& search;
     const std::function<void(const std::string&)>& say;
 };
@@ -210,14 +278,28 @@ struct Appearance {
 
 bool fits(const BudgetSearch& search, const BudgetCandidate& c) { return c.bytes <= search.budget; }
 
-// A cage of (about) `faces` triangles, or none when too few faces survive decimation.
+// `cage` as tried (none stays none).
+std::optional<TriedCage> asTried(const SearchInputs& in, std::optional<mesh::PolygonMesh> cage) {
+    if (!cage) return std::nullopt;
+    auto world = std::make_shared<const mesh::PolygonMesh>(std::move(*cage));
+    mesh::PolygonMesh normalized = *world;
+    normalized.positions = in.scene.frame.toNormalized(world->positions);
+    return TriedCage{std::move(world), std::move(normalized)};
+}
+
+// The ladder's k-th cage, or none when too few faces survive decimation.
+std::optional<TriedCage> ladderCage(const SearchInputs& in, size_t k) {
+    throwIfStopRequested();
+    return asTried(in, in.cages.take(k));
+}
+
+// A cage of (about) `faces` triangles off the ladder, or none when too few faces survive decimation.
 std::optional<TriedCage> cageOf(const SearchInputs& in, int faces) {
     throwIfStopRequested();
     try {
-        auto world = std::make_shared<const mesh::PolygonMesh>(in.cages.cage({.faces = faces}));
-        mesh::PolygonMesh normalized = *world;
-        normalized.positions = in.scene.frame.toNormalized(world->positions);
-        return TriedCage{std::move(world), std::move(normalized)};
+        return asTried(in, in.cages.source().cage({.faces = faces}));
+    } catch (const Interrupted&) {
+        throw;
     } catch (const Error&) {
         return std::nullopt;
     }
@@ -438,9 +520,11 @@ BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
     for (const Fitting& f : found.fitting) {
         if (f.candidate.settledLoss <= 0.0) continue;
         found.tried[f.tried].settledLoss = f.candidate.settledLoss;
+        found.tried[f.tried].settledViews = f.candidate.settledViews;
         if (in.say) {
             char line[80];
-            std::snprintf(line, sizeof line, ": loss %.4g on the monitor and training views", f.candidate.settledLoss);
+            std::snprintf(line, sizeof line, ": loss %.4g on the monitor and %d training views", f.candidate.settledLoss,
+                          f.candidate.settledViews);
             in.say(describe(f.candidate) + line);
         }
     }
@@ -466,21 +550,17 @@ std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, in
 }
 
 BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene,
-                          const mesh::PolygonMesh& referenceWorld, const BudgetSearch& search,
+                          const mesh::PolygonMesh& referenceWorld, const BudgetSearch& search, CageLadder& cages,
                           const std::function<void(const std::string&)>& say) {
+    SUBDFIT_CHECK(cages.size() == search.faceCounts.size());
     Findings found;
-    std::optional<CageSource> cages;
-    {
-        TimedStage timed(found.phases, "cages");
-        cages.emplace(referenceWorld);
-    }
-    const SearchInputs in{programs, scene, referenceWorld, *cages, search, say};
+    const SearchInputs in{programs, scene, referenceWorld, cages, search, say};
     const std::vector<AppearanceBakeOptions> appearances = appearancesOf(search);
     const std::vector<maps::MapEffects> mapChoices = mapChoicesOf(search);
-    for (int faces : search.faceCounts) {
+    for (size_t k = 0; k < cages.size(); ++k) {
         const std::optional<TriedCage> cage = [&] {
-            TimedStage timed(found.phases, "cages");
-            return cageOf(in, faces);
+            TimedStage timed(found.phases, "cages");  // the wait for the builder
+            return ladderCage(in, k);
         }();
         if (!cage) continue;  // smaller counts will not do better
         const std::vector<Bare> bare = judgeBare(in, found, *cage, appearances);
@@ -539,7 +619,10 @@ nlohmann::json toJson(const BudgetReport& report) {
         if (c.appearanceAtlas > 0) j["appearance_atlas"] = c.appearanceAtlas;
         if (c.appearanceQuality > 0) j["appearance_quality"] = c.appearanceQuality;
         if (c.monitorLoss > 0.0) j["monitor_loss"] = c.monitorLoss;
-        if (c.settledLoss > 0.0) j["settled_loss"] = c.settledLoss;
+        if (c.settledLoss > 0.0) {
+            j["settled_loss"] = c.settledLoss;
+            j["settled_views"] = c.settledViews;
+        }
         return j;
     };
     nlohmann::json tried = nlohmann::json::array();

@@ -19,6 +19,7 @@
 #include "fit/fit_scene.h"
 #include "gl/program_cache.h"
 #include "maps/map_effects.h"
+#include "simplify/cage/cage_ladder.h"
 #include "simplify/stage_seconds.h"
 
 namespace subdfit::simplify {
@@ -36,8 +37,10 @@ struct BudgetCandidate {
     int appearanceAtlas = 0;       // texels per side of the appearance in the reference's atlas; 0: tiles
     std::uintmax_t bytes = 0;   // of its asset.subd
     double monitorLoss = 0.0;   // of the decoded asset; 0 when over budget (not rendered)
-    // Over the monitor and training views, for those near the lowest monitor loss; 0 otherwise.
+    // Over the monitor views and `settledViews` training views, for those near the lowest monitor
+    // loss; 0 otherwise.
     double settledLoss = 0.0;
+    int settledViews = 0;
 };
 
 struct BudgetSearch {
@@ -79,11 +82,12 @@ struct BudgetChoice {
 // the reference's own triangle count.
 std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, int mostFaces);
 
-// Runs the search on `scene` (its targets and frame; its cage is not used). `referenceWorld`
-// is what cages are decimated from. `say` reports each candidate. Throws subdfit::Error naming
-// the reference when no candidate fits the budget.
+// Runs the search on `scene` (its targets and frame; its cage is not used). `cages` are
+// search.faceCounts' cages of `referenceWorld`, started by the caller (as early as it can).
+// `say` reports each candidate. Throws subdfit::Error naming the reference when no candidate
+// fits the budget.
 BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene,
-                          const mesh::PolygonMesh& referenceWorld, const BudgetSearch& search,
+                          const mesh::PolygonMesh& referenceWorld, const BudgetSearch& search, CageLadder& cages,
                           const std::function<void(const std::string&)>& say = {});
 
 // The atlas sizes worth trying on `reference`: its texture at 1/32, 1/16 and 1/8 of its size (the

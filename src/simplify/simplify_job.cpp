@@ -53,9 +53,7 @@ Quality scoreCage(fit::FitRun& run, const fit::FitReport& fitted, const std::fil
     ours.files = shippedFiles(fitted.exports);
     ours.bytes = totalBytes(ours.files);
     ours.shipped = "asset.subd";
-    scoreHoldout(run.scene().holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
-        run.fitter().render(camera, target);
-    }, ours);
+    setHoldout(fitted.holdoutAfter, ours);  // the fitted state, as asset.subd holds it
     if (o.compare == CompareLevel::Full)
         ours.distance = shippedDistance(out / "asset.subd", run.fitter().renderer().tessLevel(), run.scene().frame,
                                         run.scene().reference, o.surfaceSamples);
@@ -221,6 +219,9 @@ PreFit decideBeforeFit(const SimplifyOptions& options, fit::FitOptions fitOption
                        const BaselineSettings& baselines, const fit::FitHooks& hooks, StageSeconds& stages) {
     PreFit decided;
     const std::optional<std::uintmax_t>& budget = target.bytes;
+    // The search's cages are CPU work: built from now on, beside the triangle route's.
+    std::optional<CageLadder> cages;
+    if (budget) cages.emplace(reference, budgetFaceCounts(options, *budget, scene));
     if (budget) {
         decided.triangles = triangleBaselines(programs, scene, *budget, baselines, options.compare);
         stages.lap("triangle_route");
@@ -228,7 +229,8 @@ PreFit decideBeforeFit(const SimplifyOptions& options, fit::FitOptions fitOption
             decided.route = routeBeforeFit(decided.triangles.best(), decided.triangles.holds, std::nullopt);
         if (decided.route) return decided;
     }
-    decided.plan = budget ? planWithinBudget(options, *budget, std::move(fitOptions), programs, scene, reference, hooks.note)
+    decided.plan = budget ? planWithinBudget(options, *budget, std::move(fitOptions), programs, scene, reference, *cages,
+                                             hooks.note)
                           : planByFaces(options, std::move(fitOptions), scene, reference);
     stages.lap(budget ? "search" : "initial_cage");
     if (auto& planned = decided.plan->budget) {

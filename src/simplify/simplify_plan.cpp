@@ -41,8 +41,7 @@ namespace {
 // What the budget search tries for `o` on `scene`.
 BudgetSearch budgetSearchFor(const SimplifyOptions& o, std::uintmax_t budget, const fit::FitScene& scene) {
     return {.budget = budget,
-            .faceCounts = o.faces ? std::vector<int>{*o.faces}
-                                      : faceCountsFor(budget, scene.reference.faceCount(), kMostBudgetFaces),
+            .faceCounts = budgetFaceCounts(o, budget, scene),
             .allowedMaps = o.fit.maps,
             .appearance = {.baseColor = scene.shading != render::ShadingModel::Geometry,
                            .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness},
@@ -96,13 +95,17 @@ BakeRoute budgetBakeRoute(const BudgetChoice& choice, const BudgetSearch& search
 
 }  // namespace
 
+std::vector<int> budgetFaceCounts(const SimplifyOptions& o, std::uintmax_t budget, const fit::FitScene& scene) {
+    return o.faces ? std::vector<int>{*o.faces} : faceCountsFor(budget, scene.reference.faceCount(), kMostBudgetFaces);
+}
+
 SimplifyPlan planWithinBudget(const SimplifyOptions& o, std::uintmax_t budget, fit::FitOptions fitOptions,
                               gl::ProgramCache& programs, fit::FitScene& scene, const mesh::PolygonMesh& reference,
-                              const std::function<void(const std::string&)>& say) {
+                              CageLadder& cages, const std::function<void(const std::string&)>& say) {
     const BudgetSearch search = budgetSearchFor(o, budget, scene);
     if (say) say("budget " + std::to_string(budget) + " bytes: trying candidates");
     const auto searchStarted = std::chrono::steady_clock::now();
-    BudgetChoice choice = searchBudget(programs, scene, reference, search, say);
+    BudgetChoice choice = searchBudget(programs, scene, reference, search, cages, say);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - searchStarted).count();
     applyChoice(choice.chosen, choice.cageWorld.faceCount(), o.fit.steps == fit::kByDevice, fitOptions);
     scene.setCage(choice.cageWorld);

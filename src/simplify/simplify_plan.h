@@ -25,10 +25,14 @@ struct SimplifyPlan {
 SimplifyPlan planByFaces(const SimplifyOptions& options, fit::FitOptions fitOptions, fit::FitScene& scene,
                          const mesh::PolygonMesh& reference);
 
-// With a budget the fit starts from the search's choice (simplify/budget_search.h); `say` reports
-// its candidates.
+// The face counts of the cages the budget search tries at `budget`: a CageLadder of them can be
+// started before the search (it builds them on a thread of its own).
+std::vector<int> budgetFaceCounts(const SimplifyOptions& options, std::uintmax_t budget, const fit::FitScene& scene);
+
+// With a budget the fit starts from the search's choice (simplify/budget_search.h), among the
+// cages of `cages` (a ladder of budgetFaceCounts()); `say` reports its candidates.
 SimplifyPlan planWithinBudget(const SimplifyOptions& options, std::uintmax_t budget, fit::FitOptions fitOptions,
                               gl::ProgramCache& programs, fit::FitScene& scene, const mesh::PolygonMesh& reference,
-                              const std::function<void(const std::string&)>& say);
+                              CageLadder& cages, const std::function<void(const std::string&)>& say);
 
 }  // namespace subdfit::simplify

@@ -1,6 +1,7 @@
 #include "simplify/compare/quality.h"
 
 #include "export/subd_format.h"
+#include "fit/fit_scene.h"
 #include "fit/image_metrics.h"
 #include "surface/tessellation.h"
 
@@ -26,20 +27,15 @@ std::uintmax_t totalBytes(const nlohmann::json& files) {
     return total;
 }
 
+void setHoldout(const fit::HoldoutScore& score, Quality& quality) {
+    quality.psnrHoldout = score.psnr;
+    quality.ssimHoldout = score.ssim;
+    quality.psnrViews = score.psnrViews;
+    quality.view = score.firstView;
+}
+
 void scoreHoldout(const scene::TargetSet& holdout, const DrawFunction& draw, Quality& quality) {
-    double loss = 0.0, similarity = 0.0;
-    quality.psnrViews.clear();
-    for (int i = 0; i < holdout.size(); ++i) {
-        auto pixels = holdout.render(i, draw);  // as the targets were made (anti-aliased)
-        const auto target = holdout.readColor(i);
-        const double viewLoss = fit::meanPixelLoss(pixels, target);
-        loss += viewLoss;
-        quality.psnrViews.push_back(fit::psnrFromLoss(viewLoss));
-        similarity += fit::structuralSimilarity(pixels, target, holdout.resolution(), holdout.resolution());
-        if (i == 0) quality.view = std::move(pixels);
-    }
-    quality.psnrHoldout = fit::psnrFromLoss(loss / std::max(1, holdout.size()));
-    quality.ssimHoldout = holdout.size() > 0 ? similarity / holdout.size() : 0.0;
+    setHoldout(fit::scoreHoldout(holdout, draw), quality);
 }
 
 geometry::SurfaceDistance worldDistance(const mesh::PolygonMesh& candidate, const mesh::PolygonMesh& reference,

@@ -10,6 +10,7 @@
 #include <glm/vec4.hpp>
 #include <nlohmann/json.hpp>
 
+#include "fit/fit_report.h"
 #include "geometry/surface_distance.h"
 #include "render/camera.h"
 #include "render/render_target.h"
@@ -46,6 +47,8 @@ using DrawFunction = std::function<void(const render::Camera&, const render::Ren
 // Mean-loss PSNR and mean SSIM of `draw` over every held-out view, drawn as the targets were
 // (supersampled when they are); view 0's image goes to `quality.view`.
 void scoreHoldout(const scene::TargetSet& holdout, const DrawFunction& draw, Quality& quality);
+// The same from a score already taken (a fit's own).
+void setHoldout(const fit::HoldoutScore& score, Quality& quality);
 
 // Surface distance of `candidate` (triangles, normalised frame) to `reference` (same), reported
 // in world units.

@@ -1,0 +1,41 @@
+#pragma once
+// Cages of several face counts (the budget search's ladder), built in order on a thread of their
+// own while the caller judges the ones already built: building a cage is CPU work, judging one
+// is GL work, and each leaves the other core idle.
+#include <atomic>
+#include <future>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "mesh/polygon_mesh.h"
+#include "simplify/cage/initial_cage.h"
+
+namespace subdfit::simplify {
+
+class CageLadder {
+public:
+    // Starts building at once; `reference` must outlive the ladder.
+    CageLadder(const mesh::PolygonMesh& reference, std::vector<int> faceCounts);
+    ~CageLadder();  // stops the builder after the cage it is on, and waits for it
+    CageLadder(const CageLadder&) = delete;
+    CageLadder& operator=(const CageLadder&) = delete;
+
+    size_t size() const { return cages_.size(); }
+    // The cage of faceCounts[k] (none where too few faces survive decimation), waiting for it;
+    // rethrows what building it threw. Each k is taken once.
+    std::optional<mesh::PolygonMesh> take(size_t k);
+    // Where the ladder's cages came from, for cages of other counts once the ladder is built.
+    const CageSource& source();
+
+private:
+    void build(const mesh::PolygonMesh& reference, const std::vector<int>& faceCounts);
+
+    std::vector<std::promise<std::optional<mesh::PolygonMesh>>> promises_;
+    std::vector<std::future<std::optional<mesh::PolygonMesh>>> cages_;
+    std::optional<CageSource> source_;
+    std::atomic<bool> stop_{false};
+    std::thread builder_;
+};
+
+}  // namespace subdfit::simplify

@@ -1,0 +1,37 @@
+// The budget search's cages, built on a thread of their own, are the cages built in turn.
+#include <gtest/gtest.h>
+
+#include "mesh/procedural.h"
+#include "simplify/cage/cage_ladder.h"
+#include "simplify/cage/initial_cage.h"
+#include "util/interrupt.h"
+
+namespace subdfit::simplify {
+namespace {
+
+TEST(CageLadder, GivesTheCagesASourceBuildsInTurn) {
+    const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 5);
+    const std::vector<int> counts{400, 160, 2};  // the last: too few faces survive decimation
+    CageLadder ladder(reference, counts);
+    const CageSource source(reference);
+    for (size_t k = 0; k + 1 < counts.size(); ++k) {
+        const std::optional<mesh::PolygonMesh> cage = ladder.take(k);
+        ASSERT_TRUE(cage.has_value()) << counts[k];
+        const mesh::PolygonMesh expected = source.cage({.faces = counts[k]});
+        EXPECT_EQ(cage->faceIndices, expected.faceIndices) << counts[k];
+        EXPECT_EQ(cage->positions, expected.positions) << counts[k];
+    }
+    EXPECT_FALSE(ladder.take(counts.size() - 1).has_value());
+    EXPECT_EQ(ladder.source().cage({.faces = 160}).positions, source.cage({.faces = 160}).positions);
+}
+
+TEST(CageLadder, AStopRequestReachesTheCageWaitedFor) {
+    const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 5);
+    stopRequest() = true;
+    CageLadder ladder(reference, {400, 160});
+    EXPECT_THROW(ladder.take(0), Interrupted);
+    stopRequest() = false;
+}
+
+}  // namespace
+}  // namespace subdfit::simplify
