@@ -120,7 +120,6 @@ void FitRun::advance(bool measureLoss) {
     const auto views = viewsForStep(options_, step());
     for (int sample = 0; sample < options_.samplesPerStep; ++sample) fitter_->accumulate(scene_.training, views, measureLoss);
     fitter_->update();
-    atBest_ = false;
     fitSeconds_ += secondsSince(began);
 }
 
@@ -238,13 +237,14 @@ int FitRun::probationSteps() const {
 void FitRun::restoreBest() {
     const auto groups = fitter_->groups();
     for (size_t k = 0; k < groups.size() && k < schedule_.bestTheta.size(); ++k) groups[k]->write(schedule_.bestTheta[k]);
-    atBest_ = true;
 }
 
 void FitRun::endStage(bool keepStep) {
     if (options_.schedule != Schedule::Plateau || schedule_.bestTheta.empty()) return;
-    // Measured once more: the last steps may have been better than any monitored before.
-    if (!atBest_ && !(score(*fitter_, scene_.monitor).loss <= schedule_.bestLoss)) restoreBest();
+    // Measured once more (unless it is the best state itself): the last steps may have been
+    // better than any monitored before.
+    if (readTheta(*fitter_) != schedule_.bestTheta && !(score(*fitter_, scene_.monitor).loss <= schedule_.bestLoss))
+        restoreBest();
     bestStep_ = schedule_.bestStep;
     // The cage keeps its step as halvings carried; the stage's own schedule (the maps') starts at
     // the full step with every halving still to come.

@@ -121,7 +121,6 @@ private:
     int widenedStep_ = -1;  // when run() widened its last stage; < 0: not (yet)
     bool mapsGiven_ = false;  // startFrom set the maps (a bake): their stage starts near its optimum
     void restoreBest();  // θ of every group back to the best monitored state
-    bool atBest_ = false;  // restored to the best state, and no step since
     int probationSteps() const;  // of the stage under way
     StopReason stopReason_ = StopReason::Reached;
     int monitorEvery_;
