@@ -148,7 +148,15 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
         }
         if (!schedule_.probationOver && step() - schedule_.stageStart >= probationSteps()) {
             schedule_.probationOver = true;
-            if (!schedule.paying()) {
+            const StepSchedule::Verdict verdict = schedule.probation();
+            if (verdict == StepSchedule::Verdict::StepTooLarge) {
+                restoreBest();
+                schedule.halve();
+                applyStep();
+                if (hooks.note)
+                    hooks.note("the start gained and then lost it in " + std::to_string(step() - schedule_.stageStart) +
+                               " steps: the step is halved, from the best state");
+            } else if (verdict == StepSchedule::Verdict::NoGain) {
                 // A best found on probation is the noise's pick (the monitor views are few):
                 // the stage ends where it started, never below it on other views.
                 schedule_.bestTheta = schedule_.startTheta;

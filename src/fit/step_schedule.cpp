@@ -62,4 +62,15 @@ bool StepSchedule::paying() const {
     return likelyImproving(lossTrend(state_.stageLosses), kMinImprovement, kProbationConfidence);
 }
 
+StepSchedule::Verdict StepSchedule::probation() const {
+    if (paying()) return Verdict::Paying;
+    const bool fell = !state_.stageLosses.empty() && state_.bestLoss < (1.0 - kMinImprovement) * state_.stageLosses.front();
+    return fell && state_.halvings < kMaxHalvings ? Verdict::StepTooLarge : Verdict::NoGain;
+}
+
+void StepSchedule::halve() {
+    ++state_.halvings;
+    state_.window.clear();
+}
+
 }  // namespace subdfit::fit

@@ -57,6 +57,15 @@ public:
     // improve on is given up early.
     bool paying() const;
 
+    // A probation's verdict (FitRun). A stage whose loss fell by kMinImprovement below its start
+    // and then rose again can be improved; its step is too large for it (a noised cage's first
+    // full steps gain, then the estimator's noise walks it away): halve() and go on from the best.
+    // A stage that never fell that far, with no fall likely, cannot pay.
+    enum class Verdict { Paying, StepTooLarge, NoGain };
+    Verdict probation() const;
+    // The step halved by hand (a probation's StepTooLarge), with a fresh window.
+    void halve();
+
     // A new stage (the maps joining): the full step again, and a best loss of its own.
     void restart() { state_ = ScheduleState{}; }
 

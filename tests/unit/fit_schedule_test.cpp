@@ -106,6 +106,29 @@ TEST(StepSchedule, AStartThatGainsIsPayingOneThatDoesNotIsNot) {
     EXPECT_EQ(flat.stageStart, 0);
 }
 
+TEST(StepSchedule, AProbationThatFellThenRoseHalvesTheStepOneThatNeverFellStops) {
+    // A noised start's first full steps gain, then the estimator's noise walks it away: the
+    // step is too large, not the start beyond improvement.
+    ScheduleState fellThenRose, flat, gaining;
+    StepSchedule fellSchedule(fellThenRose), flatSchedule(flat), gainingSchedule(gaining);
+    const std::vector<double> fellLosses = {1.0, 0.92, 1.06, 1.19, 1.31, 1.39};
+    Noise noise(0.002);
+    for (size_t k = 0; k < fellLosses.size(); ++k) {
+        fellSchedule.record(fellLosses[k], 5 * int(k));
+        flatSchedule.record(1.0 + 0.01 * double(k) * noise(), 5 * int(k));  // rising, never below the start
+        gainingSchedule.record((1.0 - 0.01 * double(k)) * noise(), 5 * int(k));
+    }
+    EXPECT_EQ(fellSchedule.probation(), StepSchedule::Verdict::StepTooLarge);
+    EXPECT_EQ(flatSchedule.probation(), StepSchedule::Verdict::NoGain);
+    EXPECT_EQ(gainingSchedule.probation(), StepSchedule::Verdict::Paying);
+    fellSchedule.halve();
+    EXPECT_FLOAT_EQ(fellSchedule.learningRateScale(), 0.5f);
+    EXPECT_TRUE(fellThenRose.window.empty());
+    // With every halving spent, a fall and a rise say nothing more: no gain.
+    fellThenRose.halvings = StepSchedule::kMaxHalvings;
+    EXPECT_EQ(fellSchedule.probation(), StepSchedule::Verdict::NoGain);
+}
+
 TEST(DeviceDefaults, SoftwareRenderersAreRecognised) {
     EXPECT_FALSE(isHardwareRenderer("llvmpipe (LLVM 15.0.6, 256 bits)"));
     EXPECT_FALSE(isHardwareRenderer("softpipe"));
