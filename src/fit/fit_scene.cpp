@@ -23,6 +23,9 @@ constexpr float kEpsilonPixels = 0.9f, kStepPixels = 0.45f;
 constexpr float kEpsilonMax = 0.008f, kStepMax = 0.004f;
 // The cage edge (a quarter of the scene radius) at and above which --smoothing is λ itself.
 constexpr float kReferenceEdge = 0.25f;
+// A coarse cage's faces span many pixels: drawn with too few segments, its facets, not its
+// shape, would set the loss. No segment spans more than this many pixels of a mean edge.
+constexpr float kSegmentPixels = 4.0f;
 // A displacement step moves a height by at most this fraction of a map cell's width: what the
 // images see of a height is mostly its slope (the shading normal), and a step that tilts every
 // normal by a few degrees turns the estimator's noise into a rough, darkened surface.
@@ -105,7 +108,7 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
         group->noiseGate = o.noiseGate;
     settings.relaxation = o.relaxation;
     settings.tangentialGradient = o.tangential;
-    settings.tessLevel = o.tessLevel;
+    settings.tessLevel = std::max(o.tessLevel, screenSegments(cage, o.resolution, kSegmentPixels));
     settings.resolution = o.resolution;
     settings.seed = o.seed;
     settings.plannedSteps = o.steps;
@@ -119,6 +122,11 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
     settings.maps.shadingNormal = o.shadingNormal;
     settings.mapsStartFraction = o.mapsStart;
     return settings;
+}
+
+int screenSegments(const mesh::PolygonMesh& cage, int resolution, float pixels) {
+    const float pixel = kFramedWidth / float(resolution);
+    return std::max(1, int(std::ceil(mesh::meanEdgeLength(cage) / (pixels * pixel))));
 }
 
 FitOptions withVertexRates(FitOptions options, const mesh::PolygonMesh& cage, const optim::GroupSettings& vertices) {

@@ -49,6 +49,10 @@ private:
 CageFitSettings fitSettings(const FitOptions& options, const mesh::PolygonMesh& cage,
                             render::ShadingModel shading = render::ShadingModel::Geometry);
 
+// Segments per face edge that draw `cage` (normalised frame) at `resolution` with its mean edge
+// cut into pieces of at most `pixels` pixels (at least 1).
+int screenSegments(const mesh::PolygonMesh& cage, int resolution, float pixels);
+
 // The options that ask for the vertex ε and learning rate `vertices` holds (fitSettings's inverse:
 // options count them in fractions of `cage`'s mean edge, the group in scene units), e.g. after
 // someone set them by hand. One that fitSettings(options, cage) already gives stays as given,

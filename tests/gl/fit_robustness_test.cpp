@@ -28,11 +28,12 @@ fit::FitOptions defaultsWith(int views, int resolution, int steps, const std::st
     return o;
 }
 
-// Distance of the cage's limit surface to `truth` (both in the scene's normalised frame).
-double surfaceError(fit::FitRun& run, const mesh::PolygonMesh& truth) {
+// Distance of the cage's limit surface to `truth` (both in the scene's normalised frame), each
+// tessellated with `segments` per face edge.
+double surfaceError(fit::FitRun& run, const mesh::PolygonMesh& truth, int segments = 3) {
     mesh::PolygonMesh cage = run.scene().cage;
     cage.positions = run.fitter().vertices();
-    return geometry::surfaceDistance(surface::limitMesh(cage, 3), truth, 20000).chamferL2Squared;
+    return geometry::surfaceDistance(surface::limitMesh(cage, segments), truth, 20000).chamferL2Squared;
 }
 
 mesh::PolygonMesh normalised(mesh::PolygonMesh mesh, const fit::FitScene& scene) {
@@ -46,23 +47,25 @@ class CreasedCageRecovery : public ::testing::TestWithParam<const char*> {};
 // only a closer surface: the vertex error falls together with the surface distance.
 TEST_P(CreasedCageRecovery, VertexErrorAndSurfaceDistanceFall) {
     const auto truthWorld = mesh::loadMesh(assetPath(std::string("osd-shapes/") + GetParam()));
-    const auto referenceWorld = surface::limitMesh(truthWorld, 6);
     fit::FitOptions o = defaultsWith(8, 128, 300, std::string("recovery_") + GetParam());
     mesh::PolygonMesh noisedWorld = truthWorld;
+    int segments = 0;  // the true limit surface's: finer than the fit draws it, a segment a pixel
     {
-        fit::FitScene probe(fit::resolved(o), programs(), truthWorld, referenceWorld);
+        fit::FitScene probe(fit::resolved(o), programs(), truthWorld, surface::limitMesh(truthWorld, 6));
         noisedWorld.positions = probe.frame.toWorld(noised(probe.cage.positions, 0.03f, 11));
+        segments = std::max(6, fit::screenSegments(probe.cage, o.resolution, 1.0f));
     }
+    const auto referenceWorld = surface::limitMesh(truthWorld, segments);
     fit::FitScene scene(fit::resolved(o), programs(), noisedWorld, referenceWorld);
     const auto truth = normalised(truthWorld, scene).positions;
     const auto truthSurface = normalised(referenceWorld, scene);
     fit::FitRun run(fit::resolved(o), programs(), scene);
 
     const double vertexBefore = rmsDistance(run.fitter().vertices(), truth);
-    const double surfaceBefore = surfaceError(run, truthSurface);
+    const double surfaceBefore = surfaceError(run, truthSurface, segments);
     run.run(o.out / "checkpoint.bin");
     const double vertexAfter = rmsDistance(run.fitter().vertices(), truth);
-    const double surfaceAfter = surfaceError(run, truthSurface);
+    const double surfaceAfter = surfaceError(run, truthSurface, segments);
     std::printf("%s: vertex RMS %.4f -> %.4f, surface Chamfer %.3e -> %.3e after %d steps (%s)\n", GetParam(),
                 vertexBefore, vertexAfter, surfaceBefore, surfaceAfter, run.step(), fit::toString(run.stopReason()));
     EXPECT_LT(vertexAfter, vertexBefore);
