@@ -73,7 +73,7 @@ struct FitOptions {
     // gradient is within c times its expected noise of 0 barely moves; 0: plain Adam.
     float noiseGate = 0.0f;
     float relaxation = 0.0f;      // tangential relaxation of the cage per vertex update (0: off)
-    float tangential = 1.0f;      // fraction of the vertex gradient's tangential part kept
+    float tangential = 0.2f;      // fraction of the vertex gradient's tangential part kept
     context::GlProvider glProvider = context::GlProvider::Auto;
     // How the scene is shaded; nothing ("auto"): what the reference's materials call for.
     std::optional<render::ShadingModel> shading;
