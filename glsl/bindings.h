@@ -25,15 +25,15 @@
 #define SUBDFIT_SSBO_SECOND_POINTS 39
 #define SUBDFIT_SSBO_PATCH_INFO 12      // ivec4 {cv offset, patch type, param0, param1}
 #define SUBDFIT_SSBO_PATCH_CVS 13
-#define SUBDFIT_SSBO_FACE_VERTEX_OFFSETS 14  // ptex face -> base vertices (CSR)
-#define SUBDFIT_SSBO_FACE_VERTEX_INDICES 15
+#define SUBDFIT_SSBO_FACE_PAIR_OFFSETS 14  // ptex face a -> the faces b > a sharing a base vertex (CSR)
+#define SUBDFIT_SSBO_FACE_PAIRS 15
 #define SUBDFIT_SSBO_ADJACENCY_OFFSETS 16    // cage vertex -> neighbours (CSR)
 #define SUBDFIT_SSBO_ADJACENCY_INDICES 17
 #define SUBDFIT_SSBO_LOSS 18            // 256 float slots whose sum is the mean per-pixel loss
 #define SUBDFIT_SSBO_SMOOTH_IN 19       // Jacobi iterate read by the preconditioner
-#define SUBDFIT_SSBO_FACE_DELTA 20      // Σ Δ_p/(2ε) per ptex face over pixels whose ± faces agree (fixed point)
-#define SUBDFIT_SSBO_VERTEX_FACE_OFFSETS 21  // base vertex -> ptex faces it reaches (CSR)
-#define SUBDFIT_SSBO_VERTEX_FACE_INDICES 22
+#define SUBDFIT_SSBO_FACE_DELTA 20      // Σ Δ_p/(2ε) per ptex face, then per pair of them (fixed point)
+#define SUBDFIT_SSBO_VERTEX_SUM_OFFSETS 21  // base vertex -> the sums of FACE_DELTA it is in (CSR)
+#define SUBDFIT_SSBO_VERTEX_SUM_INDICES 22
 
 // Map parameter groups (per-face tiles of (T+1)² shared nodes, maps::TexelLayout).
 #define SUBDFIT_SSBO_FACE_NODES 23           // [ptex face][j][i] -> node

@@ -4,10 +4,12 @@
 // under the pixel's (u, v) in either render), g_i += Δ_p / (2 s_i ε). Where the two renders saw different faces
 // (silhouettes, occlusion) both faces' vertices get the difference: that is what moves edges.
 //
-// s_i does not depend on the pixel, so for the common case (both renders saw the same face f)
-// Σ_p Δ_p s_i / 2ε = s_i Σ_p Δ_p / 2ε: those pixels only add into a per-face sum (one atomic
-// per pixel instead of one per contributing parameter), and scatter_faces.comp hands each
-// face's sum to its vertices. Pixels whose faces differ take the direct path with the union.
+// s_i does not depend on the pixel, and the set only on the two faces, so Σ_p Δ_p s_i / 2ε =
+// s_i Σ_p Δ_p / 2ε over the pixels of one pair of faces: each pixel adds into one sum (one
+// atomic per pixel instead of one per contributing parameter), and scatter_faces.comp hands
+// each sum to its vertices. A pixel both renders gave to face f (or one to f, the other to the
+// background) adds into f's sum; one given to faces f and h that share a vertex, into their
+// pair's sum (its vertices the union); to faces that share none, into both faces' sums.
 #include "bindings.h"
 #include "hash.glsl"
 #include "atomics.glsl"
@@ -21,8 +23,8 @@ layout(binding = SUBDFIT_UNIT_FACE_PLUS) uniform isampler2D facePlus;
 layout(binding = SUBDFIT_UNIT_FACE_MINUS) uniform isampler2D faceMinus;
 layout(binding = SUBDFIT_UNIT_TARGET) uniform sampler2DArray targets;
 
-layout(std430, binding = SUBDFIT_SSBO_FACE_VERTEX_OFFSETS) readonly buffer FaceOffsets { int faceVertexOffsets[]; };
-layout(std430, binding = SUBDFIT_SSBO_FACE_VERTEX_INDICES) readonly buffer FaceIndices { int faceVertexIndices[]; };
+layout(std430, binding = SUBDFIT_SSBO_FACE_PAIR_OFFSETS) readonly buffer PairOffsets { int facePairOffsets[]; };
+layout(std430, binding = SUBDFIT_SSBO_FACE_PAIRS) readonly buffer Pairs { int facePairs[]; };
 // Gradient terms in fixed point, so that a run repeats exactly; the loss is only reported.
 SUBDFIT_DECLARE_FIXED_ACCUMULATOR(Gradient, SUBDFIT_SSBO_GRADIENT_SUM, gradient, addGradient)
 SUBDFIT_DECLARE_FIXED_ACCUMULATOR(FaceDelta, SUBDFIT_SSBO_FACE_DELTA, faceDelta, addFaceDelta)
@@ -56,22 +58,13 @@ uniform uint uSeed;
 uniform float uEpsilon;
 uniform float uLossScale;  // 1 / (pixels × views), so the loss is a per-pixel mean
 uniform int uMeasureLoss;  // 0: skip the loss (most steps only need the gradient)
+uniform int uFaceCount;    // ptex faces: the pairs' sums follow the faces'
 
-void addFaceVertices(int face, float scaledDelta, int skipFace) {
-    for (int k = faceVertexOffsets[face]; k < faceVertexOffsets[face + 1]; ++k) {
-        int v = faceVertexIndices[k];
-        if (skipFace >= 0) {  // the union: a vertex already credited through the other face
-            bool credited = false;
-            for (int j = faceVertexOffsets[skipFace]; j < faceVertexOffsets[skipFace + 1]; ++j)
-                credited = credited || faceVertexIndices[j] == v;
-            if (credited) continue;
-        }
-        for (uint c = 0u; c < 3u; ++c) {
-            uint i = 3u * uint(v) + c;
-            // 1 / s_i = s_i for signs ±1.
-            addGradient(i, scaledDelta * perturbationSign(i, uCounter, uSeed));
-        }
-    }
+// The sum of faces a < b that share a vertex (after the faces' own, in a's list); -1 if none.
+int pairSum(int a, int b) {
+    for (int k = facePairOffsets[a]; k < facePairOffsets[a + 1]; ++k)
+        if (facePairs[k] == b) return uFaceCount + k;
+    return -1;
 }
 
 #ifdef SUBDFIT_TEXELS
@@ -129,12 +122,15 @@ void main() {
         // every parameter (scatter_faces.comp reads this one sum for all vertices).
         addFaceDelta(0u, scaledDelta);
 #else
-        if (fp == fm) {
-            addFaceDelta(uint(fp), scaledDelta);
-        } else {
-            if (fp >= 0) addFaceVertices(fp, scaledDelta, -1);
-            if (fm >= 0) addFaceVertices(fm, scaledDelta, fp);
+        // The sums the pixel adds into: its face's (where one render saw background, the other's),
+        // its pair's, or, for faces that share no vertex, both faces'. One call of the add in
+        // the code: llvmpipe runs every branch for every pixel, masked.
+        ivec2 sums = ivec2(fp >= 0 ? fp : fm, -1);
+        if (fp != fm && fp >= 0 && fm >= 0) {
+            int pair = pairSum(min(fp, fm), max(fp, fm));
+            sums = pair >= 0 ? ivec2(pair, -1) : ivec2(fp, fm);
         }
+        for (int k = 0; k < 2 && sums[k] >= 0; ++k) addFaceDelta(uint(sums[k]), scaledDelta);
 #endif
     }
     // The loss goes to one of 256 slots by lane: a single float taking every pixel would

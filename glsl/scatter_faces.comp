@@ -1,5 +1,6 @@
-// Second half of G: g_i += s_i Σ_{f ∋ v} faceDelta[f] for each parameter i of base vertex v,
-// one thread per vertex (so no atomics), over the ptex faces whose stencils reach v, in the
+// Second half of G: g_i += s_i Σ_{k ∋ v} faceDelta[k] for each parameter i of base vertex v,
+// one thread per vertex (so no atomics), over the sums whose vertices include v (the ptex faces
+// whose stencils reach v, and the adjacent face pairs either of whose faces it reaches), in the
 // table's order: sums and gradient are fixed point (fixed_point.glsl), so a run repeats exactly.
 #include "bindings.h"
 #include "fixed_point.glsl"
@@ -8,8 +9,8 @@
 layout(local_size_x = 128) in;
 
 layout(std430, binding = SUBDFIT_SSBO_FACE_DELTA) readonly buffer FaceDelta { uint faceDelta[]; };
-layout(std430, binding = SUBDFIT_SSBO_VERTEX_FACE_OFFSETS) readonly buffer Offsets { int vertexFaceOffsets[]; };
-layout(std430, binding = SUBDFIT_SSBO_VERTEX_FACE_INDICES) readonly buffer Indices { int vertexFaceIndices[]; };
+layout(std430, binding = SUBDFIT_SSBO_VERTEX_SUM_OFFSETS) readonly buffer Offsets { int vertexSumOffsets[]; };
+layout(std430, binding = SUBDFIT_SSBO_VERTEX_SUM_INDICES) readonly buffer Indices { int vertexSumIndices[]; };
 layout(std430, binding = SUBDFIT_SSBO_GRADIENT_SUM) buffer Gradient { uint gradient[]; };
 
 uniform int uVertexCount;
@@ -23,8 +24,8 @@ void main() {
     float sum = fromFixed(faceDelta[0], faceDelta[1]);  // plain SPSA: the whole image's Δ for every vertex
 #else
     float sum = 0.0;
-    for (int k = vertexFaceOffsets[v]; k < vertexFaceOffsets[v + 1]; ++k) {
-        uint f = uint(vertexFaceIndices[k]);
+    for (int k = vertexSumOffsets[v]; k < vertexSumOffsets[v + 1]; ++k) {
+        uint f = uint(vertexSumIndices[k]);
         sum += fromFixed(faceDelta[2u * f], faceDelta[2u * f + 1u]);
     }
 #endif

@@ -37,14 +37,45 @@ std::vector<int> transposeOffsets(const std::vector<int>& offsets, const std::ve
 
 FaceVertexTable::FaceVertexTable(const std::vector<int>& faceOffsets, const std::vector<int>& faceVertices,
                                  int vertexCount_)
-    : offsets(gl::Buffer::fromVector(faceOffsets)),
-      indices(gl::Buffer::fromVector(faceVertices)),
-      faceDelta(GLsizeiptr(std::max<size_t>(1, faceOffsets.size())) * 2 * sizeof(std::uint32_t)),
-      vertexCount(vertexCount_) {
-    std::vector<int> vertexFaceIndices;
-    const auto vertexFaceOffsets = transposeOffsets(faceOffsets, faceVertices, vertexCount, vertexFaceIndices);
-    vertexOffsets = gl::Buffer::fromVector(vertexFaceOffsets);
-    vertexFaces = gl::Buffer::fromVector(vertexFaceIndices);
+    : faceCount(int(faceOffsets.size()) - 1), vertexCount(vertexCount_) {
+    std::vector<int> vertexFaces;
+    const auto vertexFaceOffsets = transposeOffsets(faceOffsets, faceVertices, vertexCount, vertexFaces);
+    // The pairs, in CSR by their first face: the faces after it that reach one of its vertices.
+    std::vector<int> pairOffsetsOf{0}, pairFacesOf;
+    std::vector<int> pairedWith(size_t(faceCount), -1);
+    for (int a = 0; a < faceCount; ++a) {
+        for (int k = faceOffsets[size_t(a)]; k < faceOffsets[size_t(a) + 1]; ++k) {
+            const int v = faceVertices[size_t(k)];
+            for (int j = vertexFaceOffsets[size_t(v)]; j < vertexFaceOffsets[size_t(v) + 1]; ++j) {
+                const int b = vertexFaces[size_t(j)];
+                if (b > a && pairedWith[size_t(b)] != a) {
+                    pairedWith[size_t(b)] = a;
+                    pairFacesOf.push_back(b);
+                }
+            }
+        }
+        std::sort(pairFacesOf.begin() + pairOffsetsOf.back(), pairFacesOf.end());
+        pairOffsetsOf.push_back(int(pairFacesOf.size()));
+    }
+    // Each sum's vertices (a face's; a pair's union), transposed: vertex -> sums.
+    std::vector<int> sumOffsets(faceOffsets), sumVertices(faceVertices);
+    const auto verticesOf = [&](int f) {
+        return std::pair{faceVertices.begin() + faceOffsets[size_t(f)], faceVertices.begin() + faceOffsets[size_t(f) + 1]};
+    };
+    for (int a = 0; a < faceCount; ++a)
+        for (int k = pairOffsetsOf[size_t(a)]; k < pairOffsetsOf[size_t(a) + 1]; ++k) {
+            const auto [aBegin, aEnd] = verticesOf(a);
+            const auto [bBegin, bEnd] = verticesOf(pairFacesOf[size_t(k)]);
+            std::set_union(aBegin, aEnd, bBegin, bEnd, std::back_inserter(sumVertices));
+            sumOffsets.push_back(int(sumVertices.size()));
+        }
+    std::vector<int> vertexSumIndices;
+    const auto vertexSumOffsets = transposeOffsets(sumOffsets, sumVertices, vertexCount, vertexSumIndices);
+    pairOffsets = gl::Buffer::fromVector(pairOffsetsOf);
+    pairFaces = gl::Buffer::fromVector(pairFacesOf);
+    vertexOffsets = gl::Buffer::fromVector(vertexSumOffsets);
+    vertexSums = gl::Buffer::fromVector(vertexSumIndices);
+    faceDelta = gl::Buffer(GLsizeiptr(std::max<size_t>(1, sumOffsets.size() - 1)) * 2 * sizeof(std::uint32_t));
 }
 
 void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group, const FaceVertexTable& faces,
@@ -62,13 +93,14 @@ void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group
     program.set("uEpsilon", group.settings().epsilon);
     program.set("uLossScale", in.lossScale);
     program.set("uMeasureLoss", in.measureLoss ? 1 : 0);
+    if (!texels && !in.fullImage) program.set("uFaceCount", faces.faceCount);
     glBindTextureUnit(SUBDFIT_UNIT_COLOR_PLUS, in.plus->color().id());
     glBindTextureUnit(SUBDFIT_UNIT_COLOR_MINUS, in.minus->color().id());
     glBindTextureUnit(SUBDFIT_UNIT_FACE_PLUS, in.plus->faceId().id());
     glBindTextureUnit(SUBDFIT_UNIT_FACE_MINUS, in.minus->faceId().id());
     glBindTextureUnit(SUBDFIT_UNIT_TARGET, in.targetArray);
-    faces.offsets.bindStorage(SUBDFIT_SSBO_FACE_VERTEX_OFFSETS);
-    faces.indices.bindStorage(SUBDFIT_SSBO_FACE_VERTEX_INDICES);
+    faces.pairOffsets.bindStorage(SUBDFIT_SSBO_FACE_PAIR_OFFSETS);
+    faces.pairFaces.bindStorage(SUBDFIT_SSBO_FACE_PAIRS);
     group.gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_SUM);
     loss.bindStorage(SUBDFIT_SSBO_LOSS);
     faces.faceDelta.bindStorage(SUBDFIT_SSBO_FACE_DELTA);
@@ -93,8 +125,8 @@ void scatterFaceDeltas(gl::ProgramCache& programs, optim::ParameterGroup& group,
     program.set("uCounter", counter);
     program.set("uSeed", seed);
     faces.faceDelta.bindStorage(SUBDFIT_SSBO_FACE_DELTA);
-    faces.vertexOffsets.bindStorage(SUBDFIT_SSBO_VERTEX_FACE_OFFSETS);
-    faces.vertexFaces.bindStorage(SUBDFIT_SSBO_VERTEX_FACE_INDICES);
+    faces.vertexOffsets.bindStorage(SUBDFIT_SSBO_VERTEX_SUM_OFFSETS);
+    faces.vertexSums.bindStorage(SUBDFIT_SSBO_VERTEX_SUM_INDICES);
     group.gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_SUM);
     glDispatchCompute(groupsOf(faces.vertexCount, 128), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

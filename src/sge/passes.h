@@ -16,13 +16,16 @@ class MapParameters;
 
 namespace subdfit::sge {
 
-// Which base vertices reach which ptex face, both ways (CSR), plus the per-face Δ sums of G.
+// Which base vertices reach which ptex face (CSR), and G's Δ sums: one per ptex face, then one
+// per pair of ptex faces that share a base vertex (the pixels that one render gave to each of
+// them, whose Δ goes to the union of their vertices); each base vertex lists the sums whose
+// vertices include it.
 struct FaceVertexTable {
     FaceVertexTable(const std::vector<int>& faceOffsets, const std::vector<int>& faceVertices, int vertexCount);
-    gl::Buffer offsets, indices;              // ptex face -> base vertices
-    gl::Buffer vertexOffsets, vertexFaces;    // base vertex -> ptex faces
-    gl::Buffer faceDelta;                     // one fixed-point sum (two uints) per ptex face
-    int vertexCount;
+    gl::Buffer pairOffsets, pairFaces;        // ptex face a -> the faces b > a sharing a vertex; pair k's sum is faceCount + k
+    gl::Buffer vertexOffsets, vertexSums;     // base vertex -> the sums whose vertices include it
+    gl::Buffer faceDelta;                     // one fixed-point sum (two uints) per ptex face, then per pair
+    int faceCount, vertexCount;
 };
 
 struct GradientInputs {
@@ -38,12 +41,11 @@ struct GradientInputs {
 };
 
 // G for the perturbed `group`: accumulates Δ_p / (2 s_i ε) into group.gradientSum (vertices:
-// directly where the ± faces differ, via faces.faceDelta where they agree; a texel group: into
-// the nodes under each pixel) and the mean loss into the 256 slots of `loss`.
+// through faces.faceDelta; a texel group: into the nodes under each pixel) and the mean loss into the 256 slots of `loss`.
 void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group, const FaceVertexTable& faces,
                         const GradientInputs& inputs, const gl::Buffer& loss);
 
-// G, second half of a vertex turn: hands the per-face sums to the vertices' parameters (signs of
+// G, second half of a vertex turn: hands the per-face and per-pair sums to the vertices' parameters (signs of
 // `counter`) and clears them. Once per perturbation sample, after all its views.
 void scatterFaceDeltas(gl::ProgramCache& programs, optim::ParameterGroup& group, FaceVertexTable& faces,
                        std::uint32_t counter, std::uint32_t seed, bool fullImage = false);
