@@ -62,6 +62,31 @@ TEST(FitFromAGoodStart, GainsWhereTheStartLeavesRoom) {
     expectNoGlError();
 }
 
+// Simplify reads only the held-out scores: a run that skips the training views' scores reports
+// the same held-out scores, before and after, as one that takes them, and no training ones.
+TEST(FitFromAGoodStart, HoldoutOnlyScoresMatchAFullScoring) {
+    const auto dir = scratchDir("holdout_only");
+    fit::FitOptions o = smallFit(dir);
+    GoodStart start;
+    start.cage.positions = noised(start.cage.positions, 0.2f * mesh::meanEdgeLength(start.cage), 5);
+    fit::FitScene scene(fit::resolved(o), programs(), start.cage, start.reference);
+    auto reportOf = [&](fit::ReportScores scores, const char* name) {
+        fit::FitRun run(fit::resolved(o), programs(), scene, scores);
+        run.runTo(15, dir / name / "checkpoint.bin");
+        return run.writeResults(dir / name, glContext());
+    };
+    const fit::FitReport full = reportOf(fit::ReportScores::TrainingAndHoldout, "full");
+    const fit::FitReport holdout = reportOf(fit::ReportScores::HoldoutOnly, "holdout");
+    ASSERT_TRUE(full.trainBefore && full.trainAfter);
+    EXPECT_NE(full.trainAfter->loss, full.trainBefore->loss);  // the fit moved: "after" was drawn again
+    EXPECT_FALSE(holdout.trainBefore || holdout.trainAfter);
+    EXPECT_FALSE(fit::toJson(holdout).contains("loss_final"));
+    EXPECT_EQ(holdout.holdoutBefore.psnrViews, full.holdoutBefore.psnrViews);
+    EXPECT_EQ(holdout.holdoutAfter.psnrViews, full.holdoutAfter.psnrViews);
+    EXPECT_EQ(holdout.holdoutAfter.ssim, full.holdoutAfter.ssim);
+    expectNoGlError();
+}
+
 // The default step bound is a generous cap, not a fixed 500: a fit still improving there goes on.
 TEST(FitFromAGoodStart, ADefaultFitStillImprovingAt500StepsGoesOn) {
     const auto dir = scratchDir("default_bound");
