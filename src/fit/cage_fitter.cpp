@@ -5,6 +5,7 @@
 
 #include "mesh/mesh_adjacency.h"
 #include "mesh/mesh_geometry.h"
+#include "subdiv/table_cache.h"
 #include "util/error.h"
 
 namespace subdfit::fit {
@@ -42,13 +43,13 @@ int tessLevelFor(const CageFitSettings& s, const mesh::PolygonMesh& cage) {
 CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const CageFitSettings& settings)
     : programs_(programs),
       settings_(settings),
-      patches_(subdiv::buildPatchSet(cage, {.isolationLevel = subdiv::drawingIsolationLevel(cage)})),
-      stencils_(patches_),
-      renderer_(patches_, tessLevelFor(settings, cage), settings.shading),
+      patches_(subdiv::cachedPatchSet(cage, {.isolationLevel = subdiv::drawingIsolationLevel(cage)})),
+      stencils_(*patches_),
+      renderer_(*patches_, tessLevelFor(settings, cage), settings.shading),
       vertices_(optim::GroupKind::Vertices, "vertices", flatten(cage.positions), settings.vertices),
       maps_(settings.mapEffects.any() ? std::make_unique<maps::MapParameters>(cage, settings.mapEffects, settings.maps)
                                       : nullptr),
-      faceVertices_(patches_.faceVertexOffsets, patches_.faceVertexIndices, cage.vertexCount()),
+      faceVertices_(patches_->faceVertexOffsets, patches_->faceVertexIndices, cage.vertexCount()),
       adjacency_(uploadAdjacency(cage)),
       // Only a fit that uses it pays for the relaxation's topology.
       relaxation_(settings.relaxation > 0.0f || settings.tangentialGradient < 1.0f ? std::make_optional<CageRelaxation>(cage)

@@ -78,7 +78,7 @@ public:
     int stepsTaken() const { return steps_; }
     // The first step at which the map groups take turns (0 without a plan).
     int mapsStartStep() const;
-    const subdiv::PatchSet& patches() const { return patches_; }
+    const subdiv::PatchSet& patches() const { return *patches_; }
     const render::PatchRenderer& renderer() const { return renderer_; }
     optim::ParameterGroup& vertexGroup() { return vertices_; }
     // Null when the scene has no maps.
@@ -124,7 +124,7 @@ private:
 
     gl::ProgramCache& programs_;
     CageFitSettings settings_;
-    subdiv::PatchSet patches_;
+    std::shared_ptr<const subdiv::PatchSet> patches_;  // shared with fitters of the same topology (subdiv/table_cache.h)
     render::StencilEvaluator stencils_;
     render::PatchRenderer renderer_;
     optim::ParameterGroup vertices_;
