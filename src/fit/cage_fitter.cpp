@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "mesh/mesh_adjacency.h"
 #include "mesh/mesh_geometry.h"
@@ -58,6 +59,7 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
       pointsMinus_(stencils_.makePointBuffer()),
       smoothScratch_(vertices_.gradient.bytes()),
       loss_(sizeof(float) * kLossSlots),
+      drawnPoints_(stencils_.makePointBuffer()),
       // Only a texel group's turn reads the renders' (u, v).
       plus_(settings.resolution, settings.resolution, settings.mapEffects.any()),
       minus_(settings.resolution, settings.resolution, settings.mapEffects.any()) {}
@@ -259,9 +261,18 @@ void CageFitter::restore(const State& state) {
 }
 
 void CageFitter::render(const render::Camera& camera, const render::RenderTarget& target) {
-    stencils_.evaluate(programs_, vertices_.theta, pointsPlus_);
+    // θ read back and compared rather than tracked: a step, a restore or a write from outside
+    // all show in it.
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the optimiser's shader writes, seen by the read
+    std::vector<float> theta = vertices_.read();
+    const bool same = theta.size() == drawnTheta_.size() &&
+                      std::memcmp(theta.data(), drawnTheta_.data(), theta.size() * sizeof(float)) == 0;
+    if (!same) {
+        stencils_.evaluate(programs_, vertices_.theta, drawnPoints_);
+        drawnTheta_ = std::move(theta);
+    }
     const auto maps = maps_ ? maps_->forRaster(maps::ParameterVersion::Current) : render::PatchMaps{};
-    renderer_.draw(programs_, pointsPlus_, camera, target, &maps);
+    renderer_.draw(programs_, drawnPoints_, camera, target, &maps);
 }
 
 }  // namespace subdfit::fit

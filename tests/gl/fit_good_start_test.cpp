@@ -87,6 +87,29 @@ TEST(FitFromAGoodStart, HoldoutOnlyScoresMatchAFullScoring) {
     expectNoGlError();
 }
 
+// render() evaluates a θ's points once for all the views it is drawn on: once the vertices have
+// moved (here written from outside), it draws them where they are now, as a fresh fitter does.
+TEST(FitFromAGoodStart, RenderDrawsMovedVerticesWhereTheyAre) {
+    const auto dir = scratchDir("render_moved");
+    const fit::FitOptions o = smallFit(dir);
+    const GoodStart start;
+    fit::FitScene scene(fit::resolved(o), programs(), start.cage, start.reference);
+    fit::CageFitter fitter(programs(), scene.cage, fit::fitSettings(o, scene.cage, scene.shading));
+    auto drawn = [&](fit::CageFitter& f) {
+        return scene.monitor.render(0, [&](const render::Camera& camera, const render::RenderTarget& canvas) { f.render(camera, canvas); });
+    };
+    const auto before = drawn(fitter);
+    EXPECT_EQ(drawn(fitter), before);  // drawn again from the points evaluated once
+    mesh::PolygonMesh moved = scene.cage;
+    moved.positions = noised(moved.positions, 0.2f * mesh::meanEdgeLength(moved), 5);
+    fitter.setVertices(moved.positions);
+    fit::CageFitter fresh(programs(), moved, fit::fitSettings(o, moved, scene.shading));
+    const auto after = drawn(fitter);
+    EXPECT_NE(after, before);
+    EXPECT_EQ(after, drawn(fresh));
+    expectNoGlError();
+}
+
 // The default step bound is a generous cap, not a fixed 500: a fit still improving there goes on.
 TEST(FitFromAGoodStart, ADefaultFitStillImprovingAt500StepsGoesOn) {
     const auto dir = scratchDir("default_bound");
