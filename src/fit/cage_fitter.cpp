@@ -6,7 +6,6 @@
 
 #include "mesh/mesh_adjacency.h"
 #include "mesh/mesh_geometry.h"
-#include "subdiv/table_cache.h"
 #include "util/error.h"
 
 namespace subdfit::fit {

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 
-#include "subdiv/table_cache.h"
 #include "util/error.h"
 
 namespace subdfit::subdiv {

@@ -3,7 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "mesh/procedural.h"
-#include "subdiv/table_cache.h"
+#include "subdiv/adaptive_tables.h"
+#include "subdiv/patch_set.h"
 
 namespace subdfit::subdiv {
 namespace {
