@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "mesh/mesh_adjacency.h"
 #include "mesh/mesh_geometry.h"
@@ -42,13 +43,13 @@ int tessLevelFor(const CageFitSettings& s, const mesh::PolygonMesh& cage) {
 CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const CageFitSettings& settings)
     : programs_(programs),
       settings_(settings),
-      patches_(subdiv::buildPatchSet(cage, {.isolationLevel = subdiv::drawingIsolationLevel(cage)})),
-      stencils_(patches_),
-      renderer_(patches_, tessLevelFor(settings, cage), settings.shading),
+      patches_(subdiv::cachedPatchSet(cage, {.isolationLevel = subdiv::drawingIsolationLevel(cage)})),
+      stencils_(*patches_),
+      renderer_(*patches_, tessLevelFor(settings, cage), settings.shading),
       vertices_(optim::GroupKind::Vertices, "vertices", flatten(cage.positions), settings.vertices),
       maps_(settings.mapEffects.any() ? std::make_unique<maps::MapParameters>(cage, settings.mapEffects, settings.maps)
                                       : nullptr),
-      faceVertices_(patches_.faceVertexOffsets, patches_.faceVertexIndices, cage.vertexCount()),
+      faceVertices_(patches_->faceVertexOffsets, patches_->faceVertexIndices, cage.vertexCount()),
       adjacency_(uploadAdjacency(cage)),
       // Only a fit that uses it pays for the relaxation's topology.
       relaxation_(settings.relaxation > 0.0f || settings.tangentialGradient < 1.0f ? std::make_optional<CageRelaxation>(cage)
@@ -57,6 +58,7 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
       pointsMinus_(stencils_.makePointBuffer()),
       smoothScratch_(vertices_.gradient.bytes()),
       loss_(sizeof(float) * kLossSlots),
+      drawnPoints_(stencils_.makePointBuffer()),
       // Only a texel group's turn reads the renders' (u, v).
       plus_(settings.resolution, settings.resolution, settings.mapEffects.any()),
       minus_(settings.resolution, settings.resolution, settings.mapEffects.any()) {}
@@ -258,9 +260,18 @@ void CageFitter::restore(const State& state) {
 }
 
 void CageFitter::render(const render::Camera& camera, const render::RenderTarget& target) {
-    stencils_.evaluate(programs_, vertices_.theta, pointsPlus_);
+    // θ read back and compared rather than tracked: a step, a restore or a write from outside
+    // all show in it.
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the optimiser's shader writes, seen by the read
+    std::vector<float> theta = vertices_.read();
+    const bool same = theta.size() == drawnTheta_.size() &&
+                      std::memcmp(theta.data(), drawnTheta_.data(), theta.size() * sizeof(float)) == 0;
+    if (!same) {
+        stencils_.evaluate(programs_, vertices_.theta, drawnPoints_);
+        drawnTheta_ = std::move(theta);
+    }
     const auto maps = maps_ ? maps_->forRaster(maps::ParameterVersion::Current) : render::PatchMaps{};
-    renderer_.draw(programs_, pointsPlus_, camera, target, &maps);
+    renderer_.draw(programs_, drawnPoints_, camera, target, &maps);
 }
 
 }  // namespace subdfit::fit

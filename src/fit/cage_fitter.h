@@ -78,7 +78,7 @@ public:
     int stepsTaken() const { return steps_; }
     // The first step at which the map groups take turns (0 without a plan).
     int mapsStartStep() const;
-    const subdiv::PatchSet& patches() const { return patches_; }
+    const subdiv::PatchSet& patches() const { return *patches_; }
     const render::PatchRenderer& renderer() const { return renderer_; }
     optim::ParameterGroup& vertexGroup() { return vertices_; }
     // Null when the scene has no maps.
@@ -108,7 +108,8 @@ public:
     bool optimised(const optim::ParameterGroup& group) const;
     void setOptimised(const optim::ParameterGroup& group, bool on);
 
-    // Renders the current (unperturbed) scene.
+    // Renders the current (unperturbed) scene. Scoring draws one θ on many views: its points are
+    // evaluated once, for as long as θ stays bit for bit what they were evaluated from.
     void render(const render::Camera& camera, const render::RenderTarget& target);
 
     // Everything a resumed run needs to continue exactly where this one stopped.
@@ -124,7 +125,7 @@ private:
 
     gl::ProgramCache& programs_;
     CageFitSettings settings_;
-    subdiv::PatchSet patches_;
+    std::shared_ptr<const subdiv::PatchSet> patches_;  // shared with fitters of the same topology (subdiv/table_cache.h)
     render::StencilEvaluator stencils_;
     render::PatchRenderer renderer_;
     optim::ParameterGroup vertices_;
@@ -133,6 +134,8 @@ private:
     optim::Adjacency adjacency_;
     std::optional<CageRelaxation> relaxation_;  // with --relax or --tangential only
     gl::Buffer pointsPlus_, pointsMinus_, smoothScratch_, loss_;
+    gl::Buffer drawnPoints_;              // render()'s, of drawnTheta_
+    std::vector<float> drawnTheta_;       // empty: none evaluated yet
     render::RenderTarget plus_, minus_;
     int steps_ = 0, samplesSinceLoss_ = 0;
     std::uint32_t samples_ = 0;  // perturbation counter: one per accumulate()

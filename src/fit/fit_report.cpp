@@ -20,17 +20,13 @@ nlohmann::json toJson(const FitReport& r) {
     settings["tess_level"] = r.tessLevel;
     nlohmann::json exports = nlohmann::json::object();
     for (const auto& [file, bytes] : r.exports) exports[file] = bytes;
-    return {
+    nlohmann::json report{
         {"steps", r.steps},
         {"steps_requested", r.options.steps},
         {"resumed_from_step", r.resumedFromStep},
         {"interrupted", r.interrupted()},
         {"seconds", r.seconds},
         {"fit_seconds", r.fitSeconds},
-        {"loss_initial", r.trainBefore.loss},
-        {"loss_final", r.trainAfter.loss},
-        {"psnr_train_initial", r.trainBefore.psnr},
-        {"psnr_train", r.trainAfter.psnr},
         {"psnr_holdout_initial", r.holdoutBefore.psnr},
         {"psnr_holdout", r.holdoutAfter.psnr},
         // How the held-out views are scored: each pixel the mean of this many samples (anti-aliased).
@@ -51,6 +47,13 @@ nlohmann::json toJson(const FitReport& r) {
         {"stop_reason", r.stopReason},
         {"best_step", r.bestStep},
     };
+    if (r.trainBefore && r.trainAfter) {
+        report["loss_initial"] = r.trainBefore->loss;
+        report["loss_final"] = r.trainAfter->loss;
+        report["psnr_train_initial"] = r.trainBefore->psnr;
+        report["psnr_train"] = r.trainAfter->psnr;
+    }
+    return report;
 }
 
 }  // namespace subdfit::fit

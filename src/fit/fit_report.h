@@ -3,6 +3,7 @@
 // is made from it in one place (toJson).
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,7 +37,7 @@ struct FitReport {
     int resumedFromStep = 0;     // 0 when not resumed
     double seconds = 0.0;        // the whole run: scene, fit, scoring
     double fitSeconds = 0.0;     // the steps alone
-    ViewSetScore trainBefore, trainAfter;
+    std::optional<ViewSetScore> trainBefore, trainAfter;  // none where the run was not asked for them
     HoldoutScore holdoutBefore, holdoutAfter;
     int holdoutSamplesPerPixel = 1;  // the held-out targets' supersampling, squared
     bool finite = true;          // every parameter of every group
@@ -56,7 +57,7 @@ struct FitReport {
 };
 
 // report.json's keys: steps, steps_requested, resumed_from_step, interrupted, seconds,
-// fit_seconds, loss_initial, loss_final, psnr_train[_initial], psnr_holdout[_initial], finite,
+// fit_seconds, loss_initial, loss_final and psnr_train[_initial] (where scored), psnr_holdout[_initial], finite,
 // effects, parameters, renderer, gl_version, gl_provider, atomic_float, shader_variants,
 // settings, cage, reference, exports.
 nlohmann::json toJson(const FitReport& report);

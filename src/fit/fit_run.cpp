@@ -67,19 +67,20 @@ const char* toString(StopReason reason) {
     return "steps";
 }
 
-FitRun::FitRun(const ResolvedFitOptions& options, gl::ProgramCache& programs, FitScene& scene)
+FitRun::FitRun(const ResolvedFitOptions& options, gl::ProgramCache& programs, FitScene& scene, ReportScores scores)
     : options_(*options),
       programs_(programs),
       scene_(scene),
       fitter_(std::make_unique<CageFitter>(programs, scene.cage, fitSettings(options_, scene.cage, scene.shading))),
       fingerprint_(checkpointFingerprint(options_, scene.cage, scene.reference)),
       monitorEvery_(std::clamp(options_.steps / 50, 5, 10)),
-      started_(Clock::now()) {
+      started_(Clock::now()),
+      scores_(scores) {
     scoreStart();
 }
 
 void FitRun::scoreStart() {
-    trainBefore_ = score(*fitter_, scene_.training);
+    if (scores_ == ReportScores::TrainingAndHoldout) trainBefore_ = score(*fitter_, scene_.training);
     holdoutBefore_ = scoreHoldout(*fitter_, scene_.holdout);
     scoredTheta_ = readTheta(*fitter_);
 }
@@ -279,7 +280,7 @@ FitReport FitRun::writeResults(const std::filesystem::path& out, const context::
     // A fit that ended where it started (a start it could not improve) is drawn as it was: its
     // scores are the start's, without rendering every view again.
     const bool atStart = !scoredTheta_.empty() && readTheta(*fitter_) == scoredTheta_;
-    r.trainAfter = atStart ? trainBefore_ : score(*fitter_, scene_.training);
+    if (trainBefore_) r.trainAfter = atStart ? *trainBefore_ : score(*fitter_, scene_.training);
     r.holdoutAfter = atStart ? holdoutBefore_ : scoreHoldout(*fitter_, scene_.holdout);
     r.holdoutSamplesPerPixel = scene_.holdout.supersampling() * scene_.holdout.supersampling();
     r.finite = allFinite(*fitter_);

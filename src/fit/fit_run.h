@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,11 +41,16 @@ void writeMaps(CageFitter& fitter, const surface::SurfaceMaps& maps);
 enum class StopReason { Reached, Converged, NoGain, Cancelled };
 const char* toString(StopReason reason);
 
+// The views a run's start and end are scored on for its report: the training views' scores
+// cost a render of each, twice, and a caller that reads only the held-out ones can skip them.
+enum class ReportScores { TrainingAndHoldout, HoldoutOnly };
+
 class FitRun {
 public:
     // Builds the fitter and scores the starting state (the report's "before"). Needs the
     // scene's GL context current; `programs` and `scene` must outlive the run.
-    FitRun(const ResolvedFitOptions& options, gl::ProgramCache& programs, FitScene& scene);
+    FitRun(const ResolvedFitOptions& options, gl::ProgramCache& programs, FitScene& scene,
+           ReportScores scores = ReportScores::TrainingAndHoldout);
 
     // Continues from `checkpoint` if it exists: true when it did. Throws subdfit::Error naming
     // the file when it is damaged or was written for other inputs or settings.
@@ -127,7 +133,8 @@ private:
     std::chrono::steady_clock::time_point started_;
     double fitSeconds_ = 0.0;
     void scoreStart();
-    ViewSetScore trainBefore_;
+    ReportScores scores_;
+    std::optional<ViewSetScore> trainBefore_;
     HoldoutScore holdoutBefore_;
     std::vector<std::vector<float>> scoredTheta_;  // the θ those scores are of (empty: not to be reused)
 };

@@ -18,6 +18,7 @@
 #include "simplify/bake/bake.h"
 #include "simplify/cage/cage_ladder.h"
 #include "simplify/cage/initial_cage.h"
+#include "simplify/cage_bakes.h"
 #include "util/error.h"
 #include "util/interrupt.h"
 #include "simplify/stage_seconds.h"
@@ -418,6 +419,20 @@ std::vector<const Bare*> worthMaps(const std::vector<Bare>& bare) {
     return worth;
 }
 
+// Whether the map ladder on a cage of `faces` will likely bake its first rung, so that it is worth
+// baking while the bare cage is judged: unless climbMapLadder's prediction (with the bare cage's
+// bytes guessed from the bare cages judged so far, per face) would skip it. A wrong guess costs a
+// bake on the other core or one made later, never another result.
+bool firstRungLikely(const SearchInputs& in, const Findings& found, int faces) {
+    double bareBytesPerFace = 0.0;
+    for (const BudgetCandidate& c : found.tried)
+        if (!c.maps.any() && (bareBytesPerFace == 0.0 || double(c.bytes) / c.faces < bareBytesPerFace))
+            bareBytesPerFace = double(c.bytes) / c.faces;
+    const auto rung = found.mapBytesPerFace.find(std::make_tuple(size_t(0), in.search.mapResolutions.front(), in.search.mapBits.front()));
+    if (rung == found.mapBytesPerFace.end() || bareBytesPerFace == 0.0) return true;
+    return (bareBytesPerFace + rung->second) * faces <= kPredictedOver * double(in.search.budget);
+}
+
 // Phase three on a cage: the map ladder on each appearance worth it, each choice of maps at each
 // resolution, coarsest first, and at each bit depth while it fits: more bits and finer maps
 // only cost more, so a rung over the budget ends its ladder. Maps are baked once per (choice,
@@ -427,8 +442,7 @@ std::vector<const Bare*> worthMaps(const std::vector<Bare>& bare) {
 //  - once more bits have failed to lower a rung's loss by more than kLossTolerance, no rung
 //    tries them again (preferred() would never choose them: more bytes for a loss within it).
 void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& cage, const Bare& bare,
-                    const std::vector<maps::MapEffects>& mapChoices,
-                    std::map<std::pair<size_t, int>, surface::SurfaceMaps>& geometric) {
+                    const std::vector<maps::MapEffects>& mapChoices, CageBakes& bakes) {
     const int faces = cage.world->faceCount();
     for (size_t m = 0; m < mapChoices.size(); ++m) {
         if (bare.inAtlas && mapChoices[m].normalMap) continue;  // an atlas takes heights alone
@@ -443,19 +457,17 @@ void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& ca
                     break;
                 }
             }
-            auto baked = geometric.find({m, resolution});
-            if (baked == geometric.end()) {
+            const surface::SurfaceMaps* baked = nullptr;
+            {
                 TimedStage timed(found.phases, "bake");
-                baked = geometric.emplace(std::make_pair(m, resolution),
-                                          bakeMaps(cage.normalized, in.scene.reference, {.effects = mapChoices[m], .resolution = resolution}))
-                            .first;
+                baked = &bakes.at(m, {.effects = mapChoices[m], .resolution = resolution});
             }
             bool fitted = false;
             double fewerBitsLoss = 0.0;
             for (int bits : in.search.mapBits) {
                 if (fitted && !found.moreBitsPay) break;
                 const MapRecipe recipe{.effects = mapChoices[m], .resolution = resolution, .bits = bits};
-                const BudgetCandidate c = judge(in, found, cage.world, baked->second, recipe, bare.appearance);
+                const BudgetCandidate c = judge(in, found, cage.world, *baked, recipe, bare.appearance);
                 found.mapBytesPerFace[std::make_tuple(m, resolution, bits)] =
                     double(c.bytes > bare.candidate.bytes ? c.bytes - bare.candidate.bytes : 0) / faces;
                 if (!fits(in.search, c)) break;
@@ -563,9 +575,11 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
             return ladderCage(in, k);
         }();
         if (!cage) continue;  // smaller counts will not do better
+        CageBakes bakes(cage->normalized, in.scene.reference);
+        if (!mapChoices.empty() && !search.mapResolutions.empty() && firstRungLikely(in, found, cage->world->faceCount()))
+            bakes.startAhead(0, {.effects = mapChoices.front(), .resolution = in.search.mapResolutions.front()});
         const std::vector<Bare> bare = judgeBare(in, found, *cage, appearances);
-        std::map<std::pair<size_t, int>, surface::SurfaceMaps> geometric;  // baked once per (choice, resolution)
-        for (const Bare* b : worthMaps(bare)) climbMapLadder(in, found, *cage, *b, mapChoices, geometric);
+        for (const Bare* b : worthMaps(bare)) climbMapLadder(in, found, *cage, *b, mapChoices, bakes);
     }
     growBest(in, found);
     BudgetChoice choice = settleChoice(in, found);

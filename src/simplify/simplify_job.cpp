@@ -254,7 +254,7 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
         warnOfWhatTilesLeaveOut(options.fit.reference, in.reference, plan.budget.has_value(),
                                 in.scene.shading == render::ShadingModel::MetallicRoughness);
     const mesh::PolygonMesh cage = in.scene.cageWorld;
-    fit::FitRun run(fit::resolved(plan.fit), in.programs, in.scene);
+    fit::FitRun run(fit::resolved(plan.fit), in.programs, in.scene, fit::ReportScores::HoldoutOnly);
     refineGently(run.fitter());
     fitStages(run, options.fit.out / "checkpoint.bin", options.fit.resume, in.hooks);
     stages.lap("fit");

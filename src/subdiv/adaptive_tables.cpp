@@ -4,6 +4,7 @@
 #include <opensubdiv/far/stencilTableFactory.h>
 
 #include "subdiv/osd_messages.h"
+#include "subdiv/table_cache.h"
 #include "util/error.h"
 
 namespace subdfit::subdiv {
@@ -62,6 +63,12 @@ AdaptiveTables buildAdaptiveTables(const mesh::PolygonMesh& mesh, int isolationL
     SUBDFIT_CHECK(tables.pointCount() ==
                   tables.refiner->GetNumVerticesTotal() + tables.patches->GetNumLocalPoints());
     return tables;
+}
+
+std::shared_ptr<const AdaptiveTables> cachedAdaptiveTables(const mesh::PolygonMesh& mesh, int isolationLevel) {
+    static TableCache<AdaptiveTables> cache(kMostCachedPoints,
+                                            [](const AdaptiveTables& tables) { return long(tables.pointCount()); });
+    return cache.get(mesh, isolationLevel, [&] { return buildAdaptiveTables(mesh, isolationLevel); });
 }
 
 }  // namespace subdfit::subdiv

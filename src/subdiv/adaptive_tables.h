@@ -25,5 +25,7 @@ struct AdaptiveTables {
 
 // isolationLevel in [1, 10]; throws subdfit::Error for a bad level or a cage OpenSubdiv rejects.
 AdaptiveTables buildAdaptiveTables(const mesh::PolygonMesh& mesh, int isolationLevel);
+// The same, or the tables kept from a call on the same topology (subdiv/table_cache.h).
+std::shared_ptr<const AdaptiveTables> cachedAdaptiveTables(const mesh::PolygonMesh& mesh, int isolationLevel);
 
 }  // namespace subdfit::subdiv

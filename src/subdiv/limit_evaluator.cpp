@@ -29,9 +29,9 @@ glm::dvec3 pointPosition(const Far::StencilTable& stencils, int point,
 }  // namespace
 
 LimitEvaluator::LimitEvaluator(const mesh::PolygonMesh& mesh, const PatchSetOptions& options)
-    : tables_(buildAdaptiveTables(mesh, options.isolationLevel)),
-      patchMap_(std::make_unique<Far::PatchMap>(*tables_.patches)),
-      ptexFaceCount_(Far::PtexIndices(*tables_.refiner).GetNumFaces()) {}
+    : tables_(cachedAdaptiveTables(mesh, options.isolationLevel)),
+      patchMap_(std::make_unique<Far::PatchMap>(*tables_->patches)),
+      ptexFaceCount_(Far::PtexIndices(*tables_->refiner).GetNumFaces()) {}
 
 bool LimitEvaluator::hasSurface(int ptexFace, float u, float v) const {
     return ptexFace >= 0 && ptexFace < ptexFaceCount_ &&
@@ -47,11 +47,11 @@ LimitSample LimitEvaluator::evaluate(int ptexFace, float u, float v,
     // EvaluateBasis takes the ptex face's (u, v) and already scales the derivative weights by
     // the sub-patch's size, so dP/du here is per unit of the face parameter.
     float wP[20], wDu[20], wDv[20];
-    tables_.patches->EvaluateBasis(handle, u, v, wP, wDu, wDv);
-    const Far::ConstIndexArray cvs = tables_.patches->GetPatchVertices(handle);
+    tables_->patches->EvaluateBasis(handle, u, v, wP, wDu, wDv);
+    const Far::ConstIndexArray cvs = tables_->patches->GetPatchVertices(handle);
     glm::dvec3 p(0.0), du(0.0), dv(0.0);
     for (int k = 0; k < cvs.size(); ++k) {
-        const glm::dvec3 cv = pointPosition(*tables_.stencils, cvs[k], basePositions);
+        const glm::dvec3 cv = pointPosition(*tables_->stencils, cvs[k], basePositions);
         p += double(wP[k]) * cv;
         du += double(wDu[k]) * cv;
         dv += double(wDv[k]) * cv;
@@ -63,8 +63,8 @@ std::vector<LimitEvaluator::BaseWeight> LimitEvaluator::positionWeights(int ptex
     SUBDFIT_CHECK(hasSurface(ptexFace, u, v));
     const Far::PatchTable::PatchHandle& handle = *patchMap_->FindPatch(ptexFace, u, v);
     float wP[20];
-    tables_.patches->EvaluateBasis(handle, u, v, wP);
-    const Far::ConstIndexArray cvs = tables_.patches->GetPatchVertices(handle);
+    tables_->patches->EvaluateBasis(handle, u, v, wP);
+    const Far::ConstIndexArray cvs = tables_->patches->GetPatchVertices(handle);
     const int baseCount = baseVertexCount();
     std::vector<BaseWeight> terms;
     for (int k = 0; k < cvs.size(); ++k) {
@@ -73,7 +73,7 @@ std::vector<LimitEvaluator::BaseWeight> LimitEvaluator::positionWeights(int ptex
             terms.push_back({cvs[k], double(wP[k])});
             continue;
         }
-        const Far::Stencil row = tables_.stencils->GetStencil(cvs[k] - baseCount);
+        const Far::Stencil row = tables_->stencils->GetStencil(cvs[k] - baseCount);
         for (int e = 0; e < row.GetSize(); ++e)
             terms.push_back({row.GetVertexIndices()[e], double(wP[k]) * double(row.GetWeights()[e])});
     }

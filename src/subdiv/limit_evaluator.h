@@ -24,7 +24,7 @@ class LimitEvaluator {
 public:
     explicit LimitEvaluator(const mesh::PolygonMesh& mesh, const PatchSetOptions& options = {});
 
-    int baseVertexCount() const { return tables_.baseVertexCount(); }
+    int baseVertexCount() const { return tables_->baseVertexCount(); }
     int ptexFaceCount() const { return ptexFaceCount_; }
     // False for holes (no surface there) and ids out of range.
     bool hasSurface(int ptexFace, float u, float v) const;
@@ -44,7 +44,7 @@ public:
     std::vector<BaseWeight> positionWeights(int ptexFace, float u, float v) const;
 
 private:
-    AdaptiveTables tables_;
+    std::shared_ptr<const AdaptiveTables> tables_;  // shared with other evaluators of the same topology
     std::unique_ptr<OpenSubdiv::Far::PatchMap> patchMap_;
     int ptexFaceCount_ = 0;
 };

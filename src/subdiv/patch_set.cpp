@@ -6,6 +6,7 @@
 #include <bit>
 
 #include "subdiv/adaptive_tables.h"
+#include "subdiv/table_cache.h"
 #include "util/error.h"
 
 namespace subdfit::subdiv {
@@ -106,6 +107,11 @@ PatchSet buildPatchSet(const mesh::PolygonMesh& mesh, const PatchSetOptions& opt
     mapPtexFaces(*tables.refiner, set);
     collectFaceVertices(set);
     return set;
+}
+
+std::shared_ptr<const PatchSet> cachedPatchSet(const mesh::PolygonMesh& mesh, const PatchSetOptions& options) {
+    static TableCache<PatchSet> cache(kMostCachedPoints, [](const PatchSet& set) { return long(set.pointCount); });
+    return cache.get(mesh, options.isolationLevel, [&] { return buildPatchSet(mesh, options); });
 }
 
 }  // namespace subdfit::subdiv

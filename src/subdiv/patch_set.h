@@ -13,6 +13,7 @@
 #include <glm/vec4.hpp>
 #include <opensubdiv/far/patchParam.h>
 
+#include <memory>
 #include <vector>
 
 #include "mesh/polygon_mesh.h"
@@ -65,5 +66,7 @@ int drawingIsolationLevel(const mesh::PolygonMesh& cage);
 
 // Throws subdfit::Error (naming mesh.sourcePath) when the cage cannot be subdivided.
 PatchSet buildPatchSet(const mesh::PolygonMesh& mesh, const PatchSetOptions& options = {});
+// The same, or a copy kept from a call on the same topology (subdiv/table_cache.h).
+std::shared_ptr<const PatchSet> cachedPatchSet(const mesh::PolygonMesh& mesh, const PatchSetOptions& options = {});
 
 }  // namespace subdfit::subdiv

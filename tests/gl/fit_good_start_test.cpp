@@ -62,6 +62,54 @@ TEST(FitFromAGoodStart, GainsWhereTheStartLeavesRoom) {
     expectNoGlError();
 }
 
+// Simplify reads only the held-out scores: a run that skips the training views' scores reports
+// the same held-out scores, before and after, as one that takes them, and no training ones.
+TEST(FitFromAGoodStart, HoldoutOnlyScoresMatchAFullScoring) {
+    const auto dir = scratchDir("holdout_only");
+    fit::FitOptions o = smallFit(dir);
+    GoodStart start;
+    start.cage.positions = noised(start.cage.positions, 0.2f * mesh::meanEdgeLength(start.cage), 5);
+    fit::FitScene scene(fit::resolved(o), programs(), start.cage, start.reference);
+    auto reportOf = [&](fit::ReportScores scores, const char* name) {
+        fit::FitRun run(fit::resolved(o), programs(), scene, scores);
+        run.runTo(15, dir / name / "checkpoint.bin");
+        return run.writeResults(dir / name, glContext());
+    };
+    const fit::FitReport full = reportOf(fit::ReportScores::TrainingAndHoldout, "full");
+    const fit::FitReport holdout = reportOf(fit::ReportScores::HoldoutOnly, "holdout");
+    ASSERT_TRUE(full.trainBefore && full.trainAfter);
+    EXPECT_NE(full.trainAfter->loss, full.trainBefore->loss);  // the fit moved: "after" was drawn again
+    EXPECT_FALSE(holdout.trainBefore || holdout.trainAfter);
+    EXPECT_FALSE(fit::toJson(holdout).contains("loss_final"));
+    EXPECT_EQ(holdout.holdoutBefore.psnrViews, full.holdoutBefore.psnrViews);
+    EXPECT_EQ(holdout.holdoutAfter.psnrViews, full.holdoutAfter.psnrViews);
+    EXPECT_EQ(holdout.holdoutAfter.ssim, full.holdoutAfter.ssim);
+    expectNoGlError();
+}
+
+// render() evaluates a θ's points once for all the views it is drawn on: once the vertices have
+// moved (here written from outside), it draws them where they are now, as a fresh fitter does.
+TEST(FitFromAGoodStart, RenderDrawsMovedVerticesWhereTheyAre) {
+    const auto dir = scratchDir("render_moved");
+    const fit::FitOptions o = smallFit(dir);
+    const GoodStart start;
+    fit::FitScene scene(fit::resolved(o), programs(), start.cage, start.reference);
+    fit::CageFitter fitter(programs(), scene.cage, fit::fitSettings(o, scene.cage, scene.shading));
+    auto drawn = [&](fit::CageFitter& f) {
+        return scene.monitor.render(0, [&](const render::Camera& camera, const render::RenderTarget& canvas) { f.render(camera, canvas); });
+    };
+    const auto before = drawn(fitter);
+    EXPECT_EQ(drawn(fitter), before);  // drawn again from the points evaluated once
+    mesh::PolygonMesh moved = scene.cage;
+    moved.positions = noised(moved.positions, 0.2f * mesh::meanEdgeLength(moved), 5);
+    fitter.setVertices(moved.positions);
+    fit::CageFitter fresh(programs(), moved, fit::fitSettings(o, moved, scene.shading));
+    const auto after = drawn(fitter);
+    EXPECT_NE(after, before);
+    EXPECT_EQ(after, drawn(fresh));
+    expectNoGlError();
+}
+
 // The default step bound is a generous cap, not a fixed 500: a fit still improving there goes on.
 TEST(FitFromAGoodStart, ADefaultFitStillImprovingAt500StepsGoesOn) {
     const auto dir = scratchDir("default_bound");

@@ -4,7 +4,8 @@
 
 namespace subdfit::test {
 
-// The program cache of the binary's shared context (created in gl_test_main.cpp).
+// The binary's shared context, and its program cache (created in gl_test_main.cpp).
+const context::GlContext& glContext();
 gl::ProgramCache& programs();
 // SUBDFIT_ATOMIC_FLOAT when the context has GL_NV_shader_atomic_float.
 gl::Defines platformDefines();

@@ -23,6 +23,7 @@ void installSharedContextListener() {
     ::testing::UnitTest::GetInstance()->listeners().Append(new SharedContextListener);
 }
 
+const context::GlContext& glContext() { return *sharedContext; }
 gl::ProgramCache& programs() { return *sharedPrograms; }
 
 gl::Defines platformDefines() {

@@ -16,6 +16,7 @@
 #include "simplify/batch.h"
 #include "simplify/cage/decimate.h"
 #include "simplify/cage/initial_cage.h"
+#include "simplify/cage_bakes.h"
 #include "split_triangles.h"
 #include "subdiv/limit_evaluator.h"
 #include "surface/tessellation.h"
@@ -269,6 +270,20 @@ TEST(SimplifyDeterminism, InitialCageBakeAndDistanceRepeatExactly) {
     const auto a = geometry::surfaceDistance(cage, reference, 20000), b = geometry::surfaceDistance(cage, reference, 20000);
     EXPECT_EQ(a.chamferL2Squared, b.chamferL2Squared);
     EXPECT_EQ(a.hausdorff, b.hausdorff);
+}
+
+// The budget search bakes a cage's first rung ahead on a thread of its own: the maps it waits for
+// are the ones a bake on the spot gives, and a resolution not started ahead is baked when asked.
+TEST(SimplifyDeterminism, BakesStartedAheadEqualBakesOnTheSpot) {
+    const mesh::PolygonMesh reference = mesh::triangulated(mesh::makeLumpySphere(4, 0.15f, 4));
+    const mesh::PolygonMesh cage = initialCage(reference, {.faces = 80});
+    const BakeOptions ahead{.effects = {.displacement = true}, .resolution = 3};
+    const BakeOptions later{.effects = {.displacement = true}, .resolution = 2};
+    CageBakes bakes(cage, reference);
+    bakes.startAhead(0, ahead);
+    EXPECT_EQ(bakes.at(0, ahead).displacement, bakeMaps(cage, reference, ahead).displacement);
+    EXPECT_EQ(bakes.at(0, later).displacement, bakeMaps(cage, reference, later).displacement);
+    EXPECT_EQ(&bakes.at(0, ahead), &bakes.at(0, ahead));  // baked once
 }
 
 TEST(SimplifyBatch, ShardsParseAndRefuse) {
