@@ -132,7 +132,7 @@ private:
     std::unique_ptr<maps::MapParameters> maps_;
     sge::FaceVertexTable faceVertices_;
     optim::Adjacency adjacency_;
-    std::optional<CageRelaxation> relaxation_;  // with --relax or --tangential only
+    std::optional<CageRelaxation> relaxation_;  // with --relax, or --tangential under 1 (the default)
     gl::Buffer pointsPlus_, pointsMinus_, smoothScratch_, loss_;
     gl::Buffer drawnPoints_;              // render()'s, of drawnTheta_
     std::vector<float> drawnTheta_;       // empty: none evaluated yet
