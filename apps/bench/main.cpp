@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
     subdfit::apps::addFitSettings(*convergenceCommand, convergence.fit);
 
     subdfit::bench::RecoveryOptions recovery;
-    auto* recoveryCommand = command("recovery", "noised (creased) cages fitted back to their own limit surface",
+    auto* recoveryCommand = command("recovery", "noised (creased) cages fitted back to their own limit surface (8 views unless --views)",
                                     recovery, subdfit::bench::runRecovery);
     addOut(recoveryCommand, recovery.out, "recovery.csv", "output folder")->capture_default_str();
     recoveryCommand->add_option("--shapes", recovery.shapes, "cages (OBJ with OpenSubdiv tags)")->capture_default_str();
