@@ -136,9 +136,26 @@ void draw(plstream& pls, const PlotSpec& spec) {
                widths.data(), markerColours.data(), markerScales.data(), markerCounts.data(), markerText.data());
 }
 
+// PLplot exits the process when asked for a device it cannot load, so ask first.
+bool pngDriverLoadable() {
+    constexpr int kMost = 128;
+    const char* menus[kMost];
+    const char* names[kMost];
+    const char** menuList = menus;
+    const char** nameList = names;
+    int count = kMost;
+    plgDevs(&menuList, &nameList, &count);
+    return std::any_of(names, names + std::clamp(count, 0, kMost), [](const char* n) { return n && std::string(n) == "pngcairo"; });
+}
+
 }  // namespace
 
 void writePlot(const std::filesystem::path& png, const PlotSpec& spec) {
+    if (!pngDriverLoadable()) {
+        std::fprintf(stderr, "warning: %s not drawn: PLplot has no pngcairo driver (Debian: plplot-driver-cairo)\n",
+                     png.string().c_str());
+        return;
+    }
     io::writeAtomically(png, [&](const std::filesystem::path& temporary) {
         plstream pls;
         pls.sdev("pngcairo");

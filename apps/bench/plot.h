@@ -27,7 +27,8 @@ struct PlotSpec {
 };
 
 // Writes `spec` as a PNG, atomically. Points with a NaN/Inf coordinate, or a non-positive one on a
-// log axis, are skipped (lines break there). Throws subdfit::Error "png: problem" when the image
+// log axis, are skipped (lines break there). Without PLplot's pngcairo driver it warns and draws
+// nothing (the figures and CSV stand alone); throws subdfit::Error "png: problem" when the image
 // cannot be made or written.
 void writePlot(const std::filesystem::path& png, const PlotSpec& spec);
 
