@@ -17,6 +17,7 @@
 #include "fit/cage_fitter.h"
 #include "fit/fit_run.h"
 #include "gl/platform_defines.h"
+#include "gl/timestamp_log.h"
 #include "gl_call_counter.h"
 #include "interleaved_timing.h"
 #include "io/atomic_file.h"
@@ -33,7 +34,22 @@ struct Timing {
     double renderMs, stepMs;
     double accumulateMs, updateMs;  // the step's halves: P + 2R + G, then preconditioner + Adam
     Spread ratio, cpuRatio;         // wall time, and the process's CPU time (llvmpipe's threads count in)
+    // GPU timestamps: the forward render, then a step phase by phase (medians of their own rounds, ms).
+    std::vector<std::pair<std::string, double>> gpuPhases;
 };
+
+// Medians of a TimestampLog's phases, after a few warm rounds of `pass`.
+std::vector<std::pair<std::string, double>> gpuPhaseMedians(int rounds, const std::function<void(gl::TimestampLog&)>& pass) {
+    gl::TimestampLog log;
+    for (int r = 0; r < rounds; ++r) {
+        log.begin();
+        pass(log);
+        glFinish();
+    }
+    std::vector<std::pair<std::string, double>> medians;
+    for (const auto& [phase, ms] : log.collect()) medians.push_back({phase, spreadOf(ms).median});
+    return medians;
+}
 
 // The views of the step-cost scene: one per step, as in a fit.
 const int kViews[] = {0};
@@ -69,6 +85,16 @@ Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const
             glFinish();
         }};
     const auto samples = timeInterleaved(rounds, workloads);
+    auto gpuPhases = gpuPhaseMedians(rounds, [&](gl::TimestampLog& log) {
+        fitter.render(targets.camera(0), image);
+        log.mark("forward render");
+    });
+    const auto stepPhases = gpuPhaseMedians(rounds, [&](gl::TimestampLog& log) {
+        fitter.setTimestampLog(&log);
+        fitter.step(targets, kViews, false);
+        fitter.setTimestampLog(nullptr);
+    });
+    gpuPhases.insert(gpuPhases.end(), stepPhases.begin(), stepPhases.end());
     const auto& render = samples[0];
     const auto& step = samples[1];
     std::vector<double> updateMs;
@@ -78,7 +104,8 @@ Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const
             spreadOf(accumulateMs).median,
             spreadOf(updateMs).median,
             spreadOf(perRoundRatios(step.wallMs, render.wallMs)),
-            spreadOf(perRoundRatios(step.cpuMs, render.cpuMs))};
+            spreadOf(perRoundRatios(step.cpuMs, render.cpuMs)),
+            gpuPhases};
 }
 
 struct CountedPass {
@@ -184,8 +211,9 @@ int runStepCost(const StepCostOptions& o) {
                            " faces. Two renders are the floor (2.0).\n\n| resolution | render ms | step ms | ratio | "
                            "quartiles | median's 95 % | CPU ratio |\n|---|---|---|---|---|---|---|\n";
     char line[320];
+    std::vector<Timing> resolutionTimings;
     for (int resolution : o.resolutions) {
-        const auto t = timeCage(programs, cage, referenceRenderer, resolution, o.repeats);
+        const auto& t = resolutionTimings.emplace_back(timeCage(programs, cage, referenceRenderer, resolution, o.repeats));
         std::printf("%10d %10.2f %10.2f %6.2f %5.2f-%5.2f %5.2f-%5.2f %10.2f %5.2f-%5.2f %10.2f %9.2f\n", resolution,
                     t.renderMs, t.stepMs, t.ratio.median, t.ratio.q1, t.ratio.q3, t.ratio.low, t.ratio.high,
                     t.cpuRatio.median, t.cpuRatio.q1, t.cpuRatio.q3, t.accumulateMs, t.updateMs);
@@ -206,6 +234,25 @@ int runStepCost(const StepCostOptions& o) {
         passes.push_back(countFitLoop(programs, cage, reference, scratch));
         std::filesystem::remove_all(scratch);
     }
+    // Where a step's GPU time goes: a phase's time includes the wait for the phase before it
+    // (barriers), and the step's wall time beyond their sum is the CPU's and the driver's.
+    std::printf("\nGPU time by phase (timestamps, median ms; the step's wall time beside)\n");
+    markdown += "\nGPU time by phase (timestamps, median ms):\n\n";
+    for (size_t k = 0; k < o.resolutions.size(); ++k) {
+        const Timing& t = resolutionTimings[k];
+        double stepSum = 0.0;
+        std::string cells;
+        for (const auto& [phase, ms] : t.gpuPhases) {
+            if (phase != "forward render") stepSum += ms;
+            std::snprintf(line, sizeof line, "%s %.3f, ", phase.c_str(), ms);
+            cells += line;
+        }
+        std::snprintf(line, sizeof line, "step on the GPU %.3f, step wall %.3f", stepSum, t.stepMs);
+        cells += line;
+        std::printf("%5d²: %s\n", o.resolutions[k], cells.c_str());
+        markdown += "- " + std::to_string(o.resolutions[k]) + "²: " + cells + "\n";
+    }
+
     const auto names = GlCallCounts::names();
     std::printf("\nGL calls per step (quad-sphere cage, one view per step)\n%-28s", "");
     markdown += "\nGL calls per step (one view per step):\n\n| |";

@@ -96,6 +96,7 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
         return;  // nothing is optimised
     ++samples_;
     optim::perturb(programs_, *perturbed, counter, settings_.seed);
+    mark("perturb");
     if (std::find(pendingUpdate_.begin(), pendingUpdate_.end(), perturbed) == pendingUpdate_.end())
         pendingUpdate_.push_back(perturbed);
     const bool verticesPerturbed = perturbed->kind() == optim::GroupKind::Vertices;
@@ -103,6 +104,7 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
         stencils_.evaluate(programs_, vertices_.thetaPlus, pointsPlus_, vertices_.thetaMinus, pointsMinus_);
     else
         stencils_.evaluate(programs_, vertices_.theta, pointsPlus_);
+    mark("stencils");
     const gl::Buffer& minusPoints = verticesPerturbed ? pointsMinus_ : pointsPlus_;
     const float pixels = float(settings_.resolution) * float(settings_.resolution);
     const auto mapsPlus = maps_ ? maps_->forRaster(maps::ParameterVersion::Plus, perturbed) : render::PatchMaps{};
@@ -110,15 +112,20 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     for (int view : views) {
         const auto& camera = targets.camera(view);
         renderer_.draw(programs_, pointsPlus_, camera, plus_, &mapsPlus);
+        mark("render θ+");
         renderer_.draw(programs_, minusPoints, camera, minus_, &mapsMinus);
+        mark("render θ−");
         sge::accumulateGradient(programs_, *perturbed, faceVertices_,
                                 {&plus_, &minus_, targets.colors().id(), view, counter, settings_.seed,
                                  1.0f / (pixels * float(views.size())), measureLoss, maps_.get(),
                                  settings_.fullImageEstimator},
                                 loss_);
+        mark("gradient G");
     }
-    if (verticesPerturbed)
+    if (verticesPerturbed) {
         sge::scatterFaceDeltas(programs_, vertices_, faceVertices_, counter, settings_.seed, settings_.fullImageEstimator);
+        mark("scatter to vertices");
+    }
     if (measureLoss) ++samplesSinceLoss_;
 }
 
@@ -133,20 +140,25 @@ void CageFitter::update() {
     const float scale = learningRateScale();
     for (auto* g : pendingUpdate_) {
         optim::resolveGradient(programs_, *g);
+        mark("resolve");
         const float learningRate = g->settings().learningRate * scale;
         if (g->kind() == optim::GroupKind::Vertices) {
             optim::precondition(programs_, vertices_, adjacency_, settings_.smoothingLambda,
                                 settings_.smoothingIterations, smoothScratch_);
+            mark("precondition");
             if (relaxation_)
                 relaxation_->projectGradient(programs_, vertices_.theta, vertices_.gradientSmooth, settings_.tangentialGradient);
             optim::adamStep(programs_, vertices_, vertices_.gradientSmooth, learningRate * vertexRateFactor_);
+            mark("Adam");
             if (relaxation_) relaxation_->apply(programs_, vertices_.theta, settings_.relaxation);
         } else {
             maps_->update(programs_, *g, learningRate);
+            mark("Adam");
         }
     }
     // Only the groups sampled since the last update have sums to clear.
     for (auto* g : pendingUpdate_) g->gradientSum.clearToZero();
+    mark("clear sums");
     pendingUpdate_.clear();
     ++steps_;
 }

@@ -17,6 +17,7 @@
 #include "fit/cage_relaxation.h"
 #include "fit/fit_state.h"
 #include "gl/program_cache.h"
+#include "gl/timestamp_log.h"
 #include "maps/map_parameters.h"
 #include "mesh/polygon_mesh.h"
 #include "render/patch_renderer.h"
@@ -76,6 +77,8 @@ public:
     std::vector<glm::vec3> vertices() const;
     void setVertices(const std::vector<glm::vec3>& positions);
     int stepsTaken() const { return steps_; }
+    // GPU timestamps at the end of each phase of a step (benchmarks); null: none.
+    void setTimestampLog(gl::TimestampLog* log) { timestamps_ = log; }
     // The first step at which the map groups take turns (0 without a plan).
     int mapsStartStep() const;
     const subdiv::PatchSet& patches() const { return *patches_; }
@@ -119,6 +122,11 @@ public:
     void restore(const State& state);  // throws subdfit::Error if it does not fit this scene
 
 private:
+    void mark(const char* phase) {
+        if (timestamps_) timestamps_->mark(phase);
+    }
+
+    gl::TimestampLog* timestamps_ = nullptr;
     std::optional<float> scaleOverride_;
     float vertexRateFactor_ = 1.0f;
     std::optional<int> mapsStartOverride_;

@@ -42,5 +42,6 @@ struct FramebufferTraits { static void destroy(GLuint id) noexcept { glDeleteFra
 struct VertexArrayTraits { static void destroy(GLuint id) noexcept { glDeleteVertexArrays(1, &id); } };
 struct ProgramTraits { static void destroy(GLuint id) noexcept { glDeleteProgram(id); } };
 struct ShaderTraits { static void destroy(GLuint id) noexcept { glDeleteShader(id); } };
+struct QueryTraits { static void destroy(GLuint id) noexcept { glDeleteQueries(1, &id); } };
 
 }  // namespace subdfit::gl
