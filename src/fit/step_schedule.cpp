@@ -64,8 +64,11 @@ bool StepSchedule::paying() const {
 
 StepSchedule::Verdict StepSchedule::probation() const {
     if (paying()) return Verdict::Paying;
-    const bool fell = !state_.stageLosses.empty() && state_.bestLoss < (1.0 - kMinImprovement) * state_.stageLosses.front();
-    return fell && state_.halvings < kMaxHalvings ? Verdict::StepTooLarge : Verdict::NoGain;
+    const auto& losses = state_.stageLosses;
+    if (losses.empty()) return Verdict::NoGain;
+    const bool fell = state_.bestLoss < (1.0 - kMinImprovement) * losses.front();
+    const bool rebounding = losses.back() < (1.0 - kRebound) * *std::max_element(losses.begin(), losses.end());
+    return (fell || rebounding) && state_.halvings < kMaxHalvings ? Verdict::StepTooLarge : Verdict::NoGain;
 }
 
 void StepSchedule::halve() {

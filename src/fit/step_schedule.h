@@ -36,6 +36,9 @@ public:
     // A probation gives the benefit of the doubt: it stops a stage only when even its fall plus
     // this many standard errors stays short (a poor start's first steps can be erratic).
     static constexpr double kProbationConfidence = 2.0;
+    // A probation's loss that rose and is falling again by this much from its highest responds
+    // to the steps: the first ones (Adam's moments still hold few samples) overshot.
+    static constexpr double kRebound = 0.01;
 
     enum class Action { Continue, Halve, Converged };
     struct Decision {
@@ -58,9 +61,10 @@ public:
     bool paying() const;
 
     // A probation's verdict (FitRun). A stage whose loss fell by kMinImprovement below its start
-    // and then rose again can be improved; its step is too large for it (a noised cage's first
-    // full steps gain, then the estimator's noise walks it away): halve() and go on from the best.
-    // A stage that never fell that far, with no fall likely, cannot pay.
+    // and then rose again, or rose and is falling again by kRebound, can be improved; its step is
+    // too large for it (a noised cage's first full steps gain, or overshoot, and the estimator's
+    // noise walks it away): halve() and go on from the best. A stage that never fell, with no
+    // fall likely, cannot pay.
     enum class Verdict { Paying, StepTooLarge, NoGain };
     Verdict probation() const;
     // The step halved by hand (a probation's StepTooLarge), with a fresh window.

@@ -106,7 +106,7 @@ TEST(StepSchedule, AStartThatGainsIsPayingOneThatDoesNotIsNot) {
     EXPECT_EQ(flat.stageStart, 0);
 }
 
-TEST(StepSchedule, AProbationThatFellThenRoseHalvesTheStepOneThatNeverFellStops) {
+TEST(StepSchedule, AProbationThatFellOrOvershotHalvesTheStepOneThatNeverFellStops) {
     // A noised start's first full steps gain, then the estimator's noise walks it away: the
     // step is too large, not the start beyond improvement.
     ScheduleState fellThenRose, flat, gaining;
@@ -120,6 +120,12 @@ TEST(StepSchedule, AProbationThatFellThenRoseHalvesTheStepOneThatNeverFellStops)
     }
     EXPECT_EQ(fellSchedule.probation(), StepSchedule::Verdict::StepTooLarge);
     EXPECT_EQ(flatSchedule.probation(), StepSchedule::Verdict::NoGain);
+    // A noised creased cube at 512²: its first steps overshot (+21 %), the next ones came back.
+    ScheduleState overshot;
+    StepSchedule overshotSchedule(overshot);
+    const std::vector<double> overshotLosses = {1.0, 1.07, 1.18, 1.21, 1.21, 1.13};
+    for (size_t k = 0; k < overshotLosses.size(); ++k) overshotSchedule.record(overshotLosses[k], 5 * int(k));
+    EXPECT_EQ(overshotSchedule.probation(), StepSchedule::Verdict::StepTooLarge);
     EXPECT_EQ(gainingSchedule.probation(), StepSchedule::Verdict::Paying);
     fellSchedule.halve();
     EXPECT_FLOAT_EQ(fellSchedule.learningRateScale(), 0.5f);
