@@ -49,7 +49,6 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
       vertices_(optim::GroupKind::Vertices, "vertices", flatten(cage.positions), settings.vertices),
       maps_(settings.mapEffects.any() ? std::make_unique<maps::MapParameters>(cage, settings.mapEffects, settings.maps)
                                       : nullptr),
-      faceVertices_(patches_->faceVertexOffsets, patches_->faceVertexIndices, cage.vertexCount()),
       adjacency_(uploadAdjacency(cage)),
       // Only a fit that uses it pays for the relaxation's topology.
       relaxation_(settings.relaxation > 0.0f || settings.tangentialGradient < 1.0f ? std::make_optional<CageRelaxation>(cage)
@@ -115,7 +114,7 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
         mark("render θ+");
         renderer_.draw(programs_, minusPoints, camera, minus_, &mapsMinus);
         mark("render θ−");
-        sge::accumulateGradient(programs_, *perturbed, faceVertices_,
+        sge::accumulateGradient(programs_, *perturbed, faceVertices(),
                                 {&plus_, &minus_, targets.colors().id(), view, counter, settings_.seed,
                                  1.0f / (pixels * float(views.size())), measureLoss, maps_.get(),
                                  settings_.fullImageEstimator},
@@ -123,10 +122,16 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
         mark("gradient G");
     }
     if (verticesPerturbed) {
-        sge::scatterFaceDeltas(programs_, vertices_, faceVertices_, counter, settings_.seed, settings_.fullImageEstimator);
+        sge::scatterFaceDeltas(programs_, vertices_, faceVertices(), counter, settings_.seed, settings_.fullImageEstimator);
         mark("scatter to vertices");
     }
     if (measureLoss) ++samplesSinceLoss_;
+}
+
+sge::FaceVertexTable& CageFitter::faceVertices() {
+    if (!faceVertices_)
+        faceVertices_.emplace(patches_->faceVertexOffsets, patches_->faceVertexIndices, vertices_.count() / 3);
+    return *faceVertices_;
 }
 
 float CageFitter::learningRateScale() const {

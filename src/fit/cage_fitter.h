@@ -122,6 +122,7 @@ public:
     void restore(const State& state);  // throws subdfit::Error if it does not fit this scene
 
 private:
+    sge::FaceVertexTable& faceVertices();
     void mark(const char* phase) {
         if (timestamps_) timestamps_->mark(phase);
     }
@@ -138,7 +139,8 @@ private:
     render::PatchRenderer renderer_;
     optim::ParameterGroup vertices_;
     std::unique_ptr<maps::MapParameters> maps_;
-    sge::FaceVertexTable faceVertices_;
+    // Built at the first step: a fitter that only draws (a judged candidate, a score) needs none.
+    std::optional<sge::FaceVertexTable> faceVertices_;
     optim::Adjacency adjacency_;
     std::optional<CageRelaxation> relaxation_;  // with --relax, or --tangential under 1 (the default)
     gl::Buffer pointsPlus_, pointsMinus_, smoothScratch_, loss_;
