@@ -122,9 +122,9 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
     EncodedChoice chosen = bestEncoding(programs, scene, budget, probeOnCopy ? probeSource.faceCount() : welded.faceCount(),
                                         path, shipFrom(probes), {.positionBits = 14, .normals = false}, guess);
     if (probeOnCopy) {
-        // What ships: the reference itself decimated, at the most triangles up to the probes' choice that fit.
+        // What ships: the reference itself decimated, at the most triangles that fit, looked for from the probes' choice.
         const auto ship = shipFrom(fromReference);
-        chosen.triangles = mostWithinBudget(kFewestTriangles, chosen.triangles, budget, [&](int triangles) {
+        chosen.triangles = mostWithinBudget(kFewestTriangles, welded.faceCount(), budget, [&](int triangles) {
             return chosen.bytes = ship(chosen.encoding, triangles);
         }, chosen.triangles);
     }
@@ -166,33 +166,62 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
     const auto gltfpack = io::findProgram("gltfpack");
     if (!gltfpack) return std::nullopt;
     // gltfpack gets what the decimation gets: the welded reference, with its smooth normals or none.
-    const auto withNormals = settings.dir / "gltfpack_input.glb", without = settings.dir / "gltfpack_input_bare.glb";
+    struct Input {
+        std::filesystem::path withNormals, without;
+        int triangles;
+    };
+    std::vector<std::filesystem::path> written;
+    const auto writeInput = [&](const mesh::PolygonMesh& m, const std::vector<glm::vec3>& normals, const std::string& name) {
+        const Input input{settings.dir / (name + ".glb"), settings.dir / (name + "_bare.glb"), m.faceCount()};
+        exporter::writeMeshGlb(input.withNormals, scene.frame.toWorld(m.positions), normals, indicesOf(m), /*draco=*/false);
+        exporter::writeMeshGlb(input.without, scene.frame.toWorld(m.positions), {}, indicesOf(m), /*draco=*/false);
+        written.insert(written.end(), {input.withNormals, input.without});
+        return input;
+    };
+    const Input whole = writeInput(welded, mesh::vertexNormals(welded), "gltfpack_input");
+    // As the decimation's: a dense reference's probes start from a copy decimated once (with the
+    // reference's own normals where it kept its vertices); what ships starts from the reference.
+    const int guess = firstGuess(budget, welded.faceCount());
+    std::optional<Input> copy;
+    if (welded.faceCount() > 2 * kProbeSourceGuesses * guess) {
+        const mesh::PolygonMesh decimated = decimate(welded, kProbeSourceGuesses * guess);
+        copy = writeInput(decimated, ReferenceNormals(welded).at(decimated), "gltfpack_probe_input");
+    }
+    const Input& probes = copy ? *copy : whole;
     const auto output = settings.dir / "gltfpack.glb";
-    exporter::writeMeshGlb(withNormals, scene.frame.toWorld(welded.positions), mesh::vertexNormals(welded), indicesOf(welded),
-                           /*draco=*/false);
-    exporter::writeMeshGlb(without, scene.frame.toWorld(welded.positions), {}, indicesOf(welded), /*draco=*/false);
     // gltfpack's simplifier stops where its error bound says the shape would suffer; a user
     // held to a budget it cannot reach that way adds -sa (aggressive), and so does this.
     std::vector<std::string> flags{"-cc"};
-    const auto ship = [&](const VertexEncoding& encoding, int triangles) {
-        return runGltfpack(*gltfpack, encoding.normals ? withNormals : without, output,
-                           double(triangles) / double(welded.faceCount()), encoding, flags);
+    const auto shipFrom = [&](const Input& input) {
+        return [&](const VertexEncoding& encoding, int triangles) {
+            return runGltfpack(*gltfpack, encoding.normals ? input.withNormals : input.without, output,
+                               double(triangles) / double(input.triangles), encoding, flags);
+        };
     };
-    EncodedChoice chosen = bestEncoding(programs, scene, budget, welded.faceCount(), output, ship, {.positionBits = 14, .normals = true, .normalBits = kGltfpackNormalBits},
-                                        firstGuess(budget, welded.faceCount()));
+    const auto search = [&] {
+        EncodedChoice c = bestEncoding(programs, scene, budget, probes.triangles, output, shipFrom(probes),
+                                       {.positionBits = 14, .normals = true, .normalBits = kGltfpackNormalBits}, guess);
+        if (copy) {
+            const auto ship = shipFrom(whole);
+            c.triangles = mostWithinBudget(kFewestTriangles, whole.triangles, budget, [&](int triangles) {
+                return c.bytes = ship(c.encoding, triangles);
+            }, c.triangles);
+        }
+        return c;
+    };
+    EncodedChoice chosen = search();
     if (chosen.bytes > budget) {
         flags.push_back("-sa");
-        chosen = bestEncoding(programs, scene, budget, welded.faceCount(), output, ship, {.positionBits = 14, .normals = true, .normalBits = kGltfpackNormalBits},
-                              firstGuess(budget, welded.faceCount()));
+        chosen = search();
     }
-    std::filesystem::remove(withNormals);
-    std::filesystem::remove(without);
+    for (const auto& path : written) std::filesystem::remove(path);
     Quality q;
     q.bytes = chosen.bytes;
     q.files = {{"gltfpack.glb", chosen.bytes}};
     q.shipped = settings.dir.filename() / output.filename();
     q.details = {{"over_budget", chosen.bytes > budget}, {"command", gltfpackCommand(chosen.encoding, flags)},
                  {"encoding", toJson(chosen.encoding)}, {"monitor_psnr", chosen.monitorPsnr}, {"encodings_tried", chosen.tried}};
+    if (copy) q.details["probes_decimated_from"] = copy->triangles;
     scoreShipped(programs, scene, output, settings, q);
     return q;
 }
