@@ -63,8 +63,8 @@ struct EncodedChoice {
 
 // The encoding that scores best on the monitor views at the budget, each at the most triangles
 // that fit: `start` and `start` with its normals the other way (shipped or not), then, from the
-// better, fewer position bits (12, 11, 10, 9, 8) while that scores better. `path` is the file
-// `ship` writes; it is left holding the choice.
+// better, fewer position bits (12, 11, 10, 9, 8) until one scores worse by more than the
+// monitor's noise. `path` is the file `ship` writes; it is left holding the choice.
 EncodedChoice bestEncoding(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget, int most,
                            const std::filesystem::path& path, const ShipEncoded& ship, VertexEncoding start,
                            std::optional<int> hint = std::nullopt);
