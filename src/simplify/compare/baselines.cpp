@@ -80,10 +80,18 @@ private:
 // Where a budget's triangle count is first looked for: about two bytes a triangle.
 int firstGuess(std::uintmax_t budget, int most) { return int(std::min<std::uintmax_t>(std::uintmax_t(most), budget / 2 + 1)); }
 
-// The probes of a dense reference's decimation (the counts and encodings tried) are decimated from
-// a copy decimated once to this many times the first guess: the fewest position bits fit about
-// twice it, and meshoptimizer on a whole 1M-triangle reference costs ~0.4 s a call.
+// The probes of a dense reference's baselines (the counts and encodings tried) start from a copy
+// decimated once to this many times the first guess (the fewest position bits fit about twice
+// it): meshoptimizer on a whole 1M-triangle reference costs ~0.4 s a call, and a search makes ~20.
 constexpr int kProbeSourceGuesses = 8;
+
+// That copy, where the reference has more than twice its triangles; else none (the probes start
+// from the reference itself).
+std::optional<mesh::PolygonMesh> probeSourceFor(const mesh::PolygonMesh& welded, std::uintmax_t budget) {
+    const int triangles = kProbeSourceGuesses * firstGuess(budget, welded.faceCount());
+    if (welded.faceCount() <= 2 * triangles) return std::nullopt;
+    return decimate(welded, triangles);
+}
 
 // The file as held-out views and (when asked) the surface distance see it.
 void scoreShipped(gl::ProgramCache& programs, const fit::FitScene& scene, const std::filesystem::path& path,
@@ -113,15 +121,12 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
                 .bytes;
         };
     };
-    const int guess = firstGuess(budget, welded.faceCount());
-    Decimations fromReference(welded);
-    const bool probeOnCopy = welded.faceCount() > 2 * kProbeSourceGuesses * guess;
-    const mesh::PolygonMesh probeSource = probeOnCopy ? decimate(welded, kProbeSourceGuesses * guess) : mesh::PolygonMesh{};
-    Decimations fromCopy(probeSource);
-    Decimations& probes = probeOnCopy ? fromCopy : fromReference;
-    EncodedChoice chosen = bestEncoding(programs, scene, budget, probeOnCopy ? probeSource.faceCount() : welded.faceCount(),
-                                        path, shipFrom(probes), {.positionBits = 14, .normals = false}, guess);
-    if (probeOnCopy) {
+    const std::optional<mesh::PolygonMesh> probeSource = probeSourceFor(welded, budget);
+    Decimations fromReference(welded), fromCopy(probeSource ? *probeSource : welded);
+    EncodedChoice chosen = bestEncoding(programs, scene, budget, (probeSource ? *probeSource : welded).faceCount(), path,
+                                        shipFrom(probeSource ? fromCopy : fromReference),
+                                        {.positionBits = 14, .normals = false}, firstGuess(budget, welded.faceCount()));
+    if (probeSource) {
         // What ships: the reference itself decimated, at the most triangles that fit, looked for from the probes' choice.
         const auto ship = shipFrom(fromReference);
         chosen.triangles = mostWithinBudget(kFewestTriangles, welded.faceCount(), budget, [&](int triangles) {
@@ -134,7 +139,7 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
     q.shipped = settings.dir.filename() / path.filename();
     q.details = {{"over_budget", chosen.bytes > budget}, {"encoding", toJson(chosen.encoding)},
                  {"monitor_psnr", chosen.monitorPsnr}, {"encodings_tried", chosen.tried}};
-    if (probeOnCopy) q.details["probes_decimated_from"] = probeSource.faceCount();
+    if (probeSource) q.details["probes_decimated_from"] = probeSource->faceCount();
     scoreShipped(programs, scene, path, settings, q);
     return q;
 }
@@ -181,12 +186,9 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
     const Input whole = writeInput(welded, mesh::vertexNormals(welded), "gltfpack_input");
     // As the decimation's: a dense reference's probes start from a copy decimated once (with the
     // reference's own normals where it kept its vertices); what ships starts from the reference.
-    const int guess = firstGuess(budget, welded.faceCount());
     std::optional<Input> copy;
-    if (welded.faceCount() > 2 * kProbeSourceGuesses * guess) {
-        const mesh::PolygonMesh decimated = decimate(welded, kProbeSourceGuesses * guess);
-        copy = writeInput(decimated, ReferenceNormals(welded).at(decimated), "gltfpack_probe_input");
-    }
+    if (const auto probeSource = probeSourceFor(welded, budget))
+        copy = writeInput(*probeSource, ReferenceNormals(welded).at(*probeSource), "gltfpack_probe_input");
     const Input& probes = copy ? *copy : whole;
     const auto output = settings.dir / "gltfpack.glb";
     // gltfpack's simplifier stops where its error bound says the shape would suffer; a user
@@ -200,7 +202,8 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
     };
     const auto search = [&] {
         EncodedChoice c = bestEncoding(programs, scene, budget, probes.triangles, output, shipFrom(probes),
-                                       {.positionBits = 14, .normals = true, .normalBits = kGltfpackNormalBits}, guess);
+                                       {.positionBits = 14, .normals = true, .normalBits = kGltfpackNormalBits},
+                                       firstGuess(budget, welded.faceCount()));
         if (copy) {
             const auto ship = shipFrom(whole);
             c.triangles = mostWithinBudget(kFewestTriangles, whole.triangles, budget, [&](int triangles) {
