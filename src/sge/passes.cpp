@@ -21,7 +21,7 @@ const gl::ProgramSpec kGradient{"gradient",
 constexpr gl::VariantBits kGradientTexels = 1u << 0, kGradientFullImage = 1u << 1, kGradientInAtlas = 1u << 2;
 const gl::ProgramSpec kScatterFaces{"scatter_faces", {{GL_COMPUTE_SHADER, "scatter_faces.comp"}}, {"SUBDFIT_FULL_IMAGE"}};
 // Threads per vertex in scatter_faces.comp: a vertex has about a hundred sums, which one thread
-// on a GPU walks as a chain of dependent reads (0.2 ms a step on an H100, more than a render).
+// on a GPU walks as a long chain of dependent reads (docs/measurements.md).
 constexpr int kScatterLanes = 16;
 
 std::vector<int> transposeOffsets(const std::vector<int>& offsets, const std::vector<int>& indices, int columns,

@@ -82,7 +82,7 @@ int firstGuess(std::uintmax_t budget, int most) { return int(std::min<std::uintm
 
 // The probes of a dense reference's baselines (the counts and encodings tried) start from a copy
 // decimated once to this many times the first guess (the fewest position bits fit about twice
-// it): meshoptimizer on a whole 1M-triangle reference costs ~0.4 s a call, and a search makes ~20.
+// it): a search decimates some twenty times, each a pass over the whole reference.
 constexpr int kProbeSourceGuesses = 8;
 
 // That copy, where the reference has more than twice its triangles; else none (the probes start

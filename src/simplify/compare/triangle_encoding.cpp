@@ -16,8 +16,7 @@ namespace {
 constexpr int kFewestPositionBits = 8;
 constexpr int kPositionBitsLadder[] = {14, 12, 11, 10, 9, 8};
 // Fewer bits buy triangles; a dip smaller than this (dB, on the monitor views) is within their
-// noise and does not end the ladder (the relief Spot at 5 KB dipped 0.004 dB at 11 bits, and 8
-// bits scored 0.7 dB more held out).
+// noise and does not end the ladder (docs/measurements.md).
 constexpr double kLadderNoise = 0.1;
 
 }  // namespace
