@@ -26,7 +26,7 @@ optim::Adjacency uploadAdjacency(const mesh::PolygonMesh& cage) {
             cage.vertexCount()};
 }
 
-// A cage drawn one isolation level shallower (subdiv::drawingIsolationLevel) gets half the
+// A cage drawn at a shallower isolation level (subdiv::drawingIsolationLevel) gets half the
 // segments per face edge: its faces span a few pixels, and its deepest patches keep one each.
 // With maps, every map cell gets at least one segment. The level counts segments per base-face
 // edge, and a face that is not a quad splits into ptex faces of half its edges, each with a full

@@ -13,7 +13,7 @@ namespace {
 
 // The budget search's largest cage: a dense bare cage ships cheaply, and its limit surface can
 // shade closer than heights on a coarse one, so the search must be able to reach one. Past
-// subdiv::kDenseCageFaces a cage is drawn one isolation level shallower, which keeps it affordable.
+// subdiv::kDenseCageFaces a cage is drawn at a shallower isolation level, which keeps it affordable.
 constexpr int kMostBudgetFaces = 16 * kDefaultFaces;
 // Past this many faces the fit of a budget's cage takes proportionally fewer steps (unless
 // --steps was given): the search's bake of a dense cage is already close, and --budget should

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 
 #include "subdiv/adaptive_tables.h"
 #include "subdiv/table_cache.h"
@@ -90,11 +91,12 @@ void collectFaceVertices(PatchSet& set) {
 int drawingIsolationLevel(const mesh::PolygonMesh& cage) {
     constexpr int kDefault = PatchSetOptions{}.isolationLevel;
     if (cage.faceCount() <= kDenseCageFaces) return kDefault;
-    for (const mesh::Crease& c : cage.tags.creases)
-        if (c.sharpness > 2.0f) return kDefault;
-    for (const mesh::Corner& c : cage.tags.corners)
-        if (c.sharpness > 2.0f) return kDefault;
-    return 2;
+    float sharpest = 0.0f;
+    for (const mesh::Crease& c : cage.tags.creases) sharpest = std::max(sharpest, c.sharpness);
+    for (const mesh::Corner& c : cage.tags.corners) sharpest = std::max(sharpest, c.sharpness);
+    if (sharpest > 2.0f) return kDefault;
+    const int shallowest = cage.faceCount() > kVeryDenseCageFaces ? 1 : 2;
+    return std::max(shallowest, int(std::ceil(sharpest)));
 }
 
 PatchSet buildPatchSet(const mesh::PolygonMesh& mesh, const PatchSetOptions& options) {

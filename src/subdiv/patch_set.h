@@ -56,12 +56,14 @@ struct PatchSet {
     }
 };
 
-// How deep a cage is isolated for drawing: 3, or 2 on a dense cage (over kDenseCageFaces faces)
-// with no tag sharper than 2. Each face of such a cage spans ~10 pixels or fewer at 256², where
-// the level-2 end caps differ from level 3's by a fraction of one, and it is drawn with half the
-// segments per face edge (a quarter of the triangles; fit::CageFitter), a step about 3x faster.
-// Semi-sharp creases need one level per unit of sharpness to be drawn as OpenSubdiv evaluates them.
+// How deep a cage is isolated for drawing: 3, or shallower on a dense cage with no tag sharper
+// than 2 (semi-sharp creases need one level per unit of sharpness to be drawn as OpenSubdiv
+// evaluates them): 2 over kDenseCageFaces faces, 1 over kVeryDenseCageFaces. Each face of such a
+// cage spans a few pixels at 256², where the shallower end caps move the surface by a fraction of
+// one (docs/measurements.md), and it is drawn with half the segments per face edge
+// (fit::CageFitter) and fewer, larger patches: a step several times faster.
 inline constexpr int kDenseCageFaces = 2000;
+inline constexpr int kVeryDenseCageFaces = 5000;
 int drawingIsolationLevel(const mesh::PolygonMesh& cage);
 
 // Throws subdfit::Error (naming mesh.sourcePath) when the cage cannot be subdivided.
