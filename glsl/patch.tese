@@ -58,10 +58,18 @@ vec3 point(int i) { return vec3(points[3 * i], points[3 * i + 1], points[3 * i +
 
 // P(s,t) = Σ_k w_k(s,t) CV_k with OpenSubdiv's basis (B-spline with boundary masks for regular
 // patches, Gregory for the end caps around extraordinary vertices), plus ∂P/∂s and ∂P/∂t.
+// Each draw holds patches of one kind (render::PatchRenderer), so the basis is chosen here, at
+// compile time: a SIMD rasterizer runs every branch of a basis chosen per patch.
 void evaluatePatch(ivec4 info, OsdPatchParam param, vec2 st, out vec3 P, out vec3 dPds, out vec3 dPdt) {
+#ifdef SUBDFIT_GREGORY_PATCHES
     float wP[20], wDs[20], wDt[20], wDss[20], wDst[20], wDtt[20];
-    int count = OsdEvaluatePatchBasisNormalized(info.y, param, st.x, st.y,
-                                                wP, wDs, wDt, wDss, wDst, wDtt);
+    int count = Osd_EvalBasisGregory(st.x, st.y, wP, wDs, wDt, wDss, wDst, wDtt);
+#else
+    float wP[16], wDs[16], wDt[16], wDss[16], wDst[16], wDtt[16];
+    int count = Osd_EvalBasisBSpline(st.x, st.y, wP, wDs, wDt, wDss, wDst, wDtt);
+    int boundary = OsdPatchParamGetBoundary(param);
+    if (boundary != 0) Osd_boundBasisBSpline(boundary, wP, wDs, wDt, wDss, wDst, wDtt);
+#endif
     P = vec3(0.0);
     dPds = vec3(0.0);
     dPdt = vec3(0.0);

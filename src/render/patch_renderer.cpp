@@ -22,13 +22,24 @@ const gl::ProgramSpec kPatchRaster{"patch_raster",
                                                                       "SUBDFIT_METALLIC_ROUGHNESS_MAP",
                                                                       "SUBDFIT_APPEARANCE_ATLAS", "SUBDFIT_ATLAS_NORMAL_TEXTURE",
                                                                       "SUBDFIT_CARRIED_OCCLUSION", "SUBDFIT_CARRIED_EMISSIVE",
-                                                                      "SUBDFIT_LIMIT_SHADING"});
+                                                                      "SUBDFIT_LIMIT_SHADING", "SUBDFIT_GREGORY_PATCHES"});
                                        return defines;
                                    }()};
 constexpr gl::VariantBits kPatchDisplacement = 1u << 3, kPatchNormalMap = 1u << 4, kPatchBaseColor = 1u << 5,
                           kPatchMetallicRoughness = 1u << 6, kPatchAppearanceAtlas = 1u << 7,
                           kPatchAtlasNormal = 1u << 8, kPatchCarriedOcclusion = 1u << 9, kPatchCarriedEmissive = 1u << 10,
-                          kPatchLimitShading = 1u << 11;
+                          kPatchLimitShading = 1u << 11, kPatchGregory = 1u << 12;
+
+// Runs of consecutive patches of one kind (OpenSubdiv's patch arrays keep each kind together).
+std::vector<PatchRun> patchRuns(const subdiv::PatchSet& patches) {
+    std::vector<PatchRun> runs;
+    for (int p = 0; p < int(patches.patchInfo.size()); ++p) {
+        const bool gregory = patches.patchInfo[p].y == subdiv::kGregoryBasisPatch;
+        if (runs.empty() || runs.back().gregory != gregory) runs.push_back({.first = p, .count = 0, .gregory = gregory});
+        ++runs.back().count;
+    }
+    return runs;
+}
 
 }  // namespace
 
@@ -42,6 +53,7 @@ PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel, Sha
     : patchCount_(int(patches.patchInfo.size())),
       tessLevel_(crackFreeTessLevel(tessLevel, patches.maxPatchDepth)),
       shading_(shading),
+      runs_(patchRuns(patches)),
       patchInfo_(gl::Buffer::fromVector(patches.patchInfo)),
       patchCvs_(gl::Buffer::fromVector(patches.patchCvIndices)) {}
 
@@ -60,25 +72,29 @@ void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, c
         carried ? (maps->atlasNormal && (mapBits & kPatchAppearanceAtlas) ? kPatchAtlasNormal : 0) |
                       (maps->carriedOcclusion ? kPatchCarriedOcclusion : 0) | (maps->carriedEmissive ? kPatchCarriedEmissive : 0)
                 : 0;
-    const auto& program = programs.get(kPatchRaster, shadingBits(shading_) | mapBits | carriedBits);
-    beginRasterPass(program, camera, target);
-    program.set("uTessLevel", float(tessLevel_));
-    points.bindStorage(SUBDFIT_SSBO_POINTS);
-    if (mapBits != 0) {
-        program.set("uMapResolution", maps->resolution);
-        program.set("uAppearanceResolution", maps->appearanceResolution);
-        program.set("uAppearanceTable", maps->appearanceTable);
-        if (maps->displacement) program.set("uMapHaloTable", maps->haloTable);
-        if (maps->bind) maps->bind();
-    }
+    beginRasterPass(target);  // each run of patches then uses its own program
     patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);
     patchCvs_.bindStorage(SUBDFIT_SSBO_PATCH_CVS);
+    points.bindStorage(SUBDFIT_SSBO_POINTS);
+    if (maps && maps->bind) maps->bind();
     vertexArray_.bind();
     glPatchParameteri(GL_PATCH_VERTICES, 1);
-    // llvmpipe's draw module slows down superlinearly on one long patch draw; short draws of a
-    // few hundred patches keep the cost linear in the patch count (measured by step-cost).
-    for (int first = 0; first < patchCount_; first += kPatchesPerDraw)
-        glDrawArrays(GL_PATCHES, first, std::min(kPatchesPerDraw, patchCount_ - first));
+    for (const PatchRun& run : runs_) {
+        const auto& program =
+            programs.get(kPatchRaster, shadingBits(shading_) | mapBits | carriedBits | (run.gregory ? kPatchGregory : 0));
+        useWithCamera(program, camera);
+        program.set("uTessLevel", float(tessLevel_));
+        if (mapBits != 0) {
+            program.set("uMapResolution", maps->resolution);
+            program.set("uAppearanceResolution", maps->appearanceResolution);
+            program.set("uAppearanceTable", maps->appearanceTable);
+            if (maps->displacement) program.set("uMapHaloTable", maps->haloTable);
+        }
+        // llvmpipe's draw module slows down superlinearly on one long patch draw; short draws of a
+        // few hundred patches keep the cost linear in the patch count (measured by step-cost).
+        for (int first = run.first; first < run.first + run.count; first += kPatchesPerDraw)
+            glDrawArrays(GL_PATCHES, first, std::min(kPatchesPerDraw, run.first + run.count - first));
+    }
     glBindVertexArray(0);
 }
 

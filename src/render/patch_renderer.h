@@ -29,6 +29,12 @@ struct PatchMaps {
     std::function<void()> bind;    // the node table and the map values this pass reads
 };
 
+// Consecutive patches of one kind, drawn by one shader variant.
+struct PatchRun {
+    int first = 0, count = 0;
+    bool gregory = false;  // Gregory-basis end caps, else regular B-spline patches
+};
+
 class PatchRenderer {
 public:
     // `tessLevel`: segments per base-face edge, raised to a power of two that keeps adaptive
@@ -46,6 +52,7 @@ public:
 private:
     int patchCount_, tessLevel_;
     ShadingModel shading_;
+    std::vector<PatchRun> runs_;
     gl::Buffer patchInfo_, patchCvs_;
     gl::VertexArray vertexArray_;
 };

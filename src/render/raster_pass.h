@@ -16,10 +16,14 @@ inline void useWithCamera(const gl::Program& program, const Camera& camera) {
     program.set("uEye", camera.eye);
 }
 
-inline void beginRasterPass(const gl::Program& program, const Camera& camera, const RenderTarget& target,
-                            const gl::RasterState& state = {}) {
+inline void beginRasterPass(const RenderTarget& target, const gl::RasterState& state = {}) {
     target.bindAndClear();
     state.apply();
+}
+
+inline void beginRasterPass(const gl::Program& program, const Camera& camera, const RenderTarget& target,
+                            const gl::RasterState& state = {}) {
+    beginRasterPass(target, state);
     useWithCamera(program, camera);
 }
 
