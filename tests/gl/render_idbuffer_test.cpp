@@ -215,6 +215,30 @@ INSTANTIATE_TEST_SUITE_P(
                       CageCase{"spot", [] { return loadAsset("spot/spot_control_mesh.obj"); }}),
     [](const auto& info) { return std::string(info.param.name); });
 
+// The tessellator evaluates one basis per draw (glsl/patch.tese): a cage without extraordinary
+// vertices compiles no Gregory variant, one with them compiles both (what each kind draws, the
+// reprojection above checks).
+TEST(PatchKinds, OnlyACageWithGregoryPatchesCompilesTheirVariant) {
+    for (const auto& [file, extraordinary] :
+         {std::pair{"osd-shapes/catmark_torus.obj", false}, std::pair{"spot/spot_control_mesh.obj", true}}) {
+        const Cage cage(loadAsset(file));
+        const bool gregoryPatches = std::any_of(cage.patches.patchInfo.begin(), cage.patches.patchInfo.end(),
+                                                [](const auto& info) { return info.y == subdiv::kGregoryBasisPatch; });
+        ASSERT_EQ(gregoryPatches, extraordinary) << file;
+        gl::ProgramCache cache(test::platformDefines());
+        RenderTarget target(64, 64);
+        cage.renderer.draw(cache, cage.points, orbitCamera(kViews[0]), target);
+        bool regularVariant = false, gregoryVariant = false;
+        for (const auto& v : cache.variants()) {
+            if (v.name != "patch_raster") continue;
+            (v.defines.count("SUBDFIT_GREGORY_PATCHES") ? gregoryVariant : regularVariant) = true;
+        }
+        EXPECT_TRUE(regularVariant) << file;
+        EXPECT_EQ(gregoryVariant, extraordinary) << file;
+    }
+    test::expectNoGlError();
+}
+
 // llvmpipe restarts gl_PrimitiveID every 1024 patches in the tessellation stages; a renderer
 // that took the patch index from it would give every patch >= 1024 the id of patch % 1024.
 // So: cages with well over 1024 patches, and the pixels of faces drawn by those late patches
