@@ -2,6 +2,7 @@
 // Draws a cage's limit surface with GPU tessellation: one GL patch per OpenSubdiv patch, whose
 // control points come from an SSBO of evaluated points. Writes colour, ptex face id and (u,v).
 #include <functional>
+#include <vector>
 
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
