@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+#include <tbb/global_control.h>
 
 #include <cmath>
 
@@ -53,6 +54,19 @@ TEST(LimitFit, FitsCloserThanVertexInterpolation) {
     EXPECT_LT(after, 0.8 * before) << "interpolated " << before << ", fitted " << after;
     // What initialCage returns by default is the fitted cage.
     EXPECT_EQ(initialCage(reference, {.faces = 300}).positions, fitted.positions);
+}
+
+// The rays are cast on every core: the cage must not depend on how many there are (the
+// reductions keep their order), or two machines would ship different files from one input.
+TEST(LimitFit, OneThreadAndManyGiveTheSameCage) {
+    const mesh::PolygonMesh reference = weldedTriangles(mesh::makeLumpySphere(4, 0.15f, 9));
+    mesh::PolygonMesh many = initialCage(reference, {.faces = 300, .limitFit = {.rounds = 0}}), one = many;
+    fitLimitToSurface(many, reference);
+    {
+        const tbb::global_control serial(tbb::global_control::max_allowed_parallelism, 1);
+        fitLimitToSurface(one, reference);
+    }
+    EXPECT_EQ(one.positions, many.positions);
 }
 
 // A reference that is the cage's own limit surface: the cage is (nearly) where it should be.

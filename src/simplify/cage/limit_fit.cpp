@@ -1,6 +1,7 @@
 #include "simplify/cage/limit_fit.h"
 
 #include <glm/geometric.hpp>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 
@@ -61,12 +62,12 @@ LimitFitReport fitLimitToSurface(mesh::PolygonMesh& cage, const mesh::PolygonMes
     auto project = [&] {
         const std::vector<glm::vec3> positions(P.begin(), P.end());
         std::vector<glm::vec3> origins(L.size()), normals(L.size());
-        for (size_t s = 0; s < L.size(); ++s) {
+        tbb::parallel_for(size_t(0), L.size(), [&](size_t s) {
             const subdiv::LimitSample at = limit.evaluate(L.ptexFace[s], L.uv[s].x, L.uv[s].y, positions);
             const glm::vec3 n = glm::cross(at.dPdu, at.dPdv);
             origins[s] = at.position;
             normals[s] = glm::length(n) > 1e-20f ? glm::normalize(n) : glm::vec3(0.0f);
-        }
+        });
         const geometry::NormalCasts casts = geometry::castAlongNormals(surface, origins, normals, reach, options.detour * reach);
         double squares = 0.0;
         report.hits = 0;
