@@ -5,6 +5,7 @@
 #include <set>
 
 #include "bindings.h"
+#include "gl/dispatch.h"
 #include "mesh/mesh_adjacency.h"
 
 namespace subdfit::fit {
@@ -112,7 +113,7 @@ void CageRelaxation::dispatchOverVertices() {
     neighbors_.bindStorage(SUBDFIT_SSBO_ADJACENCY_INDICES);
     cornerOffsets_.bindStorage(SUBDFIT_SSBO_RELAX_CORNER_OFFSETS);
     corners_.bindStorage(SUBDFIT_SSBO_RELAX_CORNERS);
-    glDispatchCompute(GLuint((vertexCount_ + 127) / 128), 1, 1);
+    glDispatchCompute(gl::groupsOf(vertexCount_, 128), 1, 1);
 }
 
 void CageRelaxation::apply(gl::ProgramCache& programs, gl::Buffer& theta, float rate) {

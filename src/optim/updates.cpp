@@ -3,11 +3,12 @@
 #include <cmath>
 
 #include "bindings.h"
+#include "gl/dispatch.h"
 
 namespace subdfit::optim {
 namespace {
 
-GLuint groupsOf(int count, int size) { return GLuint((count + size - 1) / size); }
+using gl::groupsOf;
 
 const gl::ProgramSpec kPerturb{"perturb", {{GL_COMPUTE_SHADER, "perturb.comp"}}};
 const gl::ProgramSpec kResolve{"resolve_gradient", {{GL_COMPUTE_SHADER, "resolve_gradient.comp"}}};

@@ -1,6 +1,7 @@
 #include "render/stencil_evaluator.h"
 
 #include "bindings.h"
+#include "gl/dispatch.h"
 
 namespace subdfit::render {
 
@@ -39,7 +40,7 @@ void StencilEvaluator::dispatch(gl::ProgramCache& programs, const gl::Buffer& co
     weights_.bindStorage(SUBDFIT_SSBO_STENCIL_WEIGHTS);
     points.bindStorage(SUBDFIT_SSBO_POINTS);
     secondPoints.bindStorage(SUBDFIT_SSBO_SECOND_POINTS);
-    glDispatchCompute(GLuint((pointCount_ + 127) / 128), GLuint(sets), 1);
+    glDispatchCompute(gl::groupsOf(pointCount_, 128), GLuint(sets), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "bindings.h"
+#include "gl/dispatch.h"
 #include "maps/map_parameters.h"
 #include "optim/updates.h"
 #include "util/error.h"
@@ -12,7 +13,7 @@
 namespace subdfit::sge {
 namespace {
 
-GLuint groupsOf(int count, int size) { return GLuint((count + size - 1) / size); }
+using gl::groupsOf;
 
 // One variant for the vertices' turns and one per texel group's channel count.
 const gl::ProgramSpec kGradient{"gradient",
