@@ -57,9 +57,6 @@
 #define SUBDFIT_SSBO_CARRIED_OCCLUSION 36
 #define SUBDFIT_SSBO_CARRIED_EMISSIVE 37
 
-// A supersampled render box-filtered down (scene::TargetSet): one vec4 per pixel.
-#define SUBDFIT_SSBO_FILTERED 40
-
 // The cage's tangential relaxation (fit/cage_relaxation.h).
 #define SUBDFIT_SSBO_RELAX_MODES 29           // per vertex: surface, crease or fixed
 #define SUBDFIT_SSBO_RELAX_CORNER_OFFSETS 30  // vertex -> its face corners (CSR)
@@ -83,9 +80,6 @@
 #define SUBDFIT_UNIT_NORMAL 10
 #define SUBDFIT_UNIT_OCCLUSION 11
 #define SUBDFIT_UNIT_EMISSIVE 12
-
-// The supersampled colour the box filter reads.
-#define SUBDFIT_UNIT_SUPERSAMPLED 13
 
 // Render target attachments.
 #define SUBDFIT_ATTACHMENT_COLOR 0

@@ -1,39 +1,31 @@
 #include "scene/target_set.h"
 
-#include <algorithm>
-
-#include "bindings.h"
-#include "gl/dispatch.h"
 #include "render/render_target.h"
+
+#include <algorithm>
 #include "util/interrupt.h"
 
 namespace subdfit::scene {
 
 namespace {
 
-const gl::ProgramSpec kBoxFilter{"box_filter", {{GL_COMPUTE_SHADER, "box_filter.comp"}}};
-
-// The mean of each factor × factor block of `fine` ((resolution · factor)²), filtered on the GPU
-// into `filtered` (resolution² vec4s) and read back.
-std::vector<glm::vec4> boxFiltered(gl::ProgramCache& programs, const gl::Texture& fine, int resolution, int factor,
-                                   const gl::Buffer& filtered) {
-    const auto& program = programs.get(kBoxFilter);
-    program.use();
-    program.set("uResolution", resolution);
-    program.set("uFactor", factor);
-    glBindTextureUnit(SUBDFIT_UNIT_SUPERSAMPLED, fine.id());
-    filtered.bindStorage(SUBDFIT_SSBO_FILTERED);
-    glDispatchCompute(gl::groupsOf(resolution, 16), gl::groupsOf(resolution, 16), 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    return filtered.read<glm::vec4>();
+// The mean of each factor × factor block of a (resolution · factor)² image.
+std::vector<glm::vec4> boxFiltered(const std::vector<glm::vec4>& fine, int resolution, int factor) {
+    std::vector<glm::vec4> coarse(size_t(resolution) * size_t(resolution), glm::vec4(0.0f));
+    const int fineWidth = resolution * factor;
+    const float weight = 1.0f / float(factor * factor);
+    for (int y = 0; y < fineWidth; ++y)
+        for (int x = 0; x < fineWidth; ++x)
+            coarse[size_t(y / factor) * size_t(resolution) + size_t(x / factor)] +=
+                weight * fine[size_t(y) * size_t(fineWidth) + size_t(x)];
+    return coarse;
 }
 
 }  // namespace
 
 TargetSet::TargetSet(gl::ProgramCache& programs, const render::MeshRenderer& reference,
                      std::vector<render::Camera> cameras, int resolution, int supersampling)
-    : programs_(&programs),
-      cameras_(std::move(cameras)),
+    : cameras_(std::move(cameras)),
       resolution_(resolution),
       supersampling_(std::max(1, supersampling)),
       colors_(GL_RGBA32F, resolution, resolution, std::max(1, int(cameras_.size()))) {
@@ -63,9 +55,8 @@ std::vector<glm::vec4> TargetSet::render(int i, const Draw& draw) const {
     const int fine = resolution_ * supersampling_;
     if (!canvas_) canvas_ = std::make_unique<render::RenderTarget>(fine, fine);
     draw(cameras_[size_t(i)], *canvas_);
-    if (supersampling_ == 1) return canvas_->readColor();
-    if (!filtered_) filtered_ = std::make_unique<gl::Buffer>(GLsizeiptr(resolution_) * resolution_ * sizeof(glm::vec4));
-    return boxFiltered(*programs_, canvas_->color(), resolution_, supersampling_, *filtered_);
+    const auto pixels = canvas_->readColor();
+    return supersampling_ == 1 ? pixels : boxFiltered(pixels, resolution_, supersampling_);
 }
 
 std::vector<glm::vec4> TargetSet::readColor(int i) const {

@@ -10,7 +10,6 @@
 #include <memory>
 #include <vector>
 
-#include "gl/buffer.h"
 #include "gl/program_cache.h"
 #include "gl/texture.h"
 #include "render/camera.h"
@@ -37,12 +36,10 @@ public:
     std::vector<glm::vec4> render(int i, const Draw& draw) const;
 
 private:
-    gl::ProgramCache* programs_;
     std::vector<render::Camera> cameras_;
     int resolution_, supersampling_;
     gl::Texture colors_;
     mutable std::unique_ptr<render::RenderTarget> canvas_;  // at the supersampled resolution, made on first use
-    mutable std::unique_ptr<gl::Buffer> filtered_;          // its box-filtered image
 };
 
 }  // namespace subdfit::scene

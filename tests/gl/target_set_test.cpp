@@ -1,5 +1,5 @@
 // A supersampled target set shows what a viewer shows: each pixel the mean of its block of
-// samples (filtered on the GPU), for the targets and for whatever is scored against them.
+// samples, for the targets and for whatever is scored against them.
 #include <gtest/gtest.h>
 
 #include <cmath>
