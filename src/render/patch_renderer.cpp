@@ -90,8 +90,8 @@ void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, c
             program.set("uAppearanceTable", maps->appearanceTable);
             if (maps->displacement) program.set("uMapHaloTable", maps->haloTable);
         }
-        // llvmpipe's draw module slows down superlinearly on one long patch draw; short draws of a
-        // few hundred patches keep the cost linear in the patch count (measured by step-cost).
+        // llvmpipe's draw module slows down superlinearly on one long patch draw; short draws of
+        // kPatchesPerDraw patches keep the cost linear in the patch count (measured by step-cost).
         for (int first = run.first; first < run.first + run.count; first += kPatchesPerDraw)
             glDrawArrays(GL_PATCHES, first, std::min(kPatchesPerDraw, run.first + run.count - first));
     }
