@@ -47,14 +47,18 @@ StepSchedule::Decision StepSchedule::record(double loss, int step) {
     if (!finite) loss = state_.window.empty() ? 0.0 : state_.window.back();
     if (state_.stageLosses.size() < size_t(kWindow)) state_.stageLosses.push_back(loss);
     state_.window.push_back(loss);
-    if (state_.window.size() > size_t(kWindow)) state_.window.erase(state_.window.begin());
-    if (state_.window.size() < size_t(kWindow)) return {best, Action::Continue};
-    if (likelyImproving(lossTrend(state_.window), kMinImprovement, kConfidence)) return {best, Action::Continue};
+    const size_t window = size_t(this->window());
+    if (state_.window.size() > window) state_.window.erase(state_.window.begin());
+    if (state_.window.size() < window) return {best, Action::Continue};
+    const double minFall = kMinImprovement * double(window) / kWindow;
+    if (likelyImproving(lossTrend(state_.window), minFall, kConfidence)) return {best, Action::Continue};
     state_.window.clear();
     if (state_.halvings >= kMaxHalvings) return {best, Action::Converged};
     ++state_.halvings;
     return {best, Action::Halve};
 }
+
+int StepSchedule::window() const { return kWindow << std::min(state_.halvings, kMostWindowDoublings); }
 
 bool StepSchedule::paying() const {
     // The trend, not the best: on a noisy loss the lowest of a few measurements is below the

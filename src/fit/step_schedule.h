@@ -3,9 +3,11 @@
 // views (another rotation of the view lattice than the training and the held-out views) is
 // measured, and the parameters that gave the best one are kept. That loss is noisy (the
 // parameters jitter under the estimator's noise), so no single comparison decides: a line is
-// fitted to the last kWindow measurements, and the fit is still improving while a relative fall
-// of kMinImprovement over the window stays likely (the fitted fall plus kConfidence standard
-// errors reaches it). When it is not, the step is halved and a fresh window starts; after
+// fitted to the last window of measurements, and the fit is still improving while a relative
+// fall of kMinImprovement per kWindow measurements stays likely (the fitted fall plus
+// kConfidence standard errors reaches it). When it is not, the step is halved and a fresh window
+// starts, twice as long as the last (up to kMostWindowDoublings times): a halved step falls more
+// slowly against the same noise, and a longer window tells a slow fall from a flat line. After
 // kMaxHalvings halvings a further stall ends the stage: it has converged. A poor start keeps
 // the full step as long as it pays; a good one stops early. (FitRun returns to the best state
 // at each halving.)
@@ -29,8 +31,9 @@ bool likelyImproving(const LossTrend& trend, double minFall, double confidence);
 
 class StepSchedule {
 public:
-    static constexpr int kWindow = 10;                // measurements per decision
-    static constexpr double kMinImprovement = 0.005;  // relative fall over a window worth going on for
+    static constexpr int kWindow = 10;                // measurements per decision at the full step
+    static constexpr int kMostWindowDoublings = 2;
+    static constexpr double kMinImprovement = 0.005;  // relative fall per kWindow measurements worth going on for
     static constexpr double kConfidence = 0.5;        // standard errors: stall when P(fall >= min) < ~30 %
     static constexpr int kMaxHalvings = 3;
     // A probation gives the benefit of the doubt: it stops a stage only when even its fall plus
@@ -52,6 +55,8 @@ public:
     Decision record(double loss, int step);
 
     float learningRateScale() const { return std::ldexp(1.0f, -state_.halvings); }
+    // Measurements per decision at the current step.
+    int window() const;
     // The cage's: it also keeps the halvings it carried into this stage.
     float vertexRateScale() const { return std::ldexp(1.0f, -(state_.halvings + state_.carriedHalvings)); }
 

@@ -2,6 +2,7 @@
 // chooses when the user did not.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -57,17 +58,55 @@ TEST(StepSchedule, AFlatNoisyLossHalvesThenConverges) {
     Noise noise(0.04);
     int halvings = 0, measurements = 0, firstHalving = -1;
     StepSchedule::Action action = StepSchedule::Action::Continue;
-    while (action != StepSchedule::Action::Converged && measurements < 200) {
+    while (action != StepSchedule::Action::Converged && measurements < 400) {
         action = schedule.record(noise(), measurements++).action;
         if (action == StepSchedule::Action::Halve && halvings++ == 0) firstHalving = measurements;
     }
     EXPECT_EQ(action, StepSchedule::Action::Converged);
     EXPECT_EQ(halvings, StepSchedule::kMaxHalvings);
-    // Never on fewer measurements than a window, and each stall on a fresh one.
-    EXPECT_GE(firstHalving, StepSchedule::kWindow);
-    EXPECT_GE(measurements, StepSchedule::kWindow * (StepSchedule::kMaxHalvings + 1));
-    EXPECT_LE(measurements, 100);
+    // Never on fewer measurements than a window, and each stall on a fresh one, longer after
+    // each halving.
+    int windows = 0;
+    for (int h = 0; h <= StepSchedule::kMaxHalvings; ++h)
+        windows += StepSchedule::kWindow << std::min(h, StepSchedule::kMostWindowDoublings);
+    EXPECT_EQ(firstHalving, StepSchedule::kWindow);
+    EXPECT_GE(measurements, windows);
+    EXPECT_LE(measurements, 2 * windows);
     EXPECT_FLOAT_EQ(schedule.learningRateScale(), 1.0f / 8.0f);
+}
+
+TEST(StepSchedule, AHalvedStepIsJudgedOnALongerWindow) {
+    ScheduleState state;
+    StepSchedule schedule(state);
+    EXPECT_EQ(schedule.window(), StepSchedule::kWindow);
+    state.halvings = 1;
+    EXPECT_EQ(schedule.window(), 2 * StepSchedule::kWindow);
+    state.halvings = StepSchedule::kMaxHalvings;
+    EXPECT_EQ(schedule.window(), StepSchedule::kWindow << StepSchedule::kMostWindowDoublings);
+}
+
+TEST(StepSchedule, ASlowNoisyFallAfterHalvingsIsNoStall) {
+    // A halved step falls slowly against the noise: here three times the least fall worth going
+    // on for, under noise of ±3 % a measurement. Judged on windows of kWindow measurements, such
+    // a fall is taken for a plateau within a few hundred; on the longer window the halvings
+    // bring, it is not.
+    constexpr double kFallPerMeasurement = 3.0 * StepSchedule::kMinImprovement / StepSchedule::kWindow;
+    for (unsigned seed = 1; seed <= 5; ++seed) {
+        ScheduleState halved, full;
+        halved.halvings = StepSchedule::kMostWindowDoublings;
+        StepSchedule halvedSchedule(halved), fullSchedule(full);
+        Noise noise(0.03, seed);
+        double level = 1.0;
+        int fullStalls = 0;
+        for (int k = 0; k < 400; ++k, level *= 1.0 - kFallPerMeasurement) {
+            const double loss = level * noise();
+            EXPECT_EQ(halvedSchedule.record(loss, k).action, StepSchedule::Action::Continue)
+                << "seed " << seed << ", measurement " << k;
+            fullStalls += fullSchedule.record(loss, k).action != StepSchedule::Action::Continue;
+            full.halvings = 0;  // stays at the full step's window
+        }
+        EXPECT_GT(fullStalls, 0) << "seed " << seed;
+    }
 }
 
 TEST(StepSchedule, ASteadyFallTooSmallToPayForIsAStall) {
