@@ -130,7 +130,7 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
     const auto began = Clock::now();
     const int reportEvery = std::max(1, options_.steps / 50);
     const bool plateau = options_.schedule == Schedule::Plateau;
-    StepSchedule schedule(schedule_);
+    StepSchedule schedule(schedule_, windowDoublings_);
     // The schedule judges a step by its loss on the monitor views, the start included: the
     // kept state is never worse than where the stage began. Returns why the stage ends, if it does.
     auto monitor = [&]() -> std::optional<StopReason> {

@@ -103,6 +103,9 @@ public:
     // is the caller's to write: toJson(report), plus what it adds.
     FitReport writeResults(const std::filesystem::path& out, const context::GlContext& context);
 
+    // How long the plateau schedule's windows grow (StepSchedule's `windowDoublings`).
+    void setWindowDoublings(int doublings) { windowDoublings_ = doublings; }
+
     // Rebuilds the fitter at another tessellation level, keeping its state and hand-set rates.
     void setTessLevel(int level);
 
@@ -130,6 +133,7 @@ private:
     int probationSteps() const;  // of the stage under way
     StopReason stopReason_ = StopReason::Reached;
     int monitorEvery_;
+    int windowDoublings_ = StepSchedule::kMostWindowDoublings;
     std::chrono::steady_clock::time_point started_;
     double fitSeconds_ = 0.0;
     void scoreStart();

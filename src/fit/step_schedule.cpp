@@ -58,7 +58,7 @@ StepSchedule::Decision StepSchedule::record(double loss, int step) {
     return {best, Action::Halve};
 }
 
-int StepSchedule::window() const { return kWindow << std::min(state_.halvings, kMostWindowDoublings); }
+int StepSchedule::window() const { return kWindow << std::min(state_.halvings, windowDoublings_); }
 
 bool StepSchedule::paying() const {
     // The trend, not the best: on a noisy loss the lowest of a few measurements is below the

@@ -49,7 +49,11 @@ public:
         Action action;
     };
 
-    explicit StepSchedule(ScheduleState& state) : state_(state) {}
+    // `windowDoublings`: the most times halvings double the window. A fit from a poor start
+    // gains on slow falls; a refinement of a near-optimal start (simplify's bake) gains little
+    // there for its seconds (0: every window kWindow measurements).
+    explicit StepSchedule(ScheduleState& state, int windowDoublings = kMostWindowDoublings)
+        : state_(state), windowDoublings_(windowDoublings) {}
 
     // The monitored loss at `step`, and what to do about it.
     Decision record(double loss, int step);
@@ -80,6 +84,7 @@ public:
 
 private:
     ScheduleState& state_;
+    int windowDoublings_;
 };
 
 }  // namespace subdfit::fit

@@ -256,6 +256,9 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
     const mesh::PolygonMesh cage = in.scene.cageWorld;
     fit::FitRun run(fit::resolved(plan.fit), in.programs, in.scene, fit::ReportScores::HoldoutOnly);
     refineGently(run.fitter());
+    // Past its first halving such a fit falls slowly, and longer windows would buy tenths of a
+    // dB for minutes (docs/optimizer.md): every window stays the full step's.
+    run.setWindowDoublings(0);
     fitStages(run, options.fit.out / "checkpoint.bin", options.fit.resume, in.hooks);
     stages.lap("fit");
 

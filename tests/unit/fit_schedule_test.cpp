@@ -83,6 +83,8 @@ TEST(StepSchedule, AHalvedStepIsJudgedOnALongerWindow) {
     EXPECT_EQ(schedule.window(), 2 * StepSchedule::kWindow);
     state.halvings = StepSchedule::kMaxHalvings;
     EXPECT_EQ(schedule.window(), StepSchedule::kWindow << StepSchedule::kMostWindowDoublings);
+    // A refinement of a near-optimal start keeps the full step's window.
+    EXPECT_EQ(StepSchedule(state, 0).window(), StepSchedule::kWindow);
 }
 
 TEST(StepSchedule, ASlowNoisyFallAfterHalvingsIsNoStall) {
