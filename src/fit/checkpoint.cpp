@@ -13,7 +13,7 @@ namespace subdfit::fit {
 namespace {
 
 // The last byte is the format version: a reader refuses any other.
-constexpr std::string_view kMagic{"SDFTCKP7", 8};
+constexpr std::string_view kMagic{"SDFTCKP8", 8};
 constexpr std::string_view kMagicFamily{"SDFTCKP", 7};
 
 class Writer {
@@ -112,6 +112,12 @@ void writeCheckpoint(const std::filesystem::path& path, const std::string& finge
     for (const auto& theta : schedule.bestTheta) out.putFloats(theta);
     out.put<std::uint32_t>(std::uint32_t(schedule.startTheta.size()));
     for (const auto& theta : schedule.startTheta) out.putFloats(theta);
+    out.put<std::uint32_t>(std::uint32_t(state.monitored.size()));
+    for (const MonitorMeasurement& m : state.monitored) {
+        out.put<std::int32_t>(m.step);
+        out.put<double>(m.seconds);
+        out.put<double>(m.loss);
+    }
     io::writeTextAtomically(path, std::move(out).finish());
 }
 
@@ -169,7 +175,15 @@ std::optional<FitState> readCheckpoint(const std::filesystem::path& path, const 
     const auto startGroups = in.get<std::uint32_t>();
     if (startGroups > groups) in.damaged("bad start-state group count");
     for (std::uint32_t k = 0; k < startGroups; ++k) schedule.startTheta.push_back(in.getFloats());
-    if (!in.atEnd()) in.damaged("bytes after the schedule");
+    const auto measurements = in.get<std::uint32_t>();
+    for (std::uint32_t k = 0; k < measurements; ++k) {
+        MonitorMeasurement m;
+        m.step = in.get<std::int32_t>();
+        m.seconds = in.get<double>();
+        m.loss = in.get<double>();
+        state.monitored.push_back(m);
+    }
+    if (!in.atEnd()) in.damaged("bytes after the monitored losses");
     return state;
 }
 

@@ -20,6 +20,9 @@ nlohmann::json toJson(const FitReport& r) {
     settings["tess_level"] = r.tessLevel;
     nlohmann::json exports = nlohmann::json::object();
     for (const auto& [file, bytes] : r.exports) exports[file] = bytes;
+    // What each step cost in accuracy, as the schedule saw it: compact rows a plot reads directly.
+    auto monitored = nlohmann::json::array();
+    for (const MonitorMeasurement& m : r.monitored) monitored.push_back({m.step, m.seconds, m.loss});
     nlohmann::json report{
         {"steps", r.steps},
         {"steps_requested", r.options.steps},
@@ -46,6 +49,7 @@ nlohmann::json toJson(const FitReport& r) {
         {"exports", exports},
         {"stop_reason", r.stopReason},
         {"best_step", r.bestStep},
+        {"monitor_losses", monitored},
     };
     if (r.trainBefore && r.trainAfter) {
         report["loss_initial"] = r.trainBefore->loss;

@@ -13,6 +13,7 @@
 
 #include "context/gl_context.h"
 #include "fit/fit_options.h"
+#include "fit/fit_state.h"
 #include "gl/program_cache.h"
 #include "maps/map_parameters.h"
 
@@ -52,6 +53,7 @@ struct FitReport {
     std::map<std::string, std::uintmax_t> exports;   // file name -> bytes
     std::string stopReason = "steps";  // steps, converged, no_gain or interrupted
     int bestStep = -1;                 // the step whose parameters were kept (plateau schedule)
+    std::vector<MonitorMeasurement> monitored;  // the plateau schedule's, those before a resume included
 
     bool interrupted() const { return stopReason == "interrupted"; }
 };
@@ -59,7 +61,8 @@ struct FitReport {
 // report.json's keys: steps, steps_requested, resumed_from_step, interrupted, seconds,
 // fit_seconds, loss_initial, loss_final and psnr_train[_initial] (where scored), psnr_holdout[_initial], finite,
 // effects, parameters, renderer, gl_version, gl_provider, atomic_float, shader_variants,
-// settings, cage, reference, exports.
+// settings, cage, reference, exports, stop_reason, best_step, monitor_losses ([step, seconds of
+// steps, loss] for each measurement of the plateau schedule's monitored loss).
 nlohmann::json toJson(const FitReport& report);
 
 }  // namespace subdfit::fit

@@ -101,6 +101,8 @@ bool FitRun::resume(const std::filesystem::path& checkpoint) {
         throw fileError(checkpoint.string(), e.what());
     }
     resumedFromStep_ = saved->steps;
+    monitored_ = saved->monitored;
+    fitSecondsBefore_ = monitored_.empty() ? 0.0 : monitored_.back().seconds;
     scoredTheta_.clear();  // what the caller sets after a resume (carried textures) was not drawn
     schedule_ = saved->schedule;
     widenedStep_ = saved->widenedStep;
@@ -113,6 +115,7 @@ void FitRun::saveCheckpoint(const std::filesystem::path& checkpoint) {
     FitState state = fitter_->state();
     state.schedule = schedule_;
     state.widenedStep = widenedStep_;
+    state.monitored = monitored_;
     writeCheckpoint(checkpoint, fingerprint_, state);
 }
 
@@ -135,6 +138,7 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
     // kept state is never worse than where the stage began. Returns why the stage ends, if it does.
     auto monitor = [&]() -> std::optional<StopReason> {
         const double monitorLoss = score(*fitter_, scene_.monitor).loss;
+        monitored_.push_back({step(), fitSecondsBefore_ + fitSeconds_, monitorLoss});
         const bool first = schedule_.stageStart < 0;
         const StepSchedule::Decision decision = schedule.record(monitorLoss, step());
         if (decision.best) schedule_.bestTheta = readTheta(*fitter_);
@@ -275,6 +279,7 @@ FitReport FitRun::writeResults(const std::filesystem::path& out, const context::
     r.steps = step();
     r.resumedFromStep = resumedFromStep_;
     r.fitSeconds = fitSeconds_;
+    r.monitored = monitored_;
     r.trainBefore = trainBefore_;
     r.holdoutBefore = holdoutBefore_;
     // A fit that ended where it started (a start it could not improve) is drawn as it was: its

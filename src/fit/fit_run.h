@@ -136,6 +136,8 @@ private:
     int windowDoublings_ = StepSchedule::kMostWindowDoublings;
     std::chrono::steady_clock::time_point started_;
     double fitSeconds_ = 0.0;
+    double fitSecondsBefore_ = 0.0;  // a resumed run's steps before its resume, as last monitored
+    std::vector<MonitorMeasurement> monitored_;
     void scoreStart();
     ReportScores scores_;
     std::optional<ViewSetScore> trainBefore_;

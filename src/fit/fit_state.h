@@ -28,6 +28,14 @@ struct ScheduleState {
     std::vector<std::vector<float>> startTheta{};  // the same at the stage's first measurement
 };
 
+// One measurement of the monitored loss (fit/step_schedule.h): at which step, after how many
+// seconds of steps, and the loss.
+struct MonitorMeasurement {
+    int step = 0;
+    double seconds = 0.0, loss = 0.0;
+    friend bool operator==(const MonitorMeasurement&, const MonitorMeasurement&) = default;
+};
+
 struct FitState {
     int steps = 0;
     std::uint32_t samples = 0;
@@ -36,6 +44,7 @@ struct FitState {
     int mapsStartStep = -1;            // set when the maps were started early; < 0: the planned step
     int widenedStep = -1;              // when FitRun::run widened its last stage; < 0: not (yet)
     ScheduleState schedule{};
+    std::vector<MonitorMeasurement> monitored{};  // every measurement so far, for the report
 };
 
 }  // namespace subdfit::fit

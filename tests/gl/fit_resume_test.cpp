@@ -59,6 +59,16 @@ TEST(FitResume, InterruptedRunContinuesToTheSameResult) {
     const auto b = mesh::loadMesh(dir / "resumed" / "cage.obj").positions;
     ASSERT_EQ(a.size(), b.size());
     EXPECT_EQ(a, b) << "largest vertex difference " << maxDistance(a, b);
+
+    // The report's monitored losses run on through the resume: the same steps and losses, with
+    // seconds that never go back.
+    ASSERT_EQ(resumed.monitored.size(), straight.monitored.size());
+    ASSERT_FALSE(straight.monitored.empty());
+    for (size_t k = 0; k < straight.monitored.size(); ++k) {
+        EXPECT_EQ(resumed.monitored[k].step, straight.monitored[k].step) << k;
+        EXPECT_EQ(resumed.monitored[k].loss, straight.monitored[k].loss) << k;
+        if (k > 0) EXPECT_GE(resumed.monitored[k].seconds, resumed.monitored[k - 1].seconds) << k;
+    }
 }
 
 TEST(FitResume, RefusesACheckpointOfOtherSettings) {

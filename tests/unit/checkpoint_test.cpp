@@ -37,6 +37,7 @@ FitState sampleState() {
                       .stageStart = 3, .probationOver = true, .halvings = 2, .carriedHalvings = 3,
                       .bestTheta = {state.groups[0].theta, state.groups[1].moment1},
                       .startTheta = {state.groups[1].theta, state.groups[0].moment1}};
+    state.monitored = {{.step = 0, .seconds = 0.0, .loss = 1.0}, {.step = 10, .seconds = 1.5, .loss = 0.5}};
     return state;
 }
 
@@ -89,6 +90,7 @@ TEST_F(Checkpoint, ReadsBackExactly) {
     EXPECT_EQ(read->schedule.carriedHalvings, expected.schedule.carriedHalvings);
     EXPECT_EQ(read->schedule.bestTheta, expected.schedule.bestTheta);
     EXPECT_EQ(read->schedule.startTheta, expected.schedule.startTheta);
+    EXPECT_EQ(read->monitored, expected.monitored);
     EXPECT_FALSE(readCheckpoint(path_.parent_path() / "none.bin", "fp"));
 }
 
@@ -116,7 +118,7 @@ TEST_F(Checkpoint, TruncationOtherVersionsAndOtherSettingsAreRefused) {
 // A count of 2^40 floats behind a valid checksum: the reader must see that the file cannot
 // hold them instead of allocating 4 TB.
 TEST_F(Checkpoint, ACountBeyondTheFileAllocatesNothing) {
-    std::string payload = "SDFTCKP7";
+    std::string payload = "SDFTCKP8";
     auto put = [&](auto value) { payload.append(reinterpret_cast<const char*>(&value), sizeof value); };
     put(std::uint64_t(2));
     payload += "fp";
