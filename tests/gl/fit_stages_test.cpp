@@ -19,6 +19,8 @@ namespace subdfit::test {
 namespace {
 
 // Heights on a lumpy sphere's cage: the cage converges, then the heights (frozen cage), then both.
+// Each run judges every stage on the full step's windows (setWindowDoublings(0), as simplify
+// does), so that its stages converge within these few steps.
 fit::FitOptions stagedFit(const std::filesystem::path& dir) {
     fit::FitOptions o;
     o.out = dir;
@@ -41,6 +43,7 @@ TEST(FitStages, AWidenedStageStartsAfterConvergenceAndEndsNoWorse) {
     const fit::FitOptions o = stagedFit(dir);
     fit::FitScene scene = stagedScene(o);
     fit::FitRun run(fit::resolved(o), programs(), scene);
+    run.setWindowDoublings(0);
 
     // The heights alone once the maps join; the cage is let back in when they have converged.
     auto& fitter = run.fitter();
@@ -70,6 +73,7 @@ TEST(FitStages, MapsJoiningAConvergedCageStartAtTheFullStep) {
     o.mapsStart = 0.9f;
     fit::FitScene scene = stagedScene(o);
     fit::FitRun run(fit::resolved(o), programs(), scene);
+    run.setWindowDoublings(0);
     auto& fitter = run.fitter();
     std::atomic<bool> cancel{false};
     float mapsScale = 0.0f, cageFactor = 0.0f;
@@ -97,6 +101,7 @@ TEST(FitStages, AResumedWidenedStageEndsWhereAStraightRunDoes) {
     auto fit = [&](const std::filesystem::path& checkpoint, bool resume, const fit::FitHooks& hooks,
                    std::atomic<bool>* cancelWhenWidened = nullptr) {
         auto run = std::make_unique<fit::FitRun>(fit::resolved(o), programs(), scene);
+        run->setWindowDoublings(0);
         if (resume) {
             EXPECT_TRUE(run->resume(checkpoint));
         }
@@ -140,6 +145,7 @@ TEST(FitStages, AFitWithoutMapsIsNeverWidened) {
     const mesh::PolygonMesh cage = mesh::makeQuadSphere(2);
     fit::FitScene scene(fit::resolved(o), programs(), cage, surface::limitMesh(cage, 8));
     fit::FitRun run(fit::resolved(o), programs(), scene);
+    run.setWindowDoublings(0);
     bool widened = false;
     const auto stopped = run.run(dir / "checkpoint.bin", {}, {}, [&] { return widened = true; });
     EXPECT_EQ(stopped, fit::StopReason::NoGain);
