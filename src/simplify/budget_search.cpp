@@ -22,6 +22,7 @@
 #include "util/error.h"
 #include "util/interrupt.h"
 #include "simplify/stage_seconds.h"
+#include "subdiv/patch_set.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -66,6 +67,18 @@ Shipped ship(const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps maps, int 
         exporter::encodeSubd(exporter::shippableAsset(cageWorld, maps, precision.positionBits), precision));
     return {encoded, exporter::decodeSubd(*encoded, "budget candidate")};
 }
+
+}  // namespace
+
+void prepareToJudge(const mesh::PolygonMesh& cageWorld) {
+    try {
+        const exporter::SubdAsset shipped = ship(cageWorld, {}, 0, 0, 1.0f).decoded;
+        subdiv::cachedPatchSet(shipped.cage, {.isolationLevel = subdiv::drawingIsolationLevel(shipped.cage)});
+    } catch (const Error&) {
+    }
+}
+
+namespace {
 
 // The decoded candidate in a fitter of its own, drawn as the fit would draw it.
 std::unique_ptr<fit::CageFitter> drawnAsFitted(gl::ProgramCache& programs, const fit::FitScene& scene,

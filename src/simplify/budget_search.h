@@ -90,6 +90,12 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
                           const mesh::PolygonMesh& referenceWorld, const BudgetSearch& search, CageLadder& cages,
                           const std::function<void(const std::string&)>& say = {});
 
+// Builds, on the calling thread, the drawing tables judging `cageWorld` needs (OpenSubdiv's,
+// for the cage as it ships: decoded, its vertices renumbered), into subdiv's table cache: a
+// CageLadder's `prepare`, so that the GL thread finds them built. Never throws: whatever fails
+// here fails again, and is reported, where the cage is judged.
+void prepareToJudge(const mesh::PolygonMesh& cageWorld);
+
 // The atlas sizes worth trying on `reference`: its texture at 1/32, 1/16 and 1/8 of its size (the
 // scales the textured triangle baselines reach at tens of KB), 32 to 512 texels; none when its
 // appearance cannot stay in its atlas. 1/32 leaves room for heights or a denser cage beside

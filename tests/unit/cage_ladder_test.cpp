@@ -1,5 +1,9 @@
-// The budget search's cages, built on a thread of their own, are the cages built in turn.
+// The budget search's cages, built on a thread of their own, are the cages built in turn, each
+// prepared there before it is handed over.
 #include <gtest/gtest.h>
+
+#include <mutex>
+#include <vector>
 
 #include "mesh/procedural.h"
 #include "simplify/cage/cage_ladder.h"
@@ -23,6 +27,23 @@ TEST(CageLadder, GivesTheCagesASourceBuildsInTurn) {
     }
     EXPECT_FALSE(ladder.take(counts.size() - 1).has_value());
     EXPECT_EQ(ladder.source().cage({.faces = 160}).positions, source.cage({.faces = 160}).positions);
+}
+
+TEST(CageLadder, PreparesEachCageBeforeHandingItOver) {
+    const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 5);
+    std::mutex mutex;
+    std::vector<int> prepared;  // on the builder's thread, before each cage is handed over
+    CageLadder ladder(reference, {400, 160}, [&](const mesh::PolygonMesh& cage) {
+        const std::lock_guard lock(mutex);
+        prepared.push_back(cage.faceCount());
+    });
+    for (size_t k = 0; k < 2; ++k) {
+        const std::optional<mesh::PolygonMesh> cage = ladder.take(k);
+        ASSERT_TRUE(cage.has_value());
+        const std::lock_guard lock(mutex);
+        ASSERT_GT(prepared.size(), k);
+        EXPECT_EQ(prepared[k], cage->faceCount());
+    }
 }
 
 TEST(CageLadder, AStopRequestReachesTheCageWaitedFor) {

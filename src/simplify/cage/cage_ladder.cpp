@@ -5,10 +5,12 @@
 
 namespace subdfit::simplify {
 
-CageLadder::CageLadder(const mesh::PolygonMesh& reference, std::vector<int> faceCounts)
+CageLadder::CageLadder(const mesh::PolygonMesh& reference, std::vector<int> faceCounts, Prepare prepare)
     : promises_(faceCounts.size()) {
     for (auto& promise : promises_) cages_.push_back(promise.get_future());
-    builder_ = std::thread([this, &reference, counts = std::move(faceCounts)] { build(reference, counts); });
+    builder_ = std::thread([this, &reference, counts = std::move(faceCounts), prepare = std::move(prepare)] {
+        build(reference, counts, prepare);
+    });
 }
 
 CageLadder::~CageLadder() {
@@ -16,13 +18,15 @@ CageLadder::~CageLadder() {
     if (builder_.joinable()) builder_.join();
 }
 
-void CageLadder::build(const mesh::PolygonMesh& reference, const std::vector<int>& faceCounts) {
+void CageLadder::build(const mesh::PolygonMesh& reference, const std::vector<int>& faceCounts, const Prepare& prepare) {
     size_t k = 0;
     try {
         source_.emplace(reference);
         for (; k < faceCounts.size() && !stop_; ++k) {
             try {
-                promises_[k].set_value(source_->cage({.faces = faceCounts[k]}));
+                mesh::PolygonMesh cage = source_->cage({.faces = faceCounts[k]});
+                if (prepare) prepare(cage);
+                promises_[k].set_value(std::move(cage));
             } catch (const Interrupted&) {
                 throw;
             } catch (const Error&) {

@@ -3,6 +3,7 @@
 // own while the caller judges the ones already built: building a cage is CPU work, judging one
 // is GL work, and each leaves the other core idle.
 #include <atomic>
+#include <functional>
 #include <future>
 #include <optional>
 #include <thread>
@@ -15,8 +16,11 @@ namespace subdfit::simplify {
 
 class CageLadder {
 public:
-    // Starts building at once; `reference` must outlive the ladder.
-    CageLadder(const mesh::PolygonMesh& reference, std::vector<int> faceCounts);
+    // Starts building at once; `reference` must outlive the ladder. `prepare` (if any) runs on
+    // the builder's thread on each cage before it is handed over: CPU work its judge would
+    // otherwise do between GL work (searchBudget's prepareToJudge).
+    using Prepare = std::function<void(const mesh::PolygonMesh& cage)>;
+    CageLadder(const mesh::PolygonMesh& reference, std::vector<int> faceCounts, Prepare prepare = {});
     ~CageLadder();  // stops the builder after the cage it is on, and waits for it
     CageLadder(const CageLadder&) = delete;
     CageLadder& operator=(const CageLadder&) = delete;
@@ -29,7 +33,7 @@ public:
     const CageSource& source();
 
 private:
-    void build(const mesh::PolygonMesh& reference, const std::vector<int>& faceCounts);
+    void build(const mesh::PolygonMesh& reference, const std::vector<int>& faceCounts, const Prepare& prepare);
 
     std::vector<std::promise<std::optional<mesh::PolygonMesh>>> promises_;
     std::vector<std::future<std::optional<mesh::PolygonMesh>>> cages_;
