@@ -529,10 +529,10 @@ BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
     TimedStage timed(found.phases, "settle");
     const Fitting* chosen = settle(in.programs, in.scene, found.fitting, [](const BudgetCandidate&) { return true; });
     if (!chosen)
-        throw fileError(in.referenceWorld.sourcePath, "no cage fits in " + std::to_string(in.search.budget) +
-                                                          " bytes (the smallest tried needs " +
-                                                          std::to_string(found.tried.empty() ? 0 : found.tried.back().bytes) +
-                                                          "); raise --budget");
+        throw NoCageFits(in.referenceWorld.sourcePath, "no cage fits in " + std::to_string(in.search.budget) +
+                                                           " bytes (the smallest tried needs " +
+                                                           std::to_string(found.tried.empty() ? 0 : found.tried.back().bytes) +
+                                                           ")");
     BudgetChoice choice;
     choice.chosen = chosen->candidate;
     choice.cageWorld = *chosen->cageWorld;

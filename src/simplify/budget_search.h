@@ -82,6 +82,18 @@ struct BudgetChoice {
 // the reference's own triangle count.
 std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, int mostFaces);
 
+// What searchBudget throws when no candidate fits the budget: the reference's path and why, and
+// that reason alone (simplify ships a triangle route instead where one fits).
+class NoCageFits : public Error {
+public:
+    NoCageFits(const std::string& path, std::string reason)
+        : Error(path + ": " + reason + "; raise --budget"), reason_(std::move(reason)) {}
+    const std::string& reason() const { return reason_; }
+
+private:
+    std::string reason_;
+};
+
 // Runs the search on `scene` (its targets and frame; its cage is not used). `cages` are
 // search.faceCounts' cages of `referenceWorld`, started by the caller (as early as it can).
 // `say` reports each candidate. Throws subdfit::Error naming the reference when no candidate

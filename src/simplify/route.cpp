@@ -64,6 +64,11 @@ std::optional<Route> routeBeforeFit(const TriangleChoice& triangles, Holds holds
     return std::nullopt;
 }
 
+std::optional<Route> routeWithoutCage(const TriangleChoice& triangles, const std::string& why) {
+    if (!triangles.quality) return std::nullopt;
+    return triangleRoute(triangles, why + ": " + triangles.name + " ships, the best triangle route within it");
+}
+
 nlohmann::json toJson(const Route& route) {
     return {{"shipped", route.shipped}, {"path", route.path.generic_string()}, {"why", route.why}};
 }

@@ -60,6 +60,9 @@ enum class Holds { Part, EveryTriangle, Whole };  // Whole: every triangle and e
 std::optional<Route> routeBeforeFit(const TriangleChoice& triangles, Holds holds,
                                     std::optional<double> candidateMonitorPsnr);
 
+// Where no cage fits the budget (`why`): the triangle route, if one does.
+std::optional<Route> routeWithoutCage(const TriangleChoice& triangles, const std::string& why);
+
 nlohmann::json toJson(const Route& route);
 
 }  // namespace subdfit::simplify

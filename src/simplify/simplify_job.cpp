@@ -229,9 +229,17 @@ PreFit decideBeforeFit(const SimplifyOptions& options, fit::FitOptions fitOption
             decided.route = routeBeforeFit(decided.triangles.best(), decided.triangles.holds, std::nullopt);
         if (decided.route) return decided;
     }
-    decided.plan = budget ? planWithinBudget(options, *budget, std::move(fitOptions), programs, scene, reference, *cages,
-                                             hooks.note)
-                          : planByFaces(options, std::move(fitOptions), scene, reference);
+    try {
+        decided.plan = budget ? planWithinBudget(options, *budget, std::move(fitOptions), programs, scene, reference,
+                                                 *cages, hooks.note)
+                              : planByFaces(options, std::move(fitOptions), scene, reference);
+    } catch (const NoCageFits& e) {
+        // Never worse than the triangle route: where it fits and no cage does, it ships.
+        if (options.route == RouteChoice::Auto) decided.route = routeWithoutCage(decided.triangles.best(), e.reason());
+        if (!decided.route) throw;
+        stages.lap("search");
+        return decided;
+    }
     stages.lap(budget ? "search" : "initial_cage");
     if (auto& planned = decided.plan->budget) {
         planned->derived = !options.budget;

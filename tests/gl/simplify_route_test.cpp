@@ -1,10 +1,12 @@
 // What `simplify` ships: a light reference (a few hundred triangles) ships the triangle route,
-// the reference whole, scored as that baseline is, with no cage fitted.
+// the reference whole, scored as that baseline is, with no cage fitted; and where no cage fits
+// the budget, the triangle route that does ships instead of an error.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
+#include "export/textured_glb.h"
 #include "fit/result_folder.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/obj_writer.h"
@@ -49,6 +51,30 @@ TEST(SimplifyRoute, ALightReferenceShipsTheTriangleRouteWhole) {
     const fit::ResultFolder folder = fit::readResultFolder(dir / "out");
     ASSERT_FALSE(folder.entries.empty());
     EXPECT_EQ(folder.entries.front().levels.front(), dir / "out" / "asset.glb");
+}
+
+// Two materials, so the appearance rides on tiles per face, which no cage of the ladder can
+// afford at this budget; a decimated mesh of two plain colours can.
+TEST(SimplifyRoute, WhereNoCageFitsTheTriangleRouteShips) {
+    const auto dir = scratchDir("simplify_route_no_cage");
+    mesh::PolygonMesh sphere = mesh::triangulated(mesh::makeQuadSphere(8));
+    mesh::Material red = mesh::defaultMaterial(), blue = red;
+    red.baseColorFactor = {0.8f, 0.1f, 0.1f, 1.0f};
+    blue.baseColorFactor = {0.1f, 0.1f, 0.8f, 1.0f};
+    sphere.materials = std::make_shared<mesh::MaterialSet>(mesh::MaterialSet{{red, blue}, {}});
+    for (int f = 0; f < sphere.faceCount(); ++f)
+        sphere.faceMaterials.push_back(sphere.positions[size_t(sphere.faceIndices[size_t(3 * f)])].y > 0.0f ? 1 : 0);
+    exporter::writeTexturedGlb(dir / "two.glb", sphere, mesh::vertexNormals(sphere), {}, false);
+    simplify::SimplifyOptions o = smallSimplify(dir / "two.glb", dir / "out", 10);
+    o.budget = 2500;  // the smallest cage with tiles needs 3.6 KB; a decimation fits
+    const auto report = simplify::toJson(simplify::runSimplify(o));
+    const auto& route = report["route"];
+    const std::string shipped = route["shipped"].get<std::string>();
+    ASSERT_TRUE(shipped == "decimation" || shipped == "gltfpack") << route.dump();
+    EXPECT_NE(route["why"].get<std::string>().find("no cage fits"), std::string::npos) << route.dump();
+    EXPECT_LE(report["bytes"].get<std::uintmax_t>(), *o.budget);
+    EXPECT_EQ(fs::file_size(dir / "out" / "asset.glb"), report["bytes"].get<std::uintmax_t>());
+    EXPECT_FALSE(fs::exists(dir / "out" / "asset.subd"));
 }
 
 }  // namespace
