@@ -96,7 +96,7 @@ private:
 
 // Runs the search on `scene` (its targets and frame; its cage is not used). `cages` are
 // search.faceCounts' cages of `referenceWorld`, started by the caller (as early as it can).
-// `say` reports each candidate. Throws subdfit::Error naming the reference when no candidate
+// `say` reports each candidate. Throws NoCageFits (naming the reference) when no candidate
 // fits the budget.
 BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene,
                           const mesh::PolygonMesh& referenceWorld, const BudgetSearch& search, CageLadder& cages,
