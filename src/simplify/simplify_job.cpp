@@ -152,11 +152,15 @@ void startAppearance(fit::FitRun& run, bool resumed) {
     }
 }
 
-// Simplify's cage starts limit-fitted: its vertices are refined with the smaller step and the gate.
-void refineGently(fit::CageFitter& fitter) {
+// Simplify's cage starts limit-fitted: its vertices are refined with the smaller step and the
+// gate. Past its first halving such a fit falls slowly, and longer windows would buy tenths of a
+// dB for minutes (docs/optimizer.md): every window stays the full step's.
+void refineGently(fit::FitRun& run) {
+    fit::CageFitter& fitter = run.fitter();
     optim::ParameterGroup& vertices = fitter.vertexGroup();
     fitter.setRates(vertices, vertices.settings().epsilon, kRefineVertexRate * vertices.settings().learningRate);
     vertices.settings().noiseGate = kRefineNoiseGate;
+    run.setWindowDoublings(0);
 }
 
 // The fit's stages, resumed from `checkpoint` when asked: the cage alone; the maps baked onto it;
@@ -263,10 +267,7 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
                                 in.scene.shading == render::ShadingModel::MetallicRoughness);
     const mesh::PolygonMesh cage = in.scene.cageWorld;
     fit::FitRun run(fit::resolved(plan.fit), in.programs, in.scene, fit::ReportScores::HoldoutOnly);
-    refineGently(run.fitter());
-    // Past its first halving such a fit falls slowly, and longer windows would buy tenths of a
-    // dB for minutes (docs/optimizer.md): every window stays the full step's.
-    run.setWindowDoublings(0);
+    refineGently(run);
     fitStages(run, options.fit.out / "checkpoint.bin", options.fit.resume, in.hooks);
     stages.lap("fit");
 
