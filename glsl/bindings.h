@@ -65,11 +65,9 @@
 // Shares g's binding point: the relaxation runs after Adam, which has consumed g.
 #define SUBDFIT_SSBO_RELAX_REST SUBDFIT_SSBO_GRADIENT
 
-// Texture units of the gradient pass.
+// Texture units of the gradient pass (the renders' colours carry their face ids as alpha).
 #define SUBDFIT_UNIT_COLOR_PLUS 0
 #define SUBDFIT_UNIT_COLOR_MINUS 1
-#define SUBDFIT_UNIT_FACE_PLUS 2
-#define SUBDFIT_UNIT_FACE_MINUS 3
 #define SUBDFIT_UNIT_TARGET 4
 #define SUBDFIT_UNIT_UV_PLUS 5
 #define SUBDFIT_UNIT_UV_MINUS 6

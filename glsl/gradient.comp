@@ -17,10 +17,9 @@
 
 layout(local_size_x = 16, local_size_y = 16) in;
 
+// rgb: the shaded colour; a: the ptex face id, −1 on background (render/render_target.h).
 layout(binding = SUBDFIT_UNIT_COLOR_PLUS) uniform sampler2D colorPlus;
 layout(binding = SUBDFIT_UNIT_COLOR_MINUS) uniform sampler2D colorMinus;
-layout(binding = SUBDFIT_UNIT_FACE_PLUS) uniform isampler2D facePlus;
-layout(binding = SUBDFIT_UNIT_FACE_MINUS) uniform isampler2D faceMinus;
 layout(binding = SUBDFIT_UNIT_TARGET) uniform sampler2DArray targets;
 
 layout(std430, binding = SUBDFIT_SSBO_FACE_PAIR_OFFSETS) readonly buffer PairOffsets { int facePairOffsets[]; };
@@ -100,16 +99,18 @@ void addTexelGradients(ivec2 pixel, int fp, int fm, float scaledDelta) {
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, textureSize(colorPlus, 0)))) return;
-    int fp = texelFetch(facePlus, pixel, 0).r;
-    int fm = texelFetch(faceMinus, pixel, 0).r;
+    vec4 plus = texelFetch(colorPlus, pixel, 0);
+    vec4 minus = texelFetch(colorMinus, pixel, 0);
+    int fp = int(plus.a);
+    int fm = int(minus.a);
     // Background in both renders: both colours are the clear colour, so Δ = 0 exactly. Only the
     // loss, when it is being measured this step, still needs the target.
     bool covered = fp >= 0 || fm >= 0;
     if (!covered && uMeasureLoss == 0) return;
 
     vec3 target = texelFetch(targets, ivec3(pixel, uTargetLayer), 0).rgb;
-    vec3 ePlus = texelFetch(colorPlus, pixel, 0).rgb - target;
-    vec3 eMinus = texelFetch(colorMinus, pixel, 0).rgb - target;
+    vec3 ePlus = plus.rgb - target;
+    vec3 eMinus = minus.rgb - target;
     float fPlus = dot(ePlus, ePlus);
     float fMinus = dot(eMinus, eMinus);
     float delta = fPlus - fMinus;

@@ -12,7 +12,9 @@ flat in int tePtexFace;
 in vec2 tePtexUv;
 
 layout(location = SUBDFIT_ATTACHMENT_COLOR) out vec4 outColor;
+#ifndef SUBDFIT_FACE_IN_ALPHA  // else the face goes to the colour's alpha (render/render_target.h)
 layout(location = SUBDFIT_ATTACHMENT_FACE_ID) out int outFaceId;
+#endif
 layout(location = SUBDFIT_ATTACHMENT_PATCH_UV) out vec2 outPatchUv;
 
 #ifdef SUBDFIT_NORMAL_MAP
@@ -131,6 +133,10 @@ void main() {
 #else
     outColor = vec4(shadeLambert(normalize(mat3(uView) * n)), 1.0);
 #endif
+#ifdef SUBDFIT_FACE_IN_ALPHA
+    outColor.a = float(tePtexFace);
+#else
     outFaceId = tePtexFace;
+#endif
     outPatchUv = tePtexUv;
 }

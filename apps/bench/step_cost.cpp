@@ -61,7 +61,8 @@ Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const
     fit::CageFitSettings settings;
     settings.resolution = resolution;
     fit::CageFitter fitter(programs, cage, settings);
-    const render::RenderTarget image(resolution, resolution);
+    // What a plain pipeline writes: colour and depth (the step's renders add the face id as alpha).
+    const render::RenderTarget image(resolution, resolution, {.patchUv = false, .faceInAlpha = true});
     fitter.step(targets, kViews);  // compile and warm up
     fitter.render(targets.camera(0), image);
     glFinish();
@@ -121,7 +122,7 @@ std::vector<CountedPass> countSteps(gl::ProgramCache& programs, const mesh::Poly
                                     const render::MeshRenderer& reference) {
     constexpr int kResolution = 128;  // the counts do not depend on it
     const scene::TargetSet targets(programs, reference, render::orbitCameras(8, 1), kResolution);
-    const render::RenderTarget image(kResolution, kResolution);
+    const render::RenderTarget image(kResolution, kResolution, {.patchUv = false, .faceInAlpha = true});
     std::vector<CountedPass> passes;
 
     fit::CageFitSettings settings;

@@ -12,6 +12,7 @@ namespace subdfit::fit {
 namespace {
 
 constexpr int kLossSlots = 256;  // see gradient.comp
+constexpr int kMostFacesInAlpha = 1 << 24;  // every integer up to 2^24 is a float
 
 std::vector<float> flatten(const std::vector<glm::vec3>& points) {
     std::vector<float> values;
@@ -58,9 +59,13 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
       smoothScratch_(vertices_.gradient.bytes()),
       loss_(sizeof(float) * kLossSlots),
       drawnPoints_(stencils_.makePointBuffer()),
-      // Only a texel group's turn reads the renders' (u, v).
-      plus_(settings.resolution, settings.resolution, settings.mapEffects.any()),
-      minus_(settings.resolution, settings.resolution, settings.mapEffects.any()) {}
+      // Only a texel group's turn reads the renders' (u, v); G reads the face ids from alpha.
+      plus_(settings.resolution, settings.resolution, {.patchUv = settings.mapEffects.any(), .faceInAlpha = true}),
+      minus_(settings.resolution, settings.resolution, {.patchUv = settings.mapEffects.any(), .faceInAlpha = true}) {
+    if (patches_->ptexFaceCount > kMostFacesInAlpha)
+        throw Error("a cage of " + std::to_string(patches_->ptexFaceCount) + " ptex faces is past the " +
+                    std::to_string(kMostFacesInAlpha) + " whose ids a float render target holds exactly");
+}
 
 std::vector<optim::ParameterGroup*> CageFitter::groups() {
     std::vector<optim::ParameterGroup*> out{&vertices_};

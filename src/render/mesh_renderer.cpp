@@ -7,6 +7,7 @@
 #include "bindings.h"
 #include "mesh/mesh_geometry.h"
 #include "render/raster_pass.h"
+#include "util/error.h"
 
 namespace subdfit::render {
 namespace {
@@ -148,6 +149,7 @@ void MeshRenderer::setMaterial(const gl::Program& program, const mesh::Material&
 }
 
 void MeshRenderer::draw(gl::ProgramCache& programs, const Camera& camera, const RenderTarget& target) const {
+    SUBDFIT_CHECK(!target.faceInAlpha());  // triangle ids of a dense reference may pass 2^24
     for (size_t k = 0; k < batches_.size(); ++k) {
         const Batch& batch = batches_[k];
         const auto& program = programs.get(kMeshRaster, variantFor(batch.material));

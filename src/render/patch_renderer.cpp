@@ -22,13 +22,15 @@ const gl::ProgramSpec kPatchRaster{"patch_raster",
                                                                       "SUBDFIT_METALLIC_ROUGHNESS_MAP",
                                                                       "SUBDFIT_APPEARANCE_ATLAS", "SUBDFIT_ATLAS_NORMAL_TEXTURE",
                                                                       "SUBDFIT_CARRIED_OCCLUSION", "SUBDFIT_CARRIED_EMISSIVE",
-                                                                      "SUBDFIT_LIMIT_SHADING", "SUBDFIT_GREGORY_PATCHES"});
+                                                                      "SUBDFIT_LIMIT_SHADING", "SUBDFIT_GREGORY_PATCHES",
+                                                                      "SUBDFIT_FACE_IN_ALPHA"});
                                        return defines;
                                    }()};
 constexpr gl::VariantBits kPatchDisplacement = 1u << 3, kPatchNormalMap = 1u << 4, kPatchBaseColor = 1u << 5,
                           kPatchMetallicRoughness = 1u << 6, kPatchAppearanceAtlas = 1u << 7,
                           kPatchAtlasNormal = 1u << 8, kPatchCarriedOcclusion = 1u << 9, kPatchCarriedEmissive = 1u << 10,
-                          kPatchLimitShading = 1u << 11, kPatchGregory = 1u << 12;
+                          kPatchLimitShading = 1u << 11, kPatchGregory = 1u << 12,
+                          kPatchFaceInAlpha = 1u << 13;
 
 // Runs of consecutive patches of one kind (OpenSubdiv's patch arrays keep each kind together).
 std::vector<PatchRun> patchRuns(const subdiv::PatchSet& patches) {
@@ -72,6 +74,7 @@ void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, c
         carried ? (maps->atlasNormal && (mapBits & kPatchAppearanceAtlas) ? kPatchAtlasNormal : 0) |
                       (maps->carriedOcclusion ? kPatchCarriedOcclusion : 0) | (maps->carriedEmissive ? kPatchCarriedEmissive : 0)
                 : 0;
+    const gl::VariantBits targetBits = target.faceInAlpha() ? kPatchFaceInAlpha : 0;
     beginRasterPass(target);  // each run of patches then uses its own program
     patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);
     patchCvs_.bindStorage(SUBDFIT_SSBO_PATCH_CVS);
@@ -81,7 +84,8 @@ void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, c
     glPatchParameteri(GL_PATCH_VERTICES, 1);
     for (const PatchRun& run : runs_) {
         const auto& program =
-            programs.get(kPatchRaster, shadingBits(shading_) | mapBits | carriedBits | (run.gregory ? kPatchGregory : 0));
+            programs.get(kPatchRaster, shadingBits(shading_) | mapBits | carriedBits | targetBits |
+                                          (run.gregory ? kPatchGregory : 0));
         useWithCamera(program, camera);
         program.set("uTessLevel", float(tessLevel_));
         if (mapBits != 0) {

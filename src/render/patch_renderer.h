@@ -1,6 +1,7 @@
 #pragma once
 // Draws a cage's limit surface with GPU tessellation: one GL patch per OpenSubdiv patch, whose
-// control points come from an SSBO of evaluated points. Writes colour, ptex face id and (u,v).
+// control points come from an SSBO of evaluated points. Writes colour, ptex face id and (u,v)
+// (the face id as the colour's alpha into a target laid out so).
 #include <functional>
 #include <vector>
 

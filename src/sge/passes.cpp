@@ -86,6 +86,7 @@ void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group
                         const GradientInputs& in, const gl::Buffer& loss) {
     const bool texels = group.kind() != optim::GroupKind::Vertices;
     SUBDFIT_CHECK(!texels || in.maps);
+    SUBDFIT_CHECK(in.plus->faceInAlpha() && in.minus->faceInAlpha());
     const auto& program =
         texels ? programs.get(kGradient, kGradientTexels | (in.maps->inAtlas(group) ? kGradientInAtlas : 0),
                               {{"SUBDFIT_TEXEL_CHANNELS", std::to_string(group.count() / in.maps->layoutOf(group).nodeCount)}})
@@ -100,8 +101,6 @@ void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group
     if (!texels && !in.fullImage) program.set("uFaceCount", faces.faceCount);
     glBindTextureUnit(SUBDFIT_UNIT_COLOR_PLUS, in.plus->color().id());
     glBindTextureUnit(SUBDFIT_UNIT_COLOR_MINUS, in.minus->color().id());
-    glBindTextureUnit(SUBDFIT_UNIT_FACE_PLUS, in.plus->faceId().id());
-    glBindTextureUnit(SUBDFIT_UNIT_FACE_MINUS, in.minus->faceId().id());
     glBindTextureUnit(SUBDFIT_UNIT_TARGET, in.targetArray);
     faces.pairOffsets.bindStorage(SUBDFIT_SSBO_FACE_PAIR_OFFSETS);
     faces.pairFaces.bindStorage(SUBDFIT_SSBO_FACE_PAIRS);

@@ -29,7 +29,7 @@ struct FaceVertexTable {
 };
 
 struct GradientInputs {
-    const render::RenderTarget* plus;
+    const render::RenderTarget* plus;   // laid out with the face ids in alpha
     const render::RenderTarget* minus;
     GLuint targetArray;  // GL_TEXTURE_2D_ARRAY of target colours
     int targetLayer;

@@ -239,6 +239,26 @@ TEST(PatchKinds, OnlyACageWithGregoryPatchesCompilesTheirVariant) {
     test::expectNoGlError();
 }
 
+// The SGE passes draw with the face id as the colour's alpha (render/render_target.h): read back,
+// that layout must hold what the separate attachment does, pixel for pixel: colours, coverage,
+// face ids (here up to 1535, past what a small float format would keep) and (u,v).
+TEST(TargetLayouts, FaceInAlphaReadsBackAsTheSeparateAttachment) {
+    const Cage cage(mesh::makeQuadSphere(16));
+    for (const auto& direction : kViews) {
+        const Camera camera = orbitCamera(direction);
+        RenderTarget separate(kResolution, kResolution), packed(kResolution, kResolution, {.faceInAlpha = true});
+        cage.renderer.draw(test::programs(), cage.points, camera, separate);
+        cage.renderer.draw(test::programs(), cage.points, camera, packed);
+        const auto ids = separate.readFaceId();
+        ASSERT_GT(*std::max_element(ids.begin(), ids.end()), 1024);
+        ASSERT_GT(std::count(ids.begin(), ids.end(), -1), 0);
+        EXPECT_EQ(packed.readFaceId(), ids);
+        EXPECT_EQ(packed.readColor(), separate.readColor());
+        EXPECT_EQ(packed.readPatchUv(), separate.readPatchUv());
+    }
+    test::expectNoGlError();
+}
+
 // llvmpipe restarts gl_PrimitiveID every 1024 patches in the tessellation stages; a renderer
 // that took the patch index from it would give every patch >= 1024 the id of patch % 1024.
 // So: cages with well over 1024 patches, and the pixels of faces drawn by those late patches
