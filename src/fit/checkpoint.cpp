@@ -13,7 +13,7 @@ namespace subdfit::fit {
 namespace {
 
 // The last byte is the format version: a reader refuses any other.
-constexpr std::string_view kMagic{"SDFTCKP8", 8};
+constexpr std::string_view kMagic{"SDFTCKP9", 8};
 constexpr std::string_view kMagicFamily{"SDFTCKP", 7};
 
 class Writer {
@@ -98,7 +98,6 @@ void writeCheckpoint(const std::filesystem::path& path, const std::string& finge
     }
     out.put<float>(state.learningRateScale);
     out.put<std::int32_t>(state.mapsStartStep);
-    out.put<std::int32_t>(state.widenedStep);
     const ScheduleState& schedule = state.schedule;
     out.put<double>(schedule.bestLoss);
     out.put<std::int32_t>(schedule.bestStep);
@@ -157,8 +156,6 @@ std::optional<FitState> readCheckpoint(const std::filesystem::path& path, const 
     }
     state.learningRateScale = in.get<float>();
     state.mapsStartStep = in.get<std::int32_t>();
-    state.widenedStep = in.get<std::int32_t>();
-    if (state.widenedStep < -1 || state.widenedStep > state.steps) in.damaged("bad widened step");
     ScheduleState& schedule = state.schedule;
     schedule.bestLoss = in.get<double>();
     schedule.bestStep = in.get<std::int32_t>();

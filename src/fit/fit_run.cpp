@@ -105,7 +105,6 @@ bool FitRun::resume(const std::filesystem::path& checkpoint) {
     fitSecondsBefore_ = monitored_.empty() ? 0.0 : monitored_.back().seconds;
     scoredTheta_.clear();  // what the caller sets after a resume (carried textures) was not drawn
     schedule_ = saved->schedule;
-    widenedStep_ = saved->widenedStep;
     if (options_.schedule == Schedule::Plateau) applyStep();
     return true;
 }
@@ -114,7 +113,6 @@ void FitRun::saveCheckpoint(const std::filesystem::path& checkpoint) {
     std::filesystem::create_directories(checkpoint.parent_path());
     FitState state = fitter_->state();
     state.schedule = schedule_;
-    state.widenedStep = widenedStep_;
     state.monitored = monitored_;
     writeCheckpoint(checkpoint, fingerprint_, state);
 }
@@ -207,8 +205,7 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
     return stopReason_;
 }
 
-StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& hooks, const MapsStart& startMaps,
-                       const Widen& widen) {
+StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& hooks, const MapsStart& startMaps) {
     if (fitter_->maps()) {
         const bool pastStart = step() > fitter_->mapsStartStep();
         const StopReason cage = runTo(fitter_->mapsStartStep(), checkpoint, hooks);
@@ -224,20 +221,8 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
         }
         if (startMaps) startMaps(!pastStart);
     }
-    // A run resumed inside the widened stage widens again (the settings are not in the checkpoint)
-    // and goes on with it.
-    const bool resumedWidened = widenedStep_ >= 0;
-    if (resumedWidened && widen) widen();
-    StopReason last = runTo(options_.steps, checkpoint, hooks);
-    if (last == StopReason::Cancelled) return last;
-    endStage();
-    const bool stalled = last == StopReason::Converged || last == StopReason::NoGain;
-    if (!resumedWidened && fitter_->maps() && stalled && step() < options_.steps && widen &&
-        widen()) {
-        widenedStep_ = step();
-        last = runTo(options_.steps, checkpoint, hooks);
-        if (last != StopReason::Cancelled) endStage();
-    }
+    const StopReason last = runTo(options_.steps, checkpoint, hooks);
+    if (last != StopReason::Cancelled) endStage();
     return last;
 }
 

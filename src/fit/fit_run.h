@@ -90,13 +90,8 @@ public:
     // converged), then with the maps, each stage ending at its best state. `startMaps` (if any)
     // runs when the maps join; `fresh` is false in a run resumed past that point (the maps' θ
     // came from the checkpoint, but settings changed then must be made again).
-    // `widen` (if any) runs when the maps' stage has converged with steps left: where it returns
-    // true (it let more groups move), one more stage follows, which again ends at its best state,
-    // so what it adds can only lower the monitored loss.
     using MapsStart = std::function<void(bool fresh)>;
-    using Widen = std::function<bool()>;
-    StopReason run(const std::filesystem::path& checkpoint, const FitHooks& hooks = {}, const MapsStart& startMaps = {},
-                   const Widen& widen = {});
+    StopReason run(const std::filesystem::path& checkpoint, const FitHooks& hooks = {}, const MapsStart& startMaps = {});
 
     // Scores the current state and writes cage.obj, the exports (fitted.glb, maps) and the
     // before / after / target PNGs of held-out view 0 into `out`, each atomically. report.json
@@ -127,7 +122,6 @@ private:
     int resumedFromStep_ = 0;
     ScheduleState schedule_;
     int bestStep_ = -1;  // of the last stage ended
-    int widenedStep_ = -1;  // when run() widened its last stage; < 0: not (yet)
     bool mapsGiven_ = false;  // startFrom set the maps (a bake): their stage starts near its optimum
     void restoreBest();  // θ of every group back to the best monitored state
     int probationSteps() const;  // of the stage under way

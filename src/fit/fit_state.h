@@ -42,7 +42,6 @@ struct FitState {
     std::vector<GroupState> groups{};  // in CageFitter::groups() order
     float learningRateScale = -1.0f;   // set by a schedule; < 0: the fitter's own annealing
     int mapsStartStep = -1;            // set when the maps were started early; < 0: the planned step
-    int widenedStep = -1;              // when FitRun::run widened its last stage; < 0: not (yet)
     ScheduleState schedule{};
     std::vector<MonitorMeasurement> monitored{};  // every measurement so far, for the report
 };

@@ -103,25 +103,14 @@ void startMaps(fit::FitRun& run, bool bake) {
     }
     // The bake fits this cage: moving it now would slide the maps off the detail they hold.
     fitter.setOptimised(fitter.vertexGroup(), false);
-    // With an appearance, the fit refines it alone first: heights that move beside it can undo
-    // its gain; widenToHeights lets them in after.
-    const bool appearance = parameters->effects().appearance();
+    // Every map moves from here: the appearance at its full rate, the geometric maps slowed.
+    // Heights held back until the appearance had converged scored lower held out on every
+    // textured case measured (docs/measurements.md).
     for (auto* g : parameters->groups()) {
         const bool appearanceGroup = g == parameters->baseColor() || g == parameters->metallicRoughness();
-        if (appearance && !appearanceGroup) fitter.setOptimised(*g, false);
         fitter.setRates(*g, g->settings().epsilon, (appearanceGroup ? 1.0f : kRefineRate) * g->settings().learningRate);
         g->settings().noiseGate = kRefineNoiseGate;
     }
-}
-
-// Once the appearance has converged, the heights join it for the steps left: where the cage
-// is too coarse for the reference's relief, the images move them past what the bake could. The
-// stage ends at its best state, so it never undoes the appearance's gain.
-bool widenToHeights(fit::FitRun& run) {
-    auto* parameters = run.fitter().maps();
-    if (!parameters || !parameters->effects().appearance() || !parameters->displacement()) return false;
-    run.fitter().setOptimised(*parameters->displacement(), true);
-    return true;
 }
 
 // Never a silent loss: an appearance on tiles carries the fitted colours and the reference's
@@ -172,8 +161,7 @@ void fitStages(fit::FitRun& run, const std::filesystem::path& checkpoint, bool r
     if (resume && !resumed && hooks.note)
         hooks.note("no checkpoint at " + checkpoint.string() + " to resume: starting from step 0");
     startAppearance(run, resumed);
-    if (run.run(checkpoint, hooks, [&](bool fresh) { startMaps(run, fresh); }, [&] { return widenToHeights(run); }) ==
-        fit::StopReason::Cancelled)
+    if (run.run(checkpoint, hooks, [&](bool fresh) { startMaps(run, fresh); }) == fit::StopReason::Cancelled)
         throw Interrupted("interrupted at step " + std::to_string(run.step()) + " of " +
                           std::to_string(run.options().steps) + ", checkpointed in " + checkpoint.string());
 }

@@ -1,5 +1,5 @@
-// The fit's stages: maps joining a converged cage at their full step, and one widened after its
-// predecessor converged ending no worse than it began.
+// The fit's stages: maps joining a converged cage at their full step, a run interrupted as they
+// join ending where a straight run does, and a fit without maps stopping on its probation.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -38,33 +38,6 @@ fit::FitScene stagedScene(const fit::FitOptions& o) {
     return fit::FitScene(fit::resolved(o), programs(), mesh::makeQuadSphere(2), mesh::makeLumpySphere(4, 0.15f, 4));
 }
 
-TEST(FitStages, AWidenedStageStartsAfterConvergenceAndEndsNoWorse) {
-    const auto dir = scratchDir("fit_stages");
-    const fit::FitOptions o = stagedFit(dir);
-    fit::FitScene scene = stagedScene(o);
-    fit::FitRun run(fit::resolved(o), programs(), scene);
-    run.setWindowDoublings(0);
-
-    // The heights alone once the maps join; the cage is let back in when they have converged.
-    auto& fitter = run.fitter();
-    int widenedAt = -1;
-    double lossWhenWidened = 0.0;
-    const auto stopped = run.run(
-        dir / "checkpoint.bin", {}, [&](bool) { fitter.setOptimised(fitter.vertexGroup(), false); },
-        [&] {
-            widenedAt = run.step();
-            lossWhenWidened = fit::score(fitter, scene.monitor).loss;
-            fitter.setOptimised(fitter.vertexGroup(), true);
-            return true;
-        });
-    EXPECT_NE(stopped, fit::StopReason::Cancelled);
-    ASSERT_GT(widenedAt, fitter.mapsStartStep()) << "the heights' stage never converged";
-    EXPECT_LT(widenedAt, o.steps);
-    EXPECT_GT(run.step(), widenedAt);
-    EXPECT_LE(fit::score(fitter, scene.monitor).loss, lossWhenWidened);
-    expectNoGlError();
-}
-
 // Maps that join a cage which converged before their planned start begin at the full step, with
 // every halving still theirs to take; the cage keeps the step its halvings reached.
 TEST(FitStages, MapsJoiningAConvergedCageStartAtTheFullStep) {
@@ -91,39 +64,36 @@ TEST(FitStages, MapsJoiningAConvergedCageStartAtTheFullStep) {
     expectNoGlError();
 }
 
-// Interrupted inside the widened stage (at its first step: a stage whose probation finds no
-// gain may last only a few), a resumed run widens again and ends where a straight run does.
-TEST(FitStages, AResumedWidenedStageEndsWhereAStraightRunDoes) {
+// Interrupted as the maps join (the cage frozen by startMaps), a resumed run freezes it again and
+// ends where a straight run does.
+TEST(FitStages, ARunInterruptedAsTheMapsJoinEndsWhereAStraightRunDoes) {
     const auto dir = scratchDir("fit_stages_resume");
     const fit::FitOptions o = stagedFit(dir);
     fit::FitScene scene = stagedScene(o);
-    int widenedAt = -1;
+    int joinedAt = -1;
     auto fit = [&](const std::filesystem::path& checkpoint, bool resume, const fit::FitHooks& hooks,
-                   std::atomic<bool>* cancelWhenWidened = nullptr) {
+                   std::atomic<bool>* cancelWhenJoined = nullptr) {
         auto run = std::make_unique<fit::FitRun>(fit::resolved(o), programs(), scene);
         run->setWindowDoublings(0);
         if (resume) {
             EXPECT_TRUE(run->resume(checkpoint));
         }
         auto& fitter = run->fitter();
-        const auto stopped = run->run(
-            checkpoint, hooks, [&](bool) { fitter.setOptimised(fitter.vertexGroup(), false); },
-            [&, r = run.get()] {
-                widenedAt = r->step();
-                fitter.setOptimised(fitter.vertexGroup(), true);
-                if (cancelWhenWidened) *cancelWhenWidened = true;
-                return true;
-            });
+        const auto stopped = run->run(checkpoint, hooks, [&, r = run.get()](bool fresh) {
+            if (fresh) joinedAt = r->step();
+            fitter.setOptimised(fitter.vertexGroup(), false);
+            if (cancelWhenJoined) *cancelWhenJoined = true;
+        });
         return std::make_pair(stopped, std::move(run));
     };
     auto [straightStop, straight] = fit(dir / "straight.bin", false, {});
-    ASSERT_GT(widenedAt, 0);
-    const int straightWidenedAt = std::exchange(widenedAt, -1);
+    ASSERT_GT(joinedAt, 0);
+    const int straightJoinedAt = std::exchange(joinedAt, -1);
 
     std::atomic<bool> cancel{false};
     auto [interruptedStop, interrupted] = fit(dir / "resumed.bin", false, {.cancel = &cancel}, &cancel);
     ASSERT_EQ(interruptedStop, fit::StopReason::Cancelled);
-    EXPECT_EQ(widenedAt, straightWidenedAt);
+    EXPECT_EQ(joinedAt, straightJoinedAt);
     auto [resumedStop, resumed] = fit(dir / "resumed.bin", true, {});
     EXPECT_EQ(resumedStop, straightStop);
     EXPECT_EQ(resumed->step(), straight->step());
@@ -133,9 +103,8 @@ TEST(FitStages, AResumedWidenedStageEndsWhereAStraightRunDoes) {
     expectNoGlError();
 }
 
-// A fit without maps has no maps' stage to widen: it stops, and a start it cannot improve on
-// stops on probation.
-TEST(FitStages, AFitWithoutMapsIsNeverWidened) {
+// A fit without maps is one stage: a start it cannot improve on stops on its probation.
+TEST(FitStages, AFitWithoutMapsStopsOnItsProbation) {
     const auto dir = scratchDir("fit_stages_bare");
     fit::FitOptions o = stagedFit(dir);
     o.maps = {};
@@ -146,11 +115,11 @@ TEST(FitStages, AFitWithoutMapsIsNeverWidened) {
     fit::FitScene scene(fit::resolved(o), programs(), cage, surface::limitMesh(cage, 8));
     fit::FitRun run(fit::resolved(o), programs(), scene);
     run.setWindowDoublings(0);
-    bool widened = false;
-    const auto stopped = run.run(dir / "checkpoint.bin", {}, {}, [&] { return widened = true; });
+    bool mapsStarted = false;
+    const auto stopped = run.run(dir / "checkpoint.bin", {}, [&](bool) { mapsStarted = true; });
     EXPECT_EQ(stopped, fit::StopReason::NoGain);
     EXPECT_LT(run.step(), o.steps);
-    EXPECT_FALSE(widened);
+    EXPECT_FALSE(mapsStarted);
     expectNoGlError();
 }
 

@@ -32,7 +32,6 @@ FitState sampleState() {
     // Where a plateau schedule stands: resumed, it must continue with the same step and best.
     state.learningRateScale = 0.25f;
     state.mapsStartStep = 30;
-    state.widenedStep = 35;
     state.schedule = {.bestLoss = 0.125, .bestStep = 36, .window = {0.5, 0.25, 0.125}, .stageLosses = {1.0, 0.5},
                       .stageStart = 3, .probationOver = true, .halvings = 2, .carriedHalvings = 3,
                       .bestTheta = {state.groups[0].theta, state.groups[1].moment1},
@@ -79,7 +78,6 @@ TEST_F(Checkpoint, ReadsBackExactly) {
     }
     EXPECT_EQ(read->learningRateScale, expected.learningRateScale);
     EXPECT_EQ(read->mapsStartStep, expected.mapsStartStep);
-    EXPECT_EQ(read->widenedStep, expected.widenedStep);
     EXPECT_EQ(read->schedule.bestLoss, expected.schedule.bestLoss);
     EXPECT_EQ(read->schedule.bestStep, expected.schedule.bestStep);
     EXPECT_EQ(read->schedule.window, expected.schedule.window);
@@ -118,7 +116,7 @@ TEST_F(Checkpoint, TruncationOtherVersionsAndOtherSettingsAreRefused) {
 // A count of 2^40 floats behind a valid checksum: the reader must see that the file cannot
 // hold them instead of allocating 4 TB.
 TEST_F(Checkpoint, ACountBeyondTheFileAllocatesNothing) {
-    std::string payload = "SDFTCKP8";
+    std::string payload = "SDFTCKP9";
     auto put = [&](auto value) { payload.append(reinterpret_cast<const char*>(&value), sizeof value); };
     put(std::uint64_t(2));
     payload += "fp";
