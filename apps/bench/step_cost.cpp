@@ -28,12 +28,13 @@
 namespace subdfit::bench {
 namespace {
 
-// One scene's timings over interleaved rounds (forward render, step, step in halves): medians in
-// ms, and the step / render ratio taken within each round.
+// One scene's timings over interleaved rounds (forward render, step, step in halves, two forward
+// renders): medians in ms, and the step / render ratio taken within each round.
 struct Timing {
     double renderMs, stepMs;
     double accumulateMs, updateMs;  // the step's halves: P + 2R + G, then preconditioner + Adam
     Spread ratio, cpuRatio;         // wall time, and the process's CPU time (llvmpipe's threads count in)
+    Spread floorCpuRatio;           // two forward renders over one, by CPU time: the bench's own check (2.0)
     // GPU timestamps (medians of their own rounds, ms): the forward render, and a step phase by phase.
     double forwardGpuMs;
     std::vector<std::pair<std::string, double>> stepPhases;
@@ -63,6 +64,7 @@ Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const
     fit::CageFitter fitter(programs, cage, settings);
     // What a plain pipeline writes: colour and depth (the step's renders add the face id as alpha).
     const render::RenderTarget image(resolution, resolution, {.patchUv = false, .faceInAlpha = true});
+    const render::RenderTarget secondImage(resolution, resolution, {.patchUv = false, .faceInAlpha = true});
     fitter.step(targets, kViews);  // compile and warm up
     fitter.render(targets.camera(0), image);
     glFinish();
@@ -85,6 +87,12 @@ Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const
             accumulateMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
             fitter.update();
             glFinish();
+        },
+        // The floor: what two forward renders cost where the step's two stand.
+        [&] {
+            fitter.render(targets.camera(0), image);
+            fitter.render(targets.camera(0), secondImage);
+            glFinish();
         }};
     const auto samples = timeInterleaved(rounds, workloads);
     const double forwardGpuMs = gpuPhaseMedians(rounds, [&](gl::TimestampLog& log) {
@@ -106,6 +114,7 @@ Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const
             spreadOf(updateMs).median,
             spreadOf(perRoundRatios(step.wallMs, render.wallMs)),
             spreadOf(perRoundRatios(step.cpuMs, render.cpuMs)),
+            spreadOf(perRoundRatios(samples[3].cpuMs, render.cpuMs)),
             forwardGpuMs,
             std::move(stepPhases)};
 }
@@ -189,12 +198,12 @@ int runStepCost(const StepCostOptions& o) {
 
     std::vector<std::vector<std::string>> rows{{"table", "cage_faces", "parameters", "resolution", "render_ms", "step_ms",
                                                 "ratio", "ratio_q1", "ratio_q3", "ratio_ci_low", "ratio_ci_high",
-                                                "cpu_ratio", "cpu_ratio_q1", "cpu_ratio_q3"}};
+                                                "cpu_ratio", "cpu_ratio_q1", "cpu_ratio_q3", "two_renders_cpu_ratio"}};
     auto addRow = [&](const char* table, const mesh::PolygonMesh& mesh, int resolution, const Timing& t) {
         std::vector<std::string> row{table, std::to_string(mesh.faceCount()), std::to_string(3 * mesh.vertexCount()),
                                      std::to_string(resolution)};
         for (double value : {t.renderMs, t.stepMs, t.ratio.median, t.ratio.q1, t.ratio.q3, t.ratio.low, t.ratio.high,
-                             t.cpuRatio.median, t.cpuRatio.q1, t.cpuRatio.q3})
+                             t.cpuRatio.median, t.cpuRatio.q1, t.cpuRatio.q3, t.floorCpuRatio.median})
             row.push_back(std::to_string(value));
         rows.push_back(row);
     };
@@ -202,8 +211,8 @@ int runStepCost(const StepCostOptions& o) {
     std::printf("\nstep cost, quad-sphere cage (%d faces, %d parameters), %d interleaved rounds: medians, the ratio\n"
                 "per round with its quartiles and the median's 95%% interval; CPU: the process's CPU time\n",
                 cage.faceCount(), 3 * cage.vertexCount(), o.repeats);
-    std::printf("%10s %10s %10s %6s %11s %11s %10s %11s %10s %9s\n", "resolution", "render ms", "step ms", "ratio",
-                "quartiles", "95% median", "CPU ratio", "quartiles", "P+2R+G ms", "update ms");
+    std::printf("%10s %10s %10s %6s %11s %11s %10s %11s %10s %9s %9s\n", "resolution", "render ms", "step ms", "ratio",
+                "quartiles", "95% median", "CPU ratio", "quartiles", "P+2R+G ms", "update ms", "2R CPU");
     // The same tables as Markdown, for summaries (subdfit-bench accuracy folds this file in).
     std::string markdown = "## Step cost (" + info.renderer + ")\n\nOne SGE step over one forward render, " +
                            std::to_string(o.repeats) +
@@ -216,9 +225,9 @@ int runStepCost(const StepCostOptions& o) {
     std::vector<Timing> resolutionTimings;
     for (int resolution : o.resolutions) {
         const auto& t = resolutionTimings.emplace_back(timeCage(programs, cage, referenceRenderer, resolution, o.repeats));
-        std::printf("%10d %10.2f %10.2f %6.2f %5.2f-%5.2f %5.2f-%5.2f %10.2f %5.2f-%5.2f %10.2f %9.2f\n", resolution,
+        std::printf("%10d %10.2f %10.2f %6.2f %5.2f-%5.2f %5.2f-%5.2f %10.2f %5.2f-%5.2f %10.2f %9.2f %9.2f\n", resolution,
                     t.renderMs, t.stepMs, t.ratio.median, t.ratio.q1, t.ratio.q3, t.ratio.low, t.ratio.high,
-                    t.cpuRatio.median, t.cpuRatio.q1, t.cpuRatio.q3, t.accumulateMs, t.updateMs);
+                    t.cpuRatio.median, t.cpuRatio.q1, t.cpuRatio.q3, t.accumulateMs, t.updateMs, t.floorCpuRatio.median);
         std::snprintf(line, sizeof line, "| %d² | %.2f | %.2f | %.2f | %.2f-%.2f | %.2f-%.2f | %.2f (%.2f-%.2f) |\n",
                       resolution, t.renderMs, t.stepMs, t.ratio.median, t.ratio.q1, t.ratio.q3, t.ratio.low,
                       t.ratio.high, t.cpuRatio.median, t.cpuRatio.q1, t.cpuRatio.q3);
