@@ -527,7 +527,13 @@ void growBest(const SearchInputs& in, Findings& found) {
 // best with maps (the bake route at these bytes). Throws when nothing fits.
 BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
     TimedStage timed(found.phases, "settle");
-    const Fitting* chosen = settle(in.programs, in.scene, found.fitting, [](const BudgetCandidate&) { return true; });
+    const auto any = [](const BudgetCandidate&) { return true; };
+    const Fitting* lowest = lowestOf(found.fitting, any, monitored);
+    const bool fitted = lowest && fit::psnrFromLoss(lowest->candidate.monitorLoss) >= in.search.leastFittedMonitorPsnr;
+    const auto choose = [&](auto keep) {
+        return fitted ? settle(in.programs, in.scene, found.fitting, keep) : lowestOf(found.fitting, keep, monitored);
+    };
+    const Fitting* chosen = choose(any);
     if (!chosen)
         throw NoCageFits(in.referenceWorld.sourcePath, "no cage fits in " + std::to_string(in.search.budget) +
                                                            " bytes (the smallest tried needs " +
@@ -536,9 +542,8 @@ BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
     BudgetChoice choice;
     choice.chosen = chosen->candidate;
     choice.cageWorld = *chosen->cageWorld;
-    if (const Fitting* withMaps = in.search.bestWithMaps ? settle(in.programs, in.scene, found.fitting,
-                                                                 [](const BudgetCandidate& c) { return c.maps.any(); })
-                                                         : nullptr) {
+    if (const Fitting* withMaps =
+            in.search.bestWithMaps ? choose([](const BudgetCandidate& c) { return c.maps.any(); }) : nullptr) {
         choice.bestWithMaps = withMaps->candidate;
         choice.bestWithMapsCage = *withMaps->cageWorld;
     }

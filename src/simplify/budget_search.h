@@ -7,6 +7,7 @@
 // smallest whose loss is within 2 % of the lowest, saving bytes worth the loss, is fitted. The bake stands in for the
 // fit, which starts from it and only improves on it (the fit keeps its best state).
 // docs/simplify.md walks through the phases.
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -63,6 +64,10 @@ struct BudgetSearch {
     std::vector<int> appearanceAtlases;
     // Whether to settle the best candidate with maps too (the bake baseline's, --compare full).
     bool bestWithMaps = true;
+    // The monitor PSNR below which no candidate is fitted (the triangle route ships instead,
+    // simplify/route.h): where even the best candidate is below it, which of its near ties is
+    // chosen changes nothing, and none is drawn on the training views to settle it.
+    double leastFittedMonitorPsnr = -INFINITY;
 };
 
 struct BudgetChoice {

@@ -1,6 +1,7 @@
 #include "simplify/route.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "util/error.h"
@@ -57,11 +58,16 @@ std::optional<Route> routeBeforeFit(const TriangleChoice& triangles, Holds holds
                                             " scores best of the triangle routes): no cage tried");
     if (!candidateMonitorPsnr) return std::nullopt;
     const double lead = triangles.quality->details.value("monitor_psnr", 0.0) - *candidateMonitorPsnr;
-    if (lead > kMostFitGainDb)
+    if (*candidateMonitorPsnr < leastFittedMonitorPsnr(triangles))
         return triangleRoute(triangles, triangles.name + " leads the best cage candidate by " + decibels(lead) +
                                             " on the monitor views, more than a fit gains (" + decibels(kMostFitGainDb) +
                                             "): no cage fitted");
     return std::nullopt;
+}
+
+double leastFittedMonitorPsnr(const TriangleChoice& triangles) {
+    if (!triangles.quality) return -INFINITY;
+    return triangles.quality->details.value("monitor_psnr", 0.0) - kMostFitGainDb;
 }
 
 std::optional<Route> routeWithoutCage(const TriangleChoice& triangles, const std::string& why) {

@@ -60,6 +60,10 @@ enum class Holds { Part, EveryTriangle, Whole };  // Whole: every triangle and e
 std::optional<Route> routeBeforeFit(const TriangleChoice& triangles, Holds holds,
                                     std::optional<double> candidateMonitorPsnr);
 
+// The monitor PSNR a cage candidate must reach to be fitted at all: below it, `triangles` leads it
+// by more than a fit gains (routeBeforeFit ships them). −∞ where no triangle route fits.
+double leastFittedMonitorPsnr(const TriangleChoice& triangles);
+
 // Where no cage fits the budget (`why`): the triangle route, if one does.
 std::optional<Route> routeWithoutCage(const TriangleChoice& triangles, const std::string& why);
 

@@ -1,6 +1,7 @@
 #include "simplify/simplify_job.h"
 
 #include <chrono>
+#include <cmath>
 
 #include "fit/asset_export.h"
 #include "fit/device_defaults.h"
@@ -222,8 +223,11 @@ PreFit decideBeforeFit(const SimplifyOptions& options, fit::FitOptions fitOption
         if (decided.route) return decided;
     }
     try {
-        decided.plan = budget ? planWithinBudget(options, *budget, std::move(fitOptions), programs, scene, reference,
-                                                 *cages, hooks.note)
+        // Where the route is ours to choose, a triangle route far ahead spares settling near ties.
+        const double leastFitted =
+            options.route == RouteChoice::Auto ? leastFittedMonitorPsnr(decided.triangles.best()) : -INFINITY;
+        decided.plan = budget ? planWithinBudget(options, *budget, leastFitted, std::move(fitOptions), programs, scene,
+                                                 reference, *cages, hooks.note)
                               : planByFaces(options, std::move(fitOptions), scene, reference);
     } catch (const NoCageFits& e) {
         // Never worse than the triangle route: where it fits and no cage does, it ships.

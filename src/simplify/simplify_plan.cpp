@@ -99,10 +99,12 @@ std::vector<int> budgetFaceCounts(const SimplifyOptions& o, std::uintmax_t budge
     return o.faces ? std::vector<int>{*o.faces} : faceCountsFor(budget, scene.reference.faceCount(), kMostBudgetFaces);
 }
 
-SimplifyPlan planWithinBudget(const SimplifyOptions& o, std::uintmax_t budget, fit::FitOptions fitOptions,
-                              gl::ProgramCache& programs, fit::FitScene& scene, const mesh::PolygonMesh& reference,
-                              CageLadder& cages, const std::function<void(const std::string&)>& say) {
-    const BudgetSearch search = budgetSearchFor(o, budget, scene);
+SimplifyPlan planWithinBudget(const SimplifyOptions& o, std::uintmax_t budget, double leastFittedMonitorPsnr,
+                              fit::FitOptions fitOptions, gl::ProgramCache& programs, fit::FitScene& scene,
+                              const mesh::PolygonMesh& reference, CageLadder& cages,
+                              const std::function<void(const std::string&)>& say) {
+    BudgetSearch search = budgetSearchFor(o, budget, scene);
+    search.leastFittedMonitorPsnr = leastFittedMonitorPsnr;
     if (say) say("budget " + std::to_string(budget) + " bytes: trying candidates");
     const auto searchStarted = std::chrono::steady_clock::now();
     BudgetChoice choice = searchBudget(programs, scene, reference, search, cages, say);

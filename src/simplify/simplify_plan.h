@@ -30,9 +30,11 @@ SimplifyPlan planByFaces(const SimplifyOptions& options, fit::FitOptions fitOpti
 std::vector<int> budgetFaceCounts(const SimplifyOptions& options, std::uintmax_t budget, const fit::FitScene& scene);
 
 // With a budget the fit starts from the search's choice (simplify/budget_search.h), among the
-// cages of `cages` (a ladder of budgetFaceCounts()); `say` reports its candidates.
-SimplifyPlan planWithinBudget(const SimplifyOptions& options, std::uintmax_t budget, fit::FitOptions fitOptions,
-                              gl::ProgramCache& programs, fit::FitScene& scene, const mesh::PolygonMesh& reference,
-                              CageLadder& cages, const std::function<void(const std::string&)>& say);
+// cages of `cages` (a ladder of budgetFaceCounts()); `say` reports its candidates. Below
+// `leastFittedMonitorPsnr` no candidate is fitted (BudgetSearch).
+SimplifyPlan planWithinBudget(const SimplifyOptions& options, std::uintmax_t budget, double leastFittedMonitorPsnr,
+                              fit::FitOptions fitOptions, gl::ProgramCache& programs, fit::FitScene& scene,
+                              const mesh::PolygonMesh& reference, CageLadder& cages,
+                              const std::function<void(const std::string&)>& say);
 
 }  // namespace subdfit::simplify

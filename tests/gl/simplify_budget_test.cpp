@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 
 #include "error_message.h"
 #include "export/subd_format.h"
+#include "fit/fit_scene.h"
+#include "gl_test_context.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/obj_writer.h"
 #include "mesh/procedural.h"
@@ -135,6 +138,43 @@ TEST(SimplifyBudget, ShipsWithinTheBudgetAndListsTheCandidates) {
     EXPECT_TRUE(none["route"]["weighed"].contains("decimation"));
     EXPECT_FALSE(none["seconds_by_stage"].contains("baseline_bake"));
     EXPECT_TRUE(fs::exists(dir / "out" / "comparison.png"));
+}
+
+// Where even the best candidate trails the triangle route by more than a fit gains, no cage is
+// fitted, so which of the near ties would be chosen changes nothing: the same search then draws
+// no training view to settle them, and chooses the lowest monitor loss.
+TEST(SimplifyBudget, NoNearTieIsSettledWhereNoCandidateWillBeFitted) {
+    fit::FitOptions o;
+    o.out = scratchDir("simplify_budget_unsettled");
+    o.steps = 20;
+    o.views = 4;
+    o.holdoutViews = 2;
+    o.resolution = 64;
+    const mesh::PolygonMesh reference = mesh::makeLumpySphere(5, 0.15f, 3, 40, 0.005f, 0.02f);
+    fit::FitScene scene(fit::resolved(o), programs(), mesh::makeQuadSphere(2), reference);
+    simplify::BudgetSearch search;
+    search.budget = 3000;
+    search.faceCounts = simplify::faceCountsFor(search.budget, reference.faceCount(), 16000);
+    auto searched = [&](double leastFitted) {
+        search.leastFittedMonitorPsnr = leastFitted;
+        simplify::CageLadder cages(reference, search.faceCounts);
+        return simplify::searchBudget(programs(), scene, reference, search, cages, {});
+    };
+    const simplify::BudgetChoice settled = searched(-INFINITY), unsettled = searched(INFINITY);
+
+    const auto settledCount = [](const simplify::BudgetChoice& c) {
+        return std::count_if(c.tried.begin(), c.tried.end(), [](const auto& t) { return t.settledLoss > 0.0; });
+    };
+    ASSERT_GT(settledCount(settled), 1) << "no near ties to settle: the case no longer tests this";
+    EXPECT_EQ(settledCount(unsettled), 0);
+    ASSERT_EQ(unsettled.tried.size(), settled.tried.size());
+    double lowest = INFINITY;
+    for (size_t k = 0; k < settled.tried.size(); ++k) {
+        EXPECT_EQ(unsettled.tried[k].monitorLoss, settled.tried[k].monitorLoss);
+        if (settled.tried[k].monitorLoss > 0.0) lowest = std::min(lowest, settled.tried[k].monitorLoss);
+    }
+    EXPECT_EQ(unsettled.chosen.monitorLoss, lowest);
+    expectNoGlError();
 }
 
 // A light faceted reference (flat triangles, shaded with smooth vertex normals): heights baked
