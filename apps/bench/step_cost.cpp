@@ -53,6 +53,10 @@ std::vector<std::pair<std::string, double>> gpuPhaseMedians(int rounds, const st
     return medians;
 }
 
+// What a plain pipeline's forward render writes: colour and depth, the layout of the step's
+// renders (which add the face id as alpha).
+constexpr render::TargetLayout kPlainTarget{.patchUv = false, .faceInAlpha = true};
+
 // The views of the step-cost scene: one per step, as in a fit.
 const int kViews[] = {0};
 
@@ -62,9 +66,8 @@ Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const
     fit::CageFitSettings settings;
     settings.resolution = resolution;
     fit::CageFitter fitter(programs, cage, settings);
-    // What a plain pipeline writes: colour and depth (the step's renders add the face id as alpha).
-    const render::RenderTarget image(resolution, resolution, {.patchUv = false, .faceInAlpha = true});
-    const render::RenderTarget secondImage(resolution, resolution, {.patchUv = false, .faceInAlpha = true});
+    const render::RenderTarget image(resolution, resolution, kPlainTarget);
+    const render::RenderTarget secondImage(resolution, resolution, kPlainTarget);
     fitter.step(targets, kViews);  // compile and warm up
     fitter.render(targets.camera(0), image);
     glFinish();
@@ -131,7 +134,7 @@ std::vector<CountedPass> countSteps(gl::ProgramCache& programs, const mesh::Poly
                                     const render::MeshRenderer& reference) {
     constexpr int kResolution = 128;  // the counts do not depend on it
     const scene::TargetSet targets(programs, reference, render::orbitCameras(8, 1), kResolution);
-    const render::RenderTarget image(kResolution, kResolution, {.patchUv = false, .faceInAlpha = true});
+    const render::RenderTarget image(kResolution, kResolution, kPlainTarget);
     std::vector<CountedPass> passes;
 
     fit::CageFitSettings settings;
