@@ -13,8 +13,6 @@
 #define SUBDFIT_CHANNELS 3
 #endif
 
-layout(local_size_x = 128) in;
-
 layout(std430, binding = SUBDFIT_SSBO_GRADIENT) readonly buffer Gradient { float gradient[]; };
 layout(std430, binding = SUBDFIT_SSBO_SMOOTH_IN) readonly buffer SmoothIn { float smoothIn[]; };
 layout(std430, binding = SUBDFIT_SSBO_GRADIENT_SMOOTH) writeonly buffer SmoothOut { float smoothOut[]; };
@@ -24,17 +22,57 @@ layout(std430, binding = SUBDFIT_SSBO_ADJACENCY_INDICES) readonly buffer AdjIndi
 uniform int uVertexCount;
 uniform float uLambda;
 
+// One damped Jacobi update of a float of node i, from the neighbours' sum of the last iterate.
+float jacobi(float current, float g, float neighbourSum, float scale) {
+    const float omega = 2.0 / 3.0;
+    return mix(current, (g + uLambda * neighbourSum) * scale, omega);
+}
+
+#ifdef SUBDFIT_PRECONDITION_ONE_GROUP
+// Every sweep in one work group, the iterate in shared memory: a barrier between sweeps instead
+// of a dispatch and a memory barrier each, whose fixed cost on a GPU outweighs a small group's
+// sweeps. SUBDFIT_PRECONDITION_ONE_GROUP: floats the group holds at most (two iterates fit in
+// the 32 KB of shared memory every GL 4.3 implementation has).
+layout(local_size_x = 256) in;
+
+shared float iterate[2][SUBDFIT_PRECONDITION_ONE_GROUP];
+
+uniform int uIterations;
+
+void main() {
+    const int floats = SUBDFIT_CHANNELS * uVertexCount;
+    for (int i = int(gl_LocalInvocationIndex); i < floats; i += 256) iterate[0][i] = gradient[i];
+    barrier();
+    for (int k = 0; k < uIterations; ++k) {
+        const int from = k & 1, to = from ^ 1;
+        for (int v = int(gl_LocalInvocationIndex); v < uVertexCount; v += 256) {
+            int begin = adjacencyOffsets[v], end = adjacencyOffsets[v + 1];
+            float scale = 1.0 / (1.0 + uLambda * float(end - begin));
+            for (int c = 0; c < SUBDFIT_CHANNELS; ++c) {
+                float neighbourSum = 0.0;
+                for (int n = begin; n < end; ++n) neighbourSum += iterate[from][SUBDFIT_CHANNELS * adjacencyIndices[n] + c];
+                int i = SUBDFIT_CHANNELS * v + c;
+                iterate[to][i] = jacobi(iterate[from][i], gradient[i], neighbourSum, scale);
+            }
+        }
+        barrier();
+    }
+    for (int i = int(gl_LocalInvocationIndex); i < floats; i += 256) smoothOut[i] = iterate[uIterations & 1][i];
+}
+#else
+// One sweep per dispatch.
+layout(local_size_x = 128) in;
+
 void main() {
     int v = int(gl_GlobalInvocationID.x);
     if (v >= uVertexCount) return;
-    const float omega = 2.0 / 3.0;
     int begin = adjacencyOffsets[v], end = adjacencyOffsets[v + 1];
     float scale = 1.0 / (1.0 + uLambda * float(end - begin));
     for (int c = 0; c < SUBDFIT_CHANNELS; ++c) {
         float neighbourSum = 0.0;
         for (int k = begin; k < end; ++k) neighbourSum += smoothIn[SUBDFIT_CHANNELS * adjacencyIndices[k] + c];
         int i = SUBDFIT_CHANNELS * v + c;
-        float jacobi = (gradient[i] + uLambda * neighbourSum) * scale;
-        smoothOut[i] = mix(smoothIn[i], jacobi, omega);
+        smoothOut[i] = jacobi(smoothIn[i], gradient[i], neighbourSum, scale);
     }
 }
+#endif

@@ -1,6 +1,7 @@
 #include "optim/updates.h"
 
 #include <cmath>
+#include <string>
 
 #include "bindings.h"
 #include "gl/dispatch.h"
@@ -15,6 +16,9 @@ const gl::ProgramSpec kResolve{"resolve_gradient", {{GL_COMPUTE_SHADER, "resolve
 const gl::ProgramSpec kPrecondition{"precondition", {{GL_COMPUTE_SHADER, "precondition.comp"}}};
 const gl::ProgramSpec kSharedMoment{"shared_moment", {{GL_COMPUTE_SHADER, "shared_moment.comp"}}};
 const gl::ProgramSpec kAdam{"adam", {{GL_COMPUTE_SHADER, "adam.comp"}}, {"SUBDFIT_ADAM_SHARED_MOMENT", "SUBDFIT_ADAM_NOISE_GATE"}};
+// The most floats a group may hold for all its Jacobi sweeps to run in one work group: two
+// iterates in the 32 KB of shared memory that GL 4.3 guarantees.
+constexpr int kOneGroupFloats = 4096;
 constexpr gl::VariantBits kAdamSharedMoment = 1u << 0, kAdamNoiseGate = 1u << 1;
 
 // The share of white noise's variance that Adam's bias-corrected first moment keeps after t
@@ -57,7 +61,24 @@ void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjac
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         return;
     }
-    const auto& program = programs.get(kPrecondition, 0, {{"SUBDFIT_CHANNELS", std::to_string(group.count() / adjacency.vertexCount)}});
+    const std::string channels = std::to_string(group.count() / adjacency.vertexCount);
+    if (group.count() <= kOneGroupFloats) {
+        const auto& program = programs.get(kPrecondition, 0,
+                                           {{"SUBDFIT_CHANNELS", channels},
+                                            {"SUBDFIT_PRECONDITION_ONE_GROUP", std::to_string(kOneGroupFloats)}});
+        program.use();
+        program.set("uVertexCount", adjacency.vertexCount);
+        program.set("uLambda", lambda);
+        program.set("uIterations", iterations);
+        group.gradient.bindStorage(SUBDFIT_SSBO_GRADIENT);
+        group.gradientSmooth.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
+        adjacency.offsets.bindStorage(SUBDFIT_SSBO_ADJACENCY_OFFSETS);
+        adjacency.indices.bindStorage(SUBDFIT_SSBO_ADJACENCY_INDICES);
+        glDispatchCompute(1, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        return;
+    }
+    const auto& program = programs.get(kPrecondition, 0, {{"SUBDFIT_CHANNELS", channels}});
     program.use();
     program.set("uVertexCount", adjacency.vertexCount);
     program.set("uLambda", lambda);

@@ -24,7 +24,8 @@ struct Adjacency {
 };
 
 // g̃ = (I + λL)⁻¹ g by `iterations` Jacobi sweeps into group.gradientSmooth (a plain copy when
-// iterations == 0 or λ == 0). `scratch` must be the size of the gradient.
+// iterations == 0 or λ == 0): a small group's in one dispatch, a larger one's a dispatch per
+// sweep. `scratch` must be the size of the gradient.
 void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency,
                   float lambda, int iterations, gl::Buffer& scratch);
 
