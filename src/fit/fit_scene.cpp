@@ -137,16 +137,17 @@ FitOptions withVertexRates(FitOptions options, const mesh::PolygonMesh& cage, co
     return options;
 }
 
-ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets) {
+ViewSetScore score(const scene::TargetSet& targets, const scene::TargetSet::Draw& draw) {
     double loss = 0.0;
-    for (int i = 0; i < targets.size(); ++i) {
-        const auto image = targets.render(i, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
-            fitter.render(camera, canvas);
-        });
-        loss += meanPixelLoss(image, targets.readColor(i));
-    }
+    for (int i = 0; i < targets.size(); ++i) loss += meanPixelLoss(targets.render(i, draw), targets.readColor(i));
     loss /= std::max(1, targets.size());
     return {loss, psnrFromLoss(loss)};
+}
+
+ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets) {
+    return score(targets, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
+        fitter.render(camera, canvas);
+    });
 }
 
 HoldoutScore scoreHoldout(const scene::TargetSet& holdout, const scene::TargetSet::Draw& draw) {

@@ -64,7 +64,9 @@ FitOptions withVertexRates(FitOptions options, const mesh::PolygonMesh& cage, co
 render::ShadingModel shadingOf(const FitOptions& options, const mesh::PolygonMesh& reference);
 maps::MapEffects mapEffectsOf(const FitOptions& options, render::ShadingModel shading);
 
-// Mean loss and PSNR of the fitter's current scene over every view of `targets`.
+// Mean loss and PSNR of whatever `draw` draws over every view of `targets` (no SSIM: what a
+// choice between candidates reads), and of the fitter's current scene.
+ViewSetScore score(const scene::TargetSet& targets, const scene::TargetSet::Draw& draw);
 ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets);
 
 // The held-out score of whatever `draw` draws over every view of `holdout`, drawn as its targets

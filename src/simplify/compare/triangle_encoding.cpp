@@ -6,7 +6,6 @@
 #include "fit/fit_scene.h"
 #include "mesh/mesh_loader.h"
 #include "render/mesh_renderer.h"
-#include "simplify/compare/quality.h"
 #include "util/interrupt.h"
 
 namespace subdfit::simplify {
@@ -67,11 +66,9 @@ mesh::PolygonMesh readBack(const std::filesystem::path& path, const fit::FitScen
 
 double monitorPsnr(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& candidate) {
     const render::MeshRenderer renderer(candidate, scene.shading);
-    Quality q;
-    scoreHoldout(scene.monitor, [&](const render::Camera& camera, const render::RenderTarget& target) {
-        renderer.draw(programs, camera, target);
-    }, q);
-    return q.psnrHoldout;
+    return fit::score(scene.monitor, [&](const render::Camera& camera, const render::RenderTarget& target) {
+               renderer.draw(programs, camera, target);
+           }).psnr;
 }
 
 EncodedChoice bestEncoding(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget, int most,
