@@ -1,7 +1,8 @@
-// The budget search's cages, built on a thread of their own, are the cages built in turn, each
-// prepared there before it is handed over.
+// The budget search's cages, built on threads of their own (one or several rungs at once), are
+// the cages built in turn, each prepared there before it is handed over.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <mutex>
 #include <vector>
 
@@ -13,44 +14,48 @@
 namespace subdfit::simplify {
 namespace {
 
-TEST(CageLadder, GivesTheCagesASourceBuildsInTurn) {
+void expectTheCagesASourceBuildsInTurn(unsigned builders) {
     const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 5);
-    const std::vector<int> counts{400, 160, 2};  // the last: too few faces survive decimation
-    CageLadder ladder(reference, counts);
+    const std::vector<int> counts{400, 250, 160, 2};  // the last: too few faces survive decimation
+    CageLadder ladder(reference, counts, {}, builders);
     const CageSource source(reference);
     for (size_t k = 0; k + 1 < counts.size(); ++k) {
         const std::optional<mesh::PolygonMesh> cage = ladder.take(k);
         ASSERT_TRUE(cage.has_value()) << counts[k];
         const mesh::PolygonMesh expected = source.cage({.faces = counts[k]});
-        EXPECT_EQ(cage->faceIndices, expected.faceIndices) << counts[k];
-        EXPECT_EQ(cage->positions, expected.positions) << counts[k];
+        EXPECT_EQ(cage->faceIndices, expected.faceIndices) << counts[k] << " faces, " << builders << " builders";
+        EXPECT_EQ(cage->positions, expected.positions) << counts[k] << " faces, " << builders << " builders";
     }
     EXPECT_FALSE(ladder.take(counts.size() - 1).has_value());
     EXPECT_EQ(ladder.source().cage({.faces = 160}).positions, source.cage({.faces = 160}).positions);
 }
 
+TEST(CageLadder, GivesTheCagesASourceBuildsInTurn) { expectTheCagesASourceBuildsInTurn(1); }
+
+TEST(CageLadder, SeveralBuildersGiveTheSameCages) { expectTheCagesASourceBuildsInTurn(3); }
+
 TEST(CageLadder, PreparesEachCageBeforeHandingItOver) {
     const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 5);
     std::mutex mutex;
-    std::vector<int> prepared;  // on the builder's thread, before each cage is handed over
+    std::vector<int> prepared;  // on a builder's thread, before each cage is handed over
     CageLadder ladder(reference, {400, 160}, [&](const mesh::PolygonMesh& cage) {
         const std::lock_guard lock(mutex);
         prepared.push_back(cage.faceCount());
-    });
+    }, 2);
     for (size_t k = 0; k < 2; ++k) {
         const std::optional<mesh::PolygonMesh> cage = ladder.take(k);
         ASSERT_TRUE(cage.has_value());
         const std::lock_guard lock(mutex);
-        ASSERT_GT(prepared.size(), k);
-        EXPECT_EQ(prepared[k], cage->faceCount());
+        EXPECT_NE(std::find(prepared.begin(), prepared.end(), cage->faceCount()), prepared.end()) << cage->faceCount();
     }
 }
 
 TEST(CageLadder, AStopRequestReachesTheCageWaitedFor) {
     const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 5);
     stopRequest() = true;
-    CageLadder ladder(reference, {400, 160});
+    CageLadder ladder(reference, {400, 160, 100}, {}, 2);
     EXPECT_THROW(ladder.take(0), Interrupted);
+    EXPECT_THROW(ladder.take(2), Error);  // never begun, or interrupted: either way not waited for forever
     stopRequest() = false;
 }
 

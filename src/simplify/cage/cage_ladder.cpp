@@ -1,15 +1,29 @@
 #include "simplify/cage/cage_ladder.h"
 
+#include <algorithm>
+
 #include "util/error.h"
 #include "util/interrupt.h"
 
 namespace subdfit::simplify {
 
-CageLadder::CageLadder(const mesh::PolygonMesh& reference, std::vector<int> faceCounts, Prepare prepare)
-    : promises_(faceCounts.size()) {
+namespace {
+
+// One builder per 4 cores, at most 4: the limit fits' rays already use every core, and each
+// builder holds a decimation of the reference.
+unsigned buildersFor(unsigned cores, size_t rungs) {
+    return unsigned(std::clamp<size_t>(cores / 4, 1, std::min<size_t>(4, std::max<size_t>(rungs, 1))));
+}
+
+}  // namespace
+
+CageLadder::CageLadder(const mesh::PolygonMesh& reference, std::vector<int> faceCounts, Prepare prepare,
+                       unsigned builders)
+    : promises_(faceCounts.size()), built_(faceCounts.size(), 0) {
     for (auto& promise : promises_) cages_.push_back(promise.get_future());
-    builder_ = std::thread([this, &reference, counts = std::move(faceCounts), prepare = std::move(prepare)] {
-        build(reference, counts, prepare);
+    if (builders == 0) builders = buildersFor(std::thread::hardware_concurrency(), faceCounts.size());
+    builder_ = std::thread([this, &reference, counts = std::move(faceCounts), prepare = std::move(prepare), builders] {
+        build(reference, counts, prepare, builders);
     });
 }
 
@@ -18,24 +32,44 @@ CageLadder::~CageLadder() {
     if (builder_.joinable()) builder_.join();
 }
 
-void CageLadder::build(const mesh::PolygonMesh& reference, const std::vector<int>& faceCounts, const Prepare& prepare) {
-    size_t k = 0;
+void CageLadder::build(const mesh::PolygonMesh& reference, const std::vector<int>& faceCounts, const Prepare& prepare,
+                       unsigned builders) {
     try {
         source_.emplace(reference);
-        for (; k < faceCounts.size() && !stop_; ++k) {
-            try {
-                mesh::PolygonMesh cage = source_->cage({.faces = faceCounts[k]});
-                if (prepare) prepare(cage);
-                promises_[k].set_value(std::move(cage));
-            } catch (const Interrupted&) {
-                throw;
-            } catch (const Error&) {
-                promises_[k].set_value(std::nullopt);  // too few faces survive: the caller goes on
-            }
-        }
+        std::vector<std::jthread> helpers;
+        for (unsigned h = 1; h < builders; ++h) helpers.emplace_back([&] { buildRungs(faceCounts, prepare); });
+        buildRungs(faceCounts, prepare);
     } catch (...) {
-        // The source failed, or building was interrupted: the cage waited for reports it.
-        if (k < promises_.size()) promises_[k].set_exception(std::current_exception());
+        // The source failed: every cage waited for reports it.
+        for (size_t k = 0; k < promises_.size(); ++k)
+            if (!built_[k]) promises_[k].set_exception(std::current_exception());
+        return;
+    }
+    // Building stopped early (interrupted, a rung failed, or the ladder is going): a rung never
+    // begun says so rather than leave its taker waiting.
+    for (size_t k = 0; k < promises_.size(); ++k)
+        if (!built_[k])
+            promises_[k].set_exception(std::make_exception_ptr(
+                Error("the cage of " + std::to_string(faceCounts[k]) + " faces was not built: building stopped")));
+}
+
+void CageLadder::buildRungs(const std::vector<int>& faceCounts, const Prepare& prepare) {
+    for (size_t k = next_++; k < faceCounts.size() && !stop_; k = next_++) {
+        try {
+            mesh::PolygonMesh cage = source_->cage({.faces = faceCounts[k]});
+            if (prepare) prepare(cage);
+            promises_[k].set_value(std::move(cage));
+        } catch (const Interrupted&) {
+            promises_[k].set_exception(std::current_exception());
+            stop_ = true;
+        } catch (const Error&) {
+            promises_[k].set_value(std::nullopt);  // too few faces survive: the caller goes on
+        } catch (...) {
+            // The cage waited for reports it, and the others stop.
+            promises_[k].set_exception(std::current_exception());
+            stop_ = true;
+        }
+        built_[k] = 1;
     }
 }
 

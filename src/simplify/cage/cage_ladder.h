@@ -1,7 +1,8 @@
 #pragma once
-// Cages of several face counts (the budget search's ladder), built in order on a thread of their
+// Cages of several face counts (the budget search's ladder), built in order on threads of their
 // own while the caller judges the ones already built: building a cage is CPU work, judging one
-// is GL work, and each leaves the other core idle.
+// is GL work, and each leaves the other core idle. On a machine of many cores several rungs are
+// built at once: much of a rung (decimating the reference, OpenSubdiv's tables) runs on one core.
 #include <atomic>
 #include <functional>
 #include <future>
@@ -19,8 +20,10 @@ public:
     // Starts building at once; `reference` must outlive the ladder. `prepare` (if any) runs on
     // the builder's thread on each cage before it is handed over: CPU work its judge would
     // otherwise do between GL work (searchBudget's prepareToJudge).
+    // `builders`: rungs built at once (0: by the machine's cores, one on up to 7).
     using Prepare = std::function<void(const mesh::PolygonMesh& cage)>;
-    CageLadder(const mesh::PolygonMesh& reference, std::vector<int> faceCounts, Prepare prepare = {});
+    CageLadder(const mesh::PolygonMesh& reference, std::vector<int> faceCounts, Prepare prepare = {},
+               unsigned builders = 0);
     ~CageLadder();  // stops the builder after the cage it is on, and waits for it
     CageLadder(const CageLadder&) = delete;
     CageLadder& operator=(const CageLadder&) = delete;
@@ -33,11 +36,15 @@ public:
     const CageSource& source();
 
 private:
-    void build(const mesh::PolygonMesh& reference, const std::vector<int>& faceCounts, const Prepare& prepare);
+    void build(const mesh::PolygonMesh& reference, const std::vector<int>& faceCounts, const Prepare& prepare,
+               unsigned builders);
+    void buildRungs(const std::vector<int>& faceCounts, const Prepare& prepare);
 
     std::vector<std::promise<std::optional<mesh::PolygonMesh>>> promises_;
     std::vector<std::future<std::optional<mesh::PolygonMesh>>> cages_;
     std::optional<CageSource> source_;
+    std::vector<char> built_;  // promises_[k] was set (each k by the one thread that took it)
+    std::atomic<size_t> next_{0};
     std::atomic<bool> stop_{false};
     std::thread builder_;
 };
