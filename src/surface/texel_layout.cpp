@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <list>
+#include <mutex>
 #include <unordered_map>
 
 #include "mesh/point_welder.h"
@@ -78,8 +80,9 @@ std::vector<int> haloNodes(const TexelLayout& layout) {
 
 }  // namespace
 
-TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution) {
-    SUBDFIT_CHECK(resolution >= 1 && resolution <= 256);
+namespace {
+
+TexelLayout layOut(const mesh::PolygonMesh& cage, int resolution) {
     const subdiv::LimitEvaluator evaluator(cage);
     TexelLayout layout;
     layout.resolution = resolution;
@@ -110,6 +113,50 @@ TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution) {
     layout.nodeCount = next;
     layout.halo = haloNodes(layout);
     return layout;
+}
+
+// What a layout depends on: the nodes on tile borders are welded where their limit points meet.
+struct LayoutKey {
+    int resolution = 0;
+    std::vector<glm::vec3> positions;
+    std::vector<int> faceSizes, faceIndices;
+    mesh::SubdivisionTags tags;
+    friend bool operator==(const LayoutKey&, const LayoutKey&) = default;
+};
+
+// The layouts of the last few cages. simplify lays one (decoded) cage out again for every
+// candidate it encodes, decodes and draws with maps; on a dense cage each costs tens of ms.
+class LayoutCache {
+public:
+    TexelLayout get(const mesh::PolygonMesh& cage, int resolution) {
+        LayoutKey key{resolution, cage.positions, cage.faceSizes, cage.faceIndices, cage.tags};
+        {
+            const std::lock_guard lock(mutex_);
+            for (auto it = entries_.begin(); it != entries_.end(); ++it)
+                if (it->first == key) {
+                    entries_.splice(entries_.begin(), entries_, it);
+                    return it->second;
+                }
+        }
+        TexelLayout layout = layOut(cage, resolution);  // unlocked: another thread's cage need not wait
+        const std::lock_guard lock(mutex_);
+        entries_.emplace_front(std::move(key), layout);
+        if (entries_.size() > kKept) entries_.pop_back();
+        return layout;
+    }
+
+private:
+    static constexpr size_t kKept = 8;
+    std::mutex mutex_;
+    std::list<std::pair<LayoutKey, TexelLayout>> entries_;
+};
+
+}  // namespace
+
+TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution) {
+    SUBDFIT_CHECK(resolution >= 1 && resolution <= 256);
+    static LayoutCache cache;
+    return cache.get(cage, resolution);
 }
 
 NodeAdjacency nodeAdjacency(const TexelLayout& layout) {

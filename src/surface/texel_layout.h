@@ -38,7 +38,8 @@ struct NodeAdjacency {
 };
 NodeAdjacency nodeAdjacency(const TexelLayout& layout);
 
-// `resolution` in 1..256 (the options allow up to 64).
+// `resolution` in 1..256 (the options allow up to 64). The layouts of the last few cages are
+// kept: laying one out again costs a comparison.
 TexelLayout buildTexelLayout(const mesh::PolygonMesh& cage, int resolution);
 
 // Bilinear sample of channel `channel` of node values stored `stride` floats per node, at ptex
