@@ -150,7 +150,9 @@ mesh::PolygonMesh CageSource::cage(const InitialCageOptions& options) const {
     }
     // Interpolation pins the vertices; between them an approximating surface overshoots
     // (ripples on a dense triangle cage). The least-squares fit over whole faces settles it.
-    fitLimitToSurface(cage, welded, *surface_, options.limitFit);
+    LimitFitOptions limitFit = options.limitFit;
+    limitFit.measureAfter = false;  // nothing here reads how close it came
+    fitLimitToSurface(cage, welded, *surface_, limitFit);
     for (const glm::vec3& p : cage.positions)
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
             throw fileError(reference.sourcePath, "limit interpolation of the decimated cage diverged");

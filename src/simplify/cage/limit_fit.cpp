@@ -88,7 +88,7 @@ LimitFitReport fitLimitToSurface(mesh::PolygonMesh& cage, const mesh::PolygonMes
         if (round > 0) project();
         P = solveDampedLeastSquares(L.stencils, targets, used, P, options.damping);
     }
-    report.rmsAfter = project();
+    if (options.measureAfter) report.rmsAfter = project();
     for (size_t v = 0; v < P.size(); ++v) cage.positions[v] = glm::vec3(P[v]);
     return report;
 }

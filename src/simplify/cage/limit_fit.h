@@ -21,10 +21,11 @@ struct LimitFitOptions {
     double damping = 0.02;     // μ as a fraction of the normal matrix's mean diagonal
     float reach = 1.0f;        // rays reach this many mean cage edge lengths
     float detour = 0.25f;      // a hit farther than the nearest point by more of the reach is another part's
+    bool measureAfter = true;  // cast every sample once more for the report's rmsAfter (a fifth of the rays)
 };
 
 struct LimitFitReport {
-    double rmsBefore = 0.0, rmsAfter = 0.0;  // over the samples that found the reference
+    double rmsBefore = 0.0, rmsAfter = 0.0;  // over the samples that found the reference (after: 0 unless measured)
     int samples = 0, hits = 0;
 };
 
