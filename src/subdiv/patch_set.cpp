@@ -100,7 +100,9 @@ int drawingIsolationLevel(const mesh::PolygonMesh& cage) {
 }
 
 PatchSet buildPatchSet(const mesh::PolygonMesh& mesh, const PatchSetOptions& options) {
-    const AdaptiveTables tables = buildAdaptiveTables(mesh, options.isolationLevel);
+    // Kept: a cage's limit evaluator (its limit fit, its bakes) has often built them already.
+    const std::shared_ptr<const AdaptiveTables> kept = cachedAdaptiveTables(mesh, options.isolationLevel);
+    const AdaptiveTables& tables = *kept;
     PatchSet set;
     set.baseVertexCount = tables.baseVertexCount();
     set.pointCount = tables.pointCount();
