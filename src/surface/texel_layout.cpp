@@ -14,6 +14,7 @@
 #include "mesh/point_welder.h"
 #include "subdiv/limit_evaluator.h"
 #include "util/error.h"
+#include "util/parallel_for.h"
 
 namespace subdfit::surface {
 namespace {
@@ -89,27 +90,34 @@ TexelLayout layOut(const mesh::PolygonMesh& cage, int resolution) {
     layout.ptexFaceCount = evaluator.ptexFaceCount();
     layout.faceNodes.resize(size_t(layout.ptexFaceCount) * size_t(layout.nodesPerFace()));
 
+    // The limit points of the tile borders, evaluated on every core; welded in order below.
+    const int n = resolution;
+    const size_t perFace = size_t(layout.nodesPerFace());
+    std::vector<char> surface(size_t(layout.ptexFaceCount));
+    std::vector<glm::vec3> borderPoints(layout.faceNodes.size());
+    parallelFor(0, layout.ptexFaceCount, [&](int face) {
+        surface[size_t(face)] = evaluator.hasSurface(face, 0.5f, 0.5f);
+        if (!surface[size_t(face)]) return;
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i)
+                if (i == 0 || j == 0 || i == n || j == n)
+                    borderPoints[size_t(face) * perFace + size_t(j) * size_t(n + 1) + size_t(i)] =
+                        evaluator.evaluate(face, float(i) / float(n), float(j) / float(n), cage.positions).position;
+    });
+
     float extent = 0.0f;
     for (const auto& p : cage.positions) extent = std::max({extent, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
     // Far below the node spacing of any sane map, far above float rounding of one limit point.
     mesh::PointWelder welder(std::max(extent, 1e-30f) * 1e-5f);
     int next = 0;
-    const int n = resolution;
-    for (int face = 0; face < layout.ptexFaceCount; ++face) {
-        const bool surface = evaluator.hasSurface(face, 0.5f, 0.5f);
+    for (int face = 0; face < layout.ptexFaceCount; ++face)
         for (int j = 0; j <= n; ++j)
             for (int i = 0; i <= n; ++i) {
                 const bool border = i == 0 || j == 0 || i == n || j == n;
-                int index;
-                if (border && surface) {
-                    const auto p = evaluator.evaluate(face, float(i) / float(n), float(j) / float(n), cage.positions).position;
-                    index = welder.indexOf(p, next);
-                } else {
-                    index = next++;  // interior nodes (and holes) are their tile's own
-                }
-                layout.faceNodes[size_t(face) * size_t(layout.nodesPerFace()) + size_t(j) * size_t(n + 1) + size_t(i)] = index;
+                const size_t at = size_t(face) * perFace + size_t(j) * size_t(n + 1) + size_t(i);
+                // Interior nodes (and holes) are their tile's own.
+                layout.faceNodes[at] = border && surface[size_t(face)] ? welder.indexOf(borderPoints[at], next) : next++;
             }
-    }
     layout.nodeCount = next;
     layout.halo = haloNodes(layout);
     return layout;

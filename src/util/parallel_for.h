@@ -1,0 +1,19 @@
+#pragma once
+// body(i) for every i in [begin, end): on every core (TBB), or in order in the WebAssembly
+// decoder, which has no threads. The body must not depend on the order. A caller links TBB.
+#ifdef __EMSCRIPTEN__
+namespace subdfit {
+template <class Body>
+void parallelFor(int begin, int end, const Body& body) {
+    for (int i = begin; i < end; ++i) body(i);
+}
+}  // namespace subdfit
+#else
+#include <tbb/parallel_for.h>
+namespace subdfit {
+template <class Body>
+void parallelFor(int begin, int end, const Body& body) {
+    tbb::parallel_for(begin, end, body);
+}
+}  // namespace subdfit
+#endif
