@@ -8,6 +8,8 @@
 #include <array>
 #include <cmath>
 
+#include <tbb/parallel_invoke.h>
+
 #include "geometry/normal_casting.h"
 #include "geometry/surface_queries.h"
 #include "mesh/material_sampling.h"
@@ -15,6 +17,7 @@
 #include "mesh/mesh_geometry.h"
 #include "subdiv/limit_evaluator.h"
 #include "util/interrupt.h"
+#include "util/parallel_for.h"
 #include "util/sparse_least_squares.h"
 
 namespace subdfit::simplify {
@@ -110,12 +113,13 @@ struct PtexPoint {
 std::vector<std::optional<geometry::RayHit>> castFromLimit(const mesh::PolygonMesh& cage, const subdiv::LimitEvaluator& limit,
                                                            const std::vector<PtexPoint>& points, const geometry::SurfaceQueries& surface,
                                                            float maxDistance, float facing) {
-    std::vector<glm::vec3> origins, normals;
-    for (const PtexPoint& p : points) {
+    std::vector<glm::vec3> origins(points.size()), normals(points.size());
+    parallelFor(0, int(points.size()), [&](int k) {
+        const PtexPoint& p = points[size_t(k)];
         const subdiv::LimitSample at = limit.evaluate(p.face, p.uv.x, p.uv.y, cage.positions);
-        origins.push_back(at.position);
-        normals.push_back(unitNormal(at.dPdu, at.dPdv, glm::vec3(0.0f)));
-    }
+        origins[size_t(k)] = at.position;
+        normals[size_t(k)] = unitNormal(at.dPdu, at.dPdv, glm::vec3(0.0f));
+    });
     return geometry::castAlongNormals(surface, origins, normals, maxDistance, kDetour * maxDistance, facing).hits;
 }
 
@@ -309,6 +313,10 @@ void fitAppearanceAcrossCells(const mesh::PolygonMesh& cage, const surface::Texe
                 for (const glm::vec2 f : kCellSamples) samples.push_back({face, (glm::vec2(float(i), float(j)) + f) / float(t)});
     }
     const auto hits = castFromLimit(cage, limit, samples, surface, maxDistance, nodeHits.facing);
+    std::vector<std::array<float, 5>> found(samples.size());
+    parallelFor(0, int(samples.size()), [&](int k) {
+        if (hits[size_t(k)]) found[size_t(k)] = appearanceAt(reference, *hits[size_t(k)]);
+    });
     for (size_t k = 0; k < samples.size(); ++k) {
         if (!hits[k]) continue;
         // Which cell and where in it, back from (u, v): a sample sits a quarter cell inside its
@@ -320,12 +328,12 @@ void fitAppearanceAcrossCells(const mesh::PolygonMesh& cage, const surface::Texe
         rows.add(layout.node(face, i + 1, j), double(f.x * (1.0f - f.y)));
         rows.add(layout.node(face, i, j + 1), double((1.0f - f.x) * f.y));
         rows.add(layout.node(face, i + 1, j + 1), double(f.x * f.y));
-        addRow(appearanceAt(reference, *hits[k]));
+        addRow(found[k]);
     }
     const std::vector<double> weights(rows.rows(), 1.0);
     constexpr double kDamping = 1e-3;  // as the heights: holds nodes few samples see
-    color = solveDampedLeastSquares(rows, colorTargets, weights, color, kDamping);
-    roughnessMetallic = solveDampedLeastSquares(rows, rmTargets, weights, roughnessMetallic, kDamping);
+    tbb::parallel_invoke([&] { color = solveDampedLeastSquares(rows, colorTargets, weights, color, kDamping); },
+                         [&] { roughnessMetallic = solveDampedLeastSquares(rows, rmTargets, weights, roughnessMetallic, kDamping); });
 }
 
 }  // namespace
