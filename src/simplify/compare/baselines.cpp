@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <map>
 #include <unordered_map>
 #include <cstdio>
 #include <functional>
@@ -61,22 +60,6 @@ private:
     std::unordered_map<Key, std::uint32_t, KeyHash> index_;
 };
 
-// Decimations by triangle count: the encodings tried land on the same counts again and again.
-class Decimations {
-public:
-    explicit Decimations(const mesh::PolygonMesh& source) : source_(source) {}
-    const mesh::PolygonMesh& at(int triangles) {
-        if (const auto it = made_.find(triangles); it != made_.end()) return it->second;
-        if (made_.size() >= kKept) made_.clear();
-        return made_.emplace(triangles, decimate(source_, triangles)).first->second;
-    }
-
-private:
-    static constexpr size_t kKept = 12;
-    const mesh::PolygonMesh& source_;
-    std::map<int, mesh::PolygonMesh> made_;
-};
-
 // Where a budget's triangle count is first looked for: about two bytes a triangle.
 int firstGuess(std::uintmax_t budget, int most) { return int(std::min<std::uintmax_t>(std::uintmax_t(most), budget / 2 + 1)); }
 
@@ -122,7 +105,7 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
         };
     };
     const std::optional<mesh::PolygonMesh> probeSource = probeSourceFor(welded, budget);
-    Decimations fromReference(welded), fromCopy(probeSource ? *probeSource : welded);
+    Decimations fromReference(welded, decimate), fromCopy(probeSource ? *probeSource : welded, decimate);
     EncodedChoice chosen = bestEncoding(programs, scene, budget, (probeSource ? *probeSource : welded).faceCount(), path,
                                         shipFrom(probeSource ? fromCopy : fromReference),
                                         {.positionBits = 14, .normals = false}, firstGuess(budget, welded.faceCount()));

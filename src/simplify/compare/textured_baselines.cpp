@@ -170,10 +170,11 @@ std::uintmax_t writeWholeTextured(const fit::FitScene& scene, const std::filesys
 Quality texturedDecimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
                                    const BaselineSettings& settings) {
     const auto output = settings.dir / "decimated.glb";
+    Decimations decimations(scene.reference, decimateTextured);
     const Shipped shipped = bestScale(programs, scene, budget, output, {.positionBits = 14, .normals = true},
                                       [&](const VertexEncoding& encoding, const auto& images, int triangles) {
         throwIfStopRequested();
-        mesh::PolygonMesh decimated = decimateTextured(scene.reference, triangles);
+        mesh::PolygonMesh decimated = decimations.at(triangles);
         const auto normals = encoding.normals ? mesh::shadingNormals(decimated) : std::vector<glm::vec3>{};
         decimated.positions = scene.frame.toWorld(decimated.positions);
         return exporter::writeTexturedGlb(output, decimated, normals, images,

@@ -52,6 +52,12 @@ int mostWithinBudget(int fewest, int most, std::uintmax_t budget, const std::fun
     return lo;
 }
 
+const mesh::PolygonMesh& Decimations::at(int triangles) {
+    if (const auto it = made_.find(triangles); it != made_.end()) return it->second;
+    if (made_.size() >= kKept) made_.clear();
+    return made_.emplace(triangles, decimate_(source_, triangles)).first->second;
+}
+
 nlohmann::json toJson(const VertexEncoding& e) {
     nlohmann::json j{{"position_bits", e.positionBits}, {"normals", e.normals}};
     if (e.normals) j["normal_bits"] = e.normalBits;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +33,21 @@ inline constexpr int kFewestTriangles = 12;
 // left as shipped at the count returned.
 int mostWithinBudget(int fewest, int most, std::uintmax_t budget, const std::function<std::uintmax_t(int)>& ship,
                      std::optional<int> hint = std::nullopt);
+
+// Decimations of one mesh by triangle count, the last few kept: the encodings a search tries
+// land on the same counts again and again, and each decimation is a pass over the whole mesh.
+class Decimations {
+public:
+    using Decimate = std::function<mesh::PolygonMesh(const mesh::PolygonMesh& source, int triangles)>;
+    Decimations(const mesh::PolygonMesh& source, Decimate decimate) : source_(source), decimate_(std::move(decimate)) {}
+    const mesh::PolygonMesh& at(int triangles);
+
+private:
+    static constexpr size_t kKept = 12;
+    const mesh::PolygonMesh& source_;
+    Decimate decimate_;
+    std::map<int, mesh::PolygonMesh> made_;
+};
 
 // How a triangle file codes its vertices.
 struct VertexEncoding {
