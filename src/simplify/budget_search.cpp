@@ -389,11 +389,30 @@ struct Bare {
 
 // Phase one on a cage: the bare cage with each appearance, at the first quality (best first) at
 // which it fits. An appearance that does not fit ends its kind (tiles, atlases): finer ones of
-// that kind only cost more.
+// that kind only cost more. Nor is one baked that two coarser ones of its kind predict over the
+// budget: each doubling of the texels adds more bytes than the one before it (it adds four times
+// the texels), so the last bytes plus the last increase are the least the next can cost. The
+// prediction is read at the lowest quality there is, where the ones before it were judged.
 std::vector<Bare> judgeBare(const SearchInputs& in, Findings& found, const TriedCage& cage,
                             const std::vector<AppearanceBakeOptions>& appearances) {
     std::vector<Bare> bare;
+    std::vector<std::uintmax_t> kindBytes;  // of this kind on this cage so far, at the lowest quality
+    const auto endKind = [&](size_t& a) {
+        while (a + 1 < appearances.size() && (appearances[a + 1].atlas > 0) == (appearances[a].atlas > 0)) ++a;
+    };
     for (size_t a = 0; a < appearances.size(); ++a) {
+        if (a > 0 && (appearances[a].atlas > 0) != (appearances[a - 1].atlas > 0)) kindBytes.clear();
+        if (kindBytes.size() >= 2 && 2 * kindBytes.back() > kindBytes[kindBytes.size() - 2] + in.search.budget) {
+            if (in.say) {
+                char line[96];
+                std::snprintf(line, sizeof line, "%6d faces, appearance %s %d: predicted over budget, not baked",
+                              cage.world->faceCount(), appearances[a].atlas > 0 ? "atlas" : "T=",
+                              appearances[a].atlas > 0 ? appearances[a].atlas : appearances[a].resolution);
+                in.say(line);
+            }
+            endKind(a);
+            continue;
+        }
         const bool withAppearance = appearances[a].resolution > 0 || appearances[a].atlas > 0;
         Appearance appearance;
         if (withAppearance) {
@@ -407,11 +426,13 @@ std::vector<Bare> judgeBare(const SearchInputs& in, Findings& found, const Tried
             appearance.quality = qualities[q];
             c = judge(in, found, cage.world, {}, {}, appearance);
         }
+        if (appearance.quality == qualities.back()) kindBytes.push_back(c.bytes);
+        else kindBytes.clear();  // fitted at a higher quality: what the lowest costs is not known
         if (fits(in.search, c)) {
             bare.push_back({appearances[a].atlas > 0, std::move(appearance), c});
             continue;
         }
-        while (a + 1 < appearances.size() && (appearances[a + 1].atlas > 0) == (appearances[a].atlas > 0)) ++a;
+        endKind(a);
     }
     return bare;
 }

@@ -7,12 +7,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 
 #include "error_message.h"
 #include "export/subd_format.h"
 #include "fit/fit_scene.h"
 #include "gl_test_context.h"
 #include "mesh/mesh_geometry.h"
+#include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
 #include "mesh/procedural.h"
 #include "simplify/budget_search.h"
@@ -174,6 +176,50 @@ TEST(SimplifyBudget, NoNearTieIsSettledWhereNoCandidateWillBeFitted) {
         if (settled.tried[k].monitorLoss > 0.0) lowest = std::min(lowest, settled.tried[k].monitorLoss);
     }
     EXPECT_EQ(unsettled.chosen.monitorLoss, lowest);
+    expectNoGlError();
+}
+
+// The bare cages' bytes with each appearance tile resolution, cage by cage (faces -> T -> bytes).
+std::map<int, std::map<int, std::uintmax_t>> appearanceBytes(std::uintmax_t budget) {
+    fit::FitOptions o;
+    o.out = scratchDir("simplify_budget_appearances");
+    o.steps = 20;
+    o.views = 4;
+    o.holdoutViews = 2;
+    o.resolution = 64;
+    const mesh::PolygonMesh duck = mesh::triangulated(mesh::loadReference(assetPath("gltf/Duck/Duck.glb")));
+    fit::FitScene scene(fit::resolved(o), programs(), mesh::makeQuadSphere(2), duck);
+    simplify::BudgetSearch search;
+    search.budget = budget;
+    search.faceCounts = {800, 400};
+    search.allowedMaps = {};
+    search.appearance = {.baseColor = true};
+    search.appearanceResolutions = {2, 4, 8, 16};
+    simplify::CageLadder cages(duck, search.faceCounts);
+    const simplify::BudgetChoice choice = simplify::searchBudget(programs(), scene, duck, search, cages, {});
+    std::map<int, std::map<int, std::uintmax_t>> bytes;
+    for (const auto& c : choice.tried) bytes[c.faces][c.appearanceResolution] = c.bytes;
+    return bytes;
+}
+
+// The search bakes no finer appearance that two coarser ones predict over the budget: each
+// doubling of the texels adds more bytes than the last, so the last bytes plus the last increase
+// are the least the next can cost.
+TEST(SimplifyBudget, AFinerAppearanceTwoCoarserOnesPredictOverIsNotBaked) {
+    // The premise, where every resolution is judged: the increases grow.
+    const auto all = appearanceBytes(1u << 30);
+    for (const auto& [faces, byT] : all) {
+        ASSERT_EQ(byT.size(), 4u) << faces << " faces";
+        for (int t : {8, 16})
+            EXPECT_GE(byT.at(t) - byT.at(t / 2), byT.at(t / 2) - byT.at(t / 4)) << faces << " faces, T=" << t;
+    }
+    // A budget between a finer resolution's prediction and its bytes: predicted over, not baked.
+    const auto& [faces, byT] = *all.begin();
+    const std::uintmax_t predicted16 = 2 * byT.at(8) - byT.at(4);
+    ASSERT_LT(byT.at(8), predicted16);
+    const auto some = appearanceBytes((byT.at(8) + predicted16) / 2);
+    ASSERT_TRUE(some.at(faces).count(8)) << "T=8 fits and is judged";
+    EXPECT_FALSE(some.at(faces).count(16)) << "T=16 was baked though predicted over";
     expectNoGlError();
 }
 
