@@ -404,11 +404,11 @@ std::vector<Bare> judgeBare(const SearchInputs& in, Findings& found, const Tried
         if (a > 0 && (appearances[a].atlas > 0) != (appearances[a - 1].atlas > 0)) kindBytes.clear();
         if (kindBytes.size() >= 2 && 2 * kindBytes.back() > kindBytes[kindBytes.size() - 2] + in.search.budget) {
             if (in.say) {
+                const bool atlas = appearances[a].atlas > 0;
                 char line[96];
-                std::snprintf(line, sizeof line, "%6d faces, appearance %s %d: predicted over budget, not baked",
-                              cage.world->faceCount(), appearances[a].atlas > 0 ? "atlas" : "T=",
-                              appearances[a].atlas > 0 ? appearances[a].atlas : appearances[a].resolution);
-                in.say(line);
+                std::snprintf(line, sizeof line, atlas ? "%6d faces, appearance atlas %d" : "%6d faces, appearance T=%d",
+                              cage.world->faceCount(), atlas ? appearances[a].atlas : appearances[a].resolution);
+                in.say(std::string(line) + ": predicted over budget, not baked");
             }
             endKind(a);
             continue;
