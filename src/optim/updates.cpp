@@ -61,30 +61,23 @@ void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjac
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         return;
     }
-    const std::string channels = std::to_string(group.count() / adjacency.vertexCount);
-    if (group.count() <= kOneGroupFloats) {
-        const auto& program = programs.get(kPrecondition, 0,
-                                           {{"SUBDFIT_CHANNELS", channels},
-                                            {"SUBDFIT_PRECONDITION_ONE_GROUP", std::to_string(kOneGroupFloats)}});
-        program.use();
-        program.set("uVertexCount", adjacency.vertexCount);
-        program.set("uLambda", lambda);
-        program.set("uIterations", iterations);
-        group.gradient.bindStorage(SUBDFIT_SSBO_GRADIENT);
-        group.gradientSmooth.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
-        adjacency.offsets.bindStorage(SUBDFIT_SSBO_ADJACENCY_OFFSETS);
-        adjacency.indices.bindStorage(SUBDFIT_SSBO_ADJACENCY_INDICES);
-        glDispatchCompute(1, 1, 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        return;
-    }
-    const auto& program = programs.get(kPrecondition, 0, {{"SUBDFIT_CHANNELS", channels}});
+    const bool oneGroup = group.count() <= kOneGroupFloats;
+    gl::Defines defines{{"SUBDFIT_CHANNELS", std::to_string(group.count() / adjacency.vertexCount)}};
+    if (oneGroup) defines["SUBDFIT_PRECONDITION_ONE_GROUP"] = std::to_string(kOneGroupFloats);
+    const auto& program = programs.get(kPrecondition, 0, defines);
     program.use();
     program.set("uVertexCount", adjacency.vertexCount);
     program.set("uLambda", lambda);
     group.gradient.bindStorage(SUBDFIT_SSBO_GRADIENT);
     adjacency.offsets.bindStorage(SUBDFIT_SSBO_ADJACENCY_OFFSETS);
     adjacency.indices.bindStorage(SUBDFIT_SSBO_ADJACENCY_INDICES);
+    if (oneGroup) {
+        program.set("uIterations", iterations);
+        group.gradientSmooth.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
+        glDispatchCompute(1, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        return;
+    }
     // Jacobi ping-pong; the sweep count is arranged so the last one writes gradientSmooth.
     const gl::Buffer* in = &group.gradient;
     for (int k = 0; k < iterations; ++k) {

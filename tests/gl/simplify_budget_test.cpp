@@ -142,18 +142,23 @@ TEST(SimplifyBudget, ShipsWithinTheBudgetAndListsTheCandidates) {
     EXPECT_TRUE(fs::exists(dir / "out" / "comparison.png"));
 }
 
-// Where even the best candidate trails the triangle route by more than a fit gains, no cage is
-// fitted, so which of the near ties would be chosen changes nothing: the same search then draws
-// no training view to settle them, and chooses the lowest monitor loss.
-TEST(SimplifyBudget, NoNearTieIsSettledWhereNoCandidateWillBeFitted) {
+// A scene for the search alone: few views, small, a placeholder cage (the search brings its own).
+fit::FitScene smallSearchScene(const mesh::PolygonMesh& reference, const std::string& name) {
     fit::FitOptions o;
-    o.out = scratchDir("simplify_budget_unsettled");
+    o.out = scratchDir(name);
     o.steps = 20;
     o.views = 4;
     o.holdoutViews = 2;
     o.resolution = 64;
+    return fit::FitScene(fit::resolved(o), programs(), mesh::makeQuadSphere(2), reference);
+}
+
+// Where even the best candidate trails the triangle route by more than a fit gains, no cage is
+// fitted, so which of the near ties would be chosen changes nothing: the same search then draws
+// no training view to settle them, and chooses the lowest monitor loss.
+TEST(SimplifyBudget, NoNearTieIsSettledWhereNoCandidateWillBeFitted) {
     const mesh::PolygonMesh reference = mesh::makeLumpySphere(5, 0.15f, 3, 40, 0.005f, 0.02f);
-    fit::FitScene scene(fit::resolved(o), programs(), mesh::makeQuadSphere(2), reference);
+    fit::FitScene scene = smallSearchScene(reference, "simplify_budget_unsettled");
     simplify::BudgetSearch search;
     search.budget = 3000;
     search.faceCounts = simplify::faceCountsFor(search.budget, reference.faceCount(), 16000);
@@ -181,14 +186,8 @@ TEST(SimplifyBudget, NoNearTieIsSettledWhereNoCandidateWillBeFitted) {
 
 // The bare cages' bytes with each appearance tile resolution, cage by cage (faces -> T -> bytes).
 std::map<int, std::map<int, std::uintmax_t>> appearanceBytes(std::uintmax_t budget) {
-    fit::FitOptions o;
-    o.out = scratchDir("simplify_budget_appearances");
-    o.steps = 20;
-    o.views = 4;
-    o.holdoutViews = 2;
-    o.resolution = 64;
     const mesh::PolygonMesh duck = mesh::triangulated(mesh::loadReference(assetPath("gltf/Duck/Duck.glb")));
-    fit::FitScene scene(fit::resolved(o), programs(), mesh::makeQuadSphere(2), duck);
+    fit::FitScene scene = smallSearchScene(duck, "simplify_budget_appearances");
     simplify::BudgetSearch search;
     search.budget = budget;
     search.faceCounts = {800, 400};
