@@ -7,6 +7,7 @@
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_loader.h"
 #include "util/error.h"
+#include "util/parallel_for.h"
 
 namespace subdfit::fit {
 namespace {
@@ -152,20 +153,26 @@ ViewSetScore score(CageFitter& fitter, const scene::TargetSet& targets) {
 
 HoldoutScore scoreHoldout(const scene::TargetSet& holdout, const scene::TargetSet::Draw& draw) {
     HoldoutScore score;
-    double similarity = 0.0;
-    for (int i = 0; i < holdout.size(); ++i) {
-        auto pixels = holdout.render(i, draw);
-        const auto target = holdout.readColor(i);
-        const double viewLoss = meanPixelLoss(pixels, target);
+    const int views = holdout.size();
+    std::vector<std::vector<glm::vec4>> drawn(static_cast<size_t>(views)), targets(static_cast<size_t>(views));
+    for (int i = 0; i < views; ++i) {
+        drawn[size_t(i)] = holdout.render(i, draw);
+        targets[size_t(i)] = holdout.readColor(i);
+        const double viewLoss = meanPixelLoss(drawn[size_t(i)], targets[size_t(i)]);
         score.loss += viewLoss;
         score.psnrViews.push_back(psnrFromLoss(viewLoss));
-        similarity += structuralSimilarity(pixels, target, holdout.resolution(), holdout.resolution());
-        if (i == 0) score.firstView = std::move(pixels);
     }
-    const int views = std::max(1, holdout.size());
-    score.loss /= views;
+    // SSIM is CPU work (blurs of every image): the views' on every core, once all are drawn.
+    std::vector<double> similarity(static_cast<size_t>(views));
+    parallelFor(0, views, [&](int i) {
+        similarity[size_t(i)] =
+            structuralSimilarity(drawn[size_t(i)], targets[size_t(i)], holdout.resolution(), holdout.resolution());
+    });
+    if (views > 0) score.firstView = std::move(drawn[0]);
+    score.loss /= std::max(1, views);
     score.psnr = psnrFromLoss(score.loss);
-    score.ssim = similarity / views;
+    for (double s : similarity) score.ssim += s;
+    score.ssim /= std::max(1, views);
     return score;
 }
 
