@@ -132,8 +132,9 @@ struct LayoutKey {
     friend bool operator==(const LayoutKey&, const LayoutKey&) = default;
 };
 
-// The layouts of the last few cages. simplify lays one (decoded) cage out again for every
-// candidate it encodes, decodes and draws with maps; on a dense cage each costs tens of ms.
+// The layouts of the last few cages, at most kMostNodes node slots in all (the newest always
+// kept). simplify lays one (decoded) cage out again for every candidate it encodes, decodes and
+// draws with maps; on a dense cage each costs tens of ms.
 class LayoutCache {
 public:
     TexelLayout get(const mesh::PolygonMesh& cage, int resolution) {
@@ -149,12 +150,18 @@ public:
         TexelLayout layout = layOut(cage, resolution);  // unlocked: another thread's cage need not wait
         const std::lock_guard lock(mutex_);
         entries_.emplace_front(std::move(key), layout);
-        if (entries_.size() > kKept) entries_.pop_back();
+        size_t slots = 0;
+        for (const auto& entry : entries_) slots += entry.second.faceNodes.size();
+        while (entries_.size() > 1 && (entries_.size() > kKept || slots > kMostNodes)) {
+            slots -= entries_.back().second.faceNodes.size();
+            entries_.pop_back();
+        }
         return layout;
     }
 
 private:
     static constexpr size_t kKept = 8;
+    static constexpr size_t kMostNodes = size_t(16) << 20;  // 64 MB of node indices, and the halos
     std::mutex mutex_;
     std::list<std::pair<LayoutKey, TexelLayout>> entries_;
 };
