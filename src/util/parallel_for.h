@@ -1,7 +1,8 @@
 #pragma once
-// body(i) for every i in [begin, end): on every core (TBB), or in order in the WebAssembly
-// decoder, which has no threads. The body must not depend on the order. A caller links TBB.
-#ifdef __EMSCRIPTEN__
+// body(i) for every i in [begin, end): on every core (TBB), or in order where the build has no
+// threads (SUBDFIT_NO_THREADS: the WebAssembly decoder, the fuzzers). The body must not depend on
+// the order. A caller with threads links TBB.
+#ifdef SUBDFIT_NO_THREADS
 namespace subdfit {
 template <class Body>
 void parallelFor(int begin, int end, const Body& body) {
