@@ -100,7 +100,11 @@ void startMaps(fit::FitRun& run, bool bake) {
     if (bake) {
         mesh::PolygonMesh current = run.scene().cage;
         current.positions = fitter.vertices();
-        fit::writeMaps(fitter, bakeEverything(current, run.scene().reference, *parameters));
+        const surface::SurfaceMaps baked = bakeEverything(current, run.scene().reference, *parameters);
+        // Baked before the first step, the bake is where the fit starts: the report's start is
+        // scored on it, so that the fit's gain reads as its own, not the bake's.
+        if (run.step() == 0) run.startFrom(baked);
+        else fit::writeMaps(fitter, baked);
     }
     // The bake fits this cage: moving it now would slide the maps off the detail they hold.
     fitter.setOptimised(fitter.vertexGroup(), false);

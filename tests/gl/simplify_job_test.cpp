@@ -133,6 +133,20 @@ TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
         EXPECT_EQ(readBytes(dir / "straight" / map), readBytes(dir / "resumed" / map)) << map;
 }
 
+// Maps baked before the first step are the fit's start: a run of no steps ships the bake, and
+// its report scores the start as what shipped (not the cage before its maps).
+TEST(SimplifyJob, MapsBakedAtTheStartAreTheStartItReports) {
+    const auto dir = scratchDir("simplify_start_is_bake");
+    mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 4));
+    auto options = smallMappedSimplify(dir / "lumpy.obj", dir / "out");
+    options.fit.steps = 0;
+    options.fit.mapsStart = 0.0f;
+    const fit::FitReport report = *simplify::runSimplify(options).fit;
+    EXPECT_EQ(report.steps, 0);
+    EXPECT_EQ(report.holdoutBefore.psnr, report.holdoutAfter.psnr);
+    EXPECT_EQ(report.holdoutBefore.ssim, report.holdoutAfter.ssim);
+}
+
 // Same inputs, same seed, same machine: the same bytes (docs/architecture.md, Determinism). G
 // sums in fixed point and every CPU stage is ordered, so nothing varies but the run time.
 TEST(SimplifyJob, TwoRunsOfOneSeedWriteTheSameFiles) {
