@@ -25,6 +25,13 @@
 #define SUBDFIT_SSBO_SECOND_POINTS 39
 #define SUBDFIT_SSBO_PATCH_INFO 12      // ivec4 {cv offset, patch type, param0, param1}
 #define SUBDFIT_SSBO_PATCH_CVS 13
+// The patches tessellated (render::PatchTessellation): each vertex's patch and domain point, the
+// vertices evaluated there (position, normal, tangents, ptex face and (u, v)), the quads
+// between them and the triangles they are split into.
+#define SUBDFIT_SSBO_TESSELLATION_SAMPLES 40
+#define SUBDFIT_SSBO_SURFACE_VERTICES 41
+#define SUBDFIT_SSBO_TESSELLATION_QUADS 42
+#define SUBDFIT_SSBO_SURFACE_TRIANGLES 43
 #define SUBDFIT_SSBO_FACE_PAIR_OFFSETS 14  // ptex face a -> the faces b > a sharing a base vertex (CSR)
 #define SUBDFIT_SSBO_FACE_PAIRS 15
 #define SUBDFIT_SSBO_ADJACENCY_OFFSETS 16    // cage vertex -> neighbours (CSR)

@@ -138,5 +138,7 @@ void main() {
 #else
     outFaceId = tePtexFace;
 #endif
-    outPatchUv = tePtexUv;
+    // A sliver at a silhouette can extrapolate its (u, v) past the face (a pixel centre inside
+    // its snapped edges, outside its exact ones); every reader of the buffer clamps it so too.
+    outPatchUv = clamp(tePtexUv, 0.0, 1.0);
 }

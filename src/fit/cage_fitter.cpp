@@ -58,7 +58,10 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
       pointsMinus_(stencils_.makePointBuffer()),
       smoothScratch_(vertices_.gradient.bytes()),
       loss_(sizeof(float) * kLossSlots),
+      surfacePlus_(renderer_.makeSurface()),
+      surfaceMinus_(renderer_.makeSurface()),
       drawnPoints_(stencils_.makePointBuffer()),
+      drawnSurface_(renderer_.makeSurface()),
       // Only a texel group's turn reads the renders' (u, v); G reads the face ids from alpha.
       plus_(settings.resolution, settings.resolution, {.patchUv = settings.mapEffects.any(), .faceInAlpha = true}),
       minus_(settings.resolution, settings.resolution, {.patchUv = settings.mapEffects.any(), .faceInAlpha = true}) {
@@ -108,16 +111,23 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
         stencils_.evaluate(programs_, vertices_.thetaPlus, pointsPlus_, vertices_.thetaMinus, pointsMinus_);
     else
         stencils_.evaluate(programs_, vertices_.theta, pointsPlus_);
+    const gl::Buffer& pointsMinus = verticesPerturbed ? pointsMinus_ : pointsPlus_;
     mark("stencils");
-    const gl::Buffer& minusPoints = verticesPerturbed ? pointsMinus_ : pointsPlus_;
     const float pixels = float(settings_.resolution) * float(settings_.resolution);
     const auto mapsPlus = maps_ ? maps_->forRaster(maps::ParameterVersion::Plus, perturbed) : render::PatchMaps{};
     const auto mapsMinus = maps_ ? maps_->forRaster(maps::ParameterVersion::Minus, perturbed) : render::PatchMaps{};
+    // θ+ and θ− are one surface unless the turn moves it (the vertices or the heights): a map
+    // that only shades is drawn on the surface evaluated once, for every view of the step.
+    const bool surfaceMoves = verticesPerturbed || (maps_ && perturbed == maps_->displacement());
+    renderer_.evaluate(programs_, pointsPlus_, surfacePlus_, &mapsPlus);
+    if (surfaceMoves) renderer_.evaluate(programs_, pointsMinus, surfaceMinus_, &mapsMinus);
+    const render::PatchRenderer::Surface& minusSurface = surfaceMoves ? surfaceMinus_ : surfacePlus_;
+    mark("surfaces");
     for (int view : views) {
         const auto& camera = targets.camera(view);
-        renderer_.draw(programs_, pointsPlus_, camera, plus_, &mapsPlus);
+        renderer_.rasterize(programs_, surfacePlus_, camera, plus_, &mapsPlus);
         mark("render θ+");
-        renderer_.draw(programs_, minusPoints, camera, minus_, &mapsMinus);
+        renderer_.rasterize(programs_, minusSurface, camera, minus_, &mapsMinus);
         mark("render θ−");
         sge::accumulateGradient(programs_, *perturbed, faceVertices(),
                                 {&plus_, &minus_, targets.colors().id(), view, counter, settings_.seed,
@@ -285,15 +295,15 @@ void CageFitter::render(const render::Camera& camera, const render::RenderTarget
     // θ read back and compared rather than tracked: a step, a restore or a write from outside
     // all show in it.
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the optimiser's shader writes, seen by the read
-    std::vector<float> theta = vertices_.read();
-    const bool same = theta.size() == drawnTheta_.size() &&
-                      std::memcmp(theta.data(), drawnTheta_.data(), theta.size() * sizeof(float)) == 0;
-    if (!same) {
-        stencils_.evaluate(programs_, vertices_.theta, drawnPoints_);
-        drawnTheta_ = std::move(theta);
-    }
     const auto maps = maps_ ? maps_->forRaster(maps::ParameterVersion::Current) : render::PatchMaps{};
-    renderer_.draw(programs_, drawnPoints_, camera, target, &maps);
+    DrawnSurfaceKey key{.vertices = vertices_.read(), .limitShading = maps.limitShading};
+    if (maps_ && maps_->displacement()) key.heights = maps_->displacement()->read();
+    if (key != drawnFrom_) {
+        stencils_.evaluate(programs_, vertices_.theta, drawnPoints_);
+        renderer_.evaluate(programs_, drawnPoints_, drawnSurface_, &maps);
+        drawnFrom_ = std::move(key);
+    }
+    renderer_.rasterize(programs_, drawnSurface_, camera, target, &maps);
 }
 
 }  // namespace subdfit::fit

@@ -111,9 +111,13 @@ public:
     bool optimised(const optim::ParameterGroup& group) const;
     void setOptimised(const optim::ParameterGroup& group, bool on);
 
-    // Renders the current (unperturbed) scene. Scoring draws one θ on many views: its points are
-    // evaluated once, for as long as θ stays bit for bit what they were evaluated from.
+    // Renders the current (unperturbed) scene. Scoring draws one θ on many views: its surface is
+    // evaluated once, for as long as the vertices and heights stay bit for bit what it was
+    // evaluated from.
     void render(const render::Camera& camera, const render::RenderTarget& target);
+    // The next render() evaluates its surface anew, as a forward renderer of a scene that
+    // changes between frames does (benchmarks).
+    void forgetDrawnSurface() { drawnFrom_.reset(); }
 
     // Everything a resumed run needs to continue exactly where this one stopped.
     using GroupState = fit::GroupState;
@@ -144,8 +148,16 @@ private:
     optim::Adjacency adjacency_;
     std::optional<CageRelaxation> relaxation_;  // with --relax, or --tangential under 1 (the default)
     gl::Buffer pointsPlus_, pointsMinus_, smoothScratch_, loss_;
-    gl::Buffer drawnPoints_;              // render()'s, of drawnTheta_
-    std::vector<float> drawnTheta_;       // empty: none evaluated yet
+    render::PatchRenderer::Surface surfacePlus_, surfaceMinus_;  // a step's (render::PatchRenderer::evaluate)
+    // render()'s points and surface, and what they were evaluated from (none yet: empty).
+    struct DrawnSurfaceKey {
+        std::vector<float> vertices, heights;
+        bool limitShading = false;
+        bool operator==(const DrawnSurfaceKey&) const = default;
+    };
+    gl::Buffer drawnPoints_;
+    render::PatchRenderer::Surface drawnSurface_;
+    std::optional<DrawnSurfaceKey> drawnFrom_;
     render::RenderTarget plus_, minus_;
     int steps_ = 0, samplesSinceLoss_ = 0;
     std::uint32_t samples_ = 0;  // perturbation counter: one per accumulate()

@@ -13,10 +13,16 @@ public:
     GLuint id() const { return handle_.id(); }
     // Attribute `index` reads `components` tightly packed floats per vertex from `buffer`.
     void attribute(GLuint index, const Buffer& buffer, int components);
-    void elements(const Buffer& indices);
+    void elements(const Buffer& indices) const;
+    // Interleaved records instead (not mixed with attribute()): attribute `index` reads
+    // `components` floats, or one int, `offset` bytes into each record of the buffer that
+    // records() binds, `stride` bytes apart.
+    void recordAttribute(GLuint index, int components, GLuint offset, bool integer = false);
+    void records(const Buffer& buffer, GLsizei stride) const;
     void bind() const { glBindVertexArray(id()); }
 
 private:
+    static constexpr GLuint kRecordBinding = 0;
     GlHandle<VertexArrayTraits> handle_;
 };
 

@@ -3,44 +3,43 @@
 #include <algorithm>
 
 #include "bindings.h"
+#include "gl/dispatch.h"
 #include "render/raster_pass.h"
 
 namespace subdfit::render {
 namespace {
 
-constexpr int kPatchesPerDraw = 64;
+const gl::ProgramSpec kPatchTessellate{"patch_tessellate",
+                                       {{GL_COMPUTE_SHADER, "tessellate.comp"}},
+                                       {"SUBDFIT_DISPLACEMENT", "SUBDFIT_LIMIT_SHADING", "SUBDFIT_GREGORY_PATCHES"}};
+constexpr gl::VariantBits kTessellateDisplacement = 1u << 0, kTessellateLimitShading = 1u << 1,
+                          kTessellateGregory = 1u << 2;
+
+const gl::ProgramSpec kTriangulate{"patch_triangulate", {{GL_COMPUTE_SHADER, "triangulate.comp"}}};
 
 const gl::ProgramSpec kPatchRaster{"patch_raster",
-                                   {{GL_VERTEX_SHADER, "patch.vert"},
-                                    {GL_TESS_CONTROL_SHADER, "patch.tesc"},
-                                    {GL_TESS_EVALUATION_SHADER, "patch.tese"},
-                                    {GL_FRAGMENT_SHADER, "patch.frag"}},
+                                   {{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "patch.frag"}},
                                    [] {
                                        std::vector<std::string> defines = kShadingDefines;  // bits 0-2
-                                       defines.insert(defines.end(), {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP",
-                                                                      "SUBDFIT_BASE_COLOR_MAP",
+                                       defines.insert(defines.end(), {"SUBDFIT_NORMAL_MAP", "SUBDFIT_BASE_COLOR_MAP",
                                                                       "SUBDFIT_METALLIC_ROUGHNESS_MAP",
                                                                       "SUBDFIT_APPEARANCE_ATLAS", "SUBDFIT_ATLAS_NORMAL_TEXTURE",
                                                                       "SUBDFIT_CARRIED_OCCLUSION", "SUBDFIT_CARRIED_EMISSIVE",
-                                                                      "SUBDFIT_LIMIT_SHADING", "SUBDFIT_GREGORY_PATCHES",
                                                                       "SUBDFIT_FACE_IN_ALPHA"});
                                        return defines;
                                    }()};
-constexpr gl::VariantBits kPatchDisplacement = 1u << 3, kPatchNormalMap = 1u << 4, kPatchBaseColor = 1u << 5,
-                          kPatchMetallicRoughness = 1u << 6, kPatchAppearanceAtlas = 1u << 7,
-                          kPatchAtlasNormal = 1u << 8, kPatchCarriedOcclusion = 1u << 9, kPatchCarriedEmissive = 1u << 10,
-                          kPatchLimitShading = 1u << 11, kPatchGregory = 1u << 12,
-                          kPatchFaceInAlpha = 1u << 13;
+constexpr gl::VariantBits kPatchNormalMap = 1u << 3, kPatchBaseColor = 1u << 4, kPatchMetallicRoughness = 1u << 5,
+                          kPatchAppearanceAtlas = 1u << 6, kPatchAtlasNormal = 1u << 7,
+                          kPatchCarriedOcclusion = 1u << 8, kPatchCarriedEmissive = 1u << 9, kPatchFaceInAlpha = 1u << 10;
 
-// Runs of consecutive patches of one kind (OpenSubdiv's patch arrays keep each kind together).
-std::vector<PatchRun> patchRuns(const subdiv::PatchSet& patches) {
-    std::vector<PatchRun> runs;
-    for (int p = 0; p < int(patches.patchInfo.size()); ++p) {
-        const bool gregory = patches.patchInfo[p].y == subdiv::kGregoryBasisPatch;
-        if (runs.empty() || runs.back().gregory != gregory) runs.push_back({.first = p, .count = 0, .gregory = gregory});
-        ++runs.back().count;
-    }
-    return runs;
+// A vertex of the evaluated surface (glsl/tessellate.comp): 16 floats.
+constexpr GLsizei kSurfaceVertexBytes = 16 * sizeof(float);
+
+void setMapUniforms(const gl::Program& program, const PatchMaps& maps) {
+    program.set("uMapResolution", maps.resolution);
+    program.set("uAppearanceResolution", maps.appearanceResolution);
+    program.set("uAppearanceTable", maps.appearanceTable);
+    if (maps.displacement) program.set("uMapHaloTable", maps.haloTable);
 }
 
 }  // namespace
@@ -55,16 +54,63 @@ PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel, Sha
     : patchCount_(int(patches.patchInfo.size())),
       tessLevel_(crackFreeTessLevel(tessLevel, patches.maxPatchDepth)),
       shading_(shading),
-      runs_(patchRuns(patches)),
       patchInfo_(gl::Buffer::fromVector(patches.patchInfo)),
-      patchCvs_(gl::Buffer::fromVector(patches.patchCvIndices)) {}
+      patchCvs_(gl::Buffer::fromVector(patches.patchCvIndices)) {
+    const PatchTessellation tessellation = tessellatePatches(patches, tessLevel_);
+    runs_ = tessellation.runs;
+    vertexCount_ = int(tessellation.samples.size());
+    quadCount_ = int(tessellation.quads.size() / 4);
+    samples_ = gl::Buffer::fromVector(tessellation.samples);
+    quads_ = gl::Buffer::fromVector(tessellation.quads);
+    surface_ = makeSurface();
+    // The record's layout is glsl/tessellate.comp's; the locations are glsl/surface.vert's.
+    vertexArray_.recordAttribute(0, 3, 0);                                 // position
+    vertexArray_.recordAttribute(1, 3, 3 * sizeof(float));                 // normal
+    vertexArray_.recordAttribute(2, 3, 6 * sizeof(float));                 // ∂P/∂u
+    vertexArray_.recordAttribute(3, 3, 9 * sizeof(float));                 // ∂P/∂v
+    vertexArray_.recordAttribute(4, 2, 12 * sizeof(float));                // ptex (u, v)
+    vertexArray_.recordAttribute(5, 1, 14 * sizeof(float), /*integer=*/true);  // ptex face
+}
 
-void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera,
-                         const RenderTarget& target, const PatchMaps* maps) const {
+PatchRenderer::Surface PatchRenderer::makeSurface() const {
+    return {gl::Buffer(GLsizeiptr(std::max(1, vertexCount_)) * kSurfaceVertexBytes),
+            gl::Buffer(GLsizeiptr(std::max(1, quadCount_)) * 6 * sizeof(std::uint32_t))};
+}
+
+void PatchRenderer::evaluate(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
+                             const PatchMaps* maps) const {
+    const bool displaced = maps && maps->displacement;
     const gl::VariantBits mapBits =
-        maps ? (maps->displacement ? kPatchDisplacement | (maps->limitShading ? kPatchLimitShading : 0) : 0) |
-                   (maps->normalMap ? kPatchNormalMap : 0) |
-                   (maps->baseColor ? kPatchBaseColor : 0) | (maps->metallicRoughness ? kPatchMetallicRoughness : 0) |
+        displaced ? kTessellateDisplacement | (maps->limitShading ? kTessellateLimitShading : 0) : 0;
+    patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);
+    patchCvs_.bindStorage(SUBDFIT_SSBO_PATCH_CVS);
+    points.bindStorage(SUBDFIT_SSBO_POINTS);
+    samples_.bindStorage(SUBDFIT_SSBO_TESSELLATION_SAMPLES);
+    surface.vertices.bindStorage(SUBDFIT_SSBO_SURFACE_VERTICES);
+    if (displaced && maps->bind) maps->bind();
+    for (const SampleRun& run : runs_) {
+        const auto& program = programs.get(kPatchTessellate, mapBits | (run.gregory ? kTessellateGregory : 0));
+        program.use();
+        program.set("uFirstSample", run.first);
+        program.set("uSampleCount", run.count);
+        if (displaced) setMapUniforms(program, *maps);
+        glDispatchCompute(gl::groupsOf(run.count, 64), 1, 1);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    const auto& triangulate = programs.get(kTriangulate);
+    triangulate.use();
+    triangulate.set("uQuadCount", quadCount_);
+    quads_.bindStorage(SUBDFIT_SSBO_TESSELLATION_QUADS);
+    surface.triangles.bindStorage(SUBDFIT_SSBO_SURFACE_TRIANGLES);
+    glDispatchCompute(gl::groupsOf(quadCount_, 64), 1, 1);
+    glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT);
+}
+
+void PatchRenderer::rasterize(gl::ProgramCache& programs, const Surface& surface, const Camera& camera,
+                              const RenderTarget& target, const PatchMaps* maps) const {
+    const gl::VariantBits mapBits =
+        maps ? (maps->normalMap ? kPatchNormalMap : 0) | (maps->baseColor ? kPatchBaseColor : 0) |
+                   (maps->metallicRoughness ? kPatchMetallicRoughness : 0) |
                    (maps->appearanceAtlas && (maps->baseColor || maps->metallicRoughness) ? kPatchAppearanceAtlas : 0)
              : 0;
     // The reference's textures the appearance lattice carries: only where it is drawn, with a
@@ -75,31 +121,23 @@ void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, c
                       (maps->carriedOcclusion ? kPatchCarriedOcclusion : 0) | (maps->carriedEmissive ? kPatchCarriedEmissive : 0)
                 : 0;
     const gl::VariantBits targetBits = target.faceInAlpha() ? kPatchFaceInAlpha : 0;
-    beginRasterPass(target);  // each run of patches then uses its own program
-    patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);
-    patchCvs_.bindStorage(SUBDFIT_SSBO_PATCH_CVS);
-    points.bindStorage(SUBDFIT_SSBO_POINTS);
-    if (maps && maps->bind) maps->bind();
-    vertexArray_.bind();
-    glPatchParameteri(GL_PATCH_VERTICES, 1);
-    for (const PatchRun& run : runs_) {
-        const auto& program =
-            programs.get(kPatchRaster, shadingBits(shading_) | mapBits | carriedBits | targetBits |
-                                          (run.gregory ? kPatchGregory : 0));
-        useWithCamera(program, camera);
-        program.set("uTessLevel", float(tessLevel_));
-        if (mapBits != 0) {
-            program.set("uMapResolution", maps->resolution);
-            program.set("uAppearanceResolution", maps->appearanceResolution);
-            program.set("uAppearanceTable", maps->appearanceTable);
-            if (maps->displacement) program.set("uMapHaloTable", maps->haloTable);
-        }
-        // llvmpipe's draw module slows down superlinearly on one long patch draw; short draws of
-        // kPatchesPerDraw patches keep the cost linear in the patch count (measured by step-cost).
-        for (int first = run.first; first < run.first + run.count; first += kPatchesPerDraw)
-            glDrawArrays(GL_PATCHES, first, std::min(kPatchesPerDraw, run.first + run.count - first));
+    const auto& program = programs.get(kPatchRaster, shadingBits(shading_) | mapBits | carriedBits | targetBits);
+    beginRasterPass(program, camera, target);
+    if (mapBits != 0) {
+        if (maps->bind) maps->bind();
+        setMapUniforms(program, *maps);
     }
+    vertexArray_.records(surface.vertices, kSurfaceVertexBytes);
+    vertexArray_.elements(surface.triangles);
+    vertexArray_.bind();
+    glDrawElements(GL_TRIANGLES, 6 * quadCount_, GL_UNSIGNED_INT, nullptr);
     glBindVertexArray(0);
+}
+
+void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera,
+                         const RenderTarget& target, const PatchMaps* maps) const {
+    evaluate(programs, points, surface_, maps);
+    rasterize(programs, surface_, camera, target, maps);
 }
 
 }  // namespace subdfit::render

@@ -1,7 +1,10 @@
 #pragma once
-// Draws a cage's limit surface with GPU tessellation: one GL patch per OpenSubdiv patch, whose
-// control points come from an SSBO of evaluated points. Writes colour, ptex face id and (u,v)
-// (the face id as the colour's alpha into a target laid out so).
+// Draws a cage's limit surface in two passes: a compute pass evaluates the surface (from an SSBO
+// of evaluated patch points, and the heights) at the vertices of a fixed tessellation of its
+// patches (render/patch_tessellation.h); a raster pass draws those triangles. Writes colour,
+// ptex face id and (u,v) (the face id as the colour's alpha into a target laid out so). One
+// surface serves every view and every render that differs only in appearance. (Hardware
+// tessellation, one GL patch per OpenSubdiv patch, cost llvmpipe ~2 µs of one thread per patch.)
 #include <functional>
 #include <vector>
 
@@ -9,6 +12,7 @@
 #include "gl/program_cache.h"
 #include "gl/vertex_array.h"
 #include "render/camera.h"
+#include "render/patch_tessellation.h"
 #include "render/render_target.h"
 #include "render/shading_model.h"
 #include "subdiv/patch_set.h"
@@ -31,12 +35,6 @@ struct PatchMaps {
     std::function<void()> bind;    // the node table and the map values this pass reads
 };
 
-// Consecutive patches of one kind, drawn by one shader variant.
-struct PatchRun {
-    int first = 0, count = 0;
-    bool gregory = false;  // Gregory-basis end caps, else regular B-spline patches
-};
-
 class PatchRenderer {
 public:
     // `tessLevel`: segments per base-face edge, raised to a power of two that keeps adaptive
@@ -47,15 +45,28 @@ public:
     int tessLevel() const { return tessLevel_; }
     int patchCount() const { return patchCount_; }
 
-    // With `maps`, the variant with their effects.
+    // The surface at the tessellation's vertices, and the triangles it is drawn with.
+    struct Surface {
+        gl::Buffer vertices, triangles;
+    };
+    Surface makeSurface() const;
+    // The surface of `points` (displaced by `maps`' heights, if it has them) into `surface`.
+    void evaluate(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
+                  const PatchMaps* maps = nullptr) const;
+    // An evaluated surface rasterised; with `maps`, the variant with their effects.
+    void rasterize(gl::ProgramCache& programs, const Surface& surface, const Camera& camera, const RenderTarget& target,
+                   const PatchMaps* maps = nullptr) const;
+    // Both, through a surface of its own.
     void draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera, const RenderTarget& target,
               const PatchMaps* maps = nullptr) const;
 
 private:
     int patchCount_, tessLevel_;
     ShadingModel shading_;
-    std::vector<PatchRun> runs_;
-    gl::Buffer patchInfo_, patchCvs_;
+    std::vector<SampleRun> runs_;
+    int vertexCount_, quadCount_;
+    gl::Buffer patchInfo_, patchCvs_, samples_, quads_;
+    Surface surface_;  // draw()'s
     gl::VertexArray vertexArray_;
 };
 

@@ -49,7 +49,7 @@ float sampleBilinear(const TexelLayout& layout, std::span<const float> values, i
 
 // The value at node (i, j) of `face`'s tile, where one of i, j may lie one step outside it
 // (-1 or T + 1): the neighbouring tile's node across that edge, or without a neighbour the
-// border cell's slope extended (2·border − inner). glsl/patch.tese does exactly the same.
+// border cell's slope extended (2·border − inner). glsl/surface_point.glsl does exactly the same.
 float nodeValueAcross(const TexelLayout& layout, std::span<const float> values, int face, int i, int j);
 
 // (∂/∂u, ∂/∂v) of a one-value-per-node map at ptex (u, v) of `face` by central differences half

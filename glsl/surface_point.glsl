@@ -1,28 +1,12 @@
-#include "bindings.h"
-#include "osd_patch_basis"
-#ifdef SUBDFIT_DISPLACEMENT
-#include "maps.glsl"
-#endif
-
-layout(quads, equal_spacing, ccw) in;
-
-flat in int tcPatch[];
-
-out vec3 teWorldPosition;
-out vec3 teWorldNormal;
-out vec3 teTangentU;  // ∂P/∂u and ∂P/∂v of the ptex face: the normal map's tangent frame
-out vec3 teTangentV;
-flat out int tePtexFace;
-out vec2 tePtexUv;
-
+// A point of a cage's limit surface, displaced by the heights where the scene has them: P(s,t),
+// its shading normal, ∂P/∂u and ∂P/∂v (the normal map's tangent frame) and its ptex face and
+// (u, v). glsl/tessellate.comp evaluates it at every vertex of the tessellation.
 layout(std430, binding = SUBDFIT_SSBO_POINTS) readonly buffer Points { float points[]; };
 layout(std430, binding = SUBDFIT_SSBO_PATCH_INFO) readonly buffer PatchInfo { ivec4 patchInfo[]; };
 layout(std430, binding = SUBDFIT_SSBO_PATCH_CVS) readonly buffer PatchCvs { int patchCvs[]; };
 #ifdef SUBDFIT_DISPLACEMENT
 layout(std430, binding = SUBDFIT_SSBO_DISPLACEMENT) readonly buffer Displacement { float displacement[]; };
 #endif
-
-uniform mat4 uViewProjection;
 
 #ifdef SUBDFIT_DISPLACEMENT
 uniform int uMapHaloTable;  // where the ring of nodes around each tile starts in faceNodes
@@ -81,11 +65,16 @@ void evaluatePatch(ivec4 info, OsdPatchParam param, vec2 st, out vec3 P, out vec
     }
 }
 
-void main() {
-    ivec4 info = patchInfo[tcPatch[0]];
-    OsdPatchParam param = OsdPatchParamInit(info.z, info.w, 0.0);
-    vec2 st = gl_TessCoord.xy;
+struct SurfacePoint {
+    vec3 position, normal, tangentU, tangentV;
+    int ptexFace;
+    vec2 ptexUv;
+};
 
+// At (s, t) of patch `patchIndex` (render::PatchRenderer's patch order).
+SurfacePoint surfacePoint(int patchIndex, vec2 st) {
+    ivec4 info = patchInfo[patchIndex];
+    OsdPatchParam param = OsdPatchParamInit(info.z, info.w, 0.0);
     vec3 P, dPds, dPdt;
     evaluatePatch(info, param, st, P, dPds, dPdt);
     if (dot(cross(dPds, dPdt), cross(dPds, dPdt)) < 1e-24) {
@@ -101,12 +90,13 @@ void main() {
 
     float uv[2] = float[2](st.x, st.y);
     OsdPatchParamUnnormalize(param, uv);
-    tePtexUv = vec2(uv[0], uv[1]);
-    tePtexFace = OsdPatchParamGetFaceId(param);
+    SurfacePoint result;
+    result.ptexUv = vec2(uv[0], uv[1]);
+    result.ptexFace = OsdPatchParamGetFaceId(param);
 
 #ifdef SUBDFIT_DISPLACEMENT
-    vec2 at = clamp(tePtexUv, 0.0, 1.0);
-    P += heightAt(tePtexFace, at) * unitN;
+    vec2 at = clamp(result.ptexUv, 0.0, 1.0);
+    P += heightAt(result.ptexFace, at) * unitN;
 #ifndef SUBDFIT_LIMIT_SHADING  // (with it, the limit surface's normal shades: surface::ShadingNormal)
     // P' = P + d(u,v) N̂. Shading normal of the displaced surface to first order:
     // ∂P'/∂u ≈ ∂P/∂u + (∂d/∂u) N̂ (the d ∂N̂/∂u term is dropped: d is small against curvature).
@@ -115,17 +105,17 @@ void main() {
     // node that averages the slopes of the cells on either side, so the shading breaks neither
     // at a cell edge nor at a face edge.
     float h = 0.5 / float(uMapResolution);
-    float dddu = (heightAt(tePtexFace, at + vec2(h, 0.0)) - heightAt(tePtexFace, at - vec2(h, 0.0))) / (2.0 * h);
-    float dddv = (heightAt(tePtexFace, at + vec2(0.0, h)) - heightAt(tePtexFace, at - vec2(0.0, h))) / (2.0 * h);
+    float dddu = (heightAt(result.ptexFace, at + vec2(h, 0.0)) - heightAt(result.ptexFace, at - vec2(h, 0.0))) / (2.0 * h);
+    float dddv = (heightAt(result.ptexFace, at + vec2(0.0, h)) - heightAt(result.ptexFace, at - vec2(0.0, h))) / (2.0 * h);
     dPdu += dddu * unitN;
     dPdv += dddv * unitN;
     N = cross(dPdu, dPdv);
     unitN = dot(N, N) > 0.0 ? normalize(N) : unitN;
 #endif
 #endif
-    teWorldNormal = unitN;
-    teTangentU = dPdu;
-    teTangentV = dPdv;
-    teWorldPosition = P;
-    gl_Position = uViewProjection * vec4(P, 1.0);
+    result.position = P;
+    result.normal = unitN;
+    result.tangentU = dPdu;
+    result.tangentV = dPdv;
+    return result;
 }
