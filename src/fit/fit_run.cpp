@@ -153,12 +153,13 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
             schedule_.probationOver = true;
             const StepSchedule::Verdict verdict = schedule.probation();
             if (verdict == StepSchedule::Verdict::StepTooLarge) {
+                const int stageSteps = step() - schedule_.stageStart;
                 restoreBest();
-                schedule.halve();
+                schedule.retryFromBest(step());
                 applyStep();
                 if (hooks.note)
-                    hooks.note("the start gained and then lost it in " + std::to_string(step() - schedule_.stageStart) +
-                               " steps: the step is halved, from the best state");
+                    hooks.note("the start gained and then lost it in " + std::to_string(stageSteps) +
+                               " steps: the step is halved, on probation again from the best state");
             } else if (verdict == StepSchedule::Verdict::NoGain) {
                 // A best found on probation is the noise's pick (the monitor views are few):
                 // the stage ends where it started, never below it on other views.

@@ -80,4 +80,12 @@ void StepSchedule::halve() {
     state_.window.clear();
 }
 
+void StepSchedule::retryFromBest(int step) {
+    halve();
+    state_.stageStart = step;
+    state_.stageLosses = {state_.bestLoss};
+    state_.startTheta = state_.bestTheta;
+    state_.probationOver = false;
+}
+
 }  // namespace subdfit::fit

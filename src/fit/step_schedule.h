@@ -76,8 +76,12 @@ public:
     // fall likely, cannot pay.
     enum class Verdict { Paying, StepTooLarge, NoGain };
     Verdict probation() const;
-    // The step halved by hand (a probation's StepTooLarge), with a fresh window.
+    // The step halved by hand, with a fresh window.
     void halve();
+    // A probation's StepTooLarge: the step halved, and the stage on probation again from its
+    // best state (measured at `step`), so that the halved step pays or is given up as the start
+    // would be: a fall that was only the monitor's noise costs one probation, not a stage.
+    void retryFromBest(int step);
 
     // A new stage (the maps joining): the full step again, and a best loss of its own.
     void restart() { state_ = ScheduleState{}; }

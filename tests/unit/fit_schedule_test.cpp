@@ -168,12 +168,21 @@ TEST(StepSchedule, AProbationThatFellOrOvershotHalvesTheStepOneThatNeverFellStop
     for (size_t k = 0; k < overshotLosses.size(); ++k) overshotSchedule.record(overshotLosses[k], 5 * int(k));
     EXPECT_EQ(overshotSchedule.probation(), StepSchedule::Verdict::StepTooLarge);
     EXPECT_EQ(gainingSchedule.probation(), StepSchedule::Verdict::Paying);
-    fellSchedule.halve();
+    fellSchedule.retryFromBest(30);
     EXPECT_FLOAT_EQ(fellSchedule.learningRateScale(), 0.5f);
     EXPECT_TRUE(fellThenRose.window.empty());
-    // With every halving spent, a fall and a rise say nothing more: no gain.
-    fellThenRose.halvings = StepSchedule::kMaxHalvings;
+    // On probation again, from the best state: its loss is the new start.
+    EXPECT_FALSE(fellThenRose.probationOver);
+    EXPECT_EQ(fellThenRose.stageStart, 30);
+    EXPECT_EQ(fellThenRose.stageLosses, std::vector<double>{0.92});
+    // The halved step that only holds the best gains nothing: given up as a start would be.
+    for (int k = 1; k <= 5; ++k) fellSchedule.record(0.92 * (1.0 + 0.001 * (k % 2)), 30 + 5 * k);
     EXPECT_EQ(fellSchedule.probation(), StepSchedule::Verdict::NoGain);
+    // With every halving spent, a fall and a rise say nothing more: no gain.
+    ScheduleState spent{.halvings = StepSchedule::kMaxHalvings};
+    StepSchedule spentSchedule(spent);
+    for (size_t k = 0; k < fellLosses.size(); ++k) spentSchedule.record(fellLosses[k], 5 * int(k));
+    EXPECT_EQ(spentSchedule.probation(), StepSchedule::Verdict::NoGain);
 }
 
 TEST(DeviceDefaults, SoftwareRenderersAreRecognised) {
