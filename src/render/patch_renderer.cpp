@@ -62,7 +62,6 @@ PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel, Sha
     quadCount_ = int(tessellation.quads.size() / 4);
     samples_ = gl::Buffer::fromVector(tessellation.samples);
     quads_ = gl::Buffer::fromVector(tessellation.quads);
-    surface_ = makeSurface();
     // The record's layout is glsl/tessellate.comp's; the locations are glsl/surface.vert's.
     vertexArray_.recordAttribute(0, 3, 0);                                 // position
     vertexArray_.recordAttribute(1, 3, 3 * sizeof(float));                 // normal
@@ -136,8 +135,9 @@ void PatchRenderer::rasterize(gl::ProgramCache& programs, const Surface& surface
 
 void PatchRenderer::draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera,
                          const RenderTarget& target, const PatchMaps* maps) const {
-    evaluate(programs, points, surface_, maps);
-    rasterize(programs, surface_, camera, target, maps);
+    const Surface surface = makeSurface();
+    evaluate(programs, points, surface, maps);
+    rasterize(programs, surface, camera, target, maps);
 }
 
 }  // namespace subdfit::render

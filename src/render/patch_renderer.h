@@ -56,7 +56,7 @@ public:
     // An evaluated surface rasterised; with `maps`, the variant with their effects.
     void rasterize(gl::ProgramCache& programs, const Surface& surface, const Camera& camera, const RenderTarget& target,
                    const PatchMaps* maps = nullptr) const;
-    // Both, through a surface of its own.
+    // Both, through a surface made for the call (a one-off render; a fit keeps its surfaces).
     void draw(gl::ProgramCache& programs, const gl::Buffer& points, const Camera& camera, const RenderTarget& target,
               const PatchMaps* maps = nullptr) const;
 
@@ -66,7 +66,6 @@ private:
     std::vector<SampleRun> runs_;
     int vertexCount_, quadCount_;
     gl::Buffer patchInfo_, patchCvs_, samples_, quads_;
-    Surface surface_;  // draw()'s
     gl::VertexArray vertexArray_;
 };
 
