@@ -86,6 +86,11 @@
 #define SUBDFIT_UNIT_OCCLUSION 11
 #define SUBDFIT_UNIT_EMISSIVE 12
 
+// The heights laid out one tile per ptex face for the surface pass (render/height_tiles.h): written
+// as an image, read as a texture.
+#define SUBDFIT_IMAGE_HEIGHT_TILES 0
+#define SUBDFIT_UNIT_HEIGHT_TILES 13
+
 // Render target attachments.
 #define SUBDFIT_ATTACHMENT_COLOR 0
 #define SUBDFIT_ATTACHMENT_FACE_ID 1

@@ -4,26 +4,12 @@
 layout(std430, binding = SUBDFIT_SSBO_POINTS) readonly buffer Points { float points[]; };
 layout(std430, binding = SUBDFIT_SSBO_PATCH_INFO) readonly buffer PatchInfo { ivec4 patchInfo[]; };
 layout(std430, binding = SUBDFIT_SSBO_PATCH_CVS) readonly buffer PatchCvs { int patchCvs[]; };
-#ifdef SUBDFIT_DISPLACEMENT
-layout(std430, binding = SUBDFIT_SSBO_DISPLACEMENT) readonly buffer Displacement { float displacement[]; };
-#endif
 
 #ifdef SUBDFIT_DISPLACEMENT
-uniform int uMapHaloTable;  // where the ring of nodes around each tile starts in faceNodes
-
-// The height at node (i, j) of `face`'s tile, one of i, j possibly one step outside it: the
-// neighbouring tile's node across that edge, or (no neighbour) the border cell's slope extended.
-// As surface::nodeValueAcross.
-float heightNode(int face, int i, int j) {
-    int n = uMapResolution;
-    int edge = j < 0 ? 0 : i > n ? 1 : j > n ? 2 : i < 0 ? 3 : -1;
-    if (edge < 0) return displacement[faceNodes[face * (n + 1) * (n + 1) + j * (n + 1) + i]];
-    int across = faceNodes[uMapHaloTable + (face * 4 + edge) * (n + 1) + ((edge & 1) == 0 ? i : j)];
-    if (across >= 0) return displacement[across];
-    ivec2 border = clamp(ivec2(i, j), ivec2(0), ivec2(n)), inner = 2 * border - ivec2(i, j);
-    return 2.0 * displacement[faceNodes[face * (n + 1) * (n + 1) + border.y * (n + 1) + border.x]] -
-           displacement[faceNodes[face * (n + 1) * (n + 1) + inner.y * (n + 1) + inner.x]];
-}
+// The heights, one tile of (T + 3)² texels per ptex face: its nodes and the ring across its edges
+// (glsl/height_tiles.comp), node (i, j) at texel (i + 1, j + 1) of the tile.
+layout(binding = SUBDFIT_UNIT_HEIGHT_TILES) uniform sampler2D heightTiles;
+uniform int uTilesPerRow;
 
 // Bilinear, with at most one of u, v up to a cell outside [0, 1] (then in the cell between the
 // tile's border and the ring across it).
@@ -33,8 +19,10 @@ float heightAt(int face, vec2 uv) {
     ivec2 cell = ivec2(x.x < 0.0 ? -1 : x.x >= float(n) ? n : min(int(x.x), n - 1),
                        x.y < 0.0 ? -1 : x.y >= float(n) ? n : min(int(x.y), n - 1));
     vec2 f = x - vec2(cell);
-    return mix(mix(heightNode(face, cell.x, cell.y), heightNode(face, cell.x + 1, cell.y), f.x),
-               mix(heightNode(face, cell.x, cell.y + 1), heightNode(face, cell.x + 1, cell.y + 1), f.x), f.y);
+    ivec2 node = ivec2(face % uTilesPerRow, face / uTilesPerRow) * (n + 3) + 1 + cell;
+    return mix(mix(texelFetch(heightTiles, node, 0).r, texelFetch(heightTiles, node + ivec2(1, 0), 0).r, f.x),
+               mix(texelFetch(heightTiles, node + ivec2(0, 1), 0).r, texelFetch(heightTiles, node + ivec2(1, 1), 0).r, f.x),
+               f.y);
 }
 #endif
 

@@ -39,7 +39,6 @@ void setMapUniforms(const gl::Program& program, const PatchMaps& maps) {
     program.set("uMapResolution", maps.resolution);
     program.set("uAppearanceResolution", maps.appearanceResolution);
     program.set("uAppearanceTable", maps.appearanceTable);
-    if (maps.displacement) program.set("uMapHaloTable", maps.haloTable);
 }
 
 }  // namespace
@@ -52,6 +51,7 @@ int crackFreeTessLevel(int requested, int maxPatchDepth) {
 
 PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel, ShadingModel shading)
     : patchCount_(int(patches.patchInfo.size())),
+      faceCount_(patches.ptexFaceCount),
       tessLevel_(crackFreeTessLevel(tessLevel, patches.maxPatchDepth)),
       shading_(shading),
       patchInfo_(gl::Buffer::fromVector(patches.patchInfo)),
@@ -86,13 +86,20 @@ void PatchRenderer::evaluate(gl::ProgramCache& programs, const gl::Buffer& point
     points.bindStorage(SUBDFIT_SSBO_POINTS);
     samples_.bindStorage(SUBDFIT_SSBO_TESSELLATION_SAMPLES);
     surface.vertices.bindStorage(SUBDFIT_SSBO_SURFACE_VERTICES);
-    if (displaced && maps->bind) maps->bind();
+    if (displaced) {
+        if (!heightTiles_ || heightTiles_->resolution() != maps->resolution)
+            heightTiles_.emplace(faceCount_, maps->resolution);
+        heightTiles_->fill(programs, *maps);  // binds the maps too
+    }
     for (const SampleRun& run : runs_) {
         const auto& program = programs.get(kPatchTessellate, mapBits | (run.gregory ? kTessellateGregory : 0));
         program.use();
         program.set("uFirstSample", run.first);
         program.set("uSampleCount", run.count);
-        if (displaced) setMapUniforms(program, *maps);
+        if (displaced) {
+            setMapUniforms(program, *maps);
+            program.set("uTilesPerRow", heightTiles_->tilesPerRow());
+        }
         glDispatchCompute(gl::groupsOf(run.count, 64), 1, 1);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

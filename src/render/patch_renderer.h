@@ -6,12 +6,14 @@
 // surface serves every view and every render that differs only in appearance. (Hardware
 // tessellation, one GL patch per OpenSubdiv patch, cost llvmpipe ~2 µs of one thread per patch.)
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
 #include "gl/vertex_array.h"
 #include "render/camera.h"
+#include "render/height_tiles.h"
 #include "render/patch_tessellation.h"
 #include "render/render_target.h"
 #include "render/shading_model.h"
@@ -61,12 +63,14 @@ public:
               const PatchMaps* maps = nullptr) const;
 
 private:
-    int patchCount_, tessLevel_;
+    int patchCount_, faceCount_, tessLevel_;
     ShadingModel shading_;
     std::vector<SampleRun> runs_;
     int vertexCount_, quadCount_;
     gl::Buffer patchInfo_, patchCvs_, samples_, quads_;
     gl::VertexArray vertexArray_;
+    // evaluate()'s scratch: the heights it displaces by, laid out for its pass.
+    mutable std::optional<HeightTiles> heightTiles_;
 };
 
 // The smallest power of two >= max(requested, 2^maxPatchDepth), capped at the GL limit of 64.
