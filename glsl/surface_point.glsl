@@ -27,30 +27,37 @@ float heightAt(int face, vec2 uv) {
 #endif
 
 vec3 point(int i) { return vec3(points[3 * i], points[3 * i + 1], points[3 * i + 2]); }
-
-// P(s,t) = Σ_k w_k(s,t) CV_k with OpenSubdiv's basis (B-spline with boundary masks for regular
-// patches, Gregory for the end caps around extraordinary vertices), plus ∂P/∂s and ∂P/∂t.
-// Each draw holds patches of one kind (render::PatchRenderer), so the basis is chosen here, at
-// compile time: a SIMD rasterizer runs every branch of a basis chosen per patch.
-void evaluatePatch(ivec4 info, OsdPatchParam param, vec2 st, out vec3 P, out vec3 dPds, out vec3 dPdt) {
-#ifdef SUBDFIT_GREGORY_PATCHES
-    float wP[20], wDs[20], wDt[20], wDss[20], wDst[20], wDtt[20];
-    int count = Osd_EvalBasisGregory(st.x, st.y, wP, wDs, wDt, wDss, wDst, wDtt);
-#else
-    float wP[16], wDs[16], wDt[16], wDss[16], wDst[16], wDtt[16];
-    int count = Osd_EvalBasisBSpline(st.x, st.y, wP, wDs, wDt, wDss, wDst, wDtt);
-    int boundary = OsdPatchParamGetBoundary(param);
-    if (boundary != 0) Osd_boundBasisBSpline(boundary, wP, wDs, wDt, wDss, wDst, wDtt);
+#ifdef SUBDFIT_SURFACE_PAIR
+layout(std430, binding = SUBDFIT_SSBO_SECOND_POINTS) readonly buffer SecondPoints { float secondPoints[]; };
+vec3 secondPoint(int i) { return vec3(secondPoints[3 * i], secondPoints[3 * i + 1], secondPoints[3 * i + 2]); }
 #endif
-    P = vec3(0.0);
-    dPds = vec3(0.0);
-    dPdt = vec3(0.0);
-    for (int k = 0; k < count; ++k) {
-        vec3 cv = point(patchCvs[info.x + k]);
-        P += wP[k] * cv;
-        dPds += wDs[k] * cv;
-        dPdt += wDt[k] * cv;
-    }
+
+// OpenSubdiv's basis: B-spline with boundary masks for regular patches, Gregory for the end caps
+// around extraordinary vertices. Each pass holds patches of one kind (render::PatchRenderer), so
+// the basis is chosen here, at compile time: a SIMD rasterizer runs every branch of one chosen
+// per patch.
+#ifdef SUBDFIT_GREGORY_PATCHES
+#define SUBDFIT_PATCH_CVS 20
+#else
+#define SUBDFIT_PATCH_CVS 16
+#endif
+
+// The weights of a patch's control points in P(s,t), ∂P/∂s and ∂P/∂t.
+struct PatchBasis {
+    float wP[SUBDFIT_PATCH_CVS], wDs[SUBDFIT_PATCH_CVS], wDt[SUBDFIT_PATCH_CVS];
+};
+
+PatchBasis patchBasis(OsdPatchParam param, vec2 st) {
+    PatchBasis b;
+    float wDss[SUBDFIT_PATCH_CVS], wDst[SUBDFIT_PATCH_CVS], wDtt[SUBDFIT_PATCH_CVS];
+#ifdef SUBDFIT_GREGORY_PATCHES
+    Osd_EvalBasisGregory(st.x, st.y, b.wP, b.wDs, b.wDt, wDss, wDst, wDtt);
+#else
+    Osd_EvalBasisBSpline(st.x, st.y, b.wP, b.wDs, b.wDt, wDss, wDst, wDtt);
+    int boundary = OsdPatchParamGetBoundary(param);
+    if (boundary != 0) Osd_boundBasisBSpline(boundary, b.wP, b.wDs, b.wDt, wDss, wDst, wDtt);
+#endif
+    return b;
 }
 
 struct SurfacePoint {
@@ -59,51 +66,108 @@ struct SurfacePoint {
     vec2 ptexUv;
 };
 
+// Σ_k w_k CV_k for the position; for the tangents, ∂/∂s and ∂/∂t per ptex-face unit (a depth-d
+// patch spans 1/2^d of the face), and the unit normal between them.
+SurfacePoint limitPoint(OsdPatchParam param, vec2 st, PatchBasis basis, vec3 cvs[SUBDFIT_PATCH_CVS]) {
+    vec3 P = vec3(0.0), dPds = vec3(0.0), dPdt = vec3(0.0);
+    for (int k = 0; k < SUBDFIT_PATCH_CVS; ++k) {
+        P += basis.wP[k] * cvs[k];
+        dPds += basis.wDs[k] * cvs[k];
+        dPdt += basis.wDt[k] * cvs[k];
+    }
+    if (dot(cross(dPds, dPdt), cross(dPds, dPdt)) < 1e-24) {
+        // The tangents vanish at some extraordinary corners: take them a hair inside.
+        PatchBasis inside = patchBasis(param, mix(st, vec2(0.5), 1e-3));
+        dPds = vec3(0.0);
+        dPdt = vec3(0.0);
+        for (int k = 0; k < SUBDFIT_PATCH_CVS; ++k) {
+            dPds += inside.wDs[k] * cvs[k];
+            dPdt += inside.wDt[k] * cvs[k];
+        }
+    }
+    float fraction = OsdPatchParamGetParamFraction(param);
+    SurfacePoint p;
+    p.position = P;
+    p.tangentU = dPds / fraction;
+    p.tangentV = dPdt / fraction;
+    vec3 N = cross(p.tangentU, p.tangentV);
+    p.normal = dot(N, N) > 0.0 ? normalize(N) : vec3(0.0, 0.0, 1.0);
+    float uv[2] = float[2](st.x, st.y);
+    OsdPatchParamUnnormalize(param, uv);
+    p.ptexUv = vec2(uv[0], uv[1]);
+    p.ptexFace = OsdPatchParamGetFaceId(param);
+    return p;
+}
+
+#ifdef SUBDFIT_DISPLACEMENT
+// The height d at a point of a face, and its slopes (∂d/∂u, ∂d/∂v) by central differences half a
+// map cell wide, reaching across the tile's border into the neighbouring face's tile, exactly as
+// the CPU twin (surface/displaced_surface.cpp): at a node that averages the slopes of the cells
+// on either side, so the shading breaks neither at a cell edge nor at a face edge.
+struct HeightSample {
+    float height;
+    vec2 slope;
+};
+
+HeightSample heightSample(int face, vec2 uv) {
+    vec2 at = clamp(uv, 0.0, 1.0);
+    HeightSample d;
+    d.height = heightAt(face, at);
+    d.slope = vec2(0.0);
+#ifndef SUBDFIT_LIMIT_SHADING  // (with it, the limit surface's normal shades: surface::ShadingNormal)
+    float h = 0.5 / float(uMapResolution);
+    d.slope = vec2(heightAt(face, at + vec2(h, 0.0)) - heightAt(face, at - vec2(h, 0.0)),
+                   heightAt(face, at + vec2(0.0, h)) - heightAt(face, at - vec2(0.0, h))) / (2.0 * h);
+#endif
+    return d;
+}
+
+// P' = P + d(u,v) N̂. Shading normal of the displaced surface to first order:
+// ∂P'/∂u ≈ ∂P/∂u + (∂d/∂u) N̂ (the d ∂N̂/∂u term is dropped: d is small against curvature).
+void displace(inout SurfacePoint p, HeightSample d) {
+    vec3 unitN = p.normal;
+    p.position += d.height * unitN;
+#ifndef SUBDFIT_LIMIT_SHADING
+    p.tangentU += d.slope.x * unitN;
+    p.tangentV += d.slope.y * unitN;
+    vec3 N = cross(p.tangentU, p.tangentV);
+    p.normal = dot(N, N) > 0.0 ? normalize(N) : unitN;
+#endif
+}
+#endif
+
 // At (s, t) of patch `patchIndex` (render::PatchRenderer's patch order).
 SurfacePoint surfacePoint(int patchIndex, vec2 st) {
     ivec4 info = patchInfo[patchIndex];
     OsdPatchParam param = OsdPatchParamInit(info.z, info.w, 0.0);
-    vec3 P, dPds, dPdt;
-    evaluatePatch(info, param, st, P, dPds, dPdt);
-    if (dot(cross(dPds, dPdt), cross(dPds, dPdt)) < 1e-24) {
-        // The tangents vanish at some extraordinary corners: take them a hair inside.
-        vec3 Q;
-        evaluatePatch(info, param, mix(st, vec2(0.5), 1e-3), Q, dPds, dPdt);
-    }
-    // Patch-local derivatives -> ptex-face derivatives (a depth-d patch spans 1/2^d of the face).
-    float fraction = OsdPatchParamGetParamFraction(param);
-    vec3 dPdu = dPds / fraction, dPdv = dPdt / fraction;
-    vec3 N = cross(dPdu, dPdv);
-    vec3 unitN = dot(N, N) > 0.0 ? normalize(N) : vec3(0.0, 0.0, 1.0);
-
-    float uv[2] = float[2](st.x, st.y);
-    OsdPatchParamUnnormalize(param, uv);
-    SurfacePoint result;
-    result.ptexUv = vec2(uv[0], uv[1]);
-    result.ptexFace = OsdPatchParamGetFaceId(param);
-
+    vec3 cvs[SUBDFIT_PATCH_CVS];
+    for (int k = 0; k < SUBDFIT_PATCH_CVS; ++k) cvs[k] = point(patchCvs[info.x + k]);
+    SurfacePoint p = limitPoint(param, st, patchBasis(param, st), cvs);
 #ifdef SUBDFIT_DISPLACEMENT
-    vec2 at = clamp(result.ptexUv, 0.0, 1.0);
-    P += heightAt(result.ptexFace, at) * unitN;
-#ifndef SUBDFIT_LIMIT_SHADING  // (with it, the limit surface's normal shades: surface::ShadingNormal)
-    // P' = P + d(u,v) N̂. Shading normal of the displaced surface to first order:
-    // ∂P'/∂u ≈ ∂P/∂u + (∂d/∂u) N̂ (the d ∂N̂/∂u term is dropped: d is small against curvature).
-    // ∂d/∂u by central differences half a map cell wide, reaching across the tile's border into
-    // the neighbouring face's tile, exactly as the CPU twin (surface/displaced_surface.cpp): at a
-    // node that averages the slopes of the cells on either side, so the shading breaks neither
-    // at a cell edge nor at a face edge.
-    float h = 0.5 / float(uMapResolution);
-    float dddu = (heightAt(result.ptexFace, at + vec2(h, 0.0)) - heightAt(result.ptexFace, at - vec2(h, 0.0))) / (2.0 * h);
-    float dddv = (heightAt(result.ptexFace, at + vec2(0.0, h)) - heightAt(result.ptexFace, at - vec2(0.0, h))) / (2.0 * h);
-    dPdu += dddu * unitN;
-    dPdv += dddv * unitN;
-    N = cross(dPdu, dPdv);
-    unitN = dot(N, N) > 0.0 ? normalize(N) : unitN;
+    displace(p, heightSample(p.ptexFace, p.ptexUv));
 #endif
-#endif
-    result.position = P;
-    result.normal = unitN;
-    result.tangentU = dPdu;
-    result.tangentV = dPdv;
-    return result;
+    return p;
 }
+
+#ifdef SUBDFIT_SURFACE_PAIR
+// The same point of two surfaces that differ only in their control points (θ+ and θ− of a vertex
+// turn): the basis, the control point indices and the heights are read and computed once.
+void surfacePointPair(int patchIndex, vec2 st, out SurfacePoint first, out SurfacePoint second) {
+    ivec4 info = patchInfo[patchIndex];
+    OsdPatchParam param = OsdPatchParamInit(info.z, info.w, 0.0);
+    vec3 cvs[SUBDFIT_PATCH_CVS], secondCvs[SUBDFIT_PATCH_CVS];
+    for (int k = 0; k < SUBDFIT_PATCH_CVS; ++k) {
+        int cv = patchCvs[info.x + k];
+        cvs[k] = point(cv);
+        secondCvs[k] = secondPoint(cv);
+    }
+    PatchBasis basis = patchBasis(param, st);
+    first = limitPoint(param, st, basis, cvs);
+    second = limitPoint(param, st, basis, secondCvs);
+#ifdef SUBDFIT_DISPLACEMENT
+    HeightSample d = heightSample(first.ptexFace, first.ptexUv);
+    displace(first, d);
+    displace(second, d);
+#endif
+}
+#endif
