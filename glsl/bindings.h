@@ -40,8 +40,10 @@
 #define SUBDFIT_SSBO_LOSS 18            // 256 float slots whose sum is the mean per-pixel loss
 #define SUBDFIT_SSBO_SMOOTH_IN 19       // Jacobi iterate read by the preconditioner
 #define SUBDFIT_SSBO_FACE_DELTA 20      // Σ Δ_p/(2ε) per ptex face, then per pair of them (fixed point)
-#define SUBDFIT_SSBO_VERTEX_SUM_OFFSETS 21  // base vertex -> the sums of FACE_DELTA it is in (CSR)
-#define SUBDFIT_SSBO_VERTEX_SUM_INDICES 22
+#define SUBDFIT_SSBO_FACE_VERTEX_OFFSETS 21  // ptex face -> the base vertices reaching it, sorted (CSR)
+#define SUBDFIT_SSBO_FACE_VERTICES 22
+#define SUBDFIT_SSBO_PAIR_FIRST 45           // each pair's first face (its second: FACE_PAIRS)
+#define SUBDFIT_SSBO_VERTEX_DELTA 46         // per base vertex, the sums of FACE_DELTA it is in (fixed point)
 
 // Map parameter groups (per-face tiles of (T+1)² shared nodes, maps::TexelLayout).
 #define SUBDFIT_SSBO_FACE_NODES 23           // [ptex face][j][i] -> node

@@ -6,7 +6,7 @@
 //
 // s_i does not depend on the pixel, and the set only on the two faces, so Σ_p Δ_p s_i / 2ε =
 // s_i Σ_p Δ_p / 2ε over the pixels of one pair of faces: each pixel adds into one sum (one
-// atomic per pixel instead of one per contributing parameter), and scatter_faces.comp hands
+// atomic per pixel instead of one per contributing parameter), and scatter_sums.comp hands
 // each sum to its vertices. A pixel both renders gave to face f (or one to f, the other to the
 // background) adds into f's sum; one given to faces f and h that share a vertex, into their
 // pair's sum (its vertices the union); to faces that share none, into both faces' sums.
@@ -59,11 +59,16 @@ uniform float uLossScale;  // 1 / (pixels × views), so the loss is a per-pixel 
 uniform int uMeasureLoss;  // 0: skip the loss (most steps only need the gradient)
 uniform int uFaceCount;    // ptex faces: the pairs' sums follow the faces'
 
-// The sum of faces a < b that share a vertex (after the faces' own, in a's list); -1 if none.
+// The sum of faces a < b that share a vertex (after the faces' own, in a's sorted list); -1 if
+// none. A binary search: a face of a dense cage pairs with over a hundred others.
 int pairSum(int a, int b) {
-    for (int k = facePairOffsets[a]; k < facePairOffsets[a + 1]; ++k)
-        if (facePairs[k] == b) return uFaceCount + k;
-    return -1;
+    int low = facePairOffsets[a], high = facePairOffsets[a + 1];
+    while (low < high) {
+        int middle = (low + high) / 2;
+        if (facePairs[middle] < b) low = middle + 1;
+        else high = middle;
+    }
+    return low < facePairOffsets[a + 1] && facePairs[low] == b ? uFaceCount + low : -1;
 }
 
 #ifdef SUBDFIT_TEXELS
@@ -120,7 +125,7 @@ void main() {
         addTexelGradients(pixel, fp, fm, scaledDelta);
 #elif defined(SUBDFIT_FULL_IMAGE)
         // The full-image estimator of plain SPSA, for comparison only: every pixel's Δ goes to
-        // every parameter (scatter_faces.comp reads this one sum for all vertices).
+        // every parameter (scatter_vertices.comp reads this one sum for all vertices).
         addFaceDelta(0u, scaledDelta);
 #else
         // The sums the pixel adds into: its face's (where one render saw background, the other's),

@@ -20,36 +20,28 @@ const gl::ProgramSpec kGradient{"gradient",
                                 {{GL_COMPUTE_SHADER, "gradient.comp"}},
                                 {"SUBDFIT_TEXELS", "SUBDFIT_FULL_IMAGE", "SUBDFIT_TEXELS_IN_ATLAS"}};
 constexpr gl::VariantBits kGradientTexels = 1u << 0, kGradientFullImage = 1u << 1, kGradientInAtlas = 1u << 2;
-const gl::ProgramSpec kScatterFaces{"scatter_faces", {{GL_COMPUTE_SHADER, "scatter_faces.comp"}}, {"SUBDFIT_FULL_IMAGE"}};
-// Threads per vertex in scatter_faces.comp: a vertex has about a hundred sums, which one thread
-// on a GPU walks as a long chain of dependent reads (docs/measurements.md).
-constexpr int kScatterLanes = 16;
-
-std::vector<int> transposeOffsets(const std::vector<int>& offsets, const std::vector<int>& indices, int columns,
-                                  std::vector<int>& transposed) {
-    std::vector<int> counts(size_t(columns) + 1, 0);
-    for (int column : indices) ++counts[size_t(column) + 1];
-    for (size_t c = 1; c < counts.size(); ++c) counts[c] += counts[c - 1];
-    transposed.assign(indices.size(), 0);
-    std::vector<int> fill(counts.begin(), counts.end() - 1);
-    for (size_t row = 0; row + 1 < offsets.size(); ++row)
-        for (int k = offsets[row]; k < offsets[row + 1]; ++k) transposed[size_t(fill[size_t(indices[k])]++)] = int(row);
-    return counts;
-}
+const gl::ProgramSpec kScatterSums{"scatter_sums", {{GL_COMPUTE_SHADER, "scatter_sums.comp"}}};
+const gl::ProgramSpec kScatterVertices{"scatter_vertices", {{GL_COMPUTE_SHADER, "scatter_vertices.comp"}}, {"SUBDFIT_FULL_IMAGE"}};
 
 }  // namespace
 
-FaceVertexTable::FaceVertexTable(const std::vector<int>& faceOffsets, const std::vector<int>& faceVertices,
+FaceVertexTable::FaceVertexTable(const std::vector<int>& faceOffsets_, const std::vector<int>& faceVertices_,
                                  int vertexCount_)
-    : faceCount(int(faceOffsets.size()) - 1), vertexCount(vertexCount_) {
-    std::vector<int> vertexFaces;
-    const auto vertexFaceOffsets = transposeOffsets(faceOffsets, faceVertices, vertexCount, vertexFaces);
+    : faceCount(int(faceOffsets_.size()) - 1), vertexCount(vertexCount_) {
+    // Each vertex's faces, to find the faces that share one with a given face.
+    std::vector<int> vertexFaceOffsets(size_t(vertexCount) + 1, 0), vertexFaces(faceVertices_.size());
+    for (int v : faceVertices_) ++vertexFaceOffsets[size_t(v) + 1];
+    for (size_t v = 1; v < vertexFaceOffsets.size(); ++v) vertexFaceOffsets[v] += vertexFaceOffsets[v - 1];
+    std::vector<int> fill(vertexFaceOffsets.begin(), vertexFaceOffsets.end() - 1);
+    for (int f = 0; f < faceCount; ++f)
+        for (int k = faceOffsets_[size_t(f)]; k < faceOffsets_[size_t(f) + 1]; ++k)
+            vertexFaces[size_t(fill[size_t(faceVertices_[size_t(k)])]++)] = f;
     // The pairs, in CSR by their first face: the faces after it that reach one of its vertices.
-    std::vector<int> pairOffsetsOf{0}, pairFacesOf;
+    std::vector<int> pairOffsetsOf{0}, pairFacesOf, pairFirstOf;
     std::vector<int> pairedWith(size_t(faceCount), -1);
     for (int a = 0; a < faceCount; ++a) {
-        for (int k = faceOffsets[size_t(a)]; k < faceOffsets[size_t(a) + 1]; ++k) {
-            const int v = faceVertices[size_t(k)];
+        for (int k = faceOffsets_[size_t(a)]; k < faceOffsets_[size_t(a) + 1]; ++k) {
+            const int v = faceVertices_[size_t(k)];
             for (int j = vertexFaceOffsets[size_t(v)]; j < vertexFaceOffsets[size_t(v) + 1]; ++j) {
                 const int b = vertexFaces[size_t(j)];
                 if (b > a && pairedWith[size_t(b)] != a) {
@@ -59,27 +51,17 @@ FaceVertexTable::FaceVertexTable(const std::vector<int>& faceOffsets, const std:
             }
         }
         std::sort(pairFacesOf.begin() + pairOffsetsOf.back(), pairFacesOf.end());
+        pairFirstOf.resize(pairFacesOf.size(), a);
         pairOffsetsOf.push_back(int(pairFacesOf.size()));
     }
-    // Each sum's vertices (a face's; a pair's union), transposed: vertex -> sums.
-    std::vector<int> sumOffsets(faceOffsets), sumVertices(faceVertices);
-    const auto verticesOf = [&](int f) {
-        return std::pair{faceVertices.begin() + faceOffsets[size_t(f)], faceVertices.begin() + faceOffsets[size_t(f) + 1]};
-    };
-    for (int a = 0; a < faceCount; ++a)
-        for (int k = pairOffsetsOf[size_t(a)]; k < pairOffsetsOf[size_t(a) + 1]; ++k) {
-            const auto [aBegin, aEnd] = verticesOf(a);
-            const auto [bBegin, bEnd] = verticesOf(pairFacesOf[size_t(k)]);
-            std::set_union(aBegin, aEnd, bBegin, bEnd, std::back_inserter(sumVertices));
-            sumOffsets.push_back(int(sumVertices.size()));
-        }
-    std::vector<int> vertexSumIndices;
-    const auto vertexSumOffsets = transposeOffsets(sumOffsets, sumVertices, vertexCount, vertexSumIndices);
+    pairCount = int(pairFacesOf.size());
+    faceOffsets = gl::Buffer::fromVector(faceOffsets_);
+    faceVertices = gl::Buffer::fromVector(faceVertices_);
     pairOffsets = gl::Buffer::fromVector(pairOffsetsOf);
     pairFaces = gl::Buffer::fromVector(pairFacesOf);
-    vertexOffsets = gl::Buffer::fromVector(vertexSumOffsets);
-    vertexSums = gl::Buffer::fromVector(vertexSumIndices);
-    faceDelta = gl::Buffer(GLsizeiptr(std::max<size_t>(1, sumOffsets.size() - 1)) * 2 * sizeof(std::uint32_t));
+    pairFirst = gl::Buffer::fromVector(pairFirstOf);
+    faceDelta = gl::Buffer(GLsizeiptr(std::max(1, faceCount + pairCount)) * 2 * sizeof(std::uint32_t));
+    vertexDelta = gl::Buffer(GLsizeiptr(std::max(1, vertexCount)) * 2 * sizeof(std::uint32_t));
 }
 
 void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group, const FaceVertexTable& faces,
@@ -122,19 +104,29 @@ void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group
 
 void scatterFaceDeltas(gl::ProgramCache& programs, optim::ParameterGroup& group, FaceVertexTable& faces,
                        std::uint32_t counter, std::uint32_t seed, bool fullImage) {
-    const auto& program =
-        programs.get(kScatterFaces, fullImage ? 1u : 0u, {{"SUBDFIT_SCATTER_LANES", std::to_string(kScatterLanes)}});
-    program.use();
-    program.set("uVertexCount", faces.vertexCount);
-    program.set("uCounter", counter);
-    program.set("uSeed", seed);
     faces.faceDelta.bindStorage(SUBDFIT_SSBO_FACE_DELTA);
-    faces.vertexOffsets.bindStorage(SUBDFIT_SSBO_VERTEX_SUM_OFFSETS);
-    faces.vertexSums.bindStorage(SUBDFIT_SSBO_VERTEX_SUM_INDICES);
+    faces.vertexDelta.bindStorage(SUBDFIT_SSBO_VERTEX_DELTA);
+    if (!fullImage) {
+        const auto& sums = programs.get(kScatterSums);
+        sums.use();
+        sums.set("uFaceCount", faces.faceCount);
+        sums.set("uSumCount", faces.faceCount + faces.pairCount);
+        faces.faceOffsets.bindStorage(SUBDFIT_SSBO_FACE_VERTEX_OFFSETS);
+        faces.faceVertices.bindStorage(SUBDFIT_SSBO_FACE_VERTICES);
+        faces.pairFaces.bindStorage(SUBDFIT_SSBO_FACE_PAIRS);
+        faces.pairFirst.bindStorage(SUBDFIT_SSBO_PAIR_FIRST);
+        glDispatchCompute(groupsOf(faces.faceCount + faces.pairCount, 64), 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    const auto& vertices = programs.get(kScatterVertices, fullImage ? 1u : 0u);
+    vertices.use();
+    vertices.set("uVertexCount", faces.vertexCount);
+    vertices.set("uCounter", counter);
+    vertices.set("uSeed", seed);
     group.gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_SUM);
-    glDispatchCompute(groupsOf(faces.vertexCount, 128 / kScatterLanes), 1, 1);
+    glDispatchCompute(groupsOf(faces.vertexCount, 64), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    faces.faceDelta.clearToZero();
+    if (fullImage) faces.faceDelta.clearToZero();  // scatter_sums.comp clears the sums it hands on
 }
 
 }  // namespace subdfit::sge

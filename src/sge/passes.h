@@ -1,6 +1,6 @@
 #pragma once
 // G, the estimator of stochastic gradient estimation: per pixel, the loss difference of the
-// ± renders goes to the parameters that produced the pixel (gradient.comp, scatter_faces.comp).
+// ± renders goes to the parameters that produced the pixel (gradient.comp, scatter_sums.comp, scatter_vertices.comp).
 // P and the updates that use G's sums live in optim/; the rasterisation R in render/.
 #include <cstdint>
 #include <vector>
@@ -16,16 +16,17 @@ class MapParameters;
 
 namespace subdfit::sge {
 
-// Which base vertices reach which ptex face (CSR), and G's Δ sums: one per ptex face, then one
-// per pair of ptex faces that share a base vertex (the pixels that one render gave to each of
-// them, whose Δ goes to the union of their vertices); each base vertex lists the sums whose
-// vertices include it.
+// Which base vertices reach which ptex face (CSR, each face's sorted), and G's Δ sums: one per
+// ptex face, then one per pair of ptex faces that share a base vertex (the pixels that one render
+// gave to each of them, whose Δ goes to the union of their vertices).
 struct FaceVertexTable {
     FaceVertexTable(const std::vector<int>& faceOffsets, const std::vector<int>& faceVertices, int vertexCount);
-    gl::Buffer pairOffsets, pairFaces;        // ptex face a -> the faces b > a sharing a vertex; pair k's sum is faceCount + k
-    gl::Buffer vertexOffsets, vertexSums;     // base vertex -> the sums whose vertices include it
-    gl::Buffer faceDelta;                     // one fixed-point sum (two uints) per ptex face, then per pair
-    int faceCount, vertexCount;
+    gl::Buffer faceOffsets, faceVertices;  // ptex face -> its base vertices
+    gl::Buffer pairOffsets, pairFaces;     // ptex face a -> the faces b > a sharing a vertex; pair k's sum is faceCount + k
+    gl::Buffer pairFirst;                  // pair k's face a
+    gl::Buffer faceDelta;                  // one fixed-point sum (two uints) per ptex face, then per pair
+    gl::Buffer vertexDelta;                // one fixed-point sum per base vertex: the sums that include it
+    int faceCount, pairCount, vertexCount;
 };
 
 struct GradientInputs {
@@ -45,8 +46,9 @@ struct GradientInputs {
 void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group, const FaceVertexTable& faces,
                         const GradientInputs& inputs, const gl::Buffer& loss);
 
-// G, second half of a vertex turn: hands the per-face and per-pair sums to the vertices' parameters (signs of
-// `counter`) and clears them. Once per perturbation sample, after all its views.
+// G, second half of a vertex turn: hands the per-face and per-pair sums to their vertices, then
+// to the vertices' parameters (signs of `counter`), and clears them. Once per perturbation
+// sample, after all its views.
 void scatterFaceDeltas(gl::ProgramCache& programs, optim::ParameterGroup& group, FaceVertexTable& faces,
                        std::uint32_t counter, std::uint32_t seed, bool fullImage = false);
 
