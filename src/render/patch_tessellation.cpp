@@ -23,8 +23,8 @@ std::uint64_t facePointKey(const subdiv::PatchSet& patches, int patch, int i, in
 PatchTessellation tessellatePatches(const subdiv::PatchSet& patches, int tessLevel) {
     PatchTessellation t;
     // Patches of one ptex face share the vertices on their common edges: each is evaluated once,
-    // by the first patch that reaches it (about a third of the vertices where deep patches have
-    // L = 1). Vertices are never shared across faces: their ptex (u, v) and face differ there.
+    // by the first patch that reaches it (most of them where deep patches have L = 1). Vertices are
+    // never shared across faces: their ptex (u, v) and face differ there.
     std::unordered_map<std::uint64_t, std::uint32_t> vertexAt;
     std::vector<std::uint32_t> grid;
     for (int p = 0; p < patches.patchCount(); ++p) {

@@ -25,23 +25,23 @@ const gl::ProgramSpec kScatterVertices{"scatter_vertices", {{GL_COMPUTE_SHADER, 
 
 }  // namespace
 
-FaceVertexTable::FaceVertexTable(const std::vector<int>& faceOffsets_, const std::vector<int>& faceVertices_,
+FaceVertexTable::FaceVertexTable(const std::vector<int>& offsetsOf, const std::vector<int>& verticesOf,
                                  int vertexCount_)
-    : faceCount(int(faceOffsets_.size()) - 1), vertexCount(vertexCount_) {
+    : faceCount(int(offsetsOf.size()) - 1), vertexCount(vertexCount_) {
     // Each vertex's faces, to find the faces that share one with a given face.
-    std::vector<int> vertexFaceOffsets(size_t(vertexCount) + 1, 0), vertexFaces(faceVertices_.size());
-    for (int v : faceVertices_) ++vertexFaceOffsets[size_t(v) + 1];
+    std::vector<int> vertexFaceOffsets(size_t(vertexCount) + 1, 0), vertexFaces(verticesOf.size());
+    for (int v : verticesOf) ++vertexFaceOffsets[size_t(v) + 1];
     for (size_t v = 1; v < vertexFaceOffsets.size(); ++v) vertexFaceOffsets[v] += vertexFaceOffsets[v - 1];
     std::vector<int> fill(vertexFaceOffsets.begin(), vertexFaceOffsets.end() - 1);
     for (int f = 0; f < faceCount; ++f)
-        for (int k = faceOffsets_[size_t(f)]; k < faceOffsets_[size_t(f) + 1]; ++k)
-            vertexFaces[size_t(fill[size_t(faceVertices_[size_t(k)])]++)] = f;
+        for (int k = offsetsOf[size_t(f)]; k < offsetsOf[size_t(f) + 1]; ++k)
+            vertexFaces[size_t(fill[size_t(verticesOf[size_t(k)])]++)] = f;
     // The pairs, in CSR by their first face: the faces after it that reach one of its vertices.
     std::vector<int> pairOffsetsOf{0}, pairFacesOf, pairFirstOf;
     std::vector<int> pairedWith(size_t(faceCount), -1);
     for (int a = 0; a < faceCount; ++a) {
-        for (int k = faceOffsets_[size_t(a)]; k < faceOffsets_[size_t(a) + 1]; ++k) {
-            const int v = faceVertices_[size_t(k)];
+        for (int k = offsetsOf[size_t(a)]; k < offsetsOf[size_t(a) + 1]; ++k) {
+            const int v = verticesOf[size_t(k)];
             for (int j = vertexFaceOffsets[size_t(v)]; j < vertexFaceOffsets[size_t(v) + 1]; ++j) {
                 const int b = vertexFaces[size_t(j)];
                 if (b > a && pairedWith[size_t(b)] != a) {
@@ -55,8 +55,8 @@ FaceVertexTable::FaceVertexTable(const std::vector<int>& faceOffsets_, const std
         pairOffsetsOf.push_back(int(pairFacesOf.size()));
     }
     pairCount = int(pairFacesOf.size());
-    faceOffsets = gl::Buffer::fromVector(faceOffsets_);
-    faceVertices = gl::Buffer::fromVector(faceVertices_);
+    faceOffsets = gl::Buffer::fromVector(offsetsOf);
+    faceVertices = gl::Buffer::fromVector(verticesOf);
     pairOffsets = gl::Buffer::fromVector(pairOffsetsOf);
     pairFaces = gl::Buffer::fromVector(pairFacesOf);
     pairFirst = gl::Buffer::fromVector(pairFirstOf);
