@@ -32,7 +32,6 @@
 #define SUBDFIT_SSBO_SURFACE_VERTICES 41
 #define SUBDFIT_SSBO_TESSELLATION_QUADS 42
 #define SUBDFIT_SSBO_SURFACE_TRIANGLES 43
-#define SUBDFIT_SSBO_SECOND_SURFACE_VERTICES 44  // a second surface evaluated beside the first
 #define SUBDFIT_SSBO_FACE_PAIR_OFFSETS 14  // ptex face a -> the faces b > a sharing a base vertex (CSR)
 #define SUBDFIT_SSBO_FACE_PAIRS 15
 #define SUBDFIT_SSBO_ADJACENCY_OFFSETS 16    // cage vertex -> neighbours (CSR)

@@ -27,10 +27,6 @@ float heightAt(int face, vec2 uv) {
 #endif
 
 vec3 point(int i) { return vec3(points[3 * i], points[3 * i + 1], points[3 * i + 2]); }
-#ifdef SUBDFIT_SURFACE_PAIR
-layout(std430, binding = SUBDFIT_SSBO_SECOND_POINTS) readonly buffer SecondPoints { float secondPoints[]; };
-vec3 secondPoint(int i) { return vec3(secondPoints[3 * i], secondPoints[3 * i + 1], secondPoints[3 * i + 2]); }
-#endif
 
 // OpenSubdiv's basis: B-spline with boundary masks for regular patches, Gregory for the end caps
 // around extraordinary vertices. Each pass holds patches of one kind (render::PatchRenderer), so
@@ -149,25 +145,3 @@ SurfacePoint surfacePoint(int patchIndex, vec2 st) {
     return p;
 }
 
-#ifdef SUBDFIT_SURFACE_PAIR
-// The same point of two surfaces that differ only in their control points (θ+ and θ− of a vertex
-// turn): the basis, the control point indices and the heights are read and computed once.
-void surfacePointPair(int patchIndex, vec2 st, out SurfacePoint first, out SurfacePoint second) {
-    ivec4 info = patchInfo[patchIndex];
-    OsdPatchParam param = OsdPatchParamInit(info.z, info.w, 0.0);
-    vec3 cvs[SUBDFIT_PATCH_CVS], secondCvs[SUBDFIT_PATCH_CVS];
-    for (int k = 0; k < SUBDFIT_PATCH_CVS; ++k) {
-        int cv = patchCvs[info.x + k];
-        cvs[k] = point(cv);
-        secondCvs[k] = secondPoint(cv);
-    }
-    PatchBasis basis = patchBasis(param, st);
-    first = limitPoint(param, st, basis, cvs);
-    second = limitPoint(param, st, basis, secondCvs);
-#ifdef SUBDFIT_DISPLACEMENT
-    HeightSample d = heightSample(first.ptexFace, first.ptexUv);
-    displace(first, d);
-    displace(second, d);
-#endif
-}
-#endif

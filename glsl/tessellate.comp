@@ -14,21 +14,9 @@ layout(local_size_x = 64) in;
 layout(std430, binding = SUBDFIT_SSBO_TESSELLATION_SAMPLES) readonly buffer Samples { ivec2 samples[]; };
 // Per vertex, 16 floats: position, normal, ∂P/∂u, ∂P/∂v, ptex (u, v), ptex face (its int's bits).
 layout(std430, binding = SUBDFIT_SSBO_SURFACE_VERTICES) writeonly buffer SurfaceVertices { float surfaceVertices[]; };
-#ifdef SUBDFIT_SURFACE_PAIR
-// A second surface from the second set of points (render::PatchRenderer::evaluatePair).
-layout(std430, binding = SUBDFIT_SSBO_SECOND_SURFACE_VERTICES) writeonly buffer SecondSurfaceVertices {
-    float secondSurfaceVertices[];
-};
-#endif
 
 uniform int uFirstSample;
 uniform int uSampleCount;
-
-float[16] vertexRecord(SurfacePoint p) {
-    return float[16](p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y, p.normal.z,
-                     p.tangentU.x, p.tangentU.y, p.tangentU.z, p.tangentV.x, p.tangentV.y, p.tangentV.z,
-                     p.ptexUv.x, p.ptexUv.y, intBitsToFloat(p.ptexFace), 0.0);
-}
 
 void main() {
     int k = int(gl_GlobalInvocationID.x);
@@ -37,14 +25,9 @@ void main() {
     ivec2 sample_ = samples[k];
     float level = float(sample_.y >> 16);
     vec2 st = vec2(float(sample_.y & 0xff), float((sample_.y >> 8) & 0xff)) / level;
-#ifdef SUBDFIT_SURFACE_PAIR
-    SurfacePoint p, second;
-    surfacePointPair(sample_.x, st, p, second);
-    float secondValues[16] = vertexRecord(second);
-    for (int c = 0; c < 16; ++c) secondSurfaceVertices[16 * k + c] = secondValues[c];
-#else
     SurfacePoint p = surfacePoint(sample_.x, st);
-#endif
-    float values[16] = vertexRecord(p);
+    float values[16] = float[16](p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y, p.normal.z,
+                                 p.tangentU.x, p.tangentU.y, p.tangentU.z, p.tangentV.x, p.tangentV.y, p.tangentV.z,
+                                 p.ptexUv.x, p.ptexUv.y, intBitsToFloat(p.ptexFace), 0.0);
     for (int c = 0; c < 16; ++c) surfaceVertices[16 * k + c] = values[c];
 }

@@ -116,16 +116,11 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     const float pixels = float(settings_.resolution) * float(settings_.resolution);
     const auto mapsPlus = maps_ ? maps_->forRaster(maps::ParameterVersion::Plus, perturbed) : render::PatchMaps{};
     const auto mapsMinus = maps_ ? maps_->forRaster(maps::ParameterVersion::Minus, perturbed) : render::PatchMaps{};
-    // θ+ and θ− are one surface unless the turn moves it: a vertex turn evaluates both in one pass
-    // (their heights are the same), a heights turn one after the other, and a map that only
-    // shades is drawn on the surface evaluated once, for every view of the step.
+    // θ+ and θ− are one surface unless the turn moves it (the vertices or the heights): a map
+    // that only shades is drawn on the surface evaluated once, for every view of the step.
     const bool surfaceMoves = verticesPerturbed || (maps_ && perturbed == maps_->displacement());
-    if (verticesPerturbed) {
-        renderer_.evaluatePair(programs_, pointsPlus_, surfacePlus_, pointsMinus_, surfaceMinus_, &mapsPlus);
-    } else {
-        renderer_.evaluate(programs_, pointsPlus_, surfacePlus_, &mapsPlus);
-        if (surfaceMoves) renderer_.evaluate(programs_, pointsMinus, surfaceMinus_, &mapsMinus);
-    }
+    renderer_.evaluate(programs_, pointsPlus_, surfacePlus_, &mapsPlus);
+    if (surfaceMoves) renderer_.evaluate(programs_, pointsMinus, surfaceMinus_, &mapsMinus);
     const render::PatchRenderer::Surface& minusSurface = surfaceMoves ? surfaceMinus_ : surfacePlus_;
     mark("surfaces");
     for (int view : views) {

@@ -11,10 +11,9 @@ namespace {
 
 const gl::ProgramSpec kPatchTessellate{"patch_tessellate",
                                        {{GL_COMPUTE_SHADER, "tessellate.comp"}},
-                                       {"SUBDFIT_DISPLACEMENT", "SUBDFIT_LIMIT_SHADING", "SUBDFIT_GREGORY_PATCHES",
-                                        "SUBDFIT_SURFACE_PAIR"}};
+                                       {"SUBDFIT_DISPLACEMENT", "SUBDFIT_LIMIT_SHADING", "SUBDFIT_GREGORY_PATCHES"}};
 constexpr gl::VariantBits kTessellateDisplacement = 1u << 0, kTessellateLimitShading = 1u << 1,
-                          kTessellateGregory = 1u << 2, kTessellatePair = 1u << 3;
+                          kTessellateGregory = 1u << 2;
 
 const gl::ProgramSpec kTriangulate{"patch_triangulate", {{GL_COMPUTE_SHADER, "triangulate.comp"}}};
 
@@ -79,38 +78,21 @@ PatchRenderer::Surface PatchRenderer::makeSurface() const {
 
 void PatchRenderer::evaluate(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
                              const PatchMaps* maps) const {
-    evaluate(programs, points, surface, nullptr, nullptr, maps);
-}
-
-void PatchRenderer::evaluatePair(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
-                                 const gl::Buffer& secondPoints, const Surface& secondSurface,
-                                 const PatchMaps* maps) const {
-    evaluate(programs, points, surface, &secondPoints, &secondSurface, maps);
-}
-
-void PatchRenderer::evaluate(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
-                             const gl::Buffer* secondPoints, const Surface* secondSurface,
-                             const PatchMaps* maps) const {
     const bool displaced = maps && maps->displacement;
-    const gl::VariantBits variant =
-        (displaced ? kTessellateDisplacement | (maps->limitShading ? kTessellateLimitShading : 0) : 0) |
-        (secondSurface ? kTessellatePair : 0);
+    const gl::VariantBits mapBits =
+        displaced ? kTessellateDisplacement | (maps->limitShading ? kTessellateLimitShading : 0) : 0;
     patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);
     patchCvs_.bindStorage(SUBDFIT_SSBO_PATCH_CVS);
     points.bindStorage(SUBDFIT_SSBO_POINTS);
     samples_.bindStorage(SUBDFIT_SSBO_TESSELLATION_SAMPLES);
     surface.vertices.bindStorage(SUBDFIT_SSBO_SURFACE_VERTICES);
-    if (secondSurface) {
-        secondPoints->bindStorage(SUBDFIT_SSBO_SECOND_POINTS);
-        secondSurface->vertices.bindStorage(SUBDFIT_SSBO_SECOND_SURFACE_VERTICES);
-    }
     if (displaced) {
         if (!heightTiles_ || heightTiles_->resolution() != maps->resolution)
             heightTiles_.emplace(faceCount_, maps->resolution);
         heightTiles_->fill(programs, *maps);  // binds the maps too
     }
     for (const SampleRun& run : runs_) {
-        const auto& program = programs.get(kPatchTessellate, variant | (run.gregory ? kTessellateGregory : 0));
+        const auto& program = programs.get(kPatchTessellate, mapBits | (run.gregory ? kTessellateGregory : 0));
         program.use();
         program.set("uFirstSample", run.first);
         program.set("uSampleCount", run.count);
@@ -125,12 +107,8 @@ void PatchRenderer::evaluate(gl::ProgramCache& programs, const gl::Buffer& point
     triangulate.use();
     triangulate.set("uQuadCount", quadCount_);
     quads_.bindStorage(SUBDFIT_SSBO_TESSELLATION_QUADS);
-    for (const Surface* evaluated : {&surface, secondSurface}) {
-        if (!evaluated) continue;
-        evaluated->vertices.bindStorage(SUBDFIT_SSBO_SURFACE_VERTICES);
-        evaluated->triangles.bindStorage(SUBDFIT_SSBO_SURFACE_TRIANGLES);
-        glDispatchCompute(gl::groupsOf(quadCount_, 64), 1, 1);
-    }
+    surface.triangles.bindStorage(SUBDFIT_SSBO_SURFACE_TRIANGLES);
+    glDispatchCompute(gl::groupsOf(quadCount_, 64), 1, 1);
     glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT);
 }
 

@@ -55,10 +55,6 @@ public:
     // The surface of `points` (displaced by `maps`' heights, if it has them) into `surface`.
     void evaluate(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
                   const PatchMaps* maps = nullptr) const;
-    // Two surfaces that differ only in their points (a vertex turn's θ+ and θ−), in one pass: the
-    // basis, the control point indices and the heights are read and computed once for both.
-    void evaluatePair(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
-                      const gl::Buffer& secondPoints, const Surface& secondSurface, const PatchMaps* maps = nullptr) const;
     // An evaluated surface rasterised; with `maps`, the variant with their effects.
     void rasterize(gl::ProgramCache& programs, const Surface& surface, const Camera& camera, const RenderTarget& target,
                    const PatchMaps* maps = nullptr) const;
@@ -67,9 +63,6 @@ public:
               const PatchMaps* maps = nullptr) const;
 
 private:
-    void evaluate(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
-                  const gl::Buffer* secondPoints, const Surface* secondSurface, const PatchMaps* maps) const;
-
     int patchCount_, faceCount_, tessLevel_;
     ShadingModel shading_;
     std::vector<SampleRun> runs_;

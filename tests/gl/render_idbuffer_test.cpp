@@ -239,35 +239,6 @@ TEST(PatchKinds, OnlyACageWithGregoryPatchesCompilesTheirVariant) {
     test::expectNoGlError();
 }
 
-// A vertex turn evaluates θ+ and θ− in one pass (PatchRenderer::evaluatePair): each surface must
-// be what evaluating it alone gives, on regular and Gregory patches alike.
-TEST(SurfacePair, IsEachSurfaceEvaluatedAlone) {
-    const Cage cage(loadAsset("spot/spot_control_mesh.obj"));
-    std::vector<float> moved = Cage::flatten(cage.mesh.positions);
-    for (size_t k = 0; k < moved.size(); ++k) moved[k] = 1.02f * moved[k] + 0.01f * float(k % 7);
-    const gl::Buffer movedControl = gl::Buffer::fromVector(moved);
-    const gl::Buffer movedPoints = cage.stencils.makePointBuffer();
-    cage.stencils.evaluate(test::programs(), movedControl, movedPoints);
-    const auto alone = [&](const gl::Buffer& points) {
-        const auto surface = cage.renderer.makeSurface();
-        cage.renderer.evaluate(test::programs(), points, surface);
-        return std::pair{surface.vertices.read<float>(), surface.triangles.read<std::uint32_t>()};
-    };
-    const auto first = cage.renderer.makeSurface(), second = cage.renderer.makeSurface();
-    cage.renderer.evaluatePair(test::programs(), cage.points, first, movedPoints, second);
-    for (const auto& [pair, points] : {std::pair{&first, &cage.points}, std::pair{&second, &movedPoints}}) {
-        const auto [vertices, triangles] = alone(*points);
-        const auto paired = pair->vertices.read<float>();
-        ASSERT_EQ(paired.size(), vertices.size());
-        float worst = 0.0f;
-        for (size_t k = 0; k < vertices.size(); ++k) worst = std::max(worst, std::abs(paired[k] - vertices[k]));
-        EXPECT_LT(worst, 1e-5f);
-        EXPECT_EQ(pair->triangles.read<std::uint32_t>(), triangles);
-    }
-    EXPECT_NE(first.vertices.read<float>(), second.vertices.read<float>());
-    test::expectNoGlError();
-}
-
 // The SGE passes draw with the face id as the colour's alpha (render/render_target.h): read back,
 // that layout must hold what the separate attachment does, pixel for pixel: colours, coverage,
 // face ids (here up to 1535, past what a small float format would keep) and (u,v).
