@@ -6,7 +6,8 @@
 namespace subdfit::render {
 
 namespace {
-const gl::ProgramSpec kStencilEval{"stencil_eval", {{GL_COMPUTE_SHADER, "stencil_eval.comp"}}};
+const gl::ProgramSpec kStencilEval{"stencil_eval", {{GL_COMPUTE_SHADER, "stencil_eval.comp"}}, {"SUBDFIT_SECOND_SET"}};
+constexpr gl::VariantBits kSecondSet = 1u << 0;
 }  // namespace
 
 StencilEvaluator::StencilEvaluator(const subdiv::PatchSet& patches)
@@ -18,29 +19,30 @@ StencilEvaluator::StencilEvaluator(const subdiv::PatchSet& patches)
 
 void StencilEvaluator::evaluate(gl::ProgramCache& programs, const gl::Buffer& controlPoints,
                                 const gl::Buffer& points) const {
-    dispatch(programs, controlPoints, points, controlPoints, points, 1);
+    dispatch(programs, controlPoints, points, nullptr, nullptr);
 }
 
 void StencilEvaluator::evaluate(gl::ProgramCache& programs, const gl::Buffer& controlPoints, const gl::Buffer& points,
                                 const gl::Buffer& secondControlPoints, const gl::Buffer& secondPoints) const {
-    dispatch(programs, controlPoints, points, secondControlPoints, secondPoints, 2);
+    dispatch(programs, controlPoints, points, &secondControlPoints, &secondPoints);
 }
 
 void StencilEvaluator::dispatch(gl::ProgramCache& programs, const gl::Buffer& controlPoints, const gl::Buffer& points,
-                                const gl::Buffer& secondControlPoints, const gl::Buffer& secondPoints,
-                                int sets) const {
-    const auto& program = programs.get(kStencilEval);
+                                const gl::Buffer* secondControlPoints, const gl::Buffer* secondPoints) const {
+    const auto& program = programs.get(kStencilEval, secondPoints ? kSecondSet : 0);
     program.use();
     program.set("uBaseCount", baseCount_);
     program.set("uPointCount", pointCount_);
     controlPoints.bindStorage(SUBDFIT_SSBO_STENCIL_SOURCE);
-    secondControlPoints.bindStorage(SUBDFIT_SSBO_STENCIL_SECOND_SOURCE);
     offsets_.bindStorage(SUBDFIT_SSBO_STENCIL_OFFSETS);
     indices_.bindStorage(SUBDFIT_SSBO_STENCIL_INDICES);
     weights_.bindStorage(SUBDFIT_SSBO_STENCIL_WEIGHTS);
     points.bindStorage(SUBDFIT_SSBO_POINTS);
-    secondPoints.bindStorage(SUBDFIT_SSBO_SECOND_POINTS);
-    glDispatchCompute(gl::groupsOf(pointCount_, 128), GLuint(sets), 1);
+    if (secondPoints) {
+        secondControlPoints->bindStorage(SUBDFIT_SSBO_STENCIL_SECOND_SOURCE);
+        secondPoints->bindStorage(SUBDFIT_SSBO_SECOND_POINTS);
+    }
+    glDispatchCompute(gl::groupsOf(pointCount_, 128), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

@@ -16,14 +16,14 @@ public:
     gl::Buffer makePointBuffer() const { return gl::Buffer(GLsizeiptr(pointCount_) * 3 * sizeof(float)); }
 
     void evaluate(gl::ProgramCache& programs, const gl::Buffer& controlPoints, const gl::Buffer& points) const;
-    // Two sets in the one dispatch (a step's θ+ and θ−).
+    // Two sets in the one dispatch (a step's θ+ and θ−), each stencil read once for both.
     void evaluate(gl::ProgramCache& programs, const gl::Buffer& controlPoints, const gl::Buffer& points,
                   const gl::Buffer& secondControlPoints, const gl::Buffer& secondPoints) const;
 
 private:
-    // `sets` rows of work groups: 1 evaluates the first set only (the second's bindings unused).
+    // The second set only where both of its buffers are given.
     void dispatch(gl::ProgramCache& programs, const gl::Buffer& controlPoints, const gl::Buffer& points,
-                  const gl::Buffer& secondControlPoints, const gl::Buffer& secondPoints, int sets) const;
+                  const gl::Buffer* secondControlPoints, const gl::Buffer* secondPoints) const;
 
     int baseCount_, pointCount_;
     gl::Buffer offsets_, indices_, weights_;
