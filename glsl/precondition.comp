@@ -47,12 +47,16 @@ void main() {
         const int from = k & 1, to = from ^ 1;
         for (int v = int(gl_LocalInvocationIndex); v < uVertexCount; v += 256) {
             int begin = adjacencyOffsets[v], end = adjacencyOffsets[v + 1];
+            float neighbourSum[SUBDFIT_CHANNELS];
+            for (int c = 0; c < SUBDFIT_CHANNELS; ++c) neighbourSum[c] = 0.0;
+            for (int n = begin; n < end; ++n) {
+                int j = SUBDFIT_CHANNELS * adjacencyIndices[n];
+                for (int c = 0; c < SUBDFIT_CHANNELS; ++c) neighbourSum[c] += iterate[from][j + c];
+            }
             float scale = 1.0 / (1.0 + uLambda * float(end - begin));
             for (int c = 0; c < SUBDFIT_CHANNELS; ++c) {
-                float neighbourSum = 0.0;
-                for (int n = begin; n < end; ++n) neighbourSum += iterate[from][SUBDFIT_CHANNELS * adjacencyIndices[n] + c];
                 int i = SUBDFIT_CHANNELS * v + c;
-                iterate[to][i] = jacobi(iterate[from][i], gradient[i], neighbourSum, scale);
+                iterate[to][i] = jacobi(iterate[from][i], gradient[i], neighbourSum[c], scale);
             }
         }
         barrier();
@@ -67,12 +71,16 @@ void main() {
     int v = int(gl_GlobalInvocationID.x);
     if (v >= uVertexCount) return;
     int begin = adjacencyOffsets[v], end = adjacencyOffsets[v + 1];
+    float neighbourSum[SUBDFIT_CHANNELS];
+    for (int c = 0; c < SUBDFIT_CHANNELS; ++c) neighbourSum[c] = 0.0;
+    for (int k = begin; k < end; ++k) {
+        int j = SUBDFIT_CHANNELS * adjacencyIndices[k];
+        for (int c = 0; c < SUBDFIT_CHANNELS; ++c) neighbourSum[c] += smoothIn[j + c];
+    }
     float scale = 1.0 / (1.0 + uLambda * float(end - begin));
     for (int c = 0; c < SUBDFIT_CHANNELS; ++c) {
-        float neighbourSum = 0.0;
-        for (int k = begin; k < end; ++k) neighbourSum += smoothIn[SUBDFIT_CHANNELS * adjacencyIndices[k] + c];
         int i = SUBDFIT_CHANNELS * v + c;
-        smoothOut[i] = jacobi(smoothIn[i], gradient[i], neighbourSum, scale);
+        smoothOut[i] = jacobi(smoothIn[i], gradient[i], neighbourSum[c], scale);
     }
 }
 #endif
