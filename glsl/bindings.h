@@ -15,14 +15,11 @@
 #define SUBDFIT_SSBO_GROUP_MOMENT2 SUBDFIT_SSBO_THETA_PLUS
 
 // Subdivision tables (subdiv::PatchSet).
-#define SUBDFIT_SSBO_STENCIL_SOURCE 7   // control points the stencils read (θ or θ+)
 #define SUBDFIT_SSBO_STENCIL_OFFSETS 8
 #define SUBDFIT_SSBO_STENCIL_INDICES 9
 #define SUBDFIT_SSBO_STENCIL_WEIGHTS 10
 #define SUBDFIT_SSBO_POINTS 11          // base + refined + local points, 3 floats each
-// A second set evaluated in the same dispatch (θ− beside θ+).
-#define SUBDFIT_SSBO_STENCIL_SECOND_SOURCE 38
-#define SUBDFIT_SSBO_SECOND_POINTS 39
+#define SUBDFIT_SSBO_SECOND_POINTS 39  // a second set evaluated in the same dispatch (θ− beside θ+)
 #define SUBDFIT_SSBO_PATCH_INFO 12      // ivec4 {cv offset, patch type, param0, param1}
 #define SUBDFIT_SSBO_PATCH_CVS 13
 // The patches tessellated (render::PatchTessellation): each vertex's patch and domain point, the
@@ -92,6 +89,10 @@
 // as an image, read as a texture.
 #define SUBDFIT_IMAGE_HEIGHT_TILES 0
 #define SUBDFIT_UNIT_HEIGHT_TILES 13
+
+// The stencils' control points (θ, or θ+ and θ−), read as buffer textures (render/stencil_evaluator.h).
+#define SUBDFIT_UNIT_STENCIL_SOURCE 14
+#define SUBDFIT_UNIT_STENCIL_SECOND_SOURCE 15
 
 // Render target attachments.
 #define SUBDFIT_ATTACHMENT_COLOR 0

@@ -6,22 +6,23 @@
 
 layout(local_size_x = 128) in;
 
-layout(std430, binding = SUBDFIT_SSBO_STENCIL_SOURCE) readonly buffer Source { float source[]; };
+// The control points, a point per texel (RGB32F): one gather each, not three loads.
+layout(binding = SUBDFIT_UNIT_STENCIL_SOURCE) uniform samplerBuffer source;
 layout(std430, binding = SUBDFIT_SSBO_STENCIL_OFFSETS) readonly buffer Offsets { int stencilOffsets[]; };
 layout(std430, binding = SUBDFIT_SSBO_STENCIL_INDICES) readonly buffer Indices { int stencilIndices[]; };
 layout(std430, binding = SUBDFIT_SSBO_STENCIL_WEIGHTS) readonly buffer Weights { float stencilWeights[]; };
 layout(std430, binding = SUBDFIT_SSBO_POINTS) writeonly buffer Points { float points[]; };
 #ifdef SUBDFIT_SECOND_SET
-layout(std430, binding = SUBDFIT_SSBO_STENCIL_SECOND_SOURCE) readonly buffer SecondSource { float secondSource[]; };
+layout(binding = SUBDFIT_UNIT_STENCIL_SECOND_SOURCE) uniform samplerBuffer secondSource;
 layout(std430, binding = SUBDFIT_SSBO_SECOND_POINTS) writeonly buffer SecondPoints { float secondPoints[]; };
 #endif
 
 uniform int uBaseCount;
 uniform int uPointCount;
 
-vec3 sourcePoint(int i) { return vec3(source[3 * i], source[3 * i + 1], source[3 * i + 2]); }
+vec3 sourcePoint(int i) { return texelFetch(source, i).xyz; }
 #ifdef SUBDFIT_SECOND_SET
-vec3 secondSourcePoint(int i) { return vec3(secondSource[3 * i], secondSource[3 * i + 1], secondSource[3 * i + 2]); }
+vec3 secondSourcePoint(int i) { return texelFetch(secondSource, i).xyz; }
 #endif
 
 void main() {

@@ -1,6 +1,9 @@
 #include "gl/texture.h"
 
 #include <algorithm>
+#include <string>
+
+#include "util/error.h"
 
 namespace subdfit::gl {
 
@@ -34,6 +37,19 @@ Texture Texture::fromImage(const std::uint8_t* rgba, int width, int height, bool
     glTextureSubImage2D(id, 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
     glGenerateTextureMipmap(id);
     return t;
+}
+
+BufferTexture::BufferTexture(const Buffer& buffer, GLenum format) {
+    const GLsizeiptr texelBytes = format == GL_R32F ? 4 : format == GL_RG32F ? 8 : format == GL_RGB32F ? 12 : 16;
+    GLint most = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &most);
+    if (buffer.bytes() / texelBytes > most)
+        throw Error("a buffer of " + std::to_string(buffer.bytes() / texelBytes) +
+                    " texels is past this GL's largest buffer texture (" + std::to_string(most) + ")");
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &id);
+    handle_ = GlHandle<TextureTraits>(id);
+    glTextureBuffer(id, format, buffer.id());
 }
 
 Sampler::Sampler(GLenum wrapS, GLenum wrapT, bool nearest) {

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 
+#include "gl/buffer.h"
 #include "gl/gl_handle.h"
 
 namespace subdfit::gl {
@@ -27,6 +28,19 @@ private:
     GlHandle<TextureTraits> handle_;
     int width_ = 0, height_ = 0, layers_ = 0;
     GLenum format_ = 0;
+};
+
+// A buffer read as a texture (GL_TEXTURE_BUFFER): `texelFetch` of a samplerBuffer gathers a
+// texel of `format` (GL_RGB32F: a point of three floats) in one fetch, where an SSBO read is
+// one load per float. It views the buffer's storage; the buffer must outlive it.
+class BufferTexture {
+public:
+    BufferTexture(const Buffer& buffer, GLenum format);
+    GLuint id() const { return handle_.id(); }
+    void bind(GLuint unit) const { glBindTextureUnit(unit, id()); }
+
+private:
+    GlHandle<TextureTraits> handle_;
 };
 
 // Sampler state (DSA), move-only: how a texture unit filters and wraps.

@@ -1,7 +1,10 @@
 #include "render/stencil_evaluator.h"
 
 #include "bindings.h"
+#include <optional>
+
 #include "gl/dispatch.h"
+#include "gl/texture.h"
 
 namespace subdfit::render {
 
@@ -33,13 +36,16 @@ void StencilEvaluator::dispatch(gl::ProgramCache& programs, const gl::Buffer& co
     program.use();
     program.set("uBaseCount", baseCount_);
     program.set("uPointCount", pointCount_);
-    controlPoints.bindStorage(SUBDFIT_SSBO_STENCIL_SOURCE);
+    const gl::BufferTexture source(controlPoints, GL_RGB32F);
+    source.bind(SUBDFIT_UNIT_STENCIL_SOURCE);
     offsets_.bindStorage(SUBDFIT_SSBO_STENCIL_OFFSETS);
     indices_.bindStorage(SUBDFIT_SSBO_STENCIL_INDICES);
     weights_.bindStorage(SUBDFIT_SSBO_STENCIL_WEIGHTS);
     points.bindStorage(SUBDFIT_SSBO_POINTS);
+    std::optional<gl::BufferTexture> secondSource;
     if (secondPoints) {
-        secondControlPoints->bindStorage(SUBDFIT_SSBO_STENCIL_SECOND_SOURCE);
+        secondSource.emplace(*secondControlPoints, GL_RGB32F);
+        secondSource->bind(SUBDFIT_UNIT_STENCIL_SECOND_SOURCE);
         secondPoints->bindStorage(SUBDFIT_SSBO_SECOND_POINTS);
     }
     glDispatchCompute(gl::groupsOf(pointCount_, 128), 1, 1);
