@@ -93,6 +93,8 @@
 // The stencils' control points (θ, or θ+ and θ−), read as buffer textures (render/stencil_evaluator.h).
 #define SUBDFIT_UNIT_STENCIL_SOURCE 14
 #define SUBDFIT_UNIT_STENCIL_SECOND_SOURCE 15
+// The patches' points, read by the surface pass as a buffer texture (render/patch_renderer.h).
+#define SUBDFIT_UNIT_PATCH_POINTS 16
 
 // Render target attachments.
 #define SUBDFIT_ATTACHMENT_COLOR 0

@@ -1,7 +1,8 @@
 // A point of a cage's limit surface, displaced by the heights where the scene has them: P(s,t),
 // its shading normal, ∂P/∂u and ∂P/∂v (the normal map's tangent frame) and its ptex face and
 // (u, v). glsl/tessellate.comp evaluates it at every vertex of the tessellation.
-layout(std430, binding = SUBDFIT_SSBO_POINTS) readonly buffer Points { float points[]; };
+// The patches' points (render::StencilEvaluator), a point per texel: one gather each.
+layout(binding = SUBDFIT_UNIT_PATCH_POINTS) uniform samplerBuffer points;
 layout(std430, binding = SUBDFIT_SSBO_PATCH_INFO) readonly buffer PatchInfo { ivec4 patchInfo[]; };
 layout(std430, binding = SUBDFIT_SSBO_PATCH_CVS) readonly buffer PatchCvs { int patchCvs[]; };
 
@@ -26,7 +27,7 @@ float heightAt(int face, vec2 uv) {
 }
 #endif
 
-vec3 point(int i) { return vec3(points[3 * i], points[3 * i + 1], points[3 * i + 2]); }
+vec3 point(int i) { return texelFetch(points, i).xyz; }
 
 // OpenSubdiv's basis: B-spline with boundary masks for regular patches, Gregory for the end caps
 // around extraordinary vertices. Each pass holds patches of one kind (render::PatchRenderer), so

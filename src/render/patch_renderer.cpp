@@ -4,6 +4,7 @@
 
 #include "bindings.h"
 #include "gl/dispatch.h"
+#include "gl/texture.h"
 #include "render/raster_pass.h"
 
 namespace subdfit::render {
@@ -83,7 +84,8 @@ void PatchRenderer::evaluate(gl::ProgramCache& programs, const gl::Buffer& point
         displaced ? kTessellateDisplacement | (maps->limitShading ? kTessellateLimitShading : 0) : 0;
     patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);
     patchCvs_.bindStorage(SUBDFIT_SSBO_PATCH_CVS);
-    points.bindStorage(SUBDFIT_SSBO_POINTS);
+    const gl::BufferTexture pointTexture(points, GL_RGB32F);
+    pointTexture.bind(SUBDFIT_UNIT_PATCH_POINTS);
     samples_.bindStorage(SUBDFIT_SSBO_TESSELLATION_SAMPLES);
     surface.vertices.bindStorage(SUBDFIT_SSBO_SURFACE_VERTICES);
     if (displaced) {
