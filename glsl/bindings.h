@@ -44,24 +44,13 @@
 // Map parameter groups (per-face tiles of (T+1)² shared nodes, maps::TexelLayout).
 #define SUBDFIT_SSBO_FACE_NODES 23           // [ptex face][j][i] -> node
 #define SUBDFIT_SSBO_DISPLACEMENT 24         // height per node (θ, θ+ or θ− as the pass needs)
-#define SUBDFIT_SSBO_NORMAL_MAP 25           // tangent-space (x, y) per node
 #define SUBDFIT_SSBO_GRADIENT_DISPLACEMENT 26  // the map groups' sums of G (fixed point)
 #define SUBDFIT_SSBO_GRADIENT_NORMAL_MAP 27
 
 // Any group's fixed-point gradient sums (glsl/fixed_point.glsl), two uints per parameter.
 #define SUBDFIT_SSBO_GRADIENT_SUM 28
-// Appearance maps (on their own lattice, maps::MapParameters): sRGB base colour, 3 per node, and
-// (roughness, metallic), 2 per node.
-#define SUBDFIT_SSBO_BASE_COLOR 32
-#define SUBDFIT_SSBO_METALLIC_ROUGHNESS 33
-// With an atlas (surface/appearance_atlas.h): per ptex face its 4 corners' atlas coordinates.
+// With an appearance atlas (surface/appearance_atlas.h): per ptex face its 4 corners' atlas coordinates.
 #define SUBDFIT_SSBO_APPEARANCE_UVS 34
-// ... and the reference's normal texture carried on its texel grid unchanged
-// (SurfaceMaps::normalTexture); its occlusion and emission, carried on the appearance lattice
-// (the atlas's texel grid or the tiles).
-#define SUBDFIT_SSBO_ATLAS_NORMAL 35
-#define SUBDFIT_SSBO_CARRIED_OCCLUSION 36
-#define SUBDFIT_SSBO_CARRIED_EMISSIVE 37
 
 // The cage's tangential relaxation (fit/cage_relaxation.h).
 #define SUBDFIT_SSBO_RELAX_MODES 29           // per vertex: surface, crease or fixed
@@ -95,6 +84,17 @@
 #define SUBDFIT_UNIT_STENCIL_SECOND_SOURCE 15
 // The patches' points, read by the surface pass as a buffer texture (render/patch_renderer.h).
 #define SUBDFIT_UNIT_PATCH_POINTS 16
+
+// The map values the patch pass shades with, one texel per node (maps::MapParameters): the
+// normal map's tangent-space (x, y); on the appearance lattice sRGB base colour and (roughness,
+// metallic); and the reference's textures carried there unchanged (SurfaceMaps): with an atlas
+// its normal texture, and its occlusion and emission.
+#define SUBDFIT_UNIT_MAP_NORMAL 17
+#define SUBDFIT_UNIT_MAP_BASE_COLOR 18
+#define SUBDFIT_UNIT_MAP_METALLIC_ROUGHNESS 19
+#define SUBDFIT_UNIT_CARRIED_ATLAS_NORMAL 20
+#define SUBDFIT_UNIT_CARRIED_OCCLUSION 21
+#define SUBDFIT_UNIT_CARRIED_EMISSIVE 22
 
 // Render target attachments.
 #define SUBDFIT_ATTACHMENT_COLOR 0

@@ -18,7 +18,7 @@ layout(location = SUBDFIT_ATTACHMENT_FACE_ID) out int outFaceId;
 layout(location = SUBDFIT_ATTACHMENT_PATCH_UV) out vec2 outPatchUv;
 
 #ifdef SUBDFIT_NORMAL_MAP
-layout(std430, binding = SUBDFIT_SSBO_NORMAL_MAP) readonly buffer NormalMap { float normalMap[]; };
+layout(binding = SUBDFIT_UNIT_MAP_NORMAL) uniform samplerBuffer normalMap;
 
 // Tangent-space normal n_ts = normalize(x, y, 1) in the frame (T, B, N): T along ∂P/∂u made
 // orthogonal to N, B = N × T (flipped to agree with ∂P/∂v) -- the frame the exported glTF's
@@ -26,7 +26,7 @@ layout(std430, binding = SUBDFIT_SSBO_NORMAL_MAP) readonly buffer NormalMap { fl
 vec3 mappedNormal(vec3 N) {
     MapFootprint m = mapFootprint(tePtexFace, tePtexUv);
     vec2 t = vec2(0.0);
-    for (int k = 0; k < 4; ++k) t += m.weights[k] * vec2(normalMap[2 * m.nodes[k]], normalMap[2 * m.nodes[k] + 1]);
+    for (int k = 0; k < 4; ++k) t += m.weights[k] * texelFetch(normalMap, m.nodes[k]).xy;
     vec3 T = teTangentU - N * dot(N, teTangentU);
     if (dot(T, T) < 1e-20) return N;
     T = normalize(T);
@@ -37,7 +37,7 @@ vec3 mappedNormal(vec3 N) {
 #endif
 
 #ifdef SUBDFIT_ATLAS_NORMAL_TEXTURE
-layout(std430, binding = SUBDFIT_SSBO_ATLAS_NORMAL) readonly buffer AtlasNormal { float atlasNormal[]; };
+layout(binding = SUBDFIT_UNIT_CARRIED_ATLAS_NORMAL) uniform samplerBuffer atlasNormal;
 
 // The atlas's normal texture in the frame its coordinates give, as glsl/mesh.frag derives it for
 // the reference (a cotangent frame: T along +u, B along +v, the texture's green up the image),
@@ -58,8 +58,7 @@ vec3 atlasMappedNormal(vec3 N) {
     if (!(scale > 0.0)) return N;
     MapFootprint m = appearanceFootprint(tePtexFace, tePtexUv);
     vec3 t = vec3(0.0);
-    for (int k = 0; k < 4; ++k)
-        t += m.weights[k] * vec3(atlasNormal[3 * m.nodes[k]], atlasNormal[3 * m.nodes[k] + 1], atlasNormal[3 * m.nodes[k] + 2]);
+    for (int k = 0; k < 4; ++k) t += m.weights[k] * texelFetch(atlasNormal, m.nodes[k]).xyz;
     t = t * 2.0 - 1.0;
     return normalize(inversesqrt(scale) * (t.x * T - t.y * B) + t.z * N);
 }
@@ -67,16 +66,16 @@ vec3 atlasMappedNormal(vec3 N) {
 
 #ifdef SUBDFIT_MATERIAL
 #ifdef SUBDFIT_CARRIED_OCCLUSION
-layout(std430, binding = SUBDFIT_SSBO_CARRIED_OCCLUSION) readonly buffer CarriedOcclusion { float carriedOcclusion[]; };
+layout(binding = SUBDFIT_UNIT_CARRIED_OCCLUSION) uniform samplerBuffer carriedOcclusion;
 #endif
 #ifdef SUBDFIT_CARRIED_EMISSIVE
-layout(std430, binding = SUBDFIT_SSBO_CARRIED_EMISSIVE) readonly buffer CarriedEmissive { float carriedEmissive[]; };
+layout(binding = SUBDFIT_UNIT_CARRIED_EMISSIVE) uniform samplerBuffer carriedEmissive;
 #endif
 #ifdef SUBDFIT_BASE_COLOR_MAP
-layout(std430, binding = SUBDFIT_SSBO_BASE_COLOR) readonly buffer BaseColor { float baseColor[]; };
+layout(binding = SUBDFIT_UNIT_MAP_BASE_COLOR) uniform samplerBuffer baseColor;
 #endif
 #ifdef SUBDFIT_METALLIC_ROUGHNESS_MAP
-layout(std430, binding = SUBDFIT_SSBO_METALLIC_ROUGHNESS) readonly buffer MetallicRoughness { float metallicRoughness[]; };
+layout(binding = SUBDFIT_UNIT_MAP_METALLIC_ROUGHNESS) uniform samplerBuffer metallicRoughness;
 #endif
 
 // The fitted material: sRGB base colour and (roughness, metallic) bilinear between the nodes of
@@ -89,26 +88,23 @@ SurfacePoint surfacePoint() {
 #endif
 #ifdef SUBDFIT_BASE_COLOR_MAP
     vec3 c = vec3(0.0);
-    for (int k = 0; k < 4; ++k)
-        c += m.weights[k] * vec3(baseColor[3 * m.nodes[k]], baseColor[3 * m.nodes[k] + 1], baseColor[3 * m.nodes[k] + 2]);
+    for (int k = 0; k < 4; ++k) c += m.weights[k] * texelFetch(baseColor, m.nodes[k]).xyz;
     s.baseColor = srgbToLinear(clamp(c, 0.0, 1.0));
 #endif
 #ifdef SUBDFIT_METALLIC_ROUGHNESS_MAP
     vec2 rm = vec2(0.0);
-    for (int k = 0; k < 4; ++k)
-        rm += m.weights[k] * vec2(metallicRoughness[2 * m.nodes[k]], metallicRoughness[2 * m.nodes[k] + 1]);
+    for (int k = 0; k < 4; ++k) rm += m.weights[k] * texelFetch(metallicRoughness, m.nodes[k]).xy;
     rm = clamp(rm, 0.0, 1.0);
     s.roughness = rm.x;
     s.metallic = rm.y;
 #endif
 #ifdef SUBDFIT_CARRIED_OCCLUSION
     s.occlusion = 0.0;
-    for (int k = 0; k < 4; ++k) s.occlusion += m.weights[k] * carriedOcclusion[m.nodes[k]];
+    for (int k = 0; k < 4; ++k) s.occlusion += m.weights[k] * texelFetch(carriedOcclusion, m.nodes[k]).x;
 #endif
 #ifdef SUBDFIT_CARRIED_EMISSIVE
     vec3 e = vec3(0.0);
-    for (int k = 0; k < 4; ++k)
-        e += m.weights[k] * vec3(carriedEmissive[3 * m.nodes[k]], carriedEmissive[3 * m.nodes[k] + 1], carriedEmissive[3 * m.nodes[k] + 2]);
+    for (int k = 0; k < 4; ++k) e += m.weights[k] * texelFetch(carriedEmissive, m.nodes[k]).xyz;
     s.emissive = srgbToLinear(clamp(e, 0.0, 1.0));
 #endif
     return s;

@@ -16,13 +16,13 @@ layout(binding = 3) uniform sampler2D uTargetColor;
 layout(std430, binding = SUBDFIT_SSBO_DISPLACEMENT) readonly buffer Displacement { float displacement[]; };
 #endif
 #ifdef SUBDFIT_NORMAL_MAP
-layout(std430, binding = SUBDFIT_SSBO_NORMAL_MAP) readonly buffer NormalMap { float normalMap[]; };
+layout(binding = SUBDFIT_UNIT_MAP_NORMAL) uniform samplerBuffer normalMap;
 #endif
 #ifdef SUBDFIT_BASE_COLOR_MAP
-layout(std430, binding = SUBDFIT_SSBO_BASE_COLOR) readonly buffer BaseColor { float baseColor[]; };
+layout(binding = SUBDFIT_UNIT_MAP_BASE_COLOR) uniform samplerBuffer baseColor;
 #endif
 #ifdef SUBDFIT_METALLIC_ROUGHNESS_MAP
-layout(std430, binding = SUBDFIT_SSBO_METALLIC_ROUGHNESS) readonly buffer MetallicRoughness { float metallicRoughness[]; };
+layout(binding = SUBDFIT_UNIT_MAP_METALLIC_ROUGHNESS) uniform samplerBuffer metallicRoughness;
 #endif
 
 uniform int uMode;
@@ -91,7 +91,7 @@ void main() {
     else if (uMode == SUBDFIT_VIEW_NORMAL_MAP && face >= 0) {
         MapFootprint m = mapFootprint(face, uv);
         vec2 t = vec2(0.0);
-        for (int k = 0; k < 4; ++k) t += m.weights[k] * vec2(normalMap[2 * m.nodes[k]], normalMap[2 * m.nodes[k] + 1]);
+        for (int k = 0; k < 4; ++k) t += m.weights[k] * texelFetch(normalMap, m.nodes[k]).xy;
         c = vec3(0.5 + 0.5 * clamp(t * uScale, -1.0, 1.0), 1.0);  // the usual tangent-space colours
     }
 #endif
@@ -101,7 +101,7 @@ void main() {
         MapFootprint m = appearanceFootprint(face, uv);
         vec3 t = vec3(0.0);
         for (int k = 0; k < 4; ++k)
-            t += m.weights[k] * vec3(baseColor[3 * m.nodes[k]], baseColor[3 * m.nodes[k] + 1], baseColor[3 * m.nodes[k] + 2]);
+            t += m.weights[k] * texelFetch(baseColor, m.nodes[k]).xyz;
         c = clamp(t, 0.0, 1.0);
     }
 #endif
@@ -110,7 +110,7 @@ void main() {
         // Roughness in green, metallic in blue: glTF's metallicRoughnessTexture packing.
         MapFootprint m = appearanceFootprint(face, uv);
         vec2 t = vec2(0.0);
-        for (int k = 0; k < 4; ++k) t += m.weights[k] * vec2(metallicRoughness[2 * m.nodes[k]], metallicRoughness[2 * m.nodes[k] + 1]);
+        for (int k = 0; k < 4; ++k) t += m.weights[k] * texelFetch(metallicRoughness, m.nodes[k]).xy;
         c = vec3(0.0, clamp(t, 0.0, 1.0));
     }
 #endif

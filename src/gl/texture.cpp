@@ -52,6 +52,11 @@ BufferTexture::BufferTexture(const Buffer& buffer, GLenum format) {
     glTextureBuffer(id, format, buffer.id());
 }
 
+BufferTexture BufferTexture::ofFloats(const Buffer& buffer, int channels) {
+    constexpr GLenum kFormats[] = {GL_R32F, GL_RG32F, GL_RGB32F, GL_RGBA32F};
+    return BufferTexture(buffer, kFormats[std::clamp(channels, 1, 4) - 1]);
+}
+
 Sampler::Sampler(GLenum wrapS, GLenum wrapT, bool nearest) {
     GLuint id = 0;
     glCreateSamplers(1, &id);

@@ -36,6 +36,8 @@ private:
 class BufferTexture {
 public:
     BufferTexture(const Buffer& buffer, GLenum format);
+    // `channels` (1-4) 32-bit floats per texel.
+    static BufferTexture ofFloats(const Buffer& buffer, int channels);
     GLuint id() const { return handle_.id(); }
     void bind(GLuint unit) const { glBindTextureUnit(unit, id()); }
 

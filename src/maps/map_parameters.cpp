@@ -74,6 +74,18 @@ MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, 
         for (size_t k = 0; k < values.size(); k += 2) values[k] = 0.5f;  // (roughness, metallic)
         metallicRoughness_->write(values);
     }
+    for (const auto* g : {normalMap_.get(), baseColor_.get(), metallicRoughness_.get()}) {
+        if (!g) continue;
+        const int channels = g->count() / layoutOf(*g).nodeCount;
+        views_.emplace(g, NodeViews{gl::BufferTexture::ofFloats(g->theta, channels),
+                                    gl::BufferTexture::ofFloats(g->thetaPlus, channels),
+                                    gl::BufferTexture::ofFloats(g->thetaMinus, channels)});
+    }
+}
+
+const gl::BufferTexture& MapParameters::viewOf(const optim::ParameterGroup& group, ParameterVersion v) const {
+    const NodeViews& views = views_.at(&group);
+    return v == ParameterVersion::Plus ? views.plus : v == ParameterVersion::Minus ? views.minus : views.current;
 }
 
 std::vector<optim::ParameterGroup*> MapParameters::groups() {
@@ -98,9 +110,11 @@ void MapParameters::setAppearanceUvs(const std::vector<glm::vec2>& cornerUvs) {
     appearanceUvBuffer_.upload(appearanceUvs_.data(), GLsizeiptr(appearanceUvs_.size() * sizeof(glm::vec2)));
 }
 
-void MapParameters::Carried::set(const std::vector<float>& v) {
+void MapParameters::Carried::set(const std::vector<float>& v, int channels) {
     values = v;
+    view.reset();  // before the buffer it views
     buffer = v.empty() ? nullptr : std::make_unique<gl::Buffer>(gl::Buffer::fromVector(v));
+    if (buffer) view = std::make_unique<gl::BufferTexture>(gl::BufferTexture::ofFloats(*buffer, channels));
 }
 
 void MapParameters::setCarriedTextures(const surface::SurfaceMaps& maps) {
@@ -109,9 +123,9 @@ void MapParameters::setCarriedTextures(const surface::SurfaceMaps& maps) {
     SUBDFIT_CHECK(maps.normalTexture.empty() || maps.normalTexture.size() == 3 * texels);
     SUBDFIT_CHECK(maps.occlusion.empty() || maps.occlusion.size() == texels);
     SUBDFIT_CHECK(maps.emissive.empty() || maps.emissive.size() == 3 * texels);
-    normalTexture_.set(maps.normalTexture);
-    occlusion_.set(maps.occlusion);
-    emissive_.set(maps.emissive);
+    normalTexture_.set(maps.normalTexture, 3);
+    occlusion_.set(maps.occlusion, 1);
+    emissive_.set(maps.emissive, 3);
 }
 
 void MapParameters::readCarriedTextures(surface::SurfaceMaps& maps) const {
@@ -133,13 +147,12 @@ render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::Para
         auto of = [&](const optim::ParameterGroup& g) { return &g == perturbed ? v : ParameterVersion::Current; };
         bindFaceNodes();
         if (displacement_) version(*displacement_, of(*displacement_)).bindStorage(SUBDFIT_SSBO_DISPLACEMENT);
-        if (normalMap_) version(*normalMap_, of(*normalMap_)).bindStorage(SUBDFIT_SSBO_NORMAL_MAP);
-        if (baseColor_) version(*baseColor_, of(*baseColor_)).bindStorage(SUBDFIT_SSBO_BASE_COLOR);
-        if (metallicRoughness_)
-            version(*metallicRoughness_, of(*metallicRoughness_)).bindStorage(SUBDFIT_SSBO_METALLIC_ROUGHNESS);
-        if (normalTexture_.buffer) normalTexture_.buffer->bindStorage(SUBDFIT_SSBO_ATLAS_NORMAL);
-        if (occlusion_.buffer) occlusion_.buffer->bindStorage(SUBDFIT_SSBO_CARRIED_OCCLUSION);
-        if (emissive_.buffer) emissive_.buffer->bindStorage(SUBDFIT_SSBO_CARRIED_EMISSIVE);
+        if (normalMap_) viewOf(*normalMap_, of(*normalMap_)).bind(SUBDFIT_UNIT_MAP_NORMAL);
+        if (baseColor_) viewOf(*baseColor_, of(*baseColor_)).bind(SUBDFIT_UNIT_MAP_BASE_COLOR);
+        if (metallicRoughness_) viewOf(*metallicRoughness_, of(*metallicRoughness_)).bind(SUBDFIT_UNIT_MAP_METALLIC_ROUGHNESS);
+        if (normalTexture_.view) normalTexture_.view->bind(SUBDFIT_UNIT_CARRIED_ATLAS_NORMAL);
+        if (occlusion_.view) occlusion_.view->bind(SUBDFIT_UNIT_CARRIED_OCCLUSION);
+        if (emissive_.view) emissive_.view->bind(SUBDFIT_UNIT_CARRIED_EMISSIVE);
     };
     return {.displacement = effects_.displacement,
             .normalMap = effects_.normalMap,

@@ -4,11 +4,13 @@
 // lattice, and the appearance maps (base colour, sRGB RGB per node; roughness and metallic per
 // node) on a finer one of their own. Only the groups the scene asks for exist: a run without
 // maps has no buffers, no shader defines and no passes for them.
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "gl/program.h"
+#include "gl/texture.h"
 #include "maps/map_effects.h"
 #include "surface/surface_maps.h"
 #include "surface/texel_layout.h"
@@ -86,16 +88,24 @@ private:
     gl::Buffer faceNodes_;  // layout_'s table, appearanceLayout_'s, then layout_'s halo
     std::vector<glm::vec2> appearanceUvs_;  // with an atlas: 4 per ptex face
     gl::Buffer appearanceUvBuffer_;
-    // A carried texture's values and their buffer (none while empty).
+    // A carried texture's values, their buffer and its view as the patch pass reads it (none
+    // while empty).
     struct Carried {
         std::vector<float> values;
         std::unique_ptr<gl::Buffer> buffer;
-        void set(const std::vector<float>& v);
+        std::unique_ptr<gl::BufferTexture> view;
+        void set(const std::vector<float>& v, int channels);
     };
     Carried normalTexture_, occlusion_, emissive_;
     optim::Adjacency adjacency_, appearanceAdjacency_;
     gl::Buffer scratch_;  // Jacobi ping-pong partner, sized for the largest group
     std::unique_ptr<optim::ParameterGroup> displacement_, normalMap_, baseColor_, metallicRoughness_;
+    // θ, θ+ and θ− of each group the patch pass shades with, as it reads them: one fetch a node.
+    struct NodeViews {
+        gl::BufferTexture current, plus, minus;
+    };
+    std::map<const optim::ParameterGroup*, NodeViews> views_;
+    const gl::BufferTexture& viewOf(const optim::ParameterGroup& group, ParameterVersion v) const;
 };
 
 }  // namespace subdfit::maps
