@@ -16,8 +16,6 @@
 
 // Subdivision tables (subdiv::PatchSet).
 #define SUBDFIT_SSBO_STENCIL_OFFSETS 8
-#define SUBDFIT_SSBO_STENCIL_INDICES 9
-#define SUBDFIT_SSBO_STENCIL_WEIGHTS 10
 #define SUBDFIT_SSBO_POINTS 11          // base + refined + local points, 3 floats each
 #define SUBDFIT_SSBO_SECOND_POINTS 39  // a second set evaluated in the same dispatch (θ− beside θ+)
 #define SUBDFIT_SSBO_PATCH_INFO 12      // ivec4 {cv offset, patch type, param0, param1}
@@ -82,6 +80,7 @@
 // The stencils' control points (θ, or θ+ and θ−), read as buffer textures (render/stencil_evaluator.h).
 #define SUBDFIT_UNIT_STENCIL_SOURCE 14
 #define SUBDFIT_UNIT_STENCIL_SECOND_SOURCE 15
+#define SUBDFIT_UNIT_STENCIL_ENTRIES 23  // (source index, weight's bits) per stencil entry
 // The patches' points, read by the surface pass as a buffer texture (render/patch_renderer.h).
 #define SUBDFIT_UNIT_PATCH_POINTS 16
 

@@ -1,7 +1,7 @@
 // Every point the patches use, from the control points: base points are copied, refined and
 // local points are Σ_k w_k x_k over base vertices (OpenSubdiv stencils, factorized to level 0).
 // SUBDFIT_SECOND_SET: a second set of control points beside the first (θ− beside θ+), summed in
-// the same loop, so a step's two sets read each stencil's indices and weights once.
+// the same loop, so a step's two sets read each stencil's entries once.
 #include "bindings.h"
 
 layout(local_size_x = 128) in;
@@ -9,8 +9,8 @@ layout(local_size_x = 128) in;
 // The control points, a point per texel (RGB32F): one gather each, not three loads.
 layout(binding = SUBDFIT_UNIT_STENCIL_SOURCE) uniform samplerBuffer source;
 layout(std430, binding = SUBDFIT_SSBO_STENCIL_OFFSETS) readonly buffer Offsets { int stencilOffsets[]; };
-layout(std430, binding = SUBDFIT_SSBO_STENCIL_INDICES) readonly buffer Indices { int stencilIndices[]; };
-layout(std430, binding = SUBDFIT_SSBO_STENCIL_WEIGHTS) readonly buffer Weights { float stencilWeights[]; };
+// Each stencil entry's (source index, weight's bits) in one texel (RG32UI): one fetch.
+layout(binding = SUBDFIT_UNIT_STENCIL_ENTRIES) uniform usamplerBuffer stencilEntries;
 layout(std430, binding = SUBDFIT_SSBO_POINTS) writeonly buffer Points { float points[]; };
 #ifdef SUBDFIT_SECOND_SET
 layout(binding = SUBDFIT_UNIT_STENCIL_SECOND_SOURCE) uniform samplerBuffer secondSource;
@@ -40,10 +40,12 @@ void main() {
     } else {
         int s = i - uBaseCount;
         for (int k = stencilOffsets[s]; k < stencilOffsets[s + 1]; ++k) {
-            int from = stencilIndices[k];
-            p += stencilWeights[k] * sourcePoint(from);
+            uvec2 entry = texelFetch(stencilEntries, k).xy;
+            int from = int(entry.x);
+            float weight = uintBitsToFloat(entry.y);
+            p += weight * sourcePoint(from);
 #ifdef SUBDFIT_SECOND_SET
-            q += stencilWeights[k] * secondSourcePoint(from);
+            q += weight * secondSourcePoint(from);
 #endif
         }
     }

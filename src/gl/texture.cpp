@@ -39,8 +39,22 @@ Texture Texture::fromImage(const std::uint8_t* rgba, int width, int height, bool
     return t;
 }
 
+namespace {
+
+GLsizeiptr texelBytesOf(GLenum format) {
+    switch (format) {
+        case GL_R32F: return 4;
+        case GL_RG32F: case GL_RG32UI: return 8;
+        case GL_RGB32F: return 12;
+        case GL_RGBA32F: return 16;
+        default: throw Error("no buffer texture of format " + std::to_string(format));
+    }
+}
+
+}  // namespace
+
 BufferTexture::BufferTexture(const Buffer& buffer, GLenum format) {
-    const GLsizeiptr texelBytes = format == GL_R32F ? 4 : format == GL_RG32F ? 8 : format == GL_RGB32F ? 12 : 16;
+    const GLsizeiptr texelBytes = texelBytesOf(format);
     GLint most = 0;
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &most);
     if (buffer.bytes() / texelBytes > most)

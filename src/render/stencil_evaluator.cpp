@@ -1,7 +1,10 @@
 #include "render/stencil_evaluator.h"
 
 #include "bindings.h"
+#include <cstdint>
+#include <cstring>
 #include <optional>
+#include <vector>
 
 #include "gl/dispatch.h"
 #include "gl/texture.h"
@@ -9,6 +12,17 @@
 namespace subdfit::render {
 
 namespace {
+
+// (source index, the weight's bits) per entry, as one RG32UI texel.
+std::vector<std::uint32_t> interleavedEntries(const subdiv::PatchSet& patches) {
+    std::vector<std::uint32_t> entries(2 * patches.stencilIndices.size());
+    for (size_t k = 0; k < patches.stencilIndices.size(); ++k) {
+        entries[2 * k] = std::uint32_t(patches.stencilIndices[k]);
+        std::memcpy(&entries[2 * k + 1], &patches.stencilWeights[k], sizeof(float));
+    }
+    return entries;
+}
+
 const gl::ProgramSpec kStencilEval{"stencil_eval", {{GL_COMPUTE_SHADER, "stencil_eval.comp"}}, {"SUBDFIT_SECOND_SET"}};
 constexpr gl::VariantBits kSecondSet = 1u << 0;
 }  // namespace
@@ -17,8 +31,8 @@ StencilEvaluator::StencilEvaluator(const subdiv::PatchSet& patches)
     : baseCount_(patches.baseVertexCount),
       pointCount_(patches.pointCount),
       offsets_(gl::Buffer::fromVector(patches.stencilOffsets)),
-      indices_(gl::Buffer::fromVector(patches.stencilIndices)),
-      weights_(gl::Buffer::fromVector(patches.stencilWeights)) {}
+      entries_(gl::Buffer::fromVector(interleavedEntries(patches))),
+      entryTexture_(entries_, GL_RG32UI) {}
 
 void StencilEvaluator::evaluate(gl::ProgramCache& programs, const gl::Buffer& controlPoints,
                                 const gl::Buffer& points) const {
@@ -39,8 +53,7 @@ void StencilEvaluator::dispatch(gl::ProgramCache& programs, const gl::Buffer& co
     const gl::BufferTexture source(controlPoints, GL_RGB32F);
     source.bind(SUBDFIT_UNIT_STENCIL_SOURCE);
     offsets_.bindStorage(SUBDFIT_SSBO_STENCIL_OFFSETS);
-    indices_.bindStorage(SUBDFIT_SSBO_STENCIL_INDICES);
-    weights_.bindStorage(SUBDFIT_SSBO_STENCIL_WEIGHTS);
+    entryTexture_.bind(SUBDFIT_UNIT_STENCIL_ENTRIES);
     points.bindStorage(SUBDFIT_SSBO_POINTS);
     std::optional<gl::BufferTexture> secondSource;
     if (secondPoints) {

@@ -3,6 +3,7 @@
 // patches read. One dispatch, no readback.
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
+#include "gl/texture.h"
 #include "subdiv/patch_set.h"
 
 namespace subdfit::render {
@@ -26,7 +27,8 @@ private:
                   const gl::Buffer* secondControlPoints, const gl::Buffer* secondPoints) const;
 
     int baseCount_, pointCount_;
-    gl::Buffer offsets_, indices_, weights_;
+    gl::Buffer offsets_, entries_;
+    gl::BufferTexture entryTexture_;
 };
 
 }  // namespace subdfit::render
