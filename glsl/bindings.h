@@ -18,8 +18,6 @@
 #define SUBDFIT_SSBO_STENCIL_OFFSETS 8
 #define SUBDFIT_SSBO_POINTS 11          // base + refined + local points, 3 floats each
 #define SUBDFIT_SSBO_SECOND_POINTS 39  // a second set evaluated in the same dispatch (θ− beside θ+)
-#define SUBDFIT_SSBO_PATCH_INFO 12      // ivec4 {cv offset, patch type, param0, param1}
-#define SUBDFIT_SSBO_PATCH_CVS 13
 // The patches tessellated (render::PatchTessellation): each vertex's patch and domain point, the
 // vertices evaluated there (position, normal, tangents, ptex face and (u, v)), the quads
 // between them and the triangles they are split into.
@@ -83,6 +81,8 @@
 #define SUBDFIT_UNIT_STENCIL_ENTRIES 23  // (source index, weight's bits) per stencil entry
 // The patches' points, read by the surface pass as a buffer texture (render/patch_renderer.h).
 #define SUBDFIT_UNIT_PATCH_POINTS 16
+#define SUBDFIT_UNIT_PATCH_INFO 24  // ivec4 {cv offset, patch type, param0, param1} per patch
+#define SUBDFIT_UNIT_PATCH_CVS 25   // the patches' control point indices, four a texel
 
 // The map values the patch pass shades with, one texel per node (maps::MapParameters): the
 // normal map's tangent-space (x, y); on the appearance lattice sRGB base colour and (roughness,

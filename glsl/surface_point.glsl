@@ -3,8 +3,10 @@
 // (u, v). glsl/tessellate.comp evaluates it at every vertex of the tessellation.
 // The patches' points (render::StencilEvaluator), a point per texel: one gather each.
 layout(binding = SUBDFIT_UNIT_PATCH_POINTS) uniform samplerBuffer points;
-layout(std430, binding = SUBDFIT_SSBO_PATCH_INFO) readonly buffer PatchInfo { ivec4 patchInfo[]; };
-layout(std430, binding = SUBDFIT_SSBO_PATCH_CVS) readonly buffer PatchCvs { int patchCvs[]; };
+// Per patch {cv offset, patch type, param0, param1}; its control points' indices four a texel
+// (a patch's 16 or 20 start at a multiple of four): a fetch each instead of a load per int.
+layout(binding = SUBDFIT_UNIT_PATCH_INFO) uniform isamplerBuffer patchInfo;
+layout(binding = SUBDFIT_UNIT_PATCH_CVS) uniform isamplerBuffer patchCvs;
 
 #ifdef SUBDFIT_DISPLACEMENT
 // The heights, one tile of (T + 3)² texels per ptex face: its nodes and the ring across its edges
@@ -135,10 +137,13 @@ void displace(inout SurfacePoint p, HeightSample d) {
 
 // At (s, t) of patch `patchIndex` (render::PatchRenderer's patch order).
 SurfacePoint surfacePoint(int patchIndex, vec2 st) {
-    ivec4 info = patchInfo[patchIndex];
+    ivec4 info = texelFetch(patchInfo, patchIndex);
     OsdPatchParam param = OsdPatchParamInit(info.z, info.w, 0.0);
     vec3 cvs[SUBDFIT_PATCH_CVS];
-    for (int k = 0; k < SUBDFIT_PATCH_CVS; ++k) cvs[k] = point(patchCvs[info.x + k]);
+    for (int k = 0; k < SUBDFIT_PATCH_CVS / 4; ++k) {
+        ivec4 four = texelFetch(patchCvs, info.x / 4 + k);
+        for (int c = 0; c < 4; ++c) cvs[4 * k + c] = point(four[c]);
+    }
     SurfacePoint p = limitPoint(param, st, patchBasis(param, st), cvs);
 #ifdef SUBDFIT_DISPLACEMENT
     displace(p, heightSample(p.ptexFace, p.ptexUv));

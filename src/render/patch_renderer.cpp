@@ -6,6 +6,7 @@
 #include "gl/dispatch.h"
 #include "gl/texture.h"
 #include "render/raster_pass.h"
+#include "util/error.h"
 
 namespace subdfit::render {
 namespace {
@@ -56,7 +57,11 @@ PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel, Sha
       tessLevel_(crackFreeTessLevel(tessLevel, patches.maxPatchDepth)),
       shading_(shading),
       patchInfo_(gl::Buffer::fromVector(patches.patchInfo)),
-      patchCvs_(gl::Buffer::fromVector(patches.patchCvIndices)) {
+      patchCvs_(gl::Buffer::fromVector(patches.patchCvIndices)),
+      patchInfoTexture_(patchInfo_, GL_RGBA32I),
+      patchCvTexture_(patchCvs_, GL_RGBA32I) {
+    // The surface pass fetches a patch's control points four at a time (16 or 20 of them).
+    for (const auto& info : patches.patchInfo) SUBDFIT_CHECK(info.x % 4 == 0);
     const PatchTessellation tessellation = tessellatePatches(patches, tessLevel_);
     runs_ = tessellation.runs;
     vertexCount_ = int(tessellation.samples.size());
@@ -82,8 +87,8 @@ void PatchRenderer::evaluate(gl::ProgramCache& programs, const gl::Buffer& point
     const bool displaced = maps && maps->displacement;
     const gl::VariantBits mapBits =
         displaced ? kTessellateDisplacement | (maps->limitShading ? kTessellateLimitShading : 0) : 0;
-    patchInfo_.bindStorage(SUBDFIT_SSBO_PATCH_INFO);
-    patchCvs_.bindStorage(SUBDFIT_SSBO_PATCH_CVS);
+    patchInfoTexture_.bind(SUBDFIT_UNIT_PATCH_INFO);
+    patchCvTexture_.bind(SUBDFIT_UNIT_PATCH_CVS);
     const gl::BufferTexture pointTexture(points, GL_RGB32F);
     pointTexture.bind(SUBDFIT_UNIT_PATCH_POINTS);
     samples_.bindStorage(SUBDFIT_SSBO_TESSELLATION_SAMPLES);

@@ -11,6 +11,7 @@
 
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
+#include "gl/texture.h"
 #include "gl/vertex_array.h"
 #include "render/camera.h"
 #include "render/height_tiles.h"
@@ -68,6 +69,7 @@ private:
     std::vector<SampleRun> runs_;
     int vertexCount_, quadCount_;
     gl::Buffer patchInfo_, patchCvs_, samples_, quads_;
+    gl::BufferTexture patchInfoTexture_, patchCvTexture_;  // as the surface pass reads them
     gl::VertexArray vertexArray_;
     // evaluate()'s scratch: the heights it displaces by, laid out for its pass.
     mutable std::optional<HeightTiles> heightTiles_;
