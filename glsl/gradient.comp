@@ -55,8 +55,9 @@ uniform int uTargetLayer;
 uniform uint uCounter;
 uniform uint uSeed;
 uniform float uEpsilon;
+#ifdef SUBDFIT_MEASURE_LOSS
 uniform float uLossScale;  // 1 / (pixels × views), so the loss is a per-pixel mean
-uniform int uMeasureLoss;  // 0: skip the loss (most steps only need the gradient)
+#endif
 uniform int uFaceCount;    // ptex faces: the pairs' sums follow the faces'
 
 // The sum of faces a < b that share a vertex (after the faces' own, in a's sorted list); -1 if
@@ -111,7 +112,9 @@ void main() {
     // Background in both renders: both colours are the clear colour, so Δ = 0 exactly. Only the
     // loss, when it is being measured this step, still needs the target.
     bool covered = fp >= 0 || fm >= 0;
-    if (!covered && uMeasureLoss == 0) return;
+#ifndef SUBDFIT_MEASURE_LOSS
+    if (!covered) return;
+#endif
 
     vec3 target = texelFetch(targets, ivec3(pixel, uTargetLayer), 0).rgb;
     vec3 ePlus = plus.rgb - target;
@@ -139,8 +142,10 @@ void main() {
         for (int k = 0; k < 2 && sums[k] >= 0; ++k) addFaceDelta(uint(sums[k]), scaledDelta);
 #endif
     }
+#ifdef SUBDFIT_MEASURE_LOSS
     // The loss goes to one of 256 slots by lane: a single float taking every pixel would
     // serialise, and a shared-memory reduction costs llvmpipe more in barriers than it saves.
     float pixelLoss = 0.5 * (fPlus + fMinus);
-    if (uMeasureLoss != 0 && pixelLoss != 0.0) addLoss(gl_LocalInvocationIndex, pixelLoss * uLossScale);
+    if (pixelLoss != 0.0) addLoss(gl_LocalInvocationIndex, pixelLoss * uLossScale);
+#endif
 }

@@ -15,11 +15,13 @@ namespace {
 
 using gl::groupsOf;
 
-// One variant for the vertices' turns and one per texel group's channel count.
+// One variant for the vertices' turns and one per texel group's channel count; each with the
+// loss measured or not (most steps do not, and llvmpipe would run its code masked at every pixel).
 const gl::ProgramSpec kGradient{"gradient",
                                 {{GL_COMPUTE_SHADER, "gradient.comp"}},
-                                {"SUBDFIT_TEXELS", "SUBDFIT_FULL_IMAGE", "SUBDFIT_TEXELS_IN_ATLAS"}};
-constexpr gl::VariantBits kGradientTexels = 1u << 0, kGradientFullImage = 1u << 1, kGradientInAtlas = 1u << 2;
+                                {"SUBDFIT_TEXELS", "SUBDFIT_FULL_IMAGE", "SUBDFIT_TEXELS_IN_ATLAS", "SUBDFIT_MEASURE_LOSS"}};
+constexpr gl::VariantBits kGradientTexels = 1u << 0, kGradientFullImage = 1u << 1, kGradientInAtlas = 1u << 2,
+                          kGradientLoss = 1u << 3;
 const gl::ProgramSpec kScatterSums{"scatter_sums", {{GL_COMPUTE_SHADER, "scatter_sums.comp"}}};
 const gl::ProgramSpec kScatterVertices{"scatter_vertices", {{GL_COMPUTE_SHADER, "scatter_vertices.comp"}}, {"SUBDFIT_FULL_IMAGE"}};
 
@@ -69,17 +71,17 @@ void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group
     const bool texels = group.kind() != optim::GroupKind::Vertices;
     SUBDFIT_CHECK(!texels || in.maps);
     SUBDFIT_CHECK(in.plus->faceInAlpha() && in.minus->faceInAlpha());
+    const gl::VariantBits lossBit = in.measureLoss ? kGradientLoss : 0;
     const auto& program =
-        texels ? programs.get(kGradient, kGradientTexels | (in.maps->inAtlas(group) ? kGradientInAtlas : 0),
+        texels ? programs.get(kGradient, kGradientTexels | (in.maps->inAtlas(group) ? kGradientInAtlas : 0) | lossBit,
                               {{"SUBDFIT_TEXEL_CHANNELS", std::to_string(group.count() / in.maps->layoutOf(group).nodeCount)}})
-               : programs.get(kGradient, in.fullImage ? kGradientFullImage : 0);
+               : programs.get(kGradient, (in.fullImage ? kGradientFullImage : 0) | lossBit);
     program.use();
     program.set("uTargetLayer", in.targetLayer);
     program.set("uCounter", in.counter);
     program.set("uSeed", in.seed);
     program.set("uEpsilon", group.settings().epsilon);
-    program.set("uLossScale", in.lossScale);
-    program.set("uMeasureLoss", in.measureLoss ? 1 : 0);
+    if (in.measureLoss) program.set("uLossScale", in.lossScale);
     if (!texels && !in.fullImage) program.set("uFaceCount", faces.faceCount);
     glBindTextureUnit(SUBDFIT_UNIT_COLOR_PLUS, in.plus->color().id());
     glBindTextureUnit(SUBDFIT_UNIT_COLOR_MINUS, in.minus->color().id());
