@@ -78,22 +78,22 @@
 // The stencils' control points (θ, or θ+ and θ−), read as buffer textures (render/stencil_evaluator.h).
 #define SUBDFIT_UNIT_STENCIL_SOURCE 14
 #define SUBDFIT_UNIT_STENCIL_SECOND_SOURCE 15
-#define SUBDFIT_UNIT_STENCIL_ENTRIES 23  // (source index, weight's bits) per stencil entry
+#define SUBDFIT_UNIT_STENCIL_ENTRIES 16  // (source index, weight's bits) per stencil entry
 // The patches' points, read by the surface pass as a buffer texture (render/patch_renderer.h).
-#define SUBDFIT_UNIT_PATCH_POINTS 16
-#define SUBDFIT_UNIT_PATCH_INFO 24  // ivec4 {cv offset, patch type, param0, param1} per patch
-#define SUBDFIT_UNIT_PATCH_CVS 25   // the patches' control point indices, four a texel
+#define SUBDFIT_UNIT_PATCH_POINTS 17
+#define SUBDFIT_UNIT_PATCH_INFO 18  // ivec4 {cv offset, patch type, param0, param1} per patch
+#define SUBDFIT_UNIT_PATCH_CVS 19   // the patches' control point indices, four a texel
 
 // The map values the patch pass shades with, one texel per node (maps::MapParameters): the
 // normal map's tangent-space (x, y); on the appearance lattice sRGB base colour and (roughness,
 // metallic); and the reference's textures carried there unchanged (SurfaceMaps): with an atlas
 // its normal texture, and its occlusion and emission.
-#define SUBDFIT_UNIT_MAP_NORMAL 17
-#define SUBDFIT_UNIT_MAP_BASE_COLOR 18
-#define SUBDFIT_UNIT_MAP_METALLIC_ROUGHNESS 19
-#define SUBDFIT_UNIT_CARRIED_ATLAS_NORMAL 20
-#define SUBDFIT_UNIT_CARRIED_OCCLUSION 21
-#define SUBDFIT_UNIT_CARRIED_EMISSIVE 22
+#define SUBDFIT_UNIT_MAP_NORMAL 20
+#define SUBDFIT_UNIT_MAP_BASE_COLOR 21
+#define SUBDFIT_UNIT_MAP_METALLIC_ROUGHNESS 22
+#define SUBDFIT_UNIT_CARRIED_ATLAS_NORMAL 23
+#define SUBDFIT_UNIT_CARRIED_OCCLUSION 24
+#define SUBDFIT_UNIT_CARRIED_EMISSIVE 25
 
 // Render target attachments.
 #define SUBDFIT_ATTACHMENT_COLOR 0
