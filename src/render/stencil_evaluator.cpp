@@ -1,11 +1,11 @@
 #include "render/stencil_evaluator.h"
 
-#include "bindings.h"
 #include <cstdint>
 #include <cstring>
 #include <optional>
 #include <vector>
 
+#include "bindings.h"
 #include "gl/dispatch.h"
 #include "gl/texture.h"
 
@@ -25,6 +25,7 @@ std::vector<std::uint32_t> interleavedEntries(const subdiv::PatchSet& patches) {
 
 const gl::ProgramSpec kStencilEval{"stencil_eval", {{GL_COMPUTE_SHADER, "stencil_eval.comp"}}, {"SUBDFIT_SECOND_SET"}};
 constexpr gl::VariantBits kSecondSet = 1u << 0;
+
 }  // namespace
 
 StencilEvaluator::StencilEvaluator(const subdiv::PatchSet& patches)
