@@ -25,8 +25,7 @@
 #define SUBDFIT_SSBO_SURFACE_VERTICES 41
 #define SUBDFIT_SSBO_TESSELLATION_QUADS 42
 #define SUBDFIT_SSBO_SURFACE_TRIANGLES 43
-#define SUBDFIT_SSBO_FACE_PAIR_OFFSETS 14  // ptex face a -> the faces b > a sharing a base vertex (CSR)
-#define SUBDFIT_SSBO_FACE_PAIRS 15
+#define SUBDFIT_SSBO_PAIR_SECOND 15   // each pair of ptex faces a < b sharing a base vertex: its b
 #define SUBDFIT_SSBO_ADJACENCY_OFFSETS 16    // cage vertex -> neighbours (CSR)
 #define SUBDFIT_SSBO_ADJACENCY_INDICES 17
 #define SUBDFIT_SSBO_LOSS 18            // 256 float slots whose sum is the mean per-pixel loss
@@ -34,7 +33,7 @@
 #define SUBDFIT_SSBO_FACE_DELTA 20      // Σ Δ_p/(2ε) per ptex face, then per pair of them (fixed point)
 #define SUBDFIT_SSBO_FACE_VERTEX_OFFSETS 21  // ptex face -> the base vertices reaching it, sorted (CSR)
 #define SUBDFIT_SSBO_FACE_VERTICES 22
-#define SUBDFIT_SSBO_PAIR_FIRST 45           // each pair's first face (its second: FACE_PAIRS)
+#define SUBDFIT_SSBO_PAIR_FIRST 45           // and its a (sge/face_pairs.h)
 #define SUBDFIT_SSBO_VERTEX_DELTA 46         // per base vertex, the sums of FACE_DELTA it is in (fixed point)
 
 // Map parameter groups (per-face tiles of (T+1)² shared nodes, maps::TexelLayout).
@@ -62,6 +61,8 @@
 #define SUBDFIT_UNIT_TARGET 4
 #define SUBDFIT_UNIT_UV_PLUS 5
 #define SUBDFIT_UNIT_UV_MINUS 6
+#define SUBDFIT_UNIT_PAIR_REGIONS 26  // ptex face a -> (first slot, log2 slot count) of its pairs' hash
+#define SUBDFIT_UNIT_PAIR_SLOTS 27    // (b, pair index) per slot, b = −1 where empty
 
 // Texture units of a reference's material (render/mesh_renderer.h).
 #define SUBDFIT_UNIT_BASE_COLOR 8

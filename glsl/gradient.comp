@@ -22,8 +22,9 @@ layout(binding = SUBDFIT_UNIT_COLOR_PLUS) uniform sampler2D colorPlus;
 layout(binding = SUBDFIT_UNIT_COLOR_MINUS) uniform sampler2D colorMinus;
 layout(binding = SUBDFIT_UNIT_TARGET) uniform sampler2DArray targets;
 
-layout(std430, binding = SUBDFIT_SSBO_FACE_PAIR_OFFSETS) readonly buffer PairOffsets { int facePairOffsets[]; };
-layout(std430, binding = SUBDFIT_SSBO_FACE_PAIRS) readonly buffer Pairs { int facePairs[]; };
+// The pairs of faces that share a vertex, hashed by their second face (sge/face_pairs.h).
+layout(binding = SUBDFIT_UNIT_PAIR_REGIONS) uniform isamplerBuffer pairRegions;
+layout(binding = SUBDFIT_UNIT_PAIR_SLOTS) uniform isamplerBuffer pairSlots;
 // Gradient terms in fixed point, so that a run repeats exactly; the loss is only reported.
 SUBDFIT_DECLARE_FIXED_ACCUMULATOR(Gradient, SUBDFIT_SSBO_GRADIENT_SUM, gradient, addGradient)
 SUBDFIT_DECLARE_FIXED_ACCUMULATOR(FaceDelta, SUBDFIT_SSBO_FACE_DELTA, faceDelta, addFaceDelta)
@@ -60,16 +61,19 @@ uniform float uLossScale;  // 1 / (pixels × views), so the loss is a per-pixel 
 #endif
 uniform int uFaceCount;    // ptex faces: the pairs' sums follow the faces'
 
-// The sum of faces a < b that share a vertex (after the faces' own, in a's sorted list); -1 if
-// none. A binary search: a face of a dense cage pairs with over a hundred others.
+uint pairSlotOf(int b, int bits) { return (uint(b) * 2654435769u) >> uint(32 - bits); }
+
+// The sum of faces a < b that share a vertex (the pairs' follow the faces'), or -1: a's slots
+// probed from b's own to b or an empty one, which is never far (they are at most half full).
 int pairSum(int a, int b) {
-    int low = facePairOffsets[a], high = facePairOffsets[a + 1];
-    while (low < high) {
-        int middle = (low + high) / 2;
-        if (facePairs[middle] < b) low = middle + 1;
-        else high = middle;
+    ivec2 region = texelFetch(pairRegions, a).xy;  // (first slot, log2 of the slot count)
+    uint mask = (1u << uint(region.y)) - 1u;
+    for (uint slot = pairSlotOf(b, region.y), probe = 0u; probe <= mask; slot = (slot + 1u) & mask, ++probe) {
+        ivec2 entry = texelFetch(pairSlots, region.x + int(slot)).xy;
+        if (entry.x == b) return uFaceCount + entry.y;
+        if (entry.x < 0) break;
     }
-    return low < facePairOffsets[a + 1] && facePairs[low] == b ? uFaceCount + low : -1;
+    return -1;
 }
 
 #ifdef SUBDFIT_TEXELS

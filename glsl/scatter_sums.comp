@@ -11,7 +11,7 @@ layout(local_size_x = 64) in;
 layout(std430, binding = SUBDFIT_SSBO_FACE_DELTA) buffer FaceDelta { uint faceDelta[]; };
 layout(std430, binding = SUBDFIT_SSBO_FACE_VERTEX_OFFSETS) readonly buffer FaceOffsets { int faceVertexOffsets[]; };
 layout(std430, binding = SUBDFIT_SSBO_FACE_VERTICES) readonly buffer FaceVertices { int faceVertices[]; };
-layout(std430, binding = SUBDFIT_SSBO_FACE_PAIRS) readonly buffer Pairs { int facePairs[]; };
+layout(std430, binding = SUBDFIT_SSBO_PAIR_SECOND) readonly buffer PairSecond { int pairSecond[]; };
 layout(std430, binding = SUBDFIT_SSBO_PAIR_FIRST) readonly buffer PairFirst { int pairFirst[]; };
 layout(std430, binding = SUBDFIT_SSBO_VERTEX_DELTA) buffer VertexDelta { uint vertexDelta[]; };
 
@@ -33,7 +33,7 @@ void main() {
     faceDelta[2 * k + 1] = 0u;
     bool pair = k >= uFaceCount;
     int a = pair ? pairFirst[k - uFaceCount] : k;
-    int b = pair ? facePairs[k - uFaceCount] : a;
+    int b = pair ? pairSecond[k - uFaceCount] : a;
     // The two sorted vertex lists walked together: each vertex of the union once (a face's
     // sum walks its one list twice over, in step).
     int i = faceVertexOffsets[a], iEnd = faceVertexOffsets[a + 1];

@@ -35,6 +35,7 @@ private:
 // one load per float. It views the buffer's storage; the buffer must outlive it.
 class BufferTexture {
 public:
+    BufferTexture() = default;
     BufferTexture(const Buffer& buffer, GLenum format);
     // `channels` (1-4) 32-bit floats per texel.
     static BufferTexture ofFloats(const Buffer& buffer, int channels);

@@ -8,6 +8,7 @@
 #include "gl/dispatch.h"
 #include "maps/map_parameters.h"
 #include "optim/updates.h"
+#include "sge/face_pairs.h"
 #include "util/error.h"
 
 namespace subdfit::sge {
@@ -30,38 +31,16 @@ const gl::ProgramSpec kScatterVertices{"scatter_vertices", {{GL_COMPUTE_SHADER, 
 FaceVertexTable::FaceVertexTable(const std::vector<int>& offsetsOf, const std::vector<int>& verticesOf,
                                  int vertexCount_)
     : faceCount(int(offsetsOf.size()) - 1), vertexCount(vertexCount_) {
-    // Each vertex's faces, to find the faces that share one with a given face.
-    std::vector<int> vertexFaceOffsets(size_t(vertexCount) + 1, 0), vertexFaces(verticesOf.size());
-    for (int v : verticesOf) ++vertexFaceOffsets[size_t(v) + 1];
-    for (size_t v = 1; v < vertexFaceOffsets.size(); ++v) vertexFaceOffsets[v] += vertexFaceOffsets[v - 1];
-    std::vector<int> fill(vertexFaceOffsets.begin(), vertexFaceOffsets.end() - 1);
-    for (int f = 0; f < faceCount; ++f)
-        for (int k = offsetsOf[size_t(f)]; k < offsetsOf[size_t(f) + 1]; ++k)
-            vertexFaces[size_t(fill[size_t(verticesOf[size_t(k)])]++)] = f;
-    // The pairs, in CSR by their first face: the faces after it that reach one of its vertices.
-    std::vector<int> pairOffsetsOf{0}, pairFacesOf, pairFirstOf;
-    std::vector<int> pairedWith(size_t(faceCount), -1);
-    for (int a = 0; a < faceCount; ++a) {
-        for (int k = offsetsOf[size_t(a)]; k < offsetsOf[size_t(a) + 1]; ++k) {
-            const int v = verticesOf[size_t(k)];
-            for (int j = vertexFaceOffsets[size_t(v)]; j < vertexFaceOffsets[size_t(v) + 1]; ++j) {
-                const int b = vertexFaces[size_t(j)];
-                if (b > a && pairedWith[size_t(b)] != a) {
-                    pairedWith[size_t(b)] = a;
-                    pairFacesOf.push_back(b);
-                }
-            }
-        }
-        std::sort(pairFacesOf.begin() + pairOffsetsOf.back(), pairFacesOf.end());
-        pairFirstOf.resize(pairFacesOf.size(), a);
-        pairOffsetsOf.push_back(int(pairFacesOf.size()));
-    }
-    pairCount = int(pairFacesOf.size());
+    const FacePairs pairs = findFacePairs(offsetsOf, verticesOf, vertexCount);
+    pairCount = int(pairs.first.size());
     faceOffsets = gl::Buffer::fromVector(offsetsOf);
     faceVertices = gl::Buffer::fromVector(verticesOf);
-    pairOffsets = gl::Buffer::fromVector(pairOffsetsOf);
-    pairFaces = gl::Buffer::fromVector(pairFacesOf);
-    pairFirst = gl::Buffer::fromVector(pairFirstOf);
+    pairFirst = gl::Buffer::fromVector(pairs.first);
+    pairSecond = gl::Buffer::fromVector(pairs.second);
+    pairRegions = gl::Buffer::fromVector(pairs.regions);
+    pairSlots = gl::Buffer::fromVector(pairs.slots);
+    pairRegionsView = gl::BufferTexture(pairRegions, GL_RG32I);
+    pairSlotsView = gl::BufferTexture(pairSlots, GL_RG32I);
     faceDelta = gl::Buffer(GLsizeiptr(std::max(1, faceCount + pairCount)) * 2 * sizeof(std::uint32_t));
     vertexDelta = gl::Buffer(GLsizeiptr(std::max(1, vertexCount)) * 2 * sizeof(std::uint32_t));
 }
@@ -86,8 +65,8 @@ void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group
     glBindTextureUnit(SUBDFIT_UNIT_COLOR_PLUS, in.plus->color().id());
     glBindTextureUnit(SUBDFIT_UNIT_COLOR_MINUS, in.minus->color().id());
     glBindTextureUnit(SUBDFIT_UNIT_TARGET, in.targetArray);
-    faces.pairOffsets.bindStorage(SUBDFIT_SSBO_FACE_PAIR_OFFSETS);
-    faces.pairFaces.bindStorage(SUBDFIT_SSBO_FACE_PAIRS);
+    faces.pairRegionsView.bind(SUBDFIT_UNIT_PAIR_REGIONS);
+    faces.pairSlotsView.bind(SUBDFIT_UNIT_PAIR_SLOTS);
     group.gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_SUM);
     loss.bindStorage(SUBDFIT_SSBO_LOSS);
     faces.faceDelta.bindStorage(SUBDFIT_SSBO_FACE_DELTA);
@@ -115,7 +94,7 @@ void scatterFaceDeltas(gl::ProgramCache& programs, optim::ParameterGroup& group,
         sums.set("uSumCount", faces.faceCount + faces.pairCount);
         faces.faceOffsets.bindStorage(SUBDFIT_SSBO_FACE_VERTEX_OFFSETS);
         faces.faceVertices.bindStorage(SUBDFIT_SSBO_FACE_VERTICES);
-        faces.pairFaces.bindStorage(SUBDFIT_SSBO_FACE_PAIRS);
+        faces.pairSecond.bindStorage(SUBDFIT_SSBO_PAIR_SECOND);
         faces.pairFirst.bindStorage(SUBDFIT_SSBO_PAIR_FIRST);
         glDispatchCompute(groupsOf(faces.faceCount + faces.pairCount, 64), 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

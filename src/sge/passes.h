@@ -7,6 +7,7 @@
 
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
+#include "gl/texture.h"
 #include "render/render_target.h"
 #include "optim/parameter_group.h"
 
@@ -22,8 +23,9 @@ namespace subdfit::sge {
 struct FaceVertexTable {
     FaceVertexTable(const std::vector<int>& faceOffsets, const std::vector<int>& faceVertices, int vertexCount);
     gl::Buffer faceOffsets, faceVertices;  // ptex face -> its base vertices
-    gl::Buffer pairOffsets, pairFaces;     // ptex face a -> the faces b > a sharing a vertex; pair k's sum is faceCount + k
-    gl::Buffer pairFirst;                  // pair k's face a
+    gl::Buffer pairFirst, pairSecond;      // pair k's faces a < b (sge/face_pairs.h); its sum is faceCount + k
+    gl::Buffer pairRegions, pairSlots;     // the pairs hashed by b in runs of slots per face a
+    gl::BufferTexture pairRegionsView, pairSlotsView;  // how G reads them
     gl::Buffer faceDelta;                  // one fixed-point sum (two uints) per ptex face, then per pair
     gl::Buffer vertexDelta;                // one fixed-point sum per base vertex: the sums that include it
     int faceCount, pairCount, vertexCount;
