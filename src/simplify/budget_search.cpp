@@ -266,6 +266,9 @@ struct Findings {
     StageSeconds phases;  // where the search's seconds went
     // Map bytes a cage face costs, by (map choice, resolution, bits), as last measured.
     std::map<std::tuple<size_t, int, int>, double> mapBytesPerFace;
+    // Each appearance's (by its index) bytes a cage face cost on the last cage that baked it,
+    // at the lowest quality, and that cage's faces.
+    std::map<size_t, std::pair<double, int>> appearanceBytesPerFace;
     bool moreBitsPay = true;  // until a rung's extra bits fail to lower its loss
 };
 
@@ -393,6 +396,9 @@ struct Bare {
 // budget: each doubling of the texels adds more bytes than the one before it (it adds four times
 // the texels), so the last bytes plus the last increase are the least the next can cost. The
 // prediction is read at the lowest quality there is, where the ones before it were judged.
+// Nor is one baked that a larger cage predicts over the budget by kPredictedOver: a smaller cage's
+// appearance costs at least its faces' share of a larger one's (its faces are larger, its tiles
+// or atlas charts hold more detail each, and an atlas's texture does not shrink with the faces).
 std::vector<Bare> judgeBare(const SearchInputs& in, Findings& found, const TriedCage& cage,
                             const std::vector<AppearanceBakeOptions>& appearances) {
     std::vector<Bare> bare;
@@ -400,14 +406,21 @@ std::vector<Bare> judgeBare(const SearchInputs& in, Findings& found, const Tried
     const auto endKind = [&](size_t& a) {
         while (a + 1 < appearances.size() && (appearances[a + 1].atlas > 0) == (appearances[a].atlas > 0)) ++a;
     };
+    const int faces = cage.world->faceCount();
+    const auto largerCagePredictsOver = [&](size_t a) {
+        const auto measured = found.appearanceBytesPerFace.find(a);
+        return measured != found.appearanceBytesPerFace.end() && measured->second.second >= faces &&
+               measured->second.first * faces > kPredictedOver * double(in.search.budget);
+    };
     for (size_t a = 0; a < appearances.size(); ++a) {
         if (a > 0 && (appearances[a].atlas > 0) != (appearances[a - 1].atlas > 0)) kindBytes.clear();
-        if (kindBytes.size() >= 2 && 2 * kindBytes.back() > kindBytes[kindBytes.size() - 2] + in.search.budget) {
+        if ((kindBytes.size() >= 2 && 2 * kindBytes.back() > kindBytes[kindBytes.size() - 2] + in.search.budget) ||
+            largerCagePredictsOver(a)) {
             if (in.say) {
                 const bool atlas = appearances[a].atlas > 0;
                 char line[96];
                 std::snprintf(line, sizeof line, atlas ? "%6d faces, appearance atlas %d" : "%6d faces, appearance T=%d",
-                              cage.world->faceCount(), atlas ? appearances[a].atlas : appearances[a].resolution);
+                              faces, atlas ? appearances[a].atlas : appearances[a].resolution);
                 in.say(std::string(line) + ": predicted over budget, not baked");
             }
             endKind(a);
@@ -426,8 +439,12 @@ std::vector<Bare> judgeBare(const SearchInputs& in, Findings& found, const Tried
             appearance.quality = qualities[q];
             c = judge(in, found, cage.world, {}, {}, appearance);
         }
-        if (appearance.quality == qualities.back()) kindBytes.push_back(c.bytes);
-        else kindBytes.clear();  // fitted at a higher quality: what the lowest costs is not known
+        if (appearance.quality == qualities.back()) {
+            kindBytes.push_back(c.bytes);
+            if (withAppearance) found.appearanceBytesPerFace[a] = {double(c.bytes) / faces, faces};
+        } else {
+            kindBytes.clear();  // fitted at a higher quality: what the lowest costs is not known
+        }
         if (fits(in.search, c)) {
             bare.push_back({appearances[a].atlas > 0, std::move(appearance), c});
             continue;
