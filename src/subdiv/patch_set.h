@@ -56,9 +56,10 @@ struct PatchSet {
     }
 };
 
-// How deep a cage is isolated for drawing: 3, or shallower on a dense cage with no tag sharper
-// than 2 (semi-sharp creases need one level per unit of sharpness to be drawn as OpenSubdiv
-// evaluates them): 2 over kDenseCageFaces faces, 1 over kVeryDenseCageFaces. Each face of such a
+// How deep a cage is isolated for drawing: 3, or shallower on a dense cage with no semi-sharp tag
+// sharper than 2 (semi-sharp creases need one level per unit of sharpness to be drawn as
+// OpenSubdiv evaluates them; infinitely sharp ones need none): 2 over kDenseCageFaces faces, 1
+// over kVeryDenseCageFaces. Each face of such a
 // cage spans a few pixels at 256², where the shallower end caps move the surface by a fraction of
 // one (docs/measurements.md), and it is drawn with half the segments per face edge
 // (fit::CageFitter) and fewer, larger patches: a step several times faster.

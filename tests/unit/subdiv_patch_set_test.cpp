@@ -2,6 +2,7 @@
 // its own patch table, stencils with control vertices, its own patch lookup), against known
 // Catmull-Clark values, and against brute force.
 #include <gtest/gtest.h>
+#include <opensubdiv/sdc/crease.h>
 
 #include <opensubdiv/far/stencilTable.h>
 #include <opensubdiv/far/stencilTableFactory.h>
@@ -582,6 +583,10 @@ TEST(SubdivPatchSet, DenseCagesAreDrawnShallowerWithinAFractionOfAPixel) {
     EXPECT_EQ(drawingIsolationLevel(creased), 2);  // a crease of sharpness 1.5 needs the second level
     creased.tags.creases.back().sharpness = 2.5f;
     EXPECT_EQ(drawingIsolationLevel(creased), 3);  // one that needs the third level keeps it
+    // Infinitely sharp tags never decay: no level resolves them, and none is asked for.
+    creased.tags.creases.back().sharpness = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE;
+    creased.tags.corners.push_back({.vertex = triangles.faceIndices[5], .sharpness = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE});
+    EXPECT_EQ(drawingIsolationLevel(creased), 1);
 
     // What the shallower levels change is a fraction of a pixel at 256², where an edge spans about
     // 5 pixels on an 8 000-face cage (so ~6 at kVeryDenseCageFaces, ~10 at kDenseCageFaces): at
