@@ -80,6 +80,20 @@ ImageHeader checkedHeader(const OIIO::ImageSpec& spec, const std::string& name) 
     return checkedHeader(ImageHeader{spec.width, spec.height, spec.nchannels}, name);
 }
 
+// `image`'s first `channels` channels at width × height, resized where that differs.
+std::vector<std::uint8_t> pixelsAt(const DecodedImage& image, int width, int height, int channels) {
+    SUBDFIT_CHECK(width >= 1 && height >= 1 && image.width >= 1 && image.height >= 1);
+    OIIO::ImageBuf source(OIIO::ImageSpec(image.width, image.height, 4, OIIO::TypeDesc::UINT8),
+                          const_cast<std::uint8_t*>(image.rgba.data()));
+    OIIO::ImageBuf resized = width == image.width && height == image.height
+                                 ? source
+                                 : OIIO::ImageBufAlgo::resize(source, "", 0.0f, OIIO::ROI(0, width, 0, height, 0, 1, 0, 4));
+    std::vector<std::uint8_t> pixels(size_t(width) * size_t(height) * size_t(channels));
+    if (!resized.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, channels), OIIO::TypeDesc::UINT8, pixels.data()))
+        throw Error("cannot resize an image: " + resized.geterror());
+    return pixels;
+}
+
 }  // namespace
 
 ImageHeader readImageHeader(const void* data, std::size_t size, const std::string& name) {
@@ -134,19 +148,15 @@ DecodedImage decodeImage(const void* data, std::size_t size, const std::string& 
     return image;
 }
 
+DecodedImage resizedImage(const DecodedImage& image, int width, int height) {
+    return {width, height, pixelsAt(image, width, height, 4)};
+}
+
 std::vector<std::uint8_t> encodeImage(const DecodedImage& image, int width, int height, ImageFormat format, int quality,
                                       bool fullChroma) {
-    SUBDFIT_CHECK(width >= 1 && height >= 1 && image.width >= 1 && image.height >= 1);
     const bool jpeg = format == ImageFormat::Jpeg;
     const int channels = jpeg ? 3 : 4;  // JPEG has no alpha
-    OIIO::ImageBuf source(OIIO::ImageSpec(image.width, image.height, 4, OIIO::TypeDesc::UINT8),
-                          const_cast<std::uint8_t*>(image.rgba.data()));
-    OIIO::ImageBuf resized = width == image.width && height == image.height
-                                 ? source
-                                 : OIIO::ImageBufAlgo::resize(source, "", 0.0f, OIIO::ROI(0, width, 0, height, 0, 1, 0, 4));
-    std::vector<std::uint8_t> pixels(size_t(width) * size_t(height) * size_t(channels));
-    if (!resized.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, channels), OIIO::TypeDesc::UINT8, pixels.data()))
-        throw Error("cannot resize an image: " + resized.geterror());
+    const std::vector<std::uint8_t> pixels = pixelsAt(image, width, height, channels);
     std::vector<unsigned char> bytes;
     OIIO::Filesystem::IOVecOutput proxy(bytes);
     const char* name = jpeg ? "image.jpg" : "image.png";

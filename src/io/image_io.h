@@ -64,6 +64,9 @@ private:
 // `nameForErrors` for an unknown format, a corrupt or truncated image, or too many pixels.
 DecodedImage decodeImage(const void* data, std::size_t size, const std::string& nameForErrors, PixelBudget* budget = nullptr);
 
+// `image` resized (filtered: OpenImageIO's default for the ratio) to width × height.
+DecodedImage resizedImage(const DecodedImage& image, int width, int height);
+
 // `image` resized (filtered) to width × height and encoded as JPEG (at `quality`, 1..100;
 // chroma halved unless `fullChroma`) or PNG: what a pipeline ships when it shrinks an asset's
 // textures. Throws subdfit::Error.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <functional>
+#include <map>
 
 #include "export/textured_glb.h"
 #include "fit/fit_scene.h"
@@ -21,25 +22,62 @@ namespace {
 
 constexpr int kTextureDivisors[] = {1, 2, 4, 8, 16, 32, 64};
 
-// The images of `set` at 1/divisor of their size: JPEG unless they have alpha.
-std::vector<exporter::EncodedImage> encodedAt(const mesh::MaterialSet& set, int divisor, std::uintmax_t& bytes) {
-    std::vector<exporter::EncodedImage> out;
-    bytes = 0;
-    for (const mesh::Image& image : set.images) {
-        if (image.rgba.empty()) {
-            out.push_back({});
-            continue;
+// The reference's textures at 1/1, 1/2, 1/4, ... of their size as shipped (JPEG unless they
+// have alpha), each level resized from the one above it: a 2048² texture resized straight to 32²
+// filters 64² of its texels for every one it writes, seconds a level.
+class ScaledTextures {
+public:
+    explicit ScaledTextures(const mesh::MaterialSet& set) : set_(set) {
+        for (const mesh::Image& image : set.images) {
+            bool opaque = true;
+            for (size_t p = 3; p < image.rgba.size() && opaque; p += 4) opaque = image.rgba[p] == 255;
+            opaque_.push_back(opaque);
         }
-        bool opaque = true;
-        for (size_t p = 3; p < image.rgba.size() && opaque; p += 4) opaque = image.rgba[p] == 255;
-        const io::DecodedImage decoded{image.width, image.height, image.rgba};
-        const auto format = opaque ? io::ImageFormat::Jpeg : io::ImageFormat::Png;
-        out.push_back({io::encodeImage(decoded, std::max(1, image.width / divisor), std::max(1, image.height / divisor), format),
-                       opaque ? "image/jpeg" : "image/png"});
-        bytes += out.back().bytes.size();
     }
-    return out;
-}
+
+    // The images at 1/divisor (a power of two) of their size, and their bytes in all.
+    const std::vector<exporter::EncodedImage>& at(int divisor, std::uintmax_t& bytes) {
+        auto& level = encoded_[divisor];
+        if (level.images.empty()) {
+            const std::vector<io::DecodedImage>& images = decoded(divisor);
+            for (size_t i = 0; i < images.size(); ++i) {
+                if (images[i].rgba.empty()) {
+                    level.images.push_back({});
+                    continue;
+                }
+                const auto format = opaque_[i] ? io::ImageFormat::Jpeg : io::ImageFormat::Png;
+                level.images.push_back({io::encodeImage(images[i], images[i].width, images[i].height, format),
+                                        opaque_[i] ? "image/jpeg" : "image/png"});
+                level.bytes += level.images.back().bytes.size();
+            }
+        }
+        bytes = level.bytes;
+        return level.images;
+    }
+
+private:
+    const std::vector<io::DecodedImage>& decoded(int divisor) {
+        if (auto it = decoded_.find(divisor); it != decoded_.end()) return it->second;
+        std::vector<io::DecodedImage> level;
+        if (divisor == 1) {
+            for (const mesh::Image& image : set_.images) level.push_back({image.width, image.height, image.rgba});
+        } else {
+            for (const io::DecodedImage& above : decoded(divisor / 2))
+                level.push_back(above.rgba.empty() ? io::DecodedImage{}
+                                                   : io::resizedImage(above, std::max(1, above.width / 2), std::max(1, above.height / 2)));
+        }
+        return decoded_[divisor] = std::move(level);
+    }
+
+    struct Encoded {
+        std::vector<exporter::EncodedImage> images;
+        std::uintmax_t bytes = 0;
+    };
+    const mesh::MaterialSet& set_;
+    std::vector<bool> opaque_;
+    std::map<int, std::vector<io::DecodedImage>> decoded_;
+    std::map<int, Encoded> encoded_;
+};
 
 // The texture scale and vertex coding search both baselines share: `ship(encoding, images,
 // triangles)` writes the candidate and returns its bytes. Each texture scale, at the starting
@@ -54,14 +92,15 @@ using ShipFunction = std::function<std::uintmax_t(const VertexEncoding& encoding
                                                   const std::vector<exporter::EncodedImage>& images, int triangles)>;
 
 Shipped bestScale(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
-                  const std::filesystem::path& output, const VertexEncoding& start, const ShipFunction& ship) {
+                  const std::filesystem::path& output, ScaledTextures& textures, const VertexEncoding& start,
+                  const ShipFunction& ship) {
     const int most = scene.reference.faceCount();
     std::optional<Shipped> best;
     double bestPsnr = -1.0;
     for (int divisor : kTextureDivisors) {
         throwIfStopRequested();
         Shipped candidate{.divisor = divisor, .choice = {}};
-        const auto images = encodedAt(*scene.reference.materials, divisor, candidate.textureBytes);
+        const auto& images = textures.at(divisor, candidate.textureBytes);
         if (candidate.textureBytes >= budget) continue;
         candidate.triangles = mostWithinBudget(kFewestTriangles, most, budget, [&](int triangles) {
             return candidate.bytes = ship(start, images, triangles);
@@ -82,7 +121,7 @@ Shipped bestScale(gl::ProgramCache& programs, const fit::FitScene& scene, std::u
         best = Shipped{.divisor = kTextureDivisors[std::size(kTextureDivisors) - 1], .choice = {}};
         best->triangles = kFewestTriangles;
     }
-    const auto images = encodedAt(*scene.reference.materials, best->divisor, best->textureBytes);
+    const auto& images = textures.at(best->divisor, best->textureBytes);
     best->choice = bestEncoding(programs, scene, budget, most, output, [&](const VertexEncoding& encoding, int triangles) {
         return ship(encoding, images, triangles);
     }, start, best->triangles);
@@ -163,7 +202,7 @@ std::uintmax_t writeWholeTextured(const fit::FitScene& scene, const std::filesys
     mesh::PolygonMesh world = scene.reference;
     world.positions = scene.frame.toWorld(world.positions);
     return exporter::writeTexturedGlb(path, world, mesh::shadingNormals(scene.reference),
-                                      encodedAt(*scene.reference.materials, 1, textureBytes), exporter::DracoBits{})
+                                      ScaledTextures(*scene.reference.materials).at(1, textureBytes), exporter::DracoBits{})
         .bytes;
 }
 
@@ -171,7 +210,8 @@ Quality texturedDecimationBaseline(gl::ProgramCache& programs, const fit::FitSce
                                    const BaselineSettings& settings) {
     const auto output = settings.dir / "decimated.glb";
     Decimations decimations(scene.reference, decimateTextured);
-    const Shipped shipped = bestScale(programs, scene, budget, output, {.positionBits = 14, .normals = true},
+    ScaledTextures textures(*scene.reference.materials);
+    const Shipped shipped = bestScale(programs, scene, budget, output, textures, {.positionBits = 14, .normals = true},
                                       [&](const VertexEncoding& encoding, const auto& images, int triangles) {
         throwIfStopRequested();
         mesh::PolygonMesh decimated = decimations.at(triangles);
@@ -210,10 +250,11 @@ std::optional<Quality> texturedGltfpackBaseline(gl::ProgramCache& programs, cons
         return runGltfpack(*gltfpack, input, output, double(triangles) / double(scene.reference.faceCount()), encoding, flags);
     };
     const VertexEncoding start{.positionBits = 14, .normals = true, .normalBits = kGltfpackNormalBits};
-    Shipped shipped = bestScale(programs, scene, budget, output, start, ship);
+    ScaledTextures textures(*scene.reference.materials);
+    Shipped shipped = bestScale(programs, scene, budget, output, textures, start, ship);
     if (shipped.bytes > budget) {  // as the plain baseline: -sa when -si alone cannot get there
         flags.push_back("-sa");
-        shipped = bestScale(programs, scene, budget, output, start, ship);
+        shipped = bestScale(programs, scene, budget, output, textures, start, ship);
     }
     std::filesystem::remove(input);
     Quality q = scored(programs, scene, output, shipped, budget, settings);
