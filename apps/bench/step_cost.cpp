@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <utility>
 
 #include "bench_commands.h"
 #include "bench_common.h"
@@ -195,6 +196,28 @@ CountedPass countFitLoop(gl::ProgramCache& programs, const mesh::PolygonMesh& ca
     return {"fit loop (mean per step)", counter.take(), double(kSteps)};
 }
 
+const gl::ProgramSpec kEmptyPass{"empty_pass", {{GL_COMPUTE_SHADER, "empty_pass.comp"}}};
+
+// What a dispatch and the barrier after it cost by themselves: an empty one-group pass, `count` in
+// a row, per pass (µs, wall and the process's CPU time). On llvmpipe most of it is handing the
+// work to its threads and waiting for them, whatever the work.
+std::pair<double, double> emptyDispatchMicroseconds(gl::ProgramCache& programs, int count) {
+    const auto& program = programs.get(kEmptyPass);
+    program.use();
+    const gl::Buffer counter(sizeof(std::uint32_t));
+    counter.bindStorage(0);
+    glFinish();
+    const auto wallStart = std::chrono::steady_clock::now();
+    const double cpuStart = processCpuSeconds();
+    for (int k = 0; k < count; ++k) {
+        glDispatchCompute(1, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    glFinish();
+    const double wallUs = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - wallStart).count();
+    return {wallUs / count, 1e6 * (processCpuSeconds() - cpuStart) / count};
+}
+
 }  // namespace
 
 int runStepCost(const StepCostOptions& o) {
@@ -308,6 +331,23 @@ int runStepCost(const StepCostOptions& o) {
         }
         std::printf("\n");
         markdown += "\n";
+    }
+
+    // The counts priced: a vertex turn's dispatches at what one costs by itself, against the step.
+    {
+        emptyDispatchMicroseconds(programs, 20);  // compile and warm up
+        const auto [wallUs, cpuUs] = emptyDispatchMicroseconds(programs, 1000);
+        const double dispatches = double(passes.at(1).counts.dispatches);  // "step, vertex turn"
+        std::printf("\na dispatch and its barrier by themselves (an empty pass, 1000 in a row): %.1f us wall, %.1f us CPU;\n"
+                    "a vertex turn's %.0f: %.2f ms wall", wallUs, cpuUs, dispatches, dispatches * wallUs / 1000.0);
+        for (size_t k = 0; k < o.resolutions.size(); ++k)
+            std::printf(", %.0f %% of its step at %d²", 100.0 * dispatches * wallUs / 1000.0 / resolutionTimings[k].stepMs,
+                        o.resolutions[k]);
+        std::printf("\ndispatch_us=%.1f\ndispatch_cpu_us=%.1f\n", wallUs, cpuUs);
+        std::snprintf(line, sizeof line,
+                      "\nA dispatch and its barrier by themselves (an empty pass, 1000 in a row): %.1f µs wall, %.1f µs "
+                      "CPU.\n", wallUs, cpuUs);
+        markdown += line;
     }
 
     // Fewer rounds: the larger cages' renders take longer, and only the trend matters here.
