@@ -25,15 +25,11 @@
 #define SUBDFIT_SSBO_SURFACE_VERTICES 41
 #define SUBDFIT_SSBO_TESSELLATION_QUADS 42
 #define SUBDFIT_SSBO_SURFACE_TRIANGLES 43
-#define SUBDFIT_SSBO_PAIR_SECOND 15   // each pair of ptex faces a < b sharing a base vertex: its b
 #define SUBDFIT_SSBO_ADJACENCY_OFFSETS 16    // cage vertex -> neighbours (CSR)
 #define SUBDFIT_SSBO_ADJACENCY_INDICES 17
 #define SUBDFIT_SSBO_LOSS 18            // 256 float slots whose sum is the mean per-pixel loss
 #define SUBDFIT_SSBO_SMOOTH_IN 19       // Jacobi iterate read by the preconditioner
 #define SUBDFIT_SSBO_FACE_DELTA 20      // Σ Δ_p/(2ε) per ptex face, then per pair of them (fixed point)
-#define SUBDFIT_SSBO_FACE_VERTEX_OFFSETS 21  // ptex face -> the base vertices reaching it, sorted (CSR)
-#define SUBDFIT_SSBO_FACE_VERTICES 22
-#define SUBDFIT_SSBO_PAIR_FIRST 45           // and its a (sge/face_pairs.h)
 #define SUBDFIT_SSBO_VERTEX_DELTA 46         // per base vertex, the sums of FACE_DELTA it is in (fixed point)
 
 // Map parameter groups (per-face tiles of (T+1)² shared nodes, maps::TexelLayout).
@@ -63,6 +59,19 @@
 #define SUBDFIT_UNIT_UV_MINUS 6
 #define SUBDFIT_UNIT_PAIR_REGIONS 26  // ptex face a -> (first slot, log2 slot count) of its pairs' hash
 #define SUBDFIT_UNIT_PAIR_SLOTS 27    // (b, pair index) per slot, b = −1 where empty
+
+// The preconditioner's reads (optim::precondition): g, the iterate a sweep starts from (a texel a
+// graph node, its channels) and the graph (CSR).
+#define SUBDFIT_UNIT_JACOBI_GRADIENT 28
+#define SUBDFIT_UNIT_JACOBI_IN 29
+#define SUBDFIT_UNIT_ADJACENCY_OFFSETS 30
+#define SUBDFIT_UNIT_ADJACENCY_INDICES 31
+
+// The tables that hand G's sums on (scatter_sums.comp): ptex face -> its base vertices (CSR), and
+// each pair's two faces.
+#define SUBDFIT_UNIT_FACE_VERTEX_OFFSETS 32
+#define SUBDFIT_UNIT_FACE_VERTICES 33
+#define SUBDFIT_UNIT_PAIR_FACES 34
 
 // Texture units of a reference's material (render/mesh_renderer.h).
 #define SUBDFIT_UNIT_BASE_COLOR 8

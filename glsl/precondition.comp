@@ -13,17 +13,20 @@
 #define SUBDFIT_CHANNELS 3
 #endif
 
-layout(std430, binding = SUBDFIT_SSBO_GRADIENT) readonly buffer Gradient { float gradient[]; };
-layout(std430, binding = SUBDFIT_SSBO_SMOOTH_IN) readonly buffer SmoothIn { float smoothIn[]; };
+// g, the iterate a sweep starts from and the graph, read as buffer textures: a fetch gathers a
+// node's channels, where an SSBO read is a load a float (one lane after another on llvmpipe).
+layout(binding = SUBDFIT_UNIT_JACOBI_GRADIENT) uniform samplerBuffer gradient;
+layout(binding = SUBDFIT_UNIT_JACOBI_IN) uniform samplerBuffer smoothIn;
+layout(binding = SUBDFIT_UNIT_ADJACENCY_OFFSETS) uniform isamplerBuffer adjacencyOffsets;
+layout(binding = SUBDFIT_UNIT_ADJACENCY_INDICES) uniform isamplerBuffer adjacencyIndices;
 layout(std430, binding = SUBDFIT_SSBO_GRADIENT_SMOOTH) writeonly buffer SmoothOut { float smoothOut[]; };
-layout(std430, binding = SUBDFIT_SSBO_ADJACENCY_OFFSETS) readonly buffer AdjOffsets { int adjacencyOffsets[]; };
-layout(std430, binding = SUBDFIT_SSBO_ADJACENCY_INDICES) readonly buffer AdjIndices { int adjacencyIndices[]; };
 
 uniform int uVertexCount;
 uniform float uLambda;
 
-// One damped Jacobi update of a float of node i, from the neighbours' sum of the last iterate.
-float jacobi(float current, float g, float neighbourSum, float scale) {
+// One damped Jacobi update of node i's channels (the first SUBDFIT_CHANNELS of the four), from its
+// neighbours' sum of the last iterate.
+vec4 jacobi(vec4 current, vec4 g, vec4 neighbourSum, float scale) {
     const float omega = 2.0 / 3.0;
     return mix(current, (g + uLambda * neighbourSum) * scale, omega);
 }
@@ -41,23 +44,21 @@ uniform int uIterations;
 
 void main() {
     const int floats = SUBDFIT_CHANNELS * uVertexCount;
-    for (int i = int(gl_LocalInvocationIndex); i < floats; i += 256) iterate[0][i] = gradient[i];
+    for (int i = int(gl_LocalInvocationIndex); i < floats; i += 256) iterate[0][i] = texelFetch(gradient, i / SUBDFIT_CHANNELS)[i % SUBDFIT_CHANNELS];
     barrier();
     for (int k = 0; k < uIterations; ++k) {
         const int from = k & 1, to = from ^ 1;
         for (int v = int(gl_LocalInvocationIndex); v < uVertexCount; v += 256) {
-            int begin = adjacencyOffsets[v], end = adjacencyOffsets[v + 1];
-            float neighbourSum[SUBDFIT_CHANNELS];
-            for (int c = 0; c < SUBDFIT_CHANNELS; ++c) neighbourSum[c] = 0.0;
+            int begin = texelFetch(adjacencyOffsets, v).x, end = texelFetch(adjacencyOffsets, v + 1).x;
+            vec4 neighbourSum = vec4(0.0), current = vec4(0.0);
             for (int n = begin; n < end; ++n) {
-                int j = SUBDFIT_CHANNELS * adjacencyIndices[n];
+                int j = SUBDFIT_CHANNELS * texelFetch(adjacencyIndices, n).x;
                 for (int c = 0; c < SUBDFIT_CHANNELS; ++c) neighbourSum[c] += iterate[from][j + c];
             }
+            for (int c = 0; c < SUBDFIT_CHANNELS; ++c) current[c] = iterate[from][SUBDFIT_CHANNELS * v + c];
             float scale = 1.0 / (1.0 + uLambda * float(end - begin));
-            for (int c = 0; c < SUBDFIT_CHANNELS; ++c) {
-                int i = SUBDFIT_CHANNELS * v + c;
-                iterate[to][i] = jacobi(iterate[from][i], gradient[i], neighbourSum[c], scale);
-            }
+            vec4 smoothed = jacobi(current, texelFetch(gradient, v), neighbourSum, scale);
+            for (int c = 0; c < SUBDFIT_CHANNELS; ++c) iterate[to][SUBDFIT_CHANNELS * v + c] = smoothed[c];
         }
         barrier();
     }
@@ -70,17 +71,11 @@ layout(local_size_x = 128) in;
 void main() {
     int v = int(gl_GlobalInvocationID.x);
     if (v >= uVertexCount) return;
-    int begin = adjacencyOffsets[v], end = adjacencyOffsets[v + 1];
-    float neighbourSum[SUBDFIT_CHANNELS];
-    for (int c = 0; c < SUBDFIT_CHANNELS; ++c) neighbourSum[c] = 0.0;
-    for (int k = begin; k < end; ++k) {
-        int j = SUBDFIT_CHANNELS * adjacencyIndices[k];
-        for (int c = 0; c < SUBDFIT_CHANNELS; ++c) neighbourSum[c] += smoothIn[j + c];
-    }
+    int begin = texelFetch(adjacencyOffsets, v).x, end = texelFetch(adjacencyOffsets, v + 1).x;
+    vec4 neighbourSum = vec4(0.0);
+    for (int k = begin; k < end; ++k) neighbourSum += texelFetch(smoothIn, texelFetch(adjacencyIndices, k).x);
     float scale = 1.0 / (1.0 + uLambda * float(end - begin));
-    for (int c = 0; c < SUBDFIT_CHANNELS; ++c) {
-        int i = SUBDFIT_CHANNELS * v + c;
-        smoothOut[i] = jacobi(smoothIn[i], gradient[i], neighbourSum[c], scale);
-    }
+    vec4 smoothed = jacobi(texelFetch(smoothIn, v), texelFetch(gradient, v), neighbourSum, scale);
+    for (int c = 0; c < SUBDFIT_CHANNELS; ++c) smoothOut[SUBDFIT_CHANNELS * v + c] = smoothed[c];
 }
 #endif

@@ -9,10 +9,10 @@
 layout(local_size_x = 64) in;
 
 layout(std430, binding = SUBDFIT_SSBO_FACE_DELTA) buffer FaceDelta { uint faceDelta[]; };
-layout(std430, binding = SUBDFIT_SSBO_FACE_VERTEX_OFFSETS) readonly buffer FaceOffsets { int faceVertexOffsets[]; };
-layout(std430, binding = SUBDFIT_SSBO_FACE_VERTICES) readonly buffer FaceVertices { int faceVertices[]; };
-layout(std430, binding = SUBDFIT_SSBO_PAIR_SECOND) readonly buffer PairSecond { int pairSecond[]; };
-layout(std430, binding = SUBDFIT_SSBO_PAIR_FIRST) readonly buffer PairFirst { int pairFirst[]; };
+// The tables, read as buffer textures (a gather, where llvmpipe reads storage lane after lane).
+layout(binding = SUBDFIT_UNIT_FACE_VERTEX_OFFSETS) uniform isamplerBuffer faceVertexOffsets;
+layout(binding = SUBDFIT_UNIT_FACE_VERTICES) uniform isamplerBuffer faceVertices;
+layout(binding = SUBDFIT_UNIT_PAIR_FACES) uniform isamplerBuffer pairFaces;  // (a, b) of each pair
 layout(std430, binding = SUBDFIT_SSBO_VERTEX_DELTA) buffer VertexDelta { uint vertexDelta[]; };
 
 uniform int uFaceCount;  // the faces' sums, then the pairs'
@@ -32,15 +32,14 @@ void main() {
     faceDelta[2 * k] = 0u;
     faceDelta[2 * k + 1] = 0u;
     bool pair = k >= uFaceCount;
-    int a = pair ? pairFirst[k - uFaceCount] : k;
-    int b = pair ? pairSecond[k - uFaceCount] : a;
+    ivec2 faces = pair ? texelFetch(pairFaces, k - uFaceCount).xy : ivec2(k);
     // The two sorted vertex lists walked together: each vertex of the union once (a face's
     // sum walks its one list twice over, in step).
-    int i = faceVertexOffsets[a], iEnd = faceVertexOffsets[a + 1];
-    int j = faceVertexOffsets[b], jEnd = faceVertexOffsets[b + 1];
+    int i = texelFetch(faceVertexOffsets, faces.x).x, iEnd = texelFetch(faceVertexOffsets, faces.x + 1).x;
+    int j = texelFetch(faceVertexOffsets, faces.y).x, jEnd = texelFetch(faceVertexOffsets, faces.y + 1).x;
     while (i < iEnd || j < jEnd) {
-        int va = i < iEnd ? faceVertices[i] : 0x7fffffff;
-        int vb = j < jEnd ? faceVertices[j] : 0x7fffffff;
+        int va = i < iEnd ? texelFetch(faceVertices, i).x : 0x7fffffff;
+        int vb = j < jEnd ? texelFetch(faceVertices, j).x : 0x7fffffff;
         int v = min(va, vb);
         addToVertex(v, d);
         if (va == v) ++i;

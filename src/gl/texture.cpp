@@ -43,7 +43,7 @@ namespace {
 
 GLsizeiptr texelBytesOf(GLenum format) {
     switch (format) {
-        case GL_R32F: return 4;
+        case GL_R32F: case GL_R32I: return 4;
         case GL_RG32F: case GL_RG32I: case GL_RG32UI: return 8;
         case GL_RGB32F: return 12;
         case GL_RGBA32F: case GL_RGBA32I: return 16;

@@ -5,6 +5,7 @@
 
 #include "bindings.h"
 #include "gl/dispatch.h"
+#include "gl/texture.h"
 
 namespace subdfit::optim {
 namespace {
@@ -51,7 +52,8 @@ void resolveGradient(gl::ProgramCache& programs, ParameterGroup& group) {
     group.gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_SUM);
     group.gradient.bindStorage(SUBDFIT_SSBO_GRADIENT);
     glDispatchCompute(groupsOf(group.count(), 256), 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    // Read next as storage (Adam), as a texture (the preconditioner) or back by the host.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency,
@@ -62,15 +64,18 @@ void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjac
         return;
     }
     const bool oneGroup = group.count() <= kOneGroupFloats;
-    gl::Defines defines{{"SUBDFIT_CHANNELS", std::to_string(group.count() / adjacency.vertexCount)}};
+    const int channels = group.count() / adjacency.vertexCount;
+    gl::Defines defines{{"SUBDFIT_CHANNELS", std::to_string(channels)}};
     if (oneGroup) defines["SUBDFIT_PRECONDITION_ONE_GROUP"] = std::to_string(kOneGroupFloats);
     const auto& program = programs.get(kPrecondition, 0, defines);
     program.use();
     program.set("uVertexCount", adjacency.vertexCount);
     program.set("uLambda", lambda);
-    group.gradient.bindStorage(SUBDFIT_SSBO_GRADIENT);
-    adjacency.offsets.bindStorage(SUBDFIT_SSBO_ADJACENCY_OFFSETS);
-    adjacency.indices.bindStorage(SUBDFIT_SSBO_ADJACENCY_INDICES);
+    const gl::BufferTexture gradient = gl::BufferTexture::ofFloats(group.gradient, channels);
+    const gl::BufferTexture offsets(adjacency.offsets, GL_R32I), neighbours(adjacency.indices, GL_R32I);
+    gradient.bind(SUBDFIT_UNIT_JACOBI_GRADIENT);
+    offsets.bind(SUBDFIT_UNIT_ADJACENCY_OFFSETS);
+    neighbours.bind(SUBDFIT_UNIT_ADJACENCY_INDICES);
     if (oneGroup) {
         program.set("uIterations", iterations);
         group.gradientSmooth.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
@@ -79,15 +84,17 @@ void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjac
         return;
     }
     // Jacobi ping-pong; the sweep count is arranged so the last one writes gradientSmooth.
-    const gl::Buffer* in = &group.gradient;
+    const gl::BufferTexture scratchView = gl::BufferTexture::ofFloats(scratch, channels);
+    const gl::BufferTexture smoothView = gl::BufferTexture::ofFloats(group.gradientSmooth, channels);
+    const gl::BufferTexture* in = &gradient;
     for (int k = 0; k < iterations; ++k) {
         const bool last = (iterations - 1 - k) % 2 == 0;
-        gl::Buffer* out = last ? &group.gradientSmooth : &scratch;
-        in->bindStorage(SUBDFIT_SSBO_SMOOTH_IN);
-        out->bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
+        in->bind(SUBDFIT_UNIT_JACOBI_IN);
+        (last ? group.gradientSmooth : scratch).bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);
         glDispatchCompute(groupsOf(adjacency.vertexCount, 128), 1, 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        in = out;
+        // The next sweep fetches what this one stored.
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        in = last ? &smoothView : &scratchView;
     }
 }
 

@@ -35,10 +35,14 @@ FaceVertexTable::FaceVertexTable(const std::vector<int>& offsetsOf, const std::v
     pairCount = int(pairs.first.size());
     faceOffsets = gl::Buffer::fromVector(offsetsOf);
     faceVertices = gl::Buffer::fromVector(verticesOf);
-    pairFirst = gl::Buffer::fromVector(pairs.first);
-    pairSecond = gl::Buffer::fromVector(pairs.second);
+    std::vector<glm::ivec2> pairFacesOf(pairs.first.size());
+    for (size_t k = 0; k < pairFacesOf.size(); ++k) pairFacesOf[k] = {pairs.first[k], pairs.second[k]};
+    pairFaces = gl::Buffer::fromVector(pairFacesOf);
     pairRegions = gl::Buffer::fromVector(pairs.regions);
     pairSlots = gl::Buffer::fromVector(pairs.slots);
+    faceOffsetsView = gl::BufferTexture(faceOffsets, GL_R32I);
+    faceVerticesView = gl::BufferTexture(faceVertices, GL_R32I);
+    pairFacesView = gl::BufferTexture(pairFaces, GL_RG32I);
     pairRegionsView = gl::BufferTexture(pairRegions, GL_RG32I);
     pairSlotsView = gl::BufferTexture(pairSlots, GL_RG32I);
     faceDelta = gl::Buffer(GLsizeiptr(std::max(1, faceCount + pairCount)) * 2 * sizeof(std::uint32_t));
@@ -92,10 +96,9 @@ void scatterFaceDeltas(gl::ProgramCache& programs, optim::ParameterGroup& group,
         sums.use();
         sums.set("uFaceCount", faces.faceCount);
         sums.set("uSumCount", faces.faceCount + faces.pairCount);
-        faces.faceOffsets.bindStorage(SUBDFIT_SSBO_FACE_VERTEX_OFFSETS);
-        faces.faceVertices.bindStorage(SUBDFIT_SSBO_FACE_VERTICES);
-        faces.pairSecond.bindStorage(SUBDFIT_SSBO_PAIR_SECOND);
-        faces.pairFirst.bindStorage(SUBDFIT_SSBO_PAIR_FIRST);
+        faces.faceOffsetsView.bind(SUBDFIT_UNIT_FACE_VERTEX_OFFSETS);
+        faces.faceVerticesView.bind(SUBDFIT_UNIT_FACE_VERTICES);
+        faces.pairFacesView.bind(SUBDFIT_UNIT_PAIR_FACES);
         glDispatchCompute(groupsOf(faces.faceCount + faces.pairCount, 64), 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }

@@ -23,9 +23,10 @@ namespace subdfit::sge {
 struct FaceVertexTable {
     FaceVertexTable(const std::vector<int>& faceOffsets, const std::vector<int>& faceVertices, int vertexCount);
     gl::Buffer faceOffsets, faceVertices;  // ptex face -> its base vertices
-    gl::Buffer pairFirst, pairSecond;      // pair k's faces a < b (sge/face_pairs.h); its sum is faceCount + k
+    gl::Buffer pairFaces;                  // pair k's faces (a, b), a < b (sge/face_pairs.h); its sum is faceCount + k
     gl::Buffer pairRegions, pairSlots;     // the pairs hashed by b in runs of slots per face a
-    gl::BufferTexture pairRegionsView, pairSlotsView;  // how G reads them
+    // How the passes read them: G the hashed pairs, the hand-off the rest.
+    gl::BufferTexture faceOffsetsView, faceVerticesView, pairFacesView, pairRegionsView, pairSlotsView;
     gl::Buffer faceDelta;                  // one fixed-point sum (two uints) per ptex face, then per pair
     gl::Buffer vertexDelta;                // one fixed-point sum per base vertex: the sums that include it
     int faceCount, pairCount, vertexCount;
