@@ -33,15 +33,12 @@
 #define SUBDFIT_SSBO_VERTEX_DELTA 46         // per base vertex, the sums of FACE_DELTA it is in (fixed point)
 
 // Map parameter groups (per-face tiles of (T+1)² shared nodes, maps::TexelLayout).
-#define SUBDFIT_SSBO_FACE_NODES 23           // [ptex face][j][i] -> node
 #define SUBDFIT_SSBO_DISPLACEMENT 24         // height per node (θ, θ+ or θ− as the pass needs)
 #define SUBDFIT_SSBO_GRADIENT_DISPLACEMENT 26  // the map groups' sums of G (fixed point)
 #define SUBDFIT_SSBO_GRADIENT_NORMAL_MAP 27
 
 // Any group's fixed-point gradient sums (glsl/fixed_point.glsl), two uints per parameter.
 #define SUBDFIT_SSBO_GRADIENT_SUM 28
-// With an appearance atlas (surface/appearance_atlas.h): per ptex face its 4 corners' atlas coordinates.
-#define SUBDFIT_SSBO_APPEARANCE_UVS 34
 
 // The cage's tangential relaxation (fit/cage_relaxation.h).
 #define SUBDFIT_SSBO_RELAX_MODES 29           // per vertex: surface, crease or fixed
@@ -72,6 +69,11 @@
 #define SUBDFIT_UNIT_FACE_VERTEX_OFFSETS 32
 #define SUBDFIT_UNIT_FACE_VERTICES 33
 #define SUBDFIT_UNIT_PAIR_FACES 34
+
+// The map lattices' face tables, [ptex face][j][i] -> node (maps.glsl), and with an appearance
+// atlas (surface/appearance_atlas.h) each ptex face's 4 corners' atlas coordinates.
+#define SUBDFIT_UNIT_FACE_NODES 35
+#define SUBDFIT_UNIT_APPEARANCE_UVS 36
 
 // Texture units of a reference's material (render/mesh_renderer.h).
 #define SUBDFIT_UNIT_BASE_COLOR 8

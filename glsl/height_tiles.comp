@@ -11,7 +11,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = SUBDFIT_SSBO_DISPLACEMENT) readonly buffer Displacement { float displacement[]; };
 layout(r32f, binding = SUBDFIT_IMAGE_HEIGHT_TILES) uniform writeonly image2D heightTiles;
 
-uniform int uMapHaloTable;  // where the ring of nodes around each tile starts in faceNodes
+uniform int uMapHaloTable;  // where the ring of nodes around each tile starts among the face nodes
 uniform int uTilesPerRow;
 uniform int uFaceCount;
 
@@ -21,12 +21,12 @@ uniform int uFaceCount;
 float heightNode(int face, int i, int j) {
     int n = uMapResolution;
     int edge = j < 0 ? 0 : i > n ? 1 : j > n ? 2 : i < 0 ? 3 : -1;
-    if (edge < 0) return displacement[faceNodes[face * (n + 1) * (n + 1) + j * (n + 1) + i]];
-    int across = faceNodes[uMapHaloTable + (face * 4 + edge) * (n + 1) + ((edge & 1) == 0 ? i : j)];
+    if (edge < 0) return displacement[faceNode(face * (n + 1) * (n + 1) + j * (n + 1) + i)];
+    int across = faceNode(uMapHaloTable + (face * 4 + edge) * (n + 1) + ((edge & 1) == 0 ? i : j));
     if (across >= 0) return displacement[across];
     ivec2 border = clamp(ivec2(i, j), ivec2(0), ivec2(n)), inner = 2 * border - ivec2(i, j);
-    return 2.0 * displacement[faceNodes[face * (n + 1) * (n + 1) + border.y * (n + 1) + border.x]] -
-           displacement[faceNodes[face * (n + 1) * (n + 1) + inner.y * (n + 1) + inner.x]];
+    return 2.0 * displacement[faceNode(face * (n + 1) * (n + 1) + border.y * (n + 1) + border.x)] -
+           displacement[faceNode(face * (n + 1) * (n + 1) + inner.y * (n + 1) + inner.x)];
 }
 
 void main() {

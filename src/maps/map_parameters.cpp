@@ -55,6 +55,8 @@ MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, 
       appearanceUvs_(effects.appearance() && settings.appearanceAtlas > 0 ? 4 * size_t(subdiv::ptexFaceCount(cage)) : 0),
       appearanceUvBuffer_(GLsizeiptr(std::max<size_t>(1, appearanceUvs_.size())) * GLsizeiptr(sizeof(glm::vec2)),
                           appearanceUvs_.empty() ? nullptr : appearanceUvs_.data()),
+      faceNodesView_(faceNodes_, GL_R32I),
+      appearanceUvView_(appearanceUvBuffer_, GL_RG32F),
       adjacency_(uploadAdjacency(layout_)),
       appearanceAdjacency_(uploadAdjacency(appearanceLayout_)),
       scratch_(GLsizeiptr(std::max({1, 2 * layout_.nodeCount, 3 * appearanceLayout_.nodeCount})) *
@@ -171,8 +173,8 @@ render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::Para
 }
 
 void MapParameters::bindFaceNodes() const {
-    faceNodes_.bindStorage(SUBDFIT_SSBO_FACE_NODES);
-    if (!appearanceUvs_.empty()) appearanceUvBuffer_.bindStorage(SUBDFIT_SSBO_APPEARANCE_UVS);
+    faceNodesView_.bind(SUBDFIT_UNIT_FACE_NODES);
+    if (!appearanceUvs_.empty()) appearanceUvView_.bind(SUBDFIT_UNIT_APPEARANCE_UVS);
 }
 
 void MapParameters::update(gl::ProgramCache& programs, optim::ParameterGroup& group, float learningRate) {

@@ -88,6 +88,7 @@ private:
     gl::Buffer faceNodes_;  // layout_'s table, appearanceLayout_'s, then layout_'s halo
     std::vector<glm::vec2> appearanceUvs_;  // with an atlas: 4 per ptex face
     gl::Buffer appearanceUvBuffer_;
+    gl::BufferTexture faceNodesView_, appearanceUvView_;  // as the passes read them (maps.glsl)
     // A carried texture's values, their buffer and its view as the patch pass reads it (none
     // while empty).
     struct Carried {
