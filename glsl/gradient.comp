@@ -61,6 +61,7 @@ uniform float uLossScale;  // 1 / (pixels × views), so the loss is a per-pixel 
 #endif
 uniform int uFaceCount;    // ptex faces: the pairs' sums follow the faces'
 
+// Where the search for face b starts among 2^bits slots (sge/face_pairs.h's pairSlotOf).
 uint pairSlotOf(int b, int bits) { return (uint(b) * 2654435769u) >> uint(32 - bits); }
 
 // The sum of faces a < b that share a vertex (the pairs' follow the faces'), or -1: a's slots

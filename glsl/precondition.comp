@@ -44,7 +44,8 @@ uniform int uIterations;
 
 void main() {
     const int floats = SUBDFIT_CHANNELS * uVertexCount;
-    for (int i = int(gl_LocalInvocationIndex); i < floats; i += 256) iterate[0][i] = texelFetch(gradient, i / SUBDFIT_CHANNELS)[i % SUBDFIT_CHANNELS];
+    for (int i = int(gl_LocalInvocationIndex); i < floats; i += 256)
+        iterate[0][i] = texelFetch(gradient, i / SUBDFIT_CHANNELS)[i % SUBDFIT_CHANNELS];
     barrier();
     for (int k = 0; k < uIterations; ++k) {
         const int from = k & 1, to = from ^ 1;
