@@ -72,10 +72,9 @@ void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjac
     program.set("uVertexCount", adjacency.vertexCount);
     program.set("uLambda", lambda);
     const gl::BufferTexture gradient = gl::BufferTexture::ofFloats(group.gradient, channels);
-    const gl::BufferTexture offsets(adjacency.offsets, GL_R32I), neighbours(adjacency.indices, GL_R32I);
     gradient.bind(SUBDFIT_UNIT_JACOBI_GRADIENT);
-    offsets.bind(SUBDFIT_UNIT_ADJACENCY_OFFSETS);
-    neighbours.bind(SUBDFIT_UNIT_ADJACENCY_INDICES);
+    adjacency.offsetsView.bind(SUBDFIT_UNIT_ADJACENCY_OFFSETS);
+    adjacency.indicesView.bind(SUBDFIT_UNIT_ADJACENCY_INDICES);
     if (oneGroup) {
         program.set("uIterations", iterations);
         group.gradientSmooth.bindStorage(SUBDFIT_SSBO_GRADIENT_SMOOTH);

@@ -4,9 +4,11 @@
 // preconditioner (precondition.comp) and Adam (adam.comp, shared_moment.comp). G itself, which
 // reads renders, is the estimator's (sge/).
 #include <cstdint>
+#include <utility>
 
 #include "gl/buffer.h"
 #include "gl/program_cache.h"
+#include "gl/texture.h"
 #include "optim/parameter_group.h"
 
 namespace subdfit::optim {
@@ -19,7 +21,11 @@ void resolveGradient(gl::ProgramCache& programs, ParameterGroup& group);
 
 // The group's parameter graph (CSR); each node holds group.count() / vertexCount floats.
 struct Adjacency {
+    Adjacency(gl::Buffer offsets_, gl::Buffer indices_, int vertexCount_)
+        : offsets(std::move(offsets_)), indices(std::move(indices_)), offsetsView(offsets, GL_R32I),
+          indicesView(indices, GL_R32I), vertexCount(vertexCount_) {}
     gl::Buffer offsets, indices;
+    gl::BufferTexture offsetsView, indicesView;  // as the preconditioner reads them
     int vertexCount;  // graph nodes
 };
 
