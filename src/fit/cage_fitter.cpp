@@ -107,10 +107,15 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     if (std::find(pendingUpdate_.begin(), pendingUpdate_.end(), perturbed) == pendingUpdate_.end())
         pendingUpdate_.push_back(perturbed);
     const bool verticesPerturbed = perturbed->kind() == optim::GroupKind::Vertices;
-    if (verticesPerturbed)
+    // A map's turn draws the cage as it is: while it stays (a map stage with the cage frozen),
+    // its points are not evaluated again.
+    if (verticesPerturbed) {
         stencils_.evaluate(programs_, vertices_.thetaPlus, pointsPlus_, vertices_.thetaMinus, pointsMinus_);
-    else
+        pointsPlusOf_.reset();
+    } else if (pointsPlusOf_ != vertices_.version()) {
         stencils_.evaluate(programs_, vertices_.theta, pointsPlus_);
+        pointsPlusOf_ = vertices_.version();
+    }
     const gl::Buffer& pointsMinus = verticesPerturbed ? pointsMinus_ : pointsPlus_;
     mark("stencils");
     const float pixels = float(settings_.resolution) * float(settings_.resolution);
@@ -118,8 +123,13 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     const auto mapsMinus = maps_ ? maps_->forRaster(maps::ParameterVersion::Minus, perturbed) : render::PatchMaps{};
     // θ+ and θ− are one surface unless the turn moves it (the vertices or the heights): a map
     // that only shades is drawn on the surface evaluated once, for every view of the step.
+    // The same surface as the last such turn's while the cage and the heights stay (one shading
+    // group's turn after another's) is not evaluated again either.
     const bool surfaceMoves = verticesPerturbed || (maps_ && perturbed == maps_->displacement());
-    renderer_.evaluate(programs_, pointsPlus_, surfacePlus_, &mapsPlus);
+    const SurfaceKey key{vertices_.version(), maps_ && maps_->displacement() ? maps_->displacement()->version() : 0,
+                         mapsPlus.limitShading};
+    if (surfaceMoves || surfacePlusOf_ != key) renderer_.evaluate(programs_, pointsPlus_, surfacePlus_, &mapsPlus);
+    surfacePlusOf_ = surfaceMoves ? std::nullopt : std::make_optional(key);
     if (surfaceMoves) renderer_.evaluate(programs_, pointsMinus, surfaceMinus_, &mapsMinus);
     const render::PatchRenderer::Surface& minusSurface = surfaceMoves ? surfaceMinus_ : surfacePlus_;
     mark("surfaces");
@@ -170,7 +180,10 @@ void CageFitter::update() {
                 relaxation_->projectGradient(programs_, vertices_.theta, vertices_.gradientSmooth, settings_.tangentialGradient);
             optim::adamStep(programs_, vertices_, vertices_.gradientSmooth, learningRate * vertexRateFactor_);
             mark("Adam");
-            if (relaxation_) relaxation_->apply(programs_, vertices_.theta, settings_.relaxation);
+            if (relaxation_) {
+                relaxation_->apply(programs_, vertices_.theta, settings_.relaxation);
+                vertices_.changed();
+            }
         } else {
             maps_->update(programs_, *g, learningRate);
             mark("Adam");
@@ -252,8 +265,7 @@ int CageFitter::mapsStartStep() const {
 }
 
 void CageFitter::setVertices(const std::vector<glm::vec3>& positions) {
-    const auto values = flatten(positions);
-    vertices_.theta.upload(values.data(), GLsizeiptr(values.size() * sizeof(float)));
+    vertices_.write(flatten(positions));
 }
 
 CageFitter::State CageFitter::state() {
@@ -279,7 +291,7 @@ void CageFitter::restore(const State& state) {
             throw Error("checkpoint group '" + g.name() + "' holds " + std::to_string(saved.theta.size()) +
                         " parameters, the scene has " + std::to_string(count));
         const auto bytes = GLsizeiptr(count * sizeof(float));
-        g.theta.upload(saved.theta.data(), bytes);
+        g.write(saved.theta);
         g.moment1.upload(saved.moment1.data(), bytes);
         g.moment2.upload(saved.moment2.data(), bytes);
         g.groupMoment2.upload(&saved.groupMoment2, sizeof(float));

@@ -149,6 +149,15 @@ private:
     std::optional<CageRelaxation> relaxation_;  // with --relax, or --tangential under 1 (the default)
     gl::Buffer pointsPlus_, pointsMinus_, smoothScratch_, loss_;
     render::PatchRenderer::Surface surfacePlus_, surfaceMinus_;  // a step's (render::PatchRenderer::evaluate)
+    // What pointsPlus_ and surfacePlus_ hold when a map's turn evaluated them unperturbed (the
+    // versions of the cage and the heights they came from); none after a turn that moved them.
+    struct SurfaceKey {
+        std::uint64_t vertices, heights;
+        bool limitShading;
+        bool operator==(const SurfaceKey&) const = default;
+    };
+    std::optional<std::uint64_t> pointsPlusOf_;
+    std::optional<SurfaceKey> surfacePlusOf_;
     // render()'s points and surface, and what they were evaluated from (none yet: empty).
     struct DrawnSurfaceKey {
         std::vector<float> vertices, heights;

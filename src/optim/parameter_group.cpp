@@ -23,6 +23,7 @@ ParameterGroup::ParameterGroup(GroupKind kind, std::string name, const std::vect
 void ParameterGroup::write(const std::vector<float>& values) {
     SUBDFIT_CHECK(int(values.size()) == count_);
     theta.upload(values.data(), GLsizeiptr(values.size() * sizeof(float)));
+    changed();
 }
 
 }  // namespace subdfit::optim

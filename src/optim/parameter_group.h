@@ -49,6 +49,10 @@ public:
     std::vector<float> read() const { return theta.read<float>(); }
     // Replaces θ (count() values), e.g. with maps baked elsewhere.
     void write(const std::vector<float>& values);
+    // How many times θ was written (write(), an Adam step, a pass that calls changed()): what
+    // was computed from one version of θ holds while the version stays.
+    std::uint64_t version() const { return version_; }
+    void changed() { ++version_; }
 
 private:
     GroupKind kind_;
@@ -56,6 +60,7 @@ private:
     int count_;
     GroupSettings settings_;
     std::uint32_t seedSalt_;
+    std::uint64_t version_ = 0;
 };
 
 }  // namespace subdfit::optim

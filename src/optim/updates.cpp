@@ -100,6 +100,7 @@ void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjac
 void adamStep(gl::ProgramCache& programs, ParameterGroup& group, const gl::Buffer& gradient, float learningRate) {
     const auto& s = group.settings();
     ++group.adamSteps;
+    group.changed();
     if (s.sharedMoment) {
         const auto& reduce = programs.get(kSharedMoment);
         reduce.use();

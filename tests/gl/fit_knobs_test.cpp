@@ -2,6 +2,10 @@
 // turns keep their parameters, and rates set by hand are the ones the passes use.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <functional>
+#include <utility>
+
 #include "gl_test_context.h"
 #include "mesh/procedural.h"
 #include "scene_fixture.h"
@@ -66,6 +70,53 @@ TEST(FitKnobs, RatesSetByHandAreUsed) {
     fitter.step(*scene.targets, views);
     EXPECT_EQ(vertices.settings().learningRate, 0.01f);
     EXPECT_EQ(displacement.settings().learningRate, 0.002f);
+}
+
+// A map's turn draws the cage and the heights as they were at the last such turn without
+// evaluating them again while they stay (the normal map alone taking the turns here). Written
+// from outside in between (setVertices, a group's write, a restored state), the next turn must
+// draw them as they are now: its loss is that of a fitter built on the state just written.
+TEST(FitKnobs, AMapTurnDrawsTheCageAndHeightsAsTheyAreNow) {
+    auto scene = makeFitScene(programs(), mesh::makeQuadSphere(2), mesh::makeLumpySphere(3, 0.2f, 3), 1, 64);
+    auto settings = withDisplacement();
+    settings.resolution = 64;
+    settings.mapEffects.normalMap = true;
+    auto frozenButTheNormals = [](fit::CageFitter& f) {
+        f.setOptimised(f.vertexGroup(), false);
+        f.setOptimised(*f.maps()->displacement(), false);
+    };
+    fit::CageFitter fitter(programs(), scene.cage, settings);
+    frozenButTheNormals(fitter);
+    const int views[] = {0};
+    for (int k = 0; k < 3; ++k) fitter.step(*scene.targets, views, false);
+    const auto earlier = fitter.state();
+    fitter.step(*scene.targets, views, false);
+
+    auto moved = fitter.vertices();
+    for (auto& p : moved) p *= 1.05f;
+    auto heights = fitter.maps()->displacement()->read();
+    for (float& h : heights) h += 0.02f;
+    const std::pair<const char*, std::function<void()>> writes[] = {
+        {"setVertices", [&] { fitter.setVertices(moved); }},
+        {"the heights' write", [&] { fitter.maps()->displacement()->write(heights); }},
+        {"restore", [&] { fitter.restore(earlier); }}};
+    for (const auto& [what, write] : writes) {
+        fitter.accumulate(*scene.targets, views, true);
+        const float before = fitter.takeMeanLoss();
+        fitter.update();
+        write();
+        fit::CageFitter fresh(programs(), scene.cage, settings);
+        frozenButTheNormals(fresh);
+        fresh.restore(fitter.state());
+        fitter.accumulate(*scene.targets, views, true);
+        fresh.accumulate(*scene.targets, views, true);
+        const float after = fitter.takeMeanLoss(), expected = fresh.takeMeanLoss();
+        // The loss slots are float sums whose order the threads set: equal to a few ulps.
+        EXPECT_NEAR(after, expected, 1e-5f * expected) << what;
+        EXPECT_GT(std::abs(after - before), 1e-3f * expected) << what << ": the write shows in the loss";
+        fitter.update();
+    }
+    expectNoGlError();
 }
 
 }  // namespace
