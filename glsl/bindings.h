@@ -19,11 +19,10 @@
 #define SUBDFIT_SSBO_POINTS 11          // base + refined + local points, 3 floats each
 #define SUBDFIT_SSBO_SECOND_POINTS 39  // a second set evaluated in the same dispatch (θ− beside θ+)
 // The patches tessellated (render::PatchTessellation): each vertex's patch and domain point, the
-// vertices evaluated there (position, normal, tangents, ptex face and (u, v)), the quads
-// between them and the triangles they are split into.
+// vertices evaluated there (position, normal, tangents, ptex face and (u, v)) and the triangles
+// the quads between them are split into.
 #define SUBDFIT_SSBO_TESSELLATION_SAMPLES 40
 #define SUBDFIT_SSBO_SURFACE_VERTICES 41
-#define SUBDFIT_SSBO_TESSELLATION_QUADS 42
 #define SUBDFIT_SSBO_SURFACE_TRIANGLES 43
 #define SUBDFIT_SSBO_ADJACENCY_OFFSETS 16    // cage vertex -> neighbours (CSR)
 #define SUBDFIT_SSBO_ADJACENCY_INDICES 17
@@ -95,6 +94,10 @@
 #define SUBDFIT_UNIT_PATCH_POINTS 17
 #define SUBDFIT_UNIT_PATCH_INFO 18  // ivec4 {cv offset, patch type, param0, param1} per patch
 #define SUBDFIT_UNIT_PATCH_CVS 19   // the patches' control point indices, four a texel
+// The split's reads (glsl/triangulate.comp): each quad's corners, and the evaluated vertices
+// (a record of four RGBA32F texels, its position first).
+#define SUBDFIT_UNIT_TESSELLATION_QUADS 37
+#define SUBDFIT_UNIT_SURFACE_VERTICES 38
 
 // The map values the patch pass shades with, one texel per node (maps::MapParameters): the
 // normal map's tangent-space (x, y); on the appearance lattice sRGB base colour and (roughness,

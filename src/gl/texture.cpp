@@ -46,7 +46,7 @@ GLsizeiptr texelBytesOf(GLenum format) {
         case GL_R32F: case GL_R32I: return 4;
         case GL_RG32F: case GL_RG32I: case GL_RG32UI: return 8;
         case GL_RGB32F: return 12;
-        case GL_RGBA32F: case GL_RGBA32I: return 16;
+        case GL_RGBA32F: case GL_RGBA32I: case GL_RGBA32UI: return 16;
         default: throw Error("no buffer texture of format " + std::to_string(format));
     }
 }

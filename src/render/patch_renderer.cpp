@@ -68,6 +68,7 @@ PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel, Sha
     quadCount_ = int(tessellation.quads.size() / 4);
     samples_ = gl::Buffer::fromVector(tessellation.samples);
     quads_ = gl::Buffer::fromVector(tessellation.quads);
+    quadsTexture_ = gl::BufferTexture(quads_, GL_RGBA32UI);
     // The record's layout is glsl/tessellate.comp's; the locations are glsl/surface.vert's.
     vertexArray_.recordAttribute(0, 3, 0);                                 // position
     vertexArray_.recordAttribute(1, 3, 3 * sizeof(float));                 // normal
@@ -109,11 +110,13 @@ void PatchRenderer::evaluate(gl::ProgramCache& programs, const gl::Buffer& point
         }
         glDispatchCompute(gl::groupsOf(run.count, 64), 1, 1);
     }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // the split reads the vertices as a texture
     const auto& triangulate = programs.get(kTriangulate);
     triangulate.use();
     triangulate.set("uQuadCount", quadCount_);
-    quads_.bindStorage(SUBDFIT_SSBO_TESSELLATION_QUADS);
+    quadsTexture_.bind(SUBDFIT_UNIT_TESSELLATION_QUADS);
+    const gl::BufferTexture vertexTexture(surface.vertices, GL_RGBA32F);
+    vertexTexture.bind(SUBDFIT_UNIT_SURFACE_VERTICES);
     surface.triangles.bindStorage(SUBDFIT_SSBO_SURFACE_TRIANGLES);
     glDispatchCompute(gl::groupsOf(quadCount_, 64), 1, 1);
     glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT);

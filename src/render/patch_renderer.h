@@ -70,6 +70,7 @@ private:
     int vertexCount_, quadCount_;
     gl::Buffer patchInfo_, patchCvs_, samples_, quads_;
     gl::BufferTexture patchInfoTexture_, patchCvTexture_;  // as the surface pass reads them
+    gl::BufferTexture quadsTexture_;                       // as the split reads them
     gl::VertexArray vertexArray_;
     // evaluate()'s scratch: the heights it displaces by, laid out for its pass.
     mutable std::optional<HeightTiles> heightTiles_;
