@@ -98,6 +98,7 @@
 // (a record of four RGBA32F texels, its position first).
 #define SUBDFIT_UNIT_TESSELLATION_QUADS 37
 #define SUBDFIT_UNIT_SURFACE_VERTICES 38
+#define SUBDFIT_UNIT_LIMIT_VERTICES 39  // a kept limit surface's vertices, displaced (glsl/displace.comp)
 
 // The map values the patch pass shades with, one texel per node (maps::MapParameters): the
 // normal map's tangent-space (x, y); on the appearance lattice sRGB base colour and (roughness,

@@ -107,32 +107,10 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     if (std::find(pendingUpdate_.begin(), pendingUpdate_.end(), perturbed) == pendingUpdate_.end())
         pendingUpdate_.push_back(perturbed);
     const bool verticesPerturbed = perturbed->kind() == optim::GroupKind::Vertices;
-    // A map's turn draws the cage as it is: while it stays (a map stage with the cage frozen),
-    // its points are not evaluated again.
-    if (verticesPerturbed) {
-        stencils_.evaluate(programs_, vertices_.thetaPlus, pointsPlus_, vertices_.thetaMinus, pointsMinus_);
-        pointsPlusOf_.reset();
-    } else if (pointsPlusOf_ != vertices_.version()) {
-        stencils_.evaluate(programs_, vertices_.theta, pointsPlus_);
-        pointsPlusOf_ = vertices_.version();
-    }
-    const gl::Buffer& pointsMinus = verticesPerturbed ? pointsMinus_ : pointsPlus_;
-    mark("stencils");
     const float pixels = float(settings_.resolution) * float(settings_.resolution);
     const auto mapsPlus = maps_ ? maps_->forRaster(maps::ParameterVersion::Plus, perturbed) : render::PatchMaps{};
     const auto mapsMinus = maps_ ? maps_->forRaster(maps::ParameterVersion::Minus, perturbed) : render::PatchMaps{};
-    // θ+ and θ− are one surface unless the turn moves it (the vertices or the heights): a map
-    // that only shades is drawn on the surface evaluated once, for every view of the step.
-    // The same surface as the last such turn's while the cage and the heights stay (one shading
-    // group's turn after another's) is not evaluated again either.
-    const bool surfaceMoves = verticesPerturbed || (maps_ && perturbed == maps_->displacement());
-    const SurfaceKey key{vertices_.version(), maps_ && maps_->displacement() ? maps_->displacement()->version() : 0,
-                         mapsPlus.limitShading};
-    if (surfaceMoves || surfacePlusOf_ != key) renderer_.evaluate(programs_, pointsPlus_, surfacePlus_, &mapsPlus);
-    surfacePlusOf_ = surfaceMoves ? std::nullopt : std::make_optional(key);
-    if (surfaceMoves) renderer_.evaluate(programs_, pointsMinus, surfaceMinus_, &mapsMinus);
-    const render::PatchRenderer::Surface& minusSurface = surfaceMoves ? surfaceMinus_ : surfacePlus_;
-    mark("surfaces");
+    const render::PatchRenderer::Surface& minusSurface = evaluateSurfaces(*perturbed, mapsPlus, mapsMinus);
     for (int view : views) {
         const auto& camera = targets.camera(view);
         renderer_.rasterize(programs_, surfacePlus_, camera, plus_, &mapsPlus);
@@ -151,6 +129,57 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
         mark("scatter to vertices");
     }
     if (measureLoss) ++samplesSinceLoss_;
+}
+
+// θ+'s surface into surfacePlus_ and θ−'s (the one it returns), evaluating only what changed.
+const render::PatchRenderer::Surface& CageFitter::evaluateSurfaces(const optim::ParameterGroup& perturbed,
+                                                                   const render::PatchMaps& mapsPlus,
+                                                                   const render::PatchMaps& mapsMinus) {
+    const bool verticesPerturbed = perturbed.kind() == optim::GroupKind::Vertices;
+    // A map's turn draws the cage as it is: while it stays (a map stage with the cage frozen),
+    // its points are not evaluated again.
+    const bool cageStayed = pointsPlusOf_ == vertices_.version();  // since the last map turn
+    if (verticesPerturbed) {
+        stencils_.evaluate(programs_, vertices_.thetaPlus, pointsPlus_, vertices_.thetaMinus, pointsMinus_);
+        pointsPlusOf_.reset();
+    } else if (!cageStayed) {
+        stencils_.evaluate(programs_, vertices_.theta, pointsPlus_);
+        pointsPlusOf_ = vertices_.version();
+    }
+    mark("stencils");
+    // θ+ and θ− are one surface unless the turn moves it (the vertices or the heights): a map
+    // that only shades is drawn on the surface evaluated once, for every view of the step, and
+    // not evaluated again while the cage and the heights stay (one shading group's turn after
+    // another's).
+    const bool surfaceMoves = verticesPerturbed || (maps_ && &perturbed == maps_->displacement());
+    const SurfaceKey key{vertices_.version(), maps_ && maps_->displacement() ? maps_->displacement()->version() : 0,
+                         mapsPlus.limitShading};
+    if (verticesPerturbed) {
+        renderer_.evaluate(programs_, pointsPlus_, surfacePlus_, &mapsPlus);
+        renderer_.evaluate(programs_, pointsMinus_, surfaceMinus_, &mapsMinus);
+    } else {
+        if (surfaceMoves || surfacePlusOf_ != key) evaluateOnCage(mapsPlus, surfacePlus_, cageStayed);
+        if (surfaceMoves) evaluateOnCage(mapsMinus, surfaceMinus_, cageStayed);
+    }
+    surfacePlusOf_ = surfaceMoves ? std::nullopt : std::make_optional(key);
+    mark("surfaces");
+    return surfaceMoves ? surfaceMinus_ : surfacePlus_;
+}
+
+void CageFitter::evaluateOnCage(const render::PatchMaps& maps, const render::PatchRenderer::Surface& surface,
+                                bool cageStayed) {
+    // Heights on a cage that stays (a map stage with the cage frozen): its limit surface is kept
+    // and displaced by each set of them. A cage that moves between map turns is evaluated at once.
+    if (!maps.displacement || !cageStayed) {
+        renderer_.evaluate(programs_, pointsPlus_, surface, &maps);
+        return;
+    }
+    if (limitOf_ != vertices_.version()) {
+        if (!limitVertices_) limitVertices_.emplace(renderer_.makeVertices());
+        renderer_.evaluateLimit(programs_, pointsPlus_, *limitVertices_);
+        limitOf_ = vertices_.version();
+    }
+    renderer_.displace(programs_, *limitVertices_, surface, maps);
 }
 
 sge::FaceVertexTable& CageFitter::faceVertices() {

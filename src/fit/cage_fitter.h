@@ -127,6 +127,11 @@ public:
 
 private:
     sge::FaceVertexTable& faceVertices();
+    const render::PatchRenderer::Surface& evaluateSurfaces(const optim::ParameterGroup& perturbed,
+                                                           const render::PatchMaps& mapsPlus,
+                                                           const render::PatchMaps& mapsMinus);
+    // A surface on the cage as it is (pointsPlus_) with `maps`' heights, into `surface`.
+    void evaluateOnCage(const render::PatchMaps& maps, const render::PatchRenderer::Surface& surface, bool cageStayed);
     void mark(const char* phase) {
         if (timestamps_) timestamps_->mark(phase);
     }
@@ -158,6 +163,9 @@ private:
     };
     std::optional<std::uint64_t> pointsPlusOf_;
     std::optional<SurfaceKey> surfacePlusOf_;
+    // The cage's limit surface without heights, kept for a map stage on a frozen cage (its version).
+    std::optional<gl::Buffer> limitVertices_;
+    std::optional<std::uint64_t> limitOf_;
     // render()'s points and surface, and what they were evaluated from (none yet: empty).
     struct DrawnSurfaceKey {
         std::vector<float> vertices, heights;

@@ -17,6 +17,9 @@ const gl::ProgramSpec kPatchTessellate{"patch_tessellate",
 constexpr gl::VariantBits kTessellateDisplacement = 1u << 0, kTessellateLimitShading = 1u << 1,
                           kTessellateGregory = 1u << 2;
 
+const gl::ProgramSpec kDisplace{"patch_displace", {{GL_COMPUTE_SHADER, "displace.comp"}}, {"SUBDFIT_LIMIT_SHADING"}};
+constexpr gl::VariantBits kDisplaceLimitShading = 1u << 0;
+
 const gl::ProgramSpec kTriangulate{"patch_triangulate", {{GL_COMPUTE_SHADER, "triangulate.comp"}}};
 
 const gl::ProgramSpec kPatchRaster{"patch_raster",
@@ -79,12 +82,41 @@ PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel, Sha
 }
 
 PatchRenderer::Surface PatchRenderer::makeSurface() const {
-    return {gl::Buffer(GLsizeiptr(std::max(1, vertexCount_)) * kSurfaceVertexBytes),
-            gl::Buffer(GLsizeiptr(std::max(1, quadCount_)) * 6 * sizeof(std::uint32_t))};
+    return {makeVertices(), gl::Buffer(GLsizeiptr(std::max(1, quadCount_)) * 6 * sizeof(std::uint32_t))};
 }
+
+gl::Buffer PatchRenderer::makeVertices() const { return gl::Buffer(GLsizeiptr(std::max(1, vertexCount_)) * kSurfaceVertexBytes); }
 
 void PatchRenderer::evaluate(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
                              const PatchMaps* maps) const {
+    tessellate(programs, points, surface.vertices, maps);
+    split(programs, surface);
+}
+
+void PatchRenderer::evaluateLimit(gl::ProgramCache& programs, const gl::Buffer& points,
+                                  const gl::Buffer& limitVertices) const {
+    tessellate(programs, points, limitVertices, nullptr);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // displace() reads them as a texture
+}
+
+void PatchRenderer::displace(gl::ProgramCache& programs, const gl::Buffer& limitVertices, const Surface& surface,
+                             const PatchMaps& maps) const {
+    SUBDFIT_CHECK(maps.displacement);
+    layOutHeights(programs, maps);
+    const auto& program = programs.get(kDisplace, maps.limitShading ? kDisplaceLimitShading : 0);
+    program.use();
+    program.set("uVertexCount", vertexCount_);
+    setMapUniforms(program, maps);
+    program.set("uTilesPerRow", heightTiles_->tilesPerRow());
+    const gl::BufferTexture limitTexture(limitVertices, GL_RGBA32F);
+    limitTexture.bind(SUBDFIT_UNIT_LIMIT_VERTICES);
+    surface.vertices.bindStorage(SUBDFIT_SSBO_SURFACE_VERTICES);
+    glDispatchCompute(gl::groupsOf(vertexCount_, 64), 1, 1);
+    split(programs, surface);
+}
+
+void PatchRenderer::tessellate(gl::ProgramCache& programs, const gl::Buffer& points, const gl::Buffer& vertices,
+                               const PatchMaps* maps) const {
     const bool displaced = maps && maps->displacement;
     const gl::VariantBits mapBits =
         displaced ? kTessellateDisplacement | (maps->limitShading ? kTessellateLimitShading : 0) : 0;
@@ -93,12 +125,8 @@ void PatchRenderer::evaluate(gl::ProgramCache& programs, const gl::Buffer& point
     const gl::BufferTexture pointTexture(points, GL_RGB32F);
     pointTexture.bind(SUBDFIT_UNIT_PATCH_POINTS);
     samples_.bindStorage(SUBDFIT_SSBO_TESSELLATION_SAMPLES);
-    surface.vertices.bindStorage(SUBDFIT_SSBO_SURFACE_VERTICES);
-    if (displaced) {
-        if (!heightTiles_ || heightTiles_->resolution() != maps->resolution)
-            heightTiles_.emplace(faceCount_, maps->resolution);
-        heightTiles_->fill(programs, *maps);  // binds the maps too
-    }
+    vertices.bindStorage(SUBDFIT_SSBO_SURFACE_VERTICES);
+    if (displaced) layOutHeights(programs, *maps);
     for (const SampleRun& run : runs_) {
         const auto& program = programs.get(kPatchTessellate, mapBits | (run.gregory ? kTessellateGregory : 0));
         program.use();
@@ -110,6 +138,14 @@ void PatchRenderer::evaluate(gl::ProgramCache& programs, const gl::Buffer& point
         }
         glDispatchCompute(gl::groupsOf(run.count, 64), 1, 1);
     }
+}
+
+void PatchRenderer::layOutHeights(gl::ProgramCache& programs, const PatchMaps& maps) const {
+    if (!heightTiles_ || heightTiles_->resolution() != maps.resolution) heightTiles_.emplace(faceCount_, maps.resolution);
+    heightTiles_->fill(programs, maps);  // binds the maps too
+}
+
+void PatchRenderer::split(gl::ProgramCache& programs, const Surface& surface) const {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // the split reads the vertices as a texture
     const auto& triangulate = programs.get(kTriangulate);
     triangulate.use();

@@ -53,9 +53,17 @@ public:
         gl::Buffer vertices, triangles;
     };
     Surface makeSurface() const;
+    gl::Buffer makeVertices() const;
     // The surface of `points` (displaced by `maps`' heights, if it has them) into `surface`.
     void evaluate(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
                   const PatchMaps* maps = nullptr) const;
+    // The same in two halves, for a cage that stays while its heights change: the limit surface
+    // of `points` without heights, kept in `limitVertices` (a surface's vertices buffer), and
+    // displaced by `maps`' heights into `surface` (the patches not evaluated again). The same
+    // surface as evaluate() gives.
+    void evaluateLimit(gl::ProgramCache& programs, const gl::Buffer& points, const gl::Buffer& limitVertices) const;
+    void displace(gl::ProgramCache& programs, const gl::Buffer& limitVertices, const Surface& surface,
+                  const PatchMaps& maps) const;
     // An evaluated surface rasterised; with `maps`, the variant with their effects.
     void rasterize(gl::ProgramCache& programs, const Surface& surface, const Camera& camera, const RenderTarget& target,
                    const PatchMaps* maps = nullptr) const;
@@ -64,6 +72,14 @@ public:
               const PatchMaps* maps = nullptr) const;
 
 private:
+    // The tessellation's vertices of `points` into `vertices`, displaced where `maps` has heights.
+    void tessellate(gl::ProgramCache& programs, const gl::Buffer& points, const gl::Buffer& vertices,
+                    const PatchMaps* maps) const;
+    // Binds `maps`' heights laid out for the surface passes.
+    void layOutHeights(gl::ProgramCache& programs, const PatchMaps& maps) const;
+    // Each quad of an evaluated surface split along its shorter diagonal.
+    void split(gl::ProgramCache& programs, const Surface& surface) const;
+
     int patchCount_, faceCount_, tessLevel_;
     ShadingModel shading_;
     std::vector<SampleRun> runs_;

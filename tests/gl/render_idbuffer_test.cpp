@@ -17,6 +17,7 @@
 
 #include "gl_test_context.h"
 #include "io/image_io.h"
+#include "maps/map_parameters.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
 #include "render/camera.h"
@@ -235,6 +236,29 @@ TEST(PatchKinds, OnlyACageWithGregoryPatchesCompilesTheirVariant) {
         }
         EXPECT_TRUE(regularVariant) << file;
         EXPECT_EQ(gregoryVariant, extraordinary) << file;
+    }
+    test::expectNoGlError();
+}
+
+// A map stage on a frozen cage keeps the limit surface and displaces it by each set of heights
+// (PatchRenderer::evaluateLimit, displace): the surface must be the one evaluate() gives with
+// the same heights, bit for bit, its vertices and its triangles, whichever normal shades them.
+TEST(PatchDisplacement, AKeptLimitSurfaceDisplacedIsTheSurfaceEvaluatedAtOnce) {
+    const Cage cage(loadAsset("spot/spot_control_mesh.obj"));
+    maps::MapParameters maps(cage.mesh, {.displacement = true}, {.resolution = 3});
+    std::vector<float> heights(size_t(maps.displacement()->count()));
+    for (size_t i = 0; i < heights.size(); ++i) heights[i] = 0.01f * std::sin(0.37f * float(i));
+    maps.displacement()->write(heights);
+    const gl::Buffer limit = cage.renderer.makeVertices();
+    cage.renderer.evaluateLimit(test::programs(), cage.points, limit);
+    for (const auto shading : {surface::ShadingNormal::Displaced, surface::ShadingNormal::Limit}) {
+        maps.setShadingNormal(shading);
+        const render::PatchMaps patchMaps = maps.forRaster(maps::ParameterVersion::Current);
+        const auto atOnce = cage.renderer.makeSurface(), displaced = cage.renderer.makeSurface();
+        cage.renderer.evaluate(test::programs(), cage.points, atOnce, &patchMaps);
+        cage.renderer.displace(test::programs(), limit, displaced, patchMaps);
+        EXPECT_EQ(displaced.vertices.read<float>(), atOnce.vertices.read<float>());
+        EXPECT_EQ(displaced.triangles.read<std::uint32_t>(), atOnce.triangles.read<std::uint32_t>());
     }
     test::expectNoGlError();
 }
