@@ -131,7 +131,6 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     if (measureLoss) ++samplesSinceLoss_;
 }
 
-// θ+'s surface into surfacePlus_ and θ−'s (the one it returns), evaluating only what changed.
 const render::PatchRenderer::Surface& CageFitter::evaluateSurfaces(const optim::ParameterGroup& perturbed,
                                                                    const render::PatchMaps& mapsPlus,
                                                                    const render::PatchMaps& mapsMinus) {

@@ -127,6 +127,8 @@ public:
 
 private:
     sge::FaceVertexTable& faceVertices();
+    // θ+'s surface into surfacePlus_ and θ−'s (the one returned) for a turn of `perturbed`,
+    // evaluating only what changed since the last turn.
     const render::PatchRenderer::Surface& evaluateSurfaces(const optim::ParameterGroup& perturbed,
                                                            const render::PatchMaps& mapsPlus,
                                                            const render::PatchMaps& mapsMinus);
@@ -154,8 +156,8 @@ private:
     std::optional<CageRelaxation> relaxation_;  // with --relax, or --tangential under 1 (the default)
     gl::Buffer pointsPlus_, pointsMinus_, smoothScratch_, loss_;
     render::PatchRenderer::Surface surfacePlus_, surfaceMinus_;  // a step's (render::PatchRenderer::evaluate)
-    // What pointsPlus_ and surfacePlus_ hold when a map's turn evaluated them unperturbed (the
-    // versions of the cage and the heights they came from); none after a turn that moved them.
+    // The versions of θ a map's turn evaluated pointsPlus_ (the cage's) and surfacePlus_ (the
+    // cage's and the heights') from; none after a turn that perturbed them.
     struct SurfaceKey {
         std::uint64_t vertices, heights;
         bool limitShading;
