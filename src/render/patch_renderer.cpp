@@ -72,7 +72,7 @@ PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel, Sha
     samples_ = gl::Buffer::fromVector(tessellation.samples);
     quads_ = gl::Buffer::fromVector(tessellation.quads);
     quadsTexture_ = gl::BufferTexture(quads_, GL_RGBA32UI);
-    // The record's layout is glsl/tessellate.comp's; the locations are glsl/surface.vert's.
+    // The record's layout is glsl/surface_vertex.glsl's; the locations are glsl/surface.vert's.
     vertexArray_.recordAttribute(0, 3, 0);                                 // position
     vertexArray_.recordAttribute(1, 3, 3 * sizeof(float));                 // normal
     vertexArray_.recordAttribute(2, 3, 6 * sizeof(float));                 // ∂P/∂u

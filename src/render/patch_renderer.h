@@ -88,7 +88,7 @@ private:
     gl::BufferTexture patchInfoTexture_, patchCvTexture_;  // as the surface pass reads them
     gl::BufferTexture quadsTexture_;                       // as the split reads them
     gl::VertexArray vertexArray_;
-    // evaluate()'s scratch: the heights it displaces by, laid out for its pass.
+    // The surface passes' scratch: the heights they displace by, laid out for them.
     mutable std::optional<HeightTiles> heightTiles_;
 };
 
