@@ -18,6 +18,7 @@
 #include "mesh/obj_writer.h"
 #include "mesh/procedural.h"
 #include "simplify/budget_search.h"
+#include "simplify/compare/textured_baselines.h"
 #include "simplify/simplify_job.h"
 #include "small_simplify.h"
 #include "test_paths.h"
@@ -181,6 +182,22 @@ TEST(SimplifyBudget, NoNearTieIsSettledWhereNoCandidateWillBeFitted) {
         if (settled.tried[k].monitorLoss > 0.0) lowest = std::min(lowest, settled.tried[k].monitorLoss);
     }
     EXPECT_EQ(unsettled.chosen.monitorLoss, lowest);
+    expectNoGlError();
+}
+
+// At a tight budget the first vertex coding (14-bit positions and normals) can fit at no texture
+// scale, a decimation being held above its fewest triangles by its texture seams: the scales are
+// then weighed at the leanest coding, and the baseline still ships within the budget.
+TEST(TexturedBaselines, ATightBudgetStillShipsADecimationWithinIt) {
+    const mesh::PolygonMesh duck = mesh::triangulated(mesh::loadReference(assetPath("gltf/Duck/Duck.glb")));
+    fit::FitScene scene = smallSearchScene(duck, "textured_baseline_tight");
+    constexpr std::uintmax_t kBudget = 5000;
+    const simplify::Quality q = simplify::texturedDecimationBaseline(
+        programs(), scene, kBudget, {.dir = scratchDir("textured_baseline_tight_out"), .distance = false});
+    ASSERT_GT(q.details["encodings_tried"].at(0)["bytes"].get<std::uintmax_t>(), kBudget)
+        << "the first coding fits: the case no longer tests this";
+    EXPECT_LE(q.bytes, kBudget) << q.details.dump();
+    EXPECT_FALSE(q.details["over_budget"].get<bool>());
     expectNoGlError();
 }
 

@@ -81,7 +81,8 @@ private:
 
 // The texture scale and vertex coding search both baselines share: `ship(encoding, images,
 // triangles)` writes the candidate and returns its bytes. Each texture scale, at the starting
-// encoding, gets the most triangles that fit and is scored on the monitor views; at the best
+// encoding (the leanest where that fits at none), gets the most triangles that fit and is scored
+// on the monitor views; at the best
 // scale the encodings are searched (triangle_encoding.h), and the file is left holding the choice.
 struct Shipped {
     int divisor = 1, triangles = 0;
@@ -91,9 +92,11 @@ struct Shipped {
 using ShipFunction = std::function<std::uintmax_t(const VertexEncoding& encoding,
                                                   const std::vector<exporter::EncodedImage>& images, int triangles)>;
 
-Shipped bestScale(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
-                  const std::filesystem::path& output, ScaledTextures& textures, const VertexEncoding& start,
-                  const ShipFunction& ship) {
+// The texture scales at one vertex coding, each with the most triangles that fit; the best
+// that fits, else the first tried (over budget); none where every scale's images alone are over.
+std::optional<Shipped> weighScales(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
+                                   const std::filesystem::path& output, ScaledTextures& textures,
+                                   const VertexEncoding& encoding, const ShipFunction& ship) {
     const int most = scene.reference.faceCount();
     std::optional<Shipped> best;
     double bestPsnr = -1.0;
@@ -103,7 +106,7 @@ Shipped bestScale(gl::ProgramCache& programs, const fit::FitScene& scene, std::u
         const auto& images = textures.at(divisor, candidate.textureBytes);
         if (candidate.textureBytes >= budget) continue;
         candidate.triangles = mostWithinBudget(kFewestTriangles, most, budget, [&](int triangles) {
-            return candidate.bytes = ship(start, images, triangles);
+            return candidate.bytes = ship(encoding, images, triangles);
         }, best ? std::optional<int>(best->triangles) : std::nullopt);
         if (candidate.bytes > budget && best) continue;
         const double psnr = monitorPsnr(programs, scene, readBack(output, scene));
@@ -116,6 +119,21 @@ Shipped bestScale(gl::ProgramCache& programs, const fit::FitScene& scene, std::u
         // And halving them frees at most 3/4 of their bytes: once they are a small share of the
         // budget, smaller ones cannot buy the geometry anything.
         if ((!better && candidate.bytes <= budget) || candidate.textureBytes < budget / 16) break;
+    }
+    return best;
+}
+
+Shipped bestScale(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
+                  const std::filesystem::path& output, ScaledTextures& textures, const VertexEncoding& start,
+                  const ShipFunction& ship) {
+    const int most = scene.reference.faceCount();
+    std::optional<Shipped> best = weighScales(programs, scene, budget, output, textures, start, ship);
+    // Where `start` fits at no scale (a tight budget, a decimation held above its fewest
+    // triangles by its seams), the scales are weighed at the leanest coding the search reaches.
+    const VertexEncoding leanest{.positionBits = kFewestPositionBits, .normals = false};
+    if ((!best || best->bytes > budget) && start != leanest) {
+        std::optional<Shipped> lean = weighScales(programs, scene, budget, output, textures, leanest, ship);
+        if (lean && (!best || lean->bytes < best->bytes)) best = lean;
     }
     if (!best) {  // even the smallest images do not fit: the smallest there is, over budget
         best = Shipped{.divisor = kTextureDivisors[std::size(kTextureDivisors) - 1], .choice = {}};

@@ -11,9 +11,7 @@
 namespace subdfit::simplify {
 namespace {
 
-// At 8 bits a position moves by up to about a pixel of a 256² view of the whole asset.
-constexpr int kFewestPositionBits = 8;
-constexpr int kPositionBitsLadder[] = {14, 12, 11, 10, 9, 8};
+constexpr int kPositionBitsLadder[] = {14, 12, 11, 10, 9, kFewestPositionBits};
 // Fewer bits buy triangles; a dip smaller than this (dB, on the monitor views) is within their
 // noise and does not end the ladder (docs/measurements.md).
 constexpr double kLadderNoise = 0.1;

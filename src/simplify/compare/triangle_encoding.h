@@ -49,6 +49,10 @@ private:
     std::map<int, mesh::PolygonMesh> made_;
 };
 
+// The fewest position bits the encoding search tries: at 8 a position moves by up to about a
+// pixel of a 256² view of the whole asset.
+inline constexpr int kFewestPositionBits = 8;
+
 // How a triangle file codes its vertices.
 struct VertexEncoding {
     int positionBits = 14;
