@@ -82,8 +82,8 @@ private:
 // The texture scale and vertex coding search both baselines share: `ship(encoding, images,
 // triangles)` writes the candidate and returns its bytes. Each texture scale, at the starting
 // encoding (the leanest where that fits at none), gets the most triangles that fit and is scored
-// on the monitor views; at the best
-// scale the encodings are searched (triangle_encoding.h), and the file is left holding the choice.
+// on the monitor views; at the best scale the encodings are searched (triangle_encoding.h), and
+// the file is left holding the choice.
 struct Shipped {
     int divisor = 1, triangles = 0;
     std::uintmax_t bytes = 0, textureBytes = 0;
