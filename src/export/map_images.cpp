@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "util/error.h"
+#include "util/printable.h"
 
 // The atlases as files: PNG and EXR through OpenImageIO, and maps.json (the layout and pixel
 // functions they encode are in map_atlas.cpp, which decoders without an image library share).
@@ -32,7 +33,7 @@ WrittenFile writeDisplacementExr(const std::filesystem::path& path, const AtlasL
         spec.attribute("DateTime", "");  // no capture time: the same fit writes the same bytes
         if (!out->open(temporary.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) ||
             !out->close())
-            throw fileError(path.string(), "could not write image: " + out->geterror());
+            throw fileError(path.string(), "could not write image: " + oneLine(out->geterror()));
     });
 }
 
@@ -80,7 +81,7 @@ std::vector<unsigned char> encodePng(int width, int height, int channels, const 
     if (!out || !out->supports("ioproxy")) throw Error(name + ": no in-memory PNG writer in this OpenImageIO build");
     OIIO::ImageSpec spec(width, height, channels, type);
     if (!out->set_ioproxy(&proxy) || !out->open(name, spec) || !out->write_image(type, pixels) || !out->close())
-        throw Error(name + ": could not encode PNG: " + out->geterror());
+        throw Error(name + ": could not encode PNG: " + oneLine(out->geterror()));
     return bytes;
 }
 

@@ -14,6 +14,7 @@
 #include "io/atomic_file.h"
 #include "io/input_file.h"
 #include "util/error.h"
+#include "util/printable.h"
 #include "util/warnings.h"
 
 namespace subdfit::io {
@@ -64,7 +65,7 @@ std::unique_ptr<OIIO::ImageInput> openImage(const unsigned char* bytes, std::siz
     const char* format = formatOf(bytes, size);
     if (!format) throw fileError(name, "not an image format subdfit reads (PNG, JPEG, WebP, BMP, GIF, TIFF, EXR)");
     auto in = OIIO::ImageInput::open(std::string("memory.") + format, nullptr, &proxy);
-    if (!in) throw fileError(name, "corrupt image: " + OIIO::geterror());
+    if (!in) throw fileError(name, "corrupt image: " + oneLine(OIIO::geterror()));
     return in;
 }
 
@@ -90,7 +91,7 @@ std::vector<std::uint8_t> pixelsAt(const DecodedImage& image, int width, int hei
                                  : OIIO::ImageBufAlgo::resize(source, "", 0.0f, OIIO::ROI(0, width, 0, height, 0, 1, 0, 4));
     std::vector<std::uint8_t> pixels(size_t(width) * size_t(height) * size_t(channels));
     if (!resized.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, channels), OIIO::TypeDesc::UINT8, pixels.data()))
-        throw Error("cannot resize an image: " + resized.geterror());
+        throw Error("cannot resize an image: " + oneLine(resized.geterror()));
     return pixels;
 }
 
@@ -131,7 +132,7 @@ DecodedImage decodeImage(const void* data, std::size_t size, const std::string& 
     for (int y0 = 0; y0 < header.height; y0 += kStripRows) {
         const int rows = std::min(kStripRows, header.height - y0);
         if (!in->read_scanlines(0, 0, yBegin + y0, yBegin + y0 + rows, 0, 0, channels, OIIO::TypeDesc::UINT8, strip.data()))
-            throw fileError(name, "corrupt image: " + in->geterror());
+            throw fileError(name, "corrupt image: " + oneLine(in->geterror()));
         for (std::size_t i = 0, n = std::size_t(header.width) * std::size_t(rows); i < n; ++i) {
             const std::uint8_t* p = strip.data() + i * std::size_t(channels);
             std::uint8_t* q = image.rgba.data() + (std::size_t(y0) * std::size_t(header.width) + i) * 4;
@@ -169,7 +170,7 @@ std::vector<std::uint8_t> encodeImage(const DecodedImage& image, int width, int 
     }
     if (!out->set_ioproxy(&proxy) || !out->open(name, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) ||
         !out->close())
-        throw Error(std::string("cannot encode an image: ") + out->geterror());
+        throw Error(std::string("cannot encode an image: ") + oneLine(out->geterror()));
     return bytes;
 }
 
@@ -198,7 +199,7 @@ void writeImage(const std::filesystem::path& path, const std::vector<glm::vec4>&
         if (!out) throw fileError(path.string(), "no image writer for this extension");
         if (!out->open(temporary.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
             !out->close())
-            throw fileError(path.string(), "could not write image: " + out->geterror());
+            throw fileError(path.string(), "could not write image: " + oneLine(out->geterror()));
     });
 }
 

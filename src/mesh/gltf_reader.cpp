@@ -24,6 +24,7 @@
 #include "mesh/mesh_geometry.h"
 #include "util/error.h"
 #include "util/interrupt.h"
+#include "util/printable.h"
 
 namespace subdfit::mesh {
 
@@ -35,20 +36,6 @@ constexpr const char* kDraco = "KHR_draco_mesh_compression";
 bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
                void*) {
     return true;
-}
-
-// tinygltf's messages are several lines; ours are one.
-std::string oneLine(const std::string& text) {
-    std::string out;
-    for (char c : text) {
-        if (c == '\n' || c == '\r') {
-            if (!out.empty() && out.back() != ' ') out += "; ";
-        } else {
-            out += c;
-        }
-    }
-    while (!out.empty() && (out.back() == ' ' || out.back() == ';')) out.pop_back();
-    return out.empty() ? "unknown error" : out;
 }
 
 tinygltf::Model parseModel(const std::filesystem::path& path, bool decodeImages) {

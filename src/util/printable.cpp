@@ -46,4 +46,17 @@ std::string printable(std::string_view text, std::size_t maxBytes) {
     return out;
 }
 
+std::string oneLine(std::string_view text) {
+    std::string out;
+    for (char c : text) {
+        if (c == '\n' || c == '\r') {
+            if (!out.empty() && out.back() != ' ') out += "; ";
+        } else {
+            out += c;
+        }
+    }
+    while (!out.empty() && (out.back() == ' ' || out.back() == ';')) out.pop_back();
+    return out.empty() ? "unknown error" : out;
+}
+
 }  // namespace subdfit

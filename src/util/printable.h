@@ -10,4 +10,7 @@ namespace subdfit {
 
 std::string printable(std::string_view text, std::size_t maxBytes = 80);
 
+// A library's message of several lines as one: its lines joined by "; " (ours are one line).
+std::string oneLine(std::string_view text);
+
 }  // namespace subdfit

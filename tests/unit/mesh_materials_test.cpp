@@ -154,6 +154,21 @@ TEST(MeshMaterials, ACorruptImageIsRefusedNamingTheFile) {
     EXPECT_NO_THROW(loadMesh(dir / "t.gltf"));
 }
 
+TEST(MeshMaterials, AnImageCutShortIsRefusedInOneLine) {
+    const fs::path dir = test::scratchDir("materials_truncated_image");
+    writeCheckerPng(dir / "whole.png");
+    std::ifstream in(dir / "whole.png", std::ios::binary);
+    const std::string whole{std::istreambuf_iterator<char>(in), {}};
+    writeText(dir / "cut.png", whole.substr(0, whole.size() - 24));  // a header, its pixels cut short
+    writeText(dir / "t.gltf", triangleGltf(R"({"index":0})", "cut.png"));
+    const std::string message = errorMessage([&] { loadReference(dir / "t.gltf"); });
+    EXPECT_NE(message.find("cut.png"), std::string::npos) << message;
+    EXPECT_NE(message.find("corrupt image"), std::string::npos) << message;
+    // The decoder's several lines, joined: neither a line break nor its escape.
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_EQ(message.find("\\x0A"), std::string::npos) << message;
+}
+
 TEST(MeshMaterials, ObjWithMtlHasItsBaseColourAndSplitsVerticesAtTextureSeams) {
     const fs::path dir = test::scratchDir("materials_obj");
     writeCheckerPng(dir / "checker.png");
