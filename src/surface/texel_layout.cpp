@@ -83,8 +83,28 @@ std::vector<int> haloNodes(const TexelLayout& layout) {
 
 namespace {
 
+// The cage's points about the centre of their bounds, and the largest distance from it: a layout
+// depends on the shape alone, not on where it stands (far from the origin, the rounding of a
+// limit point grows with the coordinates, not with the nodes' spacing).
+std::pair<std::vector<glm::vec3>, float> centred(const std::vector<glm::vec3>& points) {
+    glm::vec3 low(0.0f), high(0.0f);
+    if (!points.empty()) low = high = points.front();
+    for (const auto& p : points) low = glm::min(low, p), high = glm::max(high, p);
+    const glm::vec3 centre = 0.5f * (low + high);
+    std::vector<glm::vec3> out(points.size());
+    float extent = 0.0f;
+    for (size_t k = 0; k < points.size(); ++k) {
+        out[k] = points[k] - centre;
+        extent = std::max({extent, std::abs(out[k].x), std::abs(out[k].y), std::abs(out[k].z)});
+    }
+    return {std::move(out), extent};
+}
+
 TexelLayout layOut(const mesh::PolygonMesh& cage, int resolution) {
     const subdiv::LimitEvaluator evaluator(cage);
+    const auto shape = centred(cage.positions);
+    const std::vector<glm::vec3>& positions = shape.first;
+    const float extent = shape.second;
     TexelLayout layout;
     layout.resolution = resolution;
     layout.ptexFaceCount = evaluator.ptexFaceCount();
@@ -102,11 +122,9 @@ TexelLayout layOut(const mesh::PolygonMesh& cage, int resolution) {
             for (int i = 0; i <= n; ++i)
                 if (i == 0 || j == 0 || i == n || j == n)
                     borderPoints[size_t(face) * perFace + size_t(j) * size_t(n + 1) + size_t(i)] =
-                        evaluator.evaluate(face, float(i) / float(n), float(j) / float(n), cage.positions).position;
+                        evaluator.evaluate(face, float(i) / float(n), float(j) / float(n), positions).position;
     });
 
-    float extent = 0.0f;
-    for (const auto& p : cage.positions) extent = std::max({extent, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
     // Far below the node spacing of any sane map, far above float rounding of one limit point.
     mesh::PointWelder welder(std::max(extent, 1e-30f) * 1e-5f);
     int next = 0;

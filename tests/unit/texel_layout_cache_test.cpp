@@ -3,6 +3,8 @@
 // welded where their limit points meet, so positions are part of what a layout depends on).
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include "mesh/procedural.h"
 #include "surface/texel_layout.h"
 
@@ -32,6 +34,18 @@ TEST(TexelLayoutCache, OtherPositionsOnTheSameTopologyGetTheirOwnLayout) {
     const surface::TexelLayout pinched = surface::buildTexelLayout(collapsed, 3);
     EXPECT_LT(pinched.nodeCount, spread.nodeCount);
     expectSameLayout(surface::buildTexelLayout(cage, 3), spread);
+}
+
+// Welding tolerates rounding relative to the shape's size, not to its coordinates: a cage far from
+// the origin (where every border node once welded into one), or a tiny one, is laid out alike.
+TEST(TexelLayoutCache, ALayoutDependsOnTheShapeNotOnWhereItStands) {
+    const mesh::PolygonMesh cage = mesh::makeQuadSphere(3);
+    const surface::TexelLayout home = surface::buildTexelLayout(cage, 4);
+    for (const auto& [scale, offset] : {std::pair{1.0f, glm::vec3(1e5f, -3e4f, 2e5f)}, std::pair{1e-4f, glm::vec3(0.3f)}}) {
+        mesh::PolygonMesh moved = cage;
+        for (auto& p : moved.positions) p = p * scale + offset;
+        expectSameLayout(surface::buildTexelLayout(moved, 4), home);
+    }
 }
 
 }  // namespace
