@@ -1,13 +1,12 @@
 #include "util/error.h"
 
-#include <cstdio>
-#include <cstdlib>
+#include <string>
 
 namespace subdfit {
 
 void checkFailed(const char* expr, const char* file, int line) {
-    std::fprintf(stderr, "subdfit: internal check failed: %s (%s:%d)\n", expr, file, line);
-    std::abort();
+    throw InternalError(std::string("internal check failed: ") + expr + " (" + file + ":" + std::to_string(line) +
+                        "): a bug in subdfit, not in the input");
 }
 
 }  // namespace subdfit

@@ -30,6 +30,14 @@ inline Error fileError(const std::string& path, const std::string& problem) {
     return Error(path + ": " + problem);
 }
 
+// A broken internal contract: a bug, not the input's fault. SUBDFIT_CHECK throws it rather than
+// aborting, so that a batch records the asset as failed and goes on to the next, and a run
+// stops with its outputs unwritten (their temp files removed) and a non-zero exit.
+class InternalError : public std::logic_error {
+public:
+    using std::logic_error::logic_error;
+};
+
 [[noreturn]] void checkFailed(const char* expr, const char* file, int line);
 
 }  // namespace subdfit
