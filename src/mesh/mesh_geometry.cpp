@@ -66,6 +66,35 @@ std::vector<glm::vec3> vertexNormals(const PolygonMesh& mesh) {
     return normals;
 }
 
+PolygonMesh flatShaded(const PolygonMesh& triangles) {
+    PolygonMesh out;
+    out.sourcePath = triangles.sourcePath;
+    out.materials = triangles.materials;
+    out.faceMaterials = triangles.faceMaterials;
+    out.faceSizes = triangles.faceSizes;
+    const size_t corners = triangles.faceIndices.size();
+    out.positions.reserve(corners);
+    out.normals.reserve(corners);
+    for (size_t f = 0; f < triangles.faceSizes.size(); ++f) {
+        SUBDFIT_CHECK(triangles.faceSizes[f] == 3);
+        const int* v = triangles.faceIndices.data() + 3 * f;
+        const glm::dvec3 a(triangles.positions[size_t(v[0])]), b(triangles.positions[size_t(v[1])]),
+            c(triangles.positions[size_t(v[2])]);
+        const glm::dvec3 area = glm::cross(b - a, c - a);
+        const double length = glm::length(area);
+        const glm::vec3 normal = length > 0.0 && std::isfinite(length) ? glm::vec3(area / length) : glm::vec3(0, 0, 1);
+        for (int k = 0; k < 3; ++k) {
+            const auto corner = size_t(v[k]);
+            out.faceIndices.push_back(int(out.positions.size()));
+            out.positions.push_back(triangles.positions[corner]);
+            out.normals.push_back(normal);
+            if (!triangles.uvs.empty()) out.uvs.push_back(triangles.uvs[corner]);
+            if (!triangles.colors.empty()) out.colors.push_back(triangles.colors[corner]);
+        }
+    }
+    return out;
+}
+
 std::vector<glm::vec3> shadingNormals(const PolygonMesh& mesh) {
     return mesh.normals.empty() ? vertexNormals(mesh) : mesh.normals;
 }

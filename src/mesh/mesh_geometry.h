@@ -17,9 +17,14 @@ PolygonMesh triangulated(const PolygonMesh& mesh);
 // whose faces have no area, or that no face uses, gets +Z.
 std::vector<glm::vec3> vertexNormals(const PolygonMesh& mesh);
 
-// The normals a glTF viewer shades `mesh` with: the author's (mesh.normals) where the file has
-// them, else vertexNormals().
+// The normals `mesh` is shaded with: the author's (mesh.normals) where the file has them, else
+// vertexNormals() (how a dense reference without normals is meant to look).
 std::vector<glm::vec3> shadingNormals(const PolygonMesh& mesh);
+
+// A triangle mesh as glTF viewers draw a primitive without normals (glTF 2.0, 3.7.2.1: flat
+// normals): every triangle its own three vertices (texture coordinates and colours kept) with
+// its face's unit normal (+Z where it has no area).
+PolygonMesh flatShaded(const PolygonMesh& triangles);
 
 // The mean length of the faces' edges (an edge shared by two faces counts twice): the scale of
 // a cage, which perturbations, steps and ray reaches are measured against.

@@ -74,6 +74,34 @@ TEST(MeshGeometry, DegenerateMeshesGiveFiniteOutput) {
     expectFiniteUnit(vertexNormals(tris));
 }
 
+// A glTF without normals as viewers draw it: each triangle flat, its corners' other attributes kept.
+TEST(MeshGeometry, FlatShadedGivesEveryTriangleItsOwnVerticesAndFaceNormal) {
+    PolygonMesh cube = triangulated(unitCube());
+    cube.uvs.resize(cube.positions.size());
+    for (size_t v = 0; v < cube.uvs.size(); ++v) cube.uvs[v] = glm::vec2(float(v), 0.5f);
+    cube.positions.push_back({2, 2, 2});  // a degenerate triangle: no area, still a unit normal
+    cube.uvs.push_back({9, 9});
+    cube.faceSizes.push_back(3);
+    cube.faceIndices.insert(cube.faceIndices.end(), {8, 8, 8});
+    const PolygonMesh flat = flatShaded(cube);
+    ASSERT_EQ(flat.faceCount(), cube.faceCount());
+    ASSERT_EQ(flat.vertexCount(), 3 * cube.faceCount());
+    ASSERT_EQ(flat.normals.size(), flat.positions.size());
+    ASSERT_EQ(flat.uvs.size(), flat.positions.size());
+    expectFiniteUnit(flat.normals);
+    for (int f = 0; f < flat.faceCount(); ++f) {
+        const int* v = &flat.faceIndices[3 * size_t(f)];
+        const int* source = &cube.faceIndices[3 * size_t(f)];
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_EQ(flat.positions[size_t(v[k])], cube.positions[size_t(source[k])]);
+            EXPECT_EQ(flat.uvs[size_t(v[k])], cube.uvs[size_t(source[k])]);
+            EXPECT_EQ(flat.normals[size_t(v[k])], flat.normals[size_t(v[0])]);  // one normal a face
+        }
+    }
+    // A cube's face normal is an axis, pointing out: the first face (z = 0) looks down.
+    EXPECT_EQ(flat.normals[size_t(flat.faceIndices[0])], glm::vec3(0, 0, -1));
+}
+
 TEST(MeshGeometry, AdjacencyHasUniqueSortedEdgeNeighbours) {
     PolygonMesh mesh;
     mesh.positions.resize(6);

@@ -64,6 +64,7 @@ nlohmann::json toJson(const VertexEncoding& e) {
 
 mesh::PolygonMesh readBack(const std::filesystem::path& path, const fit::FitScene& scene) {
     mesh::PolygonMesh m = mesh::triangulated(mesh::loadReference(path));
+    if (m.normals.empty()) m = mesh::flatShaded(m);  // as viewers draw a glTF without normals
     m.positions = scene.frame.toNormalized(m.positions);
     return m;
 }

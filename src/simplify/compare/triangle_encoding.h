@@ -63,8 +63,8 @@ struct VertexEncoding {
 nlohmann::json toJson(const VertexEncoding& encoding);
 
 // A shipped triangle file as a viewer gets it: read back (quantised positions, lossy images and
-// all), triangulated, in the scene's normalised frame. Without normals in the file, the renderer
-// computes smooth ones, as a viewer does.
+// all), triangulated, in the scene's normalised frame. Without normals in the file it is flat
+// shaded, as glTF asks of viewers (three.js does so).
 mesh::PolygonMesh readBack(const std::filesystem::path& path, const fit::FitScene& scene);
 
 // Mean-loss PSNR of `candidate` on the scene's monitor views (neither training nor held out).
