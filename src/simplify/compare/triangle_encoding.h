@@ -56,7 +56,7 @@ inline constexpr int kFewestPositionBits = 8;
 // How a triangle file codes its vertices.
 struct VertexEncoding {
     int positionBits = 14;
-    bool normals = true;  // false: none ship, and a viewer computes smooth ones on load
+    bool normals = true;  // false: none ship, and a viewer draws the triangles flat (glTF 3.7.2.1)
     int normalBits = 10;
     bool operator==(const VertexEncoding&) const = default;
 };
