@@ -9,6 +9,16 @@
 #include "util/error.h"
 
 namespace subdfit::mesh {
+namespace {
+
+// `v` made unit; +Z where it has no length (opposite faces can cancel exactly, a face can have
+// no area): any unit vector is then as good as another, and never NaN.
+glm::vec3 unitOrUp(const glm::dvec3& v) {
+    const double length = glm::length(v);
+    return length > 0.0 && std::isfinite(length) ? glm::vec3(v / length) : glm::vec3(0, 0, 1);
+}
+
+}  // namespace
 
 PolygonMesh triangulated(const PolygonMesh& mesh) {
     PolygonMesh out;
@@ -58,11 +68,7 @@ std::vector<glm::vec3> vertexNormals(const PolygonMesh& mesh) {
     }
 
     std::vector<glm::vec3> normals(sums.size());
-    for (size_t i = 0; i < sums.size(); ++i) {
-        const double length = glm::length(sums[i]);
-        // Opposite faces can cancel exactly; any unit vector is then as good as another.
-        normals[i] = length > 0.0 && std::isfinite(length) ? glm::vec3(sums[i] / length) : glm::vec3(0, 0, 1);
-    }
+    for (size_t i = 0; i < sums.size(); ++i) normals[i] = unitOrUp(sums[i]);
     return normals;
 }
 
@@ -80,9 +86,7 @@ PolygonMesh flatShaded(const PolygonMesh& triangles) {
         const int* v = triangles.faceIndices.data() + 3 * f;
         const glm::dvec3 a(triangles.positions[size_t(v[0])]), b(triangles.positions[size_t(v[1])]),
             c(triangles.positions[size_t(v[2])]);
-        const glm::dvec3 area = glm::cross(b - a, c - a);
-        const double length = glm::length(area);
-        const glm::vec3 normal = length > 0.0 && std::isfinite(length) ? glm::vec3(area / length) : glm::vec3(0, 0, 1);
+        const glm::vec3 normal = unitOrUp(glm::cross(b - a, c - a));
         for (int k = 0; k < 3; ++k) {
             const auto corner = size_t(v[k]);
             out.faceIndices.push_back(int(out.positions.size()));
