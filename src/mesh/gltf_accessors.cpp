@@ -12,8 +12,9 @@ namespace subdfit::mesh::gltf {
 
 namespace {
 
-// An accessor resolved to raw memory: element i starts at data + i * stride. `data` is null
-// for an accessor without a buffer view, whose elements are all zero (glTF 2.0, 3.6.2.1).
+// An accessor resolved to raw memory: element i starts at data + i * stride, or for a sparse
+// accessor wherever `sparse` says. `data` is null for an accessor without a buffer view, whose
+// elements are zero (glTF 2.0, 3.6.2.1) unless sparse values replace some.
 struct ElementSpan {
     const unsigned char* data = nullptr;
     size_t stride = 0;
@@ -21,6 +22,10 @@ struct ElementSpan {
     int componentType = 0;
     size_t components = 0;
     bool normalized = false;
+    std::vector<const unsigned char*> sparse;  // every element's bytes, for a sparse accessor
+
+    bool allZero() const { return !data && sparse.empty(); }
+    const unsigned char* element(size_t i) const { return sparse.empty() ? data + i * stride : sparse[i]; }
 };
 
 const char* typeName(int type) {
@@ -44,12 +49,62 @@ size_t componentSize(int componentType) {
     }
 }
 
+template <typename T>
+T load(const unsigned char* p) {
+    T value;
+    std::memcpy(&value, p, sizeof value);  // buffer data need not be aligned
+    return value;
+}
+
+// `bytes` bytes at `offset` in buffer view `view`, checked.
+const unsigned char* viewRange(const tinygltf::Model& model, int view, int offset, size_t bytes, const std::string& path,
+                               const std::string& what) {
+    const std::string_view range = bufferViewBytes(model, view, path);
+    if (offset < 0 || size_t(offset) > range.size() || bytes > range.size() - size_t(offset))
+        throw fileError(path, what + " (" + std::to_string(bytes) + " bytes at offset " + std::to_string(offset) +
+                                  ") run past the end of buffer view " + std::to_string(view));
+    return reinterpret_cast<const unsigned char*>(range.data()) + offset;
+}
+
+// A sparse accessor's substitutions (glTF 2.0, 3.6.2.3): `count` indices, strictly increasing
+// and below the accessor's count, and as many tightly packed elements that replace those.
+void substituteSparse(const tinygltf::Model& model, const tinygltf::Accessor& accessor, size_t elementSize,
+                      ElementSpan& span, const std::string& path, const std::string& name) {
+    static constexpr unsigned char kZero[16] = {};  // the largest element read here: a float VEC4
+    const auto& sparse = accessor.sparse;
+    if (sparse.count < 1 || size_t(sparse.count) > span.count)
+        throw fileError(path, name + ": " + std::to_string(sparse.count) + " sparse values, where 1 to " +
+                                  std::to_string(span.count) + " may be");
+    const size_t n = size_t(sparse.count);
+    const int indexType = sparse.indices.componentType;
+    const size_t indexSize = indexType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
+                             : indexType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                             : indexType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
+                                                                                   : 0;
+    if (indexSize == 0) throw fileError(path, name + ": sparse indices must be unsigned byte, short or int");
+    const unsigned char* indices =
+        viewRange(model, sparse.indices.bufferView, sparse.indices.byteOffset, n * indexSize, path, name + "'s sparse indices");
+    const unsigned char* values =
+        viewRange(model, sparse.values.bufferView, sparse.values.byteOffset, n * elementSize, path, name + "'s sparse values");
+    span.sparse.resize(span.count);
+    for (size_t i = 0; i < span.count; ++i) span.sparse[i] = span.data ? span.data + i * span.stride : kZero;
+    for (size_t k = 0, next = 0; k < n; ++k) {
+        const unsigned char* p = indices + k * indexSize;
+        const std::uint32_t i = indexSize == 1 ? *p : indexSize == 2 ? load<std::uint16_t>(p) : load<std::uint32_t>(p);
+        if (i < next || i >= span.count)
+            throw fileError(path, name + ": sparse index " + std::to_string(i) + " is " +
+                                      (i >= span.count ? "past its " + std::to_string(span.count) + " elements"
+                                                       : "not above the one before it"));
+        next = size_t(i) + 1;
+        span.sparse[i] = values + k * elementSize;
+    }
+}
+
 ElementSpan resolve(const tinygltf::Model& model, int index, int expectedType, const std::string& path) {
     const std::string name = "accessor " + std::to_string(index);
     if (index < 0 || size_t(index) >= model.accessors.size())
         throw fileError(path, name + " does not exist (" + std::to_string(model.accessors.size()) + " accessors)");
     const tinygltf::Accessor& accessor = model.accessors[size_t(index)];
-    if (accessor.sparse.isSparse) throw fileError(path, name + ": sparse accessors are not supported");
     const bool colorType = expectedType == TINYGLTF_TYPE_VEC4 && accessor.type == TINYGLTF_TYPE_VEC3;  // COLOR_0
     if (accessor.type != expectedType && !colorType)
         throw fileError(path, name + " has type " + std::to_string(accessor.type) + ", expected " + typeName(expectedType));
@@ -68,13 +123,14 @@ ElementSpan resolve(const tinygltf::Model& model, int index, int expectedType, c
     span.normalized = accessor.normalized;
     span.stride = elementSize;
     if (span.count == 0) return span;
-    // Without a buffer view every element is zero (sparse accessors are refused above): nothing a
+    // Without a buffer view every element is zero but those sparse values replace: nothing a
     // file needs many of, and a few bytes of JSON must not allocate gigabytes of zeros.
     constexpr size_t kMostZeroElements = size_t(1) << 16;
     if (accessor.bufferView < 0) {
         if (span.count > kMostZeroElements)
             throw fileError(path, name + " has no buffer view and " + std::to_string(span.count) +
-                                      " elements (all zero), more than " + std::to_string(kMostZeroElements));
+                                      " elements (zero), more than " + std::to_string(kMostZeroElements));
+        if (accessor.sparse.isSparse) substituteSparse(model, accessor, elementSize, span, path, name);
         return span;
     }
 
@@ -96,14 +152,8 @@ ElementSpan resolve(const tinygltf::Model& model, int index, int expectedType, c
                                   std::to_string(accessor.bufferView) + " (" + std::to_string(view.size()) +
                                   " bytes)");
     span.data = reinterpret_cast<const unsigned char*>(view.data()) + offset;
+    if (accessor.sparse.isSparse) substituteSparse(model, accessor, elementSize, span, path, name);
     return span;
-}
-
-template <typename T>
-T load(const unsigned char* p) {
-    T value;
-    std::memcpy(&value, p, sizeof value);  // buffer data need not be aligned
-    return value;
 }
 
 // One VEC3 component; integer encodings follow KHR_mesh_quantization's normalisation.
@@ -154,10 +204,10 @@ std::vector<glm::vec3> readVec3(const tinygltf::Model& model, int accessor, cons
     if (span.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
         throw fileError(path, "accessor " + std::to_string(accessor) + ": " + what + "s cannot be UNSIGNED_INT");
     std::vector<glm::vec3> values(span.count, glm::vec3(0.0f));
-    if (!span.data) return values;
+    if (span.allZero()) return values;
     const size_t size = componentSize(span.componentType);
     for (size_t i = 0; i < span.count; ++i) {
-        const unsigned char* element = span.data + i * span.stride;
+        const unsigned char* element = span.element(i);
         for (int c = 0; c < 3; ++c) {
             const float v = component(element + size_t(c) * size, span.componentType, span.normalized);
             if (!std::isfinite(v))
@@ -200,10 +250,10 @@ std::vector<glm::vec<N, float>> readNormalizedAttribute(const tinygltf::Model& m
     glm::vec<N, float> fill(0.0f);
     if constexpr (N == 4) fill.w = 1.0f;  // a VEC3 colour is opaque
     std::vector<glm::vec<N, float>> values(span.count, fill);
-    if (!span.data) return values;
+    if (span.allZero()) return values;
     const size_t size = componentSize(t);
     for (size_t i = 0; i < span.count; ++i) {
-        const unsigned char* element = span.data + i * span.stride;
+        const unsigned char* element = span.element(i);
         for (size_t c = 0; c < span.components; ++c) {
             const float v = component(element + c * size, t, span.normalized);
             if (!std::isfinite(v))
@@ -232,9 +282,9 @@ std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor, co
         type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
         throw fileError(path, "accessor " + std::to_string(accessor) + ": indices must be unsigned byte, short or int");
     std::vector<uint32_t> indices(span.count, 0u);
-    if (!span.data) return indices;
+    if (span.allZero()) return indices;
     for (size_t i = 0; i < span.count; ++i) {
-        const unsigned char* p = span.data + i * span.stride;
+        const unsigned char* p = span.element(i);
         indices[i] = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? load<uint8_t>(p)
                      : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? load<uint16_t>(p)
                                                                       : load<uint32_t>(p);
