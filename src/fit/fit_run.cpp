@@ -216,11 +216,14 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
             // maps start, what its last halvings settled.
             endStage(/*keepStep=*/true);
             if (step() < fitter_->mapsStartStep()) fitter_->startMapsNow();  // the cage converged early
+            // Maps that join from zero are a poor start, not a near-optimal one the fit may fail
+            // to improve: their stage has no probation (while they rise from zero the loss is flat).
+            // Nor have heights that startMaps bakes as they join: their loss can lie flat for
+            // dozens of steps before it falls (docs/optimizer.md). Maps given before the run (an
+            // appearance bake) keep it.
+            if (!mapsGiven_) schedule_.probationOver = true;
         }
-        if (startMaps) startMaps(!pastStart);  // may bake them (startFrom)
-        // Maps that join from zero are a poor start, not a near-optimal one the fit may fail to
-        // improve: their stage has no probation (while they rise from zero the loss is flat).
-        if (!pastStart && !mapsGiven_) schedule_.probationOver = true;
+        if (startMaps) startMaps(!pastStart);
     }
     const StopReason last = runTo(options_.steps, checkpoint, hooks);
     if (last != StopReason::Cancelled) endStage();

@@ -123,31 +123,5 @@ TEST(FitStages, AFitWithoutMapsStopsOnItsProbation) {
     expectNoGlError();
 }
 
-// Maps baked as they join (FitRun::startFrom, as simplify bakes them at step 0) start near their
-// optimum: a start the fit cannot improve on stops on its probation, not after its halvings.
-TEST(FitStages, MapsBakedAsTheyJoinKeepTheirProbation) {
-    const auto dir = scratchDir("fit_stages_baked");
-    fit::FitOptions o = stagedFit(dir);
-    o.mapsStart = 0.0f;
-    // The cage's own limit surface: zero heights on the cage are the optimum.
-    const mesh::PolygonMesh cage = mesh::makeQuadSphere(2);
-    fit::FitScene scene(fit::resolved(o), programs(), cage, surface::limitMesh(cage, 8));
-    fit::FitRun run(fit::resolved(o), programs(), scene);
-    run.setWindowDoublings(0);
-    int joinedAt = -1;
-    const auto stopped = run.run(dir / "checkpoint.bin", {}, [&](bool fresh) {
-        auto& fitter = run.fitter();
-        if (fresh) {
-            joinedAt = run.step();
-            run.startFrom(fitter.surfaceMaps());  // the "bake": the heights as they are, zero
-        }
-        fitter.setOptimised(fitter.vertexGroup(), false);
-    });
-    EXPECT_EQ(joinedAt, 0);
-    EXPECT_EQ(stopped, fit::StopReason::NoGain);
-    EXPECT_LE(run.step(), 2 * fit::FitRun::kProbationMeasurements * fit::FitRun::kProbationEvery);
-    expectNoGlError();
-}
-
 }  // namespace
 }  // namespace subdfit::test
