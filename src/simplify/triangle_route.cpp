@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "export/glb_writer.h"
+#include "mesh/mesh_geometry.h"
 #include "simplify/cage/decimate.h"
 #include "simplify/compare/textured_baselines.h"
 
@@ -15,6 +16,13 @@ bool withMaterials(const fit::FitScene& scene) {
     return scene.shading != render::ShadingModel::Geometry && scene.reference.materials != nullptr;
 }
 
+// Whether the reference is shaded smooth across shared vertices: then its look needs normals in
+// what ships (without, glTF viewers draw it flat). One whose vertices split at its edges (a box,
+// a soup of triangles) looks the same flat, and its welded copy shades otherwise.
+bool shadedSmooth(const fit::FitScene& scene, const mesh::PolygonMesh& welded) {
+    return welded.vertexCount() >= scene.reference.vertexCount();
+}
+
 }  // namespace
 
 std::uintmax_t compressedReferenceBytes(const fit::FitScene& scene, const std::filesystem::path& scratch) {
@@ -23,7 +31,8 @@ std::uintmax_t compressedReferenceBytes(const fit::FitScene& scene, const std::f
         bytes = writeWholeTextured(scene, scratch);
     } else {
         const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
-        bytes = exporter::writeMeshGlb(scratch, scene.frame.toWorld(welded.positions), {},
+        const auto normals = shadedSmooth(scene, welded) ? mesh::vertexNormals(welded) : std::vector<glm::vec3>{};
+        bytes = exporter::writeMeshGlb(scratch, scene.frame.toWorld(welded.positions), normals,
                                        {welded.faceIndices.begin(), welded.faceIndices.end()}, exporter::DracoBits{})
                     .bytes;
     }
@@ -46,10 +55,11 @@ TriangleBaselines triangleBaselines(gl::ProgramCache& programs, const fit::FitSc
         const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
         t.decimation = decimationBaseline(programs, scene, welded, budget, settings);
         if (level != CompareLevel::None) t.gltfpack = gltfpackBaseline(programs, scene, welded, budget, settings);
-        // The welded decimation shades smooth: where the reference splits its vertices (hard
-        // edges, a box), holding every triangle is not holding its look, and a creased cage may win.
-        wholeTriangles = welded.vertexCount() >= scene.reference.vertexCount() ? welded.faceCount()
-                                                                                 : std::numeric_limits<int>::max();
+        // Holding every triangle holds the look only where the reference shades smooth and the
+        // decimation ships its normals: the welded decimation shades smooth where the reference
+        // splits its vertices (hard edges, a box: a creased cage may win), and flat without normals.
+        const bool withNormals = t.decimation->details.value(nlohmann::json::json_pointer("/encoding/normals"), false);
+        wholeTriangles = shadedSmooth(scene, welded) && withNormals ? welded.faceCount() : std::numeric_limits<int>::max();
     }
     if (!t.decimation->details.value("over_budget", true) && t.decimation->details.value("triangles", 0) >= wholeTriangles)
         t.holds = everyTexel ? Holds::Whole : Holds::EveryTriangle;

@@ -43,6 +43,9 @@ TEST(SimplifyRoute, ALightReferenceShipsTheTriangleRouteWhole) {
     EXPECT_LE(report["bytes"].get<std::uintmax_t>(), report["simplify"]["budget"].get<std::uintmax_t>());
     EXPECT_EQ(report["psnr_holdout"], baseline["psnr_holdout"]);
     EXPECT_EQ(report["margin_db"][shipped].get<double>(), 0.0);
+    // A smooth reference ships its normals: without, viewers would draw it flat.
+    if (shipped == "decimation") EXPECT_TRUE(baseline["encoding"]["normals"].get<bool>()) << baseline.dump();
+    EXPECT_GT(report["psnr_holdout"].get<double>(), 45.0);  // the reference's own look
     EXPECT_FALSE(report.contains("steps"));
     EXPECT_FALSE(fs::exists(dir / "out" / "asset.subd"));
     EXPECT_TRUE(report["seconds_by_stage"].contains("triangle_route"));
@@ -51,6 +54,28 @@ TEST(SimplifyRoute, ALightReferenceShipsTheTriangleRouteWhole) {
     const fit::ResultFolder folder = fit::readResultFolder(dir / "out");
     ASSERT_FALSE(folder.entries.empty());
     EXPECT_EQ(folder.entries.front().levels.front(), dir / "out" / "asset.glb");
+}
+
+// A reference whose author set its normals (here all tilted one way, unlike any computed ones)
+// ships them: the triangle route carries the reference's own normals, not smooth ones of its own.
+TEST(SimplifyRoute, AuthoredNormalsShipWithTheReference) {
+    const auto dir = scratchDir("simplify_route_authored_normals");
+    const mesh::PolygonMesh light = mesh::triangulated(mesh::makeLumpySphere(3, 0.15f, 4));
+    {
+        std::ofstream obj(dir / "authored.obj");
+        for (const auto& p : light.positions) obj << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+        obj << "vn 0.6 0.8 0\n";
+        for (int f = 0; f < light.faceCount(); ++f) {
+            obj << 'f';
+            for (int k = 0; k < 3; ++k) obj << ' ' << light.faceIndices[size_t(3 * f + k)] + 1 << "//1";
+            obj << '\n';
+        }
+    }
+    const auto report = simplify::toJson(simplify::runSimplify(smallSimplify(dir / "authored.obj", dir / "out", 20)));
+    const std::string shipped = report["route"]["shipped"].get<std::string>();
+    ASSERT_EQ(shipped, "decimation") << report["route"].dump();
+    EXPECT_TRUE(report["baselines"][shipped]["encoding"]["normals"].get<bool>());
+    EXPECT_GT(report["psnr_holdout"].get<double>(), 45.0);
 }
 
 // Two materials, so the appearance rides on tiles per face, which no cage of the ladder can

@@ -33,13 +33,21 @@ std::vector<std::uint32_t> indicesOf(const mesh::PolygonMesh& triangles) {
 
 namespace {
 
-// The reference's own smooth normals where decimation kept its vertices: meshoptimizer keeps a
-// subset of the vertices where they were, so a kept vertex is found by its position.
+// The reference's own shading normals (its author's where the file has them, else smooth ones)
+// where decimation kept its vertices: meshoptimizer keeps a subset of the vertices where they
+// were, so a kept vertex is found by its position. Where the reference splits a vertex (a hard
+// edge), its normals there are averaged: the welded copy has one vertex.
 class ReferenceNormals {
 public:
-    explicit ReferenceNormals(const mesh::PolygonMesh& welded) : normals_(mesh::vertexNormals(welded)) {
-        index_.reserve(welded.positions.size());
-        for (size_t v = 0; v < welded.positions.size(); ++v) index_.emplace(keyOf(welded.positions[v]), std::uint32_t(v));
+    explicit ReferenceNormals(const mesh::PolygonMesh& reference) {
+        const std::vector<glm::vec3> shading = mesh::shadingNormals(reference);
+        index_.reserve(reference.positions.size());
+        for (size_t v = 0; v < reference.positions.size(); ++v) {
+            const auto [it, fresh] = index_.try_emplace(keyOf(reference.positions[v]), std::uint32_t(normals_.size()));
+            if (fresh) normals_.push_back(glm::vec3(0.0f));
+            normals_[it->second] += shading[v];
+        }
+        for (glm::vec3& n : normals_) n = glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0, 0, 1);
     }
     std::vector<glm::vec3> at(const mesh::PolygonMesh& decimated) const {
         std::vector<glm::vec3> normals = mesh::vertexNormals(decimated);  // where a vertex is not the reference's
@@ -93,7 +101,7 @@ void scoreShipped(gl::ProgramCache& programs, const fit::FitScene& scene, const 
 Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& welded,
                            std::uintmax_t budget, const BaselineSettings& settings) {
     const auto path = settings.dir / "decimated.glb";
-    const ReferenceNormals referenceNormals(welded);
+    const ReferenceNormals referenceNormals(scene.reference);
     const auto shipFrom = [&](Decimations& decimations) {
         return [&](const VertexEncoding& encoding, int triangles) {
             throwIfStopRequested();
@@ -153,7 +161,8 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
                                         const BaselineSettings& settings) {
     const auto gltfpack = io::findProgram("gltfpack");
     if (!gltfpack) return std::nullopt;
-    // gltfpack gets what the decimation gets: the welded reference, with its smooth normals or none.
+    // gltfpack gets what the decimation gets: the welded reference, with the reference's own
+    // normals or none.
     struct Input {
         std::filesystem::path withNormals, without;
         int triangles;
@@ -166,12 +175,13 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
         written.insert(written.end(), {input.withNormals, input.without});
         return input;
     };
-    const Input whole = writeInput(welded, mesh::vertexNormals(welded), "gltfpack_input");
+    const ReferenceNormals referenceNormals(scene.reference);
+    const Input whole = writeInput(welded, referenceNormals.at(welded), "gltfpack_input");
     // As the decimation's: a dense reference's probes start from a copy decimated once (with the
     // reference's own normals where it kept its vertices); what ships starts from the reference.
     std::optional<Input> copy;
     if (const auto probeSource = probeSourceFor(welded, budget))
-        copy = writeInput(*probeSource, ReferenceNormals(welded).at(*probeSource), "gltfpack_probe_input");
+        copy = writeInput(*probeSource, referenceNormals.at(*probeSource), "gltfpack_probe_input");
     const Input& probes = copy ? *copy : whole;
     const auto output = settings.dir / "gltfpack.glb";
     // gltfpack's simplifier stops where its error bound says the shape would suffer; a user
