@@ -104,7 +104,7 @@ void writeCheckpoint(const std::filesystem::path& path, const std::string& finge
     out.putArray(schedule.window);
     out.putArray(schedule.stageLosses);
     out.put<std::int32_t>(schedule.stageStart);
-    out.put<std::uint8_t>(schedule.probationOver ? 1 : 0);
+    out.put<std::uint8_t>(schedule.probationOver ? 1 : schedule.probationStopsOnlyARise ? 2 : 0);
     out.put<std::int32_t>(schedule.halvings);
     out.put<std::int32_t>(schedule.carriedHalvings);
     out.put<std::uint32_t>(std::uint32_t(schedule.bestTheta.size()));
@@ -162,7 +162,10 @@ std::optional<FitState> readCheckpoint(const std::filesystem::path& path, const 
     schedule.window = in.getArray<double>();
     schedule.stageLosses = in.getArray<double>();
     schedule.stageStart = in.get<std::int32_t>();
-    schedule.probationOver = in.get<std::uint8_t>() != 0;
+    const auto probation = in.get<std::uint8_t>();
+    if (probation > 2) in.damaged("bad probation state");
+    schedule.probationOver = probation == 1;
+    schedule.probationStopsOnlyARise = probation == 2;
     schedule.halvings = in.get<std::int32_t>();
     schedule.carriedHalvings = in.get<std::int32_t>();
     if (schedule.halvings < 0 || schedule.carriedHalvings < 0) in.damaged("bad halving count");

@@ -168,7 +168,9 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
                 schedule_.bestStep = schedule_.stageStart;
                 restoreBest();
                 if (hooks.note)
-                    hooks.note("no gain on the start in " + std::to_string(step() - schedule_.stageStart) +
+                    hooks.note((schedule_.probationStopsOnlyARise ? "the steps made the start worse in "
+                                                                  : "no gain on the start in ") +
+                               std::to_string(step() - schedule_.stageStart) +
                                " steps, and none likely: the stage stops (stop_reason no_gain)");
                 return StopReason::NoGain;
             }
@@ -218,12 +220,17 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
             if (step() < fitter_->mapsStartStep()) fitter_->startMapsNow();  // the cage converged early
             // Maps that join from zero are a poor start, not a near-optimal one the fit may fail
             // to improve: their stage has no probation (while they rise from zero the loss is flat).
-            // Nor have heights that startMaps bakes as they join: their loss can lie flat for
-            // dozens of steps before it falls (docs/optimizer.md). Maps given before the run (an
-            // appearance bake) keep it.
             if (!mapsGiven_) schedule_.probationOver = true;
         }
+        const bool givenBefore = mapsGiven_;
         if (startMaps) startMaps(!pastStart);
+        // Heights that startMaps bakes as they join start near their optimum, but their loss can
+        // lie flat for dozens of steps before it falls (docs/optimizer.md): their probation stops
+        // only a start the steps clearly make worse. Maps given before the run keep the full one.
+        if (!pastStart && mapsGiven_ && !givenBefore) {
+            schedule_.probationOver = false;
+            schedule_.probationStopsOnlyARise = true;
+        }
     }
     const StopReason last = runTo(options_.steps, checkpoint, hooks);
     if (last != StopReason::Cancelled) endStage();

@@ -22,6 +22,7 @@ struct ScheduleState {
     std::vector<double> stageLosses{};  // the stage's first few, for its probation
     int stageStart = -1;                // the step of its first measurement
     bool probationOver = false;
+    bool probationStopsOnlyARise = false;  // a near-optimal start that may lie flat before it falls
     int halvings = 0;
     int carriedHalvings = 0;  // the cage's, from the stage before: its step is 2^-(halvings + these)
     std::vector<std::vector<float>> bestTheta{};  // per group, in CageFitter::groups() order; empty: none yet

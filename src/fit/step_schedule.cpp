@@ -67,8 +67,14 @@ bool StepSchedule::paying() const {
 }
 
 StepSchedule::Verdict StepSchedule::probation() const {
-    if (paying()) return Verdict::Paying;
     const auto& losses = state_.stageLosses;
+    if (state_.probationStopsOnlyARise) {
+        const LossTrend trend = lossTrend(losses);
+        const bool rose = std::isfinite(trend.standardError) &&
+                          trend.fall + kProbationConfidence * trend.standardError < -kClearRise;
+        return rose ? Verdict::NoGain : Verdict::Paying;
+    }
+    if (paying()) return Verdict::Paying;
     if (losses.empty()) return Verdict::NoGain;
     const bool fell = state_.bestLoss < (1.0 - kMinImprovement) * losses.front();
     const bool rebounding = losses.back() < (1.0 - kRebound) * *std::max_element(losses.begin(), losses.end());

@@ -42,6 +42,10 @@ public:
     // A probation's loss that rose and is falling again by this much from its highest responds
     // to the steps: the first ones (Adam's moments still hold few samples) overshot.
     static constexpr double kRebound = 0.01;
+    // A probation that stops only a rise (ScheduleState::probationStopsOnlyARise) stops a stage
+    // whose loss rose by at least this much even at its fall plus kProbationConfidence standard
+    // errors; a flat one goes on.
+    static constexpr double kClearRise = 0.01;
 
     enum class Action { Continue, Halve, Converged };
     struct Decision {
@@ -73,7 +77,8 @@ public:
     // and then rose again, or rose and is falling again by kRebound, can be improved; its step is
     // too large for it (a noised cage's first full steps gain, or overshoot, and the estimator's
     // noise walks it away): halve() and go on from the best. A stage that never fell, with no
-    // fall likely, cannot pay.
+    // fall likely, cannot pay. On a probation that stops only a rise, a stage pays unless its
+    // loss clearly rose (kClearRise).
     enum class Verdict { Paying, StepTooLarge, NoGain };
     Verdict probation() const;
     // The step halved by hand, with a fresh window.

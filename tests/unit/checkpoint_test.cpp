@@ -90,6 +90,15 @@ TEST_F(Checkpoint, ReadsBackExactly) {
     EXPECT_EQ(read->schedule.startTheta, expected.schedule.startTheta);
     EXPECT_EQ(read->monitored, expected.monitored);
     EXPECT_FALSE(readCheckpoint(path_.parent_path() / "none.bin", "fp"));
+    // A probation that stops only a rise is resumed as one.
+    FitState onlyARise = sampleState();
+    onlyARise.schedule.probationOver = false;
+    onlyARise.schedule.probationStopsOnlyARise = true;
+    writeCheckpoint(path_, "fp", onlyARise);
+    const auto resumed = readCheckpoint(path_, "fp");
+    ASSERT_TRUE(resumed);
+    EXPECT_FALSE(resumed->schedule.probationOver);
+    EXPECT_TRUE(resumed->schedule.probationStopsOnlyARise);
 }
 
 TEST_F(Checkpoint, EveryFlippedByteIsRefused) {

@@ -185,6 +185,23 @@ TEST(StepSchedule, AProbationThatFellOrOvershotHalvesTheStepOneThatNeverFellStop
     EXPECT_EQ(spentSchedule.probation(), StepSchedule::Verdict::NoGain);
 }
 
+// Heights baked as they join (ScheduleState::probationStopsOnlyARise): a start that lies flat
+// goes on, as the relief creased cube's did before it fell 9 %; one the steps clearly make worse
+// stops, as the relief Spot's at 100 KB (the measured ratios to their starts).
+TEST(StepSchedule, AProbationThatStopsOnlyARiseLetsAFlatStartGoOn) {
+    auto verdict = [](const std::vector<double>& losses) {
+        ScheduleState state{.probationStopsOnlyARise = true};
+        StepSchedule schedule(state);
+        for (size_t k = 0; k < losses.size(); ++k) schedule.record(losses[k], 5 * int(k));
+        return schedule.probation();
+    };
+    EXPECT_EQ(verdict({1.0, 1.0002, 1.0007, 1.0001, 1.0009, 1.0004}), StepSchedule::Verdict::Paying);   // flat
+    EXPECT_EQ(verdict({1.0, 0.998, 0.994, 0.99, 0.985, 0.98}), StepSchedule::Verdict::Paying);          // falling
+    EXPECT_EQ(verdict({1.0, 1.0015, 1.003, 1.012, 1.02, 1.027}), StepSchedule::Verdict::NoGain);        // rising
+    // A fall and a rise back, which the full probation halves for, is not a clear rise here.
+    EXPECT_EQ(verdict({1.0, 0.97, 0.99, 1.0, 1.005, 1.004}), StepSchedule::Verdict::Paying);
+}
+
 TEST(DeviceDefaults, SoftwareRenderersAreRecognised) {
     EXPECT_FALSE(isHardwareRenderer("llvmpipe (LLVM 15.0.6, 256 bits)"));
     EXPECT_FALSE(isHardwareRenderer("softpipe"));
