@@ -24,6 +24,9 @@
 #define SUBDFIT_SSBO_TESSELLATION_SAMPLES 40
 #define SUBDFIT_SSBO_SURFACE_VERTICES 41
 #define SUBDFIT_SSBO_SURFACE_TRIANGLES 43
+// A second surface evaluated beside the first (θ− beside θ+): its vertices and triangles.
+#define SUBDFIT_SSBO_SECOND_SURFACE_VERTICES 42
+#define SUBDFIT_SSBO_SECOND_SURFACE_TRIANGLES 44
 #define SUBDFIT_SSBO_ADJACENCY_OFFSETS 16    // cage vertex -> neighbours (CSR)
 #define SUBDFIT_SSBO_ADJACENCY_INDICES 17
 #define SUBDFIT_SSBO_LOSS 18            // 256 float slots whose sum is the mean per-pixel loss
@@ -94,10 +97,12 @@
 #define SUBDFIT_UNIT_PATCH_POINTS 17
 #define SUBDFIT_UNIT_PATCH_INFO 18  // ivec4 {cv offset, patch type, param0, param1} per patch
 #define SUBDFIT_UNIT_PATCH_CVS 19   // the patches' control point indices, four a texel
+#define SUBDFIT_UNIT_PATCH_SECOND_POINTS 40  // a second set's (θ− beside θ+)
 // The split's reads (glsl/triangulate.comp): each quad's corners, and the evaluated vertices
 // (a record of four RGBA32F texels, its position first).
 #define SUBDFIT_UNIT_TESSELLATION_QUADS 37
 #define SUBDFIT_UNIT_SURFACE_VERTICES 38
+#define SUBDFIT_UNIT_SECOND_SURFACE_VERTICES 41  // a second surface's, split beside the first's
 #define SUBDFIT_UNIT_LIMIT_VERTICES 39  // a kept limit surface's vertices, displaced (glsl/displace.comp)
 
 // The map values the patch pass shades with, one texel per node (maps::MapParameters): the

@@ -8,13 +8,14 @@
 
 // The patches' points (render::StencilEvaluator), a point per texel: one gather each.
 layout(binding = SUBDFIT_UNIT_PATCH_POINTS) uniform samplerBuffer points;
+#ifdef SUBDFIT_SURFACE_PAIR
+layout(binding = SUBDFIT_UNIT_PATCH_SECOND_POINTS) uniform samplerBuffer secondPoints;  // θ− beside θ+
+#endif
 // Per patch {cv offset, patch type, param0, param1}; its control points' indices four a texel
 // (a patch's 16 or 20 start at a multiple of four): a fetch each instead of a load per int.
 layout(binding = SUBDFIT_UNIT_PATCH_INFO) uniform isamplerBuffer patchInfo;
 layout(binding = SUBDFIT_UNIT_PATCH_CVS) uniform isamplerBuffer patchCvs;
 
-
-vec3 point(int i) { return texelFetch(points, i).xyz; }
 
 // OpenSubdiv's basis: B-spline with boundary masks for regular patches, Gregory for the end caps
 // around extraordinary vertices. Each pass holds patches of one kind (render::PatchRenderer), so
@@ -78,15 +79,25 @@ SurfacePoint limitPoint(OsdPatchParam param, vec2 st, PatchBasis basis, vec3 cvs
     return p;
 }
 
+// Patch `patchIndex`'s parameter, and its control points of `pointSet`.
+OsdPatchParam patchParam(int patchIndex) {
+    ivec4 info = texelFetch(patchInfo, patchIndex);
+    return OsdPatchParamInit(info.z, info.w, 0.0);
+}
+
+void gatherCvs(int patchIndex, samplerBuffer pointSet, out vec3 cvs[SUBDFIT_PATCH_CVS]) {
+    int first = texelFetch(patchInfo, patchIndex).x / 4;
+    for (int k = 0; k < SUBDFIT_PATCH_CVS / 4; ++k) {
+        ivec4 four = texelFetch(patchCvs, first + k);
+        for (int c = 0; c < 4; ++c) cvs[4 * k + c] = texelFetch(pointSet, four[c]).xyz;
+    }
+}
+
 // At (s, t) of patch `patchIndex` (render::PatchRenderer's patch order).
 SurfacePoint surfacePoint(int patchIndex, vec2 st) {
-    ivec4 info = texelFetch(patchInfo, patchIndex);
-    OsdPatchParam param = OsdPatchParamInit(info.z, info.w, 0.0);
+    OsdPatchParam param = patchParam(patchIndex);
     vec3 cvs[SUBDFIT_PATCH_CVS];
-    for (int k = 0; k < SUBDFIT_PATCH_CVS / 4; ++k) {
-        ivec4 four = texelFetch(patchCvs, info.x / 4 + k);
-        for (int c = 0; c < 4; ++c) cvs[4 * k + c] = point(four[c]);
-    }
+    gatherCvs(patchIndex, points, cvs);
     SurfacePoint p = limitPoint(param, st, patchBasis(param, st), cvs);
 #ifdef SUBDFIT_DISPLACEMENT
     displace(p, heightSample(p.ptexFace, p.ptexUv));
@@ -94,3 +105,20 @@ SurfacePoint surfacePoint(int patchIndex, vec2 st) {
     return p;
 }
 
+#ifdef SUBDFIT_SURFACE_PAIR
+// The same point of two surfaces, `points`' and `secondPoints`': one basis, one height.
+void surfacePoints(int patchIndex, vec2 st, out SurfacePoint first, out SurfacePoint second) {
+    OsdPatchParam param = patchParam(patchIndex);
+    PatchBasis basis = patchBasis(param, st);
+    vec3 cvs[SUBDFIT_PATCH_CVS];
+    gatherCvs(patchIndex, points, cvs);
+    first = limitPoint(param, st, basis, cvs);
+    gatherCvs(patchIndex, secondPoints, cvs);
+    second = limitPoint(param, st, basis, cvs);
+#ifdef SUBDFIT_DISPLACEMENT
+    HeightSample height = heightSample(first.ptexFace, first.ptexUv);
+    displace(first, height);
+    displace(second, height);
+#endif
+}
+#endif

@@ -11,13 +11,28 @@ struct SurfacePoint {
 };
 
 layout(std430, binding = SUBDFIT_SSBO_SURFACE_VERTICES) writeonly buffer SurfaceVertices { float surfaceVertices[]; };
+#ifdef SUBDFIT_SURFACE_PAIR
+// A second surface's vertices, evaluated beside the first (θ− beside θ+).
+layout(std430, binding = SUBDFIT_SSBO_SECOND_SURFACE_VERTICES) writeonly buffer SecondSurfaceVertices { float secondSurfaceVertices[]; };
+#endif
+
+float[16] surfaceRecord(SurfacePoint p) {
+    return float[16](p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y, p.normal.z, p.tangentU.x,
+                     p.tangentU.y, p.tangentU.z, p.tangentV.x, p.tangentV.y, p.tangentV.z, p.ptexUv.x, p.ptexUv.y,
+                     intBitsToFloat(p.ptexFace), 0.0);
+}
 
 void storeSurfaceVertex(int k, SurfacePoint p) {
-    float values[16] = float[16](p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y, p.normal.z,
-                                 p.tangentU.x, p.tangentU.y, p.tangentU.z, p.tangentV.x, p.tangentV.y, p.tangentV.z,
-                                 p.ptexUv.x, p.ptexUv.y, intBitsToFloat(p.ptexFace), 0.0);
-    for (int c = 0; c < 16; ++c) surfaceVertices[16 * k + c] = values[c];
+    float record[16] = surfaceRecord(p);
+    for (int c = 0; c < 16; ++c) surfaceVertices[16 * k + c] = record[c];
 }
+
+#ifdef SUBDFIT_SURFACE_PAIR
+void storeSecondSurfaceVertex(int k, SurfacePoint p) {
+    float record[16] = surfaceRecord(p);
+    for (int c = 0; c < 16; ++c) secondSurfaceVertices[16 * k + c] = record[c];
+}
+#endif
 
 // A record read back through an RGBA32F buffer texture over the records.
 SurfacePoint loadSurfaceVertex(samplerBuffer records, int k) {

@@ -154,8 +154,8 @@ const render::PatchRenderer::Surface& CageFitter::evaluateSurfaces(const optim::
     const SurfaceKey key{vertices_.version(), maps_ && maps_->displacement() ? maps_->displacement()->version() : 0,
                          mapsPlus.limitShading};
     if (verticesPerturbed) {
-        renderer_.evaluate(programs_, pointsPlus_, surfacePlus_, &mapsPlus);
-        renderer_.evaluate(programs_, pointsMinus_, surfaceMinus_, &mapsMinus);
+        // A vertex turn draws both with the maps as they are: one set for the pair.
+        renderer_.evaluatePair(programs_, pointsPlus_, surfacePlus_, pointsMinus_, surfaceMinus_, &mapsPlus);
     } else {
         if (surfaceMoves || surfacePlusOf_ != key) evaluateOnCage(mapsPlus, surfacePlus_, cageStayed);
         if (surfaceMoves) evaluateOnCage(mapsMinus, surfaceMinus_, cageStayed);
@@ -197,31 +197,47 @@ float CageFitter::learningRateScale() const {
 void CageFitter::update() {
     const float scale = learningRateScale();
     for (auto* g : pendingUpdate_) {
-        optim::resolveGradient(programs_, *g);
-        mark("resolve");
         const float learningRate = g->settings().learningRate * scale;
         if (g->kind() == optim::GroupKind::Vertices) {
-            optim::precondition(programs_, vertices_, adjacency_, settings_.smoothingLambda,
-                                settings_.smoothingIterations, smoothScratch_);
-            mark("precondition");
-            if (relaxation_)
-                relaxation_->projectGradient(programs_, vertices_.theta, vertices_.gradientSmooth, settings_.tangentialGradient);
-            optim::adamStep(programs_, vertices_, vertices_.gradientSmooth, learningRate * vertexRateFactor_);
-            mark("Adam");
-            if (relaxation_) {
-                relaxation_->apply(programs_, vertices_.theta, settings_.relaxation);
-                vertices_.changed();
-            }
-        } else {
-            maps_->update(programs_, *g, learningRate);
-            mark("Adam");
+            updateVertices(learningRate * vertexRateFactor_);
+            continue;
         }
+        optim::resolveGradient(programs_, *g);
+        mark("resolve");
+        maps_->update(programs_, *g, learningRate);
+        mark("Adam");
+        g->gradientSum.clearToZero();  // only the groups sampled since the last update have sums
+        mark("clear sums");
     }
-    // Only the groups sampled since the last update have sums to clear.
-    for (auto* g : pendingUpdate_) g->gradientSum.clearToZero();
-    mark("clear sums");
     pendingUpdate_.clear();
     ++steps_;
+}
+
+void CageFitter::updateVertices(float learningRate) {
+    const bool project = relaxation_ && settings_.tangentialGradient < 1.0f;
+    if (optim::updatesInOneGroup(vertices_)) {
+        const optim::TangentialProjection projection{[this] { relaxation_->bindTangentFrame(); },
+                                                     settings_.tangentialGradient};
+        optim::updateVertices(programs_, vertices_, adjacency_, settings_.smoothingLambda,
+                              settings_.smoothingIterations, project ? &projection : nullptr, learningRate);
+        mark("update");
+    } else {
+        optim::resolveGradient(programs_, vertices_);
+        mark("resolve");
+        optim::precondition(programs_, vertices_, adjacency_, settings_.smoothingLambda, settings_.smoothingIterations,
+                            smoothScratch_);
+        mark("precondition");
+        if (project)
+            relaxation_->projectGradient(programs_, vertices_.theta, vertices_.gradientSmooth, settings_.tangentialGradient);
+        optim::adamStep(programs_, vertices_, vertices_.gradientSmooth, learningRate);
+        mark("Adam");
+        vertices_.gradientSum.clearToZero();
+        mark("clear sums");
+    }
+    if (relaxation_) {
+        relaxation_->apply(programs_, vertices_.theta, settings_.relaxation);
+        vertices_.changed();
+    }
 }
 
 void CageFitter::setRates(optim::ParameterGroup& group, float epsilon, float learningRate) {

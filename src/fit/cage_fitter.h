@@ -134,6 +134,9 @@ private:
                                                            const render::PatchMaps& mapsMinus);
     // A surface on the cage as it is (pointsPlus_) with `maps`' heights, into `surface`.
     void evaluateOnCage(const render::PatchMaps& maps, const render::PatchRenderer::Surface& surface, bool cageStayed);
+    // Adam on the vertices from their sums (preconditioned, projected), then the relaxation: a
+    // small cage's in one dispatch (optim::updateVertices), a larger one's pass by pass.
+    void updateVertices(float learningRate);
     void mark(const char* phase) {
         if (timestamps_) timestamps_->mark(phase);
     }

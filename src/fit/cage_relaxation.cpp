@@ -106,13 +106,16 @@ CageRelaxation::CageRelaxation(const mesh::PolygonMesh& cage, int restPasses) : 
     scratch_ = gl::Buffer(GLsizeiptr(vertexCount_) * 3 * GLsizeiptr(sizeof(float)));
 }
 
-void CageRelaxation::dispatchOverVertices() {
-    // Both passes read the same topology: modes, neighbours, face corners.
+void CageRelaxation::bindTangentFrame() const {
     modes_.bindStorage(SUBDFIT_SSBO_RELAX_MODES);
     offsets_.bindStorage(SUBDFIT_SSBO_ADJACENCY_OFFSETS);
     neighbors_.bindStorage(SUBDFIT_SSBO_ADJACENCY_INDICES);
     cornerOffsets_.bindStorage(SUBDFIT_SSBO_RELAX_CORNER_OFFSETS);
     corners_.bindStorage(SUBDFIT_SSBO_RELAX_CORNERS);
+}
+
+void CageRelaxation::dispatchOverVertices() {
+    bindTangentFrame();  // both passes read the same topology
     glDispatchCompute(gl::groupsOf(vertexCount_, 128), 1, 1);
 }
 

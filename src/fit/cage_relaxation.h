@@ -43,6 +43,9 @@ public:
     void apply(gl::ProgramCache& programs, gl::Buffer& theta, float rate);
     // gradient −= (1 − keep) · (its tangential part at θ), in place.
     void projectGradient(gl::ProgramCache& programs, const gl::Buffer& theta, gl::Buffer& gradient, float keep);
+    // Binds what glsl/tangent_frame.glsl reads (modes, neighbours, face corners), for a pass of
+    // another's that projects too (optim::updateVertices).
+    void bindTangentFrame() const;
 
 private:
     void dispatchOverVertices();  // binds the topology, one thread per vertex

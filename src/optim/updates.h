@@ -4,6 +4,7 @@
 // preconditioner (precondition.comp) and Adam (adam.comp, shared_moment.comp). G itself, which
 // reads renders, is the estimator's (sge/).
 #include <cstdint>
+#include <functional>
 #include <utility>
 
 #include "gl/buffer.h"
@@ -34,6 +35,22 @@ struct Adjacency {
 // sweep. `scratch` must be the size of the gradient.
 void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency,
                   float lambda, int iterations, gl::Buffer& scratch);
+
+// Where a vertex gradient keeps only part of its component along the surface (g −= (1 − keep) P g,
+// glsl/tangent_frame.glsl): `bind` binds the cage's topology, as fit::CageRelaxation holds it.
+struct TangentialProjection {
+    std::function<void()> bind;
+    float keep;
+};
+
+// Whether a group of vertex positions is small enough for updateVertices' one work group.
+bool updatesInOneGroup(const ParameterGroup& group);
+
+// A small vertex group's whole update in one dispatch (glsl/vertex_update.comp): G's sums
+// resolved and cleared, preconditioned as precondition() does, projected where `projection` is
+// given, and Adam's step at `learningRate`, with the results of the passes apart.
+void updateVertices(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency, float lambda,
+                    int iterations, const TangentialProjection* projection, float learningRate);
 
 // Adam on θ from `gradient` (group.gradient, or group.gradientSmooth after preconditioning),
 // with step size `learningRate` (the group's, annealed by the caller). The raw gradient is left

@@ -1,6 +1,7 @@
 #include "render/patch_renderer.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "bindings.h"
 #include "gl/dispatch.h"
@@ -13,14 +14,16 @@ namespace {
 
 const gl::ProgramSpec kPatchTessellate{"patch_tessellate",
                                        {{GL_COMPUTE_SHADER, "tessellate.comp"}},
-                                       {"SUBDFIT_DISPLACEMENT", "SUBDFIT_LIMIT_SHADING", "SUBDFIT_GREGORY_PATCHES"}};
+                                       {"SUBDFIT_DISPLACEMENT", "SUBDFIT_LIMIT_SHADING", "SUBDFIT_GREGORY_PATCHES",
+                                        "SUBDFIT_SURFACE_PAIR"}};
 constexpr gl::VariantBits kTessellateDisplacement = 1u << 0, kTessellateLimitShading = 1u << 1,
-                          kTessellateGregory = 1u << 2;
+                          kTessellateGregory = 1u << 2, kTessellatePair = 1u << 3;
 
 const gl::ProgramSpec kDisplace{"patch_displace", {{GL_COMPUTE_SHADER, "displace.comp"}}, {"SUBDFIT_LIMIT_SHADING"}};
 constexpr gl::VariantBits kDisplaceLimitShading = 1u << 0;
 
-const gl::ProgramSpec kTriangulate{"patch_triangulate", {{GL_COMPUTE_SHADER, "triangulate.comp"}}};
+const gl::ProgramSpec kTriangulate{"patch_triangulate", {{GL_COMPUTE_SHADER, "triangulate.comp"}}, {"SUBDFIT_SURFACE_PAIR"}};
+constexpr gl::VariantBits kTriangulatePair = 1u << 0;
 
 const gl::ProgramSpec kPatchRaster{"patch_raster",
                                    {{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "patch.frag"}},
@@ -93,6 +96,13 @@ void PatchRenderer::evaluate(gl::ProgramCache& programs, const gl::Buffer& point
     split(programs, surface);
 }
 
+void PatchRenderer::evaluatePair(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
+                                 const gl::Buffer& secondPoints, const Surface& secondSurface, const PatchMaps* maps) const {
+    const Second second{secondPoints, secondSurface};
+    tessellate(programs, points, surface.vertices, maps, &second);
+    split(programs, surface, &secondSurface);
+}
+
 void PatchRenderer::evaluateLimit(gl::ProgramCache& programs, const gl::Buffer& points,
                                   const gl::Buffer& limitVertices) const {
     tessellate(programs, points, limitVertices, nullptr);
@@ -116,19 +126,25 @@ void PatchRenderer::displace(gl::ProgramCache& programs, const gl::Buffer& limit
 }
 
 void PatchRenderer::tessellate(gl::ProgramCache& programs, const gl::Buffer& points, const gl::Buffer& vertices,
-                               const PatchMaps* maps) const {
+                               const PatchMaps* maps, const Second* second) const {
     const bool displaced = maps && maps->displacement;
-    const gl::VariantBits mapBits =
-        displaced ? kTessellateDisplacement | (maps->limitShading ? kTessellateLimitShading : 0) : 0;
+    const gl::VariantBits variant = (displaced ? kTessellateDisplacement | (maps->limitShading ? kTessellateLimitShading : 0) : 0) |
+                                    (second ? kTessellatePair : 0);
     patchInfoTexture_.bind(SUBDFIT_UNIT_PATCH_INFO);
     patchCvTexture_.bind(SUBDFIT_UNIT_PATCH_CVS);
     const gl::BufferTexture pointTexture(points, GL_RGB32F);
     pointTexture.bind(SUBDFIT_UNIT_PATCH_POINTS);
+    std::optional<gl::BufferTexture> secondPointTexture;
+    if (second) {
+        secondPointTexture.emplace(second->points, GL_RGB32F);
+        secondPointTexture->bind(SUBDFIT_UNIT_PATCH_SECOND_POINTS);
+        second->surface.vertices.bindStorage(SUBDFIT_SSBO_SECOND_SURFACE_VERTICES);
+    }
     samples_.bindStorage(SUBDFIT_SSBO_TESSELLATION_SAMPLES);
     vertices.bindStorage(SUBDFIT_SSBO_SURFACE_VERTICES);
     if (displaced) layOutHeights(programs, *maps);
     for (const SampleRun& run : runs_) {
-        const auto& program = programs.get(kPatchTessellate, mapBits | (run.gregory ? kTessellateGregory : 0));
+        const auto& program = programs.get(kPatchTessellate, variant | (run.gregory ? kTessellateGregory : 0));
         program.use();
         program.set("uFirstSample", run.first);
         program.set("uSampleCount", run.count);
@@ -145,15 +161,21 @@ void PatchRenderer::layOutHeights(gl::ProgramCache& programs, const PatchMaps& m
     heightTiles_->fill(programs, maps);  // binds the maps too
 }
 
-void PatchRenderer::split(gl::ProgramCache& programs, const Surface& surface) const {
+void PatchRenderer::split(gl::ProgramCache& programs, const Surface& surface, const Surface* second) const {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // the split reads the vertices as a texture
-    const auto& triangulate = programs.get(kTriangulate);
+    const auto& triangulate = programs.get(kTriangulate, second ? kTriangulatePair : 0);
     triangulate.use();
     triangulate.set("uQuadCount", quadCount_);
     quadsTexture_.bind(SUBDFIT_UNIT_TESSELLATION_QUADS);
     const gl::BufferTexture vertexTexture(surface.vertices, GL_RGBA32F);
     vertexTexture.bind(SUBDFIT_UNIT_SURFACE_VERTICES);
     surface.triangles.bindStorage(SUBDFIT_SSBO_SURFACE_TRIANGLES);
+    std::optional<gl::BufferTexture> secondVertexTexture;
+    if (second) {
+        secondVertexTexture.emplace(second->vertices, GL_RGBA32F);
+        secondVertexTexture->bind(SUBDFIT_UNIT_SECOND_SURFACE_VERTICES);
+        second->triangles.bindStorage(SUBDFIT_SSBO_SECOND_SURFACE_TRIANGLES);
+    }
     glDispatchCompute(gl::groupsOf(quadCount_, 64), 1, 1);
     glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT);
 }

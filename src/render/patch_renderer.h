@@ -57,6 +57,11 @@ public:
     // The surface of `points` (displaced by `maps`' heights, if it has them) into `surface`.
     void evaluate(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
                   const PatchMaps* maps = nullptr) const;
+    // Two surfaces at once, of `points` into `surface` and of `secondPoints` into `secondSurface`
+    // with the same `maps` (θ+ and θ− of a vertex turn): one basis evaluated for both, half the
+    // dispatches of two evaluate() calls, the same surfaces.
+    void evaluatePair(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
+                      const gl::Buffer& secondPoints, const Surface& secondSurface, const PatchMaps* maps = nullptr) const;
     // The same in two halves, for a cage that stays while its heights change: the limit surface
     // of `points` without heights, kept in `limitVertices` (a surface's vertices buffer), and
     // displaced by `maps`' heights into `surface` (the patches not evaluated again). The same
@@ -72,13 +77,19 @@ public:
               const PatchMaps* maps = nullptr) const;
 
 private:
-    // The tessellation's vertices of `points` into `vertices`, displaced where `maps` has heights.
+    // A second set of points and the surface it goes to, evaluated beside the first.
+    struct Second {
+        const gl::Buffer& points;
+        const Surface& surface;
+    };
+    // The tessellation's vertices of `points` into `vertices` (and `second`'s into its surface's),
+    // displaced where `maps` has heights.
     void tessellate(gl::ProgramCache& programs, const gl::Buffer& points, const gl::Buffer& vertices,
-                    const PatchMaps* maps) const;
+                    const PatchMaps* maps, const Second* second = nullptr) const;
     // Binds `maps`' heights laid out for the surface passes.
     void layOutHeights(gl::ProgramCache& programs, const PatchMaps& maps) const;
-    // Each quad of an evaluated surface split along its shorter diagonal.
-    void split(gl::ProgramCache& programs, const Surface& surface) const;
+    // Each quad of an evaluated surface (and of `second`'s) split along its shorter diagonal.
+    void split(gl::ProgramCache& programs, const Surface& surface, const Surface* second = nullptr) const;
 
     int patchCount_, faceCount_, tessLevel_;
     ShadingModel shading_;

@@ -1,10 +1,12 @@
-// A step evaluates θ+ and θ− in one dispatch: each set must come out exactly as it does alone.
+// A step evaluates θ+ and θ− together, their points in one dispatch and their surfaces in one
+// dispatch per patch kind: each must come out exactly as it does alone.
 #include <gtest/gtest.h>
 
 #include <vector>
 
 #include "gl_test_context.h"
 #include "mesh/procedural.h"
+#include "render/patch_renderer.h"
 #include "render/stencil_evaluator.h"
 #include "subdiv/patch_set.h"
 
@@ -34,6 +36,29 @@ TEST(StencilPair, EachSetMatchesItsOwnEvaluationBitForBit) {
     EXPECT_NE(expectedPlus, expectedMinus);  // the sets differ, so a swap or a copy would show
     EXPECT_EQ(pairPlus.read<float>(), expectedPlus);
     EXPECT_EQ(pairMinus.read<float>(), expectedMinus);
+    test::expectNoGlError();
+}
+
+TEST(SurfacePair, EachSurfaceMatchesItsOwnEvaluationBitForBit) {
+    const auto cage = mesh::makeQuadSphere(3);  // valence-3 corners: Gregory patches beside regular ones
+    const auto patches = subdiv::buildPatchSet(cage);
+    const StencilEvaluator stencils(patches);
+    const PatchRenderer renderer(patches, 4);
+    const auto plus = stencils.makePointBuffer(), minus = stencils.makePointBuffer();
+    stencils.evaluate(test::programs(), gl::Buffer::fromVector(shifted(cage, 0.01f)), plus);
+    stencils.evaluate(test::programs(), gl::Buffer::fromVector(shifted(cage, -0.01f)), minus);
+    const auto alonePlus = renderer.makeSurface(), aloneMinus = renderer.makeSurface();
+    const auto pairPlus = renderer.makeSurface(), pairMinus = renderer.makeSurface();
+    renderer.evaluate(test::programs(), plus, alonePlus);
+    renderer.evaluate(test::programs(), minus, aloneMinus);
+    renderer.evaluatePair(test::programs(), plus, pairPlus, minus, pairMinus);
+
+    const auto expectedPlus = alonePlus.vertices.read<float>(), expectedMinus = aloneMinus.vertices.read<float>();
+    EXPECT_NE(expectedPlus, expectedMinus);
+    EXPECT_EQ(pairPlus.vertices.read<float>(), expectedPlus);
+    EXPECT_EQ(pairMinus.vertices.read<float>(), expectedMinus);
+    EXPECT_EQ(pairPlus.triangles.read<std::uint32_t>(), alonePlus.triangles.read<std::uint32_t>());
+    EXPECT_EQ(pairMinus.triangles.read<std::uint32_t>(), aloneMinus.triangles.read<std::uint32_t>());
     test::expectNoGlError();
 }
 
