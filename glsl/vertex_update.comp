@@ -1,4 +1,4 @@
-// A small group's whole update in one work group of 256, one dispatch where the passes apart
+// A small cage's vertex update in one work group of 256, one dispatch where the passes apart
 // take four and a buffer clear (their fixed cost, on a GPU, outweighs a small cage's work):
 //   g = G's sums resolved, and the sums cleared            (resolve_gradient.comp)
 //   g̃ = (I + λL)⁻¹ g, the sweeps in shared memory        (jacobi.glsl)

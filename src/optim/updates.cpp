@@ -22,8 +22,8 @@ const gl::ProgramSpec kAdam{"adam", {{GL_COMPUTE_SHADER, "adam.comp"}}, {"SUBDFI
 const gl::ProgramSpec kVertexUpdate{"vertex_update",
                                     {{GL_COMPUTE_SHADER, "vertex_update.comp"}},
                                     {"SUBDFIT_ADAM_SHARED_MOMENT", "SUBDFIT_ADAM_NOISE_GATE", "SUBDFIT_PROJECT_TANGENTIAL"}};
-// The most floats a group may hold for all its Jacobi sweeps to run in one work group: two
-// iterates in the 32 KB of shared memory that GL 4.3 guarantees.
+// The most floats a group may hold for all its Jacobi sweeps (and a vertex group's whole update)
+// to run in one work group: two iterates in the 32 KB of shared memory that GL 4.3 guarantees.
 constexpr int kOneGroupFloats = 4096;
 constexpr gl::VariantBits kAdamSharedMoment = 1u << 0, kAdamNoiseGate = 1u << 1, kProjectTangential = 1u << 2;
 

@@ -1,8 +1,9 @@
 #pragma once
 // The passes that change a parameter group, each a thin wrapper over its shader in glsl/: P
 // (perturb.comp), the resolve of G's fixed-point sums (resolve_gradient.comp), the Laplacian
-// preconditioner (precondition.comp) and Adam (adam.comp, shared_moment.comp). G itself, which
-// reads renders, is the estimator's (sge/).
+// preconditioner (precondition.comp) and Adam (adam.comp, shared_moment.comp); and, for a small
+// cage, all of the update in one (vertex_update.comp). G itself, which reads renders, is the
+// estimator's (sge/).
 #include <cstdint>
 #include <functional>
 #include <utility>
