@@ -267,6 +267,7 @@ private:
             if (i >= positions.size())
                 throw fileError(path_, "index " + std::to_string(i) + " is out of range (the primitive has " +
                                            std::to_string(positions.size()) + " vertices)");
+        if (appearance_ && normals.empty()) splitFlat(positions, indices, uvs, colors, normals);
         const auto base = uint32_t(mesh.positions.size());
         if (std::int64_t(base) + std::int64_t(positions.size()) > kMaxVertices)
             throw fileError(path_, "a mesh has more than " + std::to_string(kMaxVertices) + " vertices");
@@ -286,8 +287,25 @@ private:
         }
     }
 
-    // Where a primitive has no NORMAL, or a vertex a zero one, the smooth normal of its own
-    // triangles (glTF asks for flat ones there; smooth is what its renders have always shown).
+    // A primitive without NORMAL is shaded flat, as glTF asks of viewers (3.7.2.1): each triangle
+    // gets three vertices of its own, with its face's normal.
+    static void splitFlat(std::vector<glm::vec3>& positions, std::vector<uint32_t>& indices,
+                          std::vector<glm::vec2>& uvs, std::vector<glm::vec4>& colors, std::vector<glm::vec3>& normals) {
+        PolygonMesh primitive;
+        primitive.positions = std::move(positions);
+        primitive.uvs = std::move(uvs);
+        primitive.colors = std::move(colors);
+        primitive.faceIndices.assign(indices.begin(), indices.end());
+        primitive.faceSizes.assign(indices.size() / 3, 3);
+        PolygonMesh flat = flatShaded(primitive);
+        positions = std::move(flat.positions);
+        uvs = std::move(flat.uvs);
+        colors = std::move(flat.colors);
+        normals = std::move(flat.normals);
+        indices.assign(flat.faceIndices.begin(), flat.faceIndices.end());
+    }
+
+    // Where a vertex has a zero NORMAL, the smooth normal of its primitive's triangles.
     static void completeNormals(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices,
                                 std::vector<glm::vec3>& normals) {
         normals.resize(positions.size(), glm::vec3(0.0f));

@@ -23,6 +23,25 @@ bool shadedSmooth(const fit::FitScene& scene, const mesh::PolygonMesh& welded) {
     return welded.vertexCount() >= scene.reference.vertexCount();
 }
 
+// Whether the reference is shaded flat, every triangle with vertices of its own and its face's
+// normal (as a glTF primitive without normals is read): then its welded triangles drawn without
+// normals, as viewers draw a file that ships none, look just as it does.
+bool shadedFlat(const fit::FitScene& scene) {
+    const mesh::PolygonMesh& r = scene.reference;
+    if (r.normals.empty() || r.vertexCount() != int(r.faceIndices.size())) return false;
+    for (size_t first = 0, f = 0; f < r.faceSizes.size(); first += size_t(r.faceSizes[f]), ++f) {
+        if (r.faceSizes[f] != 3) return false;
+        const glm::vec3 a = r.positions[size_t(r.faceIndices[first])], b = r.positions[size_t(r.faceIndices[first + 1])],
+                        c = r.positions[size_t(r.faceIndices[first + 2])];
+        const glm::vec3 face = glm::cross(b - a, c - a);
+        const float length = glm::length(face);
+        if (!(length > 0.0f)) continue;  // a degenerate triangle covers no pixel
+        for (size_t k = 0; k < 3; ++k)
+            if (glm::dot(r.normals[size_t(r.faceIndices[first + k])], face / length) < 0.9999f) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 std::uintmax_t compressedReferenceBytes(const fit::FitScene& scene, const std::filesystem::path& scratch) {
@@ -55,11 +74,13 @@ TriangleBaselines triangleBaselines(gl::ProgramCache& programs, const fit::FitSc
         const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
         t.decimation = decimationBaseline(programs, scene, welded, budget, settings);
         if (level != CompareLevel::None) t.gltfpack = gltfpackBaseline(programs, scene, welded, budget, settings);
-        // Holding every triangle holds the look only where the reference shades smooth and the
-        // decimation ships its normals: the welded decimation shades smooth where the reference
-        // splits its vertices (hard edges, a box: a creased cage may win), and flat without normals.
+        // Holding every triangle holds the look where the reference shades smooth and the
+        // decimation ships its normals, or flat and it ships none: the welded decimation shades
+        // smooth where the reference splits its vertices at some edges only (hard edges, a box: a
+        // creased cage may win), and flat without normals.
         const bool withNormals = t.decimation->details.value(nlohmann::json::json_pointer("/encoding/normals"), false);
-        wholeTriangles = shadedSmooth(scene, welded) && withNormals ? welded.faceCount() : std::numeric_limits<int>::max();
+        const bool sameShading = withNormals ? shadedSmooth(scene, welded) : shadedFlat(scene);
+        wholeTriangles = sameShading ? welded.faceCount() : std::numeric_limits<int>::max();
     }
     if (!t.decimation->details.value("over_budget", true) && t.decimation->details.value("triangles", 0) >= wholeTriangles)
         t.holds = everyTexel ? Holds::Whole : Holds::EveryTriangle;

@@ -6,9 +6,11 @@
 #include <filesystem>
 #include <fstream>
 
+#include "export/glb_writer.h"
 #include "export/textured_glb.h"
 #include "fit/result_folder.h"
 #include "mesh/mesh_geometry.h"
+#include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
 #include "mesh/procedural.h"
 #include "simplify/simplify_job.h"
@@ -54,6 +56,25 @@ TEST(SimplifyRoute, ALightReferenceShipsTheTriangleRouteWhole) {
     const fit::ResultFolder folder = fit::readResultFolder(dir / "out");
     ASSERT_FALSE(folder.entries.empty());
     EXPECT_EQ(folder.entries.front().levels.front(), dir / "out" / "asset.glb");
+}
+
+// A light glTF without normals is drawn flat, as viewers draw it (the spec's rule): its triangles
+// shipped without normals hold its look whole; shipping smooth ones would change it.
+TEST(SimplifyRoute, ALightGltfWithoutNormalsShipsWholeAndFlat) {
+    const auto dir = scratchDir("simplify_route_flat");
+    const mesh::PolygonMesh light = mesh::triangulated(mesh::makeLumpySphere(3, 0.15f, 4));
+    exporter::writeMeshGlb(dir / "flat.glb", light.positions, {},
+                           std::vector<std::uint32_t>(light.faceIndices.begin(), light.faceIndices.end()), false);
+    const auto report = simplify::toJson(simplify::runSimplify(smallSimplify(dir / "flat.glb", dir / "out", 20)));
+
+    const auto& route = report["route"];
+    ASSERT_EQ(route["shipped"], "decimation") << route.dump();
+    EXPECT_NE(route["why"].get<std::string>().find("whole"), std::string::npos) << route.dump();
+    const auto& baseline = report["baselines"]["decimation"];
+    EXPECT_EQ(baseline["triangles"].get<int>(), light.faceCount());
+    EXPECT_FALSE(baseline["encoding"]["normals"].get<bool>()) << baseline.dump();
+    EXPECT_GT(report["psnr_holdout"].get<double>(), 45.0);  // the reference's own, flat look
+    EXPECT_TRUE(mesh::loadMesh(dir / "out" / "asset.glb").normals.empty());
 }
 
 // A reference whose author set its normals (here all tilted one way, unlike any computed ones)

@@ -1,5 +1,6 @@
 // A reference is shaded with its author's normals (glTF NORMAL, carried through node transforms;
-// OBJ vn) or, where it has none, with smooth ones that ignore texture seams; never NaN.
+// OBJ vn) or, where it has none, as its viewers shade it: a glTF primitive flat (the spec's
+// rule), an OBJ smooth, ignoring texture seams; never NaN.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -77,14 +78,45 @@ TEST(ShadingNormals, AZeroNormalBecomesTheSurfacesOwn) {
     EXPECT_NEAR(m.normals[2].z, 1.0f, 1e-6f) << "a long normal is normalised, not replaced";
 }
 
-TEST(ShadingNormals, WithoutNormalTheyAreComputedAndGeometryReadsSkipThem) {
+TEST(ShadingNormals, WithoutNormalAGltfTriangleIsShadedFlatAndGeometryReadsSkipThem) {
     const PolygonMesh m = loadReference(writeTriangle("none", {}, kIdentity));
-    EXPECT_TRUE(m.normals.empty());
-    const auto shaded = shadingNormals(m);
-    ASSERT_EQ(shaded.size(), 3u);
-    for (const glm::vec3& n : shaded) EXPECT_GT(glm::dot(n, geometricNormal(m)), 0.99999f);
+    ASSERT_EQ(m.normals.size(), 3u);
+    for (const glm::vec3& n : m.normals) EXPECT_GT(glm::dot(n, geometricNormal(m)), 0.99999f);
+    EXPECT_EQ(shadingNormals(m), m.normals);
     const float s = 1.0f / std::sqrt(2.0f);
     EXPECT_TRUE(loadMesh(writeTriangle("geometry", {s, 0, s, s, 0, s, s, 0, s}, kIdentity)).normals.empty());
+}
+
+// Two triangles folded 90° along the edge they share, (0,0,0)-(1,0,0), with no NORMAL: a glTF
+// viewer draws each flat, so the fold stays sharp; smooth normals would round it.
+TEST(ShadingNormals, WithoutNormalAGltfPrimitiveSplitsItsVerticesAtEveryEdge) {
+    const fs::path dir = test::scratchDir("shading_normals_fold");
+    writeBytes(dir / "f.bin", {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1});
+    const std::vector<std::uint16_t> indices{0, 1, 2, 1, 0, 3};
+    std::ofstream(dir / "i.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(indices.data()), std::streamsize(indices.size() * 2));
+    std::ofstream(dir / "f.gltf") << R"({"asset":{"version":"2.0"},
+  "buffers":[{"uri":"f.bin","byteLength":48},{"uri":"i.bin","byteLength":12}],
+  "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":1,"byteLength":12}],
+  "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[0,0,0],"max":[1,1,1]},
+               {"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}],
+  "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
+  "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})";
+    const PolygonMesh m = loadReference(dir / "f.gltf");
+    ASSERT_EQ(m.faceCount(), 2);
+    ASSERT_EQ(m.vertexCount(), 6) << "each triangle its own three vertices";
+    ASSERT_EQ(m.normals.size(), 6u);
+    for (int f = 0; f < 2; ++f) {
+        const glm::vec3 a = m.positions[size_t(m.faceIndices[size_t(3 * f)])],
+                        b = m.positions[size_t(m.faceIndices[size_t(3 * f + 1)])],
+                        c = m.positions[size_t(m.faceIndices[size_t(3 * f + 2)])];
+        const glm::vec3 face = glm::normalize(glm::cross(b - a, c - a));
+        for (int k = 0; k < 3; ++k)
+            EXPECT_GT(glm::dot(m.normals[size_t(m.faceIndices[size_t(3 * f + k)])], face), 0.99999f) << f;
+    }
+    EXPECT_LT(std::abs(glm::dot(m.normals[size_t(m.faceIndices[0])], m.normals[size_t(m.faceIndices[3])])), 1e-5f)
+        << "the two sides keep their own normals, 90° apart";
+    EXPECT_EQ(loadMesh(dir / "f.gltf").vertexCount(), 4) << "a geometry read keeps the shared vertices";
 }
 
 TEST(ShadingNormals, ANonFiniteNormalIsRefusedNamingTheFile) {

@@ -63,8 +63,8 @@ nlohmann::json toJson(const VertexEncoding& e) {
 }
 
 mesh::PolygonMesh readBack(const std::filesystem::path& path, const fit::FitScene& scene) {
+    // A file without normals comes back flat, as viewers draw it (the reader's rule for glTF).
     mesh::PolygonMesh m = mesh::triangulated(mesh::loadReference(path));
-    if (m.normals.empty()) m = mesh::flatShaded(m);  // as viewers draw a glTF without normals
     m.positions = scene.frame.toNormalized(m.positions);
     return m;
 }
