@@ -104,7 +104,10 @@ void writeCheckpoint(const std::filesystem::path& path, const std::string& finge
     out.putArray(schedule.window);
     out.putArray(schedule.stageLosses);
     out.put<std::int32_t>(schedule.stageStart);
-    out.put<std::uint8_t>(schedule.probationOver ? 1 : schedule.probationStopsOnlyARise ? 2 : 0);
+    out.put<std::uint8_t>(schedule.probationOver             ? 1
+                          : schedule.probationStopsOnlyARise ? 2
+                          : schedule.probationAsksAGain      ? 3
+                                                             : 0);
     out.put<std::int32_t>(schedule.halvings);
     out.put<std::int32_t>(schedule.carriedHalvings);
     out.put<std::uint32_t>(std::uint32_t(schedule.bestTheta.size()));
@@ -163,9 +166,10 @@ std::optional<FitState> readCheckpoint(const std::filesystem::path& path, const 
     schedule.stageLosses = in.getArray<double>();
     schedule.stageStart = in.get<std::int32_t>();
     const auto probation = in.get<std::uint8_t>();
-    if (probation > 2) in.damaged("bad probation state");
+    if (probation > 3) in.damaged("bad probation state");
     schedule.probationOver = probation == 1;
     schedule.probationStopsOnlyARise = probation == 2;
+    schedule.probationAsksAGain = probation == 3;
     schedule.halvings = in.get<std::int32_t>();
     schedule.carriedHalvings = in.get<std::int32_t>();
     if (schedule.halvings < 0 || schedule.carriedHalvings < 0) in.damaged("bad halving count");

@@ -160,12 +160,20 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
                 if (hooks.note)
                     hooks.note("the start gained and then lost it in " + std::to_string(stageSteps) +
                                " steps: the step is halved, on probation again from the best state");
+            } else if (verdict == StepSchedule::Verdict::Paying && schedule_.probationStopsOnlyARise) {
+                // A start that lay flat must have gained by kLateProbation times as many steps.
+                schedule_.probationStopsOnlyARise = false;
+                schedule_.probationAsksAGain = true;
+                schedule_.probationOver = false;
             } else if (verdict == StepSchedule::Verdict::NoGain) {
-                // A best found on probation is the noise's pick (the monitor views are few):
-                // the stage ends where it started, never below it on other views.
-                schedule_.bestTheta = schedule_.startTheta;
-                schedule_.bestLoss = schedule_.stageLosses.front();
-                schedule_.bestStep = schedule_.stageStart;
+                // A best found on a first probation is the noise's pick (the monitor views are
+                // few): the stage ends where it started, never below it on other views. The later
+                // one keeps its best, as a stage that converged would.
+                if (!schedule_.probationAsksAGain) {
+                    schedule_.bestTheta = schedule_.startTheta;
+                    schedule_.bestLoss = schedule_.stageLosses.front();
+                    schedule_.bestStep = schedule_.stageStart;
+                }
                 restoreBest();
                 if (hooks.note)
                     hooks.note((schedule_.probationStopsOnlyARise ? "the steps made the start worse in "
@@ -197,7 +205,7 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
             hooks.progress({taken, options_.steps, fitter_->takeMeanLoss(), seconds, eta});
         }
         // On probation the monitor looks more often: a start that cannot pay is let go early.
-        if (plateau && taken % (schedule_.probationOver ? monitorEvery_ : kProbationEvery) == 0)
+        if (plateau && taken % (schedule_.probationOver || schedule_.probationAsksAGain ? monitorEvery_ : kProbationEvery) == 0)
             if (const auto ended = monitor()) {
                 stopReason_ = *ended;
                 break;
@@ -226,7 +234,8 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
         if (startMaps) startMaps(!pastStart);
         // Heights that startMaps bakes as they join start near their optimum, but their loss can
         // lie flat for dozens of steps before it falls (docs/optimizer.md): their probation stops
-        // only a start the steps clearly make worse. Maps given before the run keep the full one.
+        // only a start the steps clearly make worse, and a later one (kLateProbation) a start
+        // they have not improved by then. Maps given before the run keep the full one.
         if (!pastStart && mapsGiven_ && !givenBefore) {
             schedule_.probationOver = false;
             schedule_.probationStopsOnlyARise = true;
@@ -240,7 +249,8 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
 int FitRun::probationSteps() const {
     const int stageSteps = options_.steps - std::max(0, schedule_.stageStart);
     const int share = int(std::ceil(kProbation * stageSteps));
-    return std::max(2 * kProbationEvery, std::min(share, kProbationMeasurements * kProbationEvery));
+    const int steps = std::max(2 * kProbationEvery, std::min(share, kProbationMeasurements * kProbationEvery));
+    return schedule_.probationAsksAGain ? kLateProbation * steps : steps;
 }
 
 void FitRun::restoreBest() {

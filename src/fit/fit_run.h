@@ -79,6 +79,10 @@ public:
     // progress about 50 times a run, a checkpoint every options.checkpointEvery steps and at the end.
     static constexpr double kProbation = 0.15;
     static constexpr int kProbationMeasurements = 5, kProbationEvery = 5;
+    // Heights baked as they join pass a probation that stops only a clear rise (their loss can
+    // lie flat before it falls), then this many times its steps later one that asks a gain: ten
+    // untextured references, docs/measurements.md.
+    static constexpr int kLateProbation = 4;
     StopReason runTo(int until, const std::filesystem::path& checkpoint, const FitHooks& hooks = {});
 
     // The end of a stage: back to the best monitored parameters, if the last are not (so a fit

@@ -23,6 +23,7 @@ struct ScheduleState {
     int stageStart = -1;                // the step of its first measurement
     bool probationOver = false;
     bool probationStopsOnlyARise = false;  // a near-optimal start that may lie flat before it falls
+    bool probationAsksAGain = false;       // the later probation of one that passed the above
     int halvings = 0;
     int carriedHalvings = 0;  // the cage's, from the stage before: its step is 2^-(halvings + these)
     std::vector<std::vector<float>> bestTheta{};  // per group, in CageFitter::groups() order; empty: none yet

@@ -68,6 +68,13 @@ bool StepSchedule::paying() const {
 
 StepSchedule::Verdict StepSchedule::probation() const {
     const auto& losses = state_.stageLosses;
+    if (state_.probationAsksAGain) {
+        const bool fell = !losses.empty() && state_.bestLoss < (1.0 - kMinImprovement) * losses.front();
+        // A window a halving has just restarted says little: three noisy points make any fall likely.
+        const bool falling = state_.window.size() >= size_t(kWindow / 2) &&
+                             likelyImproving(lossTrend(state_.window), kMinImprovement, kProbationConfidence);
+        return fell || falling ? Verdict::Paying : Verdict::NoGain;
+    }
     if (state_.probationStopsOnlyARise) {
         const LossTrend trend = lossTrend(losses);
         const bool rose = std::isfinite(trend.standardError) &&

@@ -99,6 +99,16 @@ TEST_F(Checkpoint, ReadsBackExactly) {
     ASSERT_TRUE(resumed);
     EXPECT_FALSE(resumed->schedule.probationOver);
     EXPECT_TRUE(resumed->schedule.probationStopsOnlyARise);
+    // And the later one that asks a gain, as that.
+    FitState asksAGain = onlyARise;
+    asksAGain.schedule.probationStopsOnlyARise = false;
+    asksAGain.schedule.probationAsksAGain = true;
+    writeCheckpoint(path_, "fp", asksAGain);
+    const auto later = readCheckpoint(path_, "fp");
+    ASSERT_TRUE(later);
+    EXPECT_FALSE(later->schedule.probationOver);
+    EXPECT_FALSE(later->schedule.probationStopsOnlyARise);
+    EXPECT_TRUE(later->schedule.probationAsksAGain);
 }
 
 TEST_F(Checkpoint, EveryFlippedByteIsRefused) {

@@ -202,6 +202,26 @@ TEST(StepSchedule, AProbationThatStopsOnlyARiseLetsAFlatStartGoOn) {
     EXPECT_EQ(verdict({1.0, 0.97, 0.99, 1.0, 1.005, 1.004}), StepSchedule::Verdict::Paying);
 }
 
+// The later probation of heights that passed the one above (ScheduleState::probationAsksAGain):
+// by then a stage pays if its best fell below its start, or its last window is falling; one whose
+// loss stayed flat or crept up stops (the relief Spot at 50 KB, its losses' ratios to the start).
+TEST(StepSchedule, ALaterProbationAsksTheHeightsForAGain) {
+    auto verdict = [](const std::vector<double>& losses) {
+        ScheduleState state{.probationAsksAGain = true};
+        StepSchedule schedule(state);
+        for (size_t k = 0; k < losses.size(); ++k) schedule.record(losses[k], 10 * int(k));
+        return schedule.probation();
+    };
+    // Nine measurements: one short of a window, which the schedule would judge (and halve) itself.
+    const std::vector<double> crept{1.0, 1.0004, 0.9991, 1.0, 0.9998, 1.0009, 1.0022, 1.0029, 1.0007};
+    EXPECT_EQ(verdict(crept), StepSchedule::Verdict::NoGain);
+    EXPECT_EQ(verdict({1.0, 1.0, 1.0001, 0.9999, 1.0, 1.0001, 1.0, 0.9999, 1.0}), StepSchedule::Verdict::NoGain);
+    // Flat, then falling 2.5 % (the relief creased cube's heights): their best is below the start.
+    EXPECT_EQ(verdict({1.0, 1.0, 1.001, 0.999, 0.995, 0.99, 0.985, 0.98, 0.975}), StepSchedule::Verdict::Paying);
+    // Flat until the last few, which fall: not yet 0.5 % below the start, but falling.
+    EXPECT_EQ(verdict({1.0, 1.0005, 1.0, 1.0005, 1.0, 0.999, 0.998, 0.997, 0.9965}), StepSchedule::Verdict::Paying);
+}
+
 TEST(DeviceDefaults, SoftwareRenderersAreRecognised) {
     EXPECT_FALSE(isHardwareRenderer("llvmpipe (LLVM 15.0.6, 256 bits)"));
     EXPECT_FALSE(isHardwareRenderer("softpipe"));
