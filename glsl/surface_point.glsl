@@ -79,25 +79,20 @@ SurfacePoint limitPoint(OsdPatchParam param, vec2 st, PatchBasis basis, vec3 cvs
     return p;
 }
 
-// Patch `patchIndex`'s parameter, and its control points of `pointSet`.
-OsdPatchParam patchParam(int patchIndex) {
-    ivec4 info = texelFetch(patchInfo, patchIndex);
-    return OsdPatchParamInit(info.z, info.w, 0.0);
-}
-
-void gatherCvs(int patchIndex, samplerBuffer pointSet, out vec3 cvs[SUBDFIT_PATCH_CVS]) {
-    int first = texelFetch(patchInfo, patchIndex).x / 4;
+// A patch's control points of `pointSet`; `info` is its patchInfo texel.
+void gatherCvs(ivec4 info, samplerBuffer pointSet, out vec3 cvs[SUBDFIT_PATCH_CVS]) {
     for (int k = 0; k < SUBDFIT_PATCH_CVS / 4; ++k) {
-        ivec4 four = texelFetch(patchCvs, first + k);
+        ivec4 four = texelFetch(patchCvs, info.x / 4 + k);
         for (int c = 0; c < 4; ++c) cvs[4 * k + c] = texelFetch(pointSet, four[c]).xyz;
     }
 }
 
 // At (s, t) of patch `patchIndex` (render::PatchRenderer's patch order).
 SurfacePoint surfacePoint(int patchIndex, vec2 st) {
-    OsdPatchParam param = patchParam(patchIndex);
+    ivec4 info = texelFetch(patchInfo, patchIndex);
+    OsdPatchParam param = OsdPatchParamInit(info.z, info.w, 0.0);
     vec3 cvs[SUBDFIT_PATCH_CVS];
-    gatherCvs(patchIndex, points, cvs);
+    gatherCvs(info, points, cvs);
     SurfacePoint p = limitPoint(param, st, patchBasis(param, st), cvs);
 #ifdef SUBDFIT_DISPLACEMENT
     displace(p, heightSample(p.ptexFace, p.ptexUv));
@@ -108,12 +103,13 @@ SurfacePoint surfacePoint(int patchIndex, vec2 st) {
 #ifdef SUBDFIT_SURFACE_PAIR
 // The same point of two surfaces, `points`' and `secondPoints`': one basis, one height.
 void surfacePoints(int patchIndex, vec2 st, out SurfacePoint first, out SurfacePoint second) {
-    OsdPatchParam param = patchParam(patchIndex);
+    ivec4 info = texelFetch(patchInfo, patchIndex);
+    OsdPatchParam param = OsdPatchParamInit(info.z, info.w, 0.0);
     PatchBasis basis = patchBasis(param, st);
     vec3 cvs[SUBDFIT_PATCH_CVS];
-    gatherCvs(patchIndex, points, cvs);
+    gatherCvs(info, points, cvs);
     first = limitPoint(param, st, basis, cvs);
-    gatherCvs(patchIndex, secondPoints, cvs);
+    gatherCvs(info, secondPoints, cvs);
     second = limitPoint(param, st, basis, cvs);
 #ifdef SUBDFIT_DISPLACEMENT
     HeightSample height = heightSample(first.ptexFace, first.ptexUv);
