@@ -1,10 +1,10 @@
 // A small cage's vertex update in one work group of 256, one dispatch where the passes apart
 // take four and a buffer clear (their fixed cost, on a GPU, outweighs a small cage's work):
-//   g = G's sums resolved, and the sums cleared            (resolve_gradient.comp)
-//   g̃ = (I + λL)⁻¹ g, the sweeps in shared memory        (jacobi.glsl)
-//   g̃ −= (1 − keep) P g̃       SUBDFIT_PROJECT_TANGENTIAL (project_gradient.comp)
-//   v ← β2 v + (1 − β2) mean g̃² SUBDFIT_ADAM_SHARED_MOMENT (shared_moment.comp)
-//   θ −= Adam's step                                      (adam.glsl)
+//   g = G's sums resolved, the sums cleared (resolve_gradient.comp);
+//   g̃ = (I + λL)⁻¹ g, the sweeps in shared memory (jacobi.glsl);
+//   with SUBDFIT_PROJECT_TANGENTIAL, g̃ −= (1 − keep) P g̃ (project_gradient.comp);
+//   with SUBDFIT_ADAM_SHARED_MOMENT, v ← β2 v + (1 − β2) mean g̃² (shared_moment.comp);
+//   θ −= Adam's step (adam.glsl).
 // Each stage computes what its pass computes, in the same order.
 #include "bindings.h"
 #include "fixed_point.glsl"
