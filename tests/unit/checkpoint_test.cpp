@@ -90,25 +90,20 @@ TEST_F(Checkpoint, ReadsBackExactly) {
     EXPECT_EQ(read->schedule.startTheta, expected.schedule.startTheta);
     EXPECT_EQ(read->monitored, expected.monitored);
     EXPECT_FALSE(readCheckpoint(path_.parent_path() / "none.bin", "fp"));
-    // A probation that stops only a rise is resumed as one.
-    FitState onlyARise = sampleState();
-    onlyARise.schedule.probationOver = false;
-    onlyARise.schedule.probationStopsOnlyARise = true;
-    writeCheckpoint(path_, "fp", onlyARise);
-    const auto resumed = readCheckpoint(path_, "fp");
-    ASSERT_TRUE(resumed);
-    EXPECT_FALSE(resumed->schedule.probationOver);
-    EXPECT_TRUE(resumed->schedule.probationStopsOnlyARise);
-    // And the later one that asks a gain, as that.
-    FitState asksAGain = onlyARise;
-    asksAGain.schedule.probationStopsOnlyARise = false;
-    asksAGain.schedule.probationAsksAGain = true;
-    writeCheckpoint(path_, "fp", asksAGain);
-    const auto later = readCheckpoint(path_, "fp");
-    ASSERT_TRUE(later);
-    EXPECT_FALSE(later->schedule.probationOver);
-    EXPECT_FALSE(later->schedule.probationStopsOnlyARise);
-    EXPECT_TRUE(later->schedule.probationAsksAGain);
+    // A probation that stops only a rise is resumed as one, and the later one that asks a gain
+    // as that.
+    for (const bool asksAGain : {false, true}) {
+        FitState probation = sampleState();
+        probation.schedule.probationOver = false;
+        probation.schedule.probationStopsOnlyARise = !asksAGain;
+        probation.schedule.probationAsksAGain = asksAGain;
+        writeCheckpoint(path_, "fp", probation);
+        const auto resumed = readCheckpoint(path_, "fp");
+        ASSERT_TRUE(resumed);
+        EXPECT_FALSE(resumed->schedule.probationOver);
+        EXPECT_EQ(resumed->schedule.probationStopsOnlyARise, !asksAGain);
+        EXPECT_EQ(resumed->schedule.probationAsksAGain, asksAGain);
+    }
 }
 
 TEST_F(Checkpoint, EveryFlippedByteIsRefused) {

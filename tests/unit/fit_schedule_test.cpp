@@ -188,12 +188,16 @@ TEST(StepSchedule, AProbationThatFellOrOvershotHalvesTheStepOneThatNeverFellStop
 // Heights baked as they join (ScheduleState::probationStopsOnlyARise): a start that lies flat
 // goes on, as the relief creased cube's did before it fell 9 %; one the steps clearly make worse
 // stops, as the relief Spot's at 100 KB (the measured ratios to their starts).
+// The verdict of a probation of `state`'s kind on `losses`, measured `every` steps apart.
+StepSchedule::Verdict probationVerdict(ScheduleState state, const std::vector<double>& losses, int every) {
+    StepSchedule schedule(state);
+    for (size_t k = 0; k < losses.size(); ++k) schedule.record(losses[k], every * int(k));
+    return schedule.probation();
+}
+
 TEST(StepSchedule, AProbationThatStopsOnlyARiseLetsAFlatStartGoOn) {
     auto verdict = [](const std::vector<double>& losses) {
-        ScheduleState state{.probationStopsOnlyARise = true};
-        StepSchedule schedule(state);
-        for (size_t k = 0; k < losses.size(); ++k) schedule.record(losses[k], 5 * int(k));
-        return schedule.probation();
+        return probationVerdict({.probationStopsOnlyARise = true}, losses, 5);
     };
     EXPECT_EQ(verdict({1.0, 1.0002, 1.0007, 1.0001, 1.0009, 1.0004}), StepSchedule::Verdict::Paying);   // flat
     EXPECT_EQ(verdict({1.0, 0.998, 0.994, 0.99, 0.985, 0.98}), StepSchedule::Verdict::Paying);          // falling
@@ -207,10 +211,7 @@ TEST(StepSchedule, AProbationThatStopsOnlyARiseLetsAFlatStartGoOn) {
 // loss stayed flat or crept up stops (the relief Spot at 50 KB, its losses' ratios to the start).
 TEST(StepSchedule, ALaterProbationAsksTheHeightsForAGain) {
     auto verdict = [](const std::vector<double>& losses) {
-        ScheduleState state{.probationAsksAGain = true};
-        StepSchedule schedule(state);
-        for (size_t k = 0; k < losses.size(); ++k) schedule.record(losses[k], 10 * int(k));
-        return schedule.probation();
+        return probationVerdict({.probationAsksAGain = true}, losses, 10);
     };
     // Nine measurements: one short of a window, which the schedule would judge (and halve) itself.
     const std::vector<double> crept{1.0, 1.0004, 0.9991, 1.0, 0.9998, 1.0009, 1.0022, 1.0029, 1.0007};
