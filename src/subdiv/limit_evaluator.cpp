@@ -66,22 +66,33 @@ std::vector<LimitEvaluator::BaseWeight> LimitEvaluator::positionWeights(int ptex
     tables_->patches->EvaluateBasis(handle, u, v, wP);
     const Far::ConstIndexArray cvs = tables_->patches->GetPatchVertices(handle);
     const int baseCount = baseVertexCount();
-    std::vector<BaseWeight> terms;
+    // The CVs' stencils overlap on a few dozen base vertices in some hundreds of terms: they are
+    // merged in a dense row of this thread's, which only the vertices touched are cleared from.
+    thread_local std::vector<double> row;
+    thread_local std::vector<char> seen;
+    thread_local std::vector<int> touched;
+    if (int(row.size()) < baseCount) row.assign(size_t(baseCount), 0.0), seen.assign(size_t(baseCount), 0);
+    touched.clear();
+    const auto add = [&](int vertex, double weight) {
+        if (!seen[size_t(vertex)]) seen[size_t(vertex)] = 1, touched.push_back(vertex);
+        row[size_t(vertex)] += weight;
+    };
     for (int k = 0; k < cvs.size(); ++k) {
         if (wP[k] == 0.0f) continue;
         if (cvs[k] < baseCount) {
-            terms.push_back({cvs[k], double(wP[k])});
+            add(cvs[k], double(wP[k]));
             continue;
         }
-        const Far::Stencil row = tables_->stencils->GetStencil(cvs[k] - baseCount);
-        for (int e = 0; e < row.GetSize(); ++e)
-            terms.push_back({row.GetVertexIndices()[e], double(wP[k]) * double(row.GetWeights()[e])});
+        const Far::Stencil stencil = tables_->stencils->GetStencil(cvs[k] - baseCount);
+        for (int e = 0; e < stencil.GetSize(); ++e)
+            add(stencil.GetVertexIndices()[e], double(wP[k]) * double(stencil.GetWeights()[e]));
     }
-    std::sort(terms.begin(), terms.end(), [](const BaseWeight& a, const BaseWeight& b) { return a.vertex < b.vertex; });
+    std::sort(touched.begin(), touched.end());
     std::vector<BaseWeight> merged;
-    for (const BaseWeight& t : terms) {
-        if (!merged.empty() && merged.back().vertex == t.vertex) merged.back().weight += t.weight;
-        else merged.push_back(t);
+    merged.reserve(touched.size());
+    for (int vertex : touched) {
+        merged.push_back({vertex, row[size_t(vertex)]});
+        row[size_t(vertex)] = 0.0, seen[size_t(vertex)] = 0;
     }
     return merged;
 }

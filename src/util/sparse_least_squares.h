@@ -23,6 +23,11 @@ struct SparseRows {
     std::size_t rows() const { return offsets.size() - 1; }
     void add(int c, double w) { column.push_back(c), weight.push_back(w); }
     void endRow() { offsets.push_back(column.size()); }
+    void append(const SparseRows& rows) {
+        for (std::size_t s = 1; s < rows.offsets.size(); ++s) offsets.push_back(column.size() + rows.offsets[s]);
+        column.insert(column.end(), rows.column.begin(), rows.column.end());
+        weight.insert(weight.end(), rows.weight.begin(), rows.weight.end());
+    }
 
     template <class T>
     T apply(std::size_t row, const std::vector<T>& x) const {

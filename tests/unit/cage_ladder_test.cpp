@@ -18,7 +18,7 @@ void expectTheCagesASourceBuildsInTurn(unsigned builders) {
     const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 5);
     const std::vector<int> counts{400, 250, 160, 2};  // the last: too few faces survive decimation
     CageLadder ladder(reference, counts, {}, builders);
-    const CageSource source(reference);
+    const CageSource source(reference, true, counts.front());
     for (size_t k = 0; k + 1 < counts.size(); ++k) {
         const std::optional<mesh::PolygonMesh> cage = ladder.take(k);
         ASSERT_TRUE(cage.has_value()) << counts[k];

@@ -56,6 +56,29 @@ TEST(LimitFit, FitsCloserThanVertexInterpolation) {
     EXPECT_EQ(initialCage(reference, {.faces = 300}).positions, fitted.positions);
 }
 
+// A dense reference's cages are decimated from a copy of it decimated once (CageSource's
+// mostFaces), not each from the whole reference: they lie as close to it, on the whole (case by
+// case either may be closer, by a fifth or so).
+TEST(CageSource, CagesFromItsDecimationCopyLieAsClose) {
+    double logRatios = 0.0;
+    int cases = 0;
+    for (const std::uint32_t seed : {3u, 5u, 9u}) {
+        const mesh::PolygonMesh reference = mesh::makeLumpySphere(5, 0.15f, seed);  // 20 480 triangles
+        const mesh::PolygonMesh welded = weldedTriangles(reference);
+        for (const int faces : {300, 800}) {
+            const CageSource direct(reference), viaCopy(reference, true, faces);
+            const mesh::PolygonMesh fromReference = direct.cage({.faces = faces}), fromCopy = viaCopy.cage({.faces = faces});
+            EXPECT_NE(fromCopy.positions, fromReference.positions) << "the copy was decimated from";
+            EXPECT_LE(fromCopy.faceCount(), faces);
+            logRatios += std::log(meanDistance(fromCopy, welded) / meanDistance(fromReference, welded));
+            ++cases;
+            if (seed == 3u && faces == 300)  // more faces than the copy serves: from the reference
+                EXPECT_EQ(viaCopy.cage({.faces = 600}).positions, direct.cage({.faces = 600}).positions);
+        }
+    }
+    EXPECT_LT(std::exp(logRatios / cases), 1.05) << "mean distance from the copy over from the reference";
+}
+
 // The rays are cast on every core: the cage must not depend on how many there are (the
 // reductions keep their order), or two machines would ship different files from one input.
 TEST(LimitFit, OneThreadAndManyGiveTheSameCage) {

@@ -496,6 +496,25 @@ TEST(SubdivPatchSet, PointsFollowMovedCage) {
     }
 }
 
+TEST(SubdivPatchSet, PositionWeightsAreTheEvaluatedLimitOnce) {
+    // The limit position as weights on the base vertices (what the limit fit's rows hold), each
+    // vertex once, at regular points and at extraordinary corners of a creased cage.
+    const PolygonMesh cage = mesh::readObj(test::assetPath("osd-shapes/catmark_cube_creases1.obj"));
+    const LimitEvaluator evaluator(cage);
+    for (int f = 0; f < evaluator.ptexFaceCount(); f += 5)
+        for (const glm::vec2 uv : {glm::vec2(0.0f), glm::vec2(0.3f, 0.7f), glm::vec2(1.0f, 0.5f)}) {
+            if (!evaluator.hasSurface(f, uv.x, uv.y)) continue;
+            const auto weights = evaluator.positionWeights(f, uv.x, uv.y);
+            std::set<int> vertices;
+            glm::dvec3 weighted(0.0);
+            for (const auto& [vertex, weight] : weights) {
+                EXPECT_TRUE(vertices.insert(vertex).second) << "face " << f << ": vertex " << vertex << " twice";
+                weighted += weight * glm::dvec3(cage.positions[size_t(vertex)]);
+            }
+            expectNear(glm::vec3(weighted), evaluator.evaluate(f, uv.x, uv.y, cage.positions).position, 1e-5f, "weights");
+        }
+}
+
 TEST(SubdivPatchSet, OsdShapesBuildAndMatchLimitStencils) {
     // OpenSubdiv's regression cages: non-manifold edges, repeated vertices, a valence-66 pole,
     // holes, every crease and boundary rule. Each must build and match OpenSubdiv's limit

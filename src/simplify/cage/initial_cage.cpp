@@ -14,6 +14,7 @@
 #include "subdiv/limit_evaluator.h"
 #include "util/error.h"
 #include "util/interrupt.h"
+#include "util/sparse_least_squares.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -43,25 +44,33 @@ std::vector<VertexSite> vertexSites(const mesh::PolygonMesh& cage) {
     return sites;
 }
 
-// limit(P) at every base vertex, for any positions of one cage's topology.
+// limit(P) at every base vertex, for any positions of one cage's topology: each vertex's limit
+// stencil over the base vertices, found once (the surface is linear in its cage).
 class VertexLimits {
 public:
-    explicit VertexLimits(const mesh::PolygonMesh& cage) : evaluator_(cage), sites_(vertexSites(cage)) {}
+    explicit VertexLimits(const mesh::PolygonMesh& cage) {
+        const subdiv::LimitEvaluator evaluator(cage);
+        const std::vector<VertexSite> sites = vertexSites(cage);
+        onSurface_.assign(sites.size(), 0);
+        for (size_t v = 0; v < sites.size(); ++v) {
+            const VertexSite& s = sites[v];
+            onSurface_[v] = s.ptexFace >= 0 && evaluator.hasSurface(s.ptexFace, s.u, s.v);
+            if (onSurface_[v])
+                for (const auto& [vertex, weight] : evaluator.positionWeights(s.ptexFace, s.u, s.v)) stencils_.add(vertex, weight);
+            stencils_.endRow();
+        }
+    }
 
     std::vector<glm::vec3> operator()(const std::vector<glm::vec3>& positions) const {
+        const std::vector<glm::dvec3> at(positions.begin(), positions.end());
         std::vector<glm::vec3> limit(positions.size());
-        for (size_t v = 0; v < positions.size(); ++v) {
-            const VertexSite& s = sites_[v];
-            limit[v] = s.ptexFace >= 0 && evaluator_.hasSurface(s.ptexFace, s.u, s.v)
-                           ? evaluator_.evaluate(s.ptexFace, s.u, s.v, positions).position
-                           : positions[v];
-        }
+        for (size_t v = 0; v < positions.size(); ++v) limit[v] = onSurface_[v] ? glm::vec3(stencils_.apply(v, at)) : positions[v];
         return limit;
     }
 
 private:
-    subdiv::LimitEvaluator evaluator_;
-    std::vector<VertexSite> sites_;
+    SparseRows stencils_;       // row v: vertex v's limit position (empty off the surface)
+    std::vector<char> onSurface_;
 };
 
 // Vertices that must not slide: on a boundary (an edge not shared by two faces) or on a feature
@@ -116,19 +125,25 @@ std::vector<glm::vec3> limitPositionsOfVertices(const mesh::PolygonMesh& cage, c
 }
 
 mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialCageOptions& options) {
-    return CageSource(reference, options.hardEdges).cage(options);
+    return CageSource(reference, options.hardEdges, options.faces).cage(options);
 }
 
-CageSource::CageSource(const mesh::PolygonMesh& reference, bool hardEdges)
+CageSource::CageSource(const mesh::PolygonMesh& reference, bool hardEdges, int mostFaces)
     : reference_(reference), welded_(weldedTriangles(reference)),
       surface_(std::make_unique<geometry::SurfaceQueries>(welded_)) {
     if (hardEdges) hardEdges_.emplace(mesh::triangulated(reference));
+    const int copyFaces = kDecimationCopyFactor * mostFaces;
+    if (mostFaces > 0 && welded_.faceCount() > 2 * copyFaces) {
+        decimationCopy_ = decimate(welded_, copyFaces);
+        copyServes_ = mostFaces;
+    }
 }
 
 mesh::PolygonMesh CageSource::cage(const InitialCageOptions& options) const {
     const mesh::PolygonMesh& reference = reference_;
     const mesh::PolygonMesh& welded = welded_;
-    mesh::PolygonMesh cage = decimate(welded, options.faces);
+    const bool fromCopy = decimationCopy_ && options.faces <= copyServes_;
+    mesh::PolygonMesh cage = decimate(fromCopy ? *decimationCopy_ : welded, options.faces);
     cage.tags.triangles = mesh::TriangleSubdivision::Smooth;
     cage.tags.hasTriangles = true;
     cage.tags.boundary = mesh::BoundaryInterpolation::EdgeAndCorner;

@@ -32,14 +32,20 @@ mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialC
 
 // A reference prepared once for cages of any number of face counts (the budget search's): welded,
 // its hard edges found, its surface ready for the limit fit's rays. cage() is initialCage().
+// Given the most faces its cages will have, a dense reference is also decimated once to
+// kDecimationCopyFactor times that, and cages up to that size are decimated from the copy: each
+// decimation from the reference is a pass over all of it.
 class CageSource {
 public:
-    explicit CageSource(const mesh::PolygonMesh& reference, bool hardEdges = true);
+    static constexpr int kDecimationCopyFactor = 8;
+    explicit CageSource(const mesh::PolygonMesh& reference, bool hardEdges = true, int mostFaces = 0);
     mesh::PolygonMesh cage(const InitialCageOptions& options) const;
 
 private:
     const mesh::PolygonMesh& reference_;
     mesh::PolygonMesh welded_;
+    std::optional<mesh::PolygonMesh> decimationCopy_;  // of welded_, where it is dense
+    int copyServes_ = 0;                               // cages of up to this many faces
     std::optional<HardEdges> hardEdges_;
     std::unique_ptr<geometry::SurfaceQueries> surface_;  // of welded_
 };

@@ -3,6 +3,7 @@
 #include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "geometry/normal_casting.h"
@@ -24,17 +25,29 @@ struct Samples {
 };
 
 Samples samplesOf(const subdiv::LimitEvaluator& limit, int samplesPerEdge) {
+    // Faces in chunks on every core, each chunk's samples appended in the faces' order.
+    constexpr int kFacesPerChunk = 256;
+    std::vector<Samples> chunks(size_t((limit.ptexFaceCount() + kFacesPerChunk - 1) / kFacesPerChunk));
+    tbb::parallel_for(size_t(0), chunks.size(), [&](size_t c) {
+        Samples& chunk = chunks[c];
+        const int end = std::min(limit.ptexFaceCount(), int(c + 1) * kFacesPerChunk);
+        for (int f = int(c) * kFacesPerChunk; f < end; ++f)
+            for (int j = 0; j < samplesPerEdge; ++j)
+                for (int i = 0; i < samplesPerEdge; ++i) {
+                    const glm::vec2 uv((float(i) + 0.5f) / float(samplesPerEdge), (float(j) + 0.5f) / float(samplesPerEdge));
+                    if (!limit.hasSurface(f, uv.x, uv.y)) continue;
+                    for (const auto& [v, w] : limit.positionWeights(f, uv.x, uv.y)) chunk.stencils.add(v, w);
+                    chunk.stencils.endRow();
+                    chunk.ptexFace.push_back(f);
+                    chunk.uv.push_back(uv);
+                }
+    });
     Samples samples;
-    for (int f = 0; f < limit.ptexFaceCount(); ++f)
-        for (int j = 0; j < samplesPerEdge; ++j)
-            for (int i = 0; i < samplesPerEdge; ++i) {
-                const glm::vec2 uv((float(i) + 0.5f) / float(samplesPerEdge), (float(j) + 0.5f) / float(samplesPerEdge));
-                if (!limit.hasSurface(f, uv.x, uv.y)) continue;
-                for (const auto& [v, w] : limit.positionWeights(f, uv.x, uv.y)) samples.stencils.add(v, w);
-                samples.stencils.endRow();
-                samples.ptexFace.push_back(f);
-                samples.uv.push_back(uv);
-            }
+    for (const Samples& chunk : chunks) {
+        samples.stencils.append(chunk.stencils);
+        samples.ptexFace.insert(samples.ptexFace.end(), chunk.ptexFace.begin(), chunk.ptexFace.end());
+        samples.uv.insert(samples.uv.end(), chunk.uv.begin(), chunk.uv.end());
+    }
     return samples;
 }
 
