@@ -158,7 +158,7 @@ fit::FitScene smallSearchScene(const mesh::PolygonMesh& reference, const std::st
 // fitted, so which of the near ties would be chosen changes nothing: the same search then draws
 // no training view to settle them, and chooses the lowest monitor loss.
 TEST(SimplifyBudget, NoNearTieIsSettledWhereNoCandidateWillBeFitted) {
-    const mesh::PolygonMesh reference = mesh::makeLumpySphere(5, 0.15f, 3, 40, 0.005f, 0.02f);
+    const mesh::PolygonMesh reference = mesh::makeLumpySphere(5, 0.15f, 5, 40, 0.005f, 0.02f);
     fit::FitScene scene = smallSearchScene(reference, "simplify_budget_unsettled");
     simplify::BudgetSearch search;
     search.budget = 3000;
