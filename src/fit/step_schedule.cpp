@@ -1,6 +1,7 @@
 #include "fit/step_schedule.h"
 
 #include <algorithm>
+#include <numeric>
 
 namespace subdfit::fit {
 
@@ -69,7 +70,11 @@ bool StepSchedule::paying() const {
 StepSchedule::Verdict StepSchedule::probation() const {
     const auto& losses = state_.stageLosses;
     if (state_.probationAsksAGain) {
-        const bool fell = !losses.empty() && state_.bestLoss < (1.0 - kMinImprovement) * losses.front();
+        // A gain that holds: the current window's mean below the start, not one early best that
+        // the monitor's noise picked and every measurement since has stayed above.
+        const std::vector<double>& recent = state_.window.empty() ? losses : state_.window;
+        const double level = std::accumulate(recent.begin(), recent.end(), 0.0) / double(std::max<size_t>(recent.size(), 1));
+        const bool fell = !losses.empty() && level < (1.0 - kMinImprovement) * losses.front();
         // A window a halving has just restarted says little: three noisy points make any fall likely.
         const bool falling = state_.window.size() >= size_t(kWindow / 2) &&
                              likelyImproving(lossTrend(state_.window), kMinImprovement, kProbationConfidence);

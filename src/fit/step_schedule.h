@@ -78,9 +78,10 @@ public:
     // too large for it (a noised cage's first full steps gain, or overshoot, and the estimator's
     // noise walks it away): halve() and go on from the best. A stage that never fell, with no
     // fall likely, cannot pay. On a probation that stops only a rise, a stage pays unless its
-    // loss clearly rose (kClearRise); on the later one that asks a gain, it pays if its best fell
-    // by kMinImprovement below its start or its last window (of half a window's measurements at
-    // least) makes a fall that large likely (kProbationConfidence).
+    // loss clearly rose (kClearRise); on the later one that asks a gain, it pays if its last
+    // window's mean lies kMinImprovement below its start (a gain that holds, not one early best)
+    // or that window (of half a window's measurements at least) makes a fall that large likely
+    // (kProbationConfidence).
     enum class Verdict { Paying, StepTooLarge, NoGain };
     Verdict probation() const;
     // The step halved by hand, with a fresh window.

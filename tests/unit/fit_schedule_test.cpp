@@ -207,7 +207,7 @@ TEST(StepSchedule, AProbationThatStopsOnlyARiseLetsAFlatStartGoOn) {
 }
 
 // The later probation of heights that passed the one above (ScheduleState::probationAsksAGain):
-// by then a stage pays if its best fell below its start, or its last window is falling; one whose
+// by then a stage pays if its last window lies below its start, or is falling; one whose
 // loss stayed flat or crept up stops (the relief Spot at 50 KB, its losses' ratios to the start).
 TEST(StepSchedule, ALaterProbationAsksTheHeightsForAGain) {
     auto verdict = [](const std::vector<double>& losses) {
@@ -221,6 +221,9 @@ TEST(StepSchedule, ALaterProbationAsksTheHeightsForAGain) {
     EXPECT_EQ(verdict({1.0, 1.0, 1.001, 0.999, 0.995, 0.99, 0.985, 0.98, 0.975}), StepSchedule::Verdict::Paying);
     // Flat until the last few, which fall: not yet 0.5 % below the start, but falling.
     EXPECT_EQ(verdict({1.0, 1.0005, 1.0, 1.0005, 1.0, 0.999, 0.998, 0.997, 0.9965}), StepSchedule::Verdict::Paying);
+    // One early best 1 % below the start, every measurement since creeping above it (the 1M relief
+    // at 50 KB): the gain did not hold.
+    EXPECT_EQ(verdict({1.0, 0.9902, 0.993, 0.9961, 1.0009, 1.0046, 1.0037, 1.0052, 1.0093}), StepSchedule::Verdict::NoGain);
 }
 
 TEST(DeviceDefaults, SoftwareRenderersAreRecognised) {
