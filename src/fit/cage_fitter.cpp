@@ -34,7 +34,7 @@ optim::Adjacency uploadAdjacency(const mesh::PolygonMesh& cage) {
 // map tile: such a cage needs twice the map resolution (drawn with only T/2 segments a ptex
 // edge, the heights of every other node would be skipped between the vertices).
 int tessLevelFor(const CageFitSettings& s, const mesh::PolygonMesh& cage) {
-    const bool dense = subdiv::drawingIsolationLevel(cage) < subdiv::PatchSetOptions{}.isolationLevel;
+    const bool dense = subdiv::drawingIsolationLevel(cage) < subdiv::kIsolationLevel;
     const int segments = dense ? std::max(1, s.tessLevel / 2) : s.tessLevel;
     return s.mapEffects.geometric() ? std::max(segments, (mesh::hasNonQuadFaces(cage) ? 2 : 1) * s.maps.resolution) : segments;
 }

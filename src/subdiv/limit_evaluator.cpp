@@ -28,6 +28,9 @@ glm::dvec3 pointPosition(const Far::StencilTable& stencils, int point,
 
 }  // namespace
 
+LimitEvaluator::LimitEvaluator(const mesh::PolygonMesh& mesh)
+    : LimitEvaluator(mesh, {.isolationLevel = drawingIsolationLevel(mesh)}) {}
+
 LimitEvaluator::LimitEvaluator(const mesh::PolygonMesh& mesh, const PatchSetOptions& options)
     : tables_(cachedAdaptiveTables(mesh, options.isolationLevel)),
       patchMap_(std::make_unique<Far::PatchMap>(*tables_->patches)),

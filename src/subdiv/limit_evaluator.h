@@ -1,7 +1,8 @@
 #pragma once
 // CPU reference for what the GPU draws: the limit surface of a cage evaluated through
 // OpenSubdiv's own patch lookup (Far::PatchMap) and basis, on the same tables as PatchSet.
-// Slow per call; meant for tests and checks, not for the fitting loop.
+// Slow per call: for bakes, fits of the cage to a reference, exports and checks, not for the
+// fitting loop.
 #include <glm/vec3.hpp>
 #include <opensubdiv/far/patchMap.h>
 
@@ -22,7 +23,10 @@ struct LimitSample {
 
 class LimitEvaluator {
 public:
-    explicit LimitEvaluator(const mesh::PolygonMesh& mesh, const PatchSetOptions& options = {});
+    // At the isolation level the GPU draws `mesh` at (drawingIsolationLevel): what a fit renders,
+    // a bake displaces and an export tessellates is then one surface.
+    explicit LimitEvaluator(const mesh::PolygonMesh& mesh);
+    LimitEvaluator(const mesh::PolygonMesh& mesh, const PatchSetOptions& options);
 
     int baseVertexCount() const { return tables_->baseVertexCount(); }
     int ptexFaceCount() const { return ptexFaceCount_; }

@@ -17,11 +17,12 @@
 #include <vector>
 
 #include "mesh/polygon_mesh.h"
+#include "subdiv/isolation_level.h"
 
 namespace subdfit::subdiv {
 
 struct PatchSetOptions {
-    int isolationLevel = 3;  // 1..10: how deep extraordinary vertices and creases are isolated
+    int isolationLevel = kIsolationLevel;  // 1..10: how deep extraordinary vertices and creases are isolated
 };
 
 // Far::PatchDescriptor::Type values, the only two a PatchSet holds.
@@ -56,16 +57,6 @@ struct PatchSet {
     }
 };
 
-// How deep a cage is isolated for drawing: 3, or shallower on a dense cage with no semi-sharp tag
-// sharper than 2 (semi-sharp creases need one level per unit of sharpness to be drawn as
-// OpenSubdiv evaluates them; infinitely sharp ones need none): 2 over kDenseCageFaces faces, 1
-// over kVeryDenseCageFaces. Each face of such a
-// cage spans a few pixels at 256², where the shallower end caps move the surface by a fraction of
-// one (docs/measurements.md), and it is drawn with half the segments per face edge
-// (fit::CageFitter) and fewer, larger patches: a step several times faster.
-inline constexpr int kDenseCageFaces = 2000;
-inline constexpr int kVeryDenseCageFaces = 5000;
-int drawingIsolationLevel(const mesh::PolygonMesh& cage);
 
 // Throws subdfit::Error (naming mesh.sourcePath) when the cage cannot be subdivided.
 PatchSet buildPatchSet(const mesh::PolygonMesh& mesh, const PatchSetOptions& options = {});

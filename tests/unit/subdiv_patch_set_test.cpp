@@ -579,18 +579,29 @@ LevelShift limitShift(const PolygonMesh& cage, int shallow, int deep) {
     return shift;
 }
 
-TEST(SubdivPatchSet, DenseCagesAreDrawnShallowerWithinAFractionOfAPixel) {
-    // A bumpy sphere of 5 292 triangles: extraordinary vertices everywhere, as on a decimated cage.
-    PolygonMesh quads = cubeCage(21, true);
-    for (glm::vec3& p : quads.positions) p *= 1.0f + 0.03f * std::sin(9.0f * p.x) * std::cos(7.0f * p.y + 3.0f * p.z);
-    PolygonMesh triangles = quads;
-    triangles.faceSizes.clear();
-    triangles.faceIndices.clear();
-    for (std::size_t q = 0; q < quads.faceIndices.size(); q += 4) {
-        const int* v = &quads.faceIndices[q];
-        addFace(triangles, {v[0], v[1], v[2]});
-        addFace(triangles, {v[0], v[2], v[3]});
+// A bumpy sphere of 2 646 quads (`quads`) and its 5 292 triangles: extraordinary vertices
+// everywhere, as on a decimated cage.
+struct BumpyCages {
+    PolygonMesh quads, triangles;
+};
+
+BumpyCages bumpyCages() {
+    BumpyCages cages{cubeCage(21, true), {}};
+    for (glm::vec3& p : cages.quads.positions)
+        p *= 1.0f + 0.03f * std::sin(9.0f * p.x) * std::cos(7.0f * p.y + 3.0f * p.z);
+    cages.triangles = cages.quads;
+    cages.triangles.faceSizes.clear();
+    cages.triangles.faceIndices.clear();
+    for (std::size_t q = 0; q < cages.quads.faceIndices.size(); q += 4) {
+        const int* v = &cages.quads.faceIndices[q];
+        addFace(cages.triangles, {v[0], v[1], v[2]});
+        addFace(cages.triangles, {v[0], v[2], v[3]});
     }
+    return cages;
+}
+
+TEST(SubdivPatchSet, DenseCagesAreDrawnShallowerWithinAFractionOfAPixel) {
+    const auto [quads, triangles] = bumpyCages();
     ASSERT_GT(triangles.faceCount(), kVeryDenseCageFaces);
     ASSERT_GT(quads.faceCount(), kDenseCageFaces);
     ASSERT_LE(quads.faceCount(), kVeryDenseCageFaces);
@@ -618,6 +629,25 @@ TEST(SubdivPatchSet, DenseCagesAreDrawnShallowerWithinAFractionOfAPixel) {
     EXPECT_LT(level1.mean, 0.05 / 6.0);
     std::printf("vs level 3, in mean edges: level 2 worst %.2f %%, mean %.3f %%; level 1 worst %.2f %%, mean %.3f %%\n",
                 100 * level2.worst, 100 * level2.mean, 100 * level1.worst, 100 * level1.mean);
+}
+
+TEST(LimitEvaluator, EvaluatesACageAtTheLevelItIsDrawnAt) {
+    // What a bake displaces and an export tessellates is the surface a fit renders.
+    const PolygonMesh dense = bumpyCages().triangles;
+    const LimitEvaluator drawn(dense), level1(dense, {.isolationLevel = 1}), level3(dense, {.isolationLevel = 3});
+    double apartFromLevel3 = 0.0;
+    for (int f = 0; f < drawn.ptexFaceCount(); f += 5)
+        for (float u : kSampleCoords)
+            for (float v : kSampleCoords) {
+                const glm::vec3 p = drawn.evaluate(f, u, v, dense.positions).position;
+                ASSERT_EQ(p, level1.evaluate(f, u, v, dense.positions).position) << "face " << f;
+                apartFromLevel3 = std::max(apartFromLevel3, double(glm::length(p - level3.evaluate(f, u, v, dense.positions).position)));
+            }
+    EXPECT_GT(apartFromLevel3, 0.0);  // the end caps of level 1 are not level 3's
+    const PolygonMesh light = cubeCage(8, true);
+    const LimitEvaluator lightDrawn(light), lightLevel3(light, {.isolationLevel = 3});
+    EXPECT_EQ(lightDrawn.evaluate(0, 0.3f, 0.6f, light.positions).position,
+              lightLevel3.evaluate(0, 0.3f, 0.6f, light.positions).position);
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
 // The table cache hands back a cage's tables built once for its topology: the same as a fresh
-// build, whatever the positions, and never another topology's (faces, tags or level apart).
+// build, whatever the positions, and never another topology's (faces, tags or level apart); past
+// its size, the least recently used leave first.
 #include <gtest/gtest.h>
 
 #include "mesh/procedural.h"
 #include "subdiv/adaptive_tables.h"
 #include "subdiv/patch_set.h"
+#include "subdiv/table_cache.h"
 
 namespace subdfit::subdiv {
 namespace {
@@ -42,6 +44,31 @@ TEST(SubdivTableCache, AnotherLevelTagOrFaceIsAnotherEntry) {
     mesh::PolygonMesh turned = cage;  // one face's corners in another order: another topology
     std::swap(turned.faceIndices[1], turned.faceIndices[3]);
     EXPECT_NE(cachedAdaptiveTables(turned, 3).get(), cachedAdaptiveTables(cage, 3).get());
+}
+
+TEST(SubdivTableCache, TheLeastRecentlyUsedLeaveFirst) {
+    struct Weighed {
+        long points;
+    };
+    TableCache<Weighed> cache(100, [](const Weighed& w) { return w.points; });
+    int builds = 0;
+    const auto get = [&](const mesh::PolygonMesh& cage, long points) {
+        return cache.get(cage, 3, [&] {
+            ++builds;
+            return Weighed{points};
+        });
+    };
+    const mesh::PolygonMesh light = mesh::makeQuadSphere(1), dense = mesh::makeQuadSphere(2), other = mesh::makeQuadSphere(3);
+    get(light, 10);
+    get(dense, 60);
+    get(light, 10);  // used again: now the more recent of the two
+    EXPECT_EQ(builds, 2);
+    get(other, 40);  // 110 points: the dense cage, used least recently, leaves, though the largest
+    EXPECT_EQ(builds, 3);
+    get(light, 10);
+    EXPECT_EQ(builds, 3);
+    get(dense, 60);
+    EXPECT_EQ(builds, 4);
 }
 
 }  // namespace
