@@ -13,9 +13,6 @@ namespace subdfit::fit {
 namespace {
 
 constexpr int kMonitorViews = 4;
-// The held-out views are scored as a viewer shows them: 4 × 4 samples a pixel, box-filtered
-// (scene/target_set.h). The fit itself compares single samples, whose ids its gradient needs.
-constexpr int kHoldoutSupersampling = 4;
 constexpr float kFramedWidth = 2.3f;  // normalised units across the rendered view
 constexpr float kEpsilonPixels = 0.9f, kStepPixels = 0.45f;
 // And never more than this in the normalised frame, whatever the resolution: beyond it a coarse
@@ -76,8 +73,10 @@ FitScene::FitScene(const FitOptions& o, gl::ProgramCache& programs, mesh::Polygo
       referenceRenderer(reference, shading),
       training(programs, referenceRenderer, render::orbitCameras(o.views, o.seed), o.resolution),
       holdout(programs, referenceRenderer, render::orbitCameras(o.holdoutViews, o.seed ^ 0x9e3779b9u),
-              o.resolution, kHoldoutSupersampling),
-      monitor(programs, referenceRenderer, render::orbitCameras(kMonitorViews, o.seed ^ 0x85ebca6bu), o.resolution) {}
+              o.resolution, kViewerSupersampling),
+      monitor(programs, referenceRenderer, render::orbitCameras(kMonitorViews, o.seed ^ 0x85ebca6bu), o.resolution),
+      choosing(programs, referenceRenderer, render::orbitCameras(kMonitorViews, o.seed ^ 0x85ebca6bu), o.resolution,
+               kViewerSupersampling) {}
 
 void FitScene::setCage(mesh::PolygonMesh cageWorldIn) {
     cageWorld = std::move(cageWorldIn);

@@ -11,6 +11,12 @@
 
 namespace subdfit::fit {
 
+// The views that choose and judge what ships (`choosing`, `holdout`) are drawn as a viewer shows
+// them: 4 × 4 samples a pixel, box-filtered (scene/target_set.h); a choice made on single samples
+// favours what aliases as the targets do. The fit itself compares single samples, whose ids its
+// gradient needs.
+inline constexpr int kViewerSupersampling = 4;
+
 class FitScene {
 public:
     // Loads options.cage and options.reference. Throws subdfit::Error "path: problem".
@@ -31,11 +37,14 @@ public:
     render::MeshRenderer referenceRenderer;
     scene::TargetSet training;
     // Another rotation of the view lattice, so no held-out view coincides with a training view;
-    // supersampled: scored as a viewer shows them (anti-aliased).
+    // supersampled (kViewerSupersampling).
     scene::TargetSet holdout;
     // A third, for the step schedule (fit/step_schedule.h): when the fit decides on its own
-    // progress, it must not look at the views it is judged on.
+    // progress, it must not look at the views it is judged on. Single samples, as it fits.
     scene::TargetSet monitor;
+    // The monitor's cameras supersampled, as a viewer shows them: what simplify chooses on (the
+    // budget search's candidates, the triangle route's encodings, whether a cage is fitted).
+    scene::TargetSet choosing;
 
 private:
     struct Checked {};

@@ -121,8 +121,8 @@ constexpr double kBytesPerLoss = 5.0;
 // face, measured on another cage) errs by a few per cent.
 constexpr double kPredictedOver = 1.25;
 // Four monitor views rank candidates this close to the lowest no better than chance: those
-// within this fraction are scored again on the training views too, and the choice among them is
-// made on that score.
+// within this fraction are scored again from the training cameras too (drawn as those are),
+// and the choice among them is made on that score.
 constexpr double kNearTie = 0.2;
 // The training views are drawn in blocks of this many, and the settling ends once the choice is
 // clear: the leader's loss below every other candidate's, view for view, by this many standard
@@ -210,12 +210,52 @@ bool clearlyAhead(const std::vector<Fitting*>& near, int monitorViews, size_t vi
     });
 }
 
+// The training cameras drawn as `choosing` is (fit::kViewerSupersampling), in settling order, a
+// block of kSettleBlock at a time as the settling asks for them: most settlings end within a few
+// blocks, and the reference drawn supersampled from every camera would cost more than they do.
+class SettlingViews {
+public:
+    SettlingViews(gl::ProgramCache& programs, const fit::FitScene& scene)
+        : programs_(programs), scene_(scene), order_(settlingOrder(scene.training.size())) {}
+
+    size_t size() const { return order_.size(); }
+
+    // The loss of what `fitter` draws from the v-th camera in settling order.
+    double loss(fit::CageFitter& fitter, size_t v) {
+        const scene::TargetSet& views = block(v / kSettleBlock);
+        const int k = int(v % kSettleBlock);
+        return fit::meanPixelLoss(views.render(k, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
+                                      fitter.render(camera, canvas);
+                                  }),
+                                  views.readColor(k));
+    }
+
+private:
+    const scene::TargetSet& block(size_t b) {
+        while (blocks_.size() <= b) {
+            std::vector<render::Camera> cameras;
+            const size_t first = blocks_.size() * kSettleBlock;
+            for (size_t v = first; v < std::min(order_.size(), first + kSettleBlock); ++v)
+                cameras.push_back(scene_.training.camera(order_[v]));
+            blocks_.emplace_back(programs_, scene_.referenceRenderer, std::move(cameras), scene_.training.resolution(),
+                                 fit::kViewerSupersampling);
+        }
+        return blocks_[b];
+    }
+
+    gl::ProgramCache& programs_;
+    const fit::FitScene& scene_;
+    std::vector<int> order_;
+    std::vector<scene::TargetSet> blocks_;
+};
+
 // preferred() among those `keep` accepts within kNearTie of the lowest monitor loss, on their
-// loss over the monitor and training views. The training views are drawn a block at a time, each
-// near candidate on the same views, until one clearly leads or all are drawn. A lone leader has
-// no tie to settle: it is chosen as it is.
+// loss over the monitor and training cameras (`views`). The cameras are drawn a block at a time,
+// each near candidate from the same ones, until one clearly leads or all are drawn. A lone
+// leader has no tie to settle: it is chosen as it is.
 template <class Keep>
-const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, std::vector<Fitting>& fitting, Keep keep) {
+const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, SettlingViews& settling,
+                      std::vector<Fitting>& fitting, Keep keep) {
     const Fitting* lowest = lowestOf(fitting, keep, monitored);
     if (!lowest) return nullptr;
     const double within = (1.0 + kNearTie) * lowest->candidate.monitorLoss;
@@ -223,26 +263,20 @@ const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, st
     for (Fitting& f : fitting)
         if (keep(f.candidate) && f.candidate.monitorLoss <= within) near.push_back(&f);
     if (near.size() == 1) return lowest;
-    const std::vector<int> order = settlingOrder(scene.training.size());
     std::map<const Fitting*, std::unique_ptr<fit::CageFitter>> drawn;
     size_t views = 0;
-    while (views < order.size() && !clearlyAhead(near, scene.monitor.size(), views)) {
-        views = std::min(order.size(), views + size_t(kSettleBlock));
+    while (views < settling.size() && !clearlyAhead(near, scene.choosing.size(), views)) {
+        views = std::min(settling.size(), views + size_t(kSettleBlock));
         for (Fitting* f : near)
             for (size_t v = f->trainingLoss.size(); v < views; ++v) {
                 throwIfStopRequested();
                 auto& fitter = drawn[f];
                 if (!fitter) fitter = drawnAsFitted(programs, scene, exporter::decodeSubd(*f->encoded, "budget candidate"));
-                const int view = order[v];
-                f->trainingLoss.push_back(fit::meanPixelLoss(
-                    scene.training.render(view, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
-                        fitter->render(camera, canvas);
-                    }),
-                    scene.training.readColor(view)));
+                f->trainingLoss.push_back(settling.loss(*fitter, v));
             }
     }
     for (Fitting* f : near) {
-        f->candidate.settledLoss = settledLossOf(*f, scene.monitor.size(), views);
+        f->candidate.settledLoss = settledLossOf(*f, scene.choosing.size(), views);
         f->candidate.settledViews = int(views);
     }
     return preferred(fitting, [&](const BudgetCandidate& c) { return keep(c) && c.monitorLoss <= within; }, settled);
@@ -351,10 +385,10 @@ std::vector<AppearanceBakeOptions> appearancesOf(const BudgetSearch& search) {
 void scoreOnMonitor(const SearchInputs& in, const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps& baked,
                     const Appearance& appearance, BudgetCandidate& c, Shipped& shipped) {
     const auto drawn = drawnAsFitted(in.programs, in.scene, shipped.decoded);
-    c.monitorLoss = lossOn(*drawn, {&in.scene.monitor});
+    c.monitorLoss = lossOn(*drawn, {&in.scene.choosing});
     if (!c.maps.displacement) return;
     drawn->maps()->setShadingNormal(surface::ShadingNormal::Limit);
-    if (const double loss = lossOn(*drawn, {&in.scene.monitor}); loss < c.monitorLoss) {
+    if (const double loss = lossOn(*drawn, {&in.scene.choosing}); loss < c.monitorLoss) {
         c.monitorLoss = loss;
         c.shadingNormal = baked.shadingNormal = surface::ShadingNormal::Limit;
         shipped = ship(cageWorld, baked, c.mapBits, appearance.quality, in.scene.frame.scale);
@@ -568,8 +602,9 @@ BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
     const auto any = [](const BudgetCandidate&) { return true; };
     const Fitting* lowest = lowestOf(found.fitting, any, monitored);
     const bool fitted = lowest && fit::psnrFromLoss(lowest->candidate.monitorLoss) >= in.search.leastFittedMonitorPsnr;
+    SettlingViews settling(in.programs, in.scene);
     const auto choose = [&](auto keep) {
-        return fitted ? settle(in.programs, in.scene, found.fitting, keep) : lowestOf(found.fitting, keep, monitored);
+        return fitted ? settle(in.programs, in.scene, settling, found.fitting, keep) : lowestOf(found.fitting, keep, monitored);
     };
     const Fitting* chosen = choose(any);
     if (!chosen)

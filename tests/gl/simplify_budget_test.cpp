@@ -154,6 +154,25 @@ fit::FitScene smallSearchScene(const mesh::PolygonMesh& reference, const std::st
     return fit::FitScene(fit::resolved(o), programs(), mesh::makeQuadSphere(2), reference);
 }
 
+// simplify chooses on the monitor's cameras drawn as a viewer shows them, as the held-out views
+// judge what ships; the fit's own schedule reads them single-sample, as it fits.
+TEST(SimplifyBudget, ChoicesSeeTheMonitorCamerasAsAViewerDoes) {
+    const fit::FitScene scene = smallSearchScene(mesh::makeLumpySphere(5, 0.15f, 5, 40, 0.005f, 0.02f), "simplify_choosing");
+    EXPECT_EQ(scene.monitor.supersampling(), 1);
+    EXPECT_EQ(scene.choosing.supersampling(), fit::kViewerSupersampling);
+    EXPECT_EQ(scene.holdout.supersampling(), fit::kViewerSupersampling);
+    ASSERT_EQ(scene.choosing.size(), scene.monitor.size());
+    int outline = 0;  // pixels whose anti-aliased target differs from the single sample
+    for (int v = 0; v < scene.monitor.size(); ++v) {
+        EXPECT_EQ(scene.choosing.camera(v).eye, scene.monitor.camera(v).eye);
+        const auto single = scene.monitor.readColor(v), seen = scene.choosing.readColor(v);
+        ASSERT_EQ(single.size(), seen.size());
+        for (size_t p = 0; p < single.size(); ++p) outline += glm::length(single[p] - seen[p]) > 0.05f;
+    }
+    EXPECT_GT(outline, 0);
+    expectNoGlError();
+}
+
 // Where even the best candidate trails the triangle route by more than a fit gains, no cage is
 // fitted, so which of the near ties would be chosen changes nothing: the same search then draws
 // no training view to settle them, and chooses the lowest monitor loss.
