@@ -121,8 +121,8 @@ constexpr double kBytesPerLoss = 5.0;
 // face, measured on another cage) errs by a few per cent.
 constexpr double kPredictedOver = 1.25;
 // Four monitor views rank candidates this close to the lowest no better than chance: those
-// within this fraction are scored again from the training cameras too (drawn as those are),
-// and the choice among them is made on that score.
+// within this fraction are scored again from the training cameras too (supersampled as those
+// are), and the choice among them is made on that score.
 constexpr double kNearTie = 0.2;
 // The training views are drawn in blocks of this many, and the settling ends once the choice is
 // clear: the leader's loss below every other candidate's, view for view, by this many standard
@@ -213,6 +213,8 @@ bool clearlyAhead(const std::vector<Fitting*>& near, int monitorViews, size_t vi
 // The training cameras drawn as `choosing` is (fit::kViewerSupersampling), in settling order, a
 // block of kSettleBlock at a time as the settling asks for them: most settlings end within a few
 // blocks, and the reference drawn supersampled from every camera would cost more than they do.
+// One block is kept (its targets and its supersampled canvas): the settling draws every near
+// candidate from the newest block before the next.
 class SettlingViews {
 public:
     SettlingViews(gl::ProgramCache& programs, const fit::FitScene& scene)
@@ -232,21 +234,23 @@ public:
 
 private:
     const scene::TargetSet& block(size_t b) {
-        while (blocks_.size() <= b) {
+        if (!block_ || blockIndex_ != b) {
+            block_.reset();
             std::vector<render::Camera> cameras;
-            const size_t first = blocks_.size() * kSettleBlock;
-            for (size_t v = first; v < std::min(order_.size(), first + kSettleBlock); ++v)
+            for (size_t v = b * kSettleBlock; v < std::min(order_.size(), (b + 1) * kSettleBlock); ++v)
                 cameras.push_back(scene_.training.camera(order_[v]));
-            blocks_.emplace_back(programs_, scene_.referenceRenderer, std::move(cameras), scene_.training.resolution(),
-                                 fit::kViewerSupersampling);
+            block_.emplace(programs_, scene_.referenceRenderer, std::move(cameras), scene_.training.resolution(),
+                           fit::kViewerSupersampling);
+            blockIndex_ = b;
         }
-        return blocks_[b];
+        return *block_;
     }
 
     gl::ProgramCache& programs_;
     const fit::FitScene& scene_;
     std::vector<int> order_;
-    std::vector<scene::TargetSet> blocks_;
+    std::optional<scene::TargetSet> block_;
+    size_t blockIndex_ = 0;
 };
 
 // preferred() among those `keep` accepts within kNearTie of the lowest monitor loss, on their
