@@ -74,9 +74,17 @@ FitScene::FitScene(const FitOptions& o, gl::ProgramCache& programs, mesh::Polygo
       training(programs, referenceRenderer, render::orbitCameras(o.views, o.seed), o.resolution),
       holdout(programs, referenceRenderer, render::orbitCameras(o.holdoutViews, o.seed ^ 0x9e3779b9u),
               o.resolution, kViewerSupersampling),
-      monitor(programs, referenceRenderer, render::orbitCameras(kMonitorViews, o.seed ^ 0x85ebca6bu), o.resolution),
-      choosing(programs, referenceRenderer, render::orbitCameras(kMonitorViews, o.seed ^ 0x85ebca6bu), o.resolution,
-               kViewerSupersampling) {}
+      monitor(programs, referenceRenderer, render::orbitCameras(kMonitorViews, o.seed ^ 0x85ebca6bu), o.resolution) {}
+
+const scene::TargetSet& FitScene::choosing(gl::ProgramCache& programs) const {
+    if (!choosing_) {
+        std::vector<render::Camera> cameras;
+        for (int v = 0; v < monitor.size(); ++v) cameras.push_back(monitor.camera(v));
+        choosing_ = std::make_unique<scene::TargetSet>(programs, referenceRenderer, std::move(cameras),
+                                                       monitor.resolution(), kViewerSupersampling);
+    }
+    return *choosing_;
+}
 
 void FitScene::setCage(mesh::PolygonMesh cageWorldIn) {
     cageWorld = std::move(cageWorldIn);

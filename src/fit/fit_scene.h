@@ -2,6 +2,8 @@
 // What every fit works on, built the same way by `subdfit fit`, `subdfit simplify` and the
 // viewer: the cage and the reference in the normalised frame of the reference, the reference's
 // renderer, and the training and held-out target images. Needs a current GL context.
+#include <memory>
+
 #include "fit/cage_fitter.h"
 #include "fit/fit_options.h"
 #include "fit/fit_report.h"
@@ -44,10 +46,12 @@ public:
     scene::TargetSet monitor;
     // The monitor's cameras supersampled, as a viewer shows them: what simplify chooses on (the
     // budget search's candidates, the triangle route's encodings, whether a cage is fitted).
-    scene::TargetSet choosing;
+    // Drawn on first use: a fit alone never asks for them.
+    const scene::TargetSet& choosing(gl::ProgramCache& programs) const;
 
 private:
     struct Checked {};
+    mutable std::unique_ptr<scene::TargetSet> choosing_;
     FitScene(const FitOptions& options, gl::ProgramCache& programs, mesh::PolygonMesh cageWorld,
              const mesh::PolygonMesh& referenceWorld, Checked);
 };

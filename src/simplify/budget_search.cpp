@@ -269,7 +269,7 @@ const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, Se
     if (near.size() == 1) return lowest;
     std::map<const Fitting*, std::unique_ptr<fit::CageFitter>> drawn;
     size_t views = 0;
-    while (views < settling.size() && !clearlyAhead(near, scene.choosing.size(), views)) {
+    while (views < settling.size() && !clearlyAhead(near, scene.monitor.size(), views)) {
         views = std::min(settling.size(), views + size_t(kSettleBlock));
         for (Fitting* f : near)
             for (size_t v = f->trainingLoss.size(); v < views; ++v) {
@@ -280,7 +280,7 @@ const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, Se
             }
     }
     for (Fitting* f : near) {
-        f->candidate.settledLoss = settledLossOf(*f, scene.choosing.size(), views);
+        f->candidate.settledLoss = settledLossOf(*f, scene.monitor.size(), views);
         f->candidate.settledViews = int(views);
     }
     return preferred(fitting, [&](const BudgetCandidate& c) { return keep(c) && c.monitorLoss <= within; }, settled);
@@ -389,10 +389,10 @@ std::vector<AppearanceBakeOptions> appearancesOf(const BudgetSearch& search) {
 void scoreOnMonitor(const SearchInputs& in, const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps& baked,
                     const Appearance& appearance, BudgetCandidate& c, Shipped& shipped) {
     const auto drawn = drawnAsFitted(in.programs, in.scene, shipped.decoded);
-    c.monitorLoss = lossOn(*drawn, {&in.scene.choosing});
+    c.monitorLoss = lossOn(*drawn, {&in.scene.choosing(in.programs)});
     if (!c.maps.displacement) return;
     drawn->maps()->setShadingNormal(surface::ShadingNormal::Limit);
-    if (const double loss = lossOn(*drawn, {&in.scene.choosing}); loss < c.monitorLoss) {
+    if (const double loss = lossOn(*drawn, {&in.scene.choosing(in.programs)}); loss < c.monitorLoss) {
         c.monitorLoss = loss;
         c.shadingNormal = baked.shadingNormal = surface::ShadingNormal::Limit;
         shipped = ship(cageWorld, baked, c.mapBits, appearance.quality, in.scene.frame.scale);

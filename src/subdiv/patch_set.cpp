@@ -1,11 +1,9 @@
 #include "subdiv/patch_set.h"
 
 #include <opensubdiv/far/ptexIndices.h>
-#include <opensubdiv/sdc/crease.h>
 
 #include <algorithm>
 #include <bit>
-#include <cmath>
 
 #include "subdiv/adaptive_tables.h"
 #include "subdiv/table_cache.h"
@@ -88,7 +86,6 @@ void collectFaceVertices(PatchSet& set) {
 }
 
 }  // namespace
-
 
 PatchSet buildPatchSet(const mesh::PolygonMesh& mesh, const PatchSetOptions& options) {
     // Kept: a cage's limit evaluator (its limit fit, its bakes) has often built them already.

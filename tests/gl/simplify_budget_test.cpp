@@ -158,14 +158,15 @@ fit::FitScene smallSearchScene(const mesh::PolygonMesh& reference, const std::st
 // judge what ships; the fit's own schedule reads them single-sample, as it fits.
 TEST(SimplifyBudget, ChoicesSeeTheMonitorCamerasAsAViewerDoes) {
     const fit::FitScene scene = smallSearchScene(mesh::makeLumpySphere(5, 0.15f, 5, 40, 0.005f, 0.02f), "simplify_choosing");
+    const auto& choosing = scene.choosing(programs());
     EXPECT_EQ(scene.monitor.supersampling(), 1);
-    EXPECT_EQ(scene.choosing.supersampling(), fit::kViewerSupersampling);
+    EXPECT_EQ(choosing.supersampling(), fit::kViewerSupersampling);
     EXPECT_EQ(scene.holdout.supersampling(), fit::kViewerSupersampling);
-    ASSERT_EQ(scene.choosing.size(), scene.monitor.size());
+    ASSERT_EQ(choosing.size(), scene.monitor.size());
     int outline = 0;  // pixels whose anti-aliased target differs from the single sample
     for (int v = 0; v < scene.monitor.size(); ++v) {
-        EXPECT_EQ(scene.choosing.camera(v).eye, scene.monitor.camera(v).eye);
-        const auto single = scene.monitor.readColor(v), seen = scene.choosing.readColor(v);
+        EXPECT_EQ(choosing.camera(v).eye, scene.monitor.camera(v).eye);
+        const auto single = scene.monitor.readColor(v), seen = choosing.readColor(v);
         ASSERT_EQ(single.size(), seen.size());
         for (size_t p = 0; p < single.size(); ++p) outline += glm::length(single[p] - seen[p]) > 0.05f;
     }

@@ -71,7 +71,7 @@ mesh::PolygonMesh readBack(const std::filesystem::path& path, const fit::FitScen
 
 double monitorPsnr(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& candidate) {
     const render::MeshRenderer renderer(candidate, scene.shading);
-    return fit::score(scene.choosing, [&](const render::Camera& camera, const render::RenderTarget& target) {
+    return fit::score(scene.choosing(programs), [&](const render::Camera& camera, const render::RenderTarget& target) {
                renderer.draw(programs, camera, target);
            }).psnr;
 }
