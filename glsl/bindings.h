@@ -50,12 +50,14 @@
 // Shares g's binding point: the relaxation runs after Adam, which has consumed g.
 #define SUBDFIT_SSBO_RELAX_REST SUBDFIT_SSBO_GRADIENT
 
-// Texture units of the gradient pass (the renders' colours carry their face ids as alpha).
-#define SUBDFIT_UNIT_COLOR_PLUS 0
-#define SUBDFIT_UNIT_COLOR_MINUS 1
-#define SUBDFIT_UNIT_TARGET 4
-#define SUBDFIT_UNIT_UV_PLUS 5
-#define SUBDFIT_UNIT_UV_MINUS 6
+// Image units of the gradient pass (the renders' colours carry their face ids as alpha), read
+// with imageLoad: llvmpipe loads an image texel in less code than it fetches a texture's.
+#define SUBDFIT_IMAGE_COLOR_PLUS 1
+#define SUBDFIT_IMAGE_COLOR_MINUS 2
+#define SUBDFIT_IMAGE_TARGET 3
+#define SUBDFIT_IMAGE_UV_PLUS 4
+#define SUBDFIT_IMAGE_UV_MINUS 5
+// Texture units of the gradient pass.
 #define SUBDFIT_UNIT_PAIR_REGIONS 26  // ptex face a -> (first slot, log2 slot count) of its pairs' hash
 #define SUBDFIT_UNIT_PAIR_SLOTS 27    // (b, pair index) per slot, b = −1 where empty
 

@@ -18,9 +18,9 @@
 layout(local_size_x = 16, local_size_y = 16) in;
 
 // rgb: the shaded colour; a: the ptex face id, −1 on background (render/render_target.h).
-layout(binding = SUBDFIT_UNIT_COLOR_PLUS) uniform sampler2D colorPlus;
-layout(binding = SUBDFIT_UNIT_COLOR_MINUS) uniform sampler2D colorMinus;
-layout(binding = SUBDFIT_UNIT_TARGET) uniform sampler2DArray targets;
+layout(binding = SUBDFIT_IMAGE_COLOR_PLUS, rgba32f) readonly uniform image2D colorPlus;
+layout(binding = SUBDFIT_IMAGE_COLOR_MINUS, rgba32f) readonly uniform image2D colorMinus;
+layout(binding = SUBDFIT_IMAGE_TARGET, rgba32f) readonly uniform image2DArray targets;
 
 // The pairs of faces that share a vertex, hashed by their second face (sge/face_pairs.h).
 layout(binding = SUBDFIT_UNIT_PAIR_REGIONS) uniform isamplerBuffer pairRegions;
@@ -37,8 +37,8 @@ SUBDFIT_DECLARE_ACCUMULATOR(Loss, SUBDFIT_SSBO_LOSS, loss, addLoss)
 #define SUBDFIT_APPEARANCE_ATLAS
 #endif
 #include "maps.glsl"
-layout(binding = SUBDFIT_UNIT_UV_PLUS) uniform sampler2D uvPlus;
-layout(binding = SUBDFIT_UNIT_UV_MINUS) uniform sampler2D uvMinus;
+layout(binding = SUBDFIT_IMAGE_UV_PLUS, rg32f) readonly uniform image2D uvPlus;
+layout(binding = SUBDFIT_IMAGE_UV_MINUS, rg32f) readonly uniform image2D uvMinus;
 uniform int uTexelResolution;
 uniform int uTexelTable;
 uniform uint uTexelSeed;
@@ -89,7 +89,7 @@ void addTexelNode(int node, float scaledDelta) {
 void addTexelGradients(ivec2 pixel, int fp, int fm, float scaledDelta) {
     ivec4 plusNodes = ivec4(-1);
     if (fp >= 0) {
-        plusNodes = texelFootprint(fp, texelFetch(uvPlus, pixel, 0).rg).nodes;
+        plusNodes = texelFootprint(fp, imageLoad(uvPlus, pixel).rg).nodes;
         for (int k = 0; k < 4; ++k) {
             bool repeated = false;  // nodes are shared along cell and tile borders
             for (int j = 0; j < k; ++j) repeated = repeated || plusNodes[j] == plusNodes[k];
@@ -97,7 +97,7 @@ void addTexelGradients(ivec2 pixel, int fp, int fm, float scaledDelta) {
         }
     }
     if (fm >= 0) {
-        ivec4 minusNodes = texelFootprint(fm, texelFetch(uvMinus, pixel, 0).rg).nodes;
+        ivec4 minusNodes = texelFootprint(fm, imageLoad(uvMinus, pixel).rg).nodes;
         for (int k = 0; k < 4; ++k) {
             bool repeated = any(equal(plusNodes, ivec4(minusNodes[k])));
             for (int j = 0; j < k; ++j) repeated = repeated || minusNodes[j] == minusNodes[k];
@@ -109,9 +109,9 @@ void addTexelGradients(ivec2 pixel, int fp, int fm, float scaledDelta) {
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, textureSize(colorPlus, 0)))) return;
-    vec4 plus = texelFetch(colorPlus, pixel, 0);
-    vec4 minus = texelFetch(colorMinus, pixel, 0);
+    if (any(greaterThanEqual(pixel, imageSize(colorPlus)))) return;
+    vec4 plus = imageLoad(colorPlus, pixel);
+    vec4 minus = imageLoad(colorMinus, pixel);
     int fp = int(plus.a);
     int fm = int(minus.a);
     // Background in both renders: both colours are the clear colour, so Δ = 0 exactly. Only the
@@ -121,7 +121,7 @@ void main() {
     if (!covered) return;
 #endif
 
-    vec3 target = texelFetch(targets, ivec3(pixel, uTargetLayer), 0).rgb;
+    vec3 target = imageLoad(targets, ivec3(pixel, uTargetLayer)).rgb;
     vec3 ePlus = plus.rgb - target;
     vec3 eMinus = minus.rgb - target;
     float fPlus = dot(ePlus, ePlus);

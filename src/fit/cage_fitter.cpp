@@ -118,7 +118,7 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
         renderer_.rasterize(programs_, minusSurface, camera, minus_, &mapsMinus);
         mark("render θ−");
         sge::accumulateGradient(programs_, *perturbed, faceVertices(),
-                                {&plus_, &minus_, targets.colors().id(), view, counter, settings_.seed,
+                                {&plus_, &minus_, &targets.colors(), view, counter, settings_.seed,
                                  1.0f / (pixels * float(views.size())), measureLoss, maps_.get(),
                                  settings_.fullImageEstimator},
                                 loss_);

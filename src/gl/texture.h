@@ -19,6 +19,8 @@ public:
     static Texture fromImage(const std::uint8_t* rgba, int width, int height, bool srgb);
 
     GLuint id() const { return handle_.id(); }
+    // Binds level 0, all its layers, to image `unit` for imageLoad in its own format.
+    void bindImageForReading(GLuint unit) const;
     int width() const { return width_; }
     int height() const { return height_; }
     int layers() const { return layers_; }

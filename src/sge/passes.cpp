@@ -66,9 +66,9 @@ void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group
     program.set("uEpsilon", group.settings().epsilon);
     if (in.measureLoss) program.set("uLossScale", in.lossScale);
     if (!texels && !in.fullImage) program.set("uFaceCount", faces.faceCount);
-    glBindTextureUnit(SUBDFIT_UNIT_COLOR_PLUS, in.plus->color().id());
-    glBindTextureUnit(SUBDFIT_UNIT_COLOR_MINUS, in.minus->color().id());
-    glBindTextureUnit(SUBDFIT_UNIT_TARGET, in.targetArray);
+    in.plus->color().bindImageForReading(SUBDFIT_IMAGE_COLOR_PLUS);
+    in.minus->color().bindImageForReading(SUBDFIT_IMAGE_COLOR_MINUS);
+    in.targets->bindImageForReading(SUBDFIT_IMAGE_TARGET);
     faces.pairRegionsView.bind(SUBDFIT_UNIT_PAIR_REGIONS);
     faces.pairSlotsView.bind(SUBDFIT_UNIT_PAIR_SLOTS);
     group.gradientSum.bindStorage(SUBDFIT_SSBO_GRADIENT_SUM);
@@ -78,8 +78,8 @@ void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group
         program.set("uTexelResolution", in.maps->layoutOf(group).resolution);
         program.set("uTexelTable", in.maps->tableOffsetOf(group));
         program.set("uTexelSeed", in.seed ^ group.seedSalt());
-        glBindTextureUnit(SUBDFIT_UNIT_UV_PLUS, in.plus->patchUv().id());
-        glBindTextureUnit(SUBDFIT_UNIT_UV_MINUS, in.minus->patchUv().id());
+        in.plus->patchUv().bindImageForReading(SUBDFIT_IMAGE_UV_PLUS);
+        in.minus->patchUv().bindImageForReading(SUBDFIT_IMAGE_UV_MINUS);
         in.maps->bindFaceNodes();
     }
     // The renders wrote through the framebuffer, which later commands see without a barrier.

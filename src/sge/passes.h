@@ -35,7 +35,7 @@ struct FaceVertexTable {
 struct GradientInputs {
     const render::RenderTarget* plus;   // laid out with the face ids in alpha
     const render::RenderTarget* minus;
-    GLuint targetArray;  // GL_TEXTURE_2D_ARRAY of target colours
+    const gl::Texture* targets;  // the target colours, a layer per view
     int targetLayer;
     std::uint32_t counter, seed;
     float lossScale;     // weight of each pixel's loss in the reported mean
