@@ -51,7 +51,7 @@
 #define SUBDFIT_SSBO_RELAX_REST SUBDFIT_SSBO_GRADIENT
 
 // Image units of the gradient pass (the renders' colours carry their face ids as alpha), read
-// with imageLoad: llvmpipe loads an image texel in less code than it fetches a texture's.
+// with imageLoad, which costs llvmpipe less than texelFetch (docs/measurements.md).
 #define SUBDFIT_IMAGE_COLOR_PLUS 1
 #define SUBDFIT_IMAGE_COLOR_MINUS 2
 #define SUBDFIT_IMAGE_TARGET 3
