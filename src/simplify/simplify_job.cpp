@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "fit/asset_export.h"
 #include "fit/device_defaults.h"
@@ -72,25 +73,6 @@ void writeComparisonImage(const SimplifyReport& report, int resolution, const fi
     writeComparison(out / "comparison.png", resolution, scene.holdout.readColor(0), columns);
 }
 
-// How `parameters`' appearance is baked: its lattice, or its atlas.
-AppearanceBakeOptions appearanceBakeOf(const maps::MapParameters& parameters) {
-    return {.effects = parameters.effects(), .resolution = parameters.appearanceLayout().resolution,
-            .atlas = parameters.appearanceAtlas().size};
-}
-
-// Every map `parameters` has, baked onto `cage` (normalised frame) from the reference.
-surface::SurfaceMaps bakeEverything(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
-                                    const maps::MapParameters& parameters) {
-    const maps::MapEffects effects = parameters.effects();
-    surface::SurfaceMaps maps;
-    if (effects.geometric())
-        maps = bakeMaps(cage, reference, {.effects = effects, .resolution = parameters.layout().resolution});
-    if (effects.appearance()) {
-        maps.setAppearance(bakeAppearance(cage, reference, appearanceBakeOf(parameters)));
-    }
-    return maps;
-}
-
 // The maps join the fit at `bakeStep`: baked onto the cage as fitted so far (what the bake route
 // would ship for this cage), then only refined, with the cage frozen. A run resumed past that
 // step has the maps from its checkpoint (`baked` false) but must freeze and slow them again.
@@ -100,7 +82,7 @@ void startMaps(fit::FitRun& run, bool bake) {
     if (bake) {
         mesh::PolygonMesh current = run.scene().cage;
         current.positions = fitter.vertices();
-        const surface::SurfaceMaps baked = bakeEverything(current, run.scene().reference, *parameters);
+        const surface::SurfaceMaps baked = bakeFor(current, run.scene().reference, *parameters);
         // Baked before the first step, the bake is where the fit starts: the report's start is
         // scored on it, so that the fit's gain reads as its own, not the bake's.
         if (run.step() == 0) run.startFrom(baked);
@@ -265,6 +247,13 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
     fit::FitRun run(fit::resolved(plan.fit), in.programs, in.scene, fit::ReportScores::HoldoutOnly);
     refineGently(run);
     fitStages(run, options.fit.out / "checkpoint.bin", options.fit.resume, in.hooks);
+    report.fitVerdict = keepTheFitWhereItPays(run, in.programs);
+    if (report.fitVerdict->fittedLoss > report.fitVerdict->bakedLoss && in.hooks.note) {
+        char line[160];
+        std::snprintf(line, sizeof line, "the fit did not improve on its bake on the choosing views (loss %.4g against %.4g): the bake ships",
+                      report.fitVerdict->fittedLoss, report.fitVerdict->bakedLoss);
+        in.hooks.note(line);
+    }
     stages.lap("fit");
 
     mesh::writeObj(in.staged / "initial_cage.obj", cage);
@@ -351,6 +340,13 @@ nlohmann::json toJson(const SimplifyReport& r) {
                           {"budget", r.budgetBytes},
                           {"budget_derived", r.budgetDerived}};
     if (r.budget) report["budget"] = toJson(*r.budget);
+    if (r.fitVerdict) {
+        nlohmann::json& verdict = report["fit_verdict"] = {{"shipped", r.fitVerdict->fitShips ? "fit" : "bake"}};
+        if (r.fitVerdict->fitMoved)
+            verdict["choosing_loss"] = {{"fit", r.fitVerdict->fittedLoss}, {"bake", r.fitVerdict->bakedLoss}};
+        else
+            verdict["why"] = "the fit ended at its bake";
+    }
     return report;
 }
 

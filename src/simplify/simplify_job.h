@@ -12,6 +12,7 @@
 
 #include "fit/fit_job.h"
 #include "simplify/budget_search.h"
+#include "simplify/fit_verdict.h"
 #include "simplify/compare/quality.h"
 #include "simplify/route.h"
 #include "simplify/simplify_options.h"
@@ -34,6 +35,7 @@ struct SimplifyReport {
     std::optional<Quality> decimation, gltfpack, bake;
     bool gltfpackMissing = false;       // asked for, but gltfpack is not on PATH
     int facesRequested = 0;
+    std::optional<FitVerdict> fitVerdict;  // where a cage was fitted
     std::optional<BudgetReport> budget;  // the search and what shipped, with a budget
     std::uintmax_t budgetBytes = 0;      // the budget the routes were weighed at (0: the cage's bytes, --faces alone)
     bool budgetDerived = false;          // from the reference (route.h's defaultBudget)
@@ -49,7 +51,8 @@ struct SimplifyReport {
 // chamfer / hausdorff / mean_distance; `baselines` (each with the `path` of its shipped file in
 // DIR; the fitted cage among them where it did not ship) and `margin_db` (the shipped held-out
 // PSNR minus each baseline's), unless --compare none; `simplify`; `seconds_by_stage`; and with a
-// budget, `budget` (its bytes, whether derived, the candidates tried, the one chosen, `over_budget`).
+// budget, `budget` (its bytes, whether derived, the candidates tried, the one chosen, `over_budget`);
+// where a cage was fitted, `fit_verdict` (whether the fit or its bake shipped, and their losses).
 nlohmann::json toJson(const SimplifyReport& report);
 
 // Checks DIR (io::checkOutputFolder), loads, chooses the route (route.h), fits a cage where one

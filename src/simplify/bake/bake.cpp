@@ -390,4 +390,19 @@ surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::P
     return maps;
 }
 
+AppearanceBakeOptions appearanceBakeOf(const maps::MapParameters& parameters) {
+    return {.effects = parameters.effects(), .resolution = parameters.appearanceLayout().resolution,
+            .atlas = parameters.appearanceAtlas().size};
+}
+
+surface::SurfaceMaps bakeFor(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
+                             const maps::MapParameters& parameters) {
+    const maps::MapEffects effects = parameters.effects();
+    surface::SurfaceMaps maps;
+    if (effects.geometric())
+        maps = bakeMaps(cage, reference, {.effects = effects, .resolution = parameters.layout().resolution});
+    if (effects.appearance()) maps.setAppearance(bakeAppearance(cage, reference, appearanceBakeOf(parameters)));
+    return maps;
+}
+
 }  // namespace subdfit::simplify

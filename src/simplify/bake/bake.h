@@ -50,4 +50,12 @@ struct AppearanceBakeOptions {
 surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
                                     const AppearanceBakeOptions& options);
 
+// How `parameters`' appearance is baked: onto its lattice, or into its atlas.
+AppearanceBakeOptions appearanceBakeOf(const maps::MapParameters& parameters);
+
+// Every map `parameters` has, baked onto `cage` at its layouts: what the bake route ships for
+// that cage, and where a fit of it starts.
+surface::SurfaceMaps bakeFor(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
+                             const maps::MapParameters& parameters);
+
 }  // namespace subdfit::simplify

@@ -1,0 +1,19 @@
+#pragma once
+// Whether a fit earned its steps: the fitted state against the bake it started from.
+#include "fit/fit_run.h"
+#include "gl/program_cache.h"
+
+namespace subdfit::simplify {
+
+struct FitVerdict {
+    bool fitShips = true;
+    bool fitMoved = true;  // false: the fit ended at its bake (no losses measured)
+    double fittedLoss = 0.0, bakedLoss = 0.0;  // on the choosing views
+};
+
+// Leaves in `run`'s fitter whichever of its fitted state and its bake (the scene's initial cage,
+// every map baked onto it: bakeFor) has the lower loss on the choosing views
+// (fit::FitScene::choosing), the bake where they tie, and says which.
+FitVerdict keepTheFitWhereItPays(fit::FitRun& run, gl::ProgramCache& programs);
+
+}  // namespace subdfit::simplify
