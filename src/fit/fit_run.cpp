@@ -165,6 +165,13 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
                 schedule_.probationStopsOnlyARise = false;
                 schedule_.probationAsksAGain = true;
                 schedule_.probationOver = false;
+            } else if (verdict == StepSchedule::Verdict::Paying && hooks.judge && judgeTheBest(hooks) > 0) {
+                // The monitor's gain is not the judge's: the stage ends where it started.
+                takeTheJudgedBest();
+                if (hooks.note)
+                    hooks.note("the monitor's gain in " + std::to_string(step() - schedule_.stageStart) +
+                               " steps is a loss on the judging views: the stage stops (stop_reason no_gain)");
+                return StopReason::NoGain;
             } else if (verdict == StepSchedule::Verdict::NoGain) {
                 // A best found on a first probation is the noise's pick (the monitor views are
                 // few): the stage ends where it started, never below it on other views. The later
@@ -182,6 +189,14 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
                                " steps, and none likely: the stage stops (stop_reason no_gain)");
                 return StopReason::NoGain;
             }
+        }
+        if (hooks.judge && schedule_.probationOver && judged_.stageStart == schedule_.stageStart &&
+            step() - judged_.lastJudged >= kJudgeEvery && judgeTheBest(hooks) >= kJudgedWorse) {
+            takeTheJudgedBest();
+            if (hooks.note)
+                hooks.note("the monitor's best has not improved on the judging views in " +
+                           std::to_string(step() - judged_.step) + " steps: the stage stops (stop_reason converged)");
+            return StopReason::Converged;
         }
         if (decision.action == StepSchedule::Action::Converged) return StopReason::Converged;
         return std::nullopt;
@@ -224,6 +239,7 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
         if (!pastStart) {
             // The cage goes on beside the maps: at the full step again it would undo, while the
             // maps start, what its last halvings settled.
+            endJudgedStage(hooks);
             endStage(/*keepStep=*/true);
             if (step() < fitter_->mapsStartStep()) fitter_->startMapsNow();  // the cage converged early
             // Maps that join from zero are a poor start, not a near-optimal one the fit may fail
@@ -242,7 +258,10 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
         }
     }
     const StopReason last = runTo(options_.steps, checkpoint, hooks);
-    if (last != StopReason::Cancelled) endStage();
+    if (last != StopReason::Cancelled) {
+        endJudgedStage(hooks);
+        endStage();
+    }
     return last;
 }
 
@@ -253,9 +272,49 @@ int FitRun::probationSteps() const {
     return schedule_.probationAsksAGain ? kLateProbation * steps : steps;
 }
 
-void FitRun::restoreBest() {
+void FitRun::writeTheta(const std::vector<std::vector<float>>& theta) {
     const auto groups = fitter_->groups();
-    for (size_t k = 0; k < groups.size() && k < schedule_.bestTheta.size(); ++k) groups[k]->write(schedule_.bestTheta[k]);
+    for (size_t k = 0; k < groups.size() && k < theta.size(); ++k) groups[k]->write(theta[k]);
+}
+
+void FitRun::restoreBest() { writeTheta(schedule_.bestTheta); }
+
+double FitRun::judgeOf(const std::vector<std::vector<float>>& theta, const FitHooks& hooks) {
+    const auto current = readTheta(*fitter_);
+    if (theta == current) return hooks.judge();
+    writeTheta(theta);
+    const double loss = hooks.judge();
+    writeTheta(current);
+    return loss;
+}
+
+int FitRun::judgeTheBest(const FitHooks& hooks) {
+    if (judged_.stageStart != schedule_.stageStart)
+        judged_ = {.stageStart = schedule_.stageStart, .loss = judgeOf(schedule_.startTheta, hooks),
+                   .monitorLoss = schedule_.stageLosses.front(), .step = schedule_.stageStart,
+                   .theta = schedule_.startTheta};
+    judged_.lastJudged = step();
+    if (schedule_.bestStep == judged_.step) return judged_.worseInARow;
+    const double loss = judgeOf(schedule_.bestTheta, hooks);
+    if (loss < judged_.loss) {
+        judged_ = {.stageStart = judged_.stageStart, .loss = loss, .monitorLoss = schedule_.bestLoss,
+                   .step = schedule_.bestStep, .theta = schedule_.bestTheta, .lastJudged = step()};
+        return 0;
+    }
+    return ++judged_.worseInARow;
+}
+
+void FitRun::takeTheJudgedBest() {
+    schedule_.bestTheta = judged_.theta;
+    schedule_.bestLoss = judged_.monitorLoss;
+    schedule_.bestStep = judged_.step;
+    restoreBest();
+}
+
+void FitRun::endJudgedStage(const FitHooks& hooks) {
+    if (hooks.judge && judged_.stageStart == schedule_.stageStart && !schedule_.bestTheta.empty() &&
+        judgeTheBest(hooks) > 0)
+        takeTheJudgedBest();
 }
 
 void FitRun::endStage(bool keepStep) {
