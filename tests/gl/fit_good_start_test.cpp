@@ -15,15 +15,7 @@
 namespace subdfit::test {
 namespace {
 
-fit::FitOptions smallFit(const std::filesystem::path& dir) {
-    fit::FitOptions o;
-    o.out = dir;
-    o.steps = 100;
-    o.views = 6;
-    o.holdoutViews = 2;
-    o.resolution = 48;
-    return o;
-}
+fit::FitOptions smallFit(const std::filesystem::path& dir) { return smallFitOptions(dir, 100); }
 
 // A dense reference and the cage simplify starts from: limit-fitted to it, already close.
 struct GoodStart {

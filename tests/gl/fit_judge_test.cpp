@@ -15,16 +15,6 @@
 namespace subdfit::test {
 namespace {
 
-fit::FitOptions smallFit(const std::filesystem::path& dir, int steps) {
-    fit::FitOptions o;
-    o.out = dir;
-    o.steps = steps;
-    o.views = 6;
-    o.holdoutViews = 2;
-    o.resolution = 48;
-    return o;
-}
-
 // A limit-fitted cage moved off by a fifth of an edge: a start the monitor sees gain from.
 struct RoomyStart {
     mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.1f, 3, 40);
@@ -35,6 +25,19 @@ struct RoomyStart {
     }();
 };
 
+// A fit of a RoomyStart in a scratch folder of its own.
+struct RoomyFit {
+    std::filesystem::path dir;
+    fit::FitOptions options;
+    RoomyStart start;
+    fit::FitScene scene;
+    RoomyFit(const char* name, int steps)
+        : dir(scratchDir(name)),
+          options(smallFitOptions(dir, steps)),
+          scene(fit::resolved(options), programs(), start.cage, start.reference) {}
+    fit::FitRun run() { return fit::FitRun(fit::resolved(options), programs(), scene); }
+};
+
 std::vector<std::vector<float>> thetaOf(fit::CageFitter& fitter) {
     std::vector<std::vector<float>> theta;
     for (auto* group : fitter.groups()) theta.push_back(group->read());
@@ -42,37 +45,31 @@ std::vector<std::vector<float>> thetaOf(fit::CageFitter& fitter) {
 }
 
 TEST(FitJudge, AJudgeThatSeesNoGainStopsTheStageAtItsStart) {
-    const auto dir = scratchDir("judge_no_gain");
-    const fit::FitOptions o = smallFit(dir, 100);
-    const RoomyStart start;
-    fit::FitScene scene(fit::resolved(o), programs(), start.cage, start.reference);
-    fit::FitRun run(fit::resolved(o), programs(), scene);
+    RoomyFit f("judge_no_gain", 100);
+    fit::FitRun run = f.run();
     const auto startTheta = thetaOf(run.fitter());
     int judgments = 0;
     const fit::FitHooks hooks{.judge = [&] { return double(++judgments); }};  // each later state worse
 
-    EXPECT_EQ(run.runTo(o.steps, dir / "checkpoint.bin", hooks), fit::StopReason::NoGain);
-    EXPECT_LT(run.step(), o.steps);
+    EXPECT_EQ(run.runTo(f.options.steps, f.dir / "checkpoint.bin", hooks), fit::StopReason::NoGain);
+    EXPECT_LT(run.step(), f.options.steps);
     EXPECT_EQ(judgments, 2);  // the start and the monitor's best, at the end of the probation
     EXPECT_EQ(thetaOf(run.fitter()), startTheta);
     expectNoGlError();
 }
 
 TEST(FitJudge, AJudgeThatAgreesWithTheMonitorChangesNothing) {
-    const auto dir = scratchDir("judge_agrees");
-    const fit::FitOptions o = smallFit(dir, 300);
-    const RoomyStart start;
-    fit::FitScene scene(fit::resolved(o), programs(), start.cage, start.reference);
+    RoomyFit f("judge_agrees", 300);
     auto fitted = [&](bool judged, const char* name) {
-        fit::FitRun run(fit::resolved(o), programs(), scene);
+        fit::FitRun run = f.run();
         int judgments = 0;
         fit::FitHooks hooks;
         if (judged)
             hooks.judge = [&] {
                 ++judgments;
-                return fit::score(run.fitter(), scene.monitor).loss;
+                return fit::score(run.fitter(), f.scene.monitor).loss;
             };
-        const fit::StopReason stopped = run.run(dir / name / "checkpoint.bin", hooks);
+        const fit::StopReason stopped = run.run(f.dir / name / "checkpoint.bin", hooks);
         if (judged) EXPECT_GE(judgments, 3);  // the probation's two and at least one more
         return std::tuple{stopped, run.step(), thetaOf(run.fitter())};
     };
@@ -81,18 +78,15 @@ TEST(FitJudge, AJudgeThatAgreesWithTheMonitorChangesNothing) {
 }
 
 TEST(FitJudge, AStageKeepsTheJudgesLowestAndStopsOnceItRises) {
-    const auto dir = scratchDir("judge_rises");
-    const fit::FitOptions o = smallFit(dir, 600);
-    const RoomyStart start;
-    fit::FitScene scene(fit::resolved(o), programs(), start.cage, start.reference);
-    fit::FitRun run(fit::resolved(o), programs(), scene);
+    RoomyFit f("judge_rises", 600);
+    fit::FitRun run = f.run();
     // The monitor's view until step 150; from there every state the judge sees is worse than
     // any before, as an atlas fitting single samples can look to a supersampled eye.
     double lowest = INFINITY;
     std::vector<std::vector<float>> lowestTheta;
     const fit::FitHooks hooks{.judge = [&] {
         if (run.step() >= 150) return 1.0 + run.step();
-        const double loss = fit::score(run.fitter(), scene.monitor).loss;
+        const double loss = fit::score(run.fitter(), f.scene.monitor).loss;
         if (loss < lowest) {
             lowest = loss;
             lowestTheta = thetaOf(run.fitter());
@@ -100,8 +94,8 @@ TEST(FitJudge, AStageKeepsTheJudgesLowestAndStopsOnceItRises) {
         return loss;
     }};
 
-    EXPECT_EQ(run.runTo(o.steps, dir / "checkpoint.bin", hooks), fit::StopReason::Converged);
-    EXPECT_LT(run.step(), o.steps);
+    EXPECT_EQ(run.runTo(f.options.steps, f.dir / "checkpoint.bin", hooks), fit::StopReason::Converged);
+    EXPECT_LT(run.step(), f.options.steps);
     EXPECT_GE(run.step(), 150 + fit::FitRun::kJudgedWorse * fit::FitRun::kJudgeEvery - fit::FitRun::kJudgeEvery);
     ASSERT_FALSE(lowestTheta.empty());
     EXPECT_EQ(thetaOf(run.fitter()), lowestTheta);

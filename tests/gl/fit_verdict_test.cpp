@@ -17,12 +17,7 @@ namespace subdfit::test {
 namespace {
 
 fit::FitOptions smallFit(const std::filesystem::path& dir) {
-    fit::FitOptions o;
-    o.out = dir;
-    o.steps = 50;
-    o.views = 6;
-    o.holdoutViews = 2;
-    o.resolution = 48;
+    fit::FitOptions o = smallFitOptions(dir, 50);
     o.maps = {.displacement = true};
     return o;
 }

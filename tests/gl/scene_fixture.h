@@ -1,11 +1,13 @@
 #pragma once
 // A small fitting scene for GL tests: a cage and a reference, both in the normalised frame of
 // the reference, with targets rendered from a few views.
+#include <filesystem>
 #include <memory>
 #include <random>
 
 #include "fit/cage_fitter.h"
 #include "fit/finite_differences.h"
+#include "fit/fit_options.h"
 #include "mesh/mesh_loader.h"
 #include "render/mesh_renderer.h"
 #include "scene/scene_frame.h"
@@ -34,6 +36,17 @@ inline FitScene makeFitScene(gl::ProgramCache& programs, mesh::PolygonMesh cage,
     s.cage = std::move(cage);
     s.reference = std::move(reference);
     return s;
+}
+
+// A quick fit's options: 6 training views and 2 held out at 48², `steps` steps, results in `dir`.
+inline fit::FitOptions smallFitOptions(const std::filesystem::path& dir, int steps) {
+    fit::FitOptions o;
+    o.out = dir;
+    o.steps = steps;
+    o.views = 6;
+    o.holdoutViews = 2;
+    o.resolution = 48;
+    return o;
 }
 
 // Σ over views and pixels of ‖I − T‖²: the unnormalised loss whose gradient G estimates.
