@@ -2,12 +2,9 @@
 #include "fit/fit_run.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <map>
-#include <numeric>
 #include <memory>
 #include <optional>
 #include <tuple>
@@ -19,6 +16,7 @@
 #include "simplify/cage/cage_ladder.h"
 #include "simplify/cage/initial_cage.h"
 #include "simplify/cage_bakes.h"
+#include "simplify/candidate_choice.h"
 #include "util/error.h"
 #include "util/interrupt.h"
 #include "simplify/stage_seconds.h"
@@ -80,211 +78,9 @@ void prepareToJudge(const mesh::PolygonMesh& cageWorld) {
 
 namespace {
 
-// The decoded candidate in a fitter of its own, drawn as the fit would draw it.
-std::unique_ptr<fit::CageFitter> drawnAsFitted(gl::ProgramCache& programs, const fit::FitScene& scene,
-                                               const exporter::SubdAsset& shipped) {
-    mesh::PolygonMesh cage = shipped.cage;
-    cage.positions = scene.frame.toNormalized(cage.positions);
-    surface::SurfaceMaps maps = shipped.maps;
-    for (float& d : maps.displacement) d *= scene.frame.scale;
-    fit::CageFitSettings rendering;
-    rendering.shading = scene.shading;
-    rendering.mapEffects = {.displacement = maps.hasDisplacement(), .normalMap = maps.hasNormal(),
-                            .baseColor = maps.hasBaseColor(), .metallicRoughness = maps.hasMetallicRoughness()};
-    rendering.maps.resolution = std::max(maps.layout.resolution, 1);
-    rendering.maps.appearanceResolution = std::max(maps.appearanceLayout.resolution, 1);
-    rendering.maps.appearanceAtlas = maps.appearanceAtlas.size;
-    rendering.maps.shadingNormal = maps.shadingNormal;
-    auto fitter = std::make_unique<fit::CageFitter>(programs, cage, rendering);
-    fit::writeMaps(*fitter, maps);
-    return fitter;
-}
-
-// Its mean loss over the views of each of `viewSets`.
-double lossOn(fit::CageFitter& fitter, std::initializer_list<const scene::TargetSet*> viewSets) {
-    double weighted = 0.0;
-    int views = 0;
-    for (const scene::TargetSet* viewSet : viewSets) {
-        weighted += fit::score(fitter, *viewSet).loss * viewSet->size();
-        views += viewSet->size();
-    }
-    return weighted / views;
-}
-
-// Within this fraction of the lowest monitor loss, fewer bytes win: a difference that small is
-// within the monitor's own noise ...
-constexpr double kLossTolerance = 0.02;
-// ... but only where the bytes saved are worth it: at least this many times the loss given up,
-// both relative (a few bytes saved are not worth a loss near the tolerance).
-constexpr double kBytesPerLoss = 5.0;
 // A rung predicted over this many times the budget is not tried: the prediction (map bytes per
 // face, measured on another cage) errs by a few per cent.
 constexpr double kPredictedOver = 1.25;
-// Four monitor views rank candidates this close to the lowest no better than chance: those
-// within this fraction are scored again from the training cameras too (supersampled as those
-// are), and the choice among them is made on that score.
-constexpr double kNearTie = 0.2;
-// The training views are drawn in blocks of this many, and the settling ends once the choice is
-// clear: the leader's loss below every other candidate's, view for view, by this many standard
-// errors, and by kLossTolerance more for a candidate of fewer bytes (which preferred() would
-// otherwise take).
-constexpr int kSettleBlock = 4;
-constexpr double kClearlyAhead = 3.0;
-
-// A candidate within the budget, the cage it was built on and its asset as shipped.
-struct Fitting {
-    BudgetCandidate candidate;
-    std::shared_ptr<const mesh::PolygonMesh> cageWorld;
-    std::shared_ptr<const std::vector<unsigned char>> encoded;
-    size_t tried;  // its place in Findings::tried
-    std::vector<double> trainingLoss;  // on the training views drawn so far, in settling order
-};
-
-double monitored(const BudgetCandidate& c) { return c.monitorLoss; }
-double settled(const BudgetCandidate& c) { return c.settledLoss; }
-
-// Of those `keep` accepts, the one of lowest `loss` (none if it accepts none).
-template <class Keep, class Loss>
-const Fitting* lowestOf(const std::vector<Fitting>& fitting, Keep keep, Loss loss) {
-    const Fitting* lowest = nullptr;
-    for (const Fitting& f : fitting)
-        if (keep(f.candidate) && (!lowest || loss(f.candidate) < loss(lowest->candidate))) lowest = &f;
-    return lowest;
-}
-
-// Of those `keep` accepts, the fewest bytes within kLossTolerance of the lowest `loss` that save
-// kBytesPerLoss times the loss they give up.
-template <class Keep, class Loss>
-const Fitting* preferred(const std::vector<Fitting>& fitting, Keep keep, Loss loss) {
-    const Fitting* lowest = lowestOf(fitting, keep, loss);
-    if (!lowest) return nullptr;
-    const double lowestLoss = loss(lowest->candidate), bytes = double(lowest->candidate.bytes);
-    const Fitting* best = lowest;
-    for (const Fitting& f : fitting) {
-        const double lossGivenUp = loss(f.candidate) / lowestLoss - 1.0, bytesSaved = 1.0 - double(f.candidate.bytes) / bytes;
-        if (keep(f.candidate) && lossGivenUp <= kLossTolerance && bytesSaved >= kBytesPerLoss * lossGivenUp &&
-            f.candidate.bytes < best->candidate.bytes)
-            best = &f;
-    }
-    return best;
-}
-
-// The training views in settling order: a stride through them, so that each block looks from
-// all around rather than from one band of the orbit.
-std::vector<int> settlingOrder(int views) {
-    std::vector<int> order;
-    int stride = std::max(1, int(std::lround(0.618 * views)));
-    while (std::gcd(stride, views) != 1) ++stride;
-    for (int k = 0; k < views; ++k) order.push_back(int((std::int64_t(k) * stride) % views));
-    return order;
-}
-
-// The loss over the monitor views and the first `views` training views drawn.
-double settledLossOf(const Fitting& f, int monitorViews, size_t views) {
-    double sum = f.candidate.monitorLoss * monitorViews;
-    for (size_t v = 0; v < views; ++v) sum += f.trainingLoss[v];
-    return sum / double(monitorViews + int(views));
-}
-
-// Whether the lowest of `near` on the first `views` training views leads each other clearly
-// (kClearlyAhead standard errors of their view-for-view differences, beyond kLossTolerance for
-// one of fewer bytes): then more views would not change what preferred() chooses.
-bool clearlyAhead(const std::vector<Fitting*>& near, int monitorViews, size_t views) {
-    if (views < 2 * size_t(kSettleBlock)) return false;
-    const Fitting* leader = *std::min_element(near.begin(), near.end(), [&](const Fitting* a, const Fitting* b) {
-        return settledLossOf(*a, monitorViews, views) < settledLossOf(*b, monitorViews, views);
-    });
-    const double tolerance = kLossTolerance * settledLossOf(*leader, monitorViews, views);
-    return std::all_of(near.begin(), near.end(), [&](const Fitting* f) {
-        if (f == leader) return true;
-        const double margin = f->candidate.bytes < leader->candidate.bytes ? tolerance : 0.0;
-        double sum = 0.0, squares = 0.0;
-        for (size_t v = 0; v < views; ++v) {
-            const double d = f->trainingLoss[v] - leader->trainingLoss[v];
-            sum += d;
-            squares += d * d;
-        }
-        const double n = double(views), mean = sum / n;
-        const double standardError = std::sqrt(std::max(0.0, squares / n - mean * mean) / (n - 1.0));
-        return mean - kClearlyAhead * standardError > margin;
-    });
-}
-
-// The training cameras drawn as `choosing` is (fit::kViewerSupersampling), in settling order, a
-// block of kSettleBlock at a time as the settling asks for them: most settlings end within a few
-// blocks, and the reference drawn supersampled from every camera would cost more than they do.
-// One block is kept (its targets and its supersampled canvas): the settling draws every near
-// candidate from the newest block before the next.
-class SettlingViews {
-public:
-    SettlingViews(gl::ProgramCache& programs, const fit::FitScene& scene)
-        : programs_(programs), scene_(scene), order_(settlingOrder(scene.training.size())) {}
-
-    size_t size() const { return order_.size(); }
-
-    // The loss of what `fitter` draws from the v-th camera in settling order.
-    double loss(fit::CageFitter& fitter, size_t v) {
-        const scene::TargetSet& views = block(v / kSettleBlock);
-        const int k = int(v % kSettleBlock);
-        return fit::meanPixelLoss(views.render(k, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
-                                      fitter.render(camera, canvas);
-                                  }),
-                                  views.readColor(k));
-    }
-
-private:
-    const scene::TargetSet& block(size_t b) {
-        if (!block_ || blockIndex_ != b) {
-            block_.reset();
-            std::vector<render::Camera> cameras;
-            for (size_t v = b * kSettleBlock; v < std::min(order_.size(), (b + 1) * kSettleBlock); ++v)
-                cameras.push_back(scene_.training.camera(order_[v]));
-            block_.emplace(programs_, scene_.referenceRenderer, std::move(cameras), scene_.training.resolution(),
-                           fit::kViewerSupersampling);
-            blockIndex_ = b;
-        }
-        return *block_;
-    }
-
-    gl::ProgramCache& programs_;
-    const fit::FitScene& scene_;
-    std::vector<int> order_;
-    std::optional<scene::TargetSet> block_;
-    size_t blockIndex_ = 0;
-};
-
-// preferred() among those `keep` accepts within kNearTie of the lowest monitor loss, on their
-// loss over the monitor and training cameras (`views`). The cameras are drawn a block at a time,
-// each near candidate from the same ones, until one clearly leads or all are drawn. A lone
-// leader has no tie to settle: it is chosen as it is.
-template <class Keep>
-const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, SettlingViews& settling,
-                      std::vector<Fitting>& fitting, Keep keep) {
-    const Fitting* lowest = lowestOf(fitting, keep, monitored);
-    if (!lowest) return nullptr;
-    const double within = (1.0 + kNearTie) * lowest->candidate.monitorLoss;
-    std::vector<Fitting*> near;
-    for (Fitting& f : fitting)
-        if (keep(f.candidate) && f.candidate.monitorLoss <= within) near.push_back(&f);
-    if (near.size() == 1) return lowest;
-    std::map<const Fitting*, std::unique_ptr<fit::CageFitter>> drawn;
-    size_t views = 0;
-    while (views < settling.size() && !clearlyAhead(near, scene.monitor.size(), views)) {
-        views = std::min(settling.size(), views + size_t(kSettleBlock));
-        for (Fitting* f : near)
-            for (size_t v = f->trainingLoss.size(); v < views; ++v) {
-                throwIfStopRequested();
-                auto& fitter = drawn[f];
-                if (!fitter) fitter = drawnAsFitted(programs, scene, exporter::decodeSubd(*f->encoded, "budget candidate"));
-                f->trainingLoss.push_back(settling.loss(*fitter, v));
-            }
-    }
-    for (Fitting* f : near) {
-        f->candidate.settledLoss = settledLossOf(*f, scene.monitor.size(), views);
-        f->candidate.settledViews = int(views);
-    }
-    return preferred(fitting, [&](const BudgetCandidate& c) { return keep(c) && c.monitorLoss <= within; }, settled);
-}
 
 // What the search works on, the same for its whole run.
 struct SearchInputs {
@@ -389,10 +185,10 @@ std::vector<AppearanceBakeOptions> appearancesOf(const BudgetSearch& search) {
 void scoreOnMonitor(const SearchInputs& in, const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps& baked,
                     const Appearance& appearance, BudgetCandidate& c, Shipped& shipped) {
     const auto drawn = drawnAsFitted(in.programs, in.scene, shipped.decoded);
-    c.monitorLoss = lossOn(*drawn, {&in.scene.choosing(in.programs)});
+    c.monitorLoss = fit::score(*drawn, in.scene.choosing(in.programs)).loss;
     if (!c.maps.displacement) return;
     drawn->maps()->setShadingNormal(surface::ShadingNormal::Limit);
-    if (const double loss = lossOn(*drawn, {&in.scene.choosing(in.programs)}); loss < c.monitorLoss) {
+    if (const double loss = fit::score(*drawn, in.scene.choosing(in.programs)).loss; loss < c.monitorLoss) {
         c.monitorLoss = loss;
         c.shadingNormal = baked.shadingNormal = surface::ShadingNormal::Limit;
         shipped = ship(cageWorld, baked, c.mapBits, appearance.quality, in.scene.frame.scale);
