@@ -190,8 +190,9 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
                 return StopReason::NoGain;
             }
         }
-        if (hooks.judge && schedule_.probationOver && judged_.stageStart == schedule_.stageStart &&
-            step() - judged_.lastJudged >= kJudgeEvery && judgeTheBest(hooks) >= kJudgedWorse) {
+        const int lastJudged = judged_.stageStart == schedule_.stageStart ? judged_.lastJudged : schedule_.stageStart;
+        if (hooks.judge && schedule_.probationOver && step() - lastJudged >= kJudgeEvery &&
+            judgeTheBest(hooks) >= kJudgedWorse) {
             takeTheJudgedBest();
             if (hooks.note)
                 hooks.note("the monitor's best has not improved on the judging views in " +

@@ -88,9 +88,10 @@ public:
     // untextured references, docs/measurements.md.
     static constexpr int kLateProbation = 4;
     // With hooks.judge, the monitor's best state is judged at the end of the stage's probation,
-    // every kJudgeEvery steps after it and at the stage's end, and the stage keeps the judge's
-    // lowest: a probation whose best the judge finds no better than the start stops the stage
-    // (no_gain), and so do kJudgedWorse judgments in a row above the judge's lowest (converged).
+    // every kJudgeEvery steps of the stage after it (or from its start, in a stage without one)
+    // and at the stage's end, and the stage keeps the judge's lowest: a probation whose best the
+    // judge finds no better than the start stops the stage (no_gain), and so do kJudgedWorse
+    // judgments in a row above the judge's lowest (converged).
     // The single-sample monitor can keep improving while the judge's loss rises: the glTF Duck's
     // atlas at 10 KB, its lowest 100 steps in and 12 % above it 800 steps later.
     static constexpr int kJudgeEvery = 100, kJudgedWorse = 2;

@@ -102,5 +102,27 @@ TEST(FitJudge, AStageKeepsTheJudgesLowestAndStopsOnceItRises) {
     expectNoGlError();
 }
 
+// The judge's record is not checkpointed: a run resumed past its probation judges its stage
+// afresh, from the stage's start.
+TEST(FitJudge, AResumedStageIsJudgedFromItsStart) {
+    RoomyFit f("judge_resumed", 600);
+    const auto checkpoint = f.dir / "checkpoint.bin";
+    std::vector<std::vector<float>> startTheta;
+    {
+        fit::FitRun first = f.run();
+        startTheta = thetaOf(first.fitter());
+        first.runTo(200, checkpoint);
+    }
+    fit::FitRun resumed = f.run();
+    ASSERT_TRUE(resumed.resume(checkpoint));
+    int judgments = 0;
+    const fit::FitHooks hooks{.judge = [&] { return double(++judgments); }};  // each later state worse
+
+    EXPECT_EQ(resumed.runTo(f.options.steps, checkpoint, hooks), fit::StopReason::Converged);
+    EXPECT_LT(resumed.step(), 400);
+    EXPECT_EQ(thetaOf(resumed.fitter()), startTheta);
+    expectNoGlError();
+}
+
 }  // namespace
 }  // namespace subdfit::test
