@@ -143,7 +143,7 @@ private:
     void writeTheta(const std::vector<std::vector<float>>& theta);
 
     // What hooks.judge has seen of the stage under way. Not checkpointed: a resumed stage is
-    // judged afresh from its resume.
+    // judged afresh, from the stage's start.
     struct Judged {
         int stageStart = -1;
         double loss = 0.0, monitorLoss = 0.0;  // of the judge's lowest state so far

@@ -15,8 +15,8 @@ bool sameParameters(const fit::FitState& a, const fit::FitState& b) {
 }  // namespace
 
 // The fit's schedule reads single-sample views, and what looks better there can look worse as a
-// viewer draws it (the glTF Duck at 10 KB: its atlas fitted, the monitor's loss down a seventh,
-// held out 42.55 → 40.82 dB), so the verdict is the choosing views'.
+// viewer draws it (the glTF Duck at 10 KB: its atlas fitted, the monitor's loss down 13 %, held
+// out 42.55 → 40.82 dB), so the verdict is the choosing views'.
 FitVerdict keepTheFitWhereItPays(fit::FitRun& run, gl::ProgramCache& programs) {
     fit::CageFitter& fitter = run.fitter();
     const fit::FitScene& scene = run.scene();

@@ -246,7 +246,7 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
     const mesh::PolygonMesh cage = in.scene.cageWorld;
     fit::FitRun run(fit::resolved(plan.fit), in.programs, in.scene, fit::ReportScores::HoldoutOnly);
     refineGently(run);
-    // A stage's probation is judged on the views the verdict below reads.
+    // Each stage is judged on the views the verdict below reads.
     fit::FitHooks hooks = in.hooks;
     hooks.judge = [&] { return fit::score(run.fitter(), in.scene.choosing(in.programs)).loss; };
     fitStages(run, options.fit.out / "checkpoint.bin", options.fit.resume, hooks);
