@@ -70,7 +70,9 @@ TEST(FitJudge, AJudgeThatAgreesWithTheMonitorChangesNothing) {
                 return fit::score(run.fitter(), f.scene.monitor).loss;
             };
         const fit::StopReason stopped = run.run(f.dir / name / "checkpoint.bin", hooks);
-        if (judged) EXPECT_GE(judgments, 3);  // the probation's two and at least one more
+        if (judged) {
+            EXPECT_GE(judgments, 3);  // the probation's two and at least one more
+        }
         return std::tuple{stopped, run.step(), thetaOf(run.fitter())};
     };
     EXPECT_EQ(fitted(true, "judged"), fitted(false, "alone"));
