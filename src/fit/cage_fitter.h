@@ -173,7 +173,7 @@ private:
     std::optional<std::uint64_t> limitOf_;
     // render()'s points and surface, and what they were evaluated from (none yet: empty).
     struct DrawnSurfaceKey {
-        std::vector<float> vertices, heights;
+        std::vector<float> vertices{}, heights{};
         bool limitShading = false;
         bool operator==(const DrawnSurfaceKey&) const = default;
     };

@@ -40,7 +40,7 @@ struct Fitting {
     std::shared_ptr<const mesh::PolygonMesh> cageWorld;
     std::shared_ptr<const std::vector<unsigned char>> encoded;
     size_t tried;  // its place in Findings::tried
-    std::vector<double> trainingLoss;  // on the training views drawn so far, in settling order
+    std::vector<double> trainingLoss{};  // on the training views drawn so far, in settling order
 };
 
 using Keep = std::function<bool(const BudgetCandidate&)>;

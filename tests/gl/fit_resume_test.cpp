@@ -67,7 +67,9 @@ TEST(FitResume, InterruptedRunContinuesToTheSameResult) {
     for (size_t k = 0; k < straight.monitored.size(); ++k) {
         EXPECT_EQ(resumed.monitored[k].step, straight.monitored[k].step) << k;
         EXPECT_EQ(resumed.monitored[k].loss, straight.monitored[k].loss) << k;
-        if (k > 0) EXPECT_GE(resumed.monitored[k].seconds, resumed.monitored[k - 1].seconds) << k;
+        if (k > 0) {
+            EXPECT_GE(resumed.monitored[k].seconds, resumed.monitored[k - 1].seconds) << k;
+        }
     }
 }
 
