@@ -12,7 +12,20 @@ bool sameParameters(const fit::FitState& a, const fit::FitState& b) {
     return true;
 }
 
+// The bake: the scene's initial cage, `baked` its maps.
+void hold(fit::CageFitter& fitter, const fit::FitScene& scene, const surface::SurfaceMaps& baked) {
+    fitter.setVertices(scene.cage.positions);
+    fit::writeMaps(fitter, baked);
+}
+
+surface::SurfaceMaps bakedMaps(fit::FitRun& run) {
+    fit::CageFitter& fitter = run.fitter();
+    return fitter.maps() ? bakeFor(run.scene().cage, run.scene().reference, *fitter.maps()) : surface::SurfaceMaps{};
+}
+
 }  // namespace
+
+void holdTheBake(fit::FitRun& run) { hold(run.fitter(), run.scene(), bakedMaps(run)); }
 
 // The fit's schedule reads single-sample views, and what looks better there can look worse as a
 // viewer draws it (the glTF Duck at 10 KB: its atlas fitted, the monitor's loss down 13 %, held
@@ -23,13 +36,8 @@ FitVerdict keepTheFitWhereItPays(fit::FitRun& run, gl::ProgramCache& programs) {
     const fit::CageFitter::State fitted = fitter.state();
     // What θ does not hold: an atlas's corners and the textures carried unfitted.
     const surface::SurfaceMaps fittedMaps = fitter.surfaceMaps();
-    const surface::SurfaceMaps baked =
-        fitter.maps() ? bakeFor(scene.cage, scene.reference, *fitter.maps()) : surface::SurfaceMaps{};
-    auto holdTheBake = [&] {
-        fitter.setVertices(scene.cage.positions);
-        fit::writeMaps(fitter, baked);
-    };
-    holdTheBake();
+    const surface::SurfaceMaps baked = bakedMaps(run);
+    hold(fitter, scene, baked);
     if (sameParameters(fitter.state(), fitted)) return {.fitShips = false, .fitMoved = false};
 
     const scene::TargetSet& choosing = scene.choosing(programs);
@@ -38,7 +46,7 @@ FitVerdict keepTheFitWhereItPays(fit::FitRun& run, gl::ProgramCache& programs) {
     fitter.restore(fitted);  // θ as fitted (writeMaps clamps the colours)
     verdict.fittedLoss = fit::score(fitter, choosing).loss;
     verdict.fitShips = verdict.fittedLoss < verdict.bakedLoss;
-    if (!verdict.fitShips) holdTheBake();
+    if (!verdict.fitShips) hold(fitter, scene, baked);
     return verdict;
 }
 

@@ -1,5 +1,7 @@
 #pragma once
 // Whether a fit earned its steps: the fitted state against the bake it started from.
+#include <cstdint>
+
 #include "fit/fit_run.h"
 #include "gl/program_cache.h"
 
@@ -9,11 +11,16 @@ struct FitVerdict {
     bool fitShips = true;
     bool fitMoved = true;  // false: the fit ended at its bake (no losses measured)
     double fittedLoss = 0.0, bakedLoss = 0.0;  // on the choosing views
+    std::uintmax_t overBudgetBytes = 0;  // > 0: the fit won there, but its asset came to this, over the budget
 };
 
 // Leaves in `run`'s fitter whichever of its fitted state and its bake (the scene's initial cage,
 // every map baked onto it: bakeFor) has the lower loss on the choosing views
 // (fit::FitScene::choosing), the bake where they tie, and says which.
 FitVerdict keepTheFitWhereItPays(fit::FitRun& run, gl::ProgramCache& programs);
+
+// Puts the bake in `run`'s fitter (where the fitted asset codes larger than the budget allows,
+// while its bake was weighed within it).
+void holdTheBake(fit::FitRun& run);
 
 }  // namespace subdfit::simplify

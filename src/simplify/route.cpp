@@ -35,9 +35,12 @@ TriangleChoice bestTriangleRoute(const Quality* decimation, const Quality* gltfp
     return best;
 }
 
-Route chooseRoute(const Quality& cage, const TriangleChoice& triangles) {
+Route chooseRoute(const Quality& cage, const TriangleChoice& triangles, std::optional<std::uintmax_t> budget) {
     if (!triangles.quality)
         return {.why = "no triangle route fits the budget"};
+    if (budget && cage.bytes > *budget)
+        return triangleRoute(triangles, "the cage codes to " + std::to_string(cage.bytes) + " bytes, over the budget: " +
+                                            triangles.name + " ships, the best triangle route within it");
     const double lead = cage.psnrHoldout - triangles.quality->psnrHoldout;
     if (lead >= 0.0)
         return {.why = "the cage leads the best triangle route (" + triangles.name + ") by " + decibels(lead) +

@@ -47,8 +47,9 @@ struct TriangleChoice {
 };
 TriangleChoice bestTriangleRoute(const Quality* decimation, const Quality* gltfpack);
 
-// The cage, unless `triangles` scores better on the held-out views at the budget.
-Route chooseRoute(const Quality& cage, const TriangleChoice& triangles);
+// The cage, unless `triangles` scores better on the held-out views at the budget, or the cage
+// codes over `budget` (where one was set) and a triangle route fits it.
+Route chooseRoute(const Quality& cage, const TriangleChoice& triangles, std::optional<std::uintmax_t> budget = std::nullopt);
 
 // How much of the reference the triangle route holds within the budget.
 enum class Holds { Part, EveryTriangle, Whole };  // Whole: every triangle and every texel

@@ -233,6 +233,37 @@ PreFit decideBeforeFit(const SimplifyOptions& options, fit::FitOptions fitOption
     return decided;
 }
 
+// Writes the fitter's state as what ships, coded again with fewer bits where the budget asks. A
+// fit that won on the choosing views can still code larger than its bake (fitted heights are
+// rougher): where even the fewest bits leave it over the budget, its bake, weighed within the
+// budget by the search, ships instead.
+void writeWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in) {
+    SimplifyReport& report = in.report;
+    for (;;) {
+        report.fit = run.writeResults(in.staged, in.context);
+        if (!report.budget) return;
+        std::uintmax_t& bytes = report.fit->exports.at("asset.subd");
+        const std::uintmax_t written = bytes;
+        report.budget->shipped = shipWithinBudget(in.staged / "asset.subd", bytes, report.budget->bytes, plan.fit.mapBits,
+                                                  plan.fit.appearanceQuality);
+        bytes = report.budget->shipped.bytes;
+        if (bytes > report.budget->bytes && report.fitVerdict && report.fitVerdict->fitShips) {
+            if (in.hooks.note)
+                in.hooks.note("the fitted asset codes to " + std::to_string(bytes) + " bytes, over the budget: its bake ships");
+            report.fitVerdict->fitShips = false;
+            report.fitVerdict->overBudgetBytes = bytes;
+            holdTheBake(run);
+            continue;
+        }
+        // The USD export follows asset.subd, where that was coded again.
+        if (written > report.budget->bytes) {
+            const nlohmann::json usd = fit::exportUsd(plan.fit, in.staged);
+            for (const auto& [name, usdBytes] : usd.items()) report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
+        }
+        return;
+    }
+}
+
 // Fits the plan's cage, writes its results into the staging folder, and weighs it against the
 // triangle route (made here at the cage's bytes when there is no budget): the better ships. With
 // --compare full, the bake route too.
@@ -260,19 +291,7 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
     stages.lap("fit");
 
     mesh::writeObj(in.staged / "initial_cage.obj", cage);
-    report.fit = run.writeResults(in.staged, in.context);
-    if (report.budget) {
-        std::uintmax_t& bytes = report.fit->exports.at("asset.subd");
-        const std::uintmax_t fitted = bytes;
-        report.budget->shipped = shipWithinBudget(in.staged / "asset.subd", bytes, report.budget->bytes, plan.fit.mapBits,
-                                                  plan.fit.appearanceQuality);
-        bytes = report.budget->shipped.bytes;
-        // The USD export follows asset.subd, where that was coded again.
-        if (fitted > report.budget->bytes) {
-            const nlohmann::json usd = fit::exportUsd(plan.fit, in.staged);
-            for (const auto& [name, usdBytes] : usd.items()) report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
-        }
-    }
+    writeWithinBudget(run, plan, in);
     stages.lap("exports");
     report.subdfit = scoreCage(run, *report.fit, in.staged, options);
     stages.lap("metrics");
@@ -281,7 +300,7 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
         stages.lap("triangle_route");
     }
     const TriangleChoice best = triangles.best();
-    report.route = options.route == RouteChoice::Cage ? Route{.why = "--route cage"} : chooseRoute(report.subdfit, best);
+    report.route = options.route == RouteChoice::Cage ? Route{.why = "--route cage"} : chooseRoute(report.subdfit, best, budget);
     if (report.route.shipped != "cage") {
         report.cage = report.subdfit;
         report.subdfit = shipTriangles(best, in.staged);
@@ -349,6 +368,8 @@ nlohmann::json toJson(const SimplifyReport& r) {
             verdict["choosing_loss"] = {{"fit", r.fitVerdict->fittedLoss}, {"bake", r.fitVerdict->bakedLoss}};
         else
             verdict["why"] = "the fit ended at its bake";
+        if (r.fitVerdict->overBudgetBytes > 0)
+            verdict["why"] = "the fitted asset coded to " + std::to_string(r.fitVerdict->overBudgetBytes) + " bytes, over the budget";
     }
     return report;
 }

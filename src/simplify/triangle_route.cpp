@@ -2,7 +2,7 @@
 
 #include <limits>
 
-#include "export/glb_writer.h"
+#include "simplify/compare/baselines.h"
 #include "mesh/mesh_geometry.h"
 #include "simplify/cage/decimate.h"
 #include "simplify/compare/textured_baselines.h"
@@ -24,11 +24,13 @@ bool shadedSmooth(const fit::FitScene& scene, const mesh::PolygonMesh& welded) {
 }
 
 // Whether the reference is shaded flat, every triangle with vertices of its own and its face's
-// normal (as a glTF primitive without normals is read): then its welded triangles drawn without
-// normals, as viewers draw a file that ships none, look just as it does.
+// normal (as a glTF primitive without normals is read, or a file without normals whose every
+// corner has texture coordinates of its own): then its welded triangles drawn without normals,
+// as viewers draw a file that ships none, look just as it does.
 bool shadedFlat(const fit::FitScene& scene) {
     const mesh::PolygonMesh& r = scene.reference;
-    if (r.normals.empty() || r.vertexCount() != int(r.faceIndices.size())) return false;
+    if (r.vertexCount() != int(r.faceIndices.size())) return false;
+    const std::vector<glm::vec3> normals = mesh::shadingNormals(r);
     for (size_t first = 0, f = 0; f < r.faceSizes.size(); first += size_t(r.faceSizes[f]), ++f) {
         if (r.faceSizes[f] != 3) return false;
         const glm::vec3 a = r.positions[size_t(r.faceIndices[first])], b = r.positions[size_t(r.faceIndices[first + 1])],
@@ -37,7 +39,7 @@ bool shadedFlat(const fit::FitScene& scene) {
         const float length = glm::length(face);
         if (!(length > 0.0f)) continue;  // a degenerate triangle covers no pixel
         for (size_t k = 0; k < 3; ++k)
-            if (glm::dot(r.normals[size_t(r.faceIndices[first + k])], face / length) < 0.9999f) return false;
+            if (glm::dot(normals[size_t(r.faceIndices[first + k])], face / length) < 0.9999f) return false;
     }
     return true;
 }
@@ -50,10 +52,9 @@ std::uintmax_t compressedReferenceBytes(const fit::FitScene& scene, const std::f
         bytes = writeWholeTextured(scene, scratch);
     } else {
         const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
-        const auto normals = shadedSmooth(scene, welded) ? mesh::vertexNormals(welded) : std::vector<glm::vec3>{};
-        bytes = exporter::writeMeshGlb(scratch, scene.frame.toWorld(welded.positions), normals,
-                                       {welded.faceIndices.begin(), welded.faceIndices.end()}, exporter::DracoBits{})
-                    .bytes;
+        // Its normals ship unless a viewer's flat shading is its look: split vertices (seams of
+        // its texture coordinates) need not mean hard edges.
+        bytes = writeWholeDecimation(scene, welded, !shadedFlat(scene), scratch);
     }
     std::filesystem::remove(scratch);
     return bytes;

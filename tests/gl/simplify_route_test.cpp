@@ -101,6 +101,37 @@ TEST(SimplifyRoute, AuthoredNormalsShipWithTheReference) {
     EXPECT_GT(report["psnr_holdout"].get<double>(), 45.0);
 }
 
+// An OBJ without normals whose texture coordinates split its vertices along a seam is still
+// shaded smooth: the reference compressed (the default budget) carries its normals, and the
+// triangle route ships it whole with them, not drawn flat.
+TEST(SimplifyRoute, ASmoothReferenceSplitAtTextureSeamsShipsItsNormals) {
+    const auto dir = scratchDir("simplify_route_seams");
+    const mesh::PolygonMesh light = mesh::triangulated(mesh::makeLumpySphere(3, 0.15f, 4));
+    const int n = light.vertexCount();
+    {
+        std::ofstream obj(dir / "seams.obj");
+        for (const auto& p : light.positions) obj << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+        for (int side = 0; side < 2; ++side)
+            for (const auto& p : light.positions) obj << "vt " << 0.5f * (float(side) + 0.5f + 0.5f * p.y) << ' ' << 0.5f + 0.5f * p.z << '\n';
+        for (int f = 0; f < light.faceCount(); ++f) {
+            const int* corner = &light.faceIndices[size_t(3 * f)];
+            const bool east = light.positions[size_t(corner[0])].x + light.positions[size_t(corner[1])].x +
+                                  light.positions[size_t(corner[2])].x > 0.0f;
+            obj << 'f';
+            for (int k = 0; k < 3; ++k) obj << ' ' << corner[k] + 1 << '/' << corner[k] + 1 + (east ? n : 0);
+            obj << '\n';
+        }
+    }
+    ASSERT_GT(mesh::loadReference(dir / "seams.obj").vertexCount(), n);  // split along the seam
+    const auto report = simplify::toJson(simplify::runSimplify(smallSimplify(dir / "seams.obj", dir / "out", 20)));
+    const std::string shipped = report["route"]["shipped"].get<std::string>();
+    ASSERT_TRUE(shipped == "decimation" || shipped == "gltfpack") << report["route"].dump();
+    const auto& decimation = report["baselines"]["decimation"];
+    EXPECT_EQ(decimation["triangles"].get<int>(), light.faceCount()) << decimation.dump();
+    EXPECT_TRUE(decimation["encoding"]["normals"].get<bool>()) << decimation.dump();
+    EXPECT_GT(report["psnr_holdout"].get<double>(), 40.0);  // smooth, as the reference is drawn
+}
+
 // Two materials, so the appearance rides on tiles per face, which no cage of the ladder can
 // afford at this budget; a decimated mesh of two plain colours can.
 TEST(SimplifyRoute, WhereNoCageFitsTheTriangleRouteShips) {

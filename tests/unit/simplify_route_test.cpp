@@ -41,6 +41,17 @@ TEST(SimplifyRoute, ATriangleRouteOverTheBudgetIsNeverShipped) {
     EXPECT_EQ(simplify::chooseRoute(scored(10.0, 100), simplify::bestTriangleRoute(&over, nullptr)).shipped, "cage");
 }
 
+TEST(SimplifyRoute, ACageOverTheBudgetShipsOnlyWhereNoTriangleRouteFits) {
+    const Quality decimation = scored(20.0, 900);
+    const auto best = simplify::bestTriangleRoute(&decimation, nullptr);
+    const auto over = simplify::chooseRoute(scored(30.0, 1219), best, 940);
+    EXPECT_EQ(over.shipped, "decimation");
+    EXPECT_NE(over.why.find("1219 bytes, over the budget"), std::string::npos) << over.why;
+    EXPECT_EQ(simplify::chooseRoute(scored(30.0, 940), best, 940).shipped, "cage");
+    EXPECT_EQ(simplify::chooseRoute(scored(30.0, 1219), best).shipped, "cage");  // no budget set
+    EXPECT_EQ(simplify::chooseRoute(scored(30.0, 1219), simplify::bestTriangleRoute(nullptr, nullptr), 940).shipped, "cage");
+}
+
 TEST(SimplifyRoute, BeforeTheFitTrianglesShipWhenTheyHoldEveryTriangleOrLeadFar) {
     Quality decimation = scored(40.0, 5000);
     decimation.details["monitor_psnr"] = 40.0;

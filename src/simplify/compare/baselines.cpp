@@ -68,6 +68,17 @@ private:
     std::unordered_map<Key, std::uint32_t, KeyHash> index_;
 };
 
+// One candidate of the decimation as it ships: `decimated` in the world frame, the reference's
+// normals where the encoding ships them.
+std::uintmax_t writeDecimation(const fit::FitScene& scene, const ReferenceNormals& referenceNormals,
+                               const mesh::PolygonMesh& decimated, const VertexEncoding& encoding,
+                               const std::filesystem::path& path) {
+    const auto normals = encoding.normals ? referenceNormals.at(decimated) : std::vector<glm::vec3>{};
+    return exporter::writeMeshGlb(path, scene.frame.toWorld(decimated.positions), normals, indicesOf(decimated),
+                                  exporter::DracoBits{.position = encoding.positionBits, .normal = encoding.normalBits})
+        .bytes;
+}
+
 // Where a budget's triangle count is first looked for: about two bytes a triangle.
 int firstGuess(std::uintmax_t budget, int most) { return int(std::min<std::uintmax_t>(std::uintmax_t(most), budget / 2 + 1)); }
 
@@ -105,11 +116,7 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
     const auto shipFrom = [&](Decimations& decimations) {
         return [&](const VertexEncoding& encoding, int triangles) {
             throwIfStopRequested();
-            const mesh::PolygonMesh& decimated = decimations.at(triangles);
-            const auto normals = encoding.normals ? referenceNormals.at(decimated) : std::vector<glm::vec3>{};
-            return exporter::writeMeshGlb(path, scene.frame.toWorld(decimated.positions), normals, indicesOf(decimated),
-                                          exporter::DracoBits{.position = encoding.positionBits, .normal = encoding.normalBits})
-                .bytes;
+            return writeDecimation(scene, referenceNormals, decimations.at(triangles), encoding, path);
         };
     };
     const std::optional<mesh::PolygonMesh> probeSource = probeSourceFor(welded, budget);
@@ -133,6 +140,12 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
     if (probeSource) q.details["probes_decimated_from"] = probeSource->faceCount();
     scoreShipped(programs, scene, path, settings, q);
     return q;
+}
+
+std::uintmax_t writeWholeDecimation(const fit::FitScene& scene, const mesh::PolygonMesh& welded, bool normals,
+                                   const std::filesystem::path& path) {
+    return writeDecimation(scene, ReferenceNormals(scene.reference), decimate(welded, welded.faceCount()),
+                           {.positionBits = 14, .normals = normals}, path);
 }
 
 std::uintmax_t runGltfpack(const std::filesystem::path& gltfpack, const std::filesystem::path& input,

@@ -215,13 +215,26 @@ mesh::PolygonMesh decimateTextured(const mesh::PolygonMesh& triangles, int targe
     return out;
 }
 
+namespace {
+
+// One candidate of the textured decimation as it ships: `decimated` in the world frame, its
+// normals where the encoding ships them.
+std::uintmax_t writeTexturedDecimation(const fit::FitScene& scene, mesh::PolygonMesh decimated,
+                                       const std::vector<exporter::EncodedImage>& images,
+                                       const VertexEncoding& encoding, const std::filesystem::path& path) {
+    const auto normals = encoding.normals ? mesh::shadingNormals(decimated) : std::vector<glm::vec3>{};
+    decimated.positions = scene.frame.toWorld(decimated.positions);
+    return exporter::writeTexturedGlb(path, decimated, normals, images,
+                                      exporter::DracoBits{.position = encoding.positionBits, .normal = encoding.normalBits})
+        .bytes;
+}
+
+}  // namespace
+
 std::uintmax_t writeWholeTextured(const fit::FitScene& scene, const std::filesystem::path& path) {
     std::uintmax_t textureBytes = 0;
-    mesh::PolygonMesh world = scene.reference;
-    world.positions = scene.frame.toWorld(world.positions);
-    return exporter::writeTexturedGlb(path, world, mesh::shadingNormals(scene.reference),
-                                      ScaledTextures(*scene.reference.materials).at(1, textureBytes), exporter::DracoBits{})
-        .bytes;
+    return writeTexturedDecimation(scene, decimateTextured(scene.reference, scene.reference.faceCount()),
+                                   ScaledTextures(*scene.reference.materials).at(1, textureBytes), VertexEncoding{}, path);
 }
 
 Quality texturedDecimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
@@ -232,12 +245,7 @@ Quality texturedDecimationBaseline(gl::ProgramCache& programs, const fit::FitSce
     const Shipped shipped = bestScale(programs, scene, budget, output, textures, {.positionBits = 14, .normals = true},
                                       [&](const VertexEncoding& encoding, const auto& images, int triangles) {
         throwIfStopRequested();
-        mesh::PolygonMesh decimated = decimations.at(triangles);
-        const auto normals = encoding.normals ? mesh::shadingNormals(decimated) : std::vector<glm::vec3>{};
-        decimated.positions = scene.frame.toWorld(decimated.positions);
-        return exporter::writeTexturedGlb(output, decimated, normals, images,
-                                          exporter::DracoBits{.position = encoding.positionBits, .normal = encoding.normalBits})
-            .bytes;
+        return writeTexturedDecimation(scene, decimations.at(triangles), images, encoding, output);
     });
     return scored(programs, scene, output, shipped, budget, settings);
 }

@@ -23,8 +23,8 @@ Quality texturedDecimationBaseline(gl::ProgramCache& programs, const fit::FitSce
 std::optional<Quality> texturedGltfpackBaseline(gl::ProgramCache& programs, const fit::FitScene& scene,
                                                 std::uintmax_t budget, const BaselineSettings& settings);
 
-// The reference whole as the textured triangle route would ship it (every triangle, its normals,
-// its images re-encoded at full size): writes `path`, returns its bytes.
+// The reference whole as the textured decimation ships it at every triangle (its normals, its
+// images re-encoded at full size, the same file to the byte): writes `path`, returns its bytes.
 std::uintmax_t writeWholeTextured(const fit::FitScene& scene, const std::filesystem::path& path);
 
 // `triangles` (with faceMaterials and materials, uvs if any) collapsed to about `targetTriangles`, each
