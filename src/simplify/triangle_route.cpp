@@ -2,9 +2,10 @@
 
 #include <limits>
 
-#include "simplify/compare/baselines.h"
 #include "mesh/mesh_geometry.h"
+#include "mesh/position_map.h"
 #include "simplify/cage/decimate.h"
+#include "simplify/compare/baselines.h"
 #include "simplify/compare/textured_baselines.h"
 
 namespace subdfit::simplify {
@@ -16,11 +17,19 @@ bool withMaterials(const fit::FitScene& scene) {
     return scene.shading != render::ShadingModel::Geometry && scene.reference.materials != nullptr;
 }
 
-// Whether the reference is shaded smooth across shared vertices: then its look needs normals in
-// what ships (without, glTF viewers draw it flat). One whose vertices split at its edges (a box,
-// a soup of triangles) looks the same flat, and its welded copy shades otherwise.
-bool shadedSmooth(const fit::FitScene& scene, const mesh::PolygonMesh& welded) {
-    return welded.vertexCount() >= scene.reference.vertexCount();
+// Whether the reference is shaded smooth, each position with one normal however its vertices
+// split (texture seams split them, hard edges split their normals): then its welded copy with the
+// reference's normals, as the decimation ships it, looks just as it does. One split at its edges
+// (a box, a soup of triangles) does not.
+bool shadedSmooth(const fit::FitScene& scene) {
+    const mesh::PolygonMesh& r = scene.reference;
+    const std::vector<glm::vec3> normals = mesh::shadingNormals(r);
+    mesh::PositionMap<size_t> first;
+    for (size_t v = 0; v < r.positions.size(); ++v) {
+        const auto [it, fresh] = first.try_emplace(r.positions[v], v);
+        if (!fresh && glm::dot(normals[v], normals[it->second]) < 0.9999f) return false;
+    }
+    return true;
 }
 
 // Whether the reference is shaded flat, every triangle with vertices of its own and its face's
@@ -80,7 +89,7 @@ TriangleBaselines triangleBaselines(gl::ProgramCache& programs, const fit::FitSc
         // smooth where the reference splits its vertices at some edges only (hard edges, a box: a
         // creased cage may win), and flat without normals.
         const bool withNormals = t.decimation->details.value(nlohmann::json::json_pointer("/encoding/normals"), false);
-        const bool sameShading = withNormals ? shadedSmooth(scene, welded) : shadedFlat(scene);
+        const bool sameShading = withNormals ? shadedSmooth(scene) : shadedFlat(scene);
         wholeTriangles = sameShading ? welded.faceCount() : std::numeric_limits<int>::max();
     }
     if (!t.decimation->details.value("over_budget", true) && t.decimation->details.value("triangles", 0) >= wholeTriangles)

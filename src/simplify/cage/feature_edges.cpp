@@ -4,14 +4,14 @@
 #include <cmath>
 #include <map>
 #include <queue>
-#include <cstdint>
-#include <cstring>
 #include <unordered_map>
+#include <cstdint>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "mesh/mesh_geometry.h"
+#include "mesh/position_map.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -46,23 +46,12 @@ std::map<Edge, EdgeFaces> edgeFaces(const mesh::PolygonMesh& triangles) {
     return edges;
 }
 
-struct PositionHash {
-    size_t operator()(const glm::vec3& p) const {
-        auto bits = [](float f) {
-            std::uint32_t u;
-            std::memcpy(&u, &f, 4);
-            return size_t(u);
-        };
-        return bits(p.x) * 73856093u ^ bits(p.y) * 19349663u ^ bits(p.z) * 83492791u;
-    }
-};
-
 // The reference's hard edges as a graph on its welded vertices, and its sharp boundary corners.
 struct Features {
-    std::unordered_map<glm::vec3, int, PositionHash> vertexAt;  // welded vertex of a position
-    std::vector<glm::vec3> positions;                           // per welded vertex
-    std::vector<std::vector<int>> hardNeighbors;                // per welded vertex
-    std::vector<char> corner;                                   // per welded vertex
+    mesh::PositionMap<int> vertexAt;              // welded vertex of a position
+    std::vector<glm::vec3> positions;             // per welded vertex
+    std::vector<std::vector<int>> hardNeighbors;  // per welded vertex
+    std::vector<char> corner;                     // per welded vertex
 };
 
 Features referenceFeatures(const mesh::PolygonMesh& reference, const FeatureAngles& angles) {

@@ -1,9 +1,6 @@
 #include "simplify/compare/baselines.h"
 
 #include <algorithm>
-#include <array>
-#include <bit>
-#include <unordered_map>
 #include <cstdio>
 #include <functional>
 
@@ -16,6 +13,7 @@
 #include "io/external_program.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/mesh_geometry.h"
+#include "mesh/position_map.h"
 #include "render/mesh_renderer.h"
 #include "simplify/bake/bake.h"
 #include "simplify/cage/decimate.h"
@@ -43,7 +41,7 @@ public:
         const std::vector<glm::vec3> shading = mesh::shadingNormals(reference);
         index_.reserve(reference.positions.size());
         for (size_t v = 0; v < reference.positions.size(); ++v) {
-            const auto [it, fresh] = index_.try_emplace(keyOf(reference.positions[v]), std::uint32_t(normals_.size()));
+            const auto [it, fresh] = index_.try_emplace(reference.positions[v], std::uint32_t(normals_.size()));
             if (fresh) normals_.push_back(glm::vec3(0.0f));
             normals_[it->second] += shading[v];
         }
@@ -52,20 +50,13 @@ public:
     std::vector<glm::vec3> at(const mesh::PolygonMesh& decimated) const {
         std::vector<glm::vec3> normals = mesh::vertexNormals(decimated);  // where a vertex is not the reference's
         for (size_t v = 0; v < decimated.positions.size(); ++v)
-            if (const auto it = index_.find(keyOf(decimated.positions[v])); it != index_.end()) normals[v] = normals_[it->second];
+            if (const auto it = index_.find(decimated.positions[v]); it != index_.end()) normals[v] = normals_[it->second];
         return normals;
     }
 
 private:
-    using Key = std::array<std::uint32_t, 3>;
-    struct KeyHash {
-        size_t operator()(const Key& k) const {
-            return size_t(k[0]) * 0x9E3779B97F4A7C15ull ^ size_t(k[1]) * 0xC2B2AE3D27D4EB4Full ^ size_t(k[2]) * 0x165667B19E3779F9ull;
-        }
-    };
-    static Key keyOf(const glm::vec3& p) { return {std::bit_cast<std::uint32_t>(p.x), std::bit_cast<std::uint32_t>(p.y), std::bit_cast<std::uint32_t>(p.z)}; }
     std::vector<glm::vec3> normals_;
-    std::unordered_map<Key, std::uint32_t, KeyHash> index_;
+    mesh::PositionMap<std::uint32_t> index_;
 };
 
 // One candidate of the decimation as it ships: `decimated` in the world frame, the reference's
