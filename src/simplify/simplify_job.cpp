@@ -233,35 +233,36 @@ PreFit decideBeforeFit(const SimplifyOptions& options, fit::FitOptions fitOption
     return decided;
 }
 
-// Writes the fitter's state as what ships, coded again with fewer bits where the budget asks. A
-// fit that won on the choosing views can still code larger than its bake (fitted heights are
-// rougher): where even the fewest bits leave it over the budget, its bake, weighed within the
-// budget by the search, ships instead.
-void writeWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in) {
+// Writes the fitter's state as what ships, coded again with fewer map bits where the budget
+// asks; whether it fits.
+bool writeCoded(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in) {
     SimplifyReport& report = in.report;
-    for (;;) {
-        report.fit = run.writeResults(in.staged, in.context);
-        if (!report.budget) return;
-        std::uintmax_t& bytes = report.fit->exports.at("asset.subd");
-        const std::uintmax_t written = bytes;
-        report.budget->shipped = shipWithinBudget(in.staged / "asset.subd", bytes, report.budget->bytes, plan.fit.mapBits,
-                                                  plan.fit.appearanceQuality);
-        bytes = report.budget->shipped.bytes;
-        if (bytes > report.budget->bytes && report.fitVerdict && report.fitVerdict->fitShips) {
-            if (in.hooks.note)
-                in.hooks.note("the fitted asset codes to " + std::to_string(bytes) + " bytes, over the budget: its bake ships");
-            report.fitVerdict->fitShips = false;
-            report.fitVerdict->overBudgetBytes = bytes;
-            holdTheBake(run);
-            continue;
-        }
-        // The USD export follows asset.subd, where that was coded again.
-        if (written > report.budget->bytes) {
-            const nlohmann::json usd = fit::exportUsd(plan.fit, in.staged);
-            for (const auto& [name, usdBytes] : usd.items()) report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
-        }
-        return;
+    report.fit = run.writeResults(in.staged, in.context);
+    if (!report.budget) return true;
+    std::uintmax_t& bytes = report.fit->exports.at("asset.subd");
+    const std::uintmax_t written = bytes;
+    report.budget->shipped = shipWithinBudget(in.staged / "asset.subd", bytes, report.budget->bytes, plan.fit.mapBits,
+                                              plan.fit.appearanceQuality);
+    bytes = report.budget->shipped.bytes;
+    // The USD export follows asset.subd, where that was coded again.
+    if (written > report.budget->bytes) {
+        const nlohmann::json usd = fit::exportUsd(plan.fit, in.staged);
+        for (const auto& [name, usdBytes] : usd.items()) report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
     }
+    return bytes <= report.budget->bytes;
+}
+
+// Fitted heights are rougher than baked ones and code larger: where even the fewest bits leave
+// the fitted asset over the budget, its bake, weighed within the budget by the search, ships.
+void writeWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in) {
+    std::optional<FitVerdict>& verdict = in.report.fitVerdict;
+    if (writeCoded(run, plan, in) || !verdict || !verdict->fitShips) return;
+    verdict->fitShips = false;
+    verdict->overBudgetBytes = in.report.budget->shipped.bytes;
+    if (in.hooks.note)
+        in.hooks.note("the fitted asset codes to " + std::to_string(verdict->overBudgetBytes) + " bytes, over the budget: its bake ships");
+    holdTheBake(run);
+    writeCoded(run, plan, in);
 }
 
 // Fits the plan's cage, writes its results into the staging folder, and weighs it against the

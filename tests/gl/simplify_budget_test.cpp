@@ -281,6 +281,26 @@ TEST(SimplifyBudget, HeightsOnAFacetedReferenceShadeWithTheLimitNormal) {
     EXPECT_GT(ownDensity, 0) << report["budget"].dump();
 }
 
+// catmark_cubes_infsharp at 940 bytes: the search's bake (867 B) fits, the fit wins on the
+// choosing views, and its rougher heights code to over 1 KB even at the fewest map bits: the
+// bake ships, within the budget, and the report says why.
+TEST(SimplifyBudget, AFitCodedOverTheBudgetShipsItsBake) {
+    const auto dir = scratchDir("simplify_budget_fit_over");
+    simplify::SimplifyOptions o = smallSimplify(assetPath("osd-shapes/catmark_cubes_infsharp.obj"), dir / "out", 60);
+    o.budget = 940;
+    o.compare = simplify::CompareLevel::None;
+    const auto report = simplify::toJson(simplify::runSimplify(o));
+
+    const auto& verdict = report["fit_verdict"];
+    EXPECT_EQ(verdict["shipped"], "bake") << verdict.dump();
+    EXPECT_NE(verdict.value("why", "").find("over the budget"), std::string::npos) << verdict.dump();
+    EXPECT_LE(report["bytes"].get<std::uintmax_t>(), *o.budget);
+    EXPECT_FALSE(report["budget"]["over_budget"].get<bool>());
+    if (report["route"]["shipped"] == "cage") {
+        EXPECT_EQ(fs::file_size(dir / "out" / "asset.subd"), report["bytes"].get<std::uintmax_t>());
+    }
+}
+
 TEST(SimplifyBudget, ABudgetNoCageFitsIsRefusedNamingTheReference) {
     const auto dir = scratchDir("simplify_budget_tiny");
     mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 3));
