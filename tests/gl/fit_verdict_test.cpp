@@ -34,6 +34,15 @@ mesh::PolygonMesh cageOff(float offEdges) {
     return cage;
 }
 
+// The fitter holds exactly `positions` and `heights`, and the verdict's `loss` is theirs.
+void expectHolds(fit::CageFitter& fitter, const fit::FitScene& scene, const std::vector<glm::vec3>& positions,
+                 const std::vector<float>& heights, double loss) {
+    EXPECT_EQ(fitter.vertices(), positions);
+    EXPECT_EQ(fitter.maps()->displacement()->read(), heights);
+    EXPECT_EQ(fit::score(fitter, scene.choosing(programs())).loss, loss);
+    expectNoGlError();
+}
+
 TEST(FitVerdict, AFitWorseThanItsBakeLeavesTheBake) {
     const auto dir = scratchDir("fit_verdict_worse");
     const fit::FitOptions o = smallFit(dir);
@@ -47,11 +56,8 @@ TEST(FitVerdict, AFitWorseThanItsBakeLeavesTheBake) {
     EXPECT_FALSE(verdict.fitShips);
     EXPECT_GT(verdict.fittedLoss, verdict.bakedLoss);
     // The fitter holds the bake: the initial cage, its heights baked onto it.
-    EXPECT_EQ(fitter.vertices(), scene.cage.positions);
-    const auto baked = simplify::bakeFor(scene.cage, scene.reference, *fitter.maps());
-    EXPECT_EQ(fitter.maps()->displacement()->read(), baked.displacement);
-    EXPECT_EQ(fit::score(fitter, scene.choosing(programs())).loss, verdict.bakedLoss);
-    expectNoGlError();
+    expectHolds(fitter, scene, scene.cage.positions,
+                simplify::bakeFor(scene.cage, scene.reference, *fitter.maps()).displacement, verdict.bakedLoss);
 }
 
 TEST(FitVerdict, AFitBetterThanItsBakeShipsAsFitted) {
@@ -73,10 +79,7 @@ TEST(FitVerdict, AFitBetterThanItsBakeShipsAsFitted) {
     EXPECT_TRUE(verdict.fitShips);
     EXPECT_LT(verdict.fittedLoss, verdict.bakedLoss);
     // Exactly the fitted state, not a bake of it.
-    EXPECT_EQ(fitter.vertices(), good.positions);
-    EXPECT_EQ(fitter.maps()->displacement()->read(), heights);
-    EXPECT_EQ(fit::score(fitter, scene.choosing(programs())).loss, verdict.fittedLoss);
-    expectNoGlError();
+    expectHolds(fitter, scene, good.positions, heights, verdict.fittedLoss);
 }
 
 TEST(FitVerdict, AFitThatEndedAtItsBakeIsNotScored) {
