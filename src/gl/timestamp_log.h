@@ -30,8 +30,8 @@ public:
 
 private:
     struct Mark {
-        std::optional<GlHandle<QueryTraits>> query;  // GpuTimestamp
-        double hostMs = 0.0;                         // HostAfterFinish
+        std::optional<GlHandle<QueryTraits>> query{};  // GpuTimestamp
+        double hostMs = 0.0;                           // HostAfterFinish
         std::string phase;
     };
     Mark now(const char* phase) const;

@@ -105,7 +105,7 @@ TEST(EngineDecode, ThreeLevelsWhoseErrorsRiseAsTheirTrianglesFall) {
     writeSubd(dir / "asset.subd", lumpySphere(40000));
     const auto written = decodeForEngines(dir / "asset.subd", dir / "lumpy.glb", {.lods = 3});
     ASSERT_EQ(written.size(), 4u);  // three .glb and the JSON
-    for (const fs::path& name : {"lumpy.glb", "lumpy_lod1.glb", "lumpy_lod2.glb", "lumpy_lods.json"})
+    for (const char* name : {"lumpy.glb", "lumpy_lod1.glb", "lumpy_lod2.glb", "lumpy_lods.json"})
         EXPECT_TRUE(fs::exists(dir / name)) << name;
     std::ifstream file(dir / "lumpy_lods.json");
     const nlohmann::json doc = nlohmann::json::parse(file);

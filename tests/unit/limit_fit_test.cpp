@@ -72,8 +72,9 @@ TEST(CageSource, CagesFromItsDecimationCopyLieAsClose) {
             EXPECT_LE(fromCopy.faceCount(), faces);
             logRatios += std::log(meanDistance(fromCopy, welded) / meanDistance(fromReference, welded));
             ++cases;
-            if (seed == 3u && faces == 300)  // more faces than the copy serves: from the reference
+            if (seed == 3u && faces == 300) {  // more faces than the copy serves: from the reference
                 EXPECT_EQ(viaCopy.cage({.faces = 600}).positions, direct.cage({.faces = 600}).positions);
+            }
         }
     }
     EXPECT_LT(std::exp(logRatios / cases), 1.05) << "mean distance from the copy over from the reference";

@@ -67,9 +67,13 @@ TEST(TriangleSubdivision, ReliefKeepsSeamsClosedAndShadedAlike) {
     for (size_t v = 0; v < flat.positions.size(); ++v) {
         const glm::vec3 p = flat.positions[v];
         const auto [it, added] = moved.try_emplace({p.x, p.y, p.z}, split.positions[v]);
-        if (!added) EXPECT_EQ(it->second, split.positions[v]) << "a seam vertex moved apart at " << p.x << ", " << p.y;
+        if (!added) {
+            EXPECT_EQ(it->second, split.positions[v]) << "a seam vertex moved apart at " << p.x << ", " << p.y;
+        }
         const auto [normal, first] = normals.try_emplace({p.x, p.y, p.z}, split.normals[v]);
-        if (!first) EXPECT_EQ(normal->second, split.normals[v]) << "a seam vertex shades apart at " << p.x << ", " << p.y;
+        if (!first) {
+            EXPECT_EQ(normal->second, split.normals[v]) << "a seam vertex shades apart at " << p.x << ", " << p.y;
+        }
         largest = std::max(largest, std::abs(split.positions[v].z));
         EXPECT_EQ(split.uvs[v], flat.uvs[v]);
     }

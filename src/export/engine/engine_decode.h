@@ -16,9 +16,9 @@
 namespace subdfit::exporter {
 
 struct EngineDecodeOptions {
-    DensityRequest density;             // --triangles / --tess; 0: the default
-    std::optional<ErrorBound> maxError;  // --max-error, instead of `density`
-    int lods = 0;                       // --lods K: K files and the JSON; 0: one file, no JSON
+    DensityRequest density{};              // --triangles / --tess; 0: the default
+    std::optional<ErrorBound> maxError{};  // --max-error, instead of `density`
+    int lods = 0;                          // --lods K: K files and the JSON; 0: one file, no JSON
     MeshCoding coding = MeshCoding::Meshopt;
     ScreenSizeRule screenSize{};
 };
