@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "mesh/position_map.h"
 #include "util/error.h"
 
 namespace subdfit::mesh {
@@ -101,6 +102,16 @@ PolygonMesh flatShaded(const PolygonMesh& triangles) {
 
 std::vector<glm::vec3> shadingNormals(const PolygonMesh& mesh) {
     return mesh.normals.empty() ? vertexNormals(mesh) : mesh.normals;
+}
+
+bool oneNormalPerPosition(const PolygonMesh& mesh) {
+    const std::vector<glm::vec3> normals = shadingNormals(mesh);
+    PositionMap<size_t> first;
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+        const auto [it, fresh] = first.try_emplace(mesh.positions[v], v);
+        if (!fresh && glm::dot(normals[v], normals[it->second]) < 0.9999f) return false;
+    }
+    return true;
 }
 
 bool hasNonQuadFaces(const PolygonMesh& m) {

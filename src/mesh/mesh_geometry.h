@@ -21,6 +21,11 @@ std::vector<glm::vec3> vertexNormals(const PolygonMesh& mesh);
 // vertexNormals() (how a dense reference without normals is meant to look).
 std::vector<glm::vec3> shadingNormals(const PolygonMesh& mesh);
 
+// Whether every position has one shading normal however its vertices split (texture seams split
+// vertices; hard edges split their normals too): then a copy welded by position, with those
+// normals, shades as the mesh does.
+bool oneNormalPerPosition(const PolygonMesh& mesh);
+
 // A triangle mesh as glTF viewers draw a primitive without normals (glTF 2.0, 3.7.2.1: flat
 // normals): every triangle its own three vertices (texture coordinates and colours kept) with
 // its face's unit normal (+Z where it has no area).

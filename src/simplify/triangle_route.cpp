@@ -3,7 +3,6 @@
 #include <limits>
 
 #include "mesh/mesh_geometry.h"
-#include "mesh/position_map.h"
 #include "simplify/cage/decimate.h"
 #include "simplify/compare/baselines.h"
 #include "simplify/compare/textured_baselines.h"
@@ -15,21 +14,6 @@ namespace {
 // a user's would.
 bool withMaterials(const fit::FitScene& scene) {
     return scene.shading != render::ShadingModel::Geometry && scene.reference.materials != nullptr;
-}
-
-// Whether the reference is shaded smooth, each position with one normal however its vertices
-// split (texture seams split them, hard edges split their normals): then its welded copy with the
-// reference's normals, as the decimation ships it, looks just as it does. One split at its edges
-// (a box, a soup of triangles) does not.
-bool shadedSmooth(const fit::FitScene& scene) {
-    const mesh::PolygonMesh& r = scene.reference;
-    const std::vector<glm::vec3> normals = mesh::shadingNormals(r);
-    mesh::PositionMap<size_t> first;
-    for (size_t v = 0; v < r.positions.size(); ++v) {
-        const auto [it, fresh] = first.try_emplace(r.positions[v], v);
-        if (!fresh && glm::dot(normals[v], normals[it->second]) < 0.9999f) return false;
-    }
-    return true;
 }
 
 // Whether the reference is shaded flat, every triangle with vertices of its own and its face's
@@ -84,12 +68,11 @@ TriangleBaselines triangleBaselines(gl::ProgramCache& programs, const fit::FitSc
         const mesh::PolygonMesh welded = weldedTriangles(scene.reference);
         t.decimation = decimationBaseline(programs, scene, welded, budget, settings);
         if (level != CompareLevel::None) t.gltfpack = gltfpackBaseline(programs, scene, welded, budget, settings);
-        // Holding every triangle holds the look where the reference shades smooth and the
-        // decimation ships its normals, or flat and it ships none: the welded decimation shades
-        // smooth where the reference splits its vertices at some edges only (hard edges, a box: a
-        // creased cage may win), and flat without normals.
+        // Holding every triangle holds the look where the decimation ships normals (the
+        // reference's own: at every triangle it ships the reference as it is where its normals
+        // split), or the reference is flat and it ships none.
         const bool withNormals = t.decimation->details.value(nlohmann::json::json_pointer("/encoding/normals"), false);
-        const bool sameShading = withNormals ? shadedSmooth(scene) : shadedFlat(scene);
+        const bool sameShading = withNormals || shadedFlat(scene);
         wholeTriangles = sameShading ? welded.faceCount() : std::numeric_limits<int>::max();
     }
     if (!t.decimation->details.value("over_budget", true) && t.decimation->details.value("triangles", 0) >= wholeTriangles)

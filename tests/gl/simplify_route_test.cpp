@@ -133,6 +133,41 @@ TEST(SimplifyRoute, ASmoothReferenceSplitAtTextureSeamsShipsItsNormals) {
     EXPECT_GT(report["psnr_holdout"].get<double>(), 40.0);  // smooth, as the reference is drawn
 }
 
+// A light reference whose author split its normals along a seam (a hard edge: its east half's
+// normals tilted, the west half's not) ships as it is, the split kept: welded, its normals
+// averaged along the seam, it would shade otherwise.
+TEST(SimplifyRoute, AuthoredHardEdgesShipAsTheyAre) {
+    const auto dir = scratchDir("simplify_route_hard_edges");
+    const mesh::PolygonMesh light = mesh::triangulated(mesh::makeLumpySphere(3, 0.15f, 4));
+    const std::vector<glm::vec3> smooth = mesh::vertexNormals(light);
+    const int n = light.vertexCount();
+    {
+        std::ofstream obj(dir / "hard.obj");
+        for (const auto& p : light.positions) obj << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+        for (const auto& v : smooth) obj << "vn " << v.x << ' ' << v.y << ' ' << v.z << '\n';
+        for (const auto& v : smooth) {
+            const glm::vec3 tilted = glm::normalize(v + glm::vec3(0.0f, 0.6f, 0.0f));
+            obj << "vn " << tilted.x << ' ' << tilted.y << ' ' << tilted.z << '\n';
+        }
+        for (int f = 0; f < light.faceCount(); ++f) {
+            const int* corner = &light.faceIndices[size_t(3 * f)];
+            const bool east = light.positions[size_t(corner[0])].x + light.positions[size_t(corner[1])].x +
+                                  light.positions[size_t(corner[2])].x > 0.0f;
+            obj << 'f';
+            for (int k = 0; k < 3; ++k) obj << ' ' << corner[k] + 1 << "//" << corner[k] + 1 + (east ? n : 0);
+            obj << '\n';
+        }
+    }
+    const auto report = simplify::toJson(simplify::runSimplify(smallSimplify(dir / "hard.obj", dir / "out", 20)));
+    const auto& route = report["route"];
+    ASSERT_EQ(route["shipped"], "decimation") << route.dump();
+    EXPECT_NE(route["why"].get<std::string>().find("whole"), std::string::npos) << route.dump();
+    const auto& decimation = report["baselines"]["decimation"];
+    EXPECT_TRUE(decimation["encoding"]["normals"].get<bool>()) << decimation.dump();
+    EXPECT_GT(mesh::loadMesh(dir / "out" / "asset.glb").vertexCount(), n);  // split along the seam
+    EXPECT_GT(report["psnr_holdout"].get<double>(), 45.0);
+}
+
 // Two materials, so the appearance rides on tiles per face, which no cage of the ladder can
 // afford at this budget; a decimated mesh of two plain colours can.
 TEST(SimplifyRoute, WhereNoCageFitsTheTriangleRouteShips) {

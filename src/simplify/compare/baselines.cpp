@@ -70,6 +70,17 @@ std::uintmax_t writeDecimation(const fit::FitScene& scene, const ReferenceNormal
         .bytes;
 }
 
+// The reference as it is, its vertices split where it splits them and its own normals where the
+// encoding ships normals: what every triangle of a reference whose normals split at some
+// positions (hard edges) ships as, since welding would smooth them.
+std::uintmax_t writeReferenceAsItIs(const fit::FitScene& scene, const VertexEncoding& encoding,
+                                    const std::filesystem::path& path) {
+    const auto normals = encoding.normals ? mesh::shadingNormals(scene.reference) : std::vector<glm::vec3>{};
+    return exporter::writeMeshGlb(path, scene.frame.toWorld(scene.reference.positions), normals, indicesOf(scene.reference),
+                                  exporter::DracoBits{.position = encoding.positionBits, .normal = encoding.normalBits})
+        .bytes;
+}
+
 // Where a budget's triangle count is first looked for: about two bytes a triangle.
 int firstGuess(std::uintmax_t budget, int most) { return int(std::min<std::uintmax_t>(std::uintmax_t(most), budget / 2 + 1)); }
 
@@ -104,9 +115,12 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
                            std::uintmax_t budget, const BaselineSettings& settings) {
     const auto path = settings.dir / "decimated.glb";
     const ReferenceNormals referenceNormals(scene.reference);
+    const bool splitNormals = !mesh::oneNormalPerPosition(scene.reference);
     const auto shipFrom = [&](Decimations& decimations) {
         return [&](const VertexEncoding& encoding, int triangles) {
             throwIfStopRequested();
+            if (splitNormals && encoding.normals && triangles >= welded.faceCount())
+                return writeReferenceAsItIs(scene, encoding, path);
             return writeDecimation(scene, referenceNormals, decimations.at(triangles), encoding, path);
         };
     };
@@ -135,8 +149,9 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
 
 std::uintmax_t writeWholeDecimation(const fit::FitScene& scene, const mesh::PolygonMesh& welded, bool normals,
                                    const std::filesystem::path& path) {
-    return writeDecimation(scene, ReferenceNormals(scene.reference), decimate(welded, welded.faceCount()),
-                           {.positionBits = 14, .normals = normals}, path);
+    const VertexEncoding encoding{.positionBits = 14, .normals = normals};
+    if (normals && !mesh::oneNormalPerPosition(scene.reference)) return writeReferenceAsItIs(scene, encoding, path);
+    return writeDecimation(scene, ReferenceNormals(scene.reference), decimate(welded, welded.faceCount()), encoding, path);
 }
 
 std::uintmax_t runGltfpack(const std::filesystem::path& gltfpack, const std::filesystem::path& input,

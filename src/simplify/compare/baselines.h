@@ -55,8 +55,9 @@ struct BakeRoute {
 Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& welded,
                            std::uintmax_t budget, const BaselineSettings& settings);
 
-// The welded reference as decimationBaseline ships it at every triangle (positions at 14 bits,
-// the reference's normals at 10 where `normals`): writes `path`, returns its bytes.
+// The reference as decimationBaseline ships it at every triangle (positions at 14 bits, the
+// reference's normals at 10 where `normals`; welded unless its normals split): writes `path`,
+// returns its bytes.
 std::uintmax_t writeWholeDecimation(const fit::FitScene& scene, const mesh::PolygonMesh& welded, bool normals,
                                    const std::filesystem::path& path);
 
