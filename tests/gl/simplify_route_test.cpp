@@ -101,6 +101,21 @@ TEST(SimplifyRoute, AuthoredNormalsShipWithTheReference) {
     EXPECT_GT(report["psnr_holdout"].get<double>(), 45.0);
 }
 
+// `triangles`' faces as OBJ `f` lines whose corners take their second index (after `separator`:
+// "/" texture coordinates, "//" normals) from a first set of one per vertex on the west half and a
+// second set after it on the east half: the vertices along x = 0 split.
+void writeFacesSplitEastWest(std::ostream& obj, const mesh::PolygonMesh& triangles, const char* separator) {
+    const int n = triangles.vertexCount();
+    for (int f = 0; f < triangles.faceCount(); ++f) {
+        const int* corner = &triangles.faceIndices[size_t(3 * f)];
+        const bool east = triangles.positions[size_t(corner[0])].x + triangles.positions[size_t(corner[1])].x +
+                              triangles.positions[size_t(corner[2])].x > 0.0f;
+        obj << 'f';
+        for (int k = 0; k < 3; ++k) obj << ' ' << corner[k] + 1 << separator << corner[k] + 1 + (east ? n : 0);
+        obj << '\n';
+    }
+}
+
 // An OBJ without normals whose texture coordinates split its vertices along a seam is still
 // shaded smooth (each position has one normal): the reference compressed (the default budget)
 // carries its normals, and the triangle route ships it whole with them, not drawn flat.
@@ -113,14 +128,7 @@ TEST(SimplifyRoute, ASmoothReferenceSplitAtTextureSeamsShipsItsNormals) {
         for (const auto& p : light.positions) obj << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
         for (int side = 0; side < 2; ++side)
             for (const auto& p : light.positions) obj << "vt " << 0.5f * (float(side) + 0.5f + 0.5f * p.y) << ' ' << 0.5f + 0.5f * p.z << '\n';
-        for (int f = 0; f < light.faceCount(); ++f) {
-            const int* corner = &light.faceIndices[size_t(3 * f)];
-            const bool east = light.positions[size_t(corner[0])].x + light.positions[size_t(corner[1])].x +
-                                  light.positions[size_t(corner[2])].x > 0.0f;
-            obj << 'f';
-            for (int k = 0; k < 3; ++k) obj << ' ' << corner[k] + 1 << '/' << corner[k] + 1 + (east ? n : 0);
-            obj << '\n';
-        }
+        writeFacesSplitEastWest(obj, light, "/");
     }
     ASSERT_GT(mesh::loadReference(dir / "seams.obj").vertexCount(), n);  // split along the seam
     const auto report = simplify::toJson(simplify::runSimplify(smallSimplify(dir / "seams.obj", dir / "out", 20)));
@@ -149,14 +157,7 @@ TEST(SimplifyRoute, AuthoredHardEdgesShipAsTheyAre) {
             const glm::vec3 tilted = glm::normalize(v + glm::vec3(0.0f, 0.6f, 0.0f));
             obj << "vn " << tilted.x << ' ' << tilted.y << ' ' << tilted.z << '\n';
         }
-        for (int f = 0; f < light.faceCount(); ++f) {
-            const int* corner = &light.faceIndices[size_t(3 * f)];
-            const bool east = light.positions[size_t(corner[0])].x + light.positions[size_t(corner[1])].x +
-                                  light.positions[size_t(corner[2])].x > 0.0f;
-            obj << 'f';
-            for (int k = 0; k < 3; ++k) obj << ' ' << corner[k] + 1 << "//" << corner[k] + 1 + (east ? n : 0);
-            obj << '\n';
-        }
+        writeFacesSplitEastWest(obj, light, "//");
     }
     const auto report = simplify::toJson(simplify::runSimplify(smallSimplify(dir / "hard.obj", dir / "out", 20)));
     const auto& route = report["route"];
