@@ -39,10 +39,16 @@ FitInputs refineInputs(const ResultInputs& result, fit::FitOptions& options) {
         options.appearanceResolution = maps.appearanceLayout.resolution;
     // How the result was coded and shaded, so that Save ships it alike.
     const nlohmann::json& settings = result.folder->settings;
-    options.mapBits = settings.value("map_bits", options.mapBits);
-    options.appearanceQuality = settings.value("appearance_quality", options.appearanceQuality);
-    if (settings.contains("shading")) fit::setOption(options, "shading", settings["shading"].get<std::string>());
-    options.compactMaps = settings.value("compact_maps", options.compactMaps);
+    try {
+        options.mapBits = settings.value("map_bits", options.mapBits);
+        options.appearanceQuality = settings.value("appearance_quality", options.appearanceQuality);
+        if (settings.contains("shading")) fit::setOption(options, "shading", settings["shading"].get<std::string>());
+        options.compactMaps = settings.value("compact_maps", options.compactMaps);
+    } catch (const nlohmann::json::exception&) {
+        throw fileError((result.folder->dir / "report.json").string(), "its settings are not what subdfit writes");
+    } catch (const Error& e) {
+        throw fileError((result.folder->dir / "report.json").string(), std::string("its settings: ") + e.what());
+    }
     options.mapsStart = 0.0f;  // the maps are already fitted: they refine with the cage from the start
     return {.cage = asset.cage, .reference = reference->levels.front().mesh, .start = maps};
 }

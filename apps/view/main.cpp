@@ -67,7 +67,8 @@ int main(int argc, char** argv) {
     app.add_flag("--refine", refine, "fit the RESULT folder's asset further against its reference (Save writes to --out)")
         ->group(kFitGroup);
     app.add_option("--cage", options.fit.cage, "control cage (.obj with OpenSubdiv tags, .gltf, .glb, .drc)")->group(kFitGroup);
-    app.add_option("--reference", options.fit.reference, "reference mesh to match (.obj, .gltf, .glb, .drc)")->group(kFitGroup);
+    app.add_option("--reference", options.fit.reference, "reference mesh to match (.obj, .gltf, .glb, .drc); with a RESULT, "
+                                                   "its reference instead of the one report.json names")->group(kFitGroup);
     app.add_option("--out", options.fit.out, "folder the Save button writes to")->capture_default_str()->group(kFitGroup);
     app.add_flag("--paused", options.paused, "start with the fit paused")->group(kFitGroup);
     app.add_flag("--save-on-exit", options.saveOnExit, "save the result into --out (as Save does) when the viewer ends")
@@ -84,9 +85,11 @@ int main(int argc, char** argv) {
     if (!options.screenshot.empty() && options.frames == 0) options.frames = 1;
 
     try {
-        const bool fitInputs = !options.fit.cage.empty() || !options.fit.reference.empty();
-        if (results.empty() == !fitInputs || (fitInputs && (options.fit.cage.empty() || options.fit.reference.empty())))
+        // --reference with RESULTs (and no --cage) names the result view's reference.
+        const bool fitInputs = !options.fit.cage.empty();
+        if (results.empty() == !fitInputs || (fitInputs && options.fit.reference.empty()))
             throw subdfit::Error("give a RESULT (a folder, an asset.subd, .glb files) or --cage and --reference (see --help)");
+        const std::filesystem::path resultReference = fitInputs ? std::filesystem::path() : options.fit.reference;
         if (refine && results.size() != 1) throw subdfit::Error("invalid option: --refine takes one RESULT folder");
         subdfit::fit::validate(options.fit);
         // The inputs first: a bad file is reported even where no window can be opened.
@@ -94,10 +97,10 @@ int main(int argc, char** argv) {
             auto inputs = subdfit::view::loadFitInputs(options.fit);
             subdfit::view::runViewer(options, std::move(inputs));
         } else if (refine) {
-            auto inputs = subdfit::view::refineInputs(subdfit::view::loadResultInputs(results), options.fit);
+            auto inputs = subdfit::view::refineInputs(subdfit::view::loadResultInputs(results, resultReference), options.fit);
             subdfit::view::runViewer(options, std::move(inputs));
         } else {
-            auto result = subdfit::view::loadResultInputs(results);
+            auto result = subdfit::view::loadResultInputs(results, resultReference);
             subdfit::view::checkResultOptions(options, result);
             subdfit::view::runViewer(options, std::move(result));
         }

@@ -40,14 +40,20 @@ ColumnInputs fileColumn(const std::filesystem::path& path) {
     return {.name = path.filename().string(), .stats = describe(ec ? 0 : bytes, NAN, NAN), .levels = {loadLevel(path)}};
 }
 
-void addFolder(ResultInputs& inputs, const std::filesystem::path& dir) {
+ColumnInputs referenceColumn(const std::filesystem::path& path) {
+    ColumnInputs reference = fileColumn(path);
+    reference.name = "reference";
+    reference.stats = std::to_string(reference.levels.front().mesh.faceCount()) + " triangles";
+    reference.reference = true;
+    return reference;
+}
+
+void addFolder(ResultInputs& inputs, const std::filesystem::path& dir, bool referenceGiven) {
     fit::ResultFolder folder = fit::readResultFolder(dir);
-    if (!folder.reference.empty() && !inputs.folder) {
-        ColumnInputs reference = fileColumn(folder.reference);
-        reference.name = "reference";
-        reference.stats = std::to_string(reference.levels.front().mesh.faceCount()) + " triangles";
-        reference.reference = true;
-        inputs.columns.insert(inputs.columns.begin(), std::move(reference));
+    if (referenceGiven) {
+        std::erase_if(folder.notes, [](const std::string& note) { return note.starts_with("the reference "); });
+    } else if (!folder.reference.empty() && !inputs.folder) {
+        inputs.columns.insert(inputs.columns.begin(), referenceColumn(folder.reference));
     }
     for (const auto& entry : folder.entries) {
         ColumnInputs column{.name = entry.name, .stats = describe(entry.bytes, entry.psnrHoldout, entry.ssimHoldout)};
@@ -73,7 +79,9 @@ scene::SceneFrame frameOf(const ColumnInputs& column) {
 render::ShadingModel shadingOf(const ResultInputs& inputs, const LoadedLevel& level) {
     const ColumnInputs& first = inputs.columns.front();
     if (first.reference) {
-        const std::string asked = inputs.folder ? inputs.folder->settings.value("shading", "auto") : "auto";
+        const nlohmann::json* shading = inputs.folder ? &inputs.folder->settings : nullptr;
+        const auto named = shading ? shading->find("shading") : nlohmann::json::const_iterator{};
+        const std::string asked = shading && named != shading->end() && named->is_string() ? named->get<std::string>() : "auto";
         if (const auto model = parseNamed<render::ShadingModel>(asked)) return *model;
         return render::shadingFor(first.levels.front().mesh);  // "auto"
     }
@@ -82,15 +90,17 @@ render::ShadingModel shadingOf(const ResultInputs& inputs, const LoadedLevel& le
 
 }  // namespace
 
-ResultInputs loadResultInputs(const std::vector<std::filesystem::path>& results) {
+ResultInputs loadResultInputs(const std::vector<std::filesystem::path>& results, const std::filesystem::path& reference) {
     ResultInputs inputs;
+    if (!reference.empty()) inputs.columns.push_back(referenceColumn(reference));
     for (const auto& path : results) {
         std::error_code ec;
-        if (std::filesystem::is_directory(path, ec)) addFolder(inputs, path);
+        if (std::filesystem::is_directory(path, ec)) addFolder(inputs, path, !reference.empty());
         else inputs.columns.push_back(fileColumn(path));
         if (!inputs.title.empty()) inputs.title += ", ";
         inputs.title += path.string();
     }
+    if (!reference.empty() && inputs.folder) inputs.folder->reference = reference;
     SUBDFIT_CHECK(!inputs.columns.empty());
     inputs.frame = frameOf(inputs.columns.front());
     return inputs;

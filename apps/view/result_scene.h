@@ -40,10 +40,11 @@ struct ResultInputs {
     scene::SceneFrame frame;            // the reference's, else the first column's
 };
 
-// Reads every RESULT: a fit or simplify output folder (its reference, asset.subd and baselines),
-// an asset.subd, or a mesh file (.glb, .gltf, .obj, .drc). Throws subdfit::Error "path: problem"
-// for a folder without a result and for a damaged or unreadable file.
-ResultInputs loadResultInputs(const std::vector<std::filesystem::path>& results);
+// Reads every RESULT: a fit or simplify output folder (its reference, asset.subd and baselines:
+// fit/result_folder.h says which files a folder may name), an asset.subd, or a mesh file (.glb,
+// .gltf, .obj, .drc); `reference`, when given, is the reference instead of the folder's. Throws
+// subdfit::Error "path: problem" for a folder without a result and for a damaged or unreadable file.
+ResultInputs loadResultInputs(const std::vector<std::filesystem::path>& results, const std::filesystem::path& reference = {});
 
 // A column on the GPU, at one level.
 class ResultColumn {

@@ -1,6 +1,19 @@
 #include "fit/fit_report.h"
 
+#include "io/input_file.h"
+#include "util/error.h"
+
 namespace subdfit::fit {
+
+nlohmann::json referenceJson(const std::filesystem::path& reference, int triangles) {
+    nlohmann::json out{{"path", reference.string()}, {"triangles", triangles}};
+    try {
+        out["xxh3_128"] = io::fileDigest(reference);
+    } catch (const Error&) {
+        // Not a file (a test's mesh in memory) or gone: the path alone, which no viewer opens.
+    }
+    return out;
+}
 
 nlohmann::json toJson(const FitReport& r) {
     auto effects = nlohmann::json::array({"subdivision"});
@@ -45,7 +58,7 @@ nlohmann::json toJson(const FitReport& r) {
         {"settings", settings},
         {"cage", {{"path", r.options.cage.string()}, {"vertices", r.cageVertices}, {"faces", r.cageFaces},
                   {"patches", r.patches}, {"creases", r.cageCreases}, {"corners", r.cageCorners}}},
-        {"reference", {{"path", r.options.reference.string()}, {"triangles", r.referenceTriangles}}},
+        {"reference", referenceJson(r.options.reference, r.referenceTriangles)},
         {"exports", exports},
         {"stop_reason", r.stopReason},
         {"best_step", r.bestStep},

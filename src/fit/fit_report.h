@@ -65,4 +65,9 @@ struct FitReport {
 // steps, loss] for each measurement of the plateau schedule's monitored loss).
 nlohmann::json toJson(const FitReport& report);
 
+// report.json's `reference`: its path, its triangles and, where the file can be read, its
+// XXH3-128 digest (`xxh3_128`), by which a reader of the folder (the viewer) knows the file at
+// that path is still the one the result was made from before it opens it.
+nlohmann::json referenceJson(const std::filesystem::path& reference, int triangles);
+
 }  // namespace subdfit::fit

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,7 +27,7 @@ struct ResultFolder {
     std::filesystem::path dir;
     // The reference as report.json names it; empty when that file is not there (`notes` says so).
     std::filesystem::path reference;
-    nlohmann::json settings;            // report.json's settings (what the fit ran with)
+    nlohmann::json settings = nlohmann::json::object();  // report.json's settings (what the fit ran with)
     std::vector<ShippedEntry> entries;  // subdfit first, then the baselines in the comparison's order
     std::vector<std::string> notes;     // what could not be shown and why, one line each
 };

@@ -320,7 +320,7 @@ nlohmann::json toJson(const SimplifyReport& r) {
     nlohmann::json report =
         r.fit ? fit::toJson(*r.fit)
               : nlohmann::json{{"settings", r.settings},
-                               {"reference", {{"path", r.reference.string()}, {"triangles", r.referenceTriangles}}}};
+                               {"reference", fit::referenceJson(r.reference, r.referenceTriangles)}};
     // What shipped (where the cage did, its held-out PSNR is the fit's, from the same views).
     nlohmann::json shipped = toJson(r.subdfit);
     shipped.erase("path");  // `route` names it
