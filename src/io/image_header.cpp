@@ -1,6 +1,9 @@
 #include "io/image_header.h"
 
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
+#include <iterator>
 
 namespace subdfit::io {
 
@@ -24,13 +27,71 @@ std::optional<ImageHeader> jpegHeader(std::span<const unsigned char> bytes) {
         if (frame) {
             // length, precision, height, width, components
             if (length < 8) return std::nullopt;
-            const ImageHeader header{u16(at + 7), u16(at + 5), int(bytes[at + 9])};
+            // SOF2, SOF6, SOF10, SOF14: progressive.
+            const bool progressive = (marker & 0x03) == 0x02;
+            const ImageHeader header{u16(at + 7), u16(at + 5), int(bytes[at + 9]), progressive};
             if (header.width == 0 || header.height == 0 || header.channels == 0) return std::nullopt;
             return header;
         }
         at += 2 + length;
     }
     return std::nullopt;
+}
+
+std::optional<ImageHeader> pngHeader(std::span<const unsigned char> bytes) {
+    // PNG 1.2: the 8-byte signature, then IHDR first: length 13, width, height (big-endian),
+    // bit depth, colour type, compression, filter, interlace.
+    static constexpr unsigned char kSignature[] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+    if (bytes.size() < 33 || !std::equal(std::begin(kSignature), std::end(kSignature), bytes.begin())) return std::nullopt;
+    if (!std::equal(bytes.begin() + 12, bytes.begin() + 16, "IHDR")) return std::nullopt;
+    auto u32 = [&](std::size_t at) {
+        return std::uint32_t(bytes[at]) << 24 | std::uint32_t(bytes[at + 1]) << 16 | std::uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
+    };
+    const std::uint32_t width = u32(16), height = u32(20);
+    if (width == 0 || height == 0 || width > 0x7FFFFFFFu || height > 0x7FFFFFFFu) return std::nullopt;
+    int channels = 0;
+    switch (bytes[25]) {
+        case 0: channels = 1; break;  // grey
+        case 2: channels = 3; break;  // RGB
+        case 3: channels = 3; break;  // palette
+        case 4: channels = 2; break;  // grey + alpha
+        case 6: channels = 4; break;  // RGBA
+        default: return std::nullopt;
+    }
+    return ImageHeader{int(width), int(height), channels, bytes[28] != 0};
+}
+
+std::optional<ImageHeader> gifHeader(std::span<const unsigned char> bytes) {
+    // GIF89a: "GIF87a" or "GIF89a", then the logical screen's width and height (little-endian).
+    if (bytes.size() < 10 || !std::equal(bytes.begin(), bytes.begin() + 4, "GIF8")) return std::nullopt;
+    const int width = int(bytes[6]) | int(bytes[7]) << 8, height = int(bytes[8]) | int(bytes[9]) << 8;
+    if (width == 0 || height == 0) return std::nullopt;
+    return ImageHeader{width, height, 4, false};
+}
+
+std::optional<ImageHeader> webpHeader(std::span<const unsigned char> bytes) {
+    // RIFF container: "RIFF" size "WEBP", then the first chunk: "VP8X" (canvas size minus one, 24
+    // bits each, at 24), "VP8 " (a key frame: 14-bit sizes at 26) or "VP8L" (14-bit sizes minus
+    // one, packed, at 21).
+    if (bytes.size() < 30 || !std::equal(bytes.begin(), bytes.begin() + 4, "RIFF") ||
+        !std::equal(bytes.begin() + 8, bytes.begin() + 12, "WEBP"))
+        return std::nullopt;
+    auto u24 = [&](std::size_t at) { return int(bytes[at]) | int(bytes[at + 1]) << 8 | int(bytes[at + 2]) << 16; };
+    auto u16 = [&](std::size_t at) { return int(bytes[at]) | int(bytes[at + 1]) << 8; };
+    int width = 0, height = 0;
+    if (std::equal(bytes.begin() + 12, bytes.begin() + 16, "VP8X")) {
+        width = u24(24) + 1, height = u24(27) + 1;
+    } else if (std::equal(bytes.begin() + 12, bytes.begin() + 16, "VP8 ")) {
+        width = u16(26) & 0x3FFF, height = u16(28) & 0x3FFF;
+    } else if (std::equal(bytes.begin() + 12, bytes.begin() + 16, "VP8L")) {
+        const std::uint32_t bits = std::uint32_t(bytes[21]) | std::uint32_t(bytes[22]) << 8 | std::uint32_t(bytes[23]) << 16 |
+                                   std::uint32_t(bytes[24]) << 24;
+        width = int(bits & 0x3FFF) + 1, height = int((bits >> 14) & 0x3FFF) + 1;
+    } else {
+        return std::nullopt;
+    }
+    if (width == 0 || height == 0) return std::nullopt;
+    return ImageHeader{width, height, 4, true};
 }
 
 }  // namespace subdfit::io

@@ -8,11 +8,15 @@
 #include <algorithm>
 #include <cstring>
 #include <memory>
+#include <new>
 #include <optional>
+#include <stdexcept>
 #include <string_view>
 
 #include "io/atomic_file.h"
+#include "io/image_decoders.h"
 #include "io/input_file.h"
+#include "io/reduced_image.h"
 #include "util/error.h"
 #include "util/printable.h"
 #include "util/warnings.h"
@@ -69,16 +73,74 @@ std::unique_ptr<OIIO::ImageInput> openImage(const unsigned char* bytes, std::siz
     return in;
 }
 
-ImageHeader checkedHeader(const ImageHeader& header, const std::string& name) {
+bool streams(const char* format, const ImageHeader& header) {
+    return (std::string_view(format) == "png" || std::string_view(format) == "jpg") && !header.interlaced;
+}
+
+ImageHeader checkedHeader(const ImageHeader& header, const char* format, const std::string& name) {
+    const std::string size = std::to_string(header.width) + " x " + std::to_string(header.height);
     if (header.width <= 0 || header.height <= 0 || header.channels <= 0 || header.pixels() > kMaxImagePixels)
-        throw fileError(name, "image of " + std::to_string(header.width) + " x " + std::to_string(header.height) +
-                                  " pixels, more than subdfit reads (" + std::to_string(kMaxImagePixels) + ")");
+        throw fileError(name, "image of " + size + " pixels, more than subdfit reads (" + std::to_string(kMaxImagePixels) + ")");
+    if (!streams(format, header) && header.pixels() > kMaxWholeImagePixels)
+        throw fileError(name, "image of " + size + " pixels " +
+                                  (header.interlaced ? "stored interlaced" : "in a format decoded whole (all but PNG and JPEG)") +
+                                  ": more than the " + std::to_string(kMaxWholeImagePixels) + " subdfit decodes whole");
+    if (header.channels > kMaxImageChannels)
+        throw fileError(name, "image of " + std::to_string(header.channels) + " channels, more than the " +
+                                  std::to_string(kMaxImageChannels) + " subdfit reads");
     return header;
 }
 
-ImageHeader checkedHeader(const OIIO::ImageSpec& spec, const std::string& name) {
+ImageHeader checkedHeader(const OIIO::ImageSpec& spec, const char* format, const std::string& name) {
     if (spec.depth > 1) throw fileError(name, "a volume image (depth " + std::to_string(spec.depth) + ")");
-    return checkedHeader(ImageHeader{spec.width, spec.height, spec.nchannels}, name);
+    return checkedHeader(ImageHeader{spec.width, spec.height, spec.nchannels, false}, format, name);
+}
+
+// The header of a format read here, not by OpenImageIO; nothing for the others.
+std::optional<ImageHeader> ownHeader(std::span<const unsigned char> bytes, std::string_view format, const std::string& name) {
+    std::optional<ImageHeader> header;
+    if (format == "png") header = pngHeader(bytes);
+    else if (format == "jpg") header = jpegHeader(bytes);
+    else if (format == "gif") header = gifHeader(bytes);
+    else if (format == "webp") header = webpHeader(bytes);
+    else return std::nullopt;
+    if (!header) throw fileError(name, std::string("corrupt image: no ") + (format == "jpg" ? "JPEG frame" : "valid") + " header");
+    return header;
+}
+
+int dividedUp(int n, int d) { return (n + d - 1) / d; }
+
+// The smallest whole factor that brings both sides to kMaxDecodedSide.
+int sideFactor(const ImageHeader& header) {
+    return std::max(dividedUp(header.width, kMaxDecodedSide), dividedUp(header.height, kMaxDecodedSide));
+}
+
+// Rows of an OpenImageIO reader, a strip at a time in the file's channels, made RGBA into `reduced`.
+void readStrips(OIIO::ImageInput& in, const ImageHeader& header, ReducedImage& reduced, const std::string& name) {
+    constexpr int kStripRows = 64;
+    const int channels = header.channels;
+    std::vector<std::uint8_t> strip(std::size_t(header.width) * std::size_t(channels) * kStripRows);
+    std::vector<std::uint8_t> row(std::size_t(header.width) * 4);
+    const int yBegin = in.spec().y;
+    for (int y0 = 0; y0 < header.height; y0 += kStripRows) {
+        const int rows = std::min(kStripRows, header.height - y0);
+        if (!in.read_scanlines(0, 0, yBegin + y0, yBegin + y0 + rows, 0, 0, channels, OIIO::TypeDesc::UINT8, strip.data()))
+            throw fileError(name, "corrupt image: " + oneLine(in.geterror()));
+        for (int r = 0; r < rows; ++r) {
+            for (std::size_t x = 0; x < std::size_t(header.width); ++x) {
+                const std::uint8_t* p = strip.data() + (std::size_t(r) * std::size_t(header.width) + x) * std::size_t(channels);
+                std::uint8_t* q = row.data() + x * 4;
+                if (channels <= 2) {  // grey, grey + alpha
+                    q[0] = q[1] = q[2] = p[0];
+                    q[3] = channels == 2 ? p[1] : 255;
+                } else {
+                    q[0] = p[0], q[1] = p[1], q[2] = p[2];
+                    q[3] = channels >= 4 ? p[3] : 255;
+                }
+            }
+            reduced.addRow(row.data());
+        }
+    }
 }
 
 // `image`'s first `channels` channels at width × height, resized where that differs.
@@ -99,54 +161,59 @@ std::vector<std::uint8_t> pixelsAt(const DecodedImage& image, int width, int hei
 
 ImageHeader readImageHeader(const void* data, std::size_t size, const std::string& name) {
     const auto* bytes = static_cast<const unsigned char*>(data);
-    if (const char* format = formatOf(bytes, size); format && std::string_view(format) == "jpg") {
-        const std::optional<ImageHeader> header = jpegHeader({bytes, size});
-        if (!header) throw fileError(name, "corrupt image: no JPEG frame header");
-        return checkedHeader(*header, name);
-    }
+    const char* format = formatOf(bytes, size);
+    if (!format) throw fileError(name, "not an image format subdfit reads (PNG, JPEG, WebP, BMP, GIF, TIFF, EXR)");
+    if (const auto header = ownHeader({bytes, size}, format, name)) return checkedHeader(*header, format, name);
     OIIO::Filesystem::IOMemReader memory(bytes, size);
     const auto in = openImage(bytes, size, memory, name);
-    return checkedHeader(in->spec(), name);
+    return checkedHeader(in->spec(), format, name);
 }
 
-void PixelBudget::spend(const ImageHeader& image, const std::string& name) {
-    if (image.pixels() > left_)
+int PixelBudget::spend(const ImageHeader& image, const std::string& name) {
+    int factor = sideFactor(image);
+    auto pixels = [&](int f) { return std::int64_t(dividedUp(image.width, f)) * std::int64_t(dividedUp(image.height, f)); };
+    while (pixels(factor) > left_ && std::max(dividedUp(image.width, factor), dividedUp(image.height, factor)) > kSmallestBudgetedSide)
+        ++factor;
+    if (pixels(factor) > left_)
         throw fileError(name, "image of " + std::to_string(image.width) + " x " + std::to_string(image.height) +
                                   " pixels: with the images before it, more than the " + std::to_string(total_) +
-                                  " pixels subdfit decodes for one file");
-    left_ -= image.pixels();
+                                  " pixels subdfit decodes for one file, even at " + std::to_string(kSmallestBudgetedSide) +
+                                  " pixels a side");
+    left_ -= pixels(factor);
+    return factor;
+}
+
+DecodePlan planDecode(const void* data, std::size_t size, const std::string& name, PixelBudget* budget) {
+    const ImageHeader header = readImageHeader(data, size, name);
+    return {.header = header, .factor = budget ? budget->spend(header, name) : sideFactor(header)};
+}
+
+DecodedImage decodeImage(const void* data, std::size_t size, const std::string& name, const DecodePlan& plan) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    const std::string_view format = formatOf(bytes, size) ? formatOf(bytes, size) : "";
+    try {
+        if (format == "png") return decodePng({bytes, size}, plan.header, plan.factor, name);
+        if (format == "jpg") return decodeJpeg({bytes, size}, plan.header, plan.factor, name);
+        OIIO::Filesystem::IOMemReader memory(bytes, size);
+        const auto in = openImage(bytes, size, memory, name);
+        const ImageHeader header = checkedHeader(in->spec(), formatOf(bytes, size), name);
+        if (header.width != plan.header.width || header.height != plan.header.height)
+            throw fileError(name, "corrupt image: its header says " + std::to_string(plan.header.width) + " x " +
+                                      std::to_string(plan.header.height) + ", its reader " + std::to_string(header.width) +
+                                      " x " + std::to_string(header.height));
+        ReducedImage reduced(header.width, header.height, plan.factor);
+        readStrips(*in, header, reduced, name);
+        in->close();
+        return {reduced.width(), reduced.height(), reduced.take()};
+    } catch (const std::bad_alloc&) {
+        throw fileError(name, "out of memory while decoding it");
+    } catch (const std::length_error&) {
+        throw fileError(name, "out of memory while decoding it");
+    }
 }
 
 DecodedImage decodeImage(const void* data, std::size_t size, const std::string& name, PixelBudget* budget) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    OIIO::Filesystem::IOMemReader memory(bytes, size);
-    const auto in = openImage(bytes, size, memory, name);
-    const ImageHeader header = checkedHeader(in->spec(), name);
-    if (budget) budget->spend(header, name);
-    const int channels = header.channels;
-    DecodedImage image{header.width, header.height, std::vector<std::uint8_t>(std::size_t(header.pixels()) * 4)};
-    // A strip of rows at a time in the file's channels, expanded into the RGBA buffer.
-    constexpr int kStripRows = 64;
-    std::vector<std::uint8_t> strip(std::size_t(header.width) * std::size_t(channels) * kStripRows);
-    const int yBegin = in->spec().y;
-    for (int y0 = 0; y0 < header.height; y0 += kStripRows) {
-        const int rows = std::min(kStripRows, header.height - y0);
-        if (!in->read_scanlines(0, 0, yBegin + y0, yBegin + y0 + rows, 0, 0, channels, OIIO::TypeDesc::UINT8, strip.data()))
-            throw fileError(name, "corrupt image: " + oneLine(in->geterror()));
-        for (std::size_t i = 0, n = std::size_t(header.width) * std::size_t(rows); i < n; ++i) {
-            const std::uint8_t* p = strip.data() + i * std::size_t(channels);
-            std::uint8_t* q = image.rgba.data() + (std::size_t(y0) * std::size_t(header.width) + i) * 4;
-            if (channels <= 2) {  // grey, grey + alpha
-                q[0] = q[1] = q[2] = p[0];
-                q[3] = channels == 2 ? p[1] : 255;
-            } else {
-                q[0] = p[0], q[1] = p[1], q[2] = p[2];
-                q[3] = channels >= 4 ? p[3] : 255;
-            }
-        }
-    }
-    in->close();
-    return image;
+    return decodeImage(data, size, name, planDecode(data, size, name, budget));
 }
 
 DecodedImage resizedImage(const DecodedImage& image, int width, int height) {

@@ -114,16 +114,19 @@ private:
                 ref.image = same[ref.image];
             }
         io::PixelBudget budget;
-        std::set<int> toDecode;
-        for (const auto& [used, first] : same)
-            if (used == first && !model_.images[size_t(used)].image.empty()) {
-                const auto& bytes = model_.images[size_t(used)].image;
-                budget.spend(io::readImageHeader(bytes.data(), bytes.size(), imageName(used)), imageName(used));
-                toDecode.insert(used);
+        std::map<int, io::DecodePlan> toDecode;
+        for (const auto& [used, first] : same) {
+            if (used != first) continue;
+            const auto& bytes = model_.images[size_t(used)].image;
+            if (bytes.empty()) {  // tinygltf found no file (or the bufferView is empty)
+                warn(imageName(used) + " is missing; the material renders without it");
+                continue;
             }
-        for (int i : toDecode) {
+            toDecode[used] = io::planDecode(bytes.data(), bytes.size(), imageName(used), &budget);
+        }
+        for (const auto& [i, plan] : toDecode) {
             const auto& bytes = model_.images[size_t(i)].image;
-            io::DecodedImage decoded = io::decodeImage(bytes.data(), bytes.size(), imageName(i));
+            io::DecodedImage decoded = io::decodeImage(bytes.data(), bytes.size(), imageName(i), plan);
             images[size_t(i)].width = decoded.width;
             images[size_t(i)].height = decoded.height;
             images[size_t(i)].rgba = std::move(decoded.rgba);

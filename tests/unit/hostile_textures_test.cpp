@@ -1,15 +1,25 @@
 // Images made to cost what a reference does not need: a PNG whose header promises 16384² pixels
 // (behind an MTL map, a glTF image, a data: URI), several that together pass any per-image cap,
-// one file named by eight images, an image no material uses; and KHR_texture_transform numbers
-// beyond any float. Each image's header is read first: refused in one line naming the file, or
-// decoded once, inside a child process with a memory limit (support/bounded_run.h).
+// one file named by eight images, an image no material uses; decompression bombs within the
+// per-image cap (a 0.5 MB PNG of 11585² pixels, its 16-bit twin, a 12 KB JPEG whose frame says
+// 11585², the same named by eight images and five slots), an EXR of 4000 channels, a GIF claiming
+// 65535², a truncated PNG; and KHR_texture_transform numbers beyond any float. Each image's header
+// is read first: refused in one line naming the file, or decoded once at no more than subdfit
+// uses, inside a child process with a memory and a time limit (support/bounded_run.h).
 #include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <OpenImageIO/imageio.h>
 
 #include <array>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <string>
 #include <vector>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include "bounded_run.h"
 #include "error_message.h"
@@ -63,6 +73,81 @@ std::string bombPng(std::uint32_t width, std::uint32_t height, char salt = 0) {
     putChunk(png, "IDAT", idat);
     putChunk(png, "IEND", "");
     return png;
+}
+
+// A whole PNG of width × height zero pixels (RGBA, 8 or 16 bits), deflated: half a megabyte for
+// 11585² pixels at 8 bits. `interlaced` marks it Adam7 (its rows then not what a reader may
+// stream; the data is the plain layout, for a reader that refuses on the header alone).
+std::string zeroPng(std::uint32_t width, std::uint32_t height, int bitDepth = 8, bool interlaced = false) {
+    std::string png = "\x89PNG\r\n\x1a\n", header;
+    putBigEndian(header, width);
+    putBigEndian(header, height);
+    header += char(bitDepth);
+    header += std::string("\x06\x00\x00", 3);
+    header += char(interlaced ? 1 : 0);
+    putChunk(png, "IHDR", header);
+    const std::string row(1 + std::size_t(width) * 4 * std::size_t(bitDepth / 8), '\0');
+    z_stream z{};
+    deflateInit(&z, 9);
+    std::string idat;
+    std::vector<unsigned char> out(1 << 16);
+    for (std::uint32_t y = 0; y <= height; ++y) {
+        z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(row.data()));
+        z.avail_in = y < height ? uInt(row.size()) : 0;
+        do {
+            z.next_out = out.data();
+            z.avail_out = uInt(out.size());
+            deflate(&z, y < height ? Z_NO_FLUSH : Z_FINISH);
+            idat.append(reinterpret_cast<const char*>(out.data()), out.size() - z.avail_out);
+        } while (z.avail_out == 0);
+    }
+    deflateEnd(&z);
+    putChunk(png, "IDAT", idat);
+    putChunk(png, "IEND", "");
+    return png;
+}
+
+// A real JPEG of a few KB whose frame header is made to say width × height: its data covers a
+// small corner, the rest is missing.
+std::string lyingJpeg(int width, int height) {
+    io::DecodedImage small{64, 64, std::vector<std::uint8_t>(64 * 64 * 4)};
+    for (size_t k = 0; k < small.rgba.size(); ++k) small.rgba[k] = std::uint8_t(k * 7);
+    const auto bytes = io::encodeImage(small, 64, 64, io::ImageFormat::Jpeg, 90);
+    std::string jpeg(bytes.begin(), bytes.end());
+    for (size_t at = 2; at + 9 < jpeg.size();) {
+        const unsigned char marker = std::uint8_t(jpeg[at + 1]);
+        const size_t length = size_t(std::uint8_t(jpeg[at + 2])) << 8 | std::uint8_t(jpeg[at + 3]);
+        if (marker == 0xC0 || marker == 0xC2) {
+            jpeg[at + 5] = char(height >> 8), jpeg[at + 6] = char(height & 0xFF);
+            jpeg[at + 7] = char(width >> 8), jpeg[at + 8] = char(width & 0xFF);
+            return jpeg;
+        }
+        at += 2 + length;
+    }
+    ADD_FAILURE() << "no frame header in the encoded JPEG";
+    return jpeg;
+}
+
+// One quad whose material's base colour is `image` (a file beside it).
+void writeTexturedObj(const fs::path& dir, const std::string& image) {
+    writeText(dir / "m.mtl", "newmtl x\nmap_Kd " + image + "\n");
+    writeText(dir / "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nusemtl x\nf 1/1 2/2 3/3\n");
+}
+
+// Loads `file` in a bounded child, which throws unless it decoded its images at no more than
+// subdfit uses (at most `side` on a side) and within `pixels` together.
+test::BoundedOutcome loadWithinUse(const fs::path& file, std::size_t memory, unsigned seconds, int side = io::kMaxDecodedSide,
+                                   std::int64_t pixels = io::kMaxImagePixelsPerFile) {
+    return test::runBounded(memory, seconds, [&] {
+        const PolygonMesh mesh = loadReference(file);
+        std::int64_t total = 0;
+        for (const Image& image : mesh.materials->images) {
+            if (image.width > side || image.height > side)
+                throw Error(image.name + " decoded at " + std::to_string(image.width) + " x " + std::to_string(image.height));
+            total += std::int64_t(image.width) * image.height;
+        }
+        if (total > pixels || total == 0) throw Error(std::to_string(total) + " pixels decoded");
+    });
 }
 
 std::string base64(const std::string& bytes) {
@@ -123,12 +208,110 @@ TEST(HostileTextures, A16kPngAsAGltfImageOrDataUriIsRefusedOnItsHeader) {
     expectRefused(test::runBounded(256 * kMB, 20, [&] { loadReference(dir / "data.gltf"); }), "data.gltf", "pixels");
 }
 
-// Three 8192² images, each within any sensible per-image cap: together over the run's budget.
-TEST(HostileTextures, ImagesTogetherMayNotExceedThePixelBudget) {
+// Six 8192 x 4096 images, each within any sensible per-image cap: together over the file's
+// decoded-pixel budget, so each is decoded smaller, and the whole stays within it.
+TEST(HostileTextures, ImagesTogetherAreDecodedSmallerToFitThePixelBudget) {
     const fs::path dir = test::scratchDir("hostile_textures_total");
-    for (char k : {'a', 'b', 'c'}) writeText(dir / (std::string(1, k) + ".png"), bombPng(8192, 8192, k));
-    writeText(dir / "three.gltf", texturedGltf({"a.png", "b.png", "c.png"}));
-    expectRefused(test::runBounded(192 * kMB, 20, [&] { loadReference(dir / "three.gltf"); }), "three.gltf", "pixels");
+    std::vector<std::string> names;
+    for (char k : {'a', 'b', 'c', 'd', 'e', 'f'}) {
+        names.push_back(std::string(1, k) + ".png");
+        writeText(dir / names.back(), zeroPng(8192, 4096) + std::string(1, k));  // other bytes: not one image
+    }
+    writeText(dir / "six.gltf", texturedGltf(names));
+    const auto outcome = loadWithinUse(dir / "six.gltf", 512 * kMB, 60);
+    ASSERT_TRUE(outcome.finished) << outcome.problem;
+    EXPECT_EQ(outcome.error, "");
+}
+
+// The budget gives way down to kSmallestBudgetedSide a side, then refuses, naming the image.
+TEST(HostileTextures, ThePixelBudgetRefusesAnImageItCannotFitEvenReduced) {
+    io::PixelBudget budget(std::int64_t(300) * 300);
+    EXPECT_EQ(budget.spend({8192, 8192, 4, false}, "a.png"), 28);  // 293², the largest that fits
+    EXPECT_NE(test::errorMessage([&] { budget.spend({8192, 8192, 4, false}, "b.png"); }).find("b.png"), std::string::npos);
+}
+
+// Decompression bombs within the per-image cap: a 0.5 MB PNG of 11585² RGBA (537 MB decoded),
+// its 16-bit twin (1 GB), behind an MTL map: decoded at 4096 a side, within 512 MB and seconds.
+TEST(HostileTextures, APngBombWithinTheCapIsDecodedAtTheSizeSubdfitUses) {
+    const fs::path dir = test::scratchDir("hostile_textures_png_bomb");
+    for (int depth : {8, 16}) {
+        writeText(dir / "bomb.png", zeroPng(11585, 11585, depth));
+        writeTexturedObj(dir, "bomb.png");
+        const auto outcome = loadWithinUse(dir / "m.obj", 512 * kMB, 30);
+        ASSERT_TRUE(outcome.finished) << depth << " bits: " << outcome.problem;
+        EXPECT_EQ(outcome.error, "") << depth << " bits";
+    }
+}
+
+// A 12 KB JPEG whose frame says 11585²: decoded small by the JPEG's own DCT scaling, with one
+// warning for its missing data; the same named by eight glTF images and five material slots is
+// decoded once.
+TEST(HostileTextures, AJpegClaimingAHugeFrameIsDecodedSmallAndOnce) {
+    const fs::path dir = test::scratchDir("hostile_textures_jpeg_bomb");
+    writeText(dir / "bomb.jpg", lyingJpeg(11585, 11585));
+    writeTexturedObj(dir, "bomb.jpg");
+    const auto one = loadWithinUse(dir / "m.obj", 384 * kMB, 20);
+    ASSERT_TRUE(one.finished) << one.problem;
+    EXPECT_EQ(one.error, "");
+
+    std::string gltf = texturedGltf(std::vector<std::string>(8, "bomb.jpg"));
+    for (int k = 0; k < 8; ++k) {  // each material names its texture in five slots
+        const std::string index = R"({"index":)" + std::to_string(k) + "}";
+        const std::string slot = R"("baseColorTexture":)" + index + "}";
+        const size_t at = gltf.find(slot);
+        ASSERT_NE(at, std::string::npos);
+        gltf.replace(at, slot.size(), R"("baseColorTexture":)" + index + R"(,"metallicRoughnessTexture":)" + index +
+                                          R"(},"normalTexture":)" + index + R"(,"occlusionTexture":)" + index +
+                                          R"(,"emissiveTexture":)" + index);
+    }
+    writeText(dir / "eight.gltf", gltf);
+    const auto eight = loadWithinUse(dir / "eight.gltf", 384 * kMB, 20);
+    ASSERT_TRUE(eight.finished) << eight.problem;
+    EXPECT_EQ(eight.error, "");
+}
+
+// An EXR of 4000 channels (OpenImageIO would size its strips by them): refused on its header.
+TEST(HostileTextures, AnImageOfThousandsOfChannelsIsRefusedNamingIt) {
+    const fs::path dir = test::scratchDir("hostile_textures_channels");
+    OIIO::ImageSpec spec(64, 64, 4000, OIIO::TypeDesc::HALF);
+    spec.attribute("compression", "zip");
+    const std::vector<std::uint16_t> zeros(std::size_t(64) * 64 * 4000, 0);
+    auto out = OIIO::ImageOutput::create((dir / "many.exr").string());
+    ASSERT_TRUE(out && out->open((dir / "many.exr").string(), spec) && out->write_image(OIIO::TypeDesc::HALF, zeros.data()) &&
+                out->close());
+    writeTexturedObj(dir, "many.exr");
+    expectRefused(test::runBounded(256 * kMB, 20, [&] { loadReference(dir / "m.obj"); }), "many.exr", "4000 channels");
+}
+
+// A 35-byte GIF whose screen is 65535² and an interlaced PNG past what is decoded whole: refused
+// on their headers, naming them (no library allocates what they state).
+TEST(HostileTextures, AGifOrInterlacedPngClaimingTooMuchIsRefusedOnItsHeader) {
+    const fs::path dir = test::scratchDir("hostile_textures_gif");
+    writeText(dir / "huge.gif", std::string("GIF89a\xff\xff\xff\xff\x00\x00\x00", 13) + std::string(22, '\0'));
+    writeTexturedObj(dir, "huge.gif");
+    expectRefused(test::runBounded(256 * kMB, 10, [&] { loadReference(dir / "m.obj"); }), "huge.gif", "pixels");
+    writeText(dir / "adam7.png", zeroPng(8192, 8192, 8, true));
+    writeTexturedObj(dir, "adam7.png");
+    expectRefused(test::runBounded(256 * kMB, 10, [&] { loadReference(dir / "m.obj"); }), "adam7.png", "interlaced");
+}
+
+// A PNG cut short: one line naming it, and nothing of libpng's on stderr before it.
+TEST(HostileTextures, ATruncatedPngIsOneLineNamingIt) {
+    const fs::path dir = test::scratchDir("hostile_textures_truncated");
+    const std::string png = zeroPng(256, 256);
+    writeText(dir / "cut.png", png.substr(0, png.size() / 2));
+    writeTexturedObj(dir, "cut.png");
+    const fs::path stderrFile = dir / "stderr.txt";
+    const auto outcome = test::runBounded(256 * kMB, 10, [&] {
+        const int fd = open(stderrFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+        dup2(fd, 2);
+        close(fd);
+        loadReference(dir / "m.obj");
+    });
+    expectRefused(outcome, "cut.png", "corrupt image");
+    std::ifstream said(stderrFile);
+    const std::string printed((std::istreambuf_iterator<char>(said)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(printed, "");
 }
 
 // Eight images naming one file are one image: decoded once, counted once.
@@ -160,6 +343,20 @@ TEST(HostileTextures, AnImageNoMaterialUsesIsNotDecoded) {
     const auto outcome = test::runBounded(256 * kMB, 20, [&] { loadReference(dir / "unused.gltf"); });
     ASSERT_TRUE(outcome.finished) << outcome.problem;
     EXPECT_EQ(outcome.error, "");
+}
+
+// An image whose URI names no file: a warning naming it, and the surface renders without it.
+TEST(HostileTextures, AMissingGltfImageIsAWarningNamingIt) {
+    const fs::path dir = test::scratchDir("hostile_textures_missing");
+    writeText(dir / "missing.gltf", texturedGltf({"nowhere.png"}));
+    std::string said;
+    const auto previous = setWarningSink([&](const std::string& w) { said += w + "\n"; });
+    const PolygonMesh mesh = loadReference(dir / "missing.gltf");
+    setWarningSink(previous);
+    EXPECT_NE(said.find("nowhere.png"), std::string::npos) << said;
+    EXPECT_NE(said.find("missing"), std::string::npos) << said;
+    ASSERT_TRUE(mesh.materials);
+    for (const Image& image : mesh.materials->images) EXPECT_EQ(image.width, 0);
 }
 
 // Offsets of 1e300 are infinite as floats; a texCoord of 1e30 is no set's index.
