@@ -8,6 +8,7 @@
 #include "io/atomic_file.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_loader.h"
+#include "util/json_text.h"
 
 namespace subdfit::view {
 
@@ -85,7 +86,7 @@ nlohmann::json FitSession::save(const context::GlContext& context, const std::fi
     options = fit::withVertexRates(options, run_->scene().cage, fitter().vertexGroup().settings());
     fit::validate(options);
     const auto report = fit::toJson(run_->writeResults(out, context));
-    io::writeTextAtomically(out / "report.json", report.dump(2) + "\n");
+    io::writeTextAtomically(out / "report.json", jsonText(report, 2));
     run_->saveCheckpoint(out / "checkpoint.bin");
     return report;
 }

@@ -23,6 +23,9 @@ struct DecodeCost {
     static constexpr std::uint64_t kAtlasPixel = 32;     // an appearance image: decoded, RGB, node values
     static constexpr std::uint64_t kOutputVertex = 176;  // the tessellation, the glTF mesh, the .glb
     static constexpr std::uint64_t kOutputTriangle = 40;
+    // A chain of levels of detail below level 0, per level-0 triangle: level 0 as the levels are
+    // measured against (its BVH) and simplified from, and the candidates of each level.
+    static constexpr std::uint64_t kLodChainTriangle = 256;
 };
 
 class DecodeBudget {

@@ -68,15 +68,21 @@ std::uint64_t decodeOutputBytes(const DecodeDensity& d) {
     return std::uint64_t(d.vertices) * DecodeCost::kOutputVertex + std::uint64_t(d.triangles) * DecodeCost::kOutputTriangle;
 }
 
-DecodeDensity pricedDensity(const SubdOutline& asset, const DensityRequest& request, DecodeBudget& budget) {
+std::uint64_t lodChainBytes(const DecodeDensity& density, int lods) {
+    return lods > 1 ? std::uint64_t(density.triangles) * DecodeCost::kLodChainTriangle : 0;
+}
+
+DecodeDensity pricedDensity(const SubdOutline& asset, const DensityRequest& request, DecodeBudget& budget, int lods) {
     DecodeDensity density = decodeDensity(asset, request, budget.name());
     const bool asked = request.segments > 0 || request.triangles > 0;
-    while (!asked && density.segments > 1 && !budget.fits(1, decodeOutputBytes(density)))
+    while (!asked && density.segments > 1 && !budget.fits(1, decodeOutputBytes(density) + lodChainBytes(density, lods)))
         density = densityAt(asset.cage, density.segments - 1);
     const std::string what = std::to_string(density.triangles) + " triangles (" + std::to_string(density.segments) +
                              (density.segments == 1 ? " segment" : " segments") + " a face edge)";
     budget.spend(std::uint64_t(density.vertices), DecodeCost::kOutputVertex, what);
     budget.spend(std::uint64_t(density.triangles), DecodeCost::kOutputTriangle, what);
+    if (lods > 1)
+        budget.spend(1, lodChainBytes(density, lods), std::to_string(lods) + " levels of detail from " + what);
     return density;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "util/error.h"
+#include "util/json_text.h"
 
 namespace subdfit::exporter {
 namespace {
@@ -31,7 +32,7 @@ void appendChunk(std::vector<unsigned char>& out, std::uint32_t type, std::span<
 }  // namespace
 
 std::vector<unsigned char> packGlb(const nlohmann::json& document, std::span<const unsigned char> binary) {
-    const std::string json = document.dump();
+    const std::string json = jsonText(document);
     const size_t total = 12 + 8 + padded(json.size()) + (binary.empty() ? 0 : 8 + padded(binary.size()));
     if (total > std::numeric_limits<std::uint32_t>::max())
         throw Error("the GLB would be " + std::to_string(total) + " bytes, beyond the format's 4 GiB limit");

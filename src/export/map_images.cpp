@@ -7,6 +7,7 @@
 
 #include "util/error.h"
 #include "util/printable.h"
+#include "util/json_text.h"
 
 // The atlases as files: PNG and EXR through OpenImageIO, and maps.json (the layout and pixel
 // functions they encode are in map_atlas.cpp, which decoders without an image library share).
@@ -147,7 +148,7 @@ std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const
         doc["appearance"] = appearance;
     }
     if (outputs.manifest && !doc.is_null()) {
-        const std::string text = doc.dump(2) + "\n";
+        const std::string text = jsonText(doc, 2);
         written.push_back(writeBytes(dir / kManifestFile, {reinterpret_cast<const unsigned char*>(text.data()), text.size()}));
     }
     return written;

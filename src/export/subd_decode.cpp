@@ -8,10 +8,12 @@
 
 namespace subdfit::exporter {
 
-DecodeInput readForDecode(const std::filesystem::path& subd, const DensityRequest& request, DecodeBudget& budget) {
+DecodeInput readForDecode(const std::filesystem::path& subd, const DensityRequest& request, DecodeBudget& budget, int lods) {
     DecodeInput input;
     // The triangles to write are priced with the file, before its maps are built.
-    input.asset = readSubd(subd, &budget, [&](const SubdOutline& outline) { input.density = pricedDensity(outline, request, budget); });
+    input.asset = readSubd(subd, &budget, [&](const SubdOutline& outline) {
+        input.density = pricedDensity(outline, request, budget, lods);
+    });
     return input;
 }
 

@@ -15,13 +15,14 @@
 
 namespace subdfit::exporter {
 
-// A .subd read for decoding: the asset, and the density `request` gets, whose triangles were
-// priced in `budget` with the file's counts before the maps were built.
+// A .subd read for decoding: the asset, and the density `request` gets, whose triangles (and
+// `lods` levels of detail from them: pricedDensity) were priced in `budget` with the file's
+// counts before the maps were built.
 struct DecodeInput {
     SubdAsset asset;
     DecodeDensity density;
 };
-DecodeInput readForDecode(const std::filesystem::path& subd, const DensityRequest& request, DecodeBudget& budget);
+DecodeInput readForDecode(const std::filesystem::path& subd, const DensityRequest& request, DecodeBudget& budget, int lods = 1);
 
 // Writes `out` (.glb) atomically, its mesh stored as `coding` says. Throws subdfit::Error naming
 // the file for a bad input, an impossible density or an output that may not be written (empty,

@@ -6,6 +6,7 @@
 #include "gl/platform_defines.h"
 #include "io/atomic_file.h"
 #include "io/output_folder.h"
+#include "util/json_text.h"
 
 namespace subdfit::fit {
 
@@ -29,7 +30,7 @@ FitReport runFit(const FitOptions& options, const FitHooks& hooks) {
     run.run(checkpoint, hooks);
     FitReport report = run.writeResults(o.out, *context);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    io::writeTextAtomically(o.out / "report.json", toJson(report).dump(2) + "\n");
+    io::writeTextAtomically(o.out / "report.json", jsonText(toJson(report), 2));
     return report;
 }
 

@@ -35,25 +35,24 @@ std::vector<glm::vec3> sampleSurface(const mesh::PolygonMesh& m, int count, std:
 }
 
 // Distances from each sample to the nearest point of `target`.
-std::vector<double> distancesTo(const std::vector<glm::vec3>& samples, const mesh::PolygonMesh& target) {
-    const SurfaceQueries queries(target);
+std::vector<double> distancesTo(const std::vector<glm::vec3>& samples, const SurfaceQueries& target) {
     std::vector<double> out;
     out.reserve(samples.size());
     for (const auto& p : samples) {
         if (out.size() % 4096 == 0) throwIfStopRequested();
-        out.push_back(double(queries.closestDistance(p)));
+        out.push_back(double(target.closestDistance(p)));
     }
     return out;
 }
 
 }  // namespace
 
-SurfaceDistance surfaceDistance(const mesh::PolygonMesh& a, const mesh::PolygonMesh& b, int samples, std::uint32_t seed) {
+SurfaceDistance surfaceDistance(const mesh::PolygonMesh& a, const SurfaceQueries& b, int samples, std::uint32_t seed) {
     SurfaceDistance result;
     double sumDistance = 0.0;
     size_t count = 0;
     for (const auto& d : {distancesTo(sampleSurface(a, samples, seed), b),
-                          distancesTo(sampleSurface(b, samples, seed + 1), a)}) {
+                          distancesTo(sampleSurface(b.mesh(), samples, seed + 1), SurfaceQueries(a))}) {
         double sumSquared = 0.0;
         for (double x : d) {
             sumSquared += x * x;
@@ -65,6 +64,10 @@ SurfaceDistance surfaceDistance(const mesh::PolygonMesh& a, const mesh::PolygonM
     }
     result.meanDistance = count ? sumDistance / double(count) : 0.0;
     return result;
+}
+
+SurfaceDistance surfaceDistance(const mesh::PolygonMesh& a, const mesh::PolygonMesh& b, int samples, std::uint32_t seed) {
+    return surfaceDistance(a, SurfaceQueries(b), samples, seed);
 }
 
 }  // namespace subdfit::geometry

@@ -13,8 +13,14 @@ struct SurfaceDistance {
     double hausdorff = 0.0;         // max over both directions
 };
 
+class SurfaceQueries;
+
 // Both meshes triangulated. `samples` points per side, seeded.
 SurfaceDistance surfaceDistance(const mesh::PolygonMesh& a, const mesh::PolygonMesh& b, int samples = 100000,
+                                std::uint32_t seed = 7);
+
+// The same against `b`'s queries, built once by a caller that measures many meshes against one.
+SurfaceDistance surfaceDistance(const mesh::PolygonMesh& a, const SurfaceQueries& b, int samples = 100000,
                                 std::uint32_t seed = 7);
 
 }  // namespace subdfit::geometry

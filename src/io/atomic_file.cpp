@@ -3,9 +3,11 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <memory>
 
 #include "util/error.h"
 
@@ -15,13 +17,22 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// ".NAME.tmpPID_N.EXT" beside the destination: hidden, unique, and with the real extension last.
+// The longest file name the folders subdfit writes to take (NAME_MAX on Linux file systems).
+constexpr std::size_t kMaxFileName = 255;
+
+// ".NAME.tmpPID_N.EXT" beside the destination: hidden, unique, and with the real extension last;
+// NAME cut short where the whole would pass kMaxFileName (the destination's own name fits).
 fs::path temporaryName(const fs::path& destination) {
     static std::atomic<unsigned> counter{0};
+    const std::string tag = ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+    const std::string extension = destination.extension().string();
+    std::string stem = destination.stem().string();
+    const std::size_t room = kMaxFileName - std::min(kMaxFileName, 1 + tag.size() + extension.size());
+    if (stem.size() > room) stem.resize(room);
     std::string name(1, '.');  // appended piece by piece: GCC 12 misreads "." + string (-Wrestrict)
-    name += destination.stem().string();
-    name += ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
-    name += destination.extension().string();
+    name += stem;
+    name += tag;
+    name += extension;
     return destination.parent_path() / name;
 }
 
@@ -46,6 +57,9 @@ std::string outputFileProblem(const fs::path& destination) {
 
 void checkOutputFile(const fs::path& destination, const fs::path& input) {
     if (destination.empty()) throw Error("the output path is empty");
+    if (const std::size_t length = destination.filename().string().size(); length > kMaxFileName)
+        throw fileError(destination.string(), "its name is " + std::to_string(length) + " bytes, more than the " +
+                                                  std::to_string(kMaxFileName) + " a file name may have");
     if (const std::string problem = outputFileProblem(destination); !problem.empty())
         throw fileError(destination.string(), problem);
     std::error_code ec;
@@ -116,6 +130,15 @@ void writeTextAtomically(const fs::path& destination, std::string_view text) {
     AtomicFile file(destination);
     file.write(text);
     file.commit();
+}
+
+void writeFilesTogether(const std::vector<std::pair<fs::path, std::string_view>>& files) {
+    std::vector<std::unique_ptr<AtomicFile>> written;
+    for (const auto& [destination, bytes] : files) {
+        written.push_back(std::make_unique<AtomicFile>(destination));
+        written.back()->write(bytes);
+    }
+    for (auto& file : written) file->commit();
 }
 
 }  // namespace subdfit::io

@@ -8,6 +8,8 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace subdfit::io {
 
@@ -15,8 +17,9 @@ namespace subdfit::io {
 // regular file (never a folder, a FIFO, a device such as /dev/null, a socket or a symlink).
 std::string outputFileProblem(const std::filesystem::path& destination);
 
-// Throws subdfit::Error naming `destination` when it is empty, is `input` (the same file by any
-// name), or outputFileProblem finds one: a command checks its outputs before it works.
+// Throws subdfit::Error naming `destination` when it is empty, its name is longer than a file
+// name may be, it is `input` (the same file by any name), or outputFileProblem finds one: a
+// command checks its outputs before it works.
 void checkOutputFile(const std::filesystem::path& destination, const std::filesystem::path& input = {});
 
 // For writers that stream bytes themselves. Refuses (outputFileProblem) when created and again
@@ -47,5 +50,10 @@ void writeAtomically(const std::filesystem::path& destination,
                      const std::function<void(const std::filesystem::path& temporary)>& write);
 
 void writeTextAtomically(const std::filesystem::path& destination, std::string_view text);
+
+// Several outputs that belong together (a chain of levels of detail and its JSON): every one is
+// written to its temporary before the first is renamed, so that a failure while writing (a name
+// too long, a full disk) leaves none of them.
+void writeFilesTogether(const std::vector<std::pair<std::filesystem::path, std::string_view>>& files);
 
 }  // namespace subdfit::io

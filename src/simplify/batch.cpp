@@ -12,6 +12,7 @@
 #include "util/error.h"
 #include "util/hash.h"
 #include "util/interrupt.h"
+#include "util/json_text.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -39,7 +40,7 @@ void writeStatus(const fs::path& dir, const std::string& state, const nlohmann::
                              {"time", std::chrono::duration_cast<std::chrono::seconds>(
                                           std::chrono::system_clock::now().time_since_epoch()).count()}};
     if (details.is_object()) status.update(details);
-    io::writeTextAtomically(dir / kStatusFile, status.dump(2) + "\n");
+    io::writeTextAtomically(dir / kStatusFile, jsonText(status, 2));
 }
 
 // What an asset folder was made from: the input file (path, size, content) and the settings.
@@ -198,7 +199,7 @@ std::string assetName(const std::string& label, const std::string& identity) {
 std::string assetIdentity(const SimplifyOptions& options) {
     std::error_code ec;
     const fs::path resolved = fs::weakly_canonical(fs::absolute(options.fit.reference), ec);
-    return (ec ? options.fit.reference : resolved).string() + "\n" + settingsJson(options).dump();
+    return (ec ? options.fit.reference : resolved).string() + "\n" + jsonText(settingsJson(options));
 }
 
 std::vector<std::string> nameItems(std::vector<BatchItem>& items, const std::vector<fs::path>& written) {

@@ -26,6 +26,7 @@
 #include "util/error.h"
 #include "util/warnings.h"
 #include "util/interrupt.h"
+#include "util/json_text.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -443,7 +444,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     }
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     if (report.fit) report.fit->seconds = report.seconds;
-    io::writeTextAtomically(staged.path() / "report.json", toJson(report).dump(2) + "\n");
+    io::writeTextAtomically(staged.path() / "report.json", jsonText(toJson(report), 2));
     staged.commit();
     return report;
 }

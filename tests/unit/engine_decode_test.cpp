@@ -1,6 +1,7 @@
 // `subdfit decode` for engines: quantised, meshopt-compressed glTF that reads back as the float
 // surface; a chain of levels whose distance to level 0 rises as their triangles fall, described
-// in a JSON; the coarsest density within an error bound; bad bounds refused.
+// in a JSON, priced whole before it starts and written all together or not at all; the coarsest
+// density within an error bound, one below what the surface resolves clamped; bad bounds refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,6 +25,7 @@
 #include "mesh/procedural.h"
 #include "surface/tessellation.h"
 #include "test_paths.h"
+#include "util/warnings.h"
 
 namespace subdfit::exporter {
 namespace {
@@ -154,6 +156,58 @@ TEST(EngineDecode, MaxErrorChoosesTheCoarsestDensityWithinTheBound) {
     const ErrorDensity percent = densityWithin(asset, {.value = 0.001, .ofDiagonal = true}, relative);
     EXPECT_LE(percent.maxDistance, percent.bound);
     EXPECT_GT(percent.bound, 0.001);  // the sphere's diagonal is over 1
+}
+
+// A file whose header asks for 4M triangles: one level takes them; a chain of eight is priced
+// whole first (level 0, its BVH, the simplifier's input, the candidates), so the default level 0
+// gives way to what the budget holds, and an asked-for density that would pass it is refused.
+TEST(EngineDecode, AChainOfLevelsIsPricedWholeBeforeItStarts) {
+    const mesh::PolygonMesh cage = mesh::makeQuadGrid(100);
+    const SubdOutline outline{.cage = cage, .decodeTriangles = 1u << 22};
+    DecodeBudget one("one.subd"), chain("chain.subd"), asked("asked.subd");
+    const DecodeDensity single = pricedDensity(outline, {}, one);
+    const DecodeDensity eight = pricedDensity(outline, {}, chain, 8);
+    EXPECT_GT(single.triangles, 3'000'000);
+    EXPECT_LT(eight.triangles, single.triangles);
+    EXPECT_LE(decodeOutputBytes(eight) + lodChainBytes(eight, 8), kDecodeBudgetBytes);
+    const std::string refusal = test::errorMessage([&] { pricedDensity(outline, {.triangles = 4'000'000}, asked, 8); });
+    EXPECT_NE(refusal.find("asked.subd"), std::string::npos) << refusal;
+    EXPECT_NE(refusal.find("8 levels of detail"), std::string::npos) << refusal;
+}
+
+// A chain whose last file cannot be written (its name past the 255 bytes a file name may have)
+// writes none of them; an input name that is not UTF-8 reaches the JSON replaced, not as an error.
+TEST(EngineDecode, TheLevelsAreWrittenTogetherOrNotAtAll) {
+    const auto dir = test::scratchDir("engine_decode_together");
+    writeSubd(dir / "asset.subd", lumpySphere(2000, 2));
+    const std::string stem(246, 'a');  // stem_lod1.glb fits; stem_lods.json does not
+    const std::string refusal = test::errorMessage([&] { decodeForEngines(dir / "asset.subd", dir / (stem + ".glb"), {.lods = 2}); });
+    EXPECT_NE(refusal.find("bytes, more than the 255"), std::string::npos) << refusal;
+    EXPECT_TRUE(fs::is_empty(dir / "") || (fs::directory_iterator(dir)->path().filename() == "asset.subd" &&
+                                            std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1));
+
+    const fs::path latin1 = dir / "caf\xe9.subd";
+    fs::copy_file(dir / "asset.subd", latin1);
+    const auto written = decodeForEngines(latin1, dir / "cafe.glb", {.lods = 2});
+    ASSERT_EQ(written.size(), 3u);
+    std::ifstream file(dir / "cafe_lods.json");
+    const nlohmann::json doc = nlohmann::json::parse(file);
+    EXPECT_EQ(doc["asset"].get<std::string>(), "caf\xef\xbf\xbd.subd");  // U+FFFD
+}
+
+// 1e-30 % of the diagonal is no distance floats resolve: the finest density at once, said so.
+TEST(EngineDecode, AnErrorBoundBelowWhatTheSurfaceResolvesIsClampedToTheFinest) {
+    const auto dir = test::scratchDir("engine_decode_tiny_bound");
+    writeSubd(dir / "asset.subd", lumpySphere(2000, 2));
+    std::string said;
+    const WarningSink previous = setWarningSink([&](const std::string& w) { said += w + "\n"; });
+    decodeForEngines(dir / "asset.subd", dir / "fine.glb", {.maxError = ErrorBound{.value = 1e-32, .ofDiagonal = true}, .lods = 1});
+    setWarningSink(previous);
+    EXPECT_NE(said.find("below what the surface resolves"), std::string::npos) << said;
+    std::ifstream file(dir / "fine_lods.json");
+    const nlohmann::json doc = nlohmann::json::parse(file);
+    EXPECT_TRUE(doc["max_error"]["clamped_to_finest"].get<bool>());
+    EXPECT_EQ(doc["lods"][0]["segments"], doc["max_error"]["reference_segments"]);
 }
 
 TEST(EngineDecode, BadErrorBoundsAndLevelCountsAreRefused) {

@@ -9,6 +9,8 @@
 #include "export/surface_glb.h"
 #include "io/atomic_file.h"
 #include "util/error.h"
+#include "util/warnings.h"
+#include "util/json_text.h"
 
 namespace subdfit::exporter {
 
@@ -33,18 +35,25 @@ std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, con
     if (o.lods > 0) io::checkOutputFile(lodJsonPath(out), subd);
     try {
         DecodeBudget budget(subd.string());
-        const DecodeInput input = readForDecode(subd, o.maxError ? DensityRequest{} : o.density, budget);
+        // The whole chain is priced before any of it is made (with the file, where the density
+        // is the default or asked for; an error bound's once it is known).
+        const DecodeInput input = readForDecode(subd, o.maxError ? DensityRequest{} : o.density, budget, o.maxError ? 1 : levels);
         const SubdAsset& asset = input.asset;
         DecodeDensity density = input.density;
         std::optional<ErrorDensity> fromError;
         if (o.maxError) {
             fromError = densityWithin(asset, *o.maxError, budget);
             density = fromError->density;
+            budget.spend(1, lodChainBytes(density, levels),
+                         std::to_string(levels) + " levels of detail from " + std::to_string(density.triangles) + " triangles");
         }
-        // The other levels together take about what level 0 does.
-        if (levels > 1) budget.spend(1, decodeOutputBytes(density), "levels of detail below " + std::to_string(density.triangles) + " triangles");
         SurfaceGlb glb = surfaceGlb(asset.cage, asset.maps, density.segments);
         LodChain chain = lodChain(asset, std::move(glb.mesh), density.segments, levels, o.screenSize);
+        if (int(chain.levels.size()) < levels)
+            warn(out.string() + ": " + std::to_string(chain.levels.size()) + " levels of detail written, not " +
+                 std::to_string(levels) + ": neither a coarser tessellation nor meshoptimizer's simplification (texture "
+                 "seams and borders kept) gives level " + std::to_string(chain.levels.size()) + " fewer triangles than " +
+                 std::to_string(chain.levels.back().mesh.triangleCount()));
 
         std::vector<std::vector<unsigned char>> encoded;
         std::vector<std::size_t> meshBytes;
@@ -53,17 +62,18 @@ std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, con
             if (o.coding == MeshCoding::Meshopt && glb.textures.normalPng.empty()) level.mesh.tangents.clear();
             if (o.coding == MeshCoding::Meshopt && !glb.textures.any()) level.mesh.uvs.clear();
             encoded.push_back(encodeFittedGlb(level.mesh, glb.textures, o.coding));
-            meshBytes.push_back(encodeFittedGlb(level.mesh, {}, o.coding).size());
+            meshBytes.push_back(glb.textures.any() ? encodeFittedGlb(level.mesh, {}, o.coding).size() : encoded.back().size());
         }
-        std::vector<WrittenFile> written;
+        // The JSON first, from the bytes each level will have; then every file at once.
+        std::vector<std::pair<std::filesystem::path, std::string_view>> files;
         nlohmann::json lods = nlohmann::json::array();
         for (size_t k = 0; k < chain.levels.size(); ++k) {
             const LodLevel& level = chain.levels[k];
-            written.push_back(writeBytes(lodPath(out, int(k)), encoded[k]));
+            files.emplace_back(lodPath(out, int(k)), std::string_view(reinterpret_cast<const char*>(encoded[k].data()), encoded[k].size()));
             nlohmann::json entry = {{"lod", k},
                                     {"file", lodPath(out, int(k)).filename().string()},
                                     {"triangles", level.mesh.triangleCount()},
-                                    {"bytes", written.back().bytes},
+                                    {"bytes", encoded[k].size()},
                                     {"bytes_without_images", meshBytes[k]},
                                     {"method", level.segments > 0 ? "tessellation" : "simplification"},
                                     {"mean_distance", level.meanDistance},
@@ -72,6 +82,7 @@ std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, con
             if (level.segments > 0) entry["segments"] = level.segments;
             lods.push_back(std::move(entry));
         }
+        std::string json;
         if (o.lods > 0) {
             nlohmann::json doc = {
                 {"asset", subd.filename().string()},
@@ -88,10 +99,14 @@ std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, con
             if (fromError)
                 doc["max_error"] = {{"bound", fromError->bound},
                                     {"max_distance", fromError->maxDistance},
-                                    {"reference_segments", fromError->referenceSegments}};
-            const std::string text = doc.dump(2) + "\n";
-            written.push_back(writeBytes(lodJsonPath(out), {reinterpret_cast<const unsigned char*>(text.data()), text.size()}));
+                                    {"reference_segments", fromError->referenceSegments},
+                                    {"clamped_to_finest", fromError->clamped}};
+            json = jsonText(doc, 2);
+            files.emplace_back(lodJsonPath(out), json);
         }
+        io::writeFilesTogether(files);
+        std::vector<WrittenFile> written;
+        for (const auto& [path, bytes] : files) written.push_back({.path = path, .bytes = bytes.size()});
         return written;
     } catch (const std::bad_alloc&) {
         throw fileError(subd.string(), "out of memory while decoding it");

@@ -3,12 +3,15 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include <cstdio>
 #include <limits>
+#include <string>
 #include <map>
 
 #include "export/engine/surface_error.h"
 #include "geometry/surface_distance.h"
 #include "surface/tessellation.h"
+#include "util/warnings.h"
 
 namespace subdfit::exporter {
 namespace {
@@ -17,6 +20,12 @@ double diagonalOf(const mesh::PolygonMesh& mesh) {
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
     return mesh.positions.empty() ? 0.0 : double(glm::length(hi - lo));
+}
+
+std::string printableNumber(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", value);
+    return text;
 }
 
 }  // namespace
@@ -32,6 +41,15 @@ ErrorDensity densityWithin(const SubdAsset& asset, const ErrorBound& bound, Deco
     const mesh::PolygonMesh fine = surface::triangleMesh(surface::tessellate(asset.cage, asset.maps, finest));
     ErrorDensity out{.density = reference, .maxDistance = 0.0,
                      .bound = bound.ofDiagonal ? bound.value * diagonalOf(fine) : bound.value, .referenceSegments = finest};
+    // Below what float positions resolve no density but the finest can be told within the
+    // bound: decode at it, and say so, rather than bisect down to it for nothing.
+    if (const double floor = kResolvableFraction * diagonalOf(fine); out.bound < floor) {
+        warn(budget.name() + ": --max-error " + printableNumber(out.bound) + " is below what the surface resolves (" +
+             printableNumber(floor) + ", a millionth of its diagonal): decoding at the finest density, " +
+             std::to_string(finest) + " segments a face edge");
+        out.clamped = true;
+        return out;
+    }
     std::map<int, double> errors{{finest, 0.0}};
     auto error = [&](int segments) {
         if (!errors.count(segments)) {

@@ -21,9 +21,14 @@ struct ErrorDensity {
     double maxDistance = 0.0;  // of `density` to the reference, in the asset's units
     double bound = 0.0;        // E in the asset's units
     int referenceSegments = 0;
+    bool clamped = false;      // E was below kResolvableFraction of the diagonal: the finest density
 };
 
-// The reference's vertices and triangles are spent from `budget` (named in its refusals).
+// The smallest error, as a fraction of the reference's diagonal, that float positions resolve.
+inline constexpr double kResolvableFraction = 1e-6;
+
+// The reference's vertices and triangles are spent from `budget` (named in its refusals). A bound
+// below kResolvableFraction of the diagonal is clamped to the finest density, with a warning.
 ErrorDensity densityWithin(const SubdAsset& asset, const ErrorBound& bound, DecodeBudget& budget);
 
 }  // namespace subdfit::exporter
