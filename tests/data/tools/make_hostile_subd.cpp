@@ -30,14 +30,12 @@ Bytes heights(std::uint64_t T, std::uint64_t nodes, std::uint64_t zeros) {
     return std::move(out.bytes());
 }
 
-// Version 5, or with `decodeTriangles` version 6, whose header records them.
-void write(const std::string& path, const std::vector<std::pair<const char*, Bytes>>& sections, std::uint32_t decodeTriangles = 0) {
+void write(const std::string& path, const std::vector<std::pair<const char*, Bytes>>& sections, std::uint32_t padTo = 0) {
     ByteWriter file;
     file.putBytes({reinterpret_cast<const unsigned char*>("SUBD"), 4});
-    file.put<std::uint16_t>(decodeTriangles ? 6 : 5);
+    file.put<std::uint16_t>(5);
     file.put<std::uint16_t>(0);
     file.put<std::uint32_t>(std::uint32_t(sections.size()));
-    if (decodeTriangles) file.put<std::uint32_t>(decodeTriangles);
     for (const auto& [tag, raw] : sections) {
         Bytes stored(ZSTD_compressBound(raw.size()));
         stored.resize(ZSTD_compress(stored.data(), stored.size(), raw.data(), raw.size(), 19));
@@ -61,6 +59,5 @@ int main(int argc, char** argv) {
     Bytes bomb = test::plainGridCage(2);
     bomb.resize(bomb.size() + (std::size_t(60) << 20), 0);  // within the section limit, far beyond a 4-face cage
     write(dir + "/zstd_bomb.subd", {{"CAGE", bomb}});
-    write(dir + "/grid_asking_4m_triangles.subd", {{"CAGE", test::plainGridCage(100)}}, 1u << 22);
     return 0;
 }
