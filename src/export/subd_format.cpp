@@ -1,6 +1,7 @@
 #include "export/subd_format.h"
 
 #include <zstd.h>
+#include <zstd_errors.h>
 
 #include <glm/common.hpp>
 
@@ -229,6 +230,9 @@ ShippedImage readAppearance(ByteReader& in, const mesh::PolygonMesh& cage, Appea
     const AtlasLayout atlas = atlasLayout(layout);
     const std::optional<io::ImageHeader> header = io::jpegHeader(bytes);
     if (!header) throw Error(in.what() + ": not a JPEG image");
+    // Checked alike by every decoder (a browser draws what libjpeg would refuse): its markers.
+    if (const std::string problem = io::jpegStructureProblem(bytes); !problem.empty())
+        throw Error(in.what() + ": a damaged JPEG (" + problem + ")");
     if (header->width != atlas.width || header->height != atlas.height)
         throw Error(in.what() + ": the image is " + std::to_string(header->width) + " x " + std::to_string(header->height) +
                     ", the atlas " + std::to_string(atlas.width) + " x " + std::to_string(atlas.height));
@@ -269,8 +273,13 @@ void decodeAppearance(const ShippedImage& shipped, const std::string& what, surf
 }
 
 void putSection(ByteWriter& file, const Tag& tag, const std::vector<unsigned char>& raw) {
+    // Each frame carries a checksum of its content (version 7): a section damaged inside is
+    // refused by every decoder alike, whatever its zstd would make of it otherwise.
+    std::unique_ptr<ZSTD_CCtx, decltype(&ZSTD_freeCCtx)> context(ZSTD_createCCtx(), &ZSTD_freeCCtx);
+    ZSTD_CCtx_setParameter(context.get(), ZSTD_c_compressionLevel, kZstdLevel);
+    ZSTD_CCtx_setParameter(context.get(), ZSTD_c_checksumFlag, 1);
     std::vector<unsigned char> stored(ZSTD_compressBound(raw.size()));
-    const std::size_t size = ZSTD_compress(stored.data(), stored.size(), raw.data(), raw.size(), kZstdLevel);
+    const std::size_t size = ZSTD_compress2(context.get(), stored.data(), stored.size(), raw.data(), raw.size());
     if (ZSTD_isError(size)) throw Error(std::string("zstd: ") + ZSTD_getErrorName(size));
     file.putBytes({reinterpret_cast<const unsigned char*>(tag.data()), 4});
     file.put<std::uint32_t>(std::uint32_t(size));
@@ -292,6 +301,17 @@ std::vector<unsigned char> sectionHead(std::span<const unsigned char> stored, st
     }
     head.resize(out.pos);
     return head;
+}
+
+// Whether a zstd frame says it carries a checksum of its content: bit 2 of its frame header
+// descriptor, the byte after the 4-byte magic (RFC 8878, 3.1.1.1.1).
+bool hasContentChecksum(std::span<const unsigned char> frame) { return frame.size() > 4 && (frame[4] & 0x04) != 0; }
+
+// Whether a frame inflates whole to `rawSize` bytes (at most kMaxRawSection) with its checksum right.
+bool frameIntact(std::span<const unsigned char> frame, std::size_t rawSize) {
+    std::vector<unsigned char> raw(rawSize);
+    const std::size_t got = ZSTD_decompress(raw.data(), raw.size(), frame.data(), frame.size());
+    return !ZSTD_isError(got) && got == rawSize;
 }
 
 // One entry of the section table, read before any section is inflated.
@@ -483,6 +503,8 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         s.stored = in.take(storedSize);
         if (ZSTD_getFrameContentSize(s.stored.data(), s.stored.size()) != s.rawSize)
             throw Error(name + ": section " + tagName(s.tag) + " does not decompress to its stated size");
+        if (version >= 7 && !hasContentChecksum(s.stored))
+            throw Error(name + ": section " + tagName(s.tag) + " has no checksum of its content");
         s.head = sectionHead(s.stored, std::min<std::size_t>(s.rawSize, kSectionHeadBytes));
         sections.push_back(std::move(s));
     }
@@ -494,17 +516,32 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
                         " bytes, more than its counts allow (" + std::to_string(most) + ")");
         std::vector<unsigned char> raw(s.rawSize);
         const std::size_t got = ZSTD_decompress(raw.data(), raw.size(), s.stored.data(), s.stored.size());
+        if (ZSTD_isError(got) && ZSTD_getErrorCode(got) == ZSTD_error_checksum_wrong)
+            throw Error(name + ": section " + tagName(s.tag) + " fails its checksum (damaged)");
         if (ZSTD_isError(got) || got != s.rawSize) throw Error(name + ": section " + tagName(s.tag) + " does not decompress");
         return raw;
     };
+    // Counts are read from each section's first bytes, before its checksum can be: where they
+    // make no sense, a section that fails its checksum is named instead (damage, not a lie).
+    auto damageFirst = [&](const auto& price) {
+        try {
+            return price();
+        } catch (const Error&) {
+            for (const SectionEntry& s : sections)
+                if (version >= 7 && !frameIntact(s.stored, s.rawSize))
+                    throw Error(name + ": section " + tagName(s.tag) + " fails its checksum (damaged)");
+            throw;
+        }
+    };
     {
-        const auto raw = inflated(sections[0], priceCage(sections[0], name, budget));
+        const auto raw = inflated(sections[0], damageFirst([&] { return priceCage(sections[0], name, budget); }));
         ByteReader section(raw, name + ": " + sections[0].what());
         asset.cage = decodeCage(section);
         if (section.remaining() != 0) throw Error(section.what() + ": trailing bytes");
     }
     int mapResolution = 0;
-    const std::vector<std::uint64_t> most = priceMaps(sections, asset.cage, name, budget, mapResolution);
+    const std::vector<std::uint64_t> most =
+        damageFirst([&] { return priceMaps(sections, asset.cage, name, budget, mapResolution); });
     if (priced) priced({.cage = asset.cage, .decodeTriangles = asset.decodeTriangles, .mapResolution = mapResolution});
 
     for (size_t k = 1; k < sections.size(); ++k) {

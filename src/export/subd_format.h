@@ -1,5 +1,5 @@
 #pragma once
-// The shipped asset, one file: `.subd`, version 6. What a user ships is the control cage (with its
+// The shipped asset, one file: `.subd`, version 7. What a user ships is the control cage (with its
 // OpenSubdiv tags) and the maps' node values, quantised and entropy-coded; `subdfit decode`
 // turns it back into triangles. docs/asset-subd-format.md specifies the bytes (header, sections,
 // trailer) and which versions a reader takes; encodeSubd writes them and decodeSubd checks every
@@ -19,7 +19,7 @@
 
 namespace subdfit::exporter {
 
-inline constexpr std::uint16_t kSubdVersion = 6;
+inline constexpr std::uint16_t kSubdVersion = 7;
 
 class DecodeBudget;
 
@@ -53,7 +53,7 @@ struct SubdOutline {
 };
 
 // `name` names the data in errors. Throws subdfit::Error ("name: problem") for anything that is
-// not a whole, checksummed version-3 to 6 file whose cage and maps are sound, or that would take
+// not a whole, checksummed version-3 to 7 file whose cage and maps are sound, or that would take
 // more than `budget` (by default a DecodeBudget of its own) to decode. Every section's counts
 // are checked and priced, and the cage decoded, before any map is built; then `priced` is
 // called (a caller's chance to price its own work from the outline, e.g. the triangles to write).

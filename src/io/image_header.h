@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 
 namespace subdfit::io {
 
@@ -23,6 +24,15 @@ struct ImageHeader {
 // A baseline or progressive JPEG's frame header (its first SOFn marker), or nothing when the
 // bytes are not a JPEG whose markers lead to one.
 std::optional<ImageHeader> jpegHeader(std::span<const unsigned char> bytes);
+
+// Why a JPEG's marker structure is not one every decoder reads alike ("" when it is): SOI, then
+// well-formed segments up to EOI: quantisation and Huffman tables that are sound (libjpeg's own
+// tests), one 8-bit baseline, extended or progressive Huffman frame, scans whose components and
+// tables exist and whose progression is valid, only the markers libjpeg knows. The entropy-coded
+// data is not decoded: a decoder draws damage there as well as it can. The shipped asset's
+// images are checked with this before any decoder sees them (export/subd_format.h), so that
+// `subdfit decode` (libjpeg) and the web decoder (the browser's) refuse the same files.
+std::string jpegStructureProblem(std::span<const unsigned char> bytes);
 
 // A PNG's IHDR, a GIF's logical screen, a WebP's VP8, VP8L or VP8X header; nothing when the bytes
 // are not that format or its header is cut short.

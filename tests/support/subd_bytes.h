@@ -7,7 +7,19 @@
 
 #include "export/byte_stream.h"
 
+#include <zstd.h>
+
 namespace subdfit::test {
+
+// `raw` as one zstd frame with a checksum of its content, as version-7 sections are stored.
+inline std::vector<unsigned char> checksummedFrame(const std::vector<unsigned char>& raw) {
+    ZSTD_CCtx* context = ZSTD_createCCtx();
+    ZSTD_CCtx_setParameter(context, ZSTD_c_checksumFlag, 1);
+    std::vector<unsigned char> frame(ZSTD_compressBound(raw.size()));
+    frame.resize(ZSTD_compress2(context, frame.data(), frame.size(), raw.data(), raw.size()));
+    ZSTD_freeCCtx(context);
+    return frame;
+}
 
 // The raw CAGE section of an n × n quad grid over [−1, 1]² (z = 0), plain coded (a regular grid
 // compresses to almost nothing), boundary "edge and corner" (with "none" a grid's border faces

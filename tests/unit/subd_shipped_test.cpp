@@ -5,6 +5,7 @@
 #include <zstd.h>
 
 #include "error_message.h"
+#include "subd_bytes.h"
 
 #include "export/byte_stream.h"
 #include "export/subd_format.h"
@@ -70,7 +71,7 @@ TEST(SubdShipped, TheReaderKeepsTheImagesEncodedAndDecodeSubdDecodesThem) {
     EXPECT_EQ(decoded.cage.positions, shipped.asset.cage.positions);
 }
 
-// The file with its BCOL section's JPEG replaced by `jpeg` (sections re-compressed, checksum
+// The file with its BCOL section's JPEG replaced by `jpeg` (sections re-compressed, checksums
 // recomputed).
 std::vector<unsigned char> withBaseColorJpeg(const std::vector<unsigned char>& file, const std::vector<unsigned char>& jpeg) {
     ByteReader in(std::span<const unsigned char>(file).first(file.size() - 8), "file");
@@ -96,8 +97,7 @@ std::vector<unsigned char> withBaseColorJpeg(const std::vector<unsigned char>& f
             replaced.putBytes(jpeg);
             raw = replaced.bytes();
         }
-        std::vector<unsigned char> compressed(ZSTD_compressBound(raw.size()));
-        compressed.resize(ZSTD_compress(compressed.data(), compressed.size(), raw.data(), raw.size(), 3));
+        std::vector<unsigned char> compressed = test::checksummedFrame(raw);
         out.putBytes(tag);
         out.put<std::uint32_t>(std::uint32_t(compressed.size()));
         out.put<std::uint32_t>(std::uint32_t(raw.size()));
