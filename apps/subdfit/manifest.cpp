@@ -22,6 +22,9 @@ std::vector<simplify::BatchItem> readManifest(const std::filesystem::path& manif
             std::reverse(args.begin(), args.end());  // CLI11 takes a vector last argument first
             parser.parse(args);
             simplify::validate(options);
+        } catch (const CLI::Success&) {  // --help, which CLI11 answers by throwing
+            throw fileError(manifest.string() + ":" + std::to_string(line.number),
+                            "--help is an option of the command line, not of a manifest line");
         } catch (const std::exception& e) {
             throw fileError(manifest.string() + ":" + std::to_string(line.number), describeError(e));
         }

@@ -99,6 +99,8 @@ subdfit_cli_command_refuses(batch batch_missing_manifest ${SUBDFIT_CLI_OUT}/miss
 set(SUBDFIT_CLI_MANIFESTS ${PROJECT_SOURCE_DIR}/tests/data/bad-manifests)
 subdfit_cli_command_refuses(batch batch_bad_line bad_option.txt:3 ${SUBDFIT_CLI_MANIFESTS}/bad_option.txt)
 subdfit_cli_command_refuses(batch batch_empty_manifest empty.txt ${SUBDFIT_CLI_MANIFESTS}/empty.txt)
+subdfit_cli_command_refuses(batch batch_help_on_a_line "help_on_a_line.txt:2: --help is an option of the command line"
+                            ${SUBDFIT_CLI_MANIFESTS}/help_on_a_line.txt)
 subdfit_cli_command_refuses(batch batch_bad_shard --shard ${SUBDFIT_CLI_MANIFESTS}/bad_option.txt --shard 2/2)
 
 # A short simplify that works: the fit's files plus the shipped cage, the comparison and the

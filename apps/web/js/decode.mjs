@@ -144,14 +144,72 @@ function glbOf(decoded) {
                         chunkHeader(binChunk.length, 0x004e4942), binChunk]);
 }
 
-// Written to a temporary file beside OUT, then renamed over it: never half a file, and never
-// over anything but a regular file.
-function writeAtomically(output, bytes) {
-  const existing = fs.statSync(output, { throwIfNoEntry: false });
-  if (existing && !existing.isFile()) throw new Error(`${output}: not a regular file`);
-  const temporary = path.join(path.dirname(output), `.${path.basename(output)}.${process.pid}.partial`);
+// What `subdfit decode` reads and writes, by the same rules (src/io/input_file.h,
+// src/io/atomic_file.h): keep the two in step.
+const MAX_INPUT_BYTES = 2 ** 31;  // io::kMaxInputBytes
+const MAX_FILE_NAME = 255;        // bytes of a file name
+
+function kindProblem(stats) {
+  if (stats.isDirectory()) return 'is a folder, not a file';
+  if (!stats.isFile()) return 'is not a regular file (a FIFO, device or socket)';
+  return '';
+}
+
+// The input, read only when it is a regular file within the limit, checked on the open
+// descriptor (a symlink swapped after a check cannot slip past; a FIFO opened without blocking).
+function readInput(input) {
+  let fd;
+  try {
+    fd = fs.openSync(input, fs.constants.O_RDONLY | fs.constants.O_NONBLOCK);
+  } catch (error) {
+    throw new Error(`${input}: ${error.code === 'ENOENT' ? 'no such file' : `cannot open: ${error.message}`}`);
+  }
+  try {
+    const stats = fs.fstatSync(fd);
+    const problem = kindProblem(stats);
+    if (problem) throw new Error(`${input}: ${problem}`);
+    if (stats.size > MAX_INPUT_BYTES)
+      throw new Error(`${input}: is ${stats.size} bytes, more than the ${MAX_INPUT_BYTES}-byte input limit`);
+    const bytes = Buffer.alloc(stats.size);
+    let read = 0;
+    while (read < bytes.length) {
+      const n = fs.readSync(fd, bytes, read, bytes.length - read, read);
+      if (n === 0) throw new Error(`${input}: shrank while it was read`);
+      read += n;
+    }
+    if (fs.readSync(fd, Buffer.alloc(1), 0, 1, read) !== 0) throw new Error(`${input}: grew while it was read`);
+    return bytes;
+  } finally {
+    fs.closeSync(fd);
+  }
+}
+
+// Why OUT may not be written ("" when it may): an output replaces nothing but a regular file (not
+// a folder, a FIFO, a device, a socket or a symlink, which lstat sees as itself), nor the input.
+function outputProblem(output, input) {
+  if (!output) return 'the output path is empty';
+  const name = Buffer.byteLength(path.basename(output));
+  if (name > MAX_FILE_NAME) return `its name is ${name} bytes, more than the ${MAX_FILE_NAME} a file name may have`;
+  const existing = fs.lstatSync(output, { throwIfNoEntry: false });
+  if (!existing) return '';
+  if (existing.isSymbolicLink()) return 'is a symlink: the decoder replaces only regular files';
+  const problem = kindProblem(existing);
+  if (problem) return problem === 'is a folder, not a file' ? problem : `${problem}: the decoder replaces only regular files`;
+  const source = fs.statSync(input, { throwIfNoEntry: false });
+  if (source && source.dev === existing.dev && source.ino === existing.ino) return `is the input ${input}: write the output elsewhere`;
+  return '';
+}
+
+// Written to a temporary file beside OUT (its name cut to fit), then renamed over it: never half
+// a file, and never over anything but a regular file (checked again just before the rename).
+function writeAtomically(output, input, bytes) {
+  const tag = `.${process.pid}.partial`;
+  const stem = Buffer.from(path.basename(output)).subarray(0, MAX_FILE_NAME - 1 - tag.length).toString();
+  const temporary = path.join(path.dirname(output), `.${stem}${tag}`);
   try {
     fs.writeFileSync(temporary, bytes, { flag: 'wx' });
+    const problem = outputProblem(output, input);
+    if (problem) throw new Error(problem);
     fs.renameSync(temporary, output);
   } catch (error) {
     fs.rmSync(temporary, { force: true });
@@ -161,18 +219,15 @@ function writeAtomically(output, bytes) {
 
 async function main() {
   const { input, output, triangles } = parseArguments(process.argv.slice(2));
-  if (path.resolve(input) === path.resolve(output)) throw new Error(`${output}: the output would replace the input`);
-  let bytes;
-  try {
-    bytes = fs.readFileSync(input);
-  } catch (error) {
-    throw new Error(`${input}: ${error.code === 'ENOENT' ? 'no such file' : error.code === 'EISDIR' ? 'a folder, not a file' : error.message}`);
-  }
+  // The output is checked before any work, as `subdfit decode` checks it.
+  const problem = outputProblem(output, input);
+  if (problem) throw new Error(`${output}: ${problem}`);
+  const bytes = readInput(input);
   const wasm = fs.readFileSync(new URL('./subd_decoder_wasm.wasm', import.meta.url));
   const decoder = await createDecoderInstance(wasm);
   const decoded = decoder.decode(new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength), { triangles, name: input });
   for (const warning of decoded.warnings) process.stderr.write(`decode.mjs: warning: ${warning}\n`);
-  writeAtomically(output, glbOf(decoded));
+  writeAtomically(output, input, glbOf(decoded));
   process.stdout.write(`${output}\n`);
 }
 

@@ -1,11 +1,6 @@
-// The web decoder's entry points: asset.subd bytes in, the surface `subdfit decode` writes out as
-// arrays, through the same reader (readShippedSubd), decode budget and density choice
-// (pricedDensity: export/decode_budget.h, export/decode_density.h) and surface (surfaceGltfMesh,
-// surfaceNormalImage, surfaceMaterial). Appearance images stay the JPEGs the file carries: the
-// browser decodes them. apps/web/js/subd_core.mjs reads the Result.
+// The web decoder's entry points (WebAssembly exports): subdfit::web::decode (web_decode.h) behind
+// a C interface that subd_core.mjs calls, each result kept alive until subd_free.
 #include <emscripten/emscripten.h>
-
-#include <glm/gtc/type_ptr.hpp>
 
 #include <cstdint>
 #include <exception>
@@ -13,130 +8,18 @@
 #include <new>
 #include <string>
 #include <unordered_map>
-#include <vector>
 
-#include "export/decode_budget.h"
 #include "export/decode_density.h"
-#include "export/subd_format.h"
-#include "export/surface_mesh.h"
 #include "util/error.h"
-#include "util/warnings.h"
+#include "web_decode.h"
 
 namespace {
 
-using namespace subdfit;
-
-// An image of the material. Roles: 0 base colour, 1 metallic-roughness (its red channel the
-// occlusion when Result::flags says so), 2 normal, 3 emissive.
-struct Image {
-    std::uint32_t role, encoding;  // encoding 0: RGBA8 pixels, rows top first; 1: JPEG bytes
-    std::uint32_t width, height;
-    const std::uint8_t* data;
-    std::uint32_t size;
-};
-
-// Read word by word (4 bytes each) by subd_core.mjs: keep the two in step.
-struct Result {
-    std::uint32_t vertexCount, indexCount, segments, flags;  // flags: 1 tangents, 2 occlusion
-    const float *positions, *normals, *tangents, *uvs;
-    const std::uint32_t* indices;
-    float baseColorFactor[4], metallicFactor, roughnessFactor, emissiveFactor[3];
-    std::uint32_t imageCount;
-    const Image* images;
-    const char* warnings;  // '\n'-separated, empty when none
-};
-static_assert(sizeof(Result) == 21 * 4, "subd_core.mjs reads Result as 21 words");
-static_assert(sizeof(Image) == 6 * 4, "subd_core.mjs reads Image as 6 words");
-
-constexpr std::uint32_t kTangents = 1, kOcclusion = 2;
-
-struct Decoded {
-    Result result{};
-    exporter::GltfMesh mesh;
-    std::vector<Image> images;
-    std::vector<std::vector<std::uint8_t>> pixels;
-    std::vector<exporter::ShippedImage> shipped;
-    std::string warnings;
-};
+using subdfit::web::Decoded;
+using subdfit::web::Result;
 
 std::string lastError;
 std::unordered_map<const Result*, std::unique_ptr<Decoded>> live;  // until subd_free
-
-std::uint32_t roleOf(exporter::AppearanceImage which) {
-    switch (which) {
-        case exporter::AppearanceImage::BaseColor: return 0;
-        case exporter::AppearanceImage::MetallicRoughness: return 1;
-        case exporter::AppearanceImage::NormalTexture: return 2;
-        case exporter::AppearanceImage::Emissive: return 3;
-    }
-    return 0;
-}
-
-std::unique_ptr<Decoded> decode(std::span<const std::uint8_t> bytes, std::int64_t triangles, const std::string& name) {
-    auto out = std::make_unique<Decoded>();
-    const WarningSink previous = setWarningSink([&](const std::string& line) { out->warnings += line + "\n"; });
-    struct Restore {
-        const WarningSink& sink;
-        ~Restore() { setWarningSink(sink); }
-    } restore{previous};
-
-    // Every count the file states, and the triangles to write, priced before they are allocated.
-    exporter::DecodeBudget budget(name);
-    exporter::DecodeDensity density;
-    exporter::ShippedSubd shipped = exporter::readShippedSubd(bytes, name, &budget, [&](const exporter::SubdOutline& outline) {
-        density = exporter::pricedDensity(outline, {.triangles = triangles}, budget);
-    });
-    const exporter::SubdAsset& asset = shipped.asset;
-    const int segments = density.segments;
-    exporter::SurfaceTextures textures{.normalMap = asset.maps.hasNormal()};
-    for (const auto& image : shipped.images) {
-        using exporter::AppearanceImage;
-        textures.baseColor |= image.which == AppearanceImage::BaseColor;
-        textures.metallicRoughness |= image.which == AppearanceImage::MetallicRoughness;
-        textures.occlusion |= image.occlusion;
-        textures.normalTexture |= image.which == AppearanceImage::NormalTexture;
-        textures.emissive |= image.which == AppearanceImage::Emissive;
-    }
-    out->mesh = exporter::surfaceGltfMesh(asset.cage, asset.maps, textures, segments);
-    if (out->mesh.indices.empty()) throw Error(name + ": nothing to decode: the surface has no triangles");
-
-    // What the glb of `decode` embeds, less the images of an appearance it would not draw.
-    out->shipped = std::move(shipped.images);
-    for (const auto& image : out->shipped) {
-        if (!textures.baseColor) break;  // without a base colour decode draws a grey material
-        out->images.push_back({roleOf(image.which), 1, std::uint32_t(image.width), std::uint32_t(image.height),
-                               image.bytes.data(), std::uint32_t(image.bytes.size())});
-    }
-    if (const exporter::NormalImage normal = exporter::surfaceNormalImage(asset.maps, textures); !normal.empty()) {
-        // 8 bits a channel, as a browser decodes decode's 16-bit PNG.
-        auto& rgba = out->pixels.emplace_back(std::size_t(normal.width) * std::size_t(normal.height) * 4, 255);
-        for (std::size_t p = 0; p < rgba.size() / 4; ++p)
-            for (int c = 0; c < 3; ++c) rgba[4 * p + std::size_t(c)] = std::uint8_t((unsigned(normal.rgb[3 * p + std::size_t(c)]) * 255u + 32767u) / 65535u);
-        out->images.push_back({2, 0, std::uint32_t(normal.width), std::uint32_t(normal.height), rgba.data(),
-                               std::uint32_t(rgba.size())});
-    }
-
-    const exporter::SurfaceMaterial material = exporter::surfaceMaterial(textures);
-    Result& r = out->result;
-    const exporter::GltfMesh& mesh = out->mesh;
-    r.vertexCount = std::uint32_t(mesh.vertexCount());
-    r.indexCount = std::uint32_t(mesh.indices.size());
-    r.segments = std::uint32_t(segments);
-    r.flags = (mesh.hasTangents() ? kTangents : 0) | (textures.baseColor && textures.occlusion ? kOcclusion : 0);
-    r.positions = glm::value_ptr(mesh.positions.front());
-    r.normals = glm::value_ptr(mesh.normals.front());
-    r.tangents = mesh.hasTangents() ? glm::value_ptr(mesh.tangents.front()) : nullptr;
-    r.uvs = glm::value_ptr(mesh.uvs.front());
-    r.indices = mesh.indices.data();
-    for (int c = 0; c < 4; ++c) r.baseColorFactor[c] = float(material.baseColorFactor[std::size_t(c)]);
-    r.metallicFactor = float(material.metallicFactor);
-    r.roughnessFactor = float(material.roughnessFactor);
-    for (int c = 0; c < 3; ++c) r.emissiveFactor[c] = float(material.emissiveFactor[std::size_t(c)]);
-    r.imageCount = std::uint32_t(out->images.size());
-    r.images = out->images.data();
-    r.warnings = out->warnings.c_str();
-    return out;
-}
 
 }  // namespace
 
@@ -148,7 +31,7 @@ EMSCRIPTEN_KEEPALIVE Result* subd_decode(const std::uint8_t* bytes, std::uint32_
     try {
         if (!(triangles >= 0.0) || triangles > double(subdfit::exporter::kMaxDecodeTriangles))
             throw subdfit::Error("invalid option: triangles: must be in 0.." + std::to_string(subdfit::exporter::kMaxDecodeTriangles));
-        auto decoded = decode({bytes, size}, std::int64_t(triangles), name);
+        auto decoded = subdfit::web::decode({bytes, size}, std::int64_t(triangles), name);
         Result* result = &decoded->result;
         live.emplace(result, std::move(decoded));
         return result;
