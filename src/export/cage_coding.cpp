@@ -452,7 +452,9 @@ mesh::PolygonMesh decodeCage(ByteReader& in) {
     if (coding == kPlain) readPlain(in, grid, vertices, faces, cage);
     else readDraco(in, grid, vertices, faces, cage);
     readTags(in, cage);
+    cage.sourcePath = in.what();  // what the soundness checks name: "file: CAGE section"
     mesh::validateMesh(cage);
+    cage.sourcePath.clear();
     return cage;
 }
 

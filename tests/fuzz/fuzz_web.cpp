@@ -5,6 +5,7 @@
 // pricing, the tessellation and the material see hostile contents. Every input must give a
 // surface whose arrays are consistent, or one line of subdfit::Error naming the file.
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -23,7 +24,10 @@ void decode(const subdfit::fuzz::Bytes& bytes, std::int64_t triangles) {
             if (r.indices[k] >= r.vertexCount) std::abort();
     } catch (const subdfit::Error& e) {
         const std::string what = e.what();
-        if (what.rfind("fuzz.subd: ", 0) != 0 || what.find('\n') != std::string::npos) std::abort();
+        if (what.rfind("fuzz.subd: ", 0) != 0 || what.find('\n') != std::string::npos) {
+            std::fprintf(stderr, "not one line naming the file: %s\n", what.c_str());
+            std::abort();
+        }
     }
 }
 
