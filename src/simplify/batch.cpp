@@ -54,9 +54,12 @@ nlohmann::json identityOf(const BatchItem& item) {
             {"settings", settingsJson(item.options)}};
 }
 
+// `identity` as status.json holds it once written and read back (a name's bytes that are not
+// UTF-8 become U+FFFD: util/json_text.h), so that it compares equal to what a run recorded.
 bool sameIdentity(const nlohmann::json& status, const nlohmann::json& identity) {
-    return status.contains("input") && status["input"] == identity["input"] && status.contains("settings") &&
-           status["settings"] == identity["settings"];
+    const nlohmann::json written = nlohmann::json::parse(jsonText(identity));
+    return status.contains("input") && status["input"] == written["input"] && status.contains("settings") &&
+           status["settings"] == written["settings"];
 }
 
 // Every path an asset touches, checked to lie inside OUT and not to be a symlink someone planted.
