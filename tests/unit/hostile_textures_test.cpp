@@ -345,6 +345,28 @@ TEST(HostileTextures, AnImageNoMaterialUsesIsNotDecoded) {
     EXPECT_EQ(outcome.error, "");
 }
 
+// A progressive JPEG whose last scan repeats 150 times: each scan is a pass over the image, so past
+// 100 it is refused, naming the file (an ordinary one has about ten).
+TEST(HostileTextures, AProgressiveJpegOfEndlessScansIsRefused) {
+    const fs::path dir = test::scratchDir("hostile_textures_scans");
+    OIIO::ImageSpec spec(64, 64, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("jpeg:progressive", 1);
+    std::vector<std::uint8_t> pixels(64 * 64 * 3);
+    for (size_t k = 0; k < pixels.size(); ++k) pixels[k] = std::uint8_t(k * 31);
+    auto out = OIIO::ImageOutput::create((dir / "p.jpg").string());
+    ASSERT_TRUE(out && out->open((dir / "p.jpg").string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) &&
+                out->close());
+    std::ifstream in(dir / "p.jpg", std::ios::binary);
+    const std::string jpeg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t lastScan = jpeg.rfind("\xff\xda"), end = jpeg.rfind("\xff\xd9");
+    ASSERT_NE(lastScan, std::string::npos);
+    std::string endless = jpeg.substr(0, end);
+    for (int k = 0; k < 150; ++k) endless += jpeg.substr(lastScan, end - lastScan);
+    writeText(dir / "endless.jpg", endless + "\xff\xd9");
+    writeTexturedObj(dir, "endless.jpg");
+    expectRefused(test::runBounded(256 * kMB, 10, [&] { loadReference(dir / "m.obj"); }), "endless.jpg", "more than 100 scans");
+}
+
 // An image whose URI names no file: a warning naming it, and the surface renders without it.
 TEST(HostileTextures, AMissingGltfImageIsAWarningNamingIt) {
     const fs::path dir = test::scratchDir("hostile_textures_missing");
