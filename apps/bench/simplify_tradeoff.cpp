@@ -59,14 +59,15 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
                     methods.emplace_back(method, &**q);
             for (const auto& [method, q] : methods) {
                 const double seconds = method == "subdfit" ? report.seconds : 0.0;
+                const geometry::SurfaceDistance d = q->distance.value_or(geometry::SurfaceDistance{});  // --compare full: measured
                 const std::string chosenText = method == "subdfit" ? choice : "";
                 std::printf("%-18.18s %8ju  %-10s %8ju %9.2f %7.4f %13.4e %9.1f  %s\n", name.c_str(), budget,
-                            method.c_str(), q->bytes, q->psnrHoldout, q->ssimHoldout, q->distance.meanDistance, seconds,
+                            method.c_str(), q->bytes, q->psnrHoldout, q->ssimHoldout, d.meanDistance, seconds,
                             chosenText.c_str());
                 std::fflush(stdout);
                 rows.push_back({name, std::to_string(budget), method, std::to_string(q->bytes), std::to_string(q->psnrHoldout),
-                                std::to_string(q->ssimHoldout), std::to_string(q->distance.meanDistance), std::to_string(q->distance.chamferL2Squared),
-                                std::to_string(q->distance.hausdorff), std::to_string(seconds), chosenText});
+                                std::to_string(q->ssimHoldout), std::to_string(d.meanDistance), std::to_string(d.chamferL2Squared),
+                                std::to_string(d.hausdorff), std::to_string(seconds), chosenText});
                 // A decimation that fits the whole reference is lossless (PSNR capped at 120 dB):
                 // in the CSV, off the plots, whose scale it would flatten.
                 if (q->psnrHoldout >= 100.0) continue;
@@ -75,7 +76,7 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
                     (*series)[method].x.push_back(double(q->bytes));
                 }
                 psnr[method].y.push_back(q->psnrHoldout);
-                distance[method].y.push_back(q->distance.meanDistance);
+                distance[method].y.push_back(d.meanDistance);
             }
             // Where the seconds went, stage by stage.
             std::printf("%-18.18s %8ju  seconds by stage:", name.c_str(), budget);

@@ -31,8 +31,9 @@ void printComparison(const subdfit::simplify::SimplifyReport& r) {
     std::fprintf(stderr, "%-11s %10s %12s %8s %14s %12s\n", "", "bytes", "PSNR (dB)", "SSIM", "mean distance", "Chamfer");
     auto row = [](const char* name, const std::optional<subdfit::simplify::Quality>& q) {
         if (!q) return;
-        std::fprintf(stderr, "%-11s %10llu %12.2f %8.4f %14.4e %12.4e\n", name, (unsigned long long)q->bytes, q->psnrHoldout,
-                     q->ssimHoldout, q->distance.meanDistance, q->distance.chamferL2Squared);
+        std::fprintf(stderr, "%-11s %10llu %12.2f %8.4f ", name, (unsigned long long)q->bytes, q->psnrHoldout, q->ssimHoldout);
+        if (q->distance) std::fprintf(stderr, "%14.4e %12.4e\n", q->distance->meanDistance, q->distance->chamferL2Squared);
+        else std::fprintf(stderr, "%14s %12s\n", subdfit::simplify::kNotMeasured, subdfit::simplify::kNotMeasured);
     };
     row("subdfit", r.subdfit);
     row("cage", r.cage);
@@ -114,8 +115,14 @@ int main(int argc, char** argv) {
                      "a chain of K levels of detail, about half the triangles each: OUT, OUT_lod1.glb ... and OUT_lods.json "
                      "(triangles, bytes, distances, screen sizes)")
         ->check(CLI::Range(1, subdfit::exporter::kMostLods));
-    decodeCommand->add_flag("--uncompressed", decodeUncompressed,
-                            "float attributes without EXT_meshopt_compression (what the web decoder's decode.mjs writes)");
+    bool decodeMeshopt = false;
+    decodeCommand->add_flag("--meshopt", decodeMeshopt,
+                            "EXT_meshopt_compression besides KHR_mesh_quantization: smallest, for readers with "
+                            "meshoptimizer's decoder (three.js with setMeshoptDecoder, gltfpack -c's readers)");
+    decodeCommand
+        ->add_flag("--uncompressed", decodeUncompressed,
+                   "float attributes, no extension (what the web decoder's decode.mjs writes)")
+        ->excludes("--meshopt");
 
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit")) return *exitCode;
 
@@ -131,6 +138,7 @@ int main(int argc, char** argv) {
         const subdfit::fit::FitHooks hooks{.progress = printProgress, .cancel = &subdfit::stopRequest(), .note = say("subdfit")};
         if (decodeCommand->parsed()) {
             if (decodeUncompressed) decode.coding = subdfit::exporter::MeshCoding::Float;
+            if (decodeMeshopt) decode.coding = subdfit::exporter::MeshCoding::Meshopt;
             for (const auto& written : subdfit::exporter::decodeForEngines(decodeInput, decodeOut, decode))
                 std::cout << written.path.string() << "\n";
         }

@@ -89,12 +89,14 @@ json document(const GltfMesh& tess, const FittedTextures& textures, MeshCoding c
         dracoAttributes[slots[i].name] = slots[i].dracoId;
     }
     json primitive = {{"attributes", attributes}, {"indices", slots.size()}, {"mode", kTriangles}};
-    const bool hasMaterial = tess.hasUvs() || !textures.normalPng.empty() || !textures.baseColorPng.empty();
+    // A material only where there is an appearance: a surface whose reference had none is drawn
+    // as the reader draws a mesh without one, as it drew the reference.
+    const bool hasMaterial = textures.any();
     if (hasMaterial) primitive["material"] = 0;
     json node = {{"mesh", 0}, {"name", "fitted"}};
 
-    if (coding == MeshCoding::Meshopt) {
-        const MeshoptPrimitive packed = addMeshoptPrimitive(tess, binary, accessors);
+    if (coding == MeshCoding::Meshopt || coding == MeshCoding::Quantized) {
+        const MeshoptPrimitive packed = addQuantizedPrimitive(tess, binary, accessors, coding == MeshCoding::Meshopt);
         primitive["attributes"] = packed.attributes;
         primitive["indices"] = packed.indices;
         node["translation"] = packed.translation;
@@ -132,6 +134,7 @@ json document(const GltfMesh& tess, const FittedTextures& textures, MeshCoding c
     if (hasMaterial) doc["materials"] = json::array({material(textures, doc, binary)});
     if (draco) doc["extensionsUsed"] = doc["extensionsRequired"] = json::array({kDraco});
     if (coding == MeshCoding::Meshopt) doc["extensionsUsed"] = doc["extensionsRequired"] = json::array({kMeshopt, kQuantization});
+    if (coding == MeshCoding::Quantized) doc["extensionsUsed"] = doc["extensionsRequired"] = json::array({kQuantization});
     doc["bufferViews"] = binary.views();
     doc["buffers"] = binary.buffers();
     return doc;

@@ -38,9 +38,10 @@ WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& te
                            bool draco);
 
 // How a writer stores the mesh: float accessors as they are; KHR_draco_mesh_compression
-// (export/draco_encoding.h); or KHR_mesh_quantization with EXT_meshopt_compression
-// (export/meshopt_encoding.h), what engines load. The extensions a coding uses are required.
-enum class MeshCoding { Float, Draco, Meshopt };
+// (export/draco_encoding.h); KHR_mesh_quantization alone, which every glTF reader opens with no
+// decoder set; or with EXT_meshopt_compression besides (export/meshopt_encoding.h), what engines
+// with meshoptimizer's decoder load smallest. The extensions a coding uses are required.
+enum class MeshCoding { Float, Draco, Quantized, Meshopt };
 
 // The .glb of writeFittedGlb, in memory, with the mesh stored as `coding` says.
 std::vector<unsigned char> encodeFittedGlb(const GltfMesh& tess, const FittedTextures& textures, MeshCoding coding);

@@ -25,9 +25,11 @@ inline constexpr const char* kQuantization = "KHR_mesh_quantization";
 // offsets to be multiples of the component size; ours are all 4 bytes).
 class BinaryBuilder {
 public:
-    int addView(std::span<const unsigned char> bytes, int target = 0) {
+    // `byteStride` 0: none (tightly packed, or not vertex data).
+    int addView(std::span<const unsigned char> bytes, int target = 0, int byteStride = 0) {
         data_.resize((data_.size() + 3) & ~size_t(3), 0);
         nlohmann::json view = {{"buffer", 0}, {"byteOffset", data_.size()}, {"byteLength", bytes.size()}};
+        if (byteStride) view["byteStride"] = byteStride;
         if (target) view["target"] = target;
         data_.insert(data_.end(), bytes.begin(), bytes.end());
         views_.push_back(std::move(view));

@@ -31,15 +31,22 @@ struct Stream {
     const char* filter = nullptr;  // EXT_meshopt_compression's, undone by the loader's decoder
 };
 
-// Unit vectors (w, a tangent's handedness, kept) as normalised bytes in the octahedral filter:
-// two 8-bit coordinates on the octahedron, which the codec packs far better than x, y, z.
+// Unit vectors (w, a tangent's handedness, kept) as normalised bytes: compressed, in the
+// octahedral filter (two 8-bit coordinates on the octahedron, which the codec packs far better
+// than x, y, z); plain, as x, y, z (and w) themselves, 4 bytes a vertex as glTF aligns them.
 template <typename Vec>
-Stream octahedralStream(const char* name, const std::vector<Vec>& values, const char* type) {
+Stream unitVectorStream(const char* name, const std::vector<Vec>& values, const char* type, bool compressed) {
     std::vector<glm::vec4> unit(values.size(), glm::vec4(0.0f));
     for (std::size_t v = 0; v < values.size(); ++v)
         for (int c = 0; c < Vec::length(); ++c) unit[v][c] = values[v][c];
-    Stream out{name, std::vector<std::uint8_t>(values.size() * 4, 0), 4, kByte, type, true, "OCTAHEDRAL"};
-    meshopt_encodeFilterOct(out.bytes.data(), unit.size(), 4, 8, &unit[0].x);
+    Stream out{name, std::vector<std::uint8_t>(values.size() * 4, 0), 4, kByte, type, true, compressed ? "OCTAHEDRAL" : nullptr};
+    if (compressed) {
+        meshopt_encodeFilterOct(out.bytes.data(), unit.size(), 4, 8, &unit[0].x);
+        return out;
+    }
+    for (std::size_t v = 0; v < unit.size(); ++v)
+        for (int c = 0; c < 4; ++c)
+            out.bytes[4 * v + std::size_t(c)] = std::uint8_t(std::int8_t(std::lround(std::clamp(unit[v][c], -1.0f, 1.0f) * 127.0f)));
     return out;
 }
 
@@ -64,7 +71,7 @@ Stream uvStream(const std::vector<glm::vec2>& uvs) {
 
 }  // namespace
 
-MeshoptPrimitive addMeshoptPrimitive(const GltfMesh& input, BinaryBuilder& binary, json& accessors) {
+MeshoptPrimitive addQuantizedPrimitive(const GltfMesh& input, BinaryBuilder& binary, json& accessors, bool compressed) {
     SUBDFIT_CHECK(input.attributesConsistent());
     const std::size_t vertices = input.vertexCount(), indexCount = input.indices.size();
     MeshoptPrimitive out;
@@ -86,8 +93,8 @@ MeshoptPrimitive addMeshoptPrimitive(const GltfMesh& input, BinaryBuilder& binar
         }
     out.translation = {lo.x, lo.y, lo.z};
     out.scale = step;
-    if (input.hasNormals()) streams.push_back(octahedralStream("NORMAL", input.normals, "VEC3"));
-    if (input.hasTangents()) streams.push_back(octahedralStream("TANGENT", input.tangents, "VEC4"));
+    if (input.hasNormals()) streams.push_back(unitVectorStream("NORMAL", input.normals, "VEC3", compressed));
+    if (input.hasTangents()) streams.push_back(unitVectorStream("TANGENT", input.tangents, "VEC4", compressed));
     if (input.hasUvs()) streams.push_back(uvStream(input.uvs));
 
     // Vertices that ship alike (a face border's both sides, where no attribute tells them
@@ -113,10 +120,15 @@ MeshoptPrimitive addMeshoptPrimitive(const GltfMesh& input, BinaryBuilder& binar
         const auto stride = std::size_t(s.stride);
         std::vector<std::uint8_t> ordered(n * stride);
         meshopt_remapVertexBuffer(ordered.data(), s.bytes.data(), s.bytes.size() / stride, stride, fetch.data());
-        std::vector<unsigned char> compressed(meshopt_encodeVertexBufferBound(n, stride));
-        compressed.resize(meshopt_encodeVertexBuffer(compressed.data(), compressed.size(), ordered.data(), n, stride));
-        if (compressed.empty()) throw Error("meshopt could not encode a vertex stream");
-        const int view = binary.addMeshoptView(compressed, n, s.stride, "ATTRIBUTES", kArrayBuffer, s.filter);
+        int view = -1;
+        if (compressed) {
+            std::vector<unsigned char> packed(meshopt_encodeVertexBufferBound(n, stride));
+            packed.resize(meshopt_encodeVertexBuffer(packed.data(), packed.size(), ordered.data(), n, stride));
+            if (packed.empty()) throw Error("meshopt could not encode a vertex stream");
+            view = binary.addMeshoptView(packed, n, s.stride, "ATTRIBUTES", kArrayBuffer, s.filter);
+        } else {
+            view = binary.addView(ordered, kArrayBuffer, s.stride);
+        }
         json a = accessor(view, s.componentType, n, s.type);
         if (s.normalized) a["normalized"] = true;
         if (std::string_view(s.name) == "POSITION") {
@@ -136,10 +148,17 @@ MeshoptPrimitive addMeshoptPrimitive(const GltfMesh& input, BinaryBuilder& binar
     }
 
     const bool shortIndices = n <= 65536;
-    std::vector<unsigned char> compressed(meshopt_encodeIndexBufferBound(indexCount, n));
-    compressed.resize(meshopt_encodeIndexBuffer(compressed.data(), compressed.size(), indices.data(), indexCount));
-    if (compressed.empty()) throw Error("meshopt could not encode the indices");
-    const int view = binary.addMeshoptView(compressed, indexCount, shortIndices ? 2 : 4, "TRIANGLES", kElementArrayBuffer);
+    int view = -1;
+    if (compressed) {
+        std::vector<unsigned char> packed(meshopt_encodeIndexBufferBound(indexCount, n));
+        packed.resize(meshopt_encodeIndexBuffer(packed.data(), packed.size(), indices.data(), indexCount));
+        if (packed.empty()) throw Error("meshopt could not encode the indices");
+        view = binary.addMeshoptView(packed, indexCount, shortIndices ? 2 : 4, "TRIANGLES", kElementArrayBuffer);
+    } else if (shortIndices) {
+        view = binary.addArray(std::vector<std::uint16_t>(indices.begin(), indices.end()), kElementArrayBuffer);
+    } else {
+        view = binary.addArray(indices, kElementArrayBuffer);
+    }
     accessors.push_back(accessor(view, shortIndices ? kUnsignedShort : kUnsignedInt, indexCount, "SCALAR"));
     out.indices = int(accessors.size()) - 1;
     return out;

@@ -3,8 +3,8 @@
 // (positions as 14-bit integers on one grid over the mesh's bounding cube, dequantised by the
 // node's translation and uniform scale, which leaves normals alone; normals and tangents as
 // normalised bytes in the octahedral filter; texture coordinates as normalised 16-bit integers
-// where they lie in [0, 1], floats elsewhere; indices of 16 bits where the vertices allow) and
-// EXT_meshopt_compression of every stream, after vertices equal in every quantised attribute are
+// where they lie in [0, 1], floats elsewhere; indices of 16 bits where the vertices allow) and,
+// optionally, EXT_meshopt_compression of every stream, after vertices equal in every quantised attribute are
 // merged and meshoptimizer has ordered the triangles for the vertex cache and the vertices for
 // fetching.
 #include <array>
@@ -26,7 +26,10 @@ struct MeshoptPrimitive {
     double scale = 1.0;
 };
 
-// Appends the mesh's compressed views to `binary` and its accessors to `accessors`.
-MeshoptPrimitive addMeshoptPrimitive(const GltfMesh& mesh, gltf::BinaryBuilder& binary, nlohmann::json& accessors);
+// Appends the mesh's views to `binary` and its accessors to `accessors`: compressed with
+// EXT_meshopt_compression, or (`compressed` false) plain, KHR_mesh_quantization alone, which every
+// glTF reader opens without a decoder (normals and tangents then as x, y, z normalised bytes).
+MeshoptPrimitive addQuantizedPrimitive(const GltfMesh& mesh, gltf::BinaryBuilder& binary, nlohmann::json& accessors,
+                                       bool compressed);
 
 }  // namespace subdfit::exporter

@@ -28,6 +28,6 @@ DecodeInput readForDecode(const std::filesystem::path& subd, const DensityReques
 // the file for a bad input, an impossible density or an output that may not be written (empty,
 // the input itself, a folder, anything but a regular file), before any work.
 WrittenFile decodeToGlb(const std::filesystem::path& subd, const std::filesystem::path& out, const DensityRequest& request = {},
-                        MeshCoding coding = MeshCoding::Meshopt);
+                        MeshCoding coding = MeshCoding::Quantized);
 
 }  // namespace subdfit::exporter

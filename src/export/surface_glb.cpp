@@ -21,7 +21,13 @@ SurfaceGlb surfaceGlb(const mesh::PolygonMesh& cage, const surface::SurfaceMaps&
         if (present.normalTexture) textures.normalPng = encodeAppearancePng(atlas, maps, AppearanceImage::NormalTexture);
         if (present.emissive) textures.emissivePng = encodeAppearancePng(atlas, maps, AppearanceImage::Emissive);
     }
+    withoutUnreadAttributes(glb.mesh, glb.textures);
     return glb;
+}
+
+void withoutUnreadAttributes(GltfMesh& mesh, const FittedTextures& textures) {
+    if (textures.normalPng.empty()) mesh.tangents.clear();
+    if (!textures.any()) mesh.uvs.clear();
 }
 
 WrittenFile writeSurfaceGlb(const std::filesystem::path& path, const mesh::PolygonMesh& cage,

@@ -11,13 +11,17 @@
 namespace subdfit::exporter {
 
 // What the .glb holds: the tessellation (`segments` per ptex-face edge; texcoords on the maps'
-// atlas, a one-cell layout without maps, so they still name each face's tile) and the
-// material's images (the normal map, if any, as the normalTexture), each PNG-encoded.
+// atlas where an image reads them, tangents where a normal texture does) and the material's
+// images (the normal map, if any, as the normalTexture), each PNG-encoded; no image, no material.
 struct SurfaceGlb {
     GltfMesh mesh;
     FittedTextures textures;
 };
 SurfaceGlb surfaceGlb(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps, int segments);
+
+// `mesh` without what no image of `textures` reads: tangents without a normal texture, texture
+// coordinates without any image (surfaceGlb's mesh is so already; a level of detail made apart).
+void withoutUnreadAttributes(GltfMesh& mesh, const FittedTextures& textures);
 
 WrittenFile writeSurfaceGlb(const std::filesystem::path& path, const mesh::PolygonMesh& cage,
                             const surface::SurfaceMaps& maps, int segments, MeshCoding coding);

@@ -103,7 +103,7 @@ nlohmann::json identityOrPath(const BatchItem& item) {
     } catch (const Interrupted&) {
         throw;
     } catch (const Error&) {
-        return nlohmann::json{{"input", {{"path", item.options.fit.reference.string()}}}};
+        return nlohmann::json{{"input", {{"path", item.options.fit.reference.string()}}}, {"settings", settingsJson(item.options)}};
     }
 }
 
@@ -167,8 +167,10 @@ void recordFailure(const BatchItem& item, const fs::path& out, const std::except
     std::error_code ec;
     if (io::isStrictlyInside(partial, out) && !fs::is_symlink(fs::symlink_status(partial, ec))) {
         fs::create_directories(partial, ec);
-        writeStatusOrSay(partial, "failed", {{"error", e.what()}, {"reference", item.options.fit.reference.string()}},
-                         say, item.name);
+        // With the input-and-settings record a retry compares, so that it keeps the partial work.
+        nlohmann::json details = identityOrPath(item);
+        details.update({{"error", e.what()}, {"reference", item.options.fit.reference.string()}});
+        writeStatusOrSay(partial, "failed", details, say, item.name);
     }
 }
 

@@ -194,8 +194,11 @@ TEST(SimplifyBatch, SkipsFinishedResumesInterruptedAndRecordsFailures) {
     EXPECT_EQ(failed["state"], "failed");
     EXPECT_NE(failed["error"].get<std::string>().find("missing.obj"), std::string::npos);
 
-    // A plain re-run resumes the interrupted asset, finishes the others, still fails the bad one.
-    const auto second = simplify::runBatch(items, out, {});
+    // A plain re-run resumes the interrupted asset, finishes the others, still fails the bad one,
+    // whose retry finds its partial folder from the same input and settings (nothing changed).
+    std::string said;
+    const auto second = simplify::runBatch(items, out, {}, {}, [&](const std::string& line) { said += line + "\n"; });
+    EXPECT_EQ(said.find("another version"), std::string::npos) << said;
     EXPECT_EQ(second.finished, 2);
     // Each finished asset counts the route it shipped, and its status says which.
     int routed = 0;

@@ -55,7 +55,7 @@ nlohmann::json glbJson(const fs::path& path) {
 TEST(EngineDecode, MeshoptOutputReadsBackAsTheFloatSurfaceWithinItsQuantisation) {
     const auto dir = test::scratchDir("engine_decode_meshopt");
     writeSubd(dir / "asset.subd", lumpySphere(20000));
-    const auto compact = decodeToGlb(dir / "asset.subd", dir / "compact.glb");
+    const auto compact = decodeToGlb(dir / "asset.subd", dir / "compact.glb", {}, MeshCoding::Meshopt);
     const auto plain = decodeToGlb(dir / "asset.subd", dir / "plain.glb", {}, MeshCoding::Float);
     EXPECT_LT(compact.bytes * 3, plain.bytes);  // positions, normals, tangents, texcoords packed
     const nlohmann::json doc = glbJson(dir / "compact.glb");
@@ -74,12 +74,44 @@ TEST(EngineDecode, MeshoptOutputReadsBackAsTheFloatSurfaceWithinItsQuantisation)
     EXPECT_GT(d.hausdorff, 0.0);           // and it is quantised
 }
 
+// The default: KHR_mesh_quantization alone, which every glTF reader opens with no decoder set (as
+// Blender's importer and three's GLTFLoader do): plain views, 14-bit positions, normals as bytes,
+// no material, texture coordinates or tangents for a surface that has no image.
+TEST(EngineDecode, TheDefaultIsQuantisedWithNoDecoderNeeded) {
+    const auto dir = test::scratchDir("engine_decode_quantized");
+    writeSubd(dir / "asset.subd", lumpySphere(20000));
+    const auto quantized = decodeToGlb(dir / "asset.subd", dir / "quantized.glb");
+    const auto plain = decodeToGlb(dir / "asset.subd", dir / "plain.glb", {}, MeshCoding::Float);
+    EXPECT_LT(quantized.bytes * 2, plain.bytes);
+    const nlohmann::json doc = glbJson(dir / "quantized.glb");
+    EXPECT_EQ(doc["extensionsRequired"], nlohmann::json({"KHR_mesh_quantization"}));
+    EXPECT_EQ(doc["buffers"].size(), 1u);
+    for (const auto& view : doc["bufferViews"]) EXPECT_FALSE(view.contains("extensions"));
+    const auto& attributes = doc["meshes"][0]["primitives"][0]["attributes"];
+    EXPECT_EQ(doc["accessors"][attributes["POSITION"].get<int>()]["componentType"], 5123);
+    EXPECT_EQ(doc["accessors"][attributes["NORMAL"].get<int>()]["componentType"], 5120);
+    EXPECT_FALSE(attributes.contains("TEXCOORD_0"));
+    EXPECT_FALSE(attributes.contains("TANGENT"));
+    EXPECT_FALSE(doc.contains("materials"));
+    for (const char* name : {"plain.glb"}) {
+        const nlohmann::json floats = glbJson(dir / name);
+        EXPECT_FALSE(floats.contains("materials")) << name;  // no grey invented for a reference that had none
+        EXPECT_FALSE(floats["meshes"][0]["primitives"][0]["attributes"].contains("TEXCOORD_0")) << name;
+    }
+    const mesh::PolygonMesh a = mesh::loadMesh(dir / "quantized.glb"), b = mesh::loadMesh(dir / "plain.glb");
+    ASSERT_EQ(a.faceCount(), b.faceCount());
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const glm::vec3& p : b.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const float step = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) / float((1 << kQuantisedPositionBits) - 1);
+    EXPECT_LE(geometry::surfaceDistance(a, b, 20000).hausdorff, double(step));
+}
+
 // Normals ship in the octahedral filter and read back (through meshoptimizer's decoder, as
 // engines' do) within a degree or two of the float file's at the same point.
 TEST(EngineDecode, OctahedralNormalsReadBackAsTheFloatOnes) {
     const auto dir = test::scratchDir("engine_decode_normals");
     writeSubd(dir / "asset.subd", lumpySphere(3000));
-    decodeForEngines(dir / "asset.subd", dir / "compact.glb", EngineDecodeOptions{});
+    decodeForEngines(dir / "asset.subd", dir / "compact.glb", EngineDecodeOptions{.coding = MeshCoding::Meshopt});
     decodeToGlb(dir / "asset.subd", dir / "plain.glb", {}, MeshCoding::Float);
     const nlohmann::json doc = glbJson(dir / "compact.glb");
     const int normal = doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"];

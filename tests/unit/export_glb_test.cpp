@@ -276,12 +276,14 @@ TEST_F(ExportGlb, DracoGlbIsSmallerAndDecodesToTheSameSurface) {
     }
 }
 
+// No image, no material: the surface is drawn as a reader draws a mesh without one, as it drew
+// a reference that had none (not in a grey of subdfit's own).
 TEST_F(ExportGlb, GlbWithoutNormalMapHasNoTexture) {
     const WrittenFile file = writeFittedGlb(*dir_ / "untextured.glb", *tess_, FittedTextures{}, false);
     const json doc = readGlb(file.path).document;
     EXPECT_FALSE(doc.contains("images"));
     EXPECT_FALSE(doc.contains("textures"));
-    EXPECT_FALSE(doc["materials"][0].contains("normalTexture"));
+    EXPECT_FALSE(doc.contains("materials"));
     EXPECT_EQ(size_t(mesh::readGltf(file.path).vertexCount()), tess_->vertexCount());
 }
 

@@ -3,6 +3,7 @@
 // resolves with the figures of that first frame.
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { SubdLoader } from '../subd_loader.mjs';
 
@@ -27,7 +28,9 @@ scene.add(sun);
 const camera = new THREE.PerspectiveCamera(35, renderer.domElement.width / renderer.domElement.height, 0.01, 100);
 
 function load() {
-  if (useGltf) return new GLTFLoader().loadAsync(src).then((gltf) => gltf.scene);
+  // `subdfit decode` writes KHR_mesh_quantization, which GLTFLoader reads as it is; with
+  // --meshopt, EXT_meshopt_compression besides, which needs meshoptimizer's decoder.
+  if (useGltf) return new GLTFLoader().setMeshoptDecoder(MeshoptDecoder).loadAsync(src).then((gltf) => gltf.scene);
   const loader = new SubdLoader();
   if (params.has('triangles')) loader.setTriangles(Number(params.get('triangles')));
   return loader.loadAsync(src);
@@ -49,7 +52,13 @@ function frame(object) {
 }
 
 let triangles = 0;
+// A surface without an appearance comes in glTF's default material, fully metallic, which shows
+// dark with no environment to reflect: the page draws it in a neutral grey instead, either loader.
+const grey = new THREE.MeshStandardMaterial({ color: 0xcccccc, metalness: 0, roughness: 0.5 });
 const ready = load().then((object) => {
+  object.traverse((o) => {
+    if (o.isMesh && !o.material.map && !o.material.normalMap) o.material = grey;
+  });
   scene.add(object);
   object.traverse((o) => { if (o.isMesh) triangles += o.geometry.index ? o.geometry.index.count / 3 : 0; });
   const sphere = frame(object);

@@ -85,11 +85,16 @@ function glbOf(decoded) {
     attributes[name] = accessors.length;
     accessors.push({ bufferView: addView(array, 34962), componentType: 5126, count: vertexCount, type });
   };
+  // As `subdfit decode` writes it: no TANGENT that no normal texture reads, no TEXCOORD_0 and no
+  // material where there is no image (a reference without an appearance is drawn as the reader
+  // draws a mesh without a material).
+  const images = decoded.images;
+  const textured = Object.keys(images).length > 0;
   addAccessor('POSITION', decoded.positions, 'VEC3');
   Object.assign(accessors[0], { min, max });
   addAccessor('NORMAL', decoded.normals, 'VEC3');
-  if (decoded.tangents) addAccessor('TANGENT', decoded.tangents, 'VEC4');
-  addAccessor('TEXCOORD_0', decoded.uvs, 'VEC2');
+  if (decoded.tangents && images.normal) addAccessor('TANGENT', decoded.tangents, 'VEC4');
+  if (textured) addAccessor('TEXCOORD_0', decoded.uvs, 'VEC2');
   accessors.push({ bufferView: addView(decoded.indices, 34963), componentType: 5125, count: decoded.indices.length, type: 'SCALAR' });
 
   const m = decoded.material;
@@ -98,9 +103,10 @@ function glbOf(decoded) {
     scene: 0,
     scenes: [{ nodes: [0] }],
     nodes: [{ mesh: 0, name: 'fitted' }],
-    meshes: [{ name: 'fitted', primitives: [{ attributes, indices: accessors.length - 1, mode: 4, material: 0 }] }],
+    meshes: [{ name: 'fitted', primitives: [{ attributes, indices: accessors.length - 1, mode: 4 }] }],
     accessors,
   };
+  if (textured) doc.meshes[0].primitives[0].material = 0;
   const pbr = { baseColorFactor: m.baseColorFactor, metallicFactor: m.metallicFactor, roughnessFactor: m.roughnessFactor };
   const material = { name: 'subdfit', pbrMetallicRoughness: pbr };
   const texture = (image, name) => {
@@ -112,7 +118,6 @@ function glbOf(decoded) {
     doc.textures.push({ sampler: 0, source: doc.images.length - 1 });
     return { index: doc.textures.length - 1 };
   };
-  const images = decoded.images;
   if (images.baseColor) pbr.baseColorTexture = texture(images.baseColor, 'base_color');
   if (images.metallicRoughness) {
     pbr.metallicRoughnessTexture = texture(images.metallicRoughness, 'metallic_roughness');
@@ -123,7 +128,7 @@ function glbOf(decoded) {
     material.emissiveTexture = texture(images.emissive, 'emissive');
     material.emissiveFactor = m.emissiveFactor;
   }
-  doc.materials = [material];
+  if (textured) doc.materials = [material];
   doc.bufferViews = views;
   doc.buffers = [{ byteLength: length }];
 

@@ -85,6 +85,10 @@ function geometryOf(decoded) {
 }
 
 async function materialOf(decoded, loader) {
+  // No image: decode's glb has no material (its reference had none), and GLTFLoader draws such a
+  // primitive in glTF's default material (white, fully metallic, fully rough): so does this.
+  if (Object.keys(decoded.images).length === 0)
+    return new MeshStandardMaterial({ color: 0xffffff, emissive: 0x000000, metalness: 1, roughness: 1 });
   const m = decoded.material;
   const material = new MeshStandardMaterial({
     metalness: m.metallicFactor,

@@ -58,9 +58,7 @@ std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, con
         std::vector<std::vector<unsigned char>> encoded;
         std::vector<std::size_t> meshBytes;
         for (LodLevel& level : chain.levels) {
-            // Compact files carry no TANGENT that no normal texture reads, no TEXCOORD_0 that no image reads.
-            if (o.coding == MeshCoding::Meshopt && glb.textures.normalPng.empty()) level.mesh.tangents.clear();
-            if (o.coding == MeshCoding::Meshopt && !glb.textures.any()) level.mesh.uvs.clear();
+            withoutUnreadAttributes(level.mesh, glb.textures);
             encoded.push_back(encodeFittedGlb(level.mesh, glb.textures, o.coding));
             meshBytes.push_back(glb.textures.any() ? encodeFittedGlb(level.mesh, {}, o.coding).size() : encoded.back().size());
         }
@@ -87,7 +85,9 @@ std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, con
             nlohmann::json doc = {
                 {"asset", subd.filename().string()},
                 {"decode_triangles", asset.decodeTriangles},
-                {"coding", o.coding == MeshCoding::Meshopt ? "KHR_mesh_quantization, EXT_meshopt_compression" : "float"},
+                {"coding", o.coding == MeshCoding::Meshopt     ? "KHR_mesh_quantization, EXT_meshopt_compression"
+                           : o.coding == MeshCoding::Quantized ? "KHR_mesh_quantization"
+                                                               : "float"},
                 {"distances", "mean and largest sampled distance to lod 0, both ways, in the asset's units"},
                 {"screen_size_rule",
                  {{"pixel_error", o.screenSize.pixelError},

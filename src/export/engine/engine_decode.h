@@ -1,8 +1,9 @@
 #pragma once
 // `subdfit decode` as engines want it: the density by default, from --triangles / --tess, or
 // from an error bound (--max-error, error_density.h); optionally a chain of levels of detail
-// (--lods, lod_chain.h) described in a JSON beside them; every mesh quantised and
-// meshopt-compressed unless the caller asks for floats (export/glb_writer.h MeshCoding).
+// (--lods, lod_chain.h) described in a JSON beside them; every mesh quantised
+// (KHR_mesh_quantization, which every glTF reader opens), meshopt-compressed where the caller
+// asks, or floats (export/glb_writer.h MeshCoding).
 #include <filesystem>
 #include <optional>
 #include <vector>
@@ -19,7 +20,7 @@ struct EngineDecodeOptions {
     DensityRequest density{};              // --triangles / --tess; 0: the default
     std::optional<ErrorBound> maxError{};  // --max-error, instead of `density`
     int lods = 0;                          // --lods K: K files and the JSON; 0: one file, no JSON
-    MeshCoding coding = MeshCoding::Meshopt;
+    MeshCoding coding = MeshCoding::Quantized;
     ScreenSizeRule screenSize{};
 };
 

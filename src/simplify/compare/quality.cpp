@@ -8,12 +8,16 @@
 namespace subdfit::simplify {
 
 nlohmann::json toJson(const Quality& q) {
+    // A distance the run did not measure says so, rather than a 0 that reads as a perfect one.
+    auto measured = [&](double geometry::SurfaceDistance::*field) -> nlohmann::json {
+        return q.distance ? nlohmann::json((*q.distance).*field) : nlohmann::json(kNotMeasured);
+    };
     nlohmann::json j = {{"psnr_holdout", q.psnrHoldout},
                         {"ssim_holdout", q.ssimHoldout},
                         {"psnr_holdout_views", q.psnrViews},
-                        {"chamfer", q.distance.chamferL2Squared},
-                        {"hausdorff", q.distance.hausdorff},
-                        {"mean_distance", q.distance.meanDistance},
+                        {"chamfer", measured(&geometry::SurfaceDistance::chamferL2Squared)},
+                        {"hausdorff", measured(&geometry::SurfaceDistance::hausdorff)},
+                        {"mean_distance", measured(&geometry::SurfaceDistance::meanDistance)},
                         {"bytes", q.bytes},
                         {"files", q.files}};
     if (!q.shipped.empty()) j["path"] = q.shipped.generic_string();

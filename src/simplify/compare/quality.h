@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -26,7 +27,8 @@ struct Quality {
     // Each held-out view's own PSNR: psnrHoldout is of their mean loss, so one bad view can
     // decide it, and this says which.
     std::vector<double> psnrViews;
-    geometry::SurfaceDistance distance;  // in the reference's units
+    // In the reference's units; none where the run measured no distance (--compare none, fast).
+    std::optional<geometry::SurfaceDistance> distance;
     std::uintmax_t bytes = 0;
     nlohmann::json files = nlohmann::json::object();  // {shipped file: bytes}
     // The file a consumer opens (a .glb, or the asset.subd), relative to the output folder:
@@ -35,6 +37,9 @@ struct Quality {
     nlohmann::json details = nlohmann::json::object();  // what else the report should say
     std::vector<glm::vec4> view;  // held-out view 0 as rendered, for the side-by-side
 };
+
+// What report.json and the terminal say for a distance a run did not measure.
+inline constexpr const char* kNotMeasured = "not measured";
 
 nlohmann::json toJson(const Quality& quality);
 
