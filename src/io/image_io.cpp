@@ -190,13 +190,13 @@ DecodePlan planDecode(const void* data, std::size_t size, const std::string& nam
 
 DecodedImage decodeImage(const void* data, std::size_t size, const std::string& name, const DecodePlan& plan) {
     const auto* bytes = static_cast<const unsigned char*>(data);
-    const std::string_view format = formatOf(bytes, size) ? formatOf(bytes, size) : "";
+    const char* format = formatOf(bytes, size);
     try {
-        if (format == "png") return decodePng({bytes, size}, plan.header, plan.factor, name);
-        if (format == "jpg") return decodeJpeg({bytes, size}, plan.header, plan.factor, name);
+        if (format && std::string_view(format) == "png") return decodePng({bytes, size}, plan.header, plan.factor, name);
+        if (format && std::string_view(format) == "jpg") return decodeJpeg({bytes, size}, plan.header, plan.factor, name);
         OIIO::Filesystem::IOMemReader memory(bytes, size);
-        const auto in = openImage(bytes, size, memory, name);
-        const ImageHeader header = checkedHeader(in->spec(), formatOf(bytes, size), name);
+        const auto in = openImage(bytes, size, memory, name);  // refuses an unknown format
+        const ImageHeader header = checkedHeader(in->spec(), format, name);
         if (header.width != plan.header.width || header.height != plan.header.height)
             throw fileError(name, "corrupt image: its header says " + std::to_string(plan.header.width) + " x " +
                                       std::to_string(plan.header.height) + ", its reader " + std::to_string(header.width) +

@@ -178,10 +178,10 @@ test('damage inside a section is refused as subdfit decode refuses it', () => {
 });
 
 test('mutated files decode or are refused in one line, in one instance, within its memory', async () => {
-  // A fuzz of the web decoder's file input: seeded byte mutations of each kind of asset, the
-  // checksum (which would refuse nearly all of them) made right again by the native tool where
-  // it matters is not available here, so half keep the file's checksum wrong and half mutate the
-  // trailer itself; every answer must be a decode or one Error line naming the file.
+  // Seeded byte mutations and truncations of each kind of asset through one instance: nearly all
+  // stop at the file's checksum, so this checks the module's refusal path and its memory over many
+  // refusals; hostile contents behind a valid checksum are fuzzed natively (tests/fuzz/fuzz_web.cpp,
+  // the same C++). Every answer must be a decode or one Error line naming the file.
   const { createDecoderInstance } = await import(path.join(WEB, 'subd_core.mjs'));
   const decoder = await createDecoderInstance(fs.readFileSync(path.join(WEB, 'subd_decoder_wasm.wasm')));
   let seed = 12345;
