@@ -23,11 +23,12 @@ struct SurfaceTextures {
 };
 
 // glTF's factors for those images: with a base colour the fitted material (white, rough 1,
-// metallic 1 with a metallic-roughness image, else 0), without one a grey (0.5, metallic 0,
-// roughness 0.6); an emissive image glows at factor 1.
+// metallic 1 with a metallic-roughness image, else 0); without one (a normal map on a reference
+// with no material) the surface DCC tools draw where there is no material, Blender's default
+// (0.8 grey, metallic 0, roughness 0.5); an emissive image glows at factor 1.
 struct SurfaceMaterial {
-    std::array<double, 4> baseColorFactor{0.5, 0.5, 0.5, 1.0};
-    double metallicFactor = 0.0, roughnessFactor = 0.6;
+    std::array<double, 4> baseColorFactor{0.8, 0.8, 0.8, 1.0};
+    double metallicFactor = 0.0, roughnessFactor = 0.5;
     std::array<double, 3> emissiveFactor{0.0, 0.0, 0.0};
 };
 SurfaceMaterial surfaceMaterial(const SurfaceTextures& textures);

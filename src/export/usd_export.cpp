@@ -1,7 +1,6 @@
 #include "export/usd_export.h"
 
 #include <algorithm>
-#include <cctype>
 
 #include "export/usdz_archive.h"
 #include "util/error.h"
@@ -25,19 +24,12 @@ void warnOfWhatUsdCannotSay(const std::filesystem::path& package, const mesh::Su
 
 }  // namespace
 
-UsdUnits usdUnitsOf(const std::filesystem::path& source) {
-    std::string extension = source.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (extension == ".gltf" || extension == ".glb") return {.upAxis = "Y", .metersPerUnit = 1.0};
-    return {};
-}
-
-std::vector<WrittenFile> writeUsd(const std::filesystem::path& dir, const SubdAsset& asset, const UsdUnits& units, bool text) {
+std::vector<WrittenFile> writeUsd(const std::filesystem::path& dir, const SubdAsset& asset, bool text) {
     std::vector<WrittenFile> written;
     const auto package = dir / kUsdPackageFile;
     warnOfWhatUsdCannotSay(package, asset.cage.tags);
     try {
-        UsdStage stage = usdStage(asset, units);
+        UsdStage stage = usdStage(asset);
         std::vector<UsdzEntry> entries{{kUsdTextFile, bytesOf(stage.layer)}};
         for (UsdTextureFile& texture : stage.textures) entries.push_back({texture.name, std::move(texture.bytes)});
         written.push_back(writeBytes(package, usdzArchive(entries)));
@@ -45,7 +37,7 @@ std::vector<WrittenFile> writeUsd(const std::filesystem::path& dir, const SubdAs
         if (std::string(e.what()).starts_with(package.string())) throw;
         throw fileError(package.string(), e.what());
     }
-    if (text) written.push_back(writeBytes(dir / kUsdTextFile, bytesOf(usdStage(asset, units, kUsdPackageFile).layer)));
+    if (text) written.push_back(writeBytes(dir / kUsdTextFile, bytesOf(usdStage(asset, kUsdPackageFile).layer)));
     return written;
 }
 

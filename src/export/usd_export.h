@@ -13,13 +13,8 @@ namespace subdfit::exporter {
 inline constexpr const char* kUsdPackageFile = "asset.usdz";
 inline constexpr const char* kUsdTextFile = "asset.usda";
 
-// What the source's format says of its axes and units: glTF is Y up in metres (glTF 2.0, 3.4);
-// OBJ and Draco files say nothing (UsdUnits' fallbacks).
-UsdUnits usdUnitsOf(const std::filesystem::path& source);
-
 // Writes dir/asset.usdz and, with `text`, dir/asset.usda, each atomically. Throws subdfit::Error
 // naming the file that could not be written.
-std::vector<WrittenFile> writeUsd(const std::filesystem::path& dir, const SubdAsset& asset, const UsdUnits& units,
-                                  bool text = false);
+std::vector<WrittenFile> writeUsd(const std::filesystem::path& dir, const SubdAsset& asset, bool text = false);
 
 }  // namespace subdfit::exporter

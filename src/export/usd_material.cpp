@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "export/map_atlas.h"
+#include "export/surface_mesh.h"
 #include "util/error.h"
 
 namespace subdfit::exporter {
@@ -88,6 +89,11 @@ public:
         for (const std::string& output : t.outputs) layer_.line(output);
         layer_.end();
         files_.push_back({t.file, std::move(bytes)});
+    }
+
+    // `type inputs:name = value` on the surface.
+    void set(const std::string& type, const std::string& input, const std::string& value) {
+        connections_.push_back(type + " inputs:" + input + " = " + value);
     }
 
     // `type inputs:name.connect = <texture.outputs:output>` on the surface.
@@ -206,6 +212,11 @@ std::vector<UsdTextureFile> writeMaterialPrim(usda::Layer& layer, const surface:
                             encodeAppearancePng(atlas, maps, AppearanceImage::NormalTexture));
             network.connect("normal3f", "normal", "NormalTexture", "rgb");
         }
+    }
+    if (!maps.hasBaseColor()) {
+        // UsdPreviewSurface's own 0.18 would draw darker than the glTF beside it and the reference.
+        const auto& grey = SurfaceMaterial{}.baseColorFactor;
+        network.set("color3f", "diffuseColor", usda::tuple(glm::vec3(float(grey[0]), float(grey[1]), float(grey[2]))));
     }
     network.surface(displaced);
     layer.end();

@@ -6,7 +6,7 @@
 
 namespace subdfit::exporter {
 
-UsdStage usdStage(const SubdAsset& asset, const UsdUnits& units, const std::string& textureLocation) {
+UsdStage usdStage(const SubdAsset& asset, const std::string& textureLocation) {
     const surface::SurfaceMaps& maps = asset.maps;
     const std::vector<UsdTexCoords> texCoords = usdTexCoords(maps);
     const subdiv::RefinedCage cage = usdCageOf(asset.cage, !texCoords.empty());
@@ -15,8 +15,8 @@ UsdStage usdStage(const SubdAsset& asset, const UsdUnits& units, const std::stri
     layer.line("(");
     layer.line("    defaultPrim = \"Asset\"");
     layer.line("    doc = \"subdfit: a Catmull-Clark cage with its displacement and appearance maps (docs/usd.md)\"");
-    layer.line("    metersPerUnit = " + usda::number(units.metersPerUnit));
-    layer.line("    upAxis = " + usda::quoted(units.upAxis));
+    layer.line("    metersPerUnit = 1");
+    layer.line("    upAxis = \"Y\"");
     layer.line(")");
     layer.blank();
 

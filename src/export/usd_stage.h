@@ -11,21 +11,16 @@
 
 namespace subdfit::exporter {
 
-// Stage metadata: what the source file says of its axes and units. USD's own fallbacks (Y up,
-// centimetres) where it says nothing: written all the same, so that no reader has to guess.
-struct UsdUnits {
-    std::string upAxis = "Y";
-    double metersPerUnit = 0.01;
-};
-
 struct UsdStage {
     std::string layer;                     // .usda text
     std::vector<UsdTextureFile> textures;  // the images it names
 };
 
+// The stage is Y up in metres, as the glTF beside it (glTF 2.0, 3.4): a reader opening both, or
+// the source OBJ (read as Blender and three.js read it, a unit a metre), sees one size.
 // `textureLocation` goes before each image's name in the layer's asset paths: "" inside the
 // package, e.g. "asset.usdz" for a layer beside it (read as "asset.usdz[name]", USD's path of a
 // file inside a package). `asset` as readSubd() returns it: what ships.
-UsdStage usdStage(const SubdAsset& asset, const UsdUnits& units, const std::string& textureLocation = "");
+UsdStage usdStage(const SubdAsset& asset, const std::string& textureLocation = "");
 
 }  // namespace subdfit::exporter

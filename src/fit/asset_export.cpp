@@ -29,8 +29,7 @@ nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene:
 nlohmann::json exportUsd(const FitOptions& o, const std::filesystem::path& dir) {
     nlohmann::json files = nlohmann::json::object();
     if (o.usd == UsdExport::None) return files;
-    const auto written = exporter::writeUsd(dir, exporter::readSubd(dir / "asset.subd"), exporter::usdUnitsOf(o.reference),
-                                            o.usd == UsdExport::UsdzAndUsda);
+    const auto written = exporter::writeUsd(dir, exporter::readSubd(dir / "asset.subd"), o.usd == UsdExport::UsdzAndUsda);
     for (const auto& file : written) files[file.path.filename().string()] = file.bytes;
     return files;
 }

@@ -138,7 +138,7 @@ TEST(SubdShipped, TheSurfaceDecodeWritesHasTheMaterialsTexturesAndFactors) {
     EXPECT_EQ(material.metallicFactor, 1.0);
     EXPECT_EQ(material.roughnessFactor, 1.0);
     EXPECT_EQ(material.emissiveFactor[0], 1.0);
-    EXPECT_EQ(surfaceMaterial({}).roughnessFactor, 0.6);  // decode's grey without a base colour
+    EXPECT_EQ(surfaceMaterial({}).roughnessFactor, 0.5);  // Blender's default surface without a base colour
 
     const GltfMesh mesh = surfaceGltfMesh(asset.cage, asset.maps, textures, 3);
     const auto tessellation = surface::tessellate(asset.cage, asset.maps, 3);

@@ -141,7 +141,6 @@ TilePoint tilePointOf(const exporter::AtlasLayout& atlas, glm::vec2 st) {
 }
 
 struct Expected {
-    exporter::UsdUnits units;
     bool refined = false;  // written refined once
 };
 
@@ -153,8 +152,8 @@ void checkExport(const exporter::SubdAsset& shipped, const fs::path& dir, const 
     for (const auto& finding : usd["validation"]) errors += finding["type"].get<std::string>().find("Error") != std::string::npos;
     EXPECT_EQ(errors, 0) << usd["validation"].dump(1);
     EXPECT_GE(usd["validators"].size(), 20u);  // the pinned usd-core registers 30
-    EXPECT_EQ(usd["stage"]["upAxis"], expected.units.upAxis);
-    EXPECT_EQ(usd["stage"]["metersPerUnit"].get<double>(), expected.units.metersPerUnit);
+    EXPECT_EQ(usd["stage"]["upAxis"], "Y");  // as the glTF beside it, whatever the source
+    EXPECT_EQ(usd["stage"]["metersPerUnit"].get<double>(), 1.0);
     EXPECT_TRUE(usd["stage"]["hasAuthoredMetersPerUnit"].get<bool>());
     EXPECT_EQ(usd["stage"]["defaultPrim"], "/Asset");
 
@@ -315,8 +314,8 @@ TEST_P(UsdExport, OpensValidAndReproducesTheCageAndItsHeights) {
     const mesh::PolygonMesh cage = mesh::loadMesh(assetPath(GetParam().file));
     const exporter::SubdAsset asset = shipped(cage, wavyMaps(cage, 4, GetParam().normal));
     const fs::path dir = scratchDir(std::string("usd_") + fs::path(GetParam().file).stem().string());
-    exporter::writeUsd(dir, asset, exporter::usdUnitsOf(GetParam().file), true);
-    checkExport(asset, dir, {.units = {}, .refined = !allQuads(cage)});
+    exporter::writeUsd(dir, asset, true);
+    checkExport(asset, dir, {.refined = !allQuads(cage)});
     if (GetParam().normal) {
         const json usd = readWithUsd(dir / "asset.usdz", dir / "read_normal");
         const json& normal = usd["material"]["inputs"]["normal"];
@@ -347,8 +346,8 @@ TEST(UsdExport, ABareTriangleCageIsWrittenAsItIs) {
     ASSERT_FALSE(allQuads(cage));
     const exporter::SubdAsset asset = shipped(cage, {});
     const fs::path dir = scratchDir("usd_bare_spot");
-    exporter::writeUsd(dir, asset, exporter::usdUnitsOf("spot.obj"));
-    checkExport(asset, dir, {.units = {}, .refined = false});
+    exporter::writeUsd(dir, asset);
+    checkExport(asset, dir, {.refined = false});
     EXPECT_FALSE(fs::exists(dir / "asset.usda"));
 }
 
@@ -373,8 +372,8 @@ TEST(UsdExport, ATexturedAssetCarriesItsAppearance) {
     const exporter::SubdAsset asset = shipped(cage, maps);
     ASSERT_TRUE(asset.maps.appearanceAtlas.present());
     const fs::path dir = scratchDir("usd_duck_atlas");
-    exporter::writeUsd(dir, asset, exporter::usdUnitsOf("Duck.glb"));
-    checkExport(asset, dir, {.units = {.upAxis = "Y", .metersPerUnit = 1.0}, .refined = true});
+    exporter::writeUsd(dir, asset);
+    checkExport(asset, dir, {.refined = true});
 
     const json usd = readWithUsd(dir / "asset.usdz", dir / "read_appearance");
     const json& inputs = usd["material"]["inputs"];
@@ -418,8 +417,8 @@ TEST(UsdExport, AnAppearanceOnTilesHasItsOwnCoordinates) {
     maps.setAppearance(simplify::bakeAppearance(cage, reference, {.effects = {.baseColor = true}, .resolution = 4}));
     const exporter::SubdAsset asset = shipped(cage, maps);
     const fs::path dir = scratchDir("usd_box_tiles");
-    exporter::writeUsd(dir, asset, exporter::usdUnitsOf("BoxTextured.glb"));
-    checkExport(asset, dir, {.units = {.upAxis = "Y", .metersPerUnit = 1.0}, .refined = true});
+    exporter::writeUsd(dir, asset);
+    checkExport(asset, dir, {.refined = true});
     const json usd = readWithUsd(dir / "asset.usdz", dir / "read_tiles");
     EXPECT_EQ(usd["material"]["inputs"]["diffuseColor"]["primvar"], "st1");
     EXPECT_EQ(usd["cage"]["primvars"]["st1"]["interpolation"], "faceVarying");
@@ -433,9 +432,9 @@ TEST(UsdExport, WarnsThatChaikinCreasesRenderUniform) {
     std::vector<std::string> warnings;
     const auto previous = setWarningSink([&](const std::string& w) { warnings.push_back(w); });
     const fs::path dir = scratchDir("usd_chaikin");
-    exporter::writeUsd(dir, shipped(cage, {}), {});
+    exporter::writeUsd(dir, shipped(cage, {}));
     cage.tags.creaseMethod = mesh::CreaseMethod::Uniform;
-    exporter::writeUsd(dir, shipped(cage, {}), {});
+    exporter::writeUsd(dir, shipped(cage, {}));
     setWarningSink(previous);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("asset.usdz: USD has no Chaikin crease method"), std::string::npos) << warnings[0];

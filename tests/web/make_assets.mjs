@@ -1,7 +1,7 @@
 // CTest fixture of the web tests: small asset.subd files of each kind the decoder reads, made
 // by this build's subdfit in seconds, with `subdfit decode --uncompressed`'s glb of each (default
 // density and --triangles): float positions, as the web decoder's decode.mjs writes them. Files
-// already there are kept.
+// already there are kept unless this subdfit is newer.
 //   SUBDFIT=<subdfit> node make_assets.mjs SOURCE_DIR OUT_DIR
 import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -35,14 +35,17 @@ function run(args) {
   if (result.status !== 0) throw new Error(`subdfit ${args.join(' ')}: ${result.error ?? result.stderr.trim().split('\n').pop()}`);
 }
 
+const built = fs.statSync(subdfit).mtimeMs;
+const current = (file) => fs.existsSync(file) && fs.statSync(file).mtimeMs >= built;
+
 for (const [name, command] of Object.entries(ASSETS)) {
   const dir = path.join(out, name);
-  if (!fs.existsSync(path.join(dir, 'asset.subd'))) {
+  if (!current(path.join(dir, 'asset.subd'))) {
     fs.rmSync(dir, { recursive: true, force: true });
     run([...command, '--out', dir]);
   }
   for (const [glb, extra] of [['native.glb', []], ['native_50000.glb', ['--triangles', '50000']]])
-    if (!fs.existsSync(path.join(dir, glb)))
+    if (!current(path.join(dir, glb)))
       run(['decode', path.join(dir, 'asset.subd'), '--out', path.join(dir, glb), '--uncompressed', ...extra]);
   process.stdout.write(`${name}: ${fs.statSync(path.join(dir, 'asset.subd')).size} bytes\n`);
 }
