@@ -1,13 +1,16 @@
 // `subdfit-bench simplify`: what a simplified asset's bytes buy. For each dense reference and
 // byte budget, `subdfit simplify --budget` and its baselines at the same bytes (decimation +
 // Draco, gltfpack when installed, the bake route); plotted as held-out PSNR and symmetric mean
-// surface distance against bytes, one pair of plots per reference.
+// surface distance against bytes, one pair of plots per reference; and where the bytes of each
+// asset.subd it wrote go (the shipped one, the bake baseline's): cage connectivity, positions,
+// polygon marks, tags and each map, with the cage's faces, quads and regular vertices.
 #include <cstdio>
 #include <map>
 
 #include "bench_commands.h"
 #include "bench_common.h"
 #include "plot.h"
+#include "subd_bytes.h"
 #include "simplify/simplify_job.h"
 
 namespace subdfit::bench {
@@ -30,6 +33,10 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
     std::vector<std::vector<std::string>> rows{{"reference", "budget", "method", "bytes", "psnr_holdout", "ssim_holdout",
                                                 "mean_distance", "chamfer", "hausdorff", "seconds", "chosen"}};
     std::vector<std::vector<std::string>> stageRows{{"reference", "budget", "route", "stage", "seconds"}};
+    std::vector<std::vector<std::string>> byteRows{{"reference", "budget", "file", "bytes", "faces", "quads", "vertices",
+                                                    "regular_vertices", "cage_connectivity", "cage_positions",
+                                                    "cage_polygon_marks", "cage_tags", "cage_section", "maps",
+                                                    "cage_bytes_per_face"}};
     std::printf("%-18s %8s  %-10s %8s %9s %7s %13s %9s  %s\n", "reference", "budget", "method", "bytes", "PSNR dB",
                 "SSIM", "mean distance", "seconds", "chosen");
     for (const auto& reference : references) {
@@ -85,8 +92,26 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
                 stageRows.push_back({name, std::to_string(budget), report.route.shipped, stage, std::to_string(seconds)});
             }
             std::printf(" (total %.1f)\n", report.seconds);
+            for (const char* file : {"asset.subd", "baselines/bake/asset.subd"}) {
+                if (!std::filesystem::exists(s.fit.out / file)) continue;
+                const SubdBytes b = subdBytes(s.fit.out / file);
+                std::size_t maps = 0;
+                for (const auto& [tag, bytes] : b.sections) maps += tag == "CAGE" ? 0 : bytes;
+                const std::size_t cage = b.sections.count("CAGE") ? b.sections.at("CAGE") : 0;
+                std::printf("%-18.18s %8ju  %s: %ju B; cage %d faces (%d quads), %d vertices (%d regular): connectivity %zu, "
+                            "positions %zu, polygon marks %zu, tags %zu (section %zu, %.2f B a face); maps %zu\n",
+                            name.c_str(), budget, file, std::uintmax_t(b.file), b.faces, b.quads, b.vertices, b.regularVertices,
+                            b.cage.connectivity, b.cage.positions, b.cage.polygonMarks, b.cage.tags, cage,
+                            double(cage) / std::max(b.faces, 1), maps);
+                byteRows.push_back({name, std::to_string(budget), file, std::to_string(b.file), std::to_string(b.faces),
+                                    std::to_string(b.quads), std::to_string(b.vertices), std::to_string(b.regularVertices),
+                                    std::to_string(b.cage.connectivity), std::to_string(b.cage.positions),
+                                    std::to_string(b.cage.polygonMarks), std::to_string(b.cage.tags), std::to_string(cage),
+                                    std::to_string(maps), std::to_string(double(cage) / std::max(b.faces, 1))});
+            }
             writeCsv(o.out / "simplify_tradeoff.csv", rows);  // after every run: a long sweep keeps what it did
             writeCsv(o.out / "simplify_stages.csv", stageRows);
+            writeCsv(o.out / "simplify_bytes.csv", byteRows);
         }
         auto plot = [&](const std::string& file, const char* yLabel, bool logY, std::map<std::string, Series>& series) {
             PlotSpec spec;

@@ -3,6 +3,7 @@
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
+#include <zstd.h>
 
 #include <glm/common.hpp>
 
@@ -24,6 +25,7 @@ namespace {
 
 enum Coding : std::uint8_t { kPlain = 0, kDraco = 1 };
 constexpr int kDracoSpeed = 5;
+constexpr int kZstdLevel = 19;  // as asset.subd packs its sections (export/subd_format.cpp)
 
 using Cell = std::array<std::int32_t, 3>;  // a quantised position
 
@@ -414,6 +416,40 @@ CageCorrespondence identity(const mesh::PolygonMesh& cage) {
 }
 
 }  // namespace
+
+CageByteParts cageByteParts(const mesh::PolygonMesh& cage, int positionBits) {
+    const auto packed = [](std::span<const unsigned char> raw) {
+        std::vector<unsigned char> out(ZSTD_compressBound(raw.size()));
+        const std::size_t size = ZSTD_compress(out.data(), out.size(), raw.data(), raw.size(), kZstdLevel);
+        if (ZSTD_isError(size)) throw Error(std::string("zstd: ") + ZSTD_getErrorName(size));
+        return size;
+    };
+    const CodedCage coded = encodeCage(cage, positionBits);
+    CageByteParts parts{.draco = coded.bytes.at(0) == kDraco, .stored = packed(coded.bytes)};
+    ByteWriter tags;
+    writeTags(cage.tags, coded.correspondence, tags);
+    parts.tags = packed(tags.bytes());
+    const Grid grid = gridFor(cage.positions, positionBits);
+    if (!parts.draco) {
+        ByteWriter plain;
+        writePlain(cage, grid, plain);
+        const std::size_t positions = 6 * std::size_t(cage.vertexCount());
+        parts.positions = packed(std::span(plain.bytes()).first(positions));
+        parts.connectivity = packed(std::span(plain.bytes()).subspan(positions));
+        return parts;
+    }
+    const auto body = dracoBody(cage, grid);
+    SUBDFIT_CHECK(body.has_value());
+    ByteReader in(body->first, "Draco body");
+    const auto draco = in.take(in.getCount(1, "Draco byte"));
+    parts.polygonMarks = packed(in.take(in.remaining()));
+    // The same triangles over one position: what Draco spends on connectivity alone.
+    const CellTriangles triangles = decodeDracoTriangles(draco, grid, "Draco cage");
+    parts.connectivity = packed(encodeDracoTriangles(std::vector<Cell>(triangles.cells.size(), Cell{}), triangles.corners));
+    const std::size_t whole = packed(draco);
+    parts.positions = whole > parts.connectivity ? whole - parts.connectivity : 0;
+    return parts;
+}
 
 CodedCage encodeCage(const mesh::PolygonMesh& cage, int positionBits) {
     SUBDFIT_CHECK(positionBits >= 8 && positionBits <= 16);

@@ -33,6 +33,18 @@ struct CodedCage {
 // `positionBits` in 8..16.
 CodedCage encodeCage(const mesh::PolygonMesh& cage, int positionBits);
 
+// What a coded cage's bytes pay for, each part zstd-packed on its own as the section is whole
+// (so that the parts add up to about the section's stored bytes): Draco's connectivity (its
+// triangles over positions all equal), the positions (the rest of Draco's bytes), the marks of
+// which triangle edges lie inside polygons, and the tags. A plain-coded cage's indices count as
+// connectivity. For `subdfit-bench simplify`'s table of where the bytes go.
+struct CageByteParts {
+    bool draco = false;
+    std::size_t connectivity = 0, positions = 0, polygonMarks = 0, tags = 0;
+    std::size_t stored = 0;  // the whole section, zstd-packed as asset.subd stores it
+};
+CageByteParts cageByteParts(const mesh::PolygonMesh& cage, int positionBits);
+
 // Reads a CAGE section. Throws subdfit::Error (in.what(): problem) for anything that is not a
 // sound cage.
 mesh::PolygonMesh decodeCage(ByteReader& in);

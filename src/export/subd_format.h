@@ -36,10 +36,11 @@ struct SubdPrecision {
     int normalBits = 10;        // over each tangent-space channel's range (1..24)
     int appearanceQuality = 90;  // JPEG quality of the appearance maps' atlases (1..100)
 
-    // What `--map-bits` and `--appearance-quality` ask for: heights at `mapBits`, normals at
-    // most 10 (finer than a renderer resolves a normal).
-    static SubdPrecision forMapBits(int mapBits, int appearanceQuality = 90) {
-        return {.displacementBits = mapBits, .normalBits = mapBits < 10 ? mapBits : 10, .appearanceQuality = appearanceQuality};
+    // What `--map-bits`, `--appearance-quality` and `--position-bits` ask for: heights at
+    // `mapBits`, normals at most 10 (finer than a renderer resolves a normal).
+    static SubdPrecision forMapBits(int mapBits, int appearanceQuality = 90, int positionBits = 14) {
+        return {.positionBits = positionBits, .displacementBits = mapBits, .normalBits = mapBits < 10 ? mapBits : 10,
+                .appearanceQuality = appearanceQuality};
     }
 };
 

@@ -17,7 +17,7 @@ nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene:
     if (fitter.maps()) written = exporter::writeMapAtlases(o.out, maps, {.compact = o.compactMaps});
     if (o.preview)
         written.push_back(exporter::writeSurfaceGlb(o.out / "fitted.glb", fittedWorld, maps, fitter.renderer().tessLevel(), o.draco));
-    const auto precision = exporter::SubdPrecision::forMapBits(o.mapBits, o.appearanceQuality);
+    const auto precision = exporter::SubdPrecision::forMapBits(o.mapBits, o.appearanceQuality, o.positionBits);
     written.push_back(exporter::writeSubd(o.out / "asset.subd", exporter::shippableAsset(fittedWorld, maps, precision.positionBits, referenceTriangles),
                                           precision));
     nlohmann::json files = nlohmann::json::object();

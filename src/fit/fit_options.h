@@ -86,6 +86,7 @@ struct FitOptions {
     int appearanceAtlas = 0;
     float mapsStart = 0.4f;       // fraction of the steps fitted by the cage alone before maps join
     int mapBits = 12;             // bits per map value in asset.subd (over each channel's range)
+    int positionBits = 14;        // bits per cage coordinate in asset.subd (over its bounding cube)
     int appearanceQuality = 90;   // JPEG quality of the appearance images in asset.subd
     bool preview = false;         // also write fitted.glb: the displaced limit surface, tessLevel per face edge
     bool draco = false;           // fitted.glb with KHR_draco_mesh_compression

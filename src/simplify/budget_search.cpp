@@ -33,12 +33,16 @@ constexpr int kLadderLength = 7;
 constexpr int kFewestFaces = 24;
 // Appearance kinds (tile resolutions, atlas sizes) whose maps ladder is tried on each cage.
 constexpr size_t kMostAppearancesWithMaps = 2;
+// Bits per cage coordinate tried below the default 14, finest first: a cage's bytes are mostly
+// its positions (Draco connectivity is about a tenth), and the triangle route searches its own.
+constexpr int kFewerPositionBits[] = {12, 11, 10};
 
 std::string describe(const BudgetCandidate& c) {
     char line[160];
     std::snprintf(line, sizeof line, "%6d faces, maps %-19s T=%d, %2d bits: %8ju bytes", c.faces,
                   maps::toString(c.maps).c_str(), c.mapResolution, c.mapBits, c.bytes);
     std::string text = line;
+    if (c.positionBits != exporter::SubdPrecision{}.positionBits) text += ", " + std::to_string(c.positionBits) + "-bit positions";
     if (c.shadingNormal == surface::ShadingNormal::Limit) text += ", limit-shaded";
     if (c.appearanceAtlas > 0)
         text += ", appearance atlas " + std::to_string(c.appearanceAtlas) + " q" + std::to_string(c.appearanceQuality);
@@ -57,10 +61,15 @@ struct Shipped {
     exporter::SubdAsset decoded;
 };
 
+exporter::SubdPrecision precisionOf(int mapBits, int appearanceQuality, int positionBits) {
+    return exporter::SubdPrecision::forMapBits(
+        mapBits, appearanceQuality > 0 ? appearanceQuality : exporter::SubdPrecision{}.appearanceQuality, positionBits);
+}
+
 Shipped ship(const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps maps, int mapBits, int appearanceQuality,
-             float frameScale) {
+             float frameScale, int positionBits = exporter::SubdPrecision{}.positionBits) {
     for (float& d : maps.displacement) d /= frameScale;  // heights in world units, as shipped
-    const auto precision = exporter::SubdPrecision::forMapBits(mapBits, appearanceQuality > 0 ? appearanceQuality : exporter::SubdPrecision{}.appearanceQuality);
+    const auto precision = precisionOf(mapBits, appearanceQuality, positionBits);
     auto encoded = std::make_shared<const std::vector<unsigned char>>(
         exporter::encodeSubd(exporter::shippableAsset(cageWorld, maps, precision.positionBits), precision));
     return {encoded, exporter::decodeSubd(*encoded, "budget candidate")};
@@ -191,7 +200,7 @@ void scoreOnMonitor(const SearchInputs& in, const mesh::PolygonMesh& cageWorld, 
     if (const double loss = fit::score(*drawn, in.scene.choosing(in.programs)).loss; loss < c.monitorLoss) {
         c.monitorLoss = loss;
         c.shadingNormal = baked.shadingNormal = surface::ShadingNormal::Limit;
-        shipped = ship(cageWorld, baked, c.mapBits, appearance.quality, in.scene.frame.scale);
+        shipped = ship(cageWorld, baked, c.mapBits, appearance.quality, in.scene.frame.scale, c.positionBits);
     }
 }
 
@@ -199,14 +208,15 @@ void scoreOnMonitor(const SearchInputs& in, const mesh::PolygonMesh& cageWorld, 
 // `appearance`, encoded and decoded as it ships, scored when it fits. Every candidate is
 // recorded, those over the budget too, so that the report shows why they lost.
 BudgetCandidate judge(const SearchInputs& in, Findings& found, const std::shared_ptr<const mesh::PolygonMesh>& cageWorld,
-                      surface::SurfaceMaps baked, const MapRecipe& recipe, const Appearance& appearance) {
+                      surface::SurfaceMaps baked, const MapRecipe& recipe, const Appearance& appearance,
+                      int positionBits = exporter::SubdPrecision{}.positionBits) {
     baked.setAppearance(appearance.maps);
     std::optional<TimedStage> timed(std::in_place, found.phases, "encode");
-    Shipped shipped = ship(*cageWorld, baked, recipe.bits, appearance.quality, in.scene.frame.scale);
+    Shipped shipped = ship(*cageWorld, baked, recipe.bits, appearance.quality, in.scene.frame.scale, positionBits);
     timed.emplace(found.phases, "render");
     const bool atlas = appearance.maps.appearanceAtlas.present();
     BudgetCandidate c{.faces = cageWorld->faceCount(), .maps = recipe.effects, .mapResolution = recipe.resolution,
-                      .mapBits = recipe.bits, .appearanceResolution = atlas ? 0 : appearance.maps.appearanceLayout.resolution,
+                      .mapBits = recipe.bits, .positionBits = positionBits, .appearanceResolution = atlas ? 0 : appearance.maps.appearanceLayout.resolution,
                       .appearanceQuality = appearance.quality, .appearanceAtlas = appearance.maps.appearanceAtlas.size,
                       .bytes = shipped.encoded->size()};
     const bool within = fits(in.search, c);
@@ -365,7 +375,41 @@ void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& ca
     }
 }
 
-// Phase four: the ladder's steps leave bytes unspent. The preferred kind of asset so far on a
+// Phase four: the best so far with its cage's positions at fewer bits, re-encoded from what it
+// shipped as, finest first, while the loss stays within kLossTolerance of the 14-bit one: the
+// bytes saved are what phase five grows the cage with.
+void fewerPositionBits(const SearchInputs& in, Findings& found) {
+    const Fitting* best = preferred(found.fitting, [](const BudgetCandidate&) { return true; }, monitored);
+    if (!best) return;
+    const BudgetCandidate start = best->candidate;
+    const exporter::SubdAsset shipped = exporter::decodeSubd(*best->encoded, "budget candidate");
+    const auto cageWorld = std::make_shared<const mesh::PolygonMesh>(shipped.cage);
+    for (int bits : kFewerPositionBits) {
+        if (bits >= start.positionBits) continue;
+        throwIfStopRequested();
+        std::optional<TimedStage> timed(std::in_place, found.phases, "encode");
+        const auto precision = precisionOf(start.mapBits, start.appearanceQuality, bits);
+        const auto encoded = std::make_shared<const std::vector<unsigned char>>(exporter::encodeSubd(
+            exporter::shippableAsset(shipped.cage, shipped.maps, bits, shipped.decodeTriangles), precision));
+        BudgetCandidate c = start;
+        c.positionBits = bits;
+        c.bytes = encoded->size();
+        c.monitorLoss = c.settledLoss = 0.0;
+        c.settledViews = 0;
+        const bool within = fits(in.search, c);
+        if (within) {
+            timed.emplace(found.phases, "render");
+            const auto drawn = drawnAsFitted(in.programs, in.scene, exporter::decodeSubd(*encoded, "budget candidate"));
+            c.monitorLoss = fit::score(*drawn, in.scene.choosing(in.programs)).loss;
+        }
+        found.tried.push_back(c);
+        if (in.say) in.say(describe(c) + (within ? "" : " (over budget)"));
+        if (!within || c.monitorLoss > (1.0 + kLossTolerance) * start.monitorLoss) break;
+        found.fitting.push_back({c, cageWorld, encoded, found.tried.size() - 1});
+    }
+}
+
+// Phase five: the ladder's steps leave bytes unspent. The preferred kind of asset so far on a
 // cage grown to what the budget holds (bytes grow about in proportion to the faces), shrinking
 // until it fits.
 void growBest(const SearchInputs& in, Findings& found) {
@@ -374,7 +418,8 @@ void growBest(const SearchInputs& in, Findings& found) {
     const BudgetCandidate best = ladderBest->candidate;
     double scale = 0.97 * double(in.search.budget) / double(best.bytes);
     for (int attempt = 0; attempt < 3 && scale > 1.05; ++attempt, scale = 1.0 + 0.6 * (scale - 1.0)) {
-        const int faces = std::min(int(std::lround(best.faces * scale)), in.search.faceCounts.front());
+        const int most = std::max(in.search.mostGrownFaces, in.search.faceCounts.front());
+        const int faces = std::min(int(std::lround(best.faces * scale)), most);
         if (faces <= int(best.faces * 1.05)) break;
         const std::optional<TriedCage> cage = [&] {
             TimedStage timed(found.phases, "cages");
@@ -391,11 +436,11 @@ void growBest(const SearchInputs& in, Findings& found) {
             best.maps.any() ? bakeMaps(cage->normalized, in.scene.reference, {.effects = best.maps, .resolution = best.mapResolution})
                             : surface::SurfaceMaps{};
         const MapRecipe recipe{.effects = best.maps, .resolution = best.mapResolution, .bits = best.mapBits};
-        if (fits(in.search, judge(in, found, cage->world, baked, recipe, appearance))) break;
+        if (fits(in.search, judge(in, found, cage->world, baked, recipe, appearance, best.positionBits))) break;
     }
 }
 
-// Phase five: the near ties settled on the training views too; the chosen candidate, and the
+// Phase six: the near ties settled on the training views too; the chosen candidate, and the
 // best with maps (the bake route at these bytes). Throws when nothing fits.
 BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
     TimedStage timed(found.phases, "settle");
@@ -472,6 +517,7 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
         const std::vector<Bare> bare = judgeBare(in, found, *cage, appearances);
         for (const Bare* b : worthMaps(bare)) climbMapLadder(in, found, *cage, *b, mapChoices, bakes);
     }
+    fewerPositionBits(in, found);
     growBest(in, found);
     BudgetChoice choice = settleChoice(in, found);
     choice.phases = found.phases;
@@ -489,8 +535,8 @@ std::vector<int> atlasSizesFor(const mesh::PolygonMesh& reference) {
 }
 
 BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t bytes, std::uintmax_t budget,
-                                int mapBits, int appearanceQuality) {
-    auto precision = exporter::SubdPrecision::forMapBits(mapBits, appearanceQuality);
+                                int mapBits, int positionBits, int appearanceQuality) {
+    auto precision = exporter::SubdPrecision::forMapBits(mapBits, appearanceQuality, positionBits);
     auto shipment = [&] { return BudgetShipment{precision.displacementBits, precision.appearanceQuality, bytes}; };
     if (bytes <= budget) return shipment();
     const exporter::SubdAsset decoded = exporter::readSubd(subd);
@@ -503,7 +549,7 @@ BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
         while (quality - kQualityStep >= kLowestQuality) ladder.emplace_back(mapBits, quality -= kQualityStep);
     for (int bits = mapBits - 1; bits >= kFewestBits; --bits) ladder.emplace_back(bits, quality);
     for (size_t k = 0; k < ladder.size(); ++k) {
-        precision = exporter::SubdPrecision::forMapBits(ladder[k].first, ladder[k].second);
+        precision = exporter::SubdPrecision::forMapBits(ladder[k].first, ladder[k].second, positionBits);
         const auto encoded =
             exporter::encodeSubd(exporter::shippableAsset(decoded.cage, decoded.maps, precision.positionBits, decoded.decodeTriangles),
                                  precision);
@@ -518,7 +564,7 @@ BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
 nlohmann::json toJson(const BudgetReport& report) {
     auto candidate = [](const BudgetCandidate& c) {
         nlohmann::json j{{"faces", c.faces}, {"maps", maps::toString(c.maps)}, {"map_resolution", c.mapResolution},
-                         {"map_bits", c.mapBits}, {"bytes", c.bytes}};
+                         {"map_bits", c.mapBits}, {"position_bits", c.positionBits}, {"bytes", c.bytes}};
         if (c.maps.displacement && c.monitorLoss > 0.0) j["shading_normal"] = nameOf(c.shadingNormal);
         if (c.appearanceResolution > 0) j["appearance_resolution"] = c.appearanceResolution;
         if (c.appearanceAtlas > 0) j["appearance_atlas"] = c.appearanceAtlas;

@@ -30,6 +30,7 @@ struct BudgetCandidate {
     maps::MapEffects maps;      // none: the bare cage
     int mapResolution = 0;      // 0 without maps
     int mapBits = 0;            // per map value in asset.subd; 0 without maps
+    int positionBits = 14;      // per cage coordinate in asset.subd
     // With heights, what shades them: whichever of the two scored lower on the monitor views
     // (over budget, not judged: Displaced).
     surface::ShadingNormal shadingNormal = surface::ShadingNormal::Displaced;
@@ -47,6 +48,9 @@ struct BudgetCandidate {
 struct BudgetSearch {
     std::uintmax_t budget = 0;
     std::vector<int> faceCounts;  // the cages to try (their triangle budgets), largest first
+    // The most faces the best candidate's cage may grow to where bytes are left over (0: the
+    // ladder's top): the ladder's top is a rough price, a cage's real bytes are measured.
+    int mostGrownFaces = 0;
     maps::MapEffects allowedMaps{.displacement = true, .normalMap = true};
     std::vector<int> mapResolutions{2, 3, 4, 6, 8};
     // Bits per map value: 8 keeps a height's step under ~1/200 of its range, well below a pixel
@@ -132,7 +136,7 @@ struct BudgetShipment {
 // it is written again with the appearance images at a lower JPEG quality, then with the heights
 // and normals at fewer bits, until it fits or the ladder ends.
 BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t bytes, std::uintmax_t budget,
-                                int mapBits, int appearanceQuality);
+                                int mapBits, int positionBits, int appearanceQuality);
 
 // report.json's `budget`: the search and what shipped.
 struct BudgetReport {

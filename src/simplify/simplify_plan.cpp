@@ -23,6 +23,7 @@ constexpr int kMostFullyFittedFaces = 2 * kDefaultFaces;
 // The bake route of a cage (normalised frame) with the run's own maps.
 BakeRoute bakeRouteOf(const mesh::PolygonMesh& cage, const fit::FitOptions& fit) {
     return {.cage = cage, .effects = fit.maps, .resolution = fit.mapResolution, .bits = fit.mapBits,
+            .positionBits = fit.positionBits,
             .appearanceResolution = fit.appearanceResolution, .appearanceQuality = fit.appearanceQuality,
             .appearanceAtlas = fit.appearanceAtlas, .shadingNormal = fit.shadingNormal};
 }
@@ -42,6 +43,7 @@ namespace {
 BudgetSearch budgetSearchFor(const SimplifyOptions& o, std::uintmax_t budget, const fit::FitScene& scene) {
     return {.budget = budget,
             .faceCounts = budgetFaceCounts(o, budget, scene),
+            .mostGrownFaces = o.faces ? 0 : std::min(kMostBudgetFaces, scene.reference.faceCount()),
             .allowedMaps = o.fit.maps,
             .appearance = {.baseColor = scene.shading != render::ShadingModel::Geometry,
                            .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness},
@@ -60,6 +62,7 @@ void applyChoice(const BudgetCandidate& chosen, int cageFaces, bool stepsByDevic
         fit.appearanceAtlas = chosen.appearanceAtlas;
         fit.appearanceQuality = chosen.appearanceQuality;
     }
+    fit.positionBits = chosen.positionBits;
     if (chosen.mapResolution > 0) {
         fit.mapResolution = chosen.mapResolution;
         fit.mapBits = chosen.mapBits;
@@ -87,6 +90,7 @@ BakeRoute budgetBakeRoute(const BudgetChoice& choice, const BudgetSearch& search
     cage.positions = scene.frame.toNormalized(cage.positions);
     const bool appearance = route.appearanceResolution > 0 || route.appearanceAtlas > 0;
     return {.cage = std::move(cage), .effects = route.maps, .resolution = route.mapResolution, .bits = route.mapBits,
+            .positionBits = route.positionBits,
             .appearanceResolution = appearance ? route.appearanceResolution : fit.appearanceResolution,
             .appearanceQuality = appearance ? route.appearanceQuality : fit.appearanceQuality,
             .appearanceAtlas = appearance ? route.appearanceAtlas : fit.appearanceAtlas,

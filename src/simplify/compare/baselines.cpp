@@ -268,7 +268,7 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     for (float& d : bakedWorld.displacement) d /= scene.frame.scale;
     Quality q;
     exporter::writeMapAtlases(dir, bakedWorld, {.compact = settings.compactMaps});
-    const auto precision = exporter::SubdPrecision::forMapBits(route.bits, route.appearanceQuality);
+    const auto precision = exporter::SubdPrecision::forMapBits(route.bits, route.appearanceQuality, route.positionBits);
     q.files = {{"asset.subd", exporter::writeSubd(dir / "asset.subd",
                                                   exporter::shippableAsset(cageWorld, bakedWorld, precision.positionBits,
                                                                            std::uint32_t(scene.reference.faceCount())),
@@ -276,7 +276,7 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
                                   .bytes}};
     q.bytes = totalBytes(q.files);
     q.shipped = settings.dir.filename() / dir.filename() / "asset.subd";
-    q.details = {{"faces", cage.faceCount()}, {"map_resolution", mapResolution}, {"map_bits", route.bits},
+    q.details = {{"faces", cage.faceCount()}, {"map_resolution", mapResolution}, {"map_bits", route.bits}, {"position_bits", route.positionBits},
                  {"shading_normal", nameOf(route.shadingNormal)}};
 
     // Rendered by the fitter's own renderer with the baked values in its map groups.

@@ -44,6 +44,7 @@ struct BakeRoute {
     maps::MapEffects effects;  // none means displacement and normal: a bake route without maps is no bake
     int resolution = 4;        // map cells per face edge
     int bits = 12;             // per map value in its asset.subd
+    int positionBits = 14;     // per cage coordinate in its asset.subd
     int appearanceResolution = 16;  // its appearance lattice and JPEG quality (scenes with materials)
     int appearanceQuality = 90;
     int appearanceAtlas = 0;  // texels per side when the appearance is in the reference's atlas; 0: tiles
