@@ -34,6 +34,20 @@ std::string readBytes(const fs::path& path) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// Whether every position lies on a grid of 2^bits − 1 steps over the positions' bounding cube
+// (asset.subd's quantisation of a cage, export/cage_coding.h).
+bool onPositionGrid(const std::vector<glm::vec3>& positions, int bits) {
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const glm::vec3& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const float extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}), levels = float((1 << bits) - 1);
+    for (const glm::vec3& p : positions)
+        for (int a = 0; a < 3; ++a) {
+            const float t = (p[a] - lo[a]) / extent * levels;
+            if (std::abs(t - std::round(t)) > 0.01f) return false;
+        }
+    return true;
+}
+
 simplify::SimplifyOptions budgeted(const fs::path& reference, const fs::path& out, std::uintmax_t budget) {
     simplify::SimplifyOptions o = smallSimplify(reference, out, 20);
     o.fit.checkpointEvery = 10;
@@ -102,6 +116,26 @@ TEST(SimplifyBudget, ShipsWithinTheBudgetAndListsTheCandidates) {
     } else {
         EXPECT_EQ(budget["chosen"]["monitor_loss"].get<double>(), lowestMonitored);
     }
+    // The best candidate was tried again with its cage's positions at fewer bits: fewer bytes
+    // than its 14-bit twin (a cage grown with the bytes saved has none). The chosen bits are what
+    // the fit ships, on the grid they say.
+    int twins = 0;
+    for (const auto& c : budget["candidates"]) {
+        if (c["position_bits"].get<int>() == 14) continue;
+        const auto twin = std::find_if(budget["candidates"].begin(), budget["candidates"].end(), [&](const auto& t) {
+            return t["position_bits"] == 14 && t["faces"] == c["faces"] && t["maps"] == c["maps"] &&
+                   t["map_resolution"] == c["map_resolution"] && t["map_bits"] == c["map_bits"];
+        });
+        if (twin == budget["candidates"].end()) continue;
+        ++twins;
+        EXPECT_LT(c["bytes"].get<std::uintmax_t>(), (*twin)["bytes"].get<std::uintmax_t>()) << c.dump();
+    }
+    EXPECT_GE(twins, 1);
+    EXPECT_EQ(report["settings"]["position_bits"], budget["chosen"]["position_bits"]);
+    const int bits = budget["chosen"]["position_bits"].get<int>();
+    const auto cageShipped = exporter::readSubd(dir / "out" / "asset.subd").cage;
+    EXPECT_TRUE(onPositionGrid(cageShipped.positions, bits)) << bits;
+    EXPECT_FALSE(onPositionGrid(cageShipped.positions, bits - 2)) << bits;
     // What was chosen is what was fitted.
     EXPECT_EQ(report["cage"]["faces"], budget["chosen"]["faces"]);
     EXPECT_EQ(report["settings"]["maps"], budget["chosen"]["maps"]);

@@ -51,6 +51,26 @@ TEST(CageCoding, AFaceWoundTheOtherWayStillGoesThroughDraco) {
     expectSameFaces(cage, coded);
 }
 
+// Where a coded cage's bytes go: the parts add up to about the section, positions cost more
+// than Draco's connectivity, and two fewer bits a coordinate save about 6 bits a vertex.
+TEST(CageCoding, TheBytesSplitIntoConnectivityPositionsMarksAndTags) {
+    const auto cage = shape("catmark_pawn.obj");  // quads and triangles, no tags
+    const CageByteParts parts = cageByteParts(cage, kBits);
+    ASSERT_TRUE(parts.draco);
+    const std::size_t sum = parts.connectivity + parts.positions + parts.polygonMarks + parts.tags;
+    EXPECT_NEAR(double(sum), double(parts.stored), 0.15 * double(parts.stored) + 40.0);
+    EXPECT_GT(parts.positions, parts.connectivity);
+    EXPECT_GT(parts.polygonMarks, 0u);
+    const CageByteParts coarser = cageByteParts(cage, kBits - 2);
+    EXPECT_EQ(coarser.connectivity, parts.connectivity);
+    EXPECT_NEAR(double(parts.positions - coarser.positions), 6.0 / 8.0 * cage.vertexCount(), 0.35 * cage.vertexCount());
+
+    const auto plain = cageByteParts(shape("catmark_cube_creases1.obj"), kBits);
+    EXPECT_FALSE(plain.draco);
+    EXPECT_GT(plain.tags, 0u);  // its creases
+    EXPECT_EQ(plain.polygonMarks, 0u);
+}
+
 TEST(CageCoding, ACageOfAFewFacesStaysPlain) {
     const auto cage = shape("catmark_cube_creases1.obj");
     const auto coded = encodeCage(cage, kBits);

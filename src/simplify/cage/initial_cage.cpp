@@ -3,8 +3,6 @@
 #include <cmath>
 #include <algorithm>
 #include <map>
-#include <cstdio>
-#include <cstdlib>
 
 #include <glm/geometric.hpp>
 
@@ -13,7 +11,6 @@
 #include "simplify/cage/decimate.h"
 #include "simplify/cage/feature_edges.h"
 #include "simplify/cage/limit_fit.h"
-#include "simplify/cage/quad_pairing.h"
 #include "subdiv/limit_evaluator.h"
 #include "util/error.h"
 #include "util/interrupt.h"
@@ -157,12 +154,6 @@ mesh::PolygonMesh CageSource::cage(const InitialCageOptions& options) const {
     if (options.hardEdges && hardEdges_) hardEdges_->tag(cage);
 
     evenOutTriangles(cage, options.evenOutRounds);
-    if (std::getenv("SUBDFIT_QUADS")) {
-        cage = pairIntoQuads(cage);
-        int quads = 0;
-        for (int n : cage.faceSizes) quads += n == 4;
-        std::fprintf(stderr, "paired: %d quads, %d faces\n", quads, cage.faceCount());
-    }
     // Jacobi on limit(P) = V: the limit masks are convex combinations with the vertex itself
     // weighted most, so I − L contracts and a few sweeps converge.
     const std::vector<glm::vec3> targets = cage.positions;
