@@ -135,7 +135,7 @@ CageSource::CageSource(const mesh::PolygonMesh& reference, bool hardEdges, int m
     const int copyFaces = kDecimationCopyFactor * mostFaces;
     if (mostFaces > 0 && welded_.faceCount() > 2 * copyFaces) {
         decimationCopy_ = decimate(welded_, copyFaces);
-        copyServes_ = mostFaces;
+        copyServes_ = 2 * mostFaces;
     }
 }
 

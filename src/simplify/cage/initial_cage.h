@@ -32,9 +32,10 @@ mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialC
 
 // A reference prepared once for cages of any number of face counts (the budget search's): welded,
 // its hard edges found, its surface ready for the limit fit's rays. cage() is initialCage().
-// Given the most faces its cages will have, a dense reference is also decimated once to
-// kDecimationCopyFactor times that, and cages up to that size are decimated from the copy: each
-// decimation from the reference is a pass over all of it.
+// Given the most faces its ladder's cages will have, a dense reference is also decimated once to
+// kDecimationCopyFactor times that, and cages up to twice that size (the search grows its best
+// cage past the ladder) are decimated from the copy: each decimation from the reference is a
+// pass over all of it.
 class CageSource {
 public:
     static constexpr int kDecimationCopyFactor = 8;
