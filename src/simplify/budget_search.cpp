@@ -42,7 +42,8 @@ std::string describe(const BudgetCandidate& c) {
     std::snprintf(line, sizeof line, "%6d faces, maps %-19s T=%d, %2d bits: %8ju bytes", c.faces,
                   maps::toString(c.maps).c_str(), c.mapResolution, c.mapBits, c.bytes);
     std::string text = line;
-    if (c.positionBits != exporter::SubdPrecision{}.positionBits) text += ", " + std::to_string(c.positionBits) + "-bit positions";
+    if (c.positionBits != exporter::SubdPrecision{}.positionBits)
+        text += ", " + std::to_string(c.positionBits) + "-bit positions";
     if (c.shadingNormal == surface::ShadingNormal::Limit) text += ", limit-shaded";
     if (c.appearanceAtlas > 0)
         text += ", appearance atlas " + std::to_string(c.appearanceAtlas) + " q" + std::to_string(c.appearanceQuality);
@@ -216,7 +217,8 @@ BudgetCandidate judge(const SearchInputs& in, Findings& found, const std::shared
     timed.emplace(found.phases, "render");
     const bool atlas = appearance.maps.appearanceAtlas.present();
     BudgetCandidate c{.faces = cageWorld->faceCount(), .maps = recipe.effects, .mapResolution = recipe.resolution,
-                      .mapBits = recipe.bits, .positionBits = positionBits, .appearanceResolution = atlas ? 0 : appearance.maps.appearanceLayout.resolution,
+                      .mapBits = recipe.bits, .positionBits = positionBits,
+                      .appearanceResolution = atlas ? 0 : appearance.maps.appearanceLayout.resolution,
                       .appearanceQuality = appearance.quality, .appearanceAtlas = appearance.maps.appearanceAtlas.size,
                       .bytes = shipped.encoded->size()};
     const bool within = fits(in.search, c);

@@ -242,8 +242,8 @@ bool writeCoded(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in)
     if (!report.budget) return true;
     std::uintmax_t& bytes = report.fit->exports.at("asset.subd");
     const std::uintmax_t written = bytes;
-    report.budget->shipped = shipWithinBudget(in.staged / "asset.subd", bytes, report.budget->bytes, plan.fit.mapBits, plan.fit.positionBits,
-                                              plan.fit.appearanceQuality);
+    report.budget->shipped = shipWithinBudget(in.staged / "asset.subd", bytes, report.budget->bytes, plan.fit.mapBits,
+                                              plan.fit.positionBits, plan.fit.appearanceQuality);
     bytes = report.budget->shipped.bytes;
     // The USD export follows asset.subd, where that was coded again.
     if (written > report.budget->bytes) {
