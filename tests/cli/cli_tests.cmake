@@ -58,6 +58,8 @@ subdfit_cli_refuses(option_res_0 --res --cage ${SUBDFIT_CLI_CAGE} --reference ${
 subdfit_cli_refuses(option_views_0 --views --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --views 0)
 subdfit_cli_refuses(option_steps_negative --steps
                     --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --steps -1)
+subdfit_cli_refuses(option_position_bits_7 "--position-bits must be in 8..16"
+                    --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --position-bits 7)
 subdfit_cli_refuses(option_tess_0 --tess --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --tess 0)
 subdfit_cli_refuses(option_epsilon_0 --epsilon
                     --cage ${SUBDFIT_CLI_CAGE} --reference ${SUBDFIT_CLI_REFERENCE} --epsilon 0)
