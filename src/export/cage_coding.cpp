@@ -25,7 +25,7 @@ namespace {
 
 enum Coding : std::uint8_t { kPlain = 0, kDraco = 1 };
 // Draco's speed 1: its valence connectivity coder and multi-parallelogram position prediction,
-// about 6 % smaller than speed 5 on a decimated cage (docs/asset-subd-format.md).
+// 1-6 % smaller than speed 5 on decimated cages (docs/results.md, where a cage's bytes go).
 constexpr int kDracoSpeed = 1;
 constexpr int kZstdLevel = 19;  // as asset.subd packs its sections (export/subd_format.cpp)
 
