@@ -76,6 +76,34 @@ Grid gridFor(const std::vector<glm::vec3>& positions, int bits) {
     return {.origin = positions.empty() ? glm::vec3(0.0f) : low, .extent = extent > 0.0f ? extent : 1.0f, .bits = bits};
 }
 
+// Draco's decoder makes one vertex of two on one grid cell (export/cage_coding.h): where a coarse
+// grid puts two there, the later moves to the free neighbouring cell nearest its position, one
+// step away, about the quantisation's own error. False when a vertex finds none free.
+bool separateCells(std::vector<Cell>& cells, const std::vector<glm::vec3>& positions, const Grid& grid) {
+    std::unordered_set<std::uint64_t> taken;
+    const auto top = std::int32_t(grid.levels());
+    for (size_t v = 0; v < cells.size(); ++v) {
+        if (taken.insert(cellKey(cells[v])).second) continue;
+        const glm::vec3 at = (positions[v] - grid.origin) / grid.extent * grid.levels();
+        std::optional<Cell> nearest;
+        float nearestDistance = 0.0f;
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    const Cell c{cells[v][0] + dx, cells[v][1] + dy, cells[v][2] + dz};
+                    if (std::any_of(c.begin(), c.end(), [&](std::int32_t i) { return i < 0 || i > top; }) ||
+                        taken.count(cellKey(c)))
+                        continue;
+                    const float d = glm::length(glm::vec3(float(c[0]), float(c[1]), float(c[2])) - at);
+                    if (!nearest || d < nearestDistance) nearest = c, nearestDistance = d;
+                }
+        if (!nearest) return false;
+        cells[v] = *nearest;
+        taken.insert(cellKey(cells[v]));
+    }
+    return true;
+}
+
 void writeGrid(const Grid& grid, ByteWriter& out) {
     for (float c : {grid.origin.x, grid.origin.y, grid.origin.z, grid.extent}) out.put<float>(c);
     out.put<std::uint8_t>(std::uint8_t(grid.bits));
@@ -327,11 +355,10 @@ void polygonsFromTriangles(const std::vector<int>& corners, std::span<const unsi
 std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBody(const mesh::PolygonMesh& cage,
                                                                                   const Grid& grid) {
     std::vector<Cell> cells;
+    for (const auto& p : cage.positions) cells.push_back(grid.cell(p));
+    if (!separateCells(cells, cage.positions, grid)) return std::nullopt;
     std::unordered_map<std::uint64_t, int> vertexOfCell;
-    for (const auto& p : cage.positions) {
-        cells.push_back(grid.cell(p));
-        if (!vertexOfCell.emplace(cellKey(cells.back()), int(cells.size()) - 1).second) return std::nullopt;
-    }
+    for (size_t v = 0; v < cells.size(); ++v) vertexOfCell.emplace(cellKey(cells[v]), int(v));
     // Fan triangles (v0, v_k, v_k+1); the diagonals from v0 are the polygon's interior edges.
     std::vector<int> corners, firstCorner;
     std::unordered_set<std::uint64_t> diagonals;

@@ -6,7 +6,8 @@
 //    saying which of its edges lie inside a polygon; or
 //  - plain (coding 0): the positions as they are and the face indices as deltas,
 // whichever the encoder can use: Draco is taken only when the decoded cage is the same cage
-// (a manifold one with distinct quantised positions); it is 2-3x smaller on a decimated
+// (a manifold one; two vertices on one grid cell would decode as one, so the later moves to a
+// free neighbouring cell, a step away); it is 2-3x smaller on a decimated
 // cage, whose vertex order the plain deltas cannot exploit. Draco renumbers vertices and faces
 // and may start a polygon at another corner, so the encoder reports where everything went.
 #include <span>

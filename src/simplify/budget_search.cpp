@@ -35,6 +35,8 @@ constexpr int kFewestFaces = 24;
 constexpr size_t kMostAppearancesWithMaps = 2;
 // Bits per cage coordinate tried below the default 14, finest first: a cage's bytes are mostly
 // its positions (Draco connectivity is about a tenth), and the triangle route searches its own.
+// None below 10: a step of over a thousandth of the cage's size shows at resolutions above the
+// monitor views' that judge it.
 constexpr int kFewerPositionBits[] = {12, 11, 10};
 
 std::string describe(const BudgetCandidate& c) {

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
 #include "export/cage_coding.h"
 #include "mesh/mesh_loader.h"
 #include "test_paths.h"
@@ -49,6 +52,33 @@ TEST(CageCoding, AFaceWoundTheOtherWayStillGoesThroughDraco) {
     const auto coded = encodeCage(cage, kBits);
     EXPECT_TRUE(usesDraco(coded));
     expectSameFaces(cage, coded);
+}
+
+// A coarse grid that puts two vertices on one cell moves the later one to a free neighbouring
+// cell: the cage still goes through Draco, every face the same, every vertex within one step
+// and a half (per axis) of where it was.
+TEST(CageCoding, TwoVerticesOnOneCellStillGoThroughDraco) {
+    auto cage = shape("catmark_pawn.obj");
+    constexpr int kCoarse = 8;
+    glm::vec3 low(1e30f), high(-1e30f);
+    for (const glm::vec3& p : cage.positions) low = glm::min(low, p), high = glm::max(high, p);
+    const float step = std::max({high.x - low.x, high.y - low.y, high.z - low.z}) / float((1 << kCoarse) - 1);
+    // Vertex 0's nearest other vertex brought onto it.
+    size_t nearest = 1;
+    for (size_t v = 1; v < cage.positions.size(); ++v)
+        if (glm::distance(cage.positions[v], cage.positions[0]) < glm::distance(cage.positions[nearest], cage.positions[0]))
+            nearest = v;
+    cage.positions[nearest] = cage.positions[0];
+    const auto coded = encodeCage(cage, kCoarse);
+    EXPECT_TRUE(usesDraco(coded));
+    expectSameFaces(cage, coded);
+    float farthest = 0.0f;
+    for (size_t v = 0; v < cage.positions.size(); ++v) {
+        const glm::vec3 error = glm::abs(coded.decoded.positions[size_t(coded.correspondence.vertex[v])] - cage.positions[v]);
+        farthest = std::max({farthest, error.x, error.y, error.z});
+    }
+    EXPECT_GT(farthest, 0.51f * step);  // one was moved
+    EXPECT_LE(farthest, 1.51f * step);
 }
 
 // Where a coded cage's bytes go: the parts add up to about the section, positions cost more
