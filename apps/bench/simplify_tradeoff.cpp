@@ -33,7 +33,7 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
     std::vector<std::vector<std::string>> rows{{"reference", "budget", "method", "bytes", "psnr_holdout", "ssim_holdout",
                                                 "mean_distance", "chamfer", "hausdorff", "seconds", "chosen"}};
     std::vector<std::vector<std::string>> stageRows{{"reference", "budget", "route", "stage", "seconds"}};
-    std::vector<std::vector<std::string>> byteRows{{"reference", "budget", "file", "bytes", "faces", "quads", "vertices",
+    std::vector<std::vector<std::string>> byteRows{{"reference", "budget", "file", "bytes", "faces", "quads", "vertices", "position_bits",
                                                     "regular_vertices", "cage_connectivity", "cage_positions",
                                                     "cage_polygon_marks", "cage_tags", "cage_section", "maps",
                                                     "cage_bytes_per_face"}};
@@ -98,13 +98,15 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
                 std::size_t maps = 0;
                 for (const auto& [tag, bytes] : b.sections) maps += tag == "CAGE" ? 0 : bytes;
                 const std::size_t cage = b.sections.count("CAGE") ? b.sections.at("CAGE") : 0;
-                std::printf("%-18.18s %8ju  %s: %ju B; cage %d faces (%d quads), %d vertices (%d regular): connectivity %zu, "
-                            "positions %zu, polygon marks %zu, tags %zu (section %zu, %.2f B a face); maps %zu\n",
+                std::printf("%-18.18s %8ju  %s: %ju B; cage %d faces (%d quads), %d vertices (%d regular) at %d bits: "
+                            "connectivity %zu, positions %zu, polygon marks %zu, tags %zu (section %zu, %.2f B a face); maps %zu\n",
                             name.c_str(), budget, file, std::uintmax_t(b.file), b.faces, b.quads, b.vertices, b.regularVertices,
+                            b.positionBits,
                             b.cage.connectivity, b.cage.positions, b.cage.polygonMarks, b.cage.tags, cage,
                             double(cage) / std::max(b.faces, 1), maps);
                 byteRows.push_back({name, std::to_string(budget), file, std::to_string(b.file), std::to_string(b.faces),
-                                    std::to_string(b.quads), std::to_string(b.vertices), std::to_string(b.regularVertices),
+                                    std::to_string(b.quads), std::to_string(b.vertices), std::to_string(b.positionBits),
+                                    std::to_string(b.regularVertices),
                                     std::to_string(b.cage.connectivity), std::to_string(b.cage.positions),
                                     std::to_string(b.cage.polygonMarks), std::to_string(b.cage.tags), std::to_string(cage),
                                     std::to_string(maps), std::to_string(double(cage) / std::max(b.faces, 1))});

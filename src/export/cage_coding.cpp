@@ -16,6 +16,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "export/subd_format.h"
 #include "mesh/input_limits.h"
 #include "mesh/mesh_validation.h"
 #include "util/error.h"
@@ -27,7 +28,6 @@ enum Coding : std::uint8_t { kPlain = 0, kDraco = 1 };
 // Draco's speed 1: its valence connectivity coder and multi-parallelogram position prediction,
 // 1-6 % smaller than speed 5 on decimated cages (docs/results.md, where a cage's bytes go).
 constexpr int kDracoSpeed = 1;
-constexpr int kZstdLevel = 19;  // as asset.subd packs its sections (export/subd_format.cpp)
 
 using Cell = std::array<std::int32_t, 3>;  // a quantised position
 
@@ -78,12 +78,14 @@ Grid gridFor(const std::vector<glm::vec3>& positions, int bits) {
 
 // Draco's decoder makes one vertex of two on one grid cell (export/cage_coding.h): where a coarse
 // grid puts two there, the later moves to the free neighbouring cell nearest its position, one
-// step away, about the quantisation's own error. False when a vertex finds none free.
-bool separateCells(std::vector<Cell>& cells, const std::vector<glm::vec3>& positions, const Grid& grid) {
-    std::unordered_set<std::uint64_t> taken;
+// step away, about the quantisation's own error. Each cell's vertex then, or nothing when a vertex
+// finds no free cell.
+std::optional<std::unordered_map<std::uint64_t, int>> separateCells(std::vector<Cell>& cells,
+                                                                    const std::vector<glm::vec3>& positions, const Grid& grid) {
+    std::unordered_map<std::uint64_t, int> vertexOfCell;
     const auto top = std::int32_t(grid.levels());
     for (size_t v = 0; v < cells.size(); ++v) {
-        if (taken.insert(cellKey(cells[v])).second) continue;
+        if (vertexOfCell.emplace(cellKey(cells[v]), int(v)).second) continue;
         const glm::vec3 at = (positions[v] - grid.origin) / grid.extent * grid.levels();
         std::optional<Cell> nearest;
         float nearestDistance = 0.0f;
@@ -92,16 +94,16 @@ bool separateCells(std::vector<Cell>& cells, const std::vector<glm::vec3>& posit
                 for (int dz = -1; dz <= 1; ++dz) {
                     const Cell c{cells[v][0] + dx, cells[v][1] + dy, cells[v][2] + dz};
                     if (std::any_of(c.begin(), c.end(), [&](std::int32_t i) { return i < 0 || i > top; }) ||
-                        taken.count(cellKey(c)))
+                        vertexOfCell.count(cellKey(c)))
                         continue;
                     const float d = glm::length(glm::vec3(float(c[0]), float(c[1]), float(c[2])) - at);
                     if (!nearest || d < nearestDistance) nearest = c, nearestDistance = d;
                 }
-        if (!nearest) return false;
+        if (!nearest) return std::nullopt;
         cells[v] = *nearest;
-        taken.insert(cellKey(cells[v]));
+        vertexOfCell.emplace(cellKey(cells[v]), int(v));
     }
-    return true;
+    return vertexOfCell;
 }
 
 void writeGrid(const Grid& grid, ByteWriter& out) {
@@ -356,9 +358,9 @@ std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBo
                                                                                   const Grid& grid) {
     std::vector<Cell> cells;
     for (const auto& p : cage.positions) cells.push_back(grid.cell(p));
-    if (!separateCells(cells, cage.positions, grid)) return std::nullopt;
-    std::unordered_map<std::uint64_t, int> vertexOfCell;
-    for (size_t v = 0; v < cells.size(); ++v) vertexOfCell.emplace(cellKey(cells[v]), int(v));
+    const auto separated = separateCells(cells, cage.positions, grid);
+    if (!separated) return std::nullopt;
+    const std::unordered_map<std::uint64_t, int>& vertexOfCell = *separated;
     // Fan triangles (v0, v_k, v_k+1); the diagonals from v0 are the polygon's interior edges.
     std::vector<int> corners, firstCorner;
     std::unordered_set<std::uint64_t> diagonals;
@@ -449,7 +451,7 @@ CageCorrespondence identity(const mesh::PolygonMesh& cage) {
 CageByteParts cageByteParts(const mesh::PolygonMesh& cage, int positionBits) {
     const auto packed = [](std::span<const unsigned char> raw) {
         std::vector<unsigned char> out(ZSTD_compressBound(raw.size()));
-        const std::size_t size = ZSTD_compress(out.data(), out.size(), raw.data(), raw.size(), kZstdLevel);
+        const std::size_t size = ZSTD_compress(out.data(), out.size(), raw.data(), raw.size(), kSubdZstdLevel);
         if (ZSTD_isError(size)) throw Error(std::string("zstd: ") + ZSTD_getErrorName(size));
         return size;
     };
@@ -506,13 +508,14 @@ CodedCage encodeCage(const mesh::PolygonMesh& cage, int positionBits) {
     return coded;
 }
 
-mesh::PolygonMesh decodeCage(ByteReader& in) {
+mesh::PolygonMesh decodeCage(ByteReader& in, int* positionBits) {
     const int coding = in.get<std::uint8_t>();
     if (coding != kPlain && coding != kDraco) throw Error(in.what() + ": unknown cage coding " + std::to_string(coding));
     const std::size_t vertices = in.getCount(coding == kPlain ? 6 : 0, "vertex"), faces = in.getCount(1, "face");
     if (vertices > std::size_t(mesh::kMaxVertices) || faces > std::size_t(mesh::kMaxTriangles))
         throw Error(in.what() + ": more vertices or faces than subdfit reads");
     const Grid grid = readGrid(in);
+    if (positionBits) *positionBits = grid.bits;
     mesh::PolygonMesh cage;
     if (coding == kPlain) readPlain(in, grid, vertices, faces, cage);
     else readDraco(in, grid, vertices, faces, cage);

@@ -46,8 +46,8 @@ struct CageByteParts {
 };
 CageByteParts cageByteParts(const mesh::PolygonMesh& cage, int positionBits);
 
-// Reads a CAGE section. Throws subdfit::Error (in.what(): problem) for anything that is not a
-// sound cage.
-mesh::PolygonMesh decodeCage(ByteReader& in);
+// Reads a CAGE section; `positionBits`, if given, receives the bits its positions were coded at.
+// Throws subdfit::Error (in.what(): problem) for anything that is not a sound cage.
+mesh::PolygonMesh decodeCage(ByteReader& in, int* positionBits = nullptr);
 
 }  // namespace subdfit::exporter

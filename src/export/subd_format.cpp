@@ -39,7 +39,6 @@ constexpr Tag kCage{'C', 'A', 'G', 'E'}, kDisplacement{'D', 'I', 'S', 'P'}, kNor
 constexpr std::uint32_t kMostSections = 8;
 constexpr char kMagic[4] = {'S', 'U', 'B', 'D'};
 constexpr std::uint16_t kLimitShadingFlag = 1;
-constexpr int kZstdLevel = 19;  // the asset is written once and shipped many times
 // The largest raw section of a whole asset: a million-face cage plain-coded, a 4096² JPEG.
 constexpr std::uint32_t kMaxRawSection = 1u << 26;
 // What a section's first raw bytes must hold for its counts to be read (varints and a byte).
@@ -276,7 +275,7 @@ void putSection(ByteWriter& file, const Tag& tag, const std::vector<unsigned cha
     // Each frame carries a checksum of its content (version 7): a section damaged inside is
     // refused by every decoder alike, whatever its zstd would make of it otherwise.
     std::unique_ptr<ZSTD_CCtx, decltype(&ZSTD_freeCCtx)> context(ZSTD_createCCtx(), &ZSTD_freeCCtx);
-    ZSTD_CCtx_setParameter(context.get(), ZSTD_c_compressionLevel, kZstdLevel);
+    ZSTD_CCtx_setParameter(context.get(), ZSTD_c_compressionLevel, kSubdZstdLevel);
     ZSTD_CCtx_setParameter(context.get(), ZSTD_c_checksumFlag, 1);
     std::vector<unsigned char> stored(ZSTD_compressBound(raw.size()));
     const std::size_t size = ZSTD_compress2(context.get(), stored.data(), stored.size(), raw.data(), raw.size());
@@ -506,6 +505,7 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         if (version >= 7 && !hasContentChecksum(s.stored))
             throw Error(name + ": section " + tagName(s.tag) + " has no checksum of its content");
         s.head = sectionHead(s.stored, std::min<std::size_t>(s.rawSize, kSectionHeadBytes));
+        shipped.sectionBytes.emplace_back(tagName(s.tag), 12 + s.stored.size());
         sections.push_back(std::move(s));
     }
     if (in.remaining() != 0) throw Error(name + ": trailing bytes after the sections");
@@ -536,7 +536,7 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
     {
         const auto raw = inflated(sections[0], damageFirst([&] { return priceCage(sections[0], name, budget); }));
         ByteReader section(raw, name + ": " + sections[0].what());
-        asset.cage = decodeCage(section);
+        asset.cage = decodeCage(section, &shipped.positionBits);
         if (section.remaining() != 0) throw Error(section.what() + ": trailing bytes");
     }
     int mapResolution = 0;

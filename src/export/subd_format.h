@@ -10,6 +10,7 @@
 #include <functional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "export/map_atlas.h"
@@ -20,6 +21,8 @@
 namespace subdfit::exporter {
 
 inline constexpr std::uint16_t kSubdVersion = 7;
+// zstd's level for every section: the asset is written once and shipped many times.
+inline constexpr int kSubdZstdLevel = 19;
 
 class DecodeBudget;
 
@@ -76,6 +79,9 @@ struct ShippedImage {
 struct ShippedSubd {
     SubdAsset asset;
     std::vector<ShippedImage> images;  // in the file's order, each kind at most once
+    // Each section's tag and the bytes it takes in the file (its 12-byte head included), in order.
+    std::vector<std::pair<std::string, std::size_t>> sectionBytes;
+    int positionBits = 0;  // per cage coordinate, as coded
 };
 
 // What decodeSubd reads before it decodes the images (with OpenImageIO): the one reader of the

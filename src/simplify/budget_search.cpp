@@ -207,6 +207,16 @@ void scoreOnMonitor(const SearchInputs& in, const mesh::PolygonMesh& cageWorld, 
     }
 }
 
+// Records a judged candidate (the report lists them all) and says it; with `cageWorld`, also as
+// one that fits, to choose from.
+void record(const SearchInputs& in, Findings& found, const BudgetCandidate& c,
+            const std::shared_ptr<const mesh::PolygonMesh>& cageWorld,
+            const std::shared_ptr<const std::vector<unsigned char>>& encoded) {
+    found.tried.push_back(c);
+    if (in.say) in.say(describe(c) + (fits(in.search, c) ? "" : " (over budget)"));
+    if (cageWorld) found.fitting.push_back({c, cageWorld, encoded, found.tried.size() - 1});
+}
+
 // Judges one candidate: the cage with `baked` maps (laid out on it, as `recipe` says) and
 // `appearance`, encoded and decoded as it ships, scored when it fits. Every candidate is
 // recorded, those over the budget too, so that the report shows why they lost.
@@ -225,9 +235,7 @@ BudgetCandidate judge(const SearchInputs& in, Findings& found, const std::shared
                       .bytes = shipped.encoded->size()};
     const bool within = fits(in.search, c);
     if (within) scoreOnMonitor(in, *cageWorld, baked, appearance, c, shipped);
-    found.tried.push_back(c);
-    if (in.say) in.say(describe(c) + (within ? "" : " (over budget)"));
-    if (within) found.fitting.push_back({c, cageWorld, shipped.encoded, found.tried.size() - 1});
+    record(in, found, c, within ? cageWorld : nullptr, shipped.encoded);
     return c;
 }
 
@@ -406,10 +414,9 @@ void fewerPositionBits(const SearchInputs& in, Findings& found) {
             const auto drawn = drawnAsFitted(in.programs, in.scene, exporter::decodeSubd(*encoded, "budget candidate"));
             c.monitorLoss = fit::score(*drawn, in.scene.choosing(in.programs)).loss;
         }
-        found.tried.push_back(c);
-        if (in.say) in.say(describe(c) + (within ? "" : " (over budget)"));
-        if (!within || c.monitorLoss > (1.0 + kLossTolerance) * start.monitorLoss) break;
-        found.fitting.push_back({c, cageWorld, encoded, found.tried.size() - 1});
+        const bool kept = within && c.monitorLoss <= (1.0 + kLossTolerance) * start.monitorLoss;
+        record(in, found, c, kept ? cageWorld : nullptr, encoded);
+        if (!kept) break;
     }
 }
 
