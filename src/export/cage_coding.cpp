@@ -361,10 +361,15 @@ std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBo
     const auto separated = separateCells(cells, cage.positions, grid);
     if (!separated) return std::nullopt;
     const std::unordered_map<std::uint64_t, int>& vertexOfCell = *separated;
-    // Fan triangles (v0, v_k, v_k+1); the diagonals from v0 are the polygon's interior edges.
+    // Fan triangles (v_a, v_a+k, v_a+k+1) from an apex a whose diagonals are no edge of the cage
+    // and no other polygon's diagonal (the decoder tells a polygon's triangles by them).
     std::vector<int> corners, firstCorner;
-    std::unordered_set<std::uint64_t> diagonals;
+    std::unordered_set<std::uint64_t> diagonals, edges;
     std::unordered_map<std::uint64_t, std::pair<int, int>> faceOfCorners;  // cornerKey -> (face, corner)
+    for (int f = 0, first = 0; f < cage.faceCount(); first += cage.faceSizes[size_t(f)], ++f)
+        for (int k = 0, n = cage.faceSizes[size_t(f)]; k < n; ++k)
+            edges.insert(edgeKey(cage.faceIndices[size_t(first + k)], cage.faceIndices[size_t(first + (k + 1) % n)]));
+    auto taken = [&](int a, int b) { return edges.count(edgeKey(a, b)) || edges.count(edgeKey(b, a)) || diagonals.count(edgeKey(a, b)); };
     for (int f = 0, first = 0; f < cage.faceCount(); first += cage.faceSizes[size_t(f)], ++f) {
         const int n = cage.faceSizes[size_t(f)];
         const int* v = &cage.faceIndices[size_t(first)];
@@ -372,8 +377,16 @@ std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBo
         for (int k = 0; k < n; ++k)
             if (!faceOfCorners.emplace(cornerKey(v[k], v[(k + 1) % n], v[(k + 2) % n]), std::pair{f, k}).second)
                 return std::nullopt;
-        for (int k = 1; k + 1 < n; ++k) corners.insert(corners.end(), {v[0], v[k], v[k + 1]});
-        for (int k = 2; k + 1 < n; ++k) diagonals.insert({edgeKey(v[0], v[k]), edgeKey(v[k], v[0])});
+        int apex = 0;
+        auto free = [&](int a) {
+            for (int k = 2; k + 1 < n; ++k)
+                if (taken(v[a], v[(a + k) % n])) return false;
+            return true;
+        };
+        while (apex < n && !free(apex)) ++apex;
+        if (apex == n) return std::nullopt;
+        for (int k = 1; k + 1 < n; ++k) corners.insert(corners.end(), {v[apex], v[(apex + k) % n], v[(apex + k + 1) % n]});
+        for (int k = 2; k + 1 < n; ++k) diagonals.insert({edgeKey(v[apex], v[(apex + k) % n]), edgeKey(v[(apex + k) % n], v[apex])});
     }
 
     std::vector<unsigned char> draco;

@@ -160,7 +160,7 @@ std::optional<TriedCage> ladderCage(const SearchInputs& in, size_t k) {
 std::optional<TriedCage> cageOf(const SearchInputs& in, int faces) {
     throwIfStopRequested();
     try {
-        return asTried(in, in.cages.source().cage({.faces = faces}));
+        return asTried(in, in.cages.source().cage({.faces = faces, .shape = in.cages.shape()}));
     } catch (const Interrupted&) {
         throw;
     } catch (const Error&) {

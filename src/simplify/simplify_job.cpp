@@ -201,7 +201,7 @@ PreFit decideBeforeFit(const SimplifyOptions& options, fit::FitOptions fitOption
     const std::optional<std::uintmax_t>& budget = target.bytes;
     // The search's cages are CPU work: built from now on, beside the triangle route's.
     std::optional<CageLadder> cages;
-    if (budget) cages.emplace(reference, budgetFaceCounts(options, *budget, scene), prepareToJudge);
+    if (budget) cages.emplace(reference, budgetFaceCounts(options, *budget, scene), options.cageShape, prepareToJudge);
     if (budget) {
         decided.triangles = triangleBaselines(programs, scene, *budget, baselines, options.compare);
         stages.lap("triangle_route");

@@ -17,6 +17,11 @@ const std::vector<fit::TableRow<SimplifyMember>>& simplifyOptionTable() {
                   "the triangle route at its bytes)",
           .min = kLeastFaces, .max = kMostFaces, .setting = true},
          &S::faces},
+        {{.key = "cage_shape", .flag = "--cage-shape",
+          .help = "the cage's faces: quads (a quad-dominant remesh along the reference's cross field) or triangles (the "
+                  "reference decimated)",
+          .setting = true},
+         &S::cageShape},
         {{.key = "budget", .flag = "--budget",
           .help = "bytes what ships may take, 100 B to 1 TB (20000, 20KB, 1.5MB, 2G): chooses the cage, maps and bits to "
                   "fit them, or a triangle mesh where one ships better (default: a tenth of the reference compressed, at "

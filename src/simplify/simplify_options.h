@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fit/fit_options.h"
+#include "simplify/cage/initial_cage.h"
 #include "simplify/route.h"
 #include "util/named_enum.h"
 
@@ -47,7 +48,8 @@ inline fit::FitOptions simplifyFitDefaults() {
 
 struct SimplifyOptions {
     fit::FitOptions fit = simplifyFitDefaults();  // fit.reference: the dense asset; fit.cage is set by simplify
-    std::optional<int> faces;     // triangles of the cage; none: chosen by the budget
+    std::optional<int> faces;     // of the cage; none: chosen by the budget
+    CageShape cageShape = CageShape::Triangles;
     // Bytes what ships may take (simplify/budget_search.h). Without it or `faces`, defaultBudget()
     // of the reference; with `faces` alone, the cage is fitted as asked and the triangle route
     // weighed at its bytes.
@@ -64,7 +66,7 @@ namespace detail {
 // An optional number is "not given" unless set, 0 in the settings; the optional byte count is a size.
 using SimplifyMember = std::variant<int SimplifyOptions::*, std::optional<int> SimplifyOptions::*,
                                     std::optional<std::uintmax_t> SimplifyOptions::*, CompareLevel SimplifyOptions::*,
-                                    RouteChoice SimplifyOptions::*>;
+                                    RouteChoice SimplifyOptions::*, CageShape SimplifyOptions::*>;
 const std::vector<fit::TableRow<SimplifyMember>>& simplifyOptionTable();
 }  // namespace detail
 

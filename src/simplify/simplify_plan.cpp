@@ -32,7 +32,7 @@ BakeRoute bakeRouteOf(const mesh::PolygonMesh& cage, const fit::FitOptions& fit)
 
 SimplifyPlan planByFaces(const SimplifyOptions& o, fit::FitOptions fitOptions, fit::FitScene& scene,
                          const mesh::PolygonMesh& reference) {
-    scene.setCage(initialCage(reference, {.faces = o.faces.value_or(kDefaultFaces)}));
+    scene.setCage(initialCage(reference, {.faces = o.faces.value_or(kDefaultFaces), .shape = o.cageShape}));
     BakeRoute route = bakeRouteOf(scene.cage, fitOptions);
     return {.fit = std::move(fitOptions), .bakeRoute = std::move(route), .budget = std::nullopt};
 }

@@ -17,7 +17,7 @@ namespace {
 void expectTheCagesASourceBuildsInTurn(unsigned builders) {
     const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 5);
     const std::vector<int> counts{400, 250, 160, 2};  // the last: too few faces survive decimation
-    CageLadder ladder(reference, counts, {}, builders);
+    CageLadder ladder(reference, counts, CageShape::Triangles, {}, builders);
     const CageSource source(reference, true, counts.front());
     for (size_t k = 0; k + 1 < counts.size(); ++k) {
         const std::optional<mesh::PolygonMesh> cage = ladder.take(k);
@@ -38,7 +38,7 @@ TEST(CageLadder, PreparesEachCageBeforeHandingItOver) {
     const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 5);
     std::mutex mutex;
     std::vector<int> prepared;  // on a builder's thread, before each cage is handed over
-    CageLadder ladder(reference, {400, 160}, [&](const mesh::PolygonMesh& cage) {
+    CageLadder ladder(reference, {400, 160}, CageShape::Triangles, [&](const mesh::PolygonMesh& cage) {
         const std::lock_guard lock(mutex);
         prepared.push_back(cage.faceCount());
     }, 2);
@@ -53,7 +53,7 @@ TEST(CageLadder, PreparesEachCageBeforeHandingItOver) {
 TEST(CageLadder, AStopRequestReachesTheCageWaitedFor) {
     const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 5);
     stopRequest() = true;
-    CageLadder ladder(reference, {400, 160, 100}, {}, 2);
+    CageLadder ladder(reference, {400, 160, 100}, CageShape::Triangles, {}, 2);
     EXPECT_THROW(ladder.take(0), Interrupted);
     EXPECT_THROW(ladder.take(2), Error);  // never begun, or interrupted: either way not waited for forever
     stopRequest() = false;

@@ -13,6 +13,7 @@
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
 #include "simplify/cage/decimate.h"
+#include "simplify/remesh/polygon_repair.h"
 #include "simplify/remesh/quad_extraction.h"
 #include "simplify/remesh/quad_remesh.h"
 #include "simplify/remesh/split_long_edges.h"
@@ -94,3 +95,42 @@ TEST(QuadRemesh, SplittingLongEdgesKeepsTheMeshConforming) {
 
 }  // namespace
 }  // namespace subdfit::simplify::remesh
+#include "export/cage_coding.h"
+#include "mesh/obj_writer.h"
+namespace subdfit::simplify::remesh {
+TEST(QuadRemeshProbe, Coding) {
+    const char* path = std::getenv("SUBDFIT_REMESH_INPUT");
+    if (!path) GTEST_SKIP();
+    const mesh::PolygonMesh in = decimate(weldedTriangles(mesh::loadReference(path)), 8 * 13000);
+    const QuadRemesh r = quadRemesh(in, {.vertices = std::atoi(std::getenv("SUBDFIT_REMESH_VERTICES"))});
+    const auto coded = exporter::encodeCage(r.mesh, 10);
+    std::printf("quads: %zu bytes for %d faces\n", coded.bytes.size(), r.mesh.faceCount());
+    const mesh::PolygonMesh tri = decimate(in, 2 * r.mesh.vertexCount());
+    std::printf("triangles: %zu bytes for %d faces %d verts\n", exporter::encodeCage(tri, 10).bytes.size(), tri.faceCount(), tri.vertexCount());
+    mesh::writeObj("/tmp/probe_quads.obj", r.mesh);
+    mesh::writeObj("/tmp/probe_tris.obj", tri);
+}
+}
+#include "simplify/cage/initial_cage.h"
+#include "simplify/cage/limit_fit.h"
+#include <chrono>
+namespace subdfit::simplify::remesh {
+TEST(QuadRemeshProbe, LimitDistance) {
+    const char* path = std::getenv("SUBDFIT_REMESH_INPUT");
+    if (!path) GTEST_SKIP();
+    const mesh::PolygonMesh ref = mesh::loadReference(path);
+    const int faces = std::atoi(std::getenv("SUBDFIT_REMESH_VERTICES"));
+    const CageSource source(ref, true, 2 * faces);
+    const mesh::PolygonMesh welded = weldedTriangles(ref);
+    for (auto [shape, n] : {std::pair{CageShape::Quads, 2 * faces}, std::pair{CageShape::Triangles, 2 * faces}}) {
+        const auto t0 = std::chrono::steady_clock::now();
+        mesh::PolygonMesh cage = source.cage({.faces = n, .shape = shape});
+        std::printf("built in %.2f s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        for (int samples : {3, 6}) {
+            mesh::PolygonMesh copy = cage;
+            const LimitFitReport rep = fitLimitToSurface(copy, welded, {.rounds = 0 + 1, .samplesPerEdge = samples});
+            std::printf("%s %d verts %d faces: rms %.3g -> %.3g (samples %d)\n", shape == CageShape::Quads ? "quads" : "tris", cage.vertexCount(), cage.faceCount(), rep.rmsBefore, rep.rmsAfter, samples);
+        }
+    }
+}
+}

@@ -17,9 +17,9 @@ unsigned buildersFor(unsigned cores, size_t rungs) {
 
 }  // namespace
 
-CageLadder::CageLadder(const mesh::PolygonMesh& reference, std::vector<int> faceCounts, Prepare prepare,
-                       unsigned builders)
-    : promises_(faceCounts.size()), built_(faceCounts.size(), 0) {
+CageLadder::CageLadder(const mesh::PolygonMesh& reference, std::vector<int> faceCounts, CageShape shape,
+                       Prepare prepare, unsigned builders)
+    : shape_(shape), promises_(faceCounts.size()), built_(faceCounts.size(), 0) {
     for (auto& promise : promises_) cages_.push_back(promise.get_future());
     if (builders == 0) builders = buildersFor(std::thread::hardware_concurrency(), faceCounts.size());
     builder_ = std::thread([this, &reference, counts = std::move(faceCounts), prepare = std::move(prepare), builders] {
@@ -56,7 +56,7 @@ void CageLadder::build(const mesh::PolygonMesh& reference, const std::vector<int
 void CageLadder::buildRungs(const std::vector<int>& faceCounts, const Prepare& prepare) {
     for (size_t k = next_++; k < faceCounts.size() && !stop_; k = next_++) {
         try {
-            mesh::PolygonMesh cage = source_->cage({.faces = faceCounts[k]});
+            mesh::PolygonMesh cage = source_->cage({.faces = faceCounts[k], .shape = shape_});
             if (prepare) prepare(cage);
             promises_[k].set_value(std::move(cage));
         } catch (const Interrupted&) {

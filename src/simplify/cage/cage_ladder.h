@@ -22,13 +22,14 @@ public:
     // otherwise do between GL work (searchBudget's prepareToJudge).
     // `builders`: rungs built at once (0: by the machine's cores, one on up to 7).
     using Prepare = std::function<void(const mesh::PolygonMesh& cage)>;
-    CageLadder(const mesh::PolygonMesh& reference, std::vector<int> faceCounts, Prepare prepare = {},
-               unsigned builders = 0);
+    CageLadder(const mesh::PolygonMesh& reference, std::vector<int> faceCounts, CageShape shape = CageShape::Triangles,
+               Prepare prepare = {}, unsigned builders = 0);
     ~CageLadder();  // stops the builder after the cage it is on, and waits for it
     CageLadder(const CageLadder&) = delete;
     CageLadder& operator=(const CageLadder&) = delete;
 
     size_t size() const { return cages_.size(); }
+    CageShape shape() const { return shape_; }
     // The cage of faceCounts[k] (none where too few faces survive decimation), waiting for it;
     // rethrows what building it threw. Each k is taken once.
     std::optional<mesh::PolygonMesh> take(size_t k);
@@ -40,6 +41,7 @@ private:
                unsigned builders);
     void buildRungs(const std::vector<int>& faceCounts, const Prepare& prepare);
 
+    CageShape shape_;
     std::vector<std::promise<std::optional<mesh::PolygonMesh>>> promises_;
     std::vector<std::future<std::optional<mesh::PolygonMesh>>> cages_;
     std::optional<CageSource> source_;

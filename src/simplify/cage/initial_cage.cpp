@@ -11,10 +11,12 @@
 #include "simplify/cage/decimate.h"
 #include "simplify/cage/feature_edges.h"
 #include "simplify/cage/limit_fit.h"
+#include "simplify/remesh/quad_remesh.h"
 #include "subdiv/limit_evaluator.h"
 #include "util/error.h"
 #include "util/interrupt.h"
 #include "util/sparse_least_squares.h"
+#include "util/warnings.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -139,21 +141,46 @@ CageSource::CageSource(const mesh::PolygonMesh& reference, bool hardEdges, int m
     }
 }
 
-mesh::PolygonMesh CageSource::cage(const InitialCageOptions& options) const {
-    const mesh::PolygonMesh& reference = reference_;
-    const mesh::PolygonMesh& welded = welded_;
+std::optional<mesh::PolygonMesh> CageSource::quadCage(int faces) const {
+    const bool fromCopy = decimationCopy_ && faces <= copyServes_;
+    const mesh::PolygonMesh& input = fromCopy ? *decimationCopy_ : welded_;
+    // A triangle cage has two faces to a vertex.
+    const int vertices = std::max(8, faces / 2);
+    remesh::QuadRemesh remeshed;
+    try {
+        remeshed = remesh::quadRemesh(input, {.vertices = vertices});
+    } catch (const Error& e) {
+        warn(std::string(e.what()) + ": the cage is decimated instead");
+        return std::nullopt;
+    }
+    // The regions' mean lattice points lie in tangent planes: onto the reference along the normal.
+    mesh::PolygonMesh cage = std::move(remeshed.mesh);
+    for (size_t v = 0; v < cage.positions.size(); ++v)
+        if (const auto hit = surface_->castBothWays(cage.positions[v], remeshed.normals[v], remeshed.longestEdge))
+            cage.positions[v] += remeshed.normals[v] * hit->distance;
+    return cage;
+}
+
+mesh::PolygonMesh CageSource::decimatedCage(const InitialCageOptions& options) const {
     const bool fromCopy = decimationCopy_ && options.faces <= copyServes_;
-    mesh::PolygonMesh cage = decimate(fromCopy ? *decimationCopy_ : welded, options.faces);
+    mesh::PolygonMesh cage = decimate(fromCopy ? *decimationCopy_ : welded_, options.faces);
+    // While the decimated vertices still lie on the reference, where its hard edges are.
+    if (options.hardEdges && hardEdges_) hardEdges_->tag(cage);
+    evenOutTriangles(cage, options.evenOutRounds);
+    return cage;
+}
+
+mesh::PolygonMesh CageSource::cage(const InitialCageOptions& options) const {
+    std::optional<mesh::PolygonMesh> quads;
+    if (options.shape == CageShape::Quads) quads = quadCage(options.faces);
+    mesh::PolygonMesh cage = quads ? std::move(*quads) : decimatedCage(options);
+    if (cage.faceCount() < 2) throw fileError(reference_.sourcePath, "too few faces survive decimation to make a cage");
+    cage.sourcePath = reference_.sourcePath;
     cage.tags.triangles = mesh::TriangleSubdivision::Smooth;
     cage.tags.hasTriangles = true;
     cage.tags.boundary = mesh::BoundaryInterpolation::EdgeAndCorner;
     cage.tags.hasBoundary = true;
-    if (cage.faceCount() < 2)
-        throw fileError(reference.sourcePath, "too few faces survive decimation to make a cage");
-    // While the decimated vertices still lie on the reference, where its hard edges are.
-    if (options.hardEdges && hardEdges_) hardEdges_->tag(cage);
 
-    evenOutTriangles(cage, options.evenOutRounds);
     // Jacobi on limit(P) = V: the limit masks are convex combinations with the vertex itself
     // weighted most, so I − L contracts and a few sweeps converge.
     const std::vector<glm::vec3> targets = cage.positions;
@@ -167,10 +194,10 @@ mesh::PolygonMesh CageSource::cage(const InitialCageOptions& options) const {
     // (ripples on a dense triangle cage). The least-squares fit over whole faces settles it.
     LimitFitOptions limitFit = options.limitFit;
     limitFit.measureAfter = false;  // nothing here reads how close it came
-    fitLimitToSurface(cage, welded, *surface_, limitFit);
+    fitLimitToSurface(cage, welded_, *surface_, limitFit);
     for (const glm::vec3& p : cage.positions)
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            throw fileError(reference.sourcePath, "limit interpolation of the decimated cage diverged");
+            throw fileError(reference_.sourcePath, "limit interpolation of the initial cage diverged");
     return cage;
 }
 

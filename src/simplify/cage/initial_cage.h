@@ -13,18 +13,38 @@
 #include "mesh/polygon_mesh.h"
 #include "simplify/cage/feature_edges.h"
 #include "simplify/cage/limit_fit.h"
+#include "util/named_enum.h"
+
+namespace subdfit::simplify {
+
+// What a cage's faces are: quads along the reference's cross field (simplify/remesh), few of them
+// triangles, or the decimated reference's triangles.
+enum class CageShape { Quads, Triangles };
+
+}  // namespace subdfit::simplify
+
+template <>
+struct subdfit::EnumNames<subdfit::simplify::CageShape> {
+    static constexpr std::array names{std::pair{simplify::CageShape::Quads, std::string_view("quads")},
+                                      std::pair{simplify::CageShape::Triangles, std::string_view("triangles")}};
+};
 
 namespace subdfit::simplify {
 
 struct InitialCageOptions {
-    int faces = 1000;                // triangle budget of the cage
+    // Triangles of the cage at most; a quad cage has about as many vertices as that (half as
+    // many faces): the same bytes.
+    int faces = 1000;
+    CageShape shape = CageShape::Triangles;
     int evenOutRounds = 3;            // tangential smoothing of decimation's slivers (features stay)
     int interpolationIterations = 16; // P += V − limit(P) sweeps (each ÷~2 the gap)
     LimitFitOptions limitFit{};       // .rounds = 0: the interpolated cage as it is
     bool hardEdges = true;            // the reference's hard edges as creases (simplify/cage/feature_edges.h)
 };
 
-// `reference` in any units, any polygons. The cage is all triangles, welded, with OpenSubdiv's
+// `reference` in any units, any polygons. A quad cage is a quad remesh of the reference (where
+// remeshing fails, a part thinner than its quads say, the decimated cage is made instead, with
+// a warning), its hard edges not yet creased. A triangle cage is welded, with OpenSubdiv's
 // smooth-triangle rule (Loop-like weights on triangles, which keeps them from pinching),
 // boundaries interpolated with their corners, and the reference's hard edges as sharp creases. Throws subdfit::Error naming the reference when
 // the result is not a usable cage.
@@ -43,6 +63,9 @@ public:
     mesh::PolygonMesh cage(const InitialCageOptions& options) const;
 
 private:
+    std::optional<mesh::PolygonMesh> quadCage(int faces) const;  // none where remeshing fails
+    mesh::PolygonMesh decimatedCage(const InitialCageOptions& options) const;
+
     const mesh::PolygonMesh& reference_;
     mesh::PolygonMesh welded_;
     std::optional<mesh::PolygonMesh> decimationCopy_;  // of welded_, where it is dense

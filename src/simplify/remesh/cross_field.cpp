@@ -5,6 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "util/parallel_for.h"
+
 namespace subdfit::simplify::remesh {
 namespace {
 
@@ -88,6 +90,13 @@ std::vector<glm::vec3> restrictedOrientation(const GraphLevel& fine, const std::
     return sum;
 }
 
+// update(v) for every sample of `level`, an independent set at a time (on every core).
+template <class Update>
+void sweepOver(const GraphLevel& level, const Update& update) {
+    for (const std::vector<int>& set : level.independentSets)
+        parallelFor(0, int(set.size()), [&](int i) { update(set[size_t(i)]); });
+}
+
 }  // namespace
 
 std::pair<glm::vec3, glm::vec3> closestDirections(const glm::vec3& q0, const glm::vec3& n0, const glm::vec3& q1,
@@ -117,8 +126,9 @@ std::vector<glm::vec3> orientationField(const std::vector<GraphLevel>& levels, c
     for (int v = 0; v < top.size(); ++v) q[size_t(v)] = anyTangent(top.normals[size_t(v)]);
     for (int l = int(levels.size()) - 1; l >= 0; --l) {
         const GraphLevel& level = levels[size_t(l)];
-        for (int sweep = 0; sweep < sweeps.orientation; ++sweep)
-            for (int v = 0; v < level.size(); ++v) {
+        const int orientationSweeps = level.size() <= sweeps.smallLevel ? sweeps.orientation : sweeps.fineOrientation;
+        for (int sweep = 0; sweep < orientationSweeps; ++sweep)
+            sweepOver(level, [&](int v) {
                 const glm::vec3 n = level.normals[size_t(v)];
                 glm::vec3 sum = q[size_t(v)];
                 float weightSum = 0.0f;
@@ -130,7 +140,7 @@ std::vector<glm::vec3> orientationField(const std::vector<GraphLevel>& levels, c
                     weightSum += w;
                 }
                 q[size_t(v)] = sum;
-            }
+            });
         if (l == 0) break;
         const GraphLevel& finer = levels[size_t(l - 1)];
         std::vector<glm::vec3> next(size_t(finer.size()));
@@ -142,7 +152,7 @@ std::vector<glm::vec3> orientationField(const std::vector<GraphLevel>& levels, c
 }
 
 std::vector<glm::vec3> positionField(const std::vector<GraphLevel>& levels, const std::vector<glm::vec3>& orientation,
-                                     float scale, const FieldSweeps& sweeps) {
+                                     const FieldSweeps& sweeps) {
     std::vector<std::vector<glm::vec3>> q(levels.size());
     q[0] = orientation;
     for (size_t l = 1; l < levels.size(); ++l) q[l] = restrictedOrientation(levels[l - 1], q[l - 1], levels[l]);
@@ -151,22 +161,25 @@ std::vector<glm::vec3> positionField(const std::vector<GraphLevel>& levels, cons
     for (int l = int(levels.size()) - 1; l >= 0; --l) {
         const GraphLevel& level = levels[size_t(l)];
         const std::vector<glm::vec3>& ql = q[size_t(l)];
-        for (int sweep = 0; sweep < sweeps.position; ++sweep)
-            for (int v = 0; v < level.size(); ++v) {
+        const int positionSweeps = level.size() <= sweeps.smallLevel ? sweeps.position : sweeps.finePosition;
+        for (int sweep = 0; sweep < positionSweeps; ++sweep)
+            sweepOver(level, [&](int v) {
                 const glm::vec3 p = level.positions[size_t(v)], n = level.normals[size_t(v)];
+                const float scale = level.scales[size_t(v)];
                 glm::vec3 sum = o[size_t(v)];
                 float weightSum = 0.0f;
                 for (int k = level.offsets[size_t(v)]; k < level.offsets[size_t(v) + 1]; ++k) {
                     const int u = level.neighbors[size_t(k)];
                     const float w = level.weights[size_t(k)];
                     const auto [mine, theirs] = closestLatticePoints(p, n, ql[size_t(v)], sum, level.positions[size_t(u)],
-                                                                     level.normals[size_t(u)], ql[size_t(u)], o[size_t(u)], scale);
+                                                                     level.normals[size_t(u)], ql[size_t(u)], o[size_t(u)],
+                                                                     0.5f * (scale + level.scales[size_t(u)]));
                     sum = (mine * weightSum + theirs * w) / (weightSum + w);
                     sum -= n * glm::dot(n, sum - p);
                     weightSum += w;
                 }
                 o[size_t(v)] = latticeRound(sum, ql[size_t(v)], n, p, scale);
-            }
+            });
         if (l == 0) break;
         const GraphLevel& finer = levels[size_t(l - 1)];
         std::vector<glm::vec3> next(size_t(finer.size()));
@@ -174,7 +187,7 @@ std::vector<glm::vec3> positionField(const std::vector<GraphLevel>& levels, cons
             const glm::vec3 p = finer.positions[size_t(v)], n = finer.normals[size_t(v)];
             glm::vec3 from = o[size_t(finer.parent[size_t(v)])];
             from -= n * glm::dot(n, from - p);
-            next[size_t(v)] = latticeRound(from, q[size_t(l - 1)][size_t(v)], n, p, scale);
+            next[size_t(v)] = latticeRound(from, q[size_t(l - 1)][size_t(v)], n, p, finer.scales[size_t(v)]);
         }
         o = std::move(next);
     }

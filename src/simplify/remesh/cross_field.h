@@ -16,18 +16,22 @@
 
 namespace subdfit::simplify::remesh {
 
+// Gauss-Seidel sweeps per level: many where a level is small (cheap, and where the field finds
+// its shape), few on the large fine levels, which only settle what the coarser ones carried down.
 struct FieldSweeps {
-    int orientation = 24;  // sweeps per level
-    int position = 24;
+    int orientation = 24, position = 24;          // on levels of up to `smallLevel` samples
+    int fineOrientation = 4, finePosition = 6;    // on larger ones
+    int smallLevel = 4096;
 };
 
 // One q per sample of levels[0].
 std::vector<glm::vec3> orientationField(const std::vector<GraphLevel>& levels, const FieldSweeps& sweeps = {});
 
-// One o per sample of levels[0], for lattice spacing `scale`; `orientation` from orientationField
-// (it is carried to the coarser levels by averaging).
+// One o per sample of levels[0], the lattice spaced by each sample's scale (two samples compare
+// their lattices at their mean scale); `orientation` from orientationField (it is carried to the
+// coarser levels by averaging).
 std::vector<glm::vec3> positionField(const std::vector<GraphLevel>& levels, const std::vector<glm::vec3>& orientation,
-                                     float scale, const FieldSweeps& sweeps = {});
+                                     const FieldSweeps& sweeps = {});
 
 // The pair of the four directions of (q0, n0) and of (q1, n1) closest to parallel, the second
 // signed to agree with the first.

@@ -10,11 +10,11 @@
 #include <glm/geometric.hpp>
 
 #include "simplify/remesh/cross_field.h"
+#include "simplify/remesh/polygon_repair.h"
 
 namespace subdfit::simplify::remesh {
 namespace {
 
-constexpr int kLargestClosedHole = 6;  // corners of a hole closed by a polygon; larger ones are the input's
 // Two leftover triangles make a quad across an edge at least this long against their others (a
 // square's diagonal is 1.41 its sides; a flat rhombus's short diagonal is less than 1).
 constexpr float kShortestDiagonal = 1.0f;
@@ -78,43 +78,13 @@ void dropOverlaps(std::vector<Triangle>& triangles) {
     }
 }
 
-// The boundary loops of the faces with few corners, as polygons that close them.
-std::vector<std::vector<int>> smallHoles(const std::vector<std::vector<int>>& faces) {
-    std::unordered_map<std::uint64_t, int> directed;  // (a → b) → count
-    auto key = [](int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); };
-    for (const auto& f : faces)
-        for (size_t k = 0; k < f.size(); ++k) ++directed[key(f[k], f[(k + 1) % f.size()])];
-    std::unordered_map<int, std::vector<int>> next;  // the hole runs each boundary edge backwards
-    for (const auto& [k, count] : directed) {
-        const int a = int(k >> 32), b = int(std::uint32_t(k));
-        if (!directed.count(key(b, a))) next[b].push_back(a);
-    }
-    std::vector<std::vector<int>> holes;
-    std::unordered_map<int, char> used;
-    for (const auto& [start, outgoing] : next) {
-        if (outgoing.size() != 1 || used[start]) continue;
-        std::vector<int> loop{start};
-        int at = outgoing[0];
-        bool simple = true;
-        while (at != start && simple && int(loop.size()) <= kLargestClosedHole) {
-            const auto it = next.find(at);
-            simple = it != next.end() && it->second.size() == 1 && !used[at];
-            loop.push_back(at);
-            if (simple) at = it->second[0];
-        }
-        if (!simple || at != start || loop.size() < 3 || int(loop.size()) > kLargestClosedHole) continue;
-        for (int v : loop) used[v] = 1;
-        holes.push_back(std::move(loop));
-    }
-    return holes;
-}
-
 }  // namespace
 
 ExtractedMesh extractQuads(const mesh::PolygonMesh& triangles, const GraphLevel& finest,
-                           const std::vector<glm::vec3>& orientation, const std::vector<glm::vec3>& position, float scale) {
+                           const std::vector<glm::vec3>& orientation, const std::vector<glm::vec3>& position) {
     const int n = finest.size();
-    auto step = [&](int a, int b) { return latticeStep(position[size_t(a)], orientation[size_t(a)], finest.normals[size_t(a)], position[size_t(b)], scale); };
+    auto step = [&](int a, int b) { return latticeStep(position[size_t(a)], orientation[size_t(a)], finest.normals[size_t(a)], position[size_t(b)],
+                                                        0.5f * (finest.scales[size_t(a)] + finest.scales[size_t(b)])); };
 
     // The regions: samples joined through neighbours on the same lattice point.
     DisjointSets sets(n);
@@ -210,87 +180,39 @@ ExtractedMesh extractQuads(const mesh::PolygonMesh& triangles, const GraphLevel&
     pairUp(diagonals);
     for (size_t t = 0; t < dual.size(); ++t)
         if (dual[t].alive && !paired[t]) faces.push_back({dual[t].v.begin(), dual[t].v.end()});
-    for (auto& hole : smallHoles(faces)) faces.push_back(std::move(hole));
+
+    // A vertex where dropped triangles left two fans becomes two; the holes they left inside the
+    // input close (a region that holds a sample of the input's boundary is on its boundary).
+    const std::vector<int> copiedFrom = splitFans(faces, regions);
+    std::vector<char> inside(size_t(regions), 1);
+    std::unordered_map<std::uint64_t, int> inputEdgeUses;
+    for (int f = 0; f < triangles.faceCount(); ++f)
+        for (int k = 0; k < 3; ++k)
+            ++inputEdgeUses[edgeKey(triangles.faceIndices[size_t(3 * f + k)], triangles.faceIndices[size_t(3 * f + (k + 1) % 3)])];
+    for (const auto& [key, uses] : inputEdgeUses)
+        if (uses != 2) inside[size_t(region[size_t(key >> 32)])] = inside[size_t(region[size_t(std::uint32_t(key))])] = 0;
+    for (int r : copiedFrom) inside.push_back(inside[size_t(r)]);
+    closeHoles(faces, inside);
 
     // The vertices the faces use.
-    std::vector<int> index(size_t(regions), -1);
+    auto regionOf = [&](int v) { return v < regions ? v : copiedFrom[size_t(v - regions)]; };
+    std::vector<int> index(size_t(regions) + copiedFrom.size(), -1);
     ExtractedMesh out;
     out.mesh.sourcePath = triangles.sourcePath;
     for (const auto& f : faces) {
         out.mesh.faceSizes.push_back(int(f.size()));
-        for (int r : f) {
-            if (index[size_t(r)] < 0) {
-                index[size_t(r)] = out.mesh.vertexCount();
+        for (int v : f) {
+            if (index[size_t(v)] < 0) {
+                const int r = regionOf(v);
+                index[size_t(v)] = out.mesh.vertexCount();
                 out.mesh.positions.push_back(regionPosition[size_t(r)]);
                 const float length = glm::length(normalSum[size_t(r)]);
                 out.normals.push_back(length > 0.0f ? normalSum[size_t(r)] / length : glm::vec3(0, 0, 1));
             }
-            out.mesh.faceIndices.push_back(index[size_t(r)]);
+            out.mesh.faceIndices.push_back(index[size_t(v)]);
         }
     }
     return out;
-}
-
-bool isManifold(const mesh::PolygonMesh& mesh) {
-    // Each directed edge once; the corner that starts it, to walk the fans.
-    std::unordered_map<std::uint64_t, int> cornerOf;
-    auto key = [](int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); };
-    std::vector<int> faceOf, firstOf;
-    for (int f = 0, first = 0; f < mesh.faceCount(); first += mesh.faceSizes[size_t(f)], ++f)
-        for (int k = 0; k < mesh.faceSizes[size_t(f)]; ++k) {
-            faceOf.push_back(f);
-            firstOf.push_back(first);
-        }
-    auto nextCorner = [&](int c) {
-        const int first = firstOf[size_t(c)], size = mesh.faceSizes[size_t(faceOf[size_t(c)])];
-        return first + (c - first + 1) % size;
-    };
-    auto previousCorner = [&](int c) {
-        const int first = firstOf[size_t(c)], size = mesh.faceSizes[size_t(faceOf[size_t(c)])];
-        return first + (c - first + size - 1) % size;
-    };
-    for (int c = 0; c < int(mesh.faceIndices.size()); ++c) {
-        const int a = mesh.faceIndices[size_t(c)], b = mesh.faceIndices[size_t(nextCorner(c))];
-        if (a == b || !cornerOf.emplace(key(a, b), c).second) return false;
-    }
-    // Around each vertex: from any corner, turn through the faces (both ways where there is a
-    // boundary) and count; one fan reaches every corner of the vertex.
-    std::vector<int> cornersAt(size_t(mesh.vertexCount()), 0), someCorner(size_t(mesh.vertexCount()), -1);
-    for (int c = 0; c < int(mesh.faceIndices.size()); ++c) {
-        ++cornersAt[size_t(mesh.faceIndices[size_t(c)])];
-        someCorner[size_t(mesh.faceIndices[size_t(c)])] = c;
-    }
-    for (int v = 0; v < mesh.vertexCount(); ++v) {
-        if (someCorner[size_t(v)] < 0) continue;
-        int reached = 1;
-        // Clockwise: the corner of v in the face across the edge entering v's corner.
-        const int start = someCorner[size_t(v)];
-        int c = start;
-        bool closed = false;
-        while (true) {
-            const int previous = mesh.faceIndices[size_t(previousCorner(c))];
-            const auto it = cornerOf.find(key(v, previous));  // the face running v → previous
-            if (it == cornerOf.end()) break;
-            c = it->second;
-            if (c == start) {
-                closed = true;
-                break;
-            }
-            if (++reached > cornersAt[size_t(v)]) return false;
-        }
-        if (!closed) {
-            c = start;
-            while (true) {
-                const int next = mesh.faceIndices[size_t(nextCorner(c))];
-                const auto it = cornerOf.find(key(next, v));  // the face running next → v
-                if (it == cornerOf.end()) break;
-                c = nextCorner(it->second);
-                if (++reached > cornersAt[size_t(v)]) return false;
-            }
-        }
-        if (reached != cornersAt[size_t(v)]) return false;
-    }
-    return true;
 }
 
 }  // namespace subdfit::simplify::remesh

@@ -5,7 +5,7 @@
 // output inherits the input's connectivity and orientation); two output triangles that meet
 // across a diagonal of the lattice are one quad. Overlapping triangles (where the field is
 // disturbed, near its singularities) are dropped for the better-supported ones and the small
-// holes they leave closed by one polygon each.
+// holes they leave closed (simplify/remesh/polygon_repair.h).
 #include <glm/vec3.hpp>
 #include <vector>
 
@@ -22,10 +22,6 @@ struct ExtractedMesh {
 // `triangles`: the mesh of `finest` (levels[0] of its hierarchy); `orientation`, `position`: the
 // fields on its vertices.
 ExtractedMesh extractQuads(const mesh::PolygonMesh& triangles, const GraphLevel& finest,
-                           const std::vector<glm::vec3>& orientation, const std::vector<glm::vec3>& position, float scale);
-
-// Whether every edge of `mesh` joins at most two faces that run it opposite ways, and the faces
-// around every vertex are one fan (a disk, or a half disk on a boundary).
-bool isManifold(const mesh::PolygonMesh& mesh);
+                           const std::vector<glm::vec3>& orientation, const std::vector<glm::vec3>& position);
 
 }  // namespace subdfit::simplify::remesh

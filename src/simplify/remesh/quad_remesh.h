@@ -15,13 +15,16 @@ namespace subdfit::simplify::remesh {
 
 struct QuadRemeshOptions {
     int vertices = 1000;  // about how many the remesh has
+    // The quads' edge length wanted at each vertex of the input, up to a common factor (the count
+    // sets it): where detail needs vertices closer. Empty: even.
+    std::vector<float> relativeEdge;
     FieldSweeps sweeps{};
 };
 
 struct QuadRemesh {
     mesh::PolygonMesh mesh;          // quads, a few triangles and small polygons
     std::vector<glm::vec3> normals;  // per vertex, the input's there
-    float scale = 0.0f;              // the quads' edge length
+    float longestEdge = 0.0f;        // the longest edge length asked anywhere
     double quadShare() const;        // of the faces
 };
 

@@ -67,6 +67,8 @@ GraphLevel coarser(GraphLevel& fine) {
         coarse.positions.push_back(position);
         coarse.normals.push_back(normal);
         coarse.areas.push_back(area);
+        const float wa = b < 0 || !(area > 0.0f) ? 1.0f : fine.areas[size_t(a)] / area;
+        coarse.scales.push_back(wa * fine.scales[size_t(a)] + (b < 0 ? 0.0f : (1.0f - wa) * fine.scales[size_t(b)]));
     };
     for (const Pair& pair : pairs)
         if (fine.parent[size_t(pair.a)] < 0 && fine.parent[size_t(pair.b)] < 0) addParent(pair.a, pair.b);
@@ -99,11 +101,32 @@ GraphLevel coarser(GraphLevel& fine) {
     return coarse;
 }
 
+// Greedy colouring in sample order.
+std::vector<std::vector<int>> independentSets(const GraphLevel& level) {
+    std::vector<int> color(size_t(level.size()), -1);
+    std::vector<std::vector<int>> sets;
+    std::vector<char> taken;
+    for (int v = 0; v < level.size(); ++v) {
+        taken.assign(sets.size() + 1, 0);
+        for (int k = level.offsets[size_t(v)]; k < level.offsets[size_t(v) + 1]; ++k) {
+            const int c = color[size_t(level.neighbors[size_t(k)])];
+            if (c >= 0) taken[size_t(c)] = 1;
+        }
+        int c = 0;
+        while (taken[size_t(c)]) ++c;
+        if (size_t(c) == sets.size()) sets.emplace_back();
+        sets[size_t(c)].push_back(v);
+        color[size_t(v)] = c;
+    }
+    return sets;
+}
+
 }  // namespace
 
-std::vector<GraphLevel> surfaceHierarchy(const mesh::PolygonMesh& triangles, int coarsest) {
+std::vector<GraphLevel> surfaceHierarchy(const mesh::PolygonMesh& triangles, std::vector<float> scales, int coarsest) {
     std::vector<GraphLevel> levels;
     levels.push_back(finestLevel(triangles));
+    levels[0].scales = std::move(scales);
     while (levels.back().size() > coarsest) {
         GraphLevel next = coarser(levels.back());
         if (next.size() * 10 > levels.back().size() * 9) {  // stalled: little is left to match
@@ -112,6 +135,7 @@ std::vector<GraphLevel> surfaceHierarchy(const mesh::PolygonMesh& triangles, int
         }
         levels.push_back(std::move(next));
     }
+    for (GraphLevel& level : levels) level.independentSets = independentSets(level);
     return levels;
 }
 
