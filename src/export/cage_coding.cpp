@@ -24,7 +24,8 @@
 namespace subdfit::exporter {
 namespace {
 
-enum Coding : std::uint8_t { kPlain = 0, kDraco = 1 };
+// kDraco's polygon marks are a byte per triangle; kDracoPairs' are coded by pairMarks().
+enum Coding : std::uint8_t { kPlain = 0, kDraco = 1, kDracoPairs = 2 };
 // Draco's speed 1: its valence connectivity coder and multi-parallelogram position prediction,
 // 1-6 % smaller than speed 5 on decimated cages (docs/results.md, where a cage's bytes go).
 constexpr int kDracoSpeed = 1;
@@ -352,6 +353,77 @@ void polygonsFromTriangles(const std::vector<int>& corners, std::span<const unsi
     }
 }
 
+// The k for which triangle t's edge from corner k to k + 1 is an edge of triangle u (run the other
+// way), where exactly one is; else -1.
+int sharedEdge(const std::vector<int>& corners, size_t t, size_t u) {
+    int shared = -1;
+    for (int k = 0; k < 3; ++k) {
+        const int a = corners[3 * t + size_t(k)], b = corners[3 * t + size_t((k + 1) % 3)];
+        for (int j = 0; j < 3; ++j)
+            if (corners[3 * u + size_t(j)] == b && corners[3 * u + size_t((j + 1) % 3)] == a) {
+                if (shared >= 0) return -1;
+                shared = k;
+            }
+    }
+    return shared;
+}
+
+// The longest edge of triangle t (its first of equal ones): in a quad split in two, the
+// diagonal, the one edge inside the polygon.
+int longestEdge(const std::vector<Cell>& cells, const std::vector<int>& corners, size_t t) {
+    int longest = 0;
+    std::int64_t most = -1;
+    for (int k = 0; k < 3; ++k) {
+        const Cell& a = cells[size_t(corners[3 * t + size_t(k)])];
+        const Cell& b = cells[size_t(corners[3 * t + size_t((k + 1) % 3)])];
+        std::int64_t length = 0;
+        for (int i = 0; i < 3; ++i) length += std::int64_t(a[size_t(i)] - b[size_t(i)]) * (a[size_t(i)] - b[size_t(i)]);
+        if (length > most) most = length, longest = k;
+    }
+    return longest;
+}
+
+// The polygon marks of a quad-dominant cage cost a byte per triangle as they are, where a
+// triangle of a quad has one mark, nearly always on its longest edge: each triangle's 2-bit
+// symbol, four to a byte (low bits first), says 0: no edge inside a polygon; 1: its longest
+// edge alone; 2: the one edge it shares with the triangle before it, alone (Draco lays many
+// quads' triangles one after the other); 3: other marks, given whole in a byte after the symbols,
+// in triangle order.
+enum PairSymbol : unsigned { kAlone = 0, kLongest = 1, kWithPrevious = 2, kOtherMarks = 3 };
+
+std::vector<unsigned char> pairMarks(const CellTriangles& mesh, std::span<const unsigned char> interior) {
+    const size_t triangles = interior.size();
+    std::vector<unsigned char> symbols((triangles + 3) / 4, 0), others;
+    for (size_t t = 0; t < triangles; ++t) {
+        const int previous = t > 0 ? sharedEdge(mesh.corners, t, t - 1) : -1;
+        unsigned symbol = kOtherMarks;
+        if (interior[t] == 0) symbol = kAlone;
+        else if (interior[t] == 1u << longestEdge(mesh.cells, mesh.corners, t)) symbol = kLongest;
+        else if (previous >= 0 && interior[t] == 1u << previous) symbol = kWithPrevious;
+        if (symbol == kOtherMarks) others.push_back(interior[t]);
+        symbols[t / 4] |= std::uint8_t(symbol << (2 * (t % 4)));
+    }
+    symbols.insert(symbols.end(), others.begin(), others.end());
+    return symbols;
+}
+
+std::vector<unsigned char> marksFromPairs(const CellTriangles& mesh, ByteReader& in) {
+    const size_t triangles = mesh.corners.size() / 3;
+    const auto symbols = in.take((triangles + 3) / 4);
+    std::vector<unsigned char> interior(triangles, 0);
+    for (size_t t = 0; t < triangles; ++t) {
+        const unsigned symbol = (symbols[t / 4] >> (2 * (t % 4))) & 3u;
+        if (symbol == kOtherMarks) interior[t] = in.get<std::uint8_t>();
+        else if (symbol == kLongest) interior[t] = std::uint8_t(1u << longestEdge(mesh.cells, mesh.corners, t));
+        else if (symbol == kWithPrevious) {
+            const int k = t > 0 ? sharedEdge(mesh.corners, t, t - 1) : -1;
+            if (k < 0) throw Error(in.what() + ": a polygon mark pairs triangles that share no one edge");
+            interior[t] = std::uint8_t(1u << k);
+        }
+    }
+    return interior;
+}
+
 // The Draco body and the correspondence it gives, or nothing when Draco cannot carry this cage
 // as it is (repeated or unused vertices, non-manifold pieces it would cut, ...).
 std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBody(const mesh::PolygonMesh& cage,
@@ -437,16 +509,18 @@ std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBo
     ByteWriter body;
     body.putVarint(draco.size());
     body.putBytes(draco);
-    body.putBytes(interior);
+    body.putBytes(pairMarks(decoded, interior));
     return std::pair{std::move(body.bytes()), std::move(to)};
 }
 
-void readDraco(ByteReader& in, const Grid& grid, std::size_t vertices, std::size_t faces, mesh::PolygonMesh& cage) {
+void readDraco(ByteReader& in, int coding, const Grid& grid, std::size_t vertices, std::size_t faces,
+               mesh::PolygonMesh& cage) {
     const auto draco = in.take(in.getCount(1, "Draco byte"));
     CellTriangles triangles = decodeDracoTriangles(draco, grid, in.what());
     if (triangles.cells.size() != vertices) throw Error(in.what() + ": the Draco cage has the wrong vertex count");
     for (const Cell& c : triangles.cells) cage.positions.push_back(grid.position(c));
-    polygonsFromTriangles(triangles.corners, in.take(triangles.corners.size() / 3), cage, in.what());
+    if (coding == kDracoPairs) polygonsFromTriangles(triangles.corners, marksFromPairs(triangles, in), cage, in.what());
+    else polygonsFromTriangles(triangles.corners, in.take(triangles.corners.size() / 3), cage, in.what());
     if (cage.faceSizes.size() != faces) throw Error(in.what() + ": the Draco cage has the wrong face count");
 }
 
@@ -469,7 +543,7 @@ CageByteParts cageByteParts(const mesh::PolygonMesh& cage, int positionBits) {
         return size;
     };
     const CodedCage coded = encodeCage(cage, positionBits);
-    CageByteParts parts{.draco = coded.bytes.at(0) == kDraco, .stored = packed(coded.bytes)};
+    CageByteParts parts{.draco = coded.bytes.at(0) == kDracoPairs, .stored = packed(coded.bytes)};
     ByteWriter tags;
     writeTags(cage.tags, coded.correspondence, tags);
     parts.tags = packed(tags.bytes());
@@ -507,7 +581,7 @@ CodedCage encodeCage(const mesh::PolygonMesh& cage, int positionBits) {
     CodedCage coded;
     coded.correspondence = draco ? std::move(draco->second) : identity(cage);
     ByteWriter out;
-    out.put<std::uint8_t>(draco ? kDraco : kPlain);
+    out.put<std::uint8_t>(draco ? kDracoPairs : kPlain);
     out.putVarint(std::uint64_t(cage.vertexCount()));
     out.putVarint(std::uint64_t(cage.faceCount()));
     writeGrid(grid, out);
@@ -523,7 +597,8 @@ CodedCage encodeCage(const mesh::PolygonMesh& cage, int positionBits) {
 
 mesh::PolygonMesh decodeCage(ByteReader& in, int* positionBits) {
     const int coding = in.get<std::uint8_t>();
-    if (coding != kPlain && coding != kDraco) throw Error(in.what() + ": unknown cage coding " + std::to_string(coding));
+    if (coding != kPlain && coding != kDraco && coding != kDracoPairs)
+        throw Error(in.what() + ": unknown cage coding " + std::to_string(coding));
     const std::size_t vertices = in.getCount(coding == kPlain ? 6 : 0, "vertex"), faces = in.getCount(1, "face");
     if (vertices > std::size_t(mesh::kMaxVertices) || faces > std::size_t(mesh::kMaxTriangles))
         throw Error(in.what() + ": more vertices or faces than subdfit reads");
@@ -531,7 +606,7 @@ mesh::PolygonMesh decodeCage(ByteReader& in, int* positionBits) {
     if (positionBits) *positionBits = grid.bits;
     mesh::PolygonMesh cage;
     if (coding == kPlain) readPlain(in, grid, vertices, faces, cage);
-    else readDraco(in, grid, vertices, faces, cage);
+    else readDraco(in, coding, grid, vertices, faces, cage);
     readTags(in, cage);
     cage.sourcePath = in.what();  // what the soundness checks name: "file: CAGE section"
     mesh::validateMesh(cage);

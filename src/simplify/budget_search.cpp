@@ -387,11 +387,12 @@ void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& ca
     }
 }
 
-// Phase four: the best so far with its cage's positions at fewer bits, re-encoded from what it
-// shipped as, finest first, while the loss stays within kLossTolerance of the 14-bit one: the
-// bytes saved are what phase five grows the cage with.
-void fewerPositionBits(const SearchInputs& in, Findings& found) {
-    const Fitting* best = preferred(found.fitting, [](const BudgetCandidate&) { return true; }, monitored);
+// Phase four: the best so far (of those `keep` takes) with its cage's positions at fewer bits,
+// re-encoded from what it shipped as, finest first, while the loss stays within kLossTolerance
+// of the 14-bit one: the bytes saved are what phase five grows the cage with.
+template <class Keep>
+void fewerPositionBits(const SearchInputs& in, Findings& found, const Keep& keep) {
+    const Fitting* best = preferred(found.fitting, keep, monitored);
     if (!best) return;
     const BudgetCandidate start = best->candidate;
     const exporter::SubdAsset shipped = exporter::decodeSubd(*best->encoded, "budget candidate");
@@ -420,18 +421,20 @@ void fewerPositionBits(const SearchInputs& in, Findings& found) {
     }
 }
 
-// Phase five: the ladder's steps leave bytes unspent. The preferred kind of asset so far on a
-// cage grown to what the budget holds (bytes grow about in proportion to the faces), shrinking
-// until it fits.
-void growBest(const SearchInputs& in, Findings& found) {
-    const Fitting* ladderBest = preferred(found.fitting, [](const BudgetCandidate&) { return true; }, monitored);
+// Phase five: the ladder's steps leave bytes unspent. The preferred kind of asset so far (of
+// those `keep` takes) on a cage grown to what the budget holds (bytes grow about in proportion
+// to the faces), shrinking until it fits and growing on while it leaves bytes.
+template <class Keep>
+void growBest(const SearchInputs& in, Findings& found, const Keep& keep) {
+    const Fitting* ladderBest = preferred(found.fitting, keep, monitored);
     if (!ladderBest) return;
     const BudgetCandidate best = ladderBest->candidate;
+    int fromFaces = best.faces;
     double scale = 0.97 * double(in.search.budget) / double(best.bytes);
-    for (int attempt = 0; attempt < 3 && scale > 1.05; ++attempt, scale = 1.0 + 0.6 * (scale - 1.0)) {
+    for (int attempt = 0; attempt < 3 && scale > 1.05; ++attempt) {
         const int most = std::max(in.search.mostGrownFaces, in.search.faceCounts.front());
-        const int faces = std::min(int(std::lround(best.faces * scale)), most);
-        if (faces <= int(best.faces * 1.05)) break;
+        const int faces = std::min(int(std::lround(fromFaces * scale)), most);
+        if (faces <= int(fromFaces * 1.05)) break;
         const std::optional<TriedCage> cage = [&] {
             TimedStage timed(found.phases, "cages");
             return cageOf(in, faces);
@@ -447,7 +450,13 @@ void growBest(const SearchInputs& in, Findings& found) {
             best.maps.any() ? bakeMaps(cage->normalized, in.scene.reference, {.effects = best.maps, .resolution = best.mapResolution})
                             : surface::SurfaceMaps{};
         const MapRecipe recipe{.effects = best.maps, .resolution = best.mapResolution, .bits = best.mapBits};
-        if (fits(in.search, judge(in, found, cage->world, baked, recipe, appearance, best.positionBits))) break;
+        const BudgetCandidate grown = judge(in, found, cage->world, baked, recipe, appearance, best.positionBits);
+        if (fits(in.search, grown)) {  // on from it while bytes are left
+            fromFaces = grown.faces;
+            scale = 0.97 * double(in.search.budget) / double(grown.bytes);
+        } else {
+            scale = 1.0 + 0.6 * (scale - 1.0);
+        }
     }
 }
 
@@ -528,8 +537,18 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
         const std::vector<Bare> bare = judgeBare(in, found, *cage, appearances);
         for (const Bare* b : worthMaps(bare)) climbMapLadder(in, found, *cage, *b, mapChoices, bakes);
     }
-    fewerPositionBits(in, found);
-    growBest(in, found);
+    // The best, and where that has maps the best bare cage too: a bare cage spends fewer position
+    // bits on more faces, where maps spend them on heights, and the grown bare cage can lead.
+    const auto any = [](const BudgetCandidate&) { return true; };
+    const auto bare = [](const BudgetCandidate& c) { return !c.maps.any(); };
+    const Fitting* best = preferred(found.fitting, any, monitored);
+    const bool bestIsBare = best && bare(best->candidate);
+    fewerPositionBits(in, found, any);
+    growBest(in, found, any);
+    if (best && !bestIsBare) {
+        fewerPositionBits(in, found, bare);
+        growBest(in, found, bare);
+    }
     BudgetChoice choice = settleChoice(in, found);
     choice.phases = found.phases;
     return choice;

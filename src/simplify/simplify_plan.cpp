@@ -19,6 +19,8 @@ constexpr int kMostBudgetFaces = 16 * kDefaultFaces;
 // --steps was given): the search's bake of a dense cage is already close, and --budget should
 // cost about what a fit of this many faces does.
 constexpr int kMostFullyFittedFaces = 2 * kDefaultFaces;
+// The fewest faces a quad remesh is asked for (a remesh of a handful of quads is no cage).
+constexpr int kFewestQuadFaces = 16;
 
 // The bake route of a cage (normalised frame) with the run's own maps.
 BakeRoute bakeRouteOf(const mesh::PolygonMesh& cage, const fit::FitOptions& fit) {
@@ -43,7 +45,9 @@ namespace {
 BudgetSearch budgetSearchFor(const SimplifyOptions& o, std::uintmax_t budget, const fit::FitScene& scene) {
     return {.budget = budget,
             .faceCounts = budgetFaceCounts(o, budget, scene),
-            .mostGrownFaces = o.faces ? 0 : std::min(kMostBudgetFaces, scene.reference.faceCount()),
+            .mostGrownFaces = o.faces ? 0
+                                      : std::min(kMostBudgetFaces, scene.reference.faceCount()) /
+                                            (o.cageShape == CageShape::Quads ? 2 : 1),
             .allowedMaps = o.fit.maps,
             .appearance = {.baseColor = scene.shading != render::ShadingModel::Geometry,
                            .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness},
@@ -100,7 +104,12 @@ BakeRoute budgetBakeRoute(const BudgetChoice& choice, const BudgetSearch& search
 }  // namespace
 
 std::vector<int> budgetFaceCounts(const SimplifyOptions& o, std::uintmax_t budget, const fit::FitScene& scene) {
-    return o.faces ? std::vector<int>{*o.faces} : faceCountsFor(budget, scene.reference.faceCount(), kMostBudgetFaces);
+    if (o.faces) return {*o.faces};
+    std::vector<int> counts = faceCountsFor(budget, scene.reference.faceCount(), kMostBudgetFaces);
+    // A quad has a vertex to itself where a triangle has half of one: about twice the bytes.
+    if (o.cageShape == CageShape::Quads)
+        for (int& faces : counts) faces = std::max(kFewestQuadFaces, faces / 2);
+    return counts;
 }
 
 SimplifyPlan planWithinBudget(const SimplifyOptions& o, std::uintmax_t budget, double leastFittedMonitorPsnr,

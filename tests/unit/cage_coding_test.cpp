@@ -9,6 +9,7 @@
 
 #include "export/cage_coding.h"
 #include "mesh/mesh_loader.h"
+#include "mesh/procedural.h"
 #include "test_paths.h"
 
 namespace subdfit::exporter {
@@ -16,7 +17,7 @@ namespace {
 
 constexpr int kBits = 14;
 
-bool usesDraco(const CodedCage& coded) { return coded.bytes.at(0) == 1; }
+bool usesDraco(const CodedCage& coded) { return coded.bytes.at(0) == 2; }  // Draco, marks in pairs
 
 // Every face of `cage` is the decoded face the correspondence names, corner for corner.
 void expectSameFaces(const mesh::PolygonMesh& cage, const CodedCage& coded) {
@@ -99,6 +100,17 @@ TEST(CageCoding, TheBytesSplitIntoConnectivityPositionsMarksAndTags) {
     EXPECT_FALSE(plain.draco);
     EXPECT_GT(plain.tags, 0u);  // its creases
     EXPECT_EQ(plain.polygonMarks, 0u);
+}
+
+// A quad's two Draco triangles are marked along its diagonal, the longer edge: a quad cage's
+// marks cost a few bits a face, not a byte a triangle.
+TEST(CageCoding, AQuadCagesMarksCostAFewBitsAFace) {
+    const mesh::PolygonMesh sphere = mesh::makeQuadSphere(12);
+    const auto coded = encodeCage(sphere, kBits);
+    ASSERT_TRUE(usesDraco(coded));
+    expectSameFaces(sphere, coded);
+    const CageByteParts parts = cageByteParts(sphere, kBits);
+    EXPECT_LT(double(parts.polygonMarks), sphere.faceCount() / 16.0) << sphere.faceCount() << " quads";
 }
 
 TEST(CageCoding, ACageOfAFewFacesStaysPlain) {

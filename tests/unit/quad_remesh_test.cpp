@@ -13,6 +13,8 @@
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
 #include "simplify/cage/decimate.h"
+#include "simplify/cage/initial_cage.h"
+#include "simplify/cage/limit_fit.h"
 #include "simplify/remesh/polygon_repair.h"
 #include "simplify/remesh/quad_extraction.h"
 #include "simplify/remesh/quad_remesh.h"
@@ -42,13 +44,6 @@ double shareOfValence4(const mesh::PolygonMesh& m) {
 
 void expectGoodQuads(const QuadRemesh& r, int asked, const char* what) {
     SCOPED_TRACE(what);
-    if (std::getenv("SUBDFIT_REMESH_STATS")) {
-        std::map<int, int> sizes;
-        for (int n : r.mesh.faceSizes) ++sizes[n];
-        std::printf("%s: %d vertices, %d faces, quads %.3f, valence-4 %.3f, sizes:", what, r.mesh.vertexCount(), r.mesh.faceCount(), r.quadShare(), shareOfValence4(r.mesh));
-        for (auto [n, c] : sizes) std::printf(" %d:%d", n, c);
-        std::printf("\n");
-    }
     EXPECT_TRUE(isManifold(r.mesh));
     EXPECT_GE(r.quadShare(), 0.9) << r.mesh.faceCount() << " faces";
     EXPECT_GE(shareOfValence4(r.mesh), 0.8);
@@ -82,6 +77,22 @@ TEST(QuadRemesh, AnOpenSheetKeepsItsBoundary) {
     EXPECT_GT(boundaryEdges(r.mesh), 40);
 }
 
+// The cage simplify starts from, as a quad remesh: limit-fitted onto a bumpy reference, its
+// quads still quads and its limit surface on the reference.
+TEST(QuadRemesh, AQuadCageLiesOnItsReference) {
+    const mesh::PolygonMesh lumpy = mesh::makeLumpySphere(5, 0.15f, 7);
+    const mesh::PolygonMesh cage = CageSource(lumpy).cage({.faces = 500, .shape = CageShape::Quads});
+    EXPECT_GE(double(std::count(cage.faceSizes.begin(), cage.faceSizes.end(), 4)) / cage.faceCount(), 0.9);
+    EXPECT_NEAR(cage.faceCount(), 500, 75);
+    EXPECT_TRUE(isManifold(cage));
+    const mesh::PolygonMesh welded = weldedTriangles(lumpy);
+    mesh::PolygonMesh moved = cage;
+    const LimitFitReport fit = fitLimitToSurface(moved, welded, {.rounds = 1});
+    // Off the reference by about a hundredth of the quads' edge (about 0.17 on a unit sphere).
+    EXPECT_LT(fit.rmsBefore, 0.002) << fit.hits << " of " << fit.samples << " samples";
+    EXPECT_GT(fit.hits, fit.samples * 9 / 10);
+}
+
 TEST(QuadRemesh, SplittingLongEdgesKeepsTheMeshConforming) {
     const mesh::PolygonMesh box = weldedTriangles(mesh::triangulated(mesh::loadMesh(test::assetPath("osd-shapes/catmark_cube.obj"))));
     const mesh::PolygonMesh split = splitLongEdges(box, 0.1f);
@@ -95,42 +106,3 @@ TEST(QuadRemesh, SplittingLongEdgesKeepsTheMeshConforming) {
 
 }  // namespace
 }  // namespace subdfit::simplify::remesh
-#include "export/cage_coding.h"
-#include "mesh/obj_writer.h"
-namespace subdfit::simplify::remesh {
-TEST(QuadRemeshProbe, Coding) {
-    const char* path = std::getenv("SUBDFIT_REMESH_INPUT");
-    if (!path) GTEST_SKIP();
-    const mesh::PolygonMesh in = decimate(weldedTriangles(mesh::loadReference(path)), 8 * 13000);
-    const QuadRemesh r = quadRemesh(in, {.vertices = std::atoi(std::getenv("SUBDFIT_REMESH_VERTICES"))});
-    const auto coded = exporter::encodeCage(r.mesh, 10);
-    std::printf("quads: %zu bytes for %d faces\n", coded.bytes.size(), r.mesh.faceCount());
-    const mesh::PolygonMesh tri = decimate(in, 2 * r.mesh.vertexCount());
-    std::printf("triangles: %zu bytes for %d faces %d verts\n", exporter::encodeCage(tri, 10).bytes.size(), tri.faceCount(), tri.vertexCount());
-    mesh::writeObj("/tmp/probe_quads.obj", r.mesh);
-    mesh::writeObj("/tmp/probe_tris.obj", tri);
-}
-}
-#include "simplify/cage/initial_cage.h"
-#include "simplify/cage/limit_fit.h"
-#include <chrono>
-namespace subdfit::simplify::remesh {
-TEST(QuadRemeshProbe, LimitDistance) {
-    const char* path = std::getenv("SUBDFIT_REMESH_INPUT");
-    if (!path) GTEST_SKIP();
-    const mesh::PolygonMesh ref = mesh::loadReference(path);
-    const int faces = std::atoi(std::getenv("SUBDFIT_REMESH_VERTICES"));
-    const CageSource source(ref, true, 2 * faces);
-    const mesh::PolygonMesh welded = weldedTriangles(ref);
-    for (auto [shape, n] : {std::pair{CageShape::Quads, 2 * faces}, std::pair{CageShape::Triangles, 2 * faces}}) {
-        const auto t0 = std::chrono::steady_clock::now();
-        mesh::PolygonMesh cage = source.cage({.faces = n, .shape = shape});
-        std::printf("built in %.2f s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-        for (int samples : {3, 6}) {
-            mesh::PolygonMesh copy = cage;
-            const LimitFitReport rep = fitLimitToSurface(copy, welded, {.rounds = 0 + 1, .samplesPerEdge = samples});
-            std::printf("%s %d verts %d faces: rms %.3g -> %.3g (samples %d)\n", shape == CageShape::Quads ? "quads" : "tris", cage.vertexCount(), cage.faceCount(), rep.rmsBefore, rep.rmsAfter, samples);
-        }
-    }
-}
-}

@@ -144,11 +144,9 @@ CageSource::CageSource(const mesh::PolygonMesh& reference, bool hardEdges, int m
 std::optional<mesh::PolygonMesh> CageSource::quadCage(int faces) const {
     const bool fromCopy = decimationCopy_ && faces <= copyServes_;
     const mesh::PolygonMesh& input = fromCopy ? *decimationCopy_ : welded_;
-    // A triangle cage has two faces to a vertex.
-    const int vertices = std::max(8, faces / 2);
     remesh::QuadRemesh remeshed;
     try {
-        remeshed = remesh::quadRemesh(input, {.vertices = vertices});
+        remeshed = remesh::quadRemesh(input, {.vertices = std::max(8, faces)});
     } catch (const Error& e) {
         warn(std::string(e.what()) + ": the cage is decimated instead");
         return std::nullopt;

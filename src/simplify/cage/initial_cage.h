@@ -32,8 +32,8 @@ struct subdfit::EnumNames<subdfit::simplify::CageShape> {
 namespace subdfit::simplify {
 
 struct InitialCageOptions {
-    // Triangles of the cage at most; a quad cage has about as many vertices as that (half as
-    // many faces): the same bytes.
+    // Faces of the cage: at most (triangles), about (quads; a quad cage has about as many
+    // vertices as faces, a triangle cage half as many).
     int faces = 1000;
     CageShape shape = CageShape::Triangles;
     int evenOutRounds = 3;            // tangential smoothing of decimation's slivers (features stay)

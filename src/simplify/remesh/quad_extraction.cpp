@@ -78,6 +78,59 @@ void dropOverlaps(std::vector<Triangle>& triangles) {
     }
 }
 
+// The faces of the surviving dual triangles: pairs across a diagonal of the lattice (the
+// regions' steps voted so), best-supported first; then, of the triangles left (where the field
+// turns about a singularity), pairs across their longest edge; then the triangles left.
+Polygons pairedIntoQuads(const std::vector<Triangle>& dual, const std::unordered_map<std::uint64_t, int>& diagonalVotes,
+                         const std::vector<glm::vec3>& regionPosition) {
+    std::unordered_map<std::uint64_t, std::vector<int>> edgeTriangles;
+    for (int t = 0; t < int(dual.size()); ++t)
+        if (dual[size_t(t)].alive)
+            for (int k = 0; k < 3; ++k) edgeTriangles[edgeKey(dual[size_t(t)].v[size_t(k)], dual[size_t(t)].v[size_t((k + 1) % 3)])].push_back(t);
+    struct Diagonal {
+        float score;
+        int t0, t1;
+        std::uint64_t key;
+    };
+    std::vector<char> paired(dual.size(), 0);
+    Polygons faces;
+    auto pairUp = [&](std::vector<Diagonal>& diagonals) {
+        std::sort(diagonals.begin(), diagonals.end(), [](const Diagonal& x, const Diagonal& y) { return x.score != y.score ? x.score > y.score : x.key < y.key; });
+        for (const Diagonal& d : diagonals) {
+            if (paired[size_t(d.t0)] || paired[size_t(d.t1)]) continue;
+            paired[size_t(d.t0)] = paired[size_t(d.t1)] = 1;
+            // t0 = (a, b, x) rotated so that it runs the diagonal a → b; t1 runs b → a to its y.
+            const int a = int(d.key >> 32), b = int(std::uint32_t(d.key));
+            std::array<int, 3> v0 = dual[size_t(d.t0)].v, v1 = dual[size_t(d.t1)].v;
+            while (!(v0[0] == a && v0[1] == b) && !(v0[0] == b && v0[1] == a)) std::rotate(v0.begin(), v0.begin() + 1, v0.end());
+            while (!(v1[0] == v0[1] && v1[1] == v0[0])) std::rotate(v1.begin(), v1.begin() + 1, v1.end());
+            faces.push_back({v0[0], v1[2], v0[1], v0[2]});
+        }
+    };
+    std::vector<Diagonal> diagonals;
+    for (const auto& [key, list] : edgeTriangles)
+        if (const auto votes = diagonalVotes.find(key); list.size() == 2 && votes != diagonalVotes.end() && votes->second > 0)
+            diagonals.push_back({float(dual[size_t(list[0])].support + dual[size_t(list[1])].support), list[0], list[1], key});
+    pairUp(diagonals);
+    diagonals.clear();
+    auto length = [&](int a, int b) { return glm::distance(regionPosition[size_t(a)], regionPosition[size_t(b)]); };
+    for (const auto& [key, list] : edgeTriangles) {
+        if (list.size() != 2 || paired[size_t(list[0])] || paired[size_t(list[1])]) continue;
+        const int a = int(key >> 32), b = int(std::uint32_t(key));
+        float longestOther = 0.0f;
+        for (int t : list)
+            for (int v : dual[size_t(t)].v)
+                if (v != a && v != b) longestOther = std::max({longestOther, length(a, v), length(b, v)});
+        const float score = length(a, b) / std::max(longestOther, 1e-30f);
+        if (score > kShortestDiagonal) diagonals.push_back({score, list[0], list[1], key});
+    }
+    pairUp(diagonals);
+    for (size_t t = 0; t < dual.size(); ++t)
+        if (dual[t].alive && !paired[t]) faces.push_back({dual[t].v.begin(), dual[t].v.end()});
+
+    return faces;
+}
+
 }  // namespace
 
 ExtractedMesh extractQuads(const mesh::PolygonMesh& triangles, const GraphLevel& finest,
@@ -134,52 +187,7 @@ ExtractedMesh extractQuads(const mesh::PolygonMesh& triangles, const GraphLevel&
     }
     for (int r = 0; r < regions; ++r) regionPosition[size_t(r)] /= weight[size_t(r)];
 
-    // Quads: triangle pairs across a diagonal of the lattice, best-supported first; then, of the
-    // triangles left (where the field turns about a singularity), pairs across their longest edge.
-    std::unordered_map<std::uint64_t, std::vector<int>> edgeTriangles;
-    for (int t = 0; t < int(dual.size()); ++t)
-        if (dual[size_t(t)].alive)
-            for (int k = 0; k < 3; ++k) edgeTriangles[edgeKey(dual[size_t(t)].v[size_t(k)], dual[size_t(t)].v[size_t((k + 1) % 3)])].push_back(t);
-    struct Diagonal {
-        float score;
-        int t0, t1;
-        std::uint64_t key;
-    };
-    std::vector<char> paired(dual.size(), 0);
-    std::vector<std::vector<int>> faces;
-    auto pairUp = [&](std::vector<Diagonal>& diagonals) {
-        std::sort(diagonals.begin(), diagonals.end(), [](const Diagonal& x, const Diagonal& y) { return x.score != y.score ? x.score > y.score : x.key < y.key; });
-        for (const Diagonal& d : diagonals) {
-            if (paired[size_t(d.t0)] || paired[size_t(d.t1)]) continue;
-            paired[size_t(d.t0)] = paired[size_t(d.t1)] = 1;
-            // t0 = (a, b, x) rotated so that it runs the diagonal a → b; t1 runs b → a to its y.
-            const int a = int(d.key >> 32), b = int(std::uint32_t(d.key));
-            std::array<int, 3> v0 = dual[size_t(d.t0)].v, v1 = dual[size_t(d.t1)].v;
-            while (!(v0[0] == a && v0[1] == b) && !(v0[0] == b && v0[1] == a)) std::rotate(v0.begin(), v0.begin() + 1, v0.end());
-            while (!(v1[0] == v0[1] && v1[1] == v0[0])) std::rotate(v1.begin(), v1.begin() + 1, v1.end());
-            faces.push_back({v0[0], v1[2], v0[1], v0[2]});
-        }
-    };
-    std::vector<Diagonal> diagonals;
-    for (const auto& [key, list] : edgeTriangles)
-        if (list.size() == 2 && diagonalVotes[key] > 0)
-            diagonals.push_back({float(dual[size_t(list[0])].support + dual[size_t(list[1])].support), list[0], list[1], key});
-    pairUp(diagonals);
-    diagonals.clear();
-    auto length = [&](int a, int b) { return glm::distance(regionPosition[size_t(a)], regionPosition[size_t(b)]); };
-    for (const auto& [key, list] : edgeTriangles) {
-        if (list.size() != 2 || paired[size_t(list[0])] || paired[size_t(list[1])]) continue;
-        const int a = int(key >> 32), b = int(std::uint32_t(key));
-        float longestOther = 0.0f;
-        for (int t : list)
-            for (int v : dual[size_t(t)].v)
-                if (v != a && v != b) longestOther = std::max({longestOther, length(a, v), length(b, v)});
-        const float score = length(a, b) / std::max(longestOther, 1e-30f);
-        if (score > kShortestDiagonal) diagonals.push_back({score, list[0], list[1], key});
-    }
-    pairUp(diagonals);
-    for (size_t t = 0; t < dual.size(); ++t)
-        if (dual[t].alive && !paired[t]) faces.push_back({dual[t].v.begin(), dual[t].v.end()});
+    Polygons faces = pairedIntoQuads(dual, diagonalVotes, regionPosition);
 
     // A vertex where dropped triangles left two fans becomes two; the holes they left inside the
     // input close (a region that holds a sample of the input's boundary is on its boundary).
