@@ -12,14 +12,14 @@ const std::vector<fit::TableRow<SimplifyMember>>& simplifyOptionTable() {
     using S = SimplifyOptions;
     static const std::vector<fit::TableRow<SimplifyMember>> rows = {
         {{.key = "faces", .flag = "--faces",
-          .help = "triangles of the cage, 4..1000000 (default: the budget search's choice; with --budget, fixes the "
+          .help = "faces of the cage, 4..1000000 (default: the budget search's choice; with --budget, fixes the "
                   "cage and the search chooses only the maps; without, the cage is fitted as asked and weighed against "
                   "the triangle route at its bytes)",
           .min = kLeastFaces, .max = kMostFaces, .setting = true},
          &S::faces},
         {{.key = "cage_shape", .flag = "--cage-shape",
-          .help = "the cage's faces: quads (a quad-dominant remesh along the reference's cross field) or triangles (the "
-                  "reference decimated)",
+          .help = "the cage's faces: triangles (the reference decimated; ships better) or quads (a quad-dominant remesh "
+                  "along the reference's cross field, to edit or rig)",
           .setting = true},
          &S::cageShape},
         {{.key = "budget", .flag = "--budget",
