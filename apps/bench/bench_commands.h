@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "fit/fit_options.h"
+#include "simplify/cage/initial_cage.h"
 #include "simplify/route.h"
 #include "surface/relief_surface.h"
 
@@ -136,6 +137,7 @@ struct SimplifyTradeoffOptions {
     int resolution = fit::kByDevice;
     context::GlProvider glProvider = context::GlProvider::Auto;
     simplify::CompareLevel compare = simplify::CompareLevel::Full;
+    simplify::CageShape cageShape = simplify::CageShape::Triangles;
 };
 int runSimplifyTradeoff(const SimplifyTradeoffOptions& options);
 

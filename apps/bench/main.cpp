@@ -71,6 +71,7 @@ int main(int argc, char** argv) {
     simplifyCommand->add_option("--steps", tradeoff.steps, "optimisation steps per run (default: the device's)");
     simplifyCommand->add_option("--res", tradeoff.resolution, "render resolution (default: the device's)");
     subdfit::apps::addNamedOption(*simplifyCommand, "--compare", tradeoff.compare, "what each run compares: none, fast or full");
+    subdfit::apps::addNamedOption(*simplifyCommand, "--cage-shape", tradeoff.cageShape, "the cages' faces: triangles or quads");
     subdfit::apps::addGlProvider(*simplifyCommand, tradeoff.glProvider);
 
     subdfit::bench::ConvergenceOptions convergence;

@@ -52,6 +52,7 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
             s.fit.glProvider = o.glProvider;
             s.fit.force = true;
             s.compare = o.compare;
+            s.cageShape = o.cageShape;
             const auto report = simplify::runSimplify(s);
             std::string choice = report.route.shipped;
             if (report.route.shipped == "cage" && report.budget) {
