@@ -85,11 +85,11 @@ int runAccuracy(const AccuracyOptions& o) {
                 knob.apply(fit, value);
                 fit.out = o.out / "runs" / (asset.name + "_" + knob.name + "_" + std::to_string(value));
                 const auto report = fit::runFit(fit);
-                const auto decoded = exporter::decodeToGlb(fit.out / "asset.subd", fit.out / "decoded.glb", {.segments = fit.tessLevel});
+                const auto decoded =
+                    exporter::decodeToGlb(fit.out / "asset.subd", fit.out / "decoded.glb", {.segments = fit.tessLevel});
                 const auto shipped = mesh::triangulated(mesh::loadMesh(decoded.path));
                 const double chamfer = geometry::surfaceDistance(shipped, asset.reference, 50000).chamferL2Squared;
-                const Result r{asset.name, knob.name, value, report.fitSeconds,
-                               report.holdoutAfter.psnr, chamfer};
+                const Result r{asset.name, knob.name, value, report.fitSeconds, report.holdoutAfter.psnr, chamfer};
                 std::printf("%-7s %-17s %6d %9.1f %9.2f %13.3e\n", r.asset.c_str(), r.knob.c_str(), r.value, r.seconds,
                             r.psnr, r.chamfer);
                 std::fflush(stdout);
@@ -149,7 +149,8 @@ int runAccuracy(const AccuracyOptions& o) {
             if (r.asset != asset.name) continue;
             std::string rate = "—";
             if (base && &r != base && std::abs(r.seconds - base->seconds) > 0.5) {
-                const double perSecond = (std::log10(base->chamfer) - std::log10(r.chamfer)) / (r.seconds - base->seconds);
+                const double perSecond =
+                    (std::log10(base->chamfer) - std::log10(r.chamfer)) / (r.seconds - base->seconds);
                 char text[64];
                 std::snprintf(text, sizeof text, "%+.4f", perSecond);
                 rate = text;

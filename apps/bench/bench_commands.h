@@ -50,30 +50,28 @@ int runLumpySphere(const LumpySphereOptions& options);
 
 struct ConvergenceOptions {
     std::filesystem::path out = "bench-convergence";
-    fit::FitOptions fit;         // the fit's defaults unless told otherwise
-    float startScale = 0.7f;     // the cage's size against the reference's
+    fit::FitOptions fit;      // the fit's defaults unless told otherwise
+    float startScale = 0.7f;  // the cage's size against the reference's
     // The lumpy sphere: its bumps, their height (radius 1) and the seed placing them.
     int bumps = 12;
     float amplitude = 0.15f;
     std::uint32_t seed = 1;
-    int every = 25;              // steps between Chamfer measurements
+    int every = 25;  // steps between Chamfer measurements
     double peerChamfer = 7.07e-4;
 };
 int runConvergence(const ConvergenceOptions& options);
 
 struct RecoveryOptions {
     std::filesystem::path out = "bench-recovery";
-    std::vector<std::filesystem::path> shapes{"assets/osd-shapes/catmark_cube_creases1.obj",
-                                              "assets/osd-shapes/catmark_pyramid_creases0.obj",
-                                              "assets/osd-shapes/catmark_single_crease.obj",
-                                              "assets/osd-shapes/catmark_chaikin0.obj",
-                                              "assets/osd-shapes/catmark_helmet.obj",
-                                              "assets/osd-shapes/catmark_bishop.obj"};
+    std::vector<std::filesystem::path> shapes{
+        "assets/osd-shapes/catmark_cube_creases1.obj", "assets/osd-shapes/catmark_pyramid_creases0.obj",
+        "assets/osd-shapes/catmark_single_crease.obj", "assets/osd-shapes/catmark_chaikin0.obj",
+        "assets/osd-shapes/catmark_helmet.obj",        "assets/osd-shapes/catmark_bishop.obj"};
     fit::FitOptions fit = [] {
         fit::FitOptions f;
         f.views = 8;
         return f;
-    }();  // steps: the device's cap; the plateau schedule stops each fit once converged
+    }();                  // steps: the device's cap; the plateau schedule stops each fit once converged
     float sigma = 0.03f;  // noise, a fraction of the scene radius
     std::uint32_t noiseSeed = 11;
 };

@@ -38,15 +38,17 @@ int runConvergence(const ConvergenceOptions& o) {
     fit::FitOptions options = o.fit;
     options.out = o.out;
     auto context = context::createHeadlessContext(options.glProvider);
-    if (const std::string chosen = fit::resolveForCurrentDevice(options); !chosen.empty()) std::printf("%s\n", chosen.c_str());
+    if (const std::string chosen = fit::resolveForCurrentDevice(options); !chosen.empty())
+        std::printf("%s\n", chosen.c_str());
     gl::ProgramCache programs(gl::platformDefines());
     fit::FitScene scene(fit::resolved(options), programs, cage, reference);
     fit::FitRun run(fit::resolved(options), programs, scene);
     std::printf("cage mean edge (normalised frame) %.4f\n", mesh::meanEdgeLength(scene.cage));
 
-    std::printf("convergence: %d-quad sphere cage at %.0f %% of a %d-triangle lumpy sphere; %d views at %d^2, %d steps\n",
-                cage.faceCount(), 100.0 * o.startScale, reference.faceCount(), options.views, options.resolution,
-                options.steps);
+    std::printf(
+        "convergence: %d-quad sphere cage at %.0f %% of a %d-triangle lumpy sphere; %d views at %d^2, %d steps\n",
+        cage.faceCount(), 100.0 * o.startScale, reference.faceCount(), options.views, options.resolution,
+        options.steps);
     std::printf("%8s %10s %14s\n", "step", "seconds", "chamfer L2^2");
     std::vector<std::vector<std::string>> rows{{"step", "seconds", "chamfer_l2sq"}};
     Series curve{.label = "subdfit, " + std::to_string(options.resolution) + "^2"};
@@ -74,14 +76,15 @@ int runConvergence(const ConvergenceOptions& o) {
 
     std::filesystem::create_directories(o.out);
     writeCsv(o.out / "convergence.csv", rows);
-    writePlot(o.out / "convergence.png",
-              {.title = "Sphere cage at 70 % -> lumpy sphere: Chamfer against fit time",
-               .xLabel = "fit seconds (this machine)",
-               .yLabel = "symmetric Chamfer L2^2",
-               .logX = true,
-               .logY = true,
-               .series = {curve, Series{.label = "peer (Mitsuba 3 + Large Steps, 575 s)", .x = {575.0}, .y = {o.peerChamfer},
-                                         .markersOnly = true}}});
+    writePlot(o.out / "convergence.png", {.title = "Sphere cage at 70 % -> lumpy sphere: Chamfer against fit time",
+                                          .xLabel = "fit seconds (this machine)",
+                                          .yLabel = "symmetric Chamfer L2^2",
+                                          .logX = true,
+                                          .logY = true,
+                                          .series = {curve, Series{.label = "peer (Mitsuba 3 + Large Steps, 575 s)",
+                                                                   .x = {575.0},
+                                                                   .y = {o.peerChamfer},
+                                                                   .markersOnly = true}}});
     std::printf("peer chamfer %.2e %s\n", o.peerChamfer,
                 reached >= 0.0 ? ("reached after " + std::to_string(reached) + " s").c_str() : "not reached");
     std::printf("peak_rss_mib=%.0f\n", peakResidentMiB());

@@ -51,16 +51,19 @@ int runFitGain(const FitGainOptions& o) {
     fit::FitOptions base = o.fit;
     base.out = o.out;
     auto context = context::createHeadlessContext(base.glProvider);
-    if (const std::string chosen = fit::resolveForCurrentDevice(base); !chosen.empty()) std::printf("%s\n", chosen.c_str());
+    if (const std::string chosen = fit::resolveForCurrentDevice(base); !chosen.empty())
+        std::printf("%s\n", chosen.c_str());
     gl::ProgramCache programs(gl::platformDefines());
     const mesh::PolygonMesh reference = mesh::loadReference(o.reference);
-    const mesh::PolygonMesh cage = o.faces > 0 ? simplify::initialCage(reference, {.faces = o.faces}) : mesh::loadMesh(o.cage);
+    const mesh::PolygonMesh cage =
+        o.faces > 0 ? simplify::initialCage(reference, {.faces = o.faces}) : mesh::loadMesh(o.cage);
     fit::FitScene scene(fit::resolved(base), programs, cage, reference);
     const bool baked = base.maps.geometric();
     surface::SurfaceMaps maps;
     if (baked) {
         base.mapsStart = 0.0f;
-        maps = simplify::bakeMaps(scene.cage, scene.reference, {.effects = base.maps, .resolution = base.mapResolution});
+        maps =
+            simplify::bakeMaps(scene.cage, scene.reference, {.effects = base.maps, .resolution = base.mapResolution});
     }
     std::vector<Contender> contenders;
     for (const auto& variant : o.variants.empty() ? std::vector<std::string>{""} : o.variants) {
@@ -79,8 +82,9 @@ int runFitGain(const FitGainOptions& o) {
         contenders.push_back({name, std::move(run), 0.0, Series{.label = name}});
     }
     std::printf("fit-gain: %s on %s (%d faces, %d-triangle reference), maps %s; %d views at %d^2, at most %d steps\n",
-                o.faces > 0 ? "simplify's initial cage" : o.cage.filename().c_str(), o.reference.filename().c_str(), scene.cage.faceCount(),
-                scene.reference.faceCount(), maps::toString(base.maps).c_str(), base.views, base.resolution, base.steps);
+                o.faces > 0 ? "simplify's initial cage" : o.cage.filename().c_str(), o.reference.filename().c_str(),
+                scene.cage.faceCount(), scene.reference.faceCount(), maps::toString(base.maps).c_str(), base.views,
+                base.resolution, base.steps);
     std::vector<std::vector<std::string>> rows{{"variant", "step", "seconds", "psnr_holdout", "gain_db"}};
     std::vector<double> start;
     auto record = [&](Contender& c) {
@@ -89,7 +93,8 @@ int runFitGain(const FitGainOptions& o) {
         const double gain = psnr - start[size_t(&c - contenders.data())];
         rows.push_back({c.name, std::to_string(c.run->step()), std::to_string(c.seconds), std::to_string(psnr),
                         std::to_string(gain)});
-        std::printf("  %-40s step %5d %8.1f s  %8.3f dB  %+.3f\n", c.name.c_str(), c.run->step(), c.seconds, psnr, gain);
+        std::printf("  %-40s step %5d %8.1f s  %8.3f dB  %+.3f\n", c.name.c_str(), c.run->step(), c.seconds, psnr,
+                    gain);
         std::fflush(stdout);
         c.curve.x.push_back(c.seconds);
         c.curve.y.push_back(gain);
@@ -108,13 +113,14 @@ int runFitGain(const FitGainOptions& o) {
             if (!c.run->done()) record(c);
         }
     }
-    std::printf("%-40s %6s %9s %10s %10s %8s  %s\n", "variant", "steps", "fit s", "PSNR in", "PSNR out", "gain dB", "stop");
+    std::printf("%-40s %6s %9s %10s %10s %8s  %s\n", "variant", "steps", "fit s", "PSNR in", "PSNR out", "gain dB",
+                "stop");
     for (auto& c : contenders) {
         c.run->endStage();
         const double psnr = record(c);
         const double before = start[size_t(&c - contenders.data())];
-        std::printf("%-40s %6d %9.1f %10.3f %10.3f %+8.3f  %s\n", c.name.c_str(), c.run->step(), c.seconds, before, psnr,
-                    psnr - before, fit::toString(c.run->stopReason()));
+        std::printf("%-40s %6d %9.1f %10.3f %10.3f %+8.3f  %s\n", c.name.c_str(), c.run->step(), c.seconds, before,
+                    psnr, psnr - before, fit::toString(c.run->stopReason()));
     }
     std::filesystem::create_directories(o.out);
     writeCsv(o.out / "fit_gain.csv", rows);

@@ -41,19 +41,21 @@ using All = Wrappers<
     Counted<&glad_glMemoryBarrier, &C::barriers>, Counted<&glad_glMemoryBarrierByRegion, &C::barriers>,
     Counted<&glad_glTextureBarrier, &C::barriers>, Counted<&glad_glClearNamedBufferData, &C::bufferClears>,
     Counted<&glad_glClearNamedBufferSubData, &C::bufferClears>, Counted<&glad_glClearBufferData, &C::bufferClears>,
-    Counted<&glad_glClearNamedFramebufferfv, &C::targetClears>, Counted<&glad_glClearNamedFramebufferiv, &C::targetClears>,
-    Counted<&glad_glClearNamedFramebufferuiv, &C::targetClears>, Counted<&glad_glClearNamedFramebufferfi, &C::targetClears>,
-    Counted<&glad_glClear, &C::targetClears>, Counted<&glad_glClearTexImage, &C::targetClears>,
-    Counted<&glad_glFinish, &C::syncs>, Counted<&glad_glClientWaitSync, &C::syncs>,
-    Counted<&glad_glGetNamedBufferSubData, &C::syncs>, Counted<&glad_glGetBufferSubData, &C::syncs>,
-    Counted<&glad_glGetTextureImage, &C::syncs>, Counted<&glad_glGetTextureSubImage, &C::syncs>,
-    Counted<&glad_glReadPixels, &C::syncs>, Counted<&glad_glMapNamedBufferRange, &C::syncs>,
-    Counted<&glad_glProgramUniform1i, &C::uniformSets>, Counted<&glad_glProgramUniform1ui, &C::uniformSets>,
-    Counted<&glad_glProgramUniform1f, &C::uniformSets>, Counted<&glad_glProgramUniform2fv, &C::uniformSets>,
-    Counted<&glad_glProgramUniform3fv, &C::uniformSets>, Counted<&glad_glProgramUniform4fv, &C::uniformSets>,
-    Counted<&glad_glProgramUniformMatrix3fv, &C::uniformSets>, Counted<&glad_glProgramUniformMatrix4fv, &C::uniformSets>,
-    Counted<&glad_glUniform1i, &C::uniformSets>, Counted<&glad_glUniform2i, &C::uniformSets>,
-    Counted<&glad_glNamedBufferSubData, &C::bufferUploads>, Counted<&glad_glCopyNamedBufferSubData, &C::bufferUploads>>;
+    Counted<&glad_glClearNamedFramebufferfv, &C::targetClears>,
+    Counted<&glad_glClearNamedFramebufferiv, &C::targetClears>,
+    Counted<&glad_glClearNamedFramebufferuiv, &C::targetClears>,
+    Counted<&glad_glClearNamedFramebufferfi, &C::targetClears>, Counted<&glad_glClear, &C::targetClears>,
+    Counted<&glad_glClearTexImage, &C::targetClears>, Counted<&glad_glFinish, &C::syncs>,
+    Counted<&glad_glClientWaitSync, &C::syncs>, Counted<&glad_glGetNamedBufferSubData, &C::syncs>,
+    Counted<&glad_glGetBufferSubData, &C::syncs>, Counted<&glad_glGetTextureImage, &C::syncs>,
+    Counted<&glad_glGetTextureSubImage, &C::syncs>, Counted<&glad_glReadPixels, &C::syncs>,
+    Counted<&glad_glMapNamedBufferRange, &C::syncs>, Counted<&glad_glProgramUniform1i, &C::uniformSets>,
+    Counted<&glad_glProgramUniform1ui, &C::uniformSets>, Counted<&glad_glProgramUniform1f, &C::uniformSets>,
+    Counted<&glad_glProgramUniform2fv, &C::uniformSets>, Counted<&glad_glProgramUniform3fv, &C::uniformSets>,
+    Counted<&glad_glProgramUniform4fv, &C::uniformSets>, Counted<&glad_glProgramUniformMatrix3fv, &C::uniformSets>,
+    Counted<&glad_glProgramUniformMatrix4fv, &C::uniformSets>, Counted<&glad_glUniform1i, &C::uniformSets>,
+    Counted<&glad_glUniform2i, &C::uniformSets>, Counted<&glad_glNamedBufferSubData, &C::bufferUploads>,
+    Counted<&glad_glCopyNamedBufferSubData, &C::bufferUploads>>;
 
 PFNGLUSEPROGRAMPROC originalUseProgram = nullptr;
 void countedUseProgram(GLuint program) {
@@ -65,12 +67,13 @@ void countedUseProgram(GLuint program) {
 }  // namespace
 
 std::vector<std::string> GlCallCounts::names() {
-    return {"dispatches", "draws", "barriers", "buffer_clears", "target_clears", "syncs", "program_switches",
-            "uniform_sets", "buffer_uploads"};
+    return {"dispatches",       "draws",        "barriers",      "buffer_clears", "target_clears", "syncs",
+            "program_switches", "uniform_sets", "buffer_uploads"};
 }
 
 std::vector<long> GlCallCounts::values() const {
-    return {dispatches, draws, barriers, bufferClears, targetClears, syncs, programSwitches, uniformSets, bufferUploads};
+    return {dispatches, draws,           barriers,    bufferClears, targetClears,
+            syncs,      programSwitches, uniformSets, bufferUploads};
 }
 
 GlCallCounter::GlCallCounter() {

@@ -16,7 +16,7 @@ struct GlCallCounts {
     long syncs = 0;            // the CPU waits for the GPU: glFinish, fence waits, buffer / image readbacks
     long programSwitches = 0;  // glUseProgram with another program than the one in use
     long uniformSets = 0;
-    long bufferUploads = 0;    // glNamedBufferSubData, glCopyNamedBufferSubData
+    long bufferUploads = 0;  // glNamedBufferSubData, glCopyNamedBufferSubData
 
     static std::vector<std::string> names();
     std::vector<long> values() const;

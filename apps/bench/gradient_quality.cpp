@@ -104,7 +104,8 @@ int runGradientQuality(const GradientOptions& o) {
         const std::string name = fullImage ? "full-image" : "per-pixel";
         const auto curve = sampleCurve(programs, scene, reference, o.epsilon, fullImage, o.maxSamples);
         for (size_t i = 0; i < curve.samples.size(); ++i) {
-            std::printf("%-12s %8.0f %10.3f %8.3f\n", name.c_str(), curve.samples[i], curve.seconds[i], curve.cosine[i]);
+            std::printf("%-12s %8.0f %10.3f %8.3f\n", name.c_str(), curve.samples[i], curve.seconds[i],
+                        curve.cosine[i]);
             rows.push_back({"samples", name, std::to_string(o.epsilon), std::to_string(int(curve.samples[i])),
                             std::to_string(curve.seconds[i]), std::to_string(curve.cosine[i])});
         }

@@ -34,16 +34,18 @@ int runLumpySphere(const LumpySphereOptions& o) {
     fit.seed = o.seed;
     fit.force = true;
     const auto report = fit::runFit(fit, {.progress = [](const fit::Progress& p) {
-        std::fprintf(stderr, "step %d/%d  loss %.4e  %.1f s  ETA %.0f s\n", p.step, p.steps, double(p.loss), p.seconds,
-                     p.etaSeconds);
-    }});
+                                        std::fprintf(stderr, "step %d/%d  loss %.4e  %.1f s  ETA %.0f s\n", p.step,
+                                                     p.steps, double(p.loss), p.seconds, p.etaSeconds);
+                                    }});
     const auto fitted = mesh::loadMesh(fit.out / "cage.obj");
     const auto after = geometry::surfaceDistance(surface::limitMesh(fitted, 8), reference);
 
-    std::printf("lumpy sphere: %d-face cage, %d-triangle reference, %d views at %d^2, %d steps (%s)\n", cage.faceCount(),
-                reference.faceCount(), o.views, o.resolution, report.steps, report.stopReason.c_str());
+    std::printf("lumpy sphere: %d-face cage, %d-triangle reference, %d views at %d^2, %d steps (%s)\n",
+                cage.faceCount(), reference.faceCount(), o.views, o.resolution, report.steps,
+                report.stopReason.c_str());
     std::printf("%-8s %14s %14s %12s\n", "", "chamfer L2^2", "mean dist", "hausdorff");
-    std::printf("%-8s %14.3e %14.3e %12.3e\n", "before", before.chamferL2Squared, before.meanDistance, before.hausdorff);
+    std::printf("%-8s %14.3e %14.3e %12.3e\n", "before", before.chamferL2Squared, before.meanDistance,
+                before.hausdorff);
     std::printf("%-8s %14.3e %14.3e %12.3e\n", "after", after.chamferL2Squared, after.meanDistance, after.hausdorff);
     std::printf("fit_seconds=%.1f total_seconds=%.1f cpu_seconds=%.1f psnr_holdout=%.2f\n", report.fitSeconds,
                 report.seconds, processCpuSeconds(), report.holdoutAfter.psnr);

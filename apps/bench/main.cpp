@@ -39,7 +39,9 @@ int main(int argc, char** argv) {
     auto* stepCostCommand =
         command("step-cost", "SGE step time / forward render time, and scaling", stepCost, subdfit::bench::runStepCost);
     addOut(stepCostCommand, stepCost.out, "step_cost.csv", "folder for step_cost.csv");
-    stepCostCommand->add_option("--repeats", stepCost.repeats, "interleaved rounds (forward render, step, step in halves)")->capture_default_str();
+    stepCostCommand
+        ->add_option("--repeats", stepCost.repeats, "interleaved rounds (forward render, step, step in halves)")
+        ->capture_default_str();
     stepCostCommand->add_option("--res", stepCost.resolutions, "resolutions timed")->capture_default_str();
     stepCostCommand->add_flag("!--no-scaling", stepCost.scaling, "skip the table against parameter count");
     subdfit::apps::addGlProvider(*stepCostCommand, stepCost.glProvider);
@@ -49,14 +51,16 @@ int main(int argc, char** argv) {
                                  subdfit::bench::runLumpySphere);
     addOut(lumpyCommand, lumpy.out, "lumpy_sphere.csv", "output folder")->capture_default_str();
     lumpyCommand->add_option("--steps", lumpy.steps, "most optimisation steps (default: the device's)");
-    lumpyCommand->add_option("--noise-gate", lumpy.noiseGate, "the fit's noise gate (0: plain Adam)")->capture_default_str();
+    lumpyCommand->add_option("--noise-gate", lumpy.noiseGate, "the fit's noise gate (0: plain Adam)")
+        ->capture_default_str();
     lumpyCommand->add_option("--res", lumpy.resolution, "resolution")->capture_default_str();
     lumpyCommand->add_option("--views", lumpy.views, "training views")->capture_default_str();
     lumpyCommand->add_option("--bumps", lumpy.bumps, "bumps of the lumpy sphere")->capture_default_str();
     lumpyCommand->add_option("--amplitude", lumpy.amplitude, "their height (sphere radius 1)")->capture_default_str();
     lumpyCommand->add_option("--lumps-seed", lumpy.lumpsSeed, "the seed placing them")->capture_default_str();
     lumpyCommand->add_option("--cage-divisions", lumpy.cageDivisions, "the sphere cage's quads per cube-face edge")
-        ->capture_default_str()->check(CLI::Range(2, 32));
+        ->capture_default_str()
+        ->check(CLI::Range(2, 32));
     lumpyCommand->add_option("--seed", lumpy.seed, "the fit's seed (views, perturbations)")->capture_default_str();
     subdfit::apps::addGlProvider(*lumpyCommand, lumpy.glProvider);
 
@@ -70,8 +74,10 @@ int main(int argc, char** argv) {
     simplifyCommand->add_option("--budgets", tradeoff.budgets, "byte budgets")->capture_default_str();
     simplifyCommand->add_option("--steps", tradeoff.steps, "optimisation steps per run (default: the device's)");
     simplifyCommand->add_option("--res", tradeoff.resolution, "render resolution (default: the device's)");
-    subdfit::apps::addNamedOption(*simplifyCommand, "--compare", tradeoff.compare, "what each run compares: none, fast or full");
-    subdfit::apps::addNamedOption(*simplifyCommand, "--cage-shape", tradeoff.cageShape, "the cages' faces: triangles or quads");
+    subdfit::apps::addNamedOption(*simplifyCommand, "--compare", tradeoff.compare,
+                                  "what each run compares: none, fast or full");
+    subdfit::apps::addNamedOption(*simplifyCommand, "--cage-shape", tradeoff.cageShape,
+                                  "the cages' faces: triangles or quads");
     subdfit::apps::addGlProvider(*simplifyCommand, tradeoff.glProvider);
 
     subdfit::bench::ConvergenceOptions convergence;
@@ -81,18 +87,22 @@ int main(int argc, char** argv) {
     addOut(convergenceCommand, convergence.out, "convergence.csv", "output folder")->capture_default_str();
     convergenceCommand->add_option("--start-scale", convergence.startScale, "the cage's size against the reference's")
         ->capture_default_str();
-    convergenceCommand->add_option("--every", convergence.every, "steps between Chamfer measurements")->capture_default_str();
+    convergenceCommand->add_option("--every", convergence.every, "steps between Chamfer measurements")
+        ->capture_default_str();
     convergenceCommand->add_option("--bumps", convergence.bumps, "bumps of the lumpy sphere")->capture_default_str();
-    convergenceCommand->add_option("--amplitude", convergence.amplitude, "their height (sphere radius 1)")->capture_default_str();
+    convergenceCommand->add_option("--amplitude", convergence.amplitude, "their height (sphere radius 1)")
+        ->capture_default_str();
     convergenceCommand->add_option("--lumps-seed", convergence.seed, "the seed placing them")->capture_default_str();
     subdfit::apps::addFitSettings(*convergenceCommand, convergence.fit);
 
     subdfit::bench::RecoveryOptions recovery;
-    auto* recoveryCommand = command("recovery", "noised (creased) cages fitted back to their own limit surface (8 views unless --views)",
-                                    recovery, subdfit::bench::runRecovery);
+    auto* recoveryCommand =
+        command("recovery", "noised (creased) cages fitted back to their own limit surface (8 views unless --views)",
+                recovery, subdfit::bench::runRecovery);
     addOut(recoveryCommand, recovery.out, "recovery.csv", "output folder")->capture_default_str();
     recoveryCommand->add_option("--shapes", recovery.shapes, "cages (OBJ with OpenSubdiv tags)")->capture_default_str();
-    recoveryCommand->add_option("--sigma", recovery.sigma, "noise, a fraction of the scene radius")->capture_default_str();
+    recoveryCommand->add_option("--sigma", recovery.sigma, "noise, a fraction of the scene radius")
+        ->capture_default_str();
     subdfit::apps::addFitSettings(*recoveryCommand, recovery.fit);
 
     subdfit::bench::MapsGainOptions mapsGain;
@@ -100,14 +110,17 @@ int main(int argc, char** argv) {
         command("maps", "held-out PSNR, time and bytes with and without maps", mapsGain, subdfit::bench::runMapsGain);
     addOut(mapsCommand, mapsGain.out, "maps_gain.csv", "output folder")->capture_default_str();
     mapsCommand->add_option("--cage", mapsGain.cage, "the cage (default: the ~200-quad sphere cage)");
-    mapsCommand->add_option("--reference", mapsGain.reference,
-                            "the reference (default: with --cage, its limit surface with a relief; else a bumpy sphere)");
-    mapsCommand->add_option("--relief-amplitude", mapsGain.reliefAmplitude,
-                            "with --cage alone: the relief's RMS height, a fraction of the bounding-box diagonal")
+    mapsCommand->add_option(
+        "--reference", mapsGain.reference,
+        "the reference (default: with --cage, its limit surface with a relief; else a bumpy sphere)");
+    mapsCommand
+        ->add_option("--relief-amplitude", mapsGain.reliefAmplitude,
+                     "with --cage alone: the relief's RMS height, a fraction of the bounding-box diagonal")
         ->capture_default_str();
     mapsCommand->add_option("--relief-seed", mapsGain.reliefSeed, "with --cage alone: the seed of the relief's waves")
         ->capture_default_str();
-    mapsCommand->add_option("--compare", mapsGain.compared, "maps each compared with a vertex-only fit")->capture_default_str();
+    mapsCommand->add_option("--compare", mapsGain.compared, "maps each compared with a vertex-only fit")
+        ->capture_default_str();
     subdfit::apps::addFitSettings(*mapsCommand, mapsGain.fit);
 
     subdfit::bench::FitGainOptions fitGain;
@@ -117,9 +130,12 @@ int main(int argc, char** argv) {
                                    fitGain, subdfit::bench::runFitGain);
     addOut(fitGainCommand, fitGain.out, "fit_gain.csv", "output folder")->capture_default_str();
     fitGainCommand->add_option("--cage", fitGain.cage, "the starting cage (world units)");
-    fitGainCommand->add_option("--faces", fitGain.faces, "start from simplify's initial cage of about this many faces instead");
+    fitGainCommand->add_option("--faces", fitGain.faces,
+                               "start from simplify's initial cage of about this many faces instead");
     fitGainCommand->add_option("--reference", fitGain.reference, "the dense reference")->required();
-    fitGainCommand->add_option("--variant", fitGain.variants, "fit options over the common ones, \"key=value;key=value\" (report.json's keys); one run each");
+    fitGainCommand->add_option(
+        "--variant", fitGain.variants,
+        "fit options over the common ones, \"key=value;key=value\" (report.json's keys); one run each");
     fitGainCommand->add_option("--every", fitGain.every, "steps per turn")->capture_default_str();
     subdfit::apps::addFitSettings(*fitGainCommand, fitGain.fit);
 
@@ -136,10 +152,15 @@ int main(int argc, char** argv) {
                 subdfit::bench::runRelief);
     reliefCommand->add_option("--cage", relief.cage, "cage whose limit surface is the base")->capture_default_str();
     reliefCommand->add_option("--out", relief.out, "the .glb to write")->capture_default_str();
-    reliefCommand->add_option("--mesh", relief.mesh, "a textured triangle asset (.gltf, .glb, .obj) to split and relieve instead");
-    reliefCommand->add_option("--splits", relief.splits, "with --mesh: 4-splits of its triangles")->capture_default_str()->check(CLI::Range(0, 5));
-    reliefCommand->add_option("--segments", relief.relief.segments, "tessellation per ptex-face edge")->capture_default_str();
-    reliefCommand->add_option("--amplitude", relief.relief.amplitude, "RMS height, a fraction of the bounding-box diagonal")
+    reliefCommand->add_option("--mesh", relief.mesh,
+                              "a textured triangle asset (.gltf, .glb, .obj) to split and relieve instead");
+    reliefCommand->add_option("--splits", relief.splits, "with --mesh: 4-splits of its triangles")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 5));
+    reliefCommand->add_option("--segments", relief.relief.segments, "tessellation per ptex-face edge")
+        ->capture_default_str();
+    reliefCommand
+        ->add_option("--amplitude", relief.relief.amplitude, "RMS height, a fraction of the bounding-box diagonal")
         ->capture_default_str();
     reliefCommand->add_option("--seed", relief.relief.seed, "seed of the relief's waves")->capture_default_str();
 
@@ -157,7 +178,8 @@ int main(int argc, char** argv) {
     soupCommand->add_option("--triangles", soup.triangles, "triangles (12 parameters each)")->capture_default_str();
     soupCommand->add_option("--steps", soup.steps, "optimisation steps per estimator")->capture_default_str();
     soupCommand->add_option("--res", soup.resolution, "resolution")->capture_default_str();
-    soupCommand->add_option("--seconds", soup.seconds, "step-time budget per estimator (0: none)")->capture_default_str();
+    soupCommand->add_option("--seconds", soup.seconds, "step-time budget per estimator (0: none)")
+        ->capture_default_str();
     subdfit::apps::addGlProvider(*soupCommand, soup.glProvider);
 
     subdfit::bench::DecodeLodsOptions decodeLods;
@@ -165,7 +187,8 @@ int main(int argc, char** argv) {
         command("lods", "decode --lods: each level's bytes and distances next to gltfpack's at its triangles",
                 decodeLods, subdfit::bench::runDecodeLods);
     lodsCommand->add_option("asset", decodeLods.asset, "an asset.subd")->required();
-    lodsCommand->add_option("--reference", decodeLods.reference, "its dense reference, for gltfpack's levels of it and distances to it");
+    lodsCommand->add_option("--reference", decodeLods.reference,
+                            "its dense reference, for gltfpack's levels of it and distances to it");
     lodsCommand->add_option("--lods", decodeLods.lods, "levels")->capture_default_str()->check(CLI::Range(2, 8));
     addOut(lodsCommand, decodeLods.out, "decode_lods.csv", "output folder")->capture_default_str();
 

@@ -41,9 +41,8 @@ int runMapsGain(const MapsGainOptions& o) {
     const auto [cage, reference] = writeCase(o);
     std::vector<std::string> runs{"none"};
     runs.insert(runs.end(), o.compared.begin(), o.compared.end());
-    std::vector<std::vector<std::string>> rows{
-        {"maps", "steps", "stop_reason", "fit_seconds", "psnr_holdout_initial", "psnr_holdout", "gain_over_none_db",
-         "asset_subd_bytes", "parameters"}};
+    std::vector<std::vector<std::string>> rows{{"maps", "steps", "stop_reason", "fit_seconds", "psnr_holdout_initial",
+                                                "psnr_holdout", "gain_over_none_db", "asset_subd_bytes", "parameters"}};
     std::printf("maps: %s against %s\n", cage.filename().c_str(), reference.filename().c_str());
     std::printf("%-22s %6s %10s %8s %10s %10s %9s %12s\n", "maps", "steps", "stop", "fit s", "PSNR in", "PSNR out",
                 "vs none", "asset.subd B");

@@ -18,8 +18,16 @@ namespace {
 
 // matplotlib's "tab10": distinct on white and for the common colour-vision deficiencies.
 constexpr std::array<std::array<int, 3>, 10> kPalette{{
-    {31, 119, 180}, {255, 127, 14}, {44, 160, 44}, {214, 39, 40}, {148, 103, 189},
-    {140, 86, 75}, {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207},
+    {31, 119, 180},
+    {255, 127, 14},
+    {44, 160, 44},
+    {214, 39, 40},
+    {148, 103, 189},
+    {140, 86, 75},
+    {227, 119, 194},
+    {127, 127, 127},
+    {188, 189, 34},
+    {23, 190, 207},
 }};
 constexpr int kBlack = 1, kGrid = 2, kFirstSeries = 3;  // colour map 0 slots
 
@@ -77,7 +85,8 @@ void draw(plstream& pls, const PlotSpec& spec) {
     pls.vpor(0.10, 0.72, 0.12, 0.90);
     pls.wind(x.lo, x.hi, y.lo, y.hi);
     // A log axis spanning a decade or more ticks at decades; a shorter one wherever PLplot likes.
-    const PLFLT xTick = spec.logX && x.hi - x.lo >= 1.0 ? 1.0 : 0.0, yTick = spec.logY && y.hi - y.lo >= 1.0 ? 1.0 : 0.0;
+    const PLFLT xTick = spec.logX && x.hi - x.lo >= 1.0 ? 1.0 : 0.0,
+                yTick = spec.logY && y.hi - y.lo >= 1.0 ? 1.0 : 0.0;
     pls.slabelfunc(tickLabel, const_cast<PlotSpec*>(&spec));
     pls.col0(kGrid);
     pls.box("g", xTick, 0, "g", yTick, 0);  // the grid, under the data
@@ -131,9 +140,9 @@ void draw(plstream& pls, const PlotSpec& spec) {
     std::vector<PLFLT> zero(size_t(n), 0.0);
     PLFLT width = 0, height = 0;
     pls.legend(&width, &height, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX, PL_POSITION_RIGHT | PL_POSITION_OUTSIDE,
-               0.02, 0.0, 0.1, 0, kBlack, 1, 0, 0, n, opts.data(), 1.0, 0.8, 2.0, 1.0, colours.data(),
-               labelText.data(), none.data(), none.data(), zero.data(), zero.data(), colours.data(), lineStyles.data(),
-               widths.data(), markerColours.data(), markerScales.data(), markerCounts.data(), markerText.data());
+               0.02, 0.0, 0.1, 0, kBlack, 1, 0, 0, n, opts.data(), 1.0, 0.8, 2.0, 1.0, colours.data(), labelText.data(),
+               none.data(), none.data(), zero.data(), zero.data(), colours.data(), lineStyles.data(), widths.data(),
+               markerColours.data(), markerScales.data(), markerCounts.data(), markerText.data());
 }
 
 // PLplot exits the process when asked for a device it cannot load, so ask first.
@@ -145,7 +154,8 @@ bool pngDriverLoadable() {
     const char** nameList = names;
     int count = kMost;
     plgDevs(&menuList, &nameList, &count);
-    return std::any_of(names, names + std::clamp(count, 0, kMost), [](const char* n) { return n && std::string(n) == "pngcairo"; });
+    return std::any_of(names, names + std::clamp(count, 0, kMost),
+                       [](const char* n) { return n && std::string(n) == "pngcairo"; });
 }
 
 }  // namespace

@@ -12,7 +12,7 @@ namespace subdfit::bench {
 struct Series {
     std::string label;
     std::vector<double> x{}, y{};  // same length; extra entries of the longer one are ignored
-    bool markersOnly = false;  // scatter: markers without connecting lines
+    bool markersOnly = false;      // scatter: markers without connecting lines
 };
 
 struct PlotSpec {

@@ -47,7 +47,8 @@ Measure measure(fit::FitRun& run, const std::vector<glm::vec3>& truth, const mes
     }
     return {rms(cage.positions, truth),
             geometry::surfaceDistance(surface::limitMesh(cage, segments), truthSurface, 30000).chamferL2Squared,
-            fit::score(run.fitter(), run.scene().training).loss, std::sqrt(normalSum / double(std::max<size_t>(1, truth.size())))};
+            fit::score(run.fitter(), run.scene().training).loss,
+            std::sqrt(normalSum / double(std::max<size_t>(1, truth.size())))};
 }
 
 }  // namespace
@@ -55,14 +56,14 @@ Measure measure(fit::FitRun& run, const std::vector<glm::vec3>& truth, const mes
 int runRecovery(const RecoveryOptions& given) {
     auto context = context::createHeadlessContext(given.fit.glProvider);
     RecoveryOptions o = given;
-    if (const std::string chosen = fit::resolveForCurrentDevice(o.fit); !chosen.empty()) std::printf("%s\n", chosen.c_str());
-    std::printf("recovery: cages noised by %.1f %% of the scene radius, %d views at %d^2, %d steps\n",
-                100.0 * o.sigma, o.fit.views, o.fit.resolution, o.fit.steps);
+    if (const std::string chosen = fit::resolveForCurrentDevice(o.fit); !chosen.empty())
+        std::printf("%s\n", chosen.c_str());
+    std::printf("recovery: cages noised by %.1f %% of the scene radius, %d views at %d^2, %d steps\n", 100.0 * o.sigma,
+                o.fit.views, o.fit.resolution, o.fit.steps);
     std::printf("%-28s %9s %9s %7s %9s %11s %11s %7s %8s %7s %6s %5s\n", "shape", "vtx rms", "after", "ratio", "normal",
                 "chamfer", "after", "ratio", "loss x", "floor x", "s", "steps");
-    std::vector<std::vector<std::string>> rows{
-        {"shape", "vertex_rms_before", "vertex_rms_after", "chamfer_before", "chamfer_after", "loss_ratio", "floor_ratio",
-         "seconds"}};
+    std::vector<std::vector<std::string>> rows{{"shape", "vertex_rms_before", "vertex_rms_after", "chamfer_before",
+                                                "chamfer_after", "loss_ratio", "floor_ratio", "seconds"}};
     double worstVertexRatio = INFINITY, worstLossRatio = 0.0;  // as the table: vertex before/after, loss after/before
     for (const auto& shape : o.shapes) {
         const mesh::PolygonMesh truthWorld = mesh::loadMesh(shape);

@@ -20,8 +20,9 @@ namespace {
 std::vector<exporter::EncodedImage> losslessImages(const mesh::MaterialSet& set) {
     std::vector<exporter::EncodedImage> out;
     for (const mesh::Image& image : set.images)
-        out.push_back({io::encodeImage({image.width, image.height, image.rgba}, image.width, image.height, io::ImageFormat::Png),
-                       "image/png"});
+        out.push_back(
+            {io::encodeImage({image.width, image.height, image.rgba}, image.width, image.height, io::ImageFormat::Png),
+             "image/png"});
     return out;
 }
 
@@ -30,7 +31,8 @@ int writeTexturedRelief(const ReliefOptions& o) {
     surface::addRelief(surface, o.relief);
     std::filesystem::create_directories(std::filesystem::absolute(o.out).parent_path());
     const auto images = surface.materials ? losslessImages(*surface.materials) : std::vector<exporter::EncodedImage>{};
-    if (!surface.materials) surface.materials = std::make_shared<mesh::MaterialSet>(mesh::MaterialSet{{mesh::defaultMaterial()}, {}});
+    if (!surface.materials)
+        surface.materials = std::make_shared<mesh::MaterialSet>(mesh::MaterialSet{{mesh::defaultMaterial()}, {}});
     if (surface.faceMaterials.empty()) surface.faceMaterials.assign(size_t(surface.faceCount()), 0);
     exporter::writeTexturedGlb(o.out, surface, surface.normals, images, /*draco=*/false);
     return surface.faceCount();

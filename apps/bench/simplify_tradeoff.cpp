@@ -30,13 +30,14 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
     std::filesystem::create_directories(o.out);
     std::vector<std::filesystem::path> references = o.references;
     if (references.empty()) references.push_back(reliefReference(o.out));
-    std::vector<std::vector<std::string>> rows{{"reference", "budget", "method", "bytes", "psnr_holdout", "ssim_holdout",
-                                                "mean_distance", "chamfer", "hausdorff", "seconds", "chosen"}};
+    std::vector<std::vector<std::string>> rows{{"reference", "budget", "method", "bytes", "psnr_holdout",
+                                                "ssim_holdout", "mean_distance", "chamfer", "hausdorff", "seconds",
+                                                "chosen"}};
     std::vector<std::vector<std::string>> stageRows{{"reference", "budget", "route", "stage", "seconds"}};
-    std::vector<std::vector<std::string>> byteRows{{"reference", "budget", "file", "bytes", "faces", "quads", "vertices", "position_bits",
-                                                    "regular_vertices", "cage_connectivity", "cage_positions",
-                                                    "cage_polygon_marks", "cage_tags", "cage_section", "maps",
-                                                    "cage_bytes_per_face"}};
+    std::vector<std::vector<std::string>> byteRows{{"reference", "budget", "file", "bytes", "faces", "quads",
+                                                    "vertices", "position_bits", "regular_vertices",
+                                                    "cage_connectivity", "cage_positions", "cage_polygon_marks",
+                                                    "cage_tags", "cage_section", "maps", "cage_bytes_per_face"}};
     std::printf("%-18s %8s  %-10s %8s %9s %7s %13s %9s  %s\n", "reference", "budget", "method", "bytes", "PSNR dB",
                 "SSIM", "mean distance", "seconds", "chosen");
     for (const auto& reference : references) {
@@ -57,24 +58,29 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
             std::string choice = report.route.shipped;
             if (report.route.shipped == "cage" && report.budget) {
                 const simplify::BudgetCandidate& chosen = report.budget->chosen;
-                choice = std::to_string(chosen.faces) + " faces, " + maps::toString(chosen.maps) + " T=" +
-                         std::to_string(chosen.mapResolution);
+                choice = std::to_string(chosen.faces) + " faces, " + maps::toString(chosen.maps) +
+                         " T=" + std::to_string(chosen.mapResolution);
             }
             std::vector<std::pair<std::string, const simplify::Quality*>> methods{{"subdfit", &report.subdfit}};
-            for (const auto& [method, q] : {std::pair<const char*, const std::optional<simplify::Quality>*>{"cage", &report.cage},
-                                            {"decimation", &report.decimation}, {"gltfpack", &report.gltfpack}, {"bake", &report.bake}})
+            for (const auto& [method, q] :
+                 {std::pair<const char*, const std::optional<simplify::Quality>*>{"cage", &report.cage},
+                  {"decimation", &report.decimation},
+                  {"gltfpack", &report.gltfpack},
+                  {"bake", &report.bake}})
                 if (*q && (method != std::string("decimation") || o.compare != simplify::CompareLevel::None))
                     methods.emplace_back(method, &**q);
             for (const auto& [method, q] : methods) {
                 const double seconds = method == "subdfit" ? report.seconds : 0.0;
-                const geometry::SurfaceDistance d = q->distance.value_or(geometry::SurfaceDistance{});  // --compare full: measured
+                const geometry::SurfaceDistance d =
+                    q->distance.value_or(geometry::SurfaceDistance{});  // --compare full: measured
                 const std::string chosenText = method == "subdfit" ? choice : "";
                 std::printf("%-18.18s %8ju  %-10s %8ju %9.2f %7.4f %13.4e %9.1f  %s\n", name.c_str(), budget,
                             method.c_str(), q->bytes, q->psnrHoldout, q->ssimHoldout, d.meanDistance, seconds,
                             chosenText.c_str());
                 std::fflush(stdout);
-                rows.push_back({name, std::to_string(budget), method, std::to_string(q->bytes), std::to_string(q->psnrHoldout),
-                                std::to_string(q->ssimHoldout), std::to_string(d.meanDistance), std::to_string(d.chamferL2Squared),
+                rows.push_back({name, std::to_string(budget), method, std::to_string(q->bytes),
+                                std::to_string(q->psnrHoldout), std::to_string(q->ssimHoldout),
+                                std::to_string(d.meanDistance), std::to_string(d.chamferL2Squared),
                                 std::to_string(d.hausdorff), std::to_string(seconds), chosenText});
                 // A decimation that fits the whole reference is lossless (PSNR capped at 120 dB):
                 // in the CSV, off the plots, whose scale it would flatten.
@@ -90,7 +96,8 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
             std::printf("%-18.18s %8ju  seconds by stage:", name.c_str(), budget);
             for (const auto& [stage, seconds] : report.stages.stages()) {
                 std::printf(" %s %.1f", stage.c_str(), seconds);
-                stageRows.push_back({name, std::to_string(budget), report.route.shipped, stage, std::to_string(seconds)});
+                stageRows.push_back(
+                    {name, std::to_string(budget), report.route.shipped, stage, std::to_string(seconds)});
             }
             std::printf(" (total %.1f)\n", report.seconds);
             for (const char* file : {"asset.subd", "baselines/bake/asset.subd"}) {
@@ -99,18 +106,19 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
                 std::size_t maps = 0;
                 for (const auto& [tag, bytes] : b.sections) maps += tag == "CAGE" ? 0 : bytes;
                 const std::size_t cage = b.sections.count("CAGE") ? b.sections.at("CAGE") : 0;
-                std::printf("%-18.18s %8ju  %s: %ju B; cage %d faces (%d quads), %d vertices (%d regular) at %d bits: "
-                            "connectivity %zu, positions %zu, polygon marks %zu, tags %zu (section %zu, %.2f B a face); maps %zu\n",
-                            name.c_str(), budget, file, std::uintmax_t(b.file), b.faces, b.quads, b.vertices, b.regularVertices,
-                            b.positionBits,
-                            b.cage.connectivity, b.cage.positions, b.cage.polygonMarks, b.cage.tags, cage,
-                            double(cage) / std::max(b.faces, 1), maps);
+                std::printf(
+                    "%-18.18s %8ju  %s: %ju B; cage %d faces (%d quads), %d vertices (%d regular) at %d bits: "
+                    "connectivity %zu, positions %zu, polygon marks %zu, tags %zu (section %zu, %.2f B a face); maps "
+                    "%zu\n",
+                    name.c_str(), budget, file, std::uintmax_t(b.file), b.faces, b.quads, b.vertices, b.regularVertices,
+                    b.positionBits, b.cage.connectivity, b.cage.positions, b.cage.polygonMarks, b.cage.tags, cage,
+                    double(cage) / std::max(b.faces, 1), maps);
                 byteRows.push_back({name, std::to_string(budget), file, std::to_string(b.file), std::to_string(b.faces),
                                     std::to_string(b.quads), std::to_string(b.vertices), std::to_string(b.positionBits),
-                                    std::to_string(b.regularVertices),
-                                    std::to_string(b.cage.connectivity), std::to_string(b.cage.positions),
-                                    std::to_string(b.cage.polygonMarks), std::to_string(b.cage.tags), std::to_string(cage),
-                                    std::to_string(maps), std::to_string(double(cage) / std::max(b.faces, 1))});
+                                    std::to_string(b.regularVertices), std::to_string(b.cage.connectivity),
+                                    std::to_string(b.cage.positions), std::to_string(b.cage.polygonMarks),
+                                    std::to_string(b.cage.tags), std::to_string(cage), std::to_string(maps),
+                                    std::to_string(double(cage) / std::max(b.faces, 1))});
             }
             writeCsv(o.out / "simplify_tradeoff.csv", rows);  // after every run: a long sweep keeps what it did
             writeCsv(o.out / "simplify_stages.csv", stageRows);

@@ -103,8 +103,10 @@ Soup makeInitialSoup(int triangles) {
 
 const gl::ProgramSpec kSoupRaster{"soup_raster",
                                   {{GL_VERTEX_SHADER, "soup_raster.vert"}, {GL_FRAGMENT_SHADER, "soup_raster.frag"}}};
-const gl::ProgramSpec kSoupGradient{"soup_gradient", {{GL_COMPUTE_SHADER, "soup_gradient.comp"}}, {"SUBDFIT_SOUP_FULL_IMAGE"}};
-const gl::ProgramSpec kSoupScatter{"soup_scatter", {{GL_COMPUTE_SHADER, "soup_scatter.comp"}}, {"SUBDFIT_SOUP_FULL_IMAGE"}};
+const gl::ProgramSpec kSoupGradient{
+    "soup_gradient", {{GL_COMPUTE_SHADER, "soup_gradient.comp"}}, {"SUBDFIT_SOUP_FULL_IMAGE"}};
+const gl::ProgramSpec kSoupScatter{
+    "soup_scatter", {{GL_COMPUTE_SHADER, "soup_scatter.comp"}}, {"SUBDFIT_SOUP_FULL_IMAGE"}};
 constexpr gl::VariantBits kSoupFullImage = 1u << 0;
 
 class SoupFitter {
@@ -113,7 +115,8 @@ public:
         : programs_(programs),
           triangles_(int(soup.colors.size() / 3)),
           fullImage_(fullImage),
-          positions_(optim::GroupKind::Other, "soup_positions", soup.positions, positionSettings(resolution), SUBDFIT_SOUP_SEED_POSITIONS),
+          positions_(optim::GroupKind::Other, "soup_positions", soup.positions, positionSettings(resolution),
+                     SUBDFIT_SOUP_SEED_POSITIONS),
           colors_(optim::GroupKind::Other, "soup_colors", soup.colors, colorSettings(), SUBDFIT_SOUP_SEED_COLORS),
           triangleDelta_(GLsizeiptr(std::max(triangles_, 256)) * GLsizeiptr(sizeof(float))),
           plus_(resolution, resolution),
@@ -313,9 +316,10 @@ int runSoup(const SoupOptions& o) {
     // Compile (and let llvmpipe JIT) every program of both estimators on a one-triangle soup
     // first, so that neither curve's time axis carries compilation.
     for (bool fullImage : {false, true}) {
-        SoupFitter warmUp(programs, Soup{{soup.positions.begin(), soup.positions.begin() + 9},
-                                         {soup.colors.begin(), soup.colors.begin() + 3}},
-                          16, fullImage);
+        SoupFitter warmUp(
+            programs,
+            Soup{{soup.positions.begin(), soup.positions.begin() + 9}, {soup.colors.begin(), soup.colors.begin() + 3}},
+            16, fullImage);
         warmUp.step(0, targetTexture.id());
         glFinish();
     }
@@ -326,8 +330,8 @@ int runSoup(const SoupOptions& o) {
     std::vector<std::vector<std::string>> rows{{"estimator", "step", "seconds", "loss"}};
     for (const Curve* c : {&perPixel, &fullImage})
         for (size_t k = 0; k < c->steps.size(); ++k)
-            rows.push_back({c->name, std::to_string(c->steps[k]), std::to_string(c->seconds[k]),
-                            std::to_string(c->losses[k])});
+            rows.push_back(
+                {c->name, std::to_string(c->steps[k]), std::to_string(c->seconds[k]), std::to_string(c->losses[k])});
     writeCsv(o.out / "soup.csv", rows);
 
     std::printf("\n%8s %14s %14s\n", "step", "per-pixel", "full-image");

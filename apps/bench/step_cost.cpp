@@ -91,7 +91,8 @@ Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const
             const auto start = std::chrono::steady_clock::now();
             fitter.accumulate(targets, kViews, false);
             glFinish();
-            accumulateMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+            accumulateMs.push_back(
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
             fitter.update();
             glFinish();
         },
@@ -104,11 +105,14 @@ Timing timeCage(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const
             glFinish();
         }};
     const auto samples = timeInterleaved(rounds, workloads);
-    const double forwardGpuMs = gpuPhaseMedians(rounds, clock, [&](gl::TimestampLog& log) {
-                                    fitter.forgetDrawnSurface();
-                                    fitter.render(targets.camera(0), image);
-                                    log.mark("forward render");
-                                }).at(0).second;
+    const double forwardGpuMs = gpuPhaseMedians(rounds, clock,
+                                                [&](gl::TimestampLog& log) {
+                                                    fitter.forgetDrawnSurface();
+                                                    fitter.render(targets.camera(0), image);
+                                                    log.mark("forward render");
+                                                })
+                                    .at(0)
+                                    .second;
     auto stepPhases = gpuPhaseMedians(rounds, clock, [&](gl::TimestampLog& log) {
         fitter.setTimestampLog(&log);
         fitter.step(targets, kViews, false);
@@ -180,8 +184,8 @@ std::vector<CountedPass> countSteps(gl::ProgramCache& programs, const mesh::Poly
 
 // Per step of a fit as `subdfit fit` runs it (views taking turns, loss for progress, the plateau
 // schedule's monitor renders and checkpoints), averaged over its first steps.
-CountedPass countFitLoop(gl::ProgramCache& programs, const mesh::PolygonMesh& cage,
-                         const mesh::PolygonMesh& reference, const std::filesystem::path& scratch) {
+CountedPass countFitLoop(gl::ProgramCache& programs, const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
+                         const std::filesystem::path& scratch) {
     fit::FitOptions options;
     options.views = 8;
     options.resolution = 128;
@@ -214,7 +218,8 @@ std::pair<double, double> emptyDispatchMicroseconds(gl::ProgramCache& programs, 
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     glFinish();
-    const double wallUs = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - wallStart).count();
+    const double wallUs =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - wallStart).count();
     return {wallUs / count, 1e6 * (processCpuSeconds() - cpuStart) / count};
 }
 
@@ -229,13 +234,13 @@ int runStepCost(const StepCostOptions& o) {
                                                  {reference.faceIndices.begin(), reference.faceIndices.end()});
     std::printf("renderer: %s\n", info.renderer.c_str());
     // A software rasterizer's timestamps land at its next flush, not at the phase's end.
-    const bool software = info.renderer.find("llvmpipe") != std::string::npos ||
-                          info.renderer.find("softpipe") != std::string::npos;
+    const bool software =
+        info.renderer.find("llvmpipe") != std::string::npos || info.renderer.find("softpipe") != std::string::npos;
     const gl::PhaseClock phaseClock = software ? gl::PhaseClock::HostAfterFinish : gl::PhaseClock::GpuTimestamp;
 
-    std::vector<std::vector<std::string>> rows{{"table", "cage_faces", "parameters", "resolution", "render_ms", "step_ms",
-                                                "ratio", "ratio_q1", "ratio_q3", "ratio_ci_low", "ratio_ci_high",
-                                                "cpu_ratio", "cpu_ratio_q1", "cpu_ratio_q3", "two_renders_cpu_ratio"}};
+    std::vector<std::vector<std::string>> rows{
+        {"table", "cage_faces", "parameters", "resolution", "render_ms", "step_ms", "ratio", "ratio_q1", "ratio_q3",
+         "ratio_ci_low", "ratio_ci_high", "cpu_ratio", "cpu_ratio_q1", "cpu_ratio_q3", "two_renders_cpu_ratio"}};
     auto addRow = [&](const char* table, const mesh::PolygonMesh& mesh, int resolution, const Timing& t) {
         std::vector<std::string> row{table, std::to_string(mesh.faceCount()), std::to_string(3 * mesh.vertexCount()),
                                      std::to_string(resolution)};
@@ -245,9 +250,10 @@ int runStepCost(const StepCostOptions& o) {
         rows.push_back(row);
     };
     const auto cage = mesh::makeQuadSphere(6);
-    std::printf("\nstep cost, quad-sphere cage (%d faces, %d parameters), %d interleaved rounds: medians, the ratio\n"
-                "per round with its quartiles and the median's 95%% interval; CPU: the process's CPU time\n",
-                cage.faceCount(), 3 * cage.vertexCount(), o.repeats);
+    std::printf(
+        "\nstep cost, quad-sphere cage (%d faces, %d parameters), %d interleaved rounds: medians, the ratio\n"
+        "per round with its quartiles and the median's 95%% interval; CPU: the process's CPU time\n",
+        cage.faceCount(), 3 * cage.vertexCount(), o.repeats);
     std::printf("%10s %10s %10s %6s %11s %11s %10s %11s %10s %9s %9s\n", "resolution", "render ms", "step ms", "ratio",
                 "quartiles", "95% median", "CPU ratio", "quartiles", "P+2R+G ms", "update ms", "2R CPU");
     // The same tables as Markdown, for summaries (subdfit-bench accuracy folds this file in).
@@ -261,10 +267,12 @@ int runStepCost(const StepCostOptions& o) {
     char line[320];
     std::vector<Timing> resolutionTimings;
     for (int resolution : o.resolutions) {
-        const auto& t = resolutionTimings.emplace_back(timeCage(programs, cage, referenceRenderer, resolution, o.repeats, phaseClock));
-        std::printf("%10d %10.2f %10.2f %6.2f %5.2f-%5.2f %5.2f-%5.2f %10.2f %5.2f-%5.2f %10.2f %9.2f %9.2f\n", resolution,
-                    t.renderMs, t.stepMs, t.ratio.median, t.ratio.q1, t.ratio.q3, t.ratio.low, t.ratio.high,
-                    t.cpuRatio.median, t.cpuRatio.q1, t.cpuRatio.q3, t.accumulateMs, t.updateMs, t.floorCpuRatio.median);
+        const auto& t = resolutionTimings.emplace_back(
+            timeCage(programs, cage, referenceRenderer, resolution, o.repeats, phaseClock));
+        std::printf("%10d %10.2f %10.2f %6.2f %5.2f-%5.2f %5.2f-%5.2f %10.2f %5.2f-%5.2f %10.2f %9.2f %9.2f\n",
+                    resolution, t.renderMs, t.stepMs, t.ratio.median, t.ratio.q1, t.ratio.q3, t.ratio.low, t.ratio.high,
+                    t.cpuRatio.median, t.cpuRatio.q1, t.cpuRatio.q3, t.accumulateMs, t.updateMs,
+                    t.floorCpuRatio.median);
         std::snprintf(line, sizeof line, "| %d² | %.2f | %.2f | %.2f | %.2f-%.2f | %.2f-%.2f | %.2f (%.2f-%.2f) |\n",
                       resolution, t.renderMs, t.stepMs, t.ratio.median, t.ratio.q1, t.ratio.q3, t.ratio.low,
                       t.ratio.high, t.cpuRatio.median, t.cpuRatio.q1, t.cpuRatio.q3);
@@ -338,15 +346,19 @@ int runStepCost(const StepCostOptions& o) {
         emptyDispatchMicroseconds(programs, 20);  // compile and warm up
         const auto [wallUs, cpuUs] = emptyDispatchMicroseconds(programs, 1000);
         const double dispatches = double(passes.at(1).counts.dispatches);  // "step, vertex turn"
-        std::printf("\na dispatch and its barrier by themselves (an empty pass, 1000 in a row): %.1f us wall, %.1f us CPU;\n"
-                    "a vertex turn's %.0f: %.2f ms wall", wallUs, cpuUs, dispatches, dispatches * wallUs / 1000.0);
+        std::printf(
+            "\na dispatch and its barrier by themselves (an empty pass, 1000 in a row): %.1f us wall, %.1f us CPU;\n"
+            "a vertex turn's %.0f: %.2f ms wall",
+            wallUs, cpuUs, dispatches, dispatches * wallUs / 1000.0);
         for (size_t k = 0; k < o.resolutions.size(); ++k)
-            std::printf(", %.0f %% of its step at %d²", 100.0 * dispatches * wallUs / 1000.0 / resolutionTimings[k].stepMs,
-                        o.resolutions[k]);
+            std::printf(", %.0f %% of its step at %d²",
+                        100.0 * dispatches * wallUs / 1000.0 / resolutionTimings[k].stepMs, o.resolutions[k]);
         std::printf("\ndispatch_us=%.1f\ndispatch_cpu_us=%.1f\n", wallUs, cpuUs);
-        std::snprintf(line, sizeof line,
-                      "\nA dispatch and its barrier by themselves (an empty pass, 1000 in a row): %.1f µs wall, %.1f µs "
-                      "CPU.\n", wallUs, cpuUs);
+        std::snprintf(
+            line, sizeof line,
+            "\nA dispatch and its barrier by themselves (an empty pass, 1000 in a row): %.1f µs wall, %.1f µs "
+            "CPU.\n",
+            wallUs, cpuUs);
         markdown += line;
     }
 

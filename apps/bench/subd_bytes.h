@@ -14,7 +14,7 @@ namespace subdfit::bench {
 struct SubdBytes {
     std::size_t file = 0;
     std::map<std::string, std::size_t> sections;  // tag -> stored bytes (header included)
-    exporter::CageByteParts cage;  // at the bits the file codes the cage's positions at
+    exporter::CageByteParts cage;                 // at the bits the file codes the cage's positions at
     int faces = 0, quads = 0, vertices = 0, positionBits = 0;
     int regularVertices = 0;  // vertices with four quads around them and no other face
 };

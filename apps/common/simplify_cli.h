@@ -40,7 +40,8 @@ inline void addSimplifySettings(CLI::App& app, simplify::SimplifyOptions& option
         if constexpr (std::is_same_v<T, std::optional<std::uintmax_t>>) {
             addByteSizeOption(app, info, field);
         } else if constexpr (std::is_same_v<T, std::optional<int>>) {
-            app.add_option_function<int>(info.flag, [&field](int value) { field = value; }, info.help)
+            app.add_option_function<int>(
+                   info.flag, [&field](int value) { field = value; }, info.help)
                 ->check(CLI::Range(int(info.min), int(info.max)));
         } else {
             addTableOption(app, info, field);

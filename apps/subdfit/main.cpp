@@ -22,17 +22,22 @@ namespace {
 
 void printSummary(const subdfit::fit::FitReport& r) {
     std::fprintf(stderr, "done: %d steps in %.1f s", r.steps, r.seconds);
-    if (r.trainBefore && r.trainAfter) std::fprintf(stderr, ", loss %.4e -> %.4e", r.trainBefore->loss, r.trainAfter->loss);
+    if (r.trainBefore && r.trainAfter)
+        std::fprintf(stderr, ", loss %.4e -> %.4e", r.trainBefore->loss, r.trainAfter->loss);
     std::fprintf(stderr, ", held-out PSNR %.2f -> %.2f dB\n", r.holdoutBefore.psnr, r.holdoutAfter.psnr);
 }
 
 void printComparison(const subdfit::simplify::SimplifyReport& r) {
-    std::fprintf(stderr, "shipped %s (%s): %s\n", r.route.path.string().c_str(), r.route.shipped.c_str(), r.route.why.c_str());
-    std::fprintf(stderr, "%-11s %10s %12s %8s %14s %12s\n", "", "bytes", "PSNR (dB)", "SSIM", "mean distance", "Chamfer");
+    std::fprintf(stderr, "shipped %s (%s): %s\n", r.route.path.string().c_str(), r.route.shipped.c_str(),
+                 r.route.why.c_str());
+    std::fprintf(stderr, "%-11s %10s %12s %8s %14s %12s\n", "", "bytes", "PSNR (dB)", "SSIM", "mean distance",
+                 "Chamfer");
     auto row = [](const char* name, const std::optional<subdfit::simplify::Quality>& q) {
         if (!q) return;
-        std::fprintf(stderr, "%-11s %10llu %12.2f %8.4f ", name, (unsigned long long)q->bytes, q->psnrHoldout, q->ssimHoldout);
-        if (q->distance) std::fprintf(stderr, "%14.4e %12.4e\n", q->distance->meanDistance, q->distance->chamferL2Squared);
+        std::fprintf(stderr, "%-11s %10llu %12.2f %8.4f ", name, (unsigned long long)q->bytes, q->psnrHoldout,
+                     q->ssimHoldout);
+        if (q->distance)
+            std::fprintf(stderr, "%14.4e %12.4e\n", q->distance->meanDistance, q->distance->chamferL2Squared);
         else std::fprintf(stderr, "%14s %12s\n", subdfit::simplify::kNotMeasured, subdfit::simplify::kNotMeasured);
     };
     row("subdfit", r.subdfit);
@@ -46,8 +51,8 @@ void printComparison(const subdfit::simplify::SimplifyReport& r) {
 }
 
 void printProgress(const subdfit::fit::Progress& p) {
-    std::fprintf(stderr, "step %d/%d  loss %.4e  %.1f s  ETA %.0f s\n", p.step, p.steps, double(p.loss),
-                 p.seconds, p.etaSeconds);
+    std::fprintf(stderr, "step %d/%d  loss %.4e  %.1f s  ETA %.0f s\n", p.step, p.steps, double(p.loss), p.seconds,
+                 p.etaSeconds);
 }
 
 }  // namespace
@@ -63,8 +68,10 @@ int main(int argc, char** argv) {
     fitCommand->add_option("--out", fit.out, "output folder")->required();
 
     subdfit::simplify::SimplifyOptions simplify;
-    auto* simplifyCommand = app.add_subcommand("simplify", "simplify a dense asset into a light cage and maps, with a quality report");
-    simplifyCommand->add_option("reference", simplify.fit.reference, "dense reference asset (.obj, .gltf, .glb, .drc)")->required();
+    auto* simplifyCommand =
+        app.add_subcommand("simplify", "simplify a dense asset into a light cage and maps, with a quality report");
+    simplifyCommand->add_option("reference", simplify.fit.reference, "dense reference asset (.obj, .gltf, .glb, .drc)")
+        ->required();
     simplifyCommand->add_option("--out", simplify.fit.out, "output folder")->required();
     subdfit::apps::addSimplifySettings(*simplifyCommand, simplify);
 
@@ -75,23 +82,27 @@ int main(int argc, char** argv) {
     auto* batchCommand = app.add_subcommand("batch", "simplify every asset of a manifest; resumable, shardable");
     batchCommand->add_option("manifest", manifest, "one asset a line: REFERENCE [simplify options]")->required();
     batchCommand->add_option("--out", batchOut, "output folder: one subfolder per asset")->required();
-    batchCommand->add_option("--shard", shard, "run only assets k with k mod N = i (i/N, 0-based)")->capture_default_str();
+    batchCommand->add_option("--shard", shard, "run only assets k with k mod N = i (i/N, 0-based)")
+        ->capture_default_str();
     subdfit::apps::addSimplifySettings(*batchCommand, batchDefaults);
 
     std::filesystem::path decodeInput, decodeOut;
     subdfit::exporter::EngineDecodeOptions decode;
     bool decodeUncompressed = false;
-    auto* decodeCommand = app.add_subcommand("decode", "a shipped asset.subd back to triangles: the displaced limit surface as .glb");
+    auto* decodeCommand =
+        app.add_subcommand("decode", "a shipped asset.subd back to triangles: the displaced limit surface as .glb");
     decodeCommand->add_option("file", decodeInput, "the .subd file")->required();
-    decodeCommand->add_option("--out", decodeOut, "the .glb to write (a new file, or a regular file to replace)")->required();
+    decodeCommand->add_option("--out", decodeOut, "the .glb to write (a new file, or a regular file to replace)")
+        ->required();
     auto* tess = decodeCommand->add_option("--tess", decode.density.segments, "segments per face edge, 1..64")
                      ->check(CLI::Range(1, subdfit::exporter::kMaxDecodeSegments));
-    auto* triangles = decodeCommand
-        ->add_option("--triangles", decode.density.triangles,
-                     "about this many triangles (default: the reference's, as asset.subd records it; at most " +
-                         std::to_string(subdfit::exporter::kMaxDecodeTriangles) + ")")
-        ->check(CLI::Range(std::int64_t(1), subdfit::exporter::kMaxDecodeTriangles))
-        ->excludes(tess);
+    auto* triangles =
+        decodeCommand
+            ->add_option("--triangles", decode.density.triangles,
+                         "about this many triangles (default: the reference's, as asset.subd records it; at most " +
+                             std::to_string(subdfit::exporter::kMaxDecodeTriangles) + ")")
+            ->check(CLI::Range(std::int64_t(1), subdfit::exporter::kMaxDecodeTriangles))
+            ->excludes(tess);
     const CLI::Validator errorBound(
         [](std::string& text) {
             std::string problem;
@@ -111,9 +122,10 @@ int main(int argc, char** argv) {
         ->excludes(tess)
         ->excludes(triangles);
     decodeCommand
-        ->add_option("--lods", decode.lods,
-                     "a chain of K levels of detail, about half the triangles each: OUT, OUT_lod1.glb ... and OUT_lods.json "
-                     "(triangles, bytes, distances, screen sizes)")
+        ->add_option(
+            "--lods", decode.lods,
+            "a chain of K levels of detail, about half the triangles each: OUT, OUT_lod1.glb ... and OUT_lods.json "
+            "(triangles, bytes, distances, screen sizes)")
         ->check(CLI::Range(1, subdfit::exporter::kMostLods));
     bool decodeMeshopt = false;
     decodeCommand->add_flag("--meshopt", decodeMeshopt,
@@ -127,7 +139,9 @@ int main(int argc, char** argv) {
     if (const auto exitCode = subdfit::apps::parseCommandLine(app, argc, argv, "subdfit")) return *exitCode;
 
     const auto say = [](const char* who) {
-        return [who](const std::string& line) { std::fprintf(stderr, "%s: %s\n", who, subdfit::printable(line, 4096).c_str()); };
+        return [who](const std::string& line) {
+            std::fprintf(stderr, "%s: %s\n", who, subdfit::printable(line, 4096).c_str());
+        };
     };
     // What an out-of-memory error is about: the file the command reads.
     const std::filesystem::path input = decodeCommand->parsed()     ? decodeInput
@@ -135,7 +149,8 @@ int main(int argc, char** argv) {
                                         : batchCommand->parsed()    ? manifest
                                                                     : fit.reference;
     try {
-        const subdfit::fit::FitHooks hooks{.progress = printProgress, .cancel = &subdfit::stopRequest(), .note = say("subdfit")};
+        const subdfit::fit::FitHooks hooks{
+            .progress = printProgress, .cancel = &subdfit::stopRequest(), .note = say("subdfit")};
         if (decodeCommand->parsed()) {
             if (decodeUncompressed) decode.coding = subdfit::exporter::MeshCoding::Float;
             if (decodeMeshopt) decode.coding = subdfit::exporter::MeshCoding::Meshopt;
@@ -159,9 +174,11 @@ int main(int argc, char** argv) {
             const auto items = subdfit::apps::readManifest(manifest, batchDefaults, say("batch"));
             const auto summary =
                 subdfit::simplify::runBatch(items, batchOut, parsedShard, hooks, say("batch"), batchDefaults.fit.force);
-            std::fprintf(stderr, "batch: %d finished, %d skipped (done), %d running elsewhere, %d failed, %d in other shards%s\n",
-                         summary.finished, summary.skipped, summary.runningElsewhere, summary.failed,
-                         summary.otherShards, summary.interrupted ? ", interrupted" : "");
+            std::fprintf(
+                stderr,
+                "batch: %d finished, %d skipped (done), %d running elsewhere, %d failed, %d in other shards%s\n",
+                summary.finished, summary.skipped, summary.runningElsewhere, summary.failed, summary.otherShards,
+                summary.interrupted ? ", interrupted" : "");
             if (!summary.routes.empty()) {
                 std::fprintf(stderr, "batch: routes shipped:");
                 for (const auto& [route, count] : summary.routes) std::fprintf(stderr, " %s %d", route.c_str(), count);

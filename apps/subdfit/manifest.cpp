@@ -10,7 +10,8 @@
 namespace subdfit::apps {
 
 std::vector<simplify::BatchItem> readManifest(const std::filesystem::path& manifest,
-                                              const simplify::SimplifyOptions& defaults, const simplify::BatchLog& log) {
+                                              const simplify::SimplifyOptions& defaults,
+                                              const simplify::BatchLog& log) {
     std::vector<simplify::BatchItem> items;
     std::vector<std::filesystem::path> written;
     for (const simplify::ManifestLine& line : simplify::readManifest(manifest)) {

@@ -29,7 +29,8 @@ std::vector<unsigned> edgeIndices(const mesh::PolygonMesh& cage, const std::set<
     return indices;
 }
 
-const gl::ProgramSpec kCage{"view_cage", {{GL_VERTEX_SHADER, "view_cage.vert"}, {GL_FRAGMENT_SHADER, "view_cage.frag"}}};
+const gl::ProgramSpec kCage{"view_cage",
+                            {{GL_VERTEX_SHADER, "view_cage.vert"}, {GL_FRAGMENT_SHADER, "view_cage.frag"}}};
 
 }  // namespace
 

@@ -61,9 +61,11 @@ void groupControls(FitSession& session) {
         float epsilon = group->settings().epsilon;
         float learningRate = group->settings().learningRate;
         bool changed = ImGui::SliderFloat("epsilon", &epsilon, 1e-5f, 0.5f, "%.2e", ImGuiSliderFlags_Logarithmic);
-        changed |= ImGui::SliderFloat("learning rate", &learningRate, 1e-5f, 0.5f, "%.2e", ImGuiSliderFlags_Logarithmic);
+        changed |=
+            ImGui::SliderFloat("learning rate", &learningRate, 1e-5f, 0.5f, "%.2e", ImGuiSliderFlags_Logarithmic);
         if (changed) fitter.setRates(*group, std::clamp(epsilon, 1e-6f, most), std::clamp(learningRate, 1e-6f, most));
-        ImGui::TextDisabled("annealed learning rate now %.2e", double(group->settings().learningRate * fitter.learningRateScale()));
+        ImGui::TextDisabled("annealed learning rate now %.2e",
+                            double(group->settings().learningRate * fitter.learningRateScale()));
         ImGui::PopID();
     }
 }
@@ -113,7 +115,8 @@ PanelRequests drawControlPanel(PanelState& state, FitSession& session, float wid
     PanelRequests requests;
     ImGui::SetNextWindowPos(ImVec2(0, 0));
     ImGui::SetNextWindowSize(ImVec2(width, height));
-    ImGui::Begin("subdfit-view", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    ImGui::Begin("subdfit-view", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     ImGui::PushItemWidth(width * 0.5f);
     if (ImGui::CollapsingHeader("Fit", ImGuiTreeNodeFlags_DefaultOpen)) fitControls(state, session, requests);
     if (ImGui::CollapsingHeader("Parameter groups", ImGuiTreeNodeFlags_DefaultOpen)) groupControls(session);

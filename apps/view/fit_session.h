@@ -36,7 +36,9 @@ public:
     fit::FitScene& scene() { return *scene_; }
     fit::CageFitter& fitter() { return run_->fitter(); }
     gl::ProgramCache& programs() { return programs_; }
-    float meanEdge() const { return meanEdge_; }  // of the cage in the fit's frame: the unit of the vertex knobs' options
+    float meanEdge() const {
+        return meanEdge_;
+    }  // of the cage in the fit's frame: the unit of the vertex knobs' options
 
     // One step, its mean loss measured and kept; none while no group is optimised.
     void step();

@@ -35,7 +35,9 @@ void OrbitCamera::pan(glm::vec2 pixels, float viewHeight) {
     target_ += (-pixels.x * right + pixels.y * up) * perPixel;
 }
 
-void OrbitCamera::zoom(float wheelClicks) { distance_ = std::clamp(distance_ * std::pow(0.88f, wheelClicks), 0.05f, 50.0f); }
+void OrbitCamera::zoom(float wheelClicks) {
+    distance_ = std::clamp(distance_ * std::pow(0.88f, wheelClicks), 0.05f, 50.0f);
+}
 
 render::Camera OrbitCamera::camera(float aspect) const {
     const glm::vec3 direction(std::cos(pitch_) * std::sin(yaw_), std::sin(pitch_), std::cos(pitch_) * std::cos(yaw_));
@@ -44,7 +46,8 @@ render::Camera OrbitCamera::camera(float aspect) const {
     c.view = glm::lookAt(c.eye, target_, glm::vec3(0, 1, 0));
     // The scene fits the unit sphere: keep it between the planes wherever the target has been panned.
     const float reach = 1.5f + glm::length(target_);
-    c.projection = glm::perspective(glm::radians(kFovDegrees), aspect, std::max(0.01f, distance_ - reach), distance_ + reach);
+    c.projection =
+        glm::perspective(glm::radians(kFovDegrees), aspect, std::max(0.01f, distance_ - reach), distance_ + reach);
     return c;
 }
 

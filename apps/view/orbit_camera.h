@@ -14,9 +14,9 @@ public:
     OrbitCamera() { reset(); }
 
     void reset();
-    void orbit(glm::vec2 pixels);                   // left drag
-    void pan(glm::vec2 pixels, float viewHeight);   // right or middle drag
-    void zoom(float wheelClicks);                   // mouse wheel
+    void orbit(glm::vec2 pixels);                  // left drag
+    void pan(glm::vec2 pixels, float viewHeight);  // right or middle drag
+    void zoom(float wheelClicks);                  // mouse wheel
 
     render::Camera camera(float aspect) const;
 

@@ -29,8 +29,8 @@ maps::MapEffects unionOfEffects(std::vector<std::unique_ptr<ResultColumn>>& colu
     return all;
 }
 
-void columnTable(ResultPanelState& state, const ResultInputs& inputs, std::vector<std::unique_ptr<ResultColumn>>& columns,
-                 ResultPanelRequests& requests) {
+void columnTable(ResultPanelState& state, const ResultInputs& inputs,
+                 std::vector<std::unique_ptr<ResultColumn>>& columns, ResultPanelRequests& requests) {
     ImGui::TextWrapped("%s", inputs.title.c_str());
     if (ImGui::RadioButton("side by side", state.sideBySide)) state.sideBySide = true;
     ImGui::SameLine();
@@ -79,8 +79,7 @@ void viewControls(ResultPanelState& state, std::vector<std::unique_ptr<ResultCol
     ImGui::SliderFloat("colour gain", &scale, 0.1f, 1000.0f, "%.1f", ImGuiSliderFlags_Logarithmic);
     ImGui::EndDisabled();
     state.view.scale = scale;
-    if (mode != ViewMode::Fit && mode != ViewMode::Difference)
-        ImGui::TextDisabled("columns without it are shaded");
+    if (mode != ViewMode::Fit && mode != ViewMode::Difference) ImGui::TextDisabled("columns without it are shaded");
 
     ImGui::Checkbox("cage wireframe", &state.view.cageWireframe);
     if (state.view.cageWireframe) {
@@ -118,11 +117,14 @@ ResultPanelRequests drawResultPanel(ResultPanelState& state, const ResultInputs&
     ResultPanelRequests requests;
     ImGui::SetNextWindowPos(ImVec2(0, 0));
     ImGui::SetNextWindowSize(ImVec2(width, height));
-    ImGui::Begin("subdfit-view", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    ImGui::Begin("subdfit-view", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     ImGui::PushItemWidth(width * 0.5f);
     const bool reference = !columns.empty() && columns.front()->inputs().reference;
-    if (ImGui::CollapsingHeader("Result", ImGuiTreeNodeFlags_DefaultOpen)) columnTable(state, inputs, columns, requests);
-    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) viewControls(state, columns, reference, requests);
+    if (ImGui::CollapsingHeader("Result", ImGuiTreeNodeFlags_DefaultOpen))
+        columnTable(state, inputs, columns, requests);
+    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen))
+        viewControls(state, columns, reference, requests);
     if (state.canRefine && ImGui::CollapsingHeader("Refine", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::TextWrapped("Fit subdfit's asset further against the reference, in this window (Save writes to --out).");
         if (ImGui::Button("Refine subdfit's result")) requests.refine = true;

@@ -15,12 +15,12 @@ namespace subdfit::view {
 
 struct ResultPanelState {
     bool sideBySide = true;
-    int shown = 0;                // the column shown one at a time
-    std::vector<char> visible;    // per column, side by side
+    int shown = 0;              // the column shown one at a time
+    std::vector<char> visible;  // per column, side by side
     ViewSettings view;
     std::array<float, kViewModeCount> scales = defaultViewScales();
-    int tessLevel = 8;            // the slider; applied on request
-    bool canRefine = false;       // a folder whose reference is there
+    int tessLevel = 8;       // the slider; applied on request
+    bool canRefine = false;  // a folder whose reference is there
     std::string status;
     bool statusIsError = false;
 };

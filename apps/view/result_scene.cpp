@@ -81,7 +81,8 @@ render::ShadingModel shadingOf(const ResultInputs& inputs, const LoadedLevel& le
     if (first.reference) {
         const nlohmann::json* shading = inputs.folder ? &inputs.folder->settings : nullptr;
         const auto named = shading ? shading->find("shading") : nlohmann::json::const_iterator{};
-        const std::string asked = shading && named != shading->end() && named->is_string() ? named->get<std::string>() : "auto";
+        const std::string asked =
+            shading && named != shading->end() && named->is_string() ? named->get<std::string>() : "auto";
         if (const auto model = parseNamed<render::ShadingModel>(asked)) return *model;
         return render::shadingFor(first.levels.front().mesh);  // "auto"
     }
@@ -90,7 +91,8 @@ render::ShadingModel shadingOf(const ResultInputs& inputs, const LoadedLevel& le
 
 }  // namespace
 
-ResultInputs loadResultInputs(const std::vector<std::filesystem::path>& results, const std::filesystem::path& reference) {
+ResultInputs loadResultInputs(const std::vector<std::filesystem::path>& results,
+                              const std::filesystem::path& reference) {
     ResultInputs inputs;
     if (!reference.empty()) inputs.columns.push_back(referenceColumn(reference));
     for (const auto& path : results) {
@@ -106,7 +108,8 @@ ResultInputs loadResultInputs(const std::vector<std::filesystem::path>& results,
     return inputs;
 }
 
-ResultColumn::ResultColumn(gl::ProgramCache& programs, const ColumnInputs& inputs, const ResultInputs& scene, int tessLevel)
+ResultColumn::ResultColumn(gl::ProgramCache& programs, const ColumnInputs& inputs, const ResultInputs& scene,
+                           int tessLevel)
     : programs_(programs), inputs_(inputs), scene_(scene), tessLevel_(tessLevel) {
     build();
 }
@@ -133,8 +136,10 @@ void ResultColumn::build() {
     mesh_.reset();
     wireframe_.reset();
     if (level.asset) {
-        const int tess = tessLevel_ > 0 ? tessLevel_ : exporter::decodeDensity(*level.asset, {}, level.path.string()).segments;
-        asset_ = std::make_unique<fit::ShippedAsset>(programs_, *level.asset, scene_.frame, shadingOf(scene_, level), tess);
+        const int tess =
+            tessLevel_ > 0 ? tessLevel_ : exporter::decodeDensity(*level.asset, {}, level.path.string()).segments;
+        asset_ =
+            std::make_unique<fit::ShippedAsset>(programs_, *level.asset, scene_.frame, shadingOf(scene_, level), tess);
         wireframe_ = std::make_unique<CageWireframe>(asset_->cage());
         return;
     }
@@ -149,7 +154,9 @@ void ResultColumn::build() {
 ViewSource ResultColumn::source(ResultColumn* reference) {
     ViewSource source;
     if (asset_) {
-        source.draw = [this](const render::Camera& camera, const render::RenderTarget& target) { asset_->draw(camera, target); };
+        source.draw = [this](const render::Camera& camera, const render::RenderTarget& target) {
+            asset_->draw(camera, target);
+        };
         source.maps = asset_->fitter().maps();
         source.wireframe = wireframe_.get();
         source.cageVertices = &asset_->fitter().vertexGroup().theta;

@@ -26,25 +26,26 @@ struct LoadedLevel {
 };
 
 struct ColumnInputs {
-    std::string name;   // "reference", "subdfit", a baseline's name, or a file's
-    std::string stats;  // bytes and held-out scores, for the panel and the column's label
+    std::string name;                   // "reference", "subdfit", a baseline's name, or a file's
+    std::string stats;                  // bytes and held-out scores, for the panel and the column's label
     std::vector<LoadedLevel> levels{};  // finest first; one unless a chain of levels of detail is given
     bool reference = false;
 };
 
 struct ResultInputs {
     std::string title;
-    std::vector<ColumnInputs> columns;  // the reference first, when there is one
-    std::vector<std::string> notes;     // what is left out and why
+    std::vector<ColumnInputs> columns;        // the reference first, when there is one
+    std::vector<std::string> notes;           // what is left out and why
     std::optional<fit::ResultFolder> folder;  // the first folder given
-    scene::SceneFrame frame;            // the reference's, else the first column's
+    scene::SceneFrame frame;                  // the reference's, else the first column's
 };
 
 // Reads every RESULT: a fit or simplify output folder (its reference, asset.subd and baselines:
 // fit/result_folder.h says which files a folder may name), an asset.subd, or a mesh file (.glb,
 // .gltf, .obj, .drc); `reference`, when given, is the reference instead of the folder's. Throws
 // subdfit::Error "path: problem" for a folder without a result and for a damaged or unreadable file.
-ResultInputs loadResultInputs(const std::vector<std::filesystem::path>& results, const std::filesystem::path& reference = {});
+ResultInputs loadResultInputs(const std::vector<std::filesystem::path>& results,
+                              const std::filesystem::path& reference = {});
 
 // A column on the GPU, at one level.
 class ResultColumn {

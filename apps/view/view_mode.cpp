@@ -18,11 +18,15 @@ const char* viewModeName(ViewMode mode) {
 }
 
 const std::map<std::string, ViewMode>& viewModesByKey() {
-    static const std::map<std::string, ViewMode> keys{
-        {"fit", ViewMode::Fit},   {"target", ViewMode::Target},   {"difference", ViewMode::Difference},
-        {"faces", ViewMode::FaceId}, {"uv", ViewMode::Uv}, {"displacement", ViewMode::Displacement},
-        {"normal", ViewMode::NormalMap}, {"base_color", ViewMode::BaseColor},
-        {"metallic_roughness", ViewMode::MetallicRoughness}};
+    static const std::map<std::string, ViewMode> keys{{"fit", ViewMode::Fit},
+                                                      {"target", ViewMode::Target},
+                                                      {"difference", ViewMode::Difference},
+                                                      {"faces", ViewMode::FaceId},
+                                                      {"uv", ViewMode::Uv},
+                                                      {"displacement", ViewMode::Displacement},
+                                                      {"normal", ViewMode::NormalMap},
+                                                      {"base_color", ViewMode::BaseColor},
+                                                      {"metallic_roughness", ViewMode::MetallicRoughness}};
     return keys;
 }
 
@@ -42,7 +46,7 @@ float defaultViewScale(ViewMode mode) {
     switch (mode) {
         case ViewMode::Difference: return 4.0f;     // an error of a quarter of full scale saturates
         case ViewMode::Displacement: return 50.0f;  // ±0.02 of the scene radius saturates
-        case ViewMode::NormalMap: return 4.0f;    // tangent offsets of ±0.25 saturate
+        case ViewMode::NormalMap: return 4.0f;      // tangent offsets of ±0.25 saturate
         default: return 1.0f;
     }
 }

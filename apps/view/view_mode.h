@@ -11,14 +11,14 @@
 namespace subdfit::view {
 
 enum class ViewMode {
-    Fit = SUBDFIT_VIEW_FIT,                    // the fitted limit surface, shaded as the fit sees it
-    Target = SUBDFIT_VIEW_TARGET,              // the reference, same shading
-    Difference = SUBDFIT_VIEW_DIFFERENCE,      // per-pixel colour error between the two, heat-mapped
-    FaceId = SUBDFIT_VIEW_FACE_ID,             // ptex face id buffer, hashed colours
-    Uv = SUBDFIT_VIEW_UV,                      // patch-local (u, v) buffer
-    Displacement = SUBDFIT_VIEW_DISPLACEMENT,  // the surface coloured by its displacement
-    NormalMap = SUBDFIT_VIEW_NORMAL_MAP,       // the surface coloured by its tangent-space normal map
-    BaseColor = SUBDFIT_VIEW_BASE_COLOR,       // its fitted base colour texels, unlit
+    Fit = SUBDFIT_VIEW_FIT,                               // the fitted limit surface, shaded as the fit sees it
+    Target = SUBDFIT_VIEW_TARGET,                         // the reference, same shading
+    Difference = SUBDFIT_VIEW_DIFFERENCE,                 // per-pixel colour error between the two, heat-mapped
+    FaceId = SUBDFIT_VIEW_FACE_ID,                        // ptex face id buffer, hashed colours
+    Uv = SUBDFIT_VIEW_UV,                                 // patch-local (u, v) buffer
+    Displacement = SUBDFIT_VIEW_DISPLACEMENT,             // the surface coloured by its displacement
+    NormalMap = SUBDFIT_VIEW_NORMAL_MAP,                  // the surface coloured by its tangent-space normal map
+    BaseColor = SUBDFIT_VIEW_BASE_COLOR,                  // its fitted base colour texels, unlit
     MetallicRoughness = SUBDFIT_VIEW_METALLIC_ROUGHNESS,  // its roughness (green) and metallic (blue)
 };
 constexpr int kViewModeCount = SUBDFIT_VIEW_MODE_COUNT;

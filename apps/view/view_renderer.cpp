@@ -5,12 +5,14 @@
 namespace subdfit::view {
 namespace {
 
-const gl::ProgramSpec kComposite{"view_composite",
-                                 {{GL_VERTEX_SHADER, "view_fullscreen.vert"}, {GL_FRAGMENT_SHADER, "view_composite.frag"}},
-                                 {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP", "SUBDFIT_BASE_COLOR_MAP",
-                                  "SUBDFIT_METALLIC_ROUGHNESS_MAP", "SUBDFIT_APPEARANCE_ATLAS"}};
-constexpr gl::VariantBits kCompositeDisplacement = 1u << 0, kCompositeNormalMap = 1u << 1, kCompositeBaseColor = 1u << 2,
-                          kCompositeMetallicRoughness = 1u << 3, kCompositeAppearanceAtlas = 1u << 4;
+const gl::ProgramSpec kComposite{
+    "view_composite",
+    {{GL_VERTEX_SHADER, "view_fullscreen.vert"}, {GL_FRAGMENT_SHADER, "view_composite.frag"}},
+    {"SUBDFIT_DISPLACEMENT", "SUBDFIT_NORMAL_MAP", "SUBDFIT_BASE_COLOR_MAP", "SUBDFIT_METALLIC_ROUGHNESS_MAP",
+     "SUBDFIT_APPEARANCE_ATLAS"}};
+constexpr gl::VariantBits kCompositeDisplacement = 1u << 0, kCompositeNormalMap = 1u << 1,
+                          kCompositeBaseColor = 1u << 2, kCompositeMetallicRoughness = 1u << 3,
+                          kCompositeAppearanceAtlas = 1u << 4;
 
 }  // namespace
 
@@ -33,8 +35,8 @@ void ViewRenderer::draw(const ViewSource& source, const render::Camera& camera, 
     const maps::MapEffects effects = maps ? maps->effects() : maps::MapEffects{};
     const bool atlas = maps && maps->appearanceAtlas().present();
     const auto& program = programs_.get(
-        kComposite, (effects.displacement ? kCompositeDisplacement : 0) | (effects.normalMap ? kCompositeNormalMap : 0) |
-                        (effects.baseColor ? kCompositeBaseColor : 0) |
+        kComposite, (effects.displacement ? kCompositeDisplacement : 0) |
+                        (effects.normalMap ? kCompositeNormalMap : 0) | (effects.baseColor ? kCompositeBaseColor : 0) |
                         (effects.metallicRoughness ? kCompositeMetallicRoughness : 0) |
                         (atlas && effects.appearance() ? kCompositeAppearanceAtlas : 0));
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -27,10 +27,10 @@ using DrawInto = std::function<void(const render::Camera&, const render::RenderT
 
 // What one view shows.
 struct ViewSource {
-    DrawInto draw;                               // the surface shown (modes that read the fit's buffers)
-    DrawInto drawReference;                      // the reference (modes that read the target's); may be empty
-    const maps::MapParameters* maps = nullptr;   // the surface's maps, for the map modes
-    const CageWireframe* wireframe = nullptr;    // with the cage's control vertices:
+    DrawInto draw;                              // the surface shown (modes that read the fit's buffers)
+    DrawInto drawReference;                     // the reference (modes that read the target's); may be empty
+    const maps::MapParameters* maps = nullptr;  // the surface's maps, for the map modes
+    const CageWireframe* wireframe = nullptr;   // with the cage's control vertices:
     const gl::Buffer* cageVertices = nullptr;
 };
 

@@ -71,7 +71,8 @@ public:
         panel_.cagePath = fitOptions.cage.string();
         panel_.referencePath = fitOptions.reference.string();
         const auto* maps = session_->fitter().maps();
-        if (!viewModeAvailable(panel_.view.mode, maps ? maps->effects() : maps::MapEffects{})) panel_.view.mode = ViewMode::Fit;
+        if (!viewModeAvailable(panel_.view.mode, maps ? maps->effects() : maps::MapEffects{}))
+            panel_.view.mode = ViewMode::Fit;
     }
 
     void startResult(ResultInputs result) {
@@ -134,20 +135,22 @@ private:
         carryOut(requests);
         const float aspect = float(std::max(1, size.x)) / float(std::max(1, size.y));
         auto& fitter = session_->fitter();
-        const ViewSource source{
-            .draw = [&](const render::Camera& camera, const render::RenderTarget& target) { fitter.render(camera, target); },
-            .drawReference = [&](const render::Camera& camera, const render::RenderTarget& target) {
-                session_->scene().referenceRenderer.draw(session_->programs(), camera, target);
-            },
-            .maps = fitter.maps(),
-            .wireframe = wireframe_.get(),
-            .cageVertices = &fitter.vertexGroup().theta};
+        const ViewSource source{.draw = [&](const render::Camera& camera,
+                                            const render::RenderTarget& target) { fitter.render(camera, target); },
+                                .drawReference =
+                                    [&](const render::Camera& camera, const render::RenderTarget& target) {
+                                        session_->scene().referenceRenderer.draw(session_->programs(), camera, target);
+                                    },
+                                .maps = fitter.maps(),
+                                .wireframe = wireframe_.get(),
+                                .cageVertices = &fitter.vertexGroup().theta};
         renderer_.draw(source, camera_.camera(aspect), panel_.view, origin, size);
     }
 
     // The visible columns side by side (or the one shown), each with its name and scores on top.
     void resultFrame(const ImGuiIO& io, glm::ivec2 origin, glm::ivec2 size) {
-        const ResultPanelRequests requests = drawResultPanel(results_, *result_, columns_, kPanelWidth, io.DisplaySize.y);
+        const ResultPanelRequests requests =
+            drawResultPanel(results_, *result_, columns_, kPanelWidth, io.DisplaySize.y);
         handleMouse(io, float(size.y));
         if (!io.WantCaptureKeyboard && !results_.sideBySide) {
             const int count = int(columns_.size());
@@ -177,8 +180,9 @@ private:
             labels->AddText(at, IM_COL32(240, 240, 240, 255), column.inputs().name.c_str());
             labels->AddText(ImVec2(at.x, at.y + ImGui::GetTextLineHeight()), IM_COL32(190, 190, 190, 255),
                             column.inputs().stats.c_str());
-            if (k > 0) labels->AddLine(ImVec2(float(left) / scale, 0.0f), ImVec2(float(left) / scale, io.DisplaySize.y),
-                                       IM_COL32(90, 90, 90, 255));
+            if (k > 0)
+                labels->AddLine(ImVec2(float(left) / scale, 0.0f), ImVec2(float(left) / scale, io.DisplaySize.y),
+                                IM_COL32(90, 90, 90, 255));
         }
     }
 
@@ -207,7 +211,8 @@ private:
         do {
             session_->step();
             ++steps;
-            if (session_->stepsTaken() == session_->options().steps) panel_.playing = false;  // as `subdfit fit` would stop
+            if (session_->stepsTaken() == session_->options().steps)
+                panel_.playing = false;  // as `subdfit fit` would stop
         } while (panel_.playing && millisecondsSince(began) < options_.stepBudgetMs);
         const double seconds = millisecondsSince(began) / 1000.0;
         // Smoothed over about a second of frames, for a steady readout.
@@ -222,14 +227,15 @@ private:
                 session_->setTessLevel(panel_.tessLevel);
                 setStatus(panel_,
                           "tessellation " + std::to_string(panel_.tessLevel) + " asked, " +
-                              std::to_string(session_->fitter().renderer().tessLevel()) + " rendered (crack-free for this cage)",
+                              std::to_string(session_->fitter().renderer().tessLevel()) +
+                              " rendered (crack-free for this cage)",
                           false);
             }
             if (requests.save) {
                 const auto report = session_->save(window_, panel_.outPath);
                 char line[160];
-                std::snprintf(line, sizeof line, "saved step %d to %s (held-out PSNR %.2f dB)", report["steps"].get<int>(),
-                              panel_.outPath.c_str(), report["psnr_holdout"].get<double>());
+                std::snprintf(line, sizeof line, "saved step %d to %s (held-out PSNR %.2f dB)",
+                              report["steps"].get<int>(), panel_.outPath.c_str(), report["psnr_holdout"].get<double>());
                 setStatus(panel_, line, false);
             }
             if (requests.load) load();
@@ -243,8 +249,9 @@ private:
                 for (auto& column : columns_) column->setTessLevel(results_.tessLevel);
                 int drawn = 0;
                 for (auto& column : columns_) drawn = std::max(drawn, column->tessLevel());
-                setStatus(results_, "tessellation " + std::to_string(results_.tessLevel) + " asked, " + std::to_string(drawn) +
-                                        " drawn (crack-free for each cage)",
+                setStatus(results_,
+                          "tessellation " + std::to_string(results_.tessLevel) + " asked, " + std::to_string(drawn) +
+                              " drawn (crack-free for each cage)",
                           false);
             }
             if (requests.levelColumn >= 0) columns_[size_t(requests.levelColumn)]->setLevel(requests.level);
@@ -268,7 +275,8 @@ private:
         wireframe_ = std::move(wireframe);
         panel_.tessLevel = options.tessLevel;
         panel_.playing = !options_.paused;
-        setStatus(panel_, "loaded " + options.cage.filename().string() + " against " + options.reference.filename().string(),
+        setStatus(panel_,
+                  "loaded " + options.cage.filename().string() + " against " + options.reference.filename().string(),
                   false);
     }
 
@@ -308,7 +316,8 @@ private:
 }  // namespace
 
 void runViewer(const ViewerOptions& options, FitInputs inputs) {
-    if (!viewModeAvailable(options.mode, fit::mapEffectsOf(options.fit, fit::shadingOf(options.fit, inputs.reference)))) {
+    if (!viewModeAvailable(options.mode,
+                           fit::mapEffectsOf(options.fit, fit::shadingOf(options.fit, inputs.reference)))) {
         const bool appearance = options.mode == ViewMode::BaseColor || options.mode == ViewMode::MetallicRoughness;
         throw Error(std::string("invalid option: --mode: the ") + viewModeName(options.mode) + " view needs " +
                     (appearance ? "a reference whose material has it" : "--maps with that map"));
@@ -322,8 +331,8 @@ void checkResultOptions(const ViewerOptions& options, const ResultInputs& result
     if (!resultModeAvailable(options.mode, resultEffects(result), result.columns.front().reference))
         throw Error(std::string("invalid option: --mode: the ") + viewModeName(options.mode) + " view needs " +
                     (options.mode == ViewMode::Difference ? "the reference (a result folder whose reference is there)"
-                     : options.mode == ViewMode::Target ? "a fit (the reference is a column of the result view)"
-                                                        : "a shipped asset with that map"));
+                     : options.mode == ViewMode::Target   ? "a fit (the reference is a column of the result view)"
+                                                          : "a shipped asset with that map"));
     if (!options.show.empty() && columnNamed(result, options.show) < 0) {
         std::string names;
         for (const auto& column : result.columns) names += (names.empty() ? "" : ", ") + column.name;

@@ -20,12 +20,12 @@ struct ViewerOptions {
     bool paused = false;               // start with the fit paused
     ViewMode mode = ViewMode::Fit;     // the view to start with
     bool cageWireframe = false;
-    bool saveOnExit = false;           // write the results into the panel's out folder at the end
-    double stepBudgetMs = 16.0;        // fit steps per frame stop once they took this long (at least one runs)
+    bool saveOnExit = false;     // write the results into the panel's out folder at the end
+    double stepBudgetMs = 16.0;  // fit steps per frame stop once they took this long (at least one runs)
     // The result view's:
-    bool sideBySide = true;            // every column at once, else one at a time
-    std::string show;                  // the column shown first one at a time ("" : subdfit's, else the first)
-    int tessLevel = 0;                 // segments per face edge of subdfit-format columns; 0: decode's default
+    bool sideBySide = true;  // every column at once, else one at a time
+    std::string show;        // the column shown first one at a time ("" : subdfit's, else the first)
+    int tessLevel = 0;       // segments per face edge of subdfit-format columns; 0: decode's default
 };
 
 // Opens the window and runs the fit of `inputs` until it is closed or `frames` frames are drawn.

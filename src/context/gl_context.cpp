@@ -11,9 +11,7 @@ namespace {
 
 GlContext* loadingContext = nullptr;
 
-GLADapiproc loadProc(const char* name) {
-    return reinterpret_cast<GLADapiproc>(loadingContext->getProcAddress(name));
-}
+GLADapiproc loadProc(const char* name) { return reinterpret_cast<GLADapiproc>(loadingContext->getProcAddress(name)); }
 
 }  // namespace
 
@@ -38,9 +36,7 @@ std::unique_ptr<GlContext> createHeadlessContext(GlProvider provider) {
     switch (provider) {
         case GlProvider::Osmesa: context = createOsmesaContext(); break;
         case GlProvider::Egl: context = createEglContext(); break;
-        case GlProvider::Auto:
-            try {
-                context = createOsmesaContext();
+        case GlProvider::Auto: try { context = createOsmesaContext();
             } catch (const Error&) {
                 context = createEglContext();
             }

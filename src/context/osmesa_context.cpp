@@ -12,10 +12,17 @@ namespace {
 class OsmesaContext final : public GlContext {
 public:
     OsmesaContext() {
-        const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24,
-                               OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                               OSMESA_CONTEXT_MAJOR_VERSION, 4,
-                               OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
+        const int attribs[] = {OSMESA_FORMAT,
+                               OSMESA_RGBA,
+                               OSMESA_DEPTH_BITS,
+                               24,
+                               OSMESA_PROFILE,
+                               OSMESA_CORE_PROFILE,
+                               OSMESA_CONTEXT_MAJOR_VERSION,
+                               4,
+                               OSMESA_CONTEXT_MINOR_VERSION,
+                               5,
+                               0};
         context_ = OSMesaCreateContextAttribs(attribs, nullptr);
         if (!context_) throw Error("OSMesa: could not create a GL 4.5 core context");
         makeCurrent();
@@ -27,9 +34,7 @@ public:
         if (!OSMesaMakeCurrent(context_, pixel_.data(), GL_UNSIGNED_BYTE, 1, 1))
             throw Error("OSMesa: OSMesaMakeCurrent failed");
     }
-    GlProc getProcAddress(const char* name) override {
-        return reinterpret_cast<GlProc>(OSMesaGetProcAddress(name));
-    }
+    GlProc getProcAddress(const char* name) override { return reinterpret_cast<GlProc>(OSMesaGetProcAddress(name)); }
     std::string providerName() const override { return "osmesa"; }
 
 private:

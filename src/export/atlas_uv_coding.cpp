@@ -50,7 +50,9 @@ void walkValues(const mesh::PolygonMesh& cage, const ValueSlots& slots, Code cod
         Q atA, atB, opposite;
     };
     std::unordered_map<std::uint64_t, Wing> wings;
-    auto edgeKey = [](int a, int b) { return std::uint64_t(std::uint32_t(std::min(a, b))) << 32 | std::uint32_t(std::max(a, b)); };
+    auto edgeKey = [](int a, int b) {
+        return std::uint64_t(std::uint32_t(std::min(a, b))) << 32 | std::uint32_t(std::max(a, b));
+    };
     int ptex = 0;
     size_t offset = 0;
     for (const int n : cage.faceSizes) {
@@ -59,11 +61,13 @@ void walkValues(const mesh::PolygonMesh& cage, const ValueSlots& slots, Code cod
         if (n == 4) {
             const int f = ptex++;
             for (int k = 0; k < 4; ++k) {
-                const auto &previous = value(f, (k + 3) % 4), &next = value(f, (k + 1) % 4), &opposite = value(f, (k + 2) % 4);
-                visit(f, k, previous && next && opposite ? *previous + *next - *opposite
-                            : previous                   ? *previous
-                            : next                       ? *next
-                                                         : last);
+                const auto &previous = value(f, (k + 3) % 4), &next = value(f, (k + 1) % 4),
+                           &opposite = value(f, (k + 2) % 4);
+                visit(f, k,
+                      previous && next && opposite ? *previous + *next - *opposite
+                      : previous                   ? *previous
+                      : next                       ? *next
+                                                   : last);
             }
             continue;
         }
@@ -79,7 +83,8 @@ void walkValues(const mesh::PolygonMesh& cage, const ValueSlots& slots, Code cod
             if (wing == wings.end()) return std::nullopt;
             const Wing& w = wing->second;
             const bool aFirst = w.a == id(i - 1);
-            if ((aFirst ? w.atA : w.atB) != *vertex(i - 1) || (aFirst ? w.atB : w.atA) != *vertex(i + 1)) return std::nullopt;
+            if ((aFirst ? w.atA : w.atB) != *vertex(i - 1) || (aFirst ? w.atB : w.atA) != *vertex(i + 1))
+                return std::nullopt;
             return *vertex(i - 1) + *vertex(i + 1) - w.opposite;
         };
         for (int i = 0; i < n; ++i) {
@@ -87,7 +92,8 @@ void walkValues(const mesh::PolygonMesh& cage, const ValueSlots& slots, Code cod
             visit(first + i, 0, parallelogram ? *parallelogram : vertex(i - 1) ? *vertex(i - 1) : last);
         }
         if (n == 3)
-            for (int i = 0; i < 3; ++i) wings[edgeKey(id(i), id(i + 1))] = {id(i), id(i + 1), *vertex(i), *vertex(i + 1), *vertex(i + 2)};
+            for (int i = 0; i < 3; ++i)
+                wings[edgeKey(id(i), id(i + 1))] = {id(i), id(i + 1), *vertex(i), *vertex(i + 1), *vertex(i + 2)};
         auto midpoint = [&](int i, int j) {
             const Q sum = *vertex(i) + *vertex(j);
             return Q{floorDiv(sum[0], 2), floorDiv(sum[1], 2)};
@@ -154,10 +160,12 @@ surface::AppearanceAtlas readAtlasUvs(ByteReader& in, const mesh::PolygonMesh& c
     const surface::TexelLayout points = surface::buildTexelLayout(cage, 1);
     surface::AppearanceAtlas atlas;
     const std::uint64_t size = in.getVarint();
-    if (size < 2 || size > std::uint64_t(surface::kMaxAtlasSize)) throw Error(in.what() + ": atlas size " + std::to_string(size) + " out of range");
+    if (size < 2 || size > std::uint64_t(surface::kMaxAtlasSize))
+        throw Error(in.what() + ": atlas size " + std::to_string(size) + " out of range");
     atlas.size = int(size);
     const int bits = in.get<std::uint8_t>();
-    if (bits != atlasUvBits(atlas.size)) throw Error(in.what() + ": " + std::to_string(bits) + " bits for an atlas of " + std::to_string(size));
+    if (bits != atlasUvBits(atlas.size))
+        throw Error(in.what() + ": " + std::to_string(bits) + " bits for an atlas of " + std::to_string(size));
     const size_t corners = 4 * size_t(points.ptexFaceCount);
     ValueSlots slots{{0}, {}};
     std::vector<size_t> counts(size_t(points.nodeCount));

@@ -72,7 +72,8 @@ public:
     // when the rest of the data could not hold them.
     std::size_t getCount(std::size_t minBytes, const char* of) {
         const std::uint64_t n = getVarint();
-        if (minBytes > 0 && n > remaining() / minBytes) throw Error(what_ + ": " + of + " count " + std::to_string(n) + " exceeds the data");
+        if (minBytes > 0 && n > remaining() / minBytes)
+            throw Error(what_ + ": " + of + " count " + std::to_string(n) + " exceeds the data");
         return std::size_t(n);
     }
     std::span<const unsigned char> take(std::size_t n) {

@@ -82,7 +82,8 @@ Grid gridFor(const std::vector<glm::vec3>& positions, int bits) {
 // step away, about the quantisation's own error. Each cell's vertex then, or nothing when a vertex
 // finds no free cell.
 std::optional<std::unordered_map<std::uint64_t, int>> separateCells(std::vector<Cell>& cells,
-                                                                    const std::vector<glm::vec3>& positions, const Grid& grid) {
+                                                                    const std::vector<glm::vec3>& positions,
+                                                                    const Grid& grid) {
     std::unordered_map<std::uint64_t, int> vertexOfCell;
     const auto top = std::int32_t(grid.levels());
     for (size_t v = 0; v < cells.size(); ++v) {
@@ -145,7 +146,8 @@ void writeTags(const mesh::SubdivisionTags& t, const CageCorrespondence& to, Byt
     tagged.clear();
     std::vector<mesh::Corner> corners;
     for (const auto& c : t.corners)
-        if (tagged.insert(std::uint64_t(to.vertex[size_t(c.vertex)])).second) corners.push_back({to.vertex[size_t(c.vertex)], c.sharpness});
+        if (tagged.insert(std::uint64_t(to.vertex[size_t(c.vertex)])).second)
+            corners.push_back({to.vertex[size_t(c.vertex)], c.sharpness});
     out.putVarint(corners.size());
     for (const auto& c : corners) {
         out.putVarint(std::uint64_t(c.vertex));
@@ -164,7 +166,8 @@ void readTags(ByteReader& in, mesh::PolygonMesh& cage) {
     auto& t = cage.tags;
     const int boundary = in.get<std::uint8_t>(), faceVarying = in.get<std::uint8_t>(), method = in.get<std::uint8_t>(),
               triangles = in.get<std::uint8_t>();
-    if (boundary > 2 || faceVarying > 5 || method > 1 || triangles > 1) throw Error(in.what() + ": unknown subdivision rule");
+    if (boundary > 2 || faceVarying > 5 || method > 1 || triangles > 1)
+        throw Error(in.what() + ": unknown subdivision rule");
     t.boundary = mesh::BoundaryInterpolation(boundary);
     t.faceVaryingBoundary = faceVarying;
     t.creaseMethod = mesh::CreaseMethod(method);
@@ -238,8 +241,8 @@ void readPlain(ByteReader& in, const Grid& grid, std::size_t vertices, std::size
 
 // Triangles over distinct quantised positions, as the decoder sees them.
 struct CellTriangles {
-    std::vector<Cell> cells;    // one per vertex, in Draco's point order (equal cells merged)
-    std::vector<int> corners;   // 3 per triangle
+    std::vector<Cell> cells;   // one per vertex, in Draco's point order (equal cells merged)
+    std::vector<int> corners;  // 3 per triangle
 };
 
 std::vector<unsigned char> encodeDracoTriangles(const std::vector<Cell>& cells, const std::vector<int>& corners) {
@@ -247,9 +250,9 @@ std::vector<unsigned char> encodeDracoTriangles(const std::vector<Cell>& cells, 
     mesh.set_num_points(std::uint32_t(cells.size()));
     mesh.SetNumFaces(corners.size() / 3);
     for (size_t t = 0; t < corners.size() / 3; ++t)
-        mesh.SetFace(draco::FaceIndex(std::uint32_t(t)),
-                     {draco::PointIndex(std::uint32_t(corners[3 * t])), draco::PointIndex(std::uint32_t(corners[3 * t + 1])),
-                      draco::PointIndex(std::uint32_t(corners[3 * t + 2]))});
+        mesh.SetFace(draco::FaceIndex(std::uint32_t(t)), {draco::PointIndex(std::uint32_t(corners[3 * t])),
+                                                          draco::PointIndex(std::uint32_t(corners[3 * t + 1])),
+                                                          draco::PointIndex(std::uint32_t(corners[3 * t + 2]))});
     draco::GeometryAttribute attribute;
     attribute.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_INT32, false, sizeof(Cell), 0);
     const int id = mesh.AddAttribute(attribute, true, mesh.num_points());
@@ -427,7 +430,7 @@ std::vector<unsigned char> marksFromPairs(const CellTriangles& mesh, ByteReader&
 // The Draco body and the correspondence it gives, or nothing when Draco cannot carry this cage
 // as it is (repeated or unused vertices, non-manifold pieces it would cut, ...).
 std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBody(const mesh::PolygonMesh& cage,
-                                                                                  const Grid& grid) {
+                                                                                   const Grid& grid) {
     std::vector<Cell> cells;
     for (const auto& p : cage.positions) cells.push_back(grid.cell(p));
     const auto separated = separateCells(cells, cage.positions, grid);
@@ -441,7 +444,9 @@ std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBo
     for (int f = 0, first = 0; f < cage.faceCount(); first += cage.faceSizes[size_t(f)], ++f)
         for (int k = 0, n = cage.faceSizes[size_t(f)]; k < n; ++k)
             edges.insert(edgeKey(cage.faceIndices[size_t(first + k)], cage.faceIndices[size_t(first + (k + 1) % n)]));
-    auto taken = [&](int a, int b) { return edges.count(edgeKey(a, b)) || edges.count(edgeKey(b, a)) || diagonals.count(edgeKey(a, b)); };
+    auto taken = [&](int a, int b) {
+        return edges.count(edgeKey(a, b)) || edges.count(edgeKey(b, a)) || diagonals.count(edgeKey(a, b));
+    };
     for (int f = 0, first = 0; f < cage.faceCount(); first += cage.faceSizes[size_t(f)], ++f) {
         const int n = cage.faceSizes[size_t(f)];
         const int* v = &cage.faceIndices[size_t(first)];
@@ -457,8 +462,10 @@ std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBo
         };
         while (apex < n && !free(apex)) ++apex;
         if (apex == n) return std::nullopt;
-        for (int k = 1; k + 1 < n; ++k) corners.insert(corners.end(), {v[apex], v[(apex + k) % n], v[(apex + k + 1) % n]});
-        for (int k = 2; k + 1 < n; ++k) diagonals.insert({edgeKey(v[apex], v[(apex + k) % n]), edgeKey(v[(apex + k) % n], v[apex])});
+        for (int k = 1; k + 1 < n; ++k)
+            corners.insert(corners.end(), {v[apex], v[(apex + k) % n], v[(apex + k + 1) % n]});
+        for (int k = 2; k + 1 < n; ++k)
+            diagonals.insert({edgeKey(v[apex], v[(apex + k) % n]), edgeKey(v[(apex + k) % n], v[apex])});
     }
 
     std::vector<unsigned char> draco;
@@ -470,7 +477,8 @@ std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBo
         return std::nullopt;
     }
     if (decoded.cells.size() != cells.size()) return std::nullopt;
-    CageCorrespondence to{.vertex = std::vector<int>(cells.size(), -1), .face = std::vector<int>(size_t(cage.faceCount()), -1),
+    CageCorrespondence to{.vertex = std::vector<int>(cells.size(), -1),
+                          .face = std::vector<int>(size_t(cage.faceCount()), -1),
                           .rotation = std::vector<int>(size_t(cage.faceCount()), 0)};
     std::vector<int> original(cells.size());
     for (size_t d = 0; d < decoded.cells.size(); ++d) {
@@ -495,8 +503,8 @@ std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBo
     for (int f = 0, first = 0; f < polygons.faceCount(); first += polygons.faceSizes[size_t(f)], ++f) {
         const int n = polygons.faceSizes[size_t(f)];
         const int* v = &polygons.faceIndices[size_t(first)];
-        const auto it =
-            faceOfCorners.find(cornerKey(original[size_t(v[0])], original[size_t(v[1 % n])], original[size_t(v[2 % n])]));
+        const auto it = faceOfCorners.find(
+            cornerKey(original[size_t(v[0])], original[size_t(v[1 % n])], original[size_t(v[2 % n])]));
         if (it == faceOfCorners.end()) return std::nullopt;
         const auto [face, corner] = it->second;
         if (cage.faceSizes[size_t(face)] != n || to.face[size_t(face)] >= 0) return std::nullopt;
@@ -563,7 +571,8 @@ CageByteParts cageByteParts(const mesh::PolygonMesh& cage, int positionBits) {
     parts.polygonMarks = packed(in.take(in.remaining()));
     // The same triangles over one position: what Draco spends on connectivity alone.
     const CellTriangles triangles = decodeDracoTriangles(draco, grid, "Draco cage");
-    parts.connectivity = packed(encodeDracoTriangles(std::vector<Cell>(triangles.cells.size(), Cell{}), triangles.corners));
+    parts.connectivity =
+        packed(encodeDracoTriangles(std::vector<Cell>(triangles.cells.size(), Cell{}), triangles.corners));
     const std::size_t whole = packed(draco);
     parts.positions = whole > parts.connectivity ? whole - parts.connectivity : 0;
     return parts;

@@ -16,7 +16,7 @@ inline constexpr std::uint64_t kDecodeBudgetBytes = std::uint64_t(768) << 20;
 
 // Peak bytes per decoded item.
 struct DecodeCost {
-    static constexpr std::uint64_t kCageFace = 512;      // the cage and OpenSubdiv's tables for it
+    static constexpr std::uint64_t kCageFace = 512;  // the cage and OpenSubdiv's tables for it
     static constexpr std::uint64_t kCageVertex = 64;
     static constexpr std::uint64_t kLatticeSlot = 48;    // a map lattice's node of one tile, its values
     static constexpr std::uint64_t kAtlasTexel = 8;      // a texture atlas's lattice node
@@ -31,7 +31,8 @@ struct DecodeCost {
 class DecodeBudget {
 public:
     // `name` names the file in refusals.
-    explicit DecodeBudget(std::string name, std::uint64_t bytes = kDecodeBudgetBytes) : name_(std::move(name)), left_(bytes), total_(bytes) {}
+    explicit DecodeBudget(std::string name, std::uint64_t bytes = kDecodeBudgetBytes)
+        : name_(std::move(name)), left_(bytes), total_(bytes) {}
 
     // Whether `count` items of `bytesEach` fit what is left (saturating: no count overflows).
     bool fits(std::uint64_t count, std::uint64_t bytesEach) const;

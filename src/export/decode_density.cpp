@@ -22,15 +22,19 @@ DecodeDensity densityAt(const mesh::PolygonMesh& cage, int segments) {
 }
 
 DecodeDensity decodeDensity(const SubdAsset& asset, const DensityRequest& request, const std::string& name) {
-    return decodeDensity({.cage = asset.cage, .decodeTriangles = asset.decodeTriangles, .mapResolution = asset.maps.layout.resolution},
-                         request, name);
+    return decodeDensity(
+        {.cage = asset.cage, .decodeTriangles = asset.decodeTriangles, .mapResolution = asset.maps.layout.resolution},
+        request, name);
 }
 
 DecodeDensity decodeDensity(const SubdOutline& asset, const DensityRequest& request, const std::string& name) {
-    if (request.segments < 0 || request.triangles < 0) throw OptionError(request.segments < 0 ? "tess" : "triangles", "must be positive");
-    if (request.segments > 0 && request.triangles > 0) throw OptionError("tess", "and --triangles ask for the same thing: give one");
+    if (request.segments < 0 || request.triangles < 0)
+        throw OptionError(request.segments < 0 ? "tess" : "triangles", "must be positive");
+    if (request.segments > 0 && request.triangles > 0)
+        throw OptionError("tess", "and --triangles ask for the same thing: give one");
     if (request.segments > kMaxDecodeSegments)
-        throw OptionError("tess", "must be in 1.." + std::to_string(kMaxDecodeSegments) + ", got " + std::to_string(request.segments));
+        throw OptionError("tess", "must be in 1.." + std::to_string(kMaxDecodeSegments) + ", got " +
+                                      std::to_string(request.segments));
     const std::int64_t faces = std::max<std::int64_t>(surfacePtexFaces(asset.cage), 1);
     auto refuse = [&](const DecodeDensity& d, const std::string& asked) {
         throw Error(name + ": " + asked + " make " + std::to_string(d.triangles) + " triangles, more than the " +
@@ -57,7 +61,8 @@ DecodeDensity decodeDensity(const SubdOutline& asset, const DensityRequest& requ
     // at least one, whatever the target (the cage itself).
     const double exact = std::sqrt(double(std::min(target, kMaxDecodeTriangles)) / double(2 * faces));
     const double below = std::max(1.0, std::floor(exact));
-    int segments = std::clamp(int(exact < std::sqrt(below * (below + 1.0)) ? below : below + 1.0), 1, kMaxDecodeSegments);
+    int segments =
+        std::clamp(int(exact < std::sqrt(below * (below + 1.0)) ? below : below + 1.0), 1, kMaxDecodeSegments);
     while (segments > 1 && densityAt(asset.cage, segments).triangles > kMaxDecodeTriangles) --segments;
     const DecodeDensity d = densityAt(asset.cage, segments);
     if (d.triangles > kMaxDecodeTriangles) refuse(d, "its faces at one segment each");
@@ -65,7 +70,8 @@ DecodeDensity decodeDensity(const SubdOutline& asset, const DensityRequest& requ
 }
 
 std::uint64_t decodeOutputBytes(const DecodeDensity& d) {
-    return std::uint64_t(d.vertices) * DecodeCost::kOutputVertex + std::uint64_t(d.triangles) * DecodeCost::kOutputTriangle;
+    return std::uint64_t(d.vertices) * DecodeCost::kOutputVertex +
+           std::uint64_t(d.triangles) * DecodeCost::kOutputTriangle;
 }
 
 std::uint64_t lodChainBytes(const DecodeDensity& density, int lods) {

@@ -50,7 +50,8 @@ std::uint64_t decodeOutputBytes(const DecodeDensity& density);
 // vertices and triangles a decoder writes at it spent from `budget`, and `lods` levels of detail
 // (DecodeCost::kLodChainTriangle per triangle of the first, where lods > 1): the default gives way
 // to what the budget has left (fewer segments), a density asked for does not (it is refused).
-DecodeDensity pricedDensity(const SubdOutline& asset, const DensityRequest& request, DecodeBudget& budget, int lods = 1);
+DecodeDensity pricedDensity(const SubdOutline& asset, const DensityRequest& request, DecodeBudget& budget,
+                            int lods = 1);
 
 // What a chain of `lods` levels below `density` costs a decoder (0 for one level).
 std::uint64_t lodChainBytes(const DecodeDensity& density, int lods);

@@ -21,8 +21,8 @@ constexpr int kSpeed = 5;  // Draco's middle ground between size and encode/deco
 // Adds a float attribute with one value per point; returns its unique id.
 int addAttribute(draco::Mesh& mesh, draco::GeometryAttribute::Type type, int components, const float* values) {
     draco::GeometryAttribute attribute;
-    attribute.Init(type, nullptr, uint8_t(components), draco::DT_FLOAT32, false,
-                   int64_t(sizeof(float)) * components, 0);
+    attribute.Init(type, nullptr, uint8_t(components), draco::DT_FLOAT32, false, int64_t(sizeof(float)) * components,
+                   0);
     const int id = mesh.AddAttribute(attribute, true, mesh.num_points());
     SUBDFIT_CHECK(id >= 0);
     draco::PointAttribute* added = mesh.attribute(id);
@@ -44,9 +44,9 @@ std::unique_ptr<draco::Mesh> toDraco(const GltfMesh& tess, DracoEncodedMesh& ids
     mesh.set_num_points(uint32_t(tess.vertexCount()));
     mesh.SetNumFaces(tess.triangleCount());
     for (size_t t = 0; t < tess.triangleCount(); ++t)
-        mesh.SetFace(draco::FaceIndex(uint32_t(t)), {draco::PointIndex(tess.indices[3 * t]),
-                                                     draco::PointIndex(tess.indices[3 * t + 1]),
-                                                     draco::PointIndex(tess.indices[3 * t + 2])});
+        mesh.SetFace(draco::FaceIndex(uint32_t(t)),
+                     {draco::PointIndex(tess.indices[3 * t]), draco::PointIndex(tess.indices[3 * t + 1]),
+                      draco::PointIndex(tess.indices[3 * t + 2])});
     ids.position = addAttribute(mesh, draco::GeometryAttribute::POSITION, 3, &tess.positions[0].x);
     if (tess.hasNormals()) ids.normal = addAttribute(mesh, draco::GeometryAttribute::NORMAL, 3, &tess.normals[0].x);
     if (tess.hasTangents()) ids.tangent = addAttribute(mesh, draco::GeometryAttribute::GENERIC, 4, &tess.tangents[0].x);

@@ -10,7 +10,7 @@
 namespace subdfit::exporter {
 namespace {
 
-constexpr std::uint32_t kMagic = 0x46546C67;      // "glTF"
+constexpr std::uint32_t kMagic = 0x46546C67;  // "glTF"
 constexpr std::uint32_t kVersion = 2;
 constexpr std::uint32_t kJsonChunk = 0x4E4F534A;  // "JSON"
 constexpr std::uint32_t kBinChunk = 0x004E4942;   // "BIN\0"
@@ -18,7 +18,8 @@ constexpr std::uint32_t kBinChunk = 0x004E4942;   // "BIN\0"
 size_t padded(size_t size) { return (size + 3) & ~size_t(3); }
 
 void appendU32(std::vector<unsigned char>& out, std::uint32_t value) {
-    for (int shift = 0; shift < 32; shift += 8) out.push_back((unsigned char)((value >> shift) & 0xFF));  // little-endian
+    for (int shift = 0; shift < 32; shift += 8)
+        out.push_back((unsigned char)((value >> shift) & 0xFF));  // little-endian
 }
 
 void appendChunk(std::vector<unsigned char>& out, std::uint32_t type, std::span<const unsigned char> data,

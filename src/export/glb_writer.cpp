@@ -133,8 +133,10 @@ json document(const GltfMesh& tess, const FittedTextures& textures, MeshCoding c
     if (!meshExtras.empty()) doc["meshes"][0]["extras"] = meshExtras;
     if (hasMaterial) doc["materials"] = json::array({material(textures, doc, binary)});
     if (draco) doc["extensionsUsed"] = doc["extensionsRequired"] = json::array({kDraco});
-    if (coding == MeshCoding::Meshopt) doc["extensionsUsed"] = doc["extensionsRequired"] = json::array({kMeshopt, kQuantization});
-    if (coding == MeshCoding::Quantized) doc["extensionsUsed"] = doc["extensionsRequired"] = json::array({kQuantization});
+    if (coding == MeshCoding::Meshopt)
+        doc["extensionsUsed"] = doc["extensionsRequired"] = json::array({kMeshopt, kQuantization});
+    if (coding == MeshCoding::Quantized)
+        doc["extensionsUsed"] = doc["extensionsRequired"] = json::array({kQuantization});
     doc["bufferViews"] = binary.views();
     doc["buffers"] = binary.buffers();
     return doc;
@@ -183,8 +185,8 @@ WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& te
 }
 
 WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
-                         const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices,
-                         bool draco, const nlohmann::json& extras) {
+                         const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices, bool draco,
+                         const nlohmann::json& extras) {
     return writeMeshGlb(path, positions, normals, indices, draco ? std::optional<DracoBits>(DracoBits{}) : std::nullopt,
                         extras);
 }

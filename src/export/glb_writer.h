@@ -51,11 +51,12 @@ WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& te
 // A plain triangle mesh (a cage, a decimated mesh): positions, optional normals, indices;
 // `extras` (if not empty) goes into the mesh's glTF `extras`.
 WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
-                         const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices,
-                         bool draco, const nlohmann::json& extras = nlohmann::json::object());
+                         const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices, bool draco,
+                         const nlohmann::json& extras = nlohmann::json::object());
 // The same, Draco-coded at `draco`'s quantisation when given.
 WrittenFile writeMeshGlb(const std::filesystem::path& path, const std::vector<glm::vec3>& positions,
                          const std::vector<glm::vec3>& normals, const std::vector<std::uint32_t>& indices,
-                         const std::optional<DracoBits>& draco, const nlohmann::json& extras = nlohmann::json::object());
+                         const std::optional<DracoBits>& draco,
+                         const nlohmann::json& extras = nlohmann::json::object());
 
 }  // namespace subdfit::exporter

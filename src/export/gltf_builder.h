@@ -51,9 +51,12 @@ public:
         nlohmann::json view = {{"buffer", 1}, {"byteOffset", fallbackBytes_}, {"byteLength", length}};
         if (mode == std::string_view("ATTRIBUTES")) view["byteStride"] = stride;
         if (target) view["target"] = target;
-        view["extensions"]["EXT_meshopt_compression"] = {{"buffer", 0},           {"byteOffset", data_.size()},
-                                                         {"byteLength", compressed.size()}, {"byteStride", stride},
-                                                         {"count", count},        {"mode", mode}};
+        view["extensions"]["EXT_meshopt_compression"] = {{"buffer", 0},
+                                                         {"byteOffset", data_.size()},
+                                                         {"byteLength", compressed.size()},
+                                                         {"byteStride", stride},
+                                                         {"count", count},
+                                                         {"mode", mode}};
         if (filter) view["extensions"]["EXT_meshopt_compression"]["filter"] = filter;
         data_.insert(data_.end(), compressed.begin(), compressed.end());
         fallbackBytes_ += (length + 3) & ~std::size_t(3);
@@ -68,7 +71,8 @@ public:
     nlohmann::json buffers() const {
         nlohmann::json buffers = nlohmann::json::array({{{"byteLength", data_.size()}}});
         if (fallbackBytes_ > 0)
-            buffers.push_back({{"byteLength", fallbackBytes_}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
+            buffers.push_back(
+                {{"byteLength", fallbackBytes_}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
         return buffers;
     }
 

@@ -2,7 +2,9 @@
 
 namespace subdfit::exporter {
 
-GltfMesh gltfMesh(const surface::Tessellation& t, const AtlasLayout& atlas) { return gltfMesh(surface::Tessellation(t), atlas); }
+GltfMesh gltfMesh(const surface::Tessellation& t, const AtlasLayout& atlas) {
+    return gltfMesh(surface::Tessellation(t), atlas);
+}
 
 GltfMesh gltfMesh(surface::Tessellation&& t, const AtlasLayout& atlas) {
     GltfMesh mesh;

@@ -33,9 +33,7 @@ void forEachTilePixel(const AtlasLayout& atlas, const surface::TexelLayout& layo
     }
 }
 
-std::uint16_t unorm16(float value) {
-    return std::uint16_t(std::lround(std::clamp(value, 0.0f, 1.0f) * 65535.0f));
-}
+std::uint16_t unorm16(float value) { return std::uint16_t(std::lround(std::clamp(value, 0.0f, 1.0f) * 65535.0f)); }
 }  // namespace
 
 AtlasLayout atlasLayout(const surface::TexelLayout& layout) {
@@ -57,14 +55,16 @@ AtlasLayout atlasLayout(const surface::TexelLayout& layout) {
 glm::vec2 atlasUv(const AtlasLayout& atlas, int face, float u, float v) {
     const glm::ivec2 origin = atlas.tileOrigins[size_t(face)];
     const float t = float(atlas.resolution);
-    return {(float(origin.x) + 0.5f + u * t) / float(atlas.width), (float(origin.y) + 0.5f + v * t) / float(atlas.height)};
+    return {(float(origin.x) + 0.5f + u * t) / float(atlas.width),
+            (float(origin.y) + 0.5f + v * t) / float(atlas.height)};
 }
 
 std::vector<float> displacementAtlas(const AtlasLayout& atlas, const surface::SurfaceMaps& maps) {
     checkMaps(maps.layout, maps);
     SUBDFIT_CHECK(maps.hasDisplacement());
     std::vector<float> pixels(size_t(atlas.width) * size_t(atlas.height), 0.0f);
-    forEachTilePixel(atlas, maps.layout, [&](size_t pixel, int node) { pixels[pixel] = maps.displacement[size_t(node)]; });
+    forEachTilePixel(atlas, maps.layout,
+                     [&](size_t pixel, int node) { pixels[pixel] = maps.displacement[size_t(node)]; });
     return pixels;
 }
 
@@ -74,7 +74,8 @@ std::vector<std::uint16_t> normalAtlas(const AtlasLayout& atlas, const surface::
     const std::uint16_t half = unorm16(0.5f), one = unorm16(1.0f);
     std::vector<std::uint16_t> pixels;
     pixels.reserve(size_t(atlas.width) * size_t(atlas.height) * 3);
-    for (size_t p = 0; p < size_t(atlas.width) * size_t(atlas.height); ++p) pixels.insert(pixels.end(), {half, half, one});
+    for (size_t p = 0; p < size_t(atlas.width) * size_t(atlas.height); ++p)
+        pixels.insert(pixels.end(), {half, half, one});
     forEachTilePixel(atlas, maps.layout, [&](size_t pixel, int node) {
         const float x = maps.normal[2 * size_t(node)], y = maps.normal[2 * size_t(node) + 1];
         const float scale = 1.0f / std::sqrt(x * x + y * y + 1.0f);
@@ -122,7 +123,8 @@ std::vector<float> nodesFromPixels(const AtlasLayout& atlas, const surface::Texe
     std::vector<int> counts(size_t(layout.nodeCount), 0);
     forEachTilePixel(atlas, layout, [&](size_t pixel, int node) {
         const std::uint8_t* p = &rgb[3 * pixel];
-        for (int c = 0; c < channels; ++c) sums[size_t(node) * size_t(channels) + size_t(c)] += float(p[first + c]) / 255.0f;
+        for (int c = 0; c < channels; ++c)
+            sums[size_t(node) * size_t(channels) + size_t(c)] += float(p[first + c]) / 255.0f;
         ++counts[size_t(node)];
     });
     for (size_t n = 0; n < counts.size(); ++n)
@@ -140,12 +142,14 @@ std::vector<std::uint8_t> appearancePixels(const AtlasLayout& atlas, const surfa
     SUBDFIT_CHECK(values.size() == size_t(maps.appearanceLayout.nodeCount) * size_t(image.channels));
     const bool occlusion = which == AppearanceImage::MetallicRoughness && !maps.occlusion.empty();
     std::vector<std::uint8_t> pixels(size_t(atlas.width) * size_t(atlas.height) * 3, 0);
-    for (size_t p = 0; p < pixels.size(); p += 3) std::copy(image.fill.begin(), image.fill.end(), pixels.begin() + std::ptrdiff_t(p));
+    for (size_t p = 0; p < pixels.size(); p += 3)
+        std::copy(image.fill.begin(), image.fill.end(), pixels.begin() + std::ptrdiff_t(p));
     auto unorm8 = [](float v) { return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
     forEachTilePixel(atlas, maps.appearanceLayout, [&](size_t pixel, int node) {
         std::uint8_t* p = &pixels[3 * pixel];
         const size_t n = size_t(node);
-        for (int c = 0; c < image.channels; ++c) p[image.first + c] = unorm8(values[size_t(image.channels) * n + size_t(c)]);
+        for (int c = 0; c < image.channels; ++c)
+            p[image.first + c] = unorm8(values[size_t(image.channels) * n + size_t(c)]);
         if (occlusion) p[0] = unorm8(maps.occlusion[n]);
     });
     return pixels;

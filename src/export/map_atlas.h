@@ -29,8 +29,8 @@ struct AtlasLayout {
     int resolution = 0;  // T, cells per tile edge
     int tileSize = 0;    // T + 1 pixels
     int columns = 0, rows = 0;
-    int width = 0, height = 0;             // pixels
-    std::vector<glm::ivec2> tileOrigins;   // per ptex face: pixel (x0, y0) of its node (0, 0)
+    int width = 0, height = 0;            // pixels
+    std::vector<glm::ivec2> tileOrigins;  // per ptex face: pixel (x0, y0) of its node (0, 0)
 };
 
 // ceil(sqrt(F)) columns, tiles row-major from the top-left, image row 0 at the top.
@@ -47,7 +47,8 @@ std::vector<std::uint16_t> normalAtlas(const AtlasLayout& atlas, const surface::
 
 // normal.png's bytes (16-bit RGB, or 8-bit with `eightBit`), for writing and for embedding in a
 // GLB. Requires a normal map.
-std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps, bool eightBit = false);
+std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps,
+                                           bool eightBit = false);
 
 // 8-bit PNG bytes of the appearance maps on `atlas` (atlasLayout(maps.appearanceLayout)): the sRGB
 // base colour, glTF's metallic-roughness image (G roughness, B metallic, R occlusion: 1 without),

@@ -49,12 +49,14 @@ nlohmann::json manifest(const AtlasLayout& atlas, const surface::SurfaceMaps& ma
         {"height", atlas.height},
         {"ptexFaces", atlas.tileOrigins.size()},
         // A formula rather than a list: the list would outweigh a small cage and its maps.
-        {"tileOrigin", "ptex face f's node (0, 0) is pixel (x0, y0) = (tileSize * (f mod columns), "
-                       "tileSize * floor(f / columns)); node (i, j) of the face is pixel (x0 + i, y0 + j), "
-                       "i along u, j along v, image row 0 at the top"},
-        {"uv", "texcoord of ptex (u, v) in [0,1]^2 on face f: ((x0 + 0.5 + u * resolution) / width, "
-               "(y0 + 0.5 + v * resolution) / height), v down the image as in glTF; sample bilinearly "
-               "without mipmaps to reproduce the fitted node interpolation exactly"},
+        {"tileOrigin",
+         "ptex face f's node (0, 0) is pixel (x0, y0) = (tileSize * (f mod columns), "
+         "tileSize * floor(f / columns)); node (i, j) of the face is pixel (x0 + i, y0 + j), "
+         "i along u, j along v, image row 0 at the top"},
+        {"uv",
+         "texcoord of ptex (u, v) in [0,1]^2 on face f: ((x0 + 0.5 + u * resolution) / width, "
+         "(y0 + 0.5 + v * resolution) / height), v down the image as in glTF; sample bilinearly "
+         "without mipmaps to reproduce the fitted node interpolation exactly"},
     };
     if (maps.hasDisplacement() && outputs.displacement)
         doc["displacement"] = {{"file", kDisplacementFile},
@@ -64,10 +66,12 @@ nlohmann::json manifest(const AtlasLayout& atlas, const surface::SurfaceMaps& ma
                                                ? "the limit surface's normal shades the displaced surface"
                                                : "the displaced surface's own normal"}};
     if (maps.hasNormal() && outputs.normal)
-        doc["normal"] = {{"file", kNormalFile},
-                         {"encoding", outputs.compact ? "8-bit RGB, rgb = n * 0.5 + 0.5" : "16-bit RGB, rgb = n * 0.5 + 0.5"},
-                         {"space", "tangent space of the limit surface: x along dP/du, y along dP/dv, z along "
-                                   "N = normalize(cross(dP/du, dP/dv)); n = normalize(x, y, 1)"}};
+        doc["normal"] = {
+            {"file", kNormalFile},
+            {"encoding", outputs.compact ? "8-bit RGB, rgb = n * 0.5 + 0.5" : "16-bit RGB, rgb = n * 0.5 + 0.5"},
+            {"space",
+             "tangent space of the limit surface: x along dP/du, y along dP/dv, z along "
+             "N = normalize(cross(dP/du, dP/dv)); n = normalize(x, y, 1)"}};
     return doc;
 }
 
@@ -119,37 +123,47 @@ std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const
         appearance.erase("generator");
         if (maps.appearanceAtlas.present()) {
             // Not tiles: the reference's own texture space, placed by the corners' coordinates.
-            appearance = {{"width", atlas.width}, {"height", atlas.height},
-                          {"uv", "the reference's texture coordinates (glTF convention); ptex (u, v) of face f maps to "
-                                 "the bilinear blend of its corners' coordinates, stored in asset.subd's AUVS section; "
-                                 "sample bilinearly, clamped to the edge"}};
+            appearance = {{"width", atlas.width},
+                          {"height", atlas.height},
+                          {"uv",
+                           "the reference's texture coordinates (glTF convention); ptex (u, v) of face f maps to "
+                           "the bilinear blend of its corners' coordinates, stored in asset.subd's AUVS section; "
+                           "sample bilinearly, clamped to the edge"}};
         }
         if (maps.hasBaseColor()) {
-            written.push_back(writeBytes(dir / kBaseColorFile, encodeAppearancePng(atlas, maps, AppearanceImage::BaseColor)));
-            appearance["baseColor"] = {{"file", kBaseColorFile}, {"encoding", "8-bit sRGB RGB, as glTF's baseColorTexture"}};
+            written.push_back(
+                writeBytes(dir / kBaseColorFile, encodeAppearancePng(atlas, maps, AppearanceImage::BaseColor)));
+            appearance["baseColor"] = {{"file", kBaseColorFile},
+                                       {"encoding", "8-bit sRGB RGB, as glTF's baseColorTexture"}};
         }
         if (maps.hasMetallicRoughness()) {
             written.push_back(writeBytes(dir / kMetallicRoughnessFile,
                                          encodeAppearancePng(atlas, maps, AppearanceImage::MetallicRoughness)));
-            appearance["metallicRoughness"] = {{"file", kMetallicRoughnessFile},
-                                               {"encoding", "8-bit RGB, G roughness, B metallic, as glTF's metallicRoughnessTexture"}};
+            appearance["metallicRoughness"] = {
+                {"file", kMetallicRoughnessFile},
+                {"encoding", "8-bit RGB, G roughness, B metallic, as glTF's metallicRoughnessTexture"}};
         }
         if (!maps.occlusion.empty()) appearance["occlusion"] = {{"file", kMetallicRoughnessFile}, {"channel", "R"}};
         if (!maps.normalTexture.empty()) {
-            written.push_back(writeBytes(dir / kNormalTextureFile, encodeAppearancePng(atlas, maps, AppearanceImage::NormalTexture)));
-            appearance["normalTexture"] = {{"file", kNormalTextureFile},
-                                           {"encoding", "8-bit RGB as glTF's normalTexture, in the atlas coordinates' tangent frame"}};
+            written.push_back(
+                writeBytes(dir / kNormalTextureFile, encodeAppearancePng(atlas, maps, AppearanceImage::NormalTexture)));
+            appearance["normalTexture"] = {
+                {"file", kNormalTextureFile},
+                {"encoding", "8-bit RGB as glTF's normalTexture, in the atlas coordinates' tangent frame"}};
         }
         if (!maps.emissive.empty()) {
-            written.push_back(writeBytes(dir / kEmissiveFile, encodeAppearancePng(atlas, maps, AppearanceImage::Emissive)));
-            appearance["emissive"] = {{"file", kEmissiveFile}, {"encoding", "8-bit sRGB RGB, as glTF's emissiveTexture"}};
+            written.push_back(
+                writeBytes(dir / kEmissiveFile, encodeAppearancePng(atlas, maps, AppearanceImage::Emissive)));
+            appearance["emissive"] = {{"file", kEmissiveFile},
+                                      {"encoding", "8-bit sRGB RGB, as glTF's emissiveTexture"}};
         }
         doc["generator"] = "subdfit";
         doc["appearance"] = appearance;
     }
     if (outputs.manifest && !doc.is_null()) {
         const std::string text = jsonText(doc, 2);
-        written.push_back(writeBytes(dir / kManifestFile, {reinterpret_cast<const unsigned char*>(text.data()), text.size()}));
+        written.push_back(
+            writeBytes(dir / kManifestFile, {reinterpret_cast<const unsigned char*>(text.data()), text.size()}));
     }
     return written;
 }

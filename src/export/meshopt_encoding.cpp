@@ -39,14 +39,21 @@ Stream unitVectorStream(const char* name, const std::vector<Vec>& values, const 
     std::vector<glm::vec4> unit(values.size(), glm::vec4(0.0f));
     for (std::size_t v = 0; v < values.size(); ++v)
         for (int c = 0; c < Vec::length(); ++c) unit[v][c] = values[v][c];
-    Stream out{name, std::vector<std::uint8_t>(values.size() * 4, 0), 4, kByte, type, true, compressed ? "OCTAHEDRAL" : nullptr};
+    Stream out{name,
+               std::vector<std::uint8_t>(values.size() * 4, 0),
+               4,
+               kByte,
+               type,
+               true,
+               compressed ? "OCTAHEDRAL" : nullptr};
     if (compressed) {
         meshopt_encodeFilterOct(out.bytes.data(), unit.size(), 4, 8, &unit[0].x);
         return out;
     }
     for (std::size_t v = 0; v < unit.size(); ++v)
         for (int c = 0; c < 4; ++c)
-            out.bytes[4 * v + std::size_t(c)] = std::uint8_t(std::int8_t(std::lround(std::clamp(unit[v][c], -1.0f, 1.0f) * 127.0f)));
+            out.bytes[4 * v + std::size_t(c)] =
+                std::uint8_t(std::int8_t(std::lround(std::clamp(unit[v][c], -1.0f, 1.0f) * 127.0f)));
     return out;
 }
 

@@ -12,9 +12,9 @@ namespace {
 // A node of a T×T tile and the two coded nodes it is interpolated from ((a, a) for the
 // corners, predicted from their neighbours instead: cornerPredictors).
 struct Prediction {
-    int i, j;          // the node
+    int i, j;            // the node
     int ai, aj, bi, bj;  // its bracket
-    float w;           // weight of b
+    float w;             // weight of b
     bool corner;
 };
 
@@ -67,7 +67,8 @@ struct Predictors {
 // neighbours one cell away (a neighbouring tile often coded the shared edge already), else of
 // the tile's coded corners, else the center. Most corners are shared, and predicting them from
 // the center cost a raw value each.
-Predictors cornerPredictors(const surface::TexelLayout& layout, int face, int i, int j, const std::vector<bool>& coded) {
+Predictors cornerPredictors(const surface::TexelLayout& layout, int face, int i, int j,
+                            const std::vector<bool>& coded) {
     const int T = layout.resolution;
     Predictors p;
     p.corner = true;
@@ -120,7 +121,8 @@ float predicted(const Predictors& p, const std::vector<float>& decoded, float ce
 
 // The leans that code the channel in the fewest bits, estimated on the original values (what
 // the decoded ones are within half a step of), a residual r costing about log2(1 + |r|).
-Leans chooseLeans(const surface::TexelLayout& layout, const std::vector<float>& original, const ChannelQuantisation& q) {
+Leans chooseLeans(const surface::TexelLayout& layout, const std::vector<float>& original,
+                  const ChannelQuantisation& q) {
     std::array<double, kLeanSteps + 1> cornerCost{}, interpolatedCost{};
     forEachNode(layout, [&](int node, const Predictors& from) {
         if (from.count == 0) return;

@@ -8,7 +8,8 @@
 
 namespace subdfit::exporter {
 
-DecodeInput readForDecode(const std::filesystem::path& subd, const DensityRequest& request, DecodeBudget& budget, int lods) {
+DecodeInput readForDecode(const std::filesystem::path& subd, const DensityRequest& request, DecodeBudget& budget,
+                          int lods) {
     DecodeInput input;
     // The triangles to write are priced with the file, before its maps are built.
     input.asset = readSubd(subd, &budget, [&](const SubdOutline& outline) {
@@ -17,8 +18,8 @@ DecodeInput readForDecode(const std::filesystem::path& subd, const DensityReques
     return input;
 }
 
-WrittenFile decodeToGlb(const std::filesystem::path& subd, const std::filesystem::path& out, const DensityRequest& request,
-                        MeshCoding coding) {
+WrittenFile decodeToGlb(const std::filesystem::path& subd, const std::filesystem::path& out,
+                        const DensityRequest& request, MeshCoding coding) {
     io::checkOutputFile(out, subd);
     try {
         DecodeBudget budget(subd.string());

@@ -22,12 +22,13 @@ struct DecodeInput {
     SubdAsset asset;
     DecodeDensity density;
 };
-DecodeInput readForDecode(const std::filesystem::path& subd, const DensityRequest& request, DecodeBudget& budget, int lods = 1);
+DecodeInput readForDecode(const std::filesystem::path& subd, const DensityRequest& request, DecodeBudget& budget,
+                          int lods = 1);
 
 // Writes `out` (.glb) atomically, its mesh stored as `coding` says. Throws subdfit::Error naming
 // the file for a bad input, an impossible density or an output that may not be written (empty,
 // the input itself, a folder, anything but a regular file), before any work.
-WrittenFile decodeToGlb(const std::filesystem::path& subd, const std::filesystem::path& out, const DensityRequest& request = {},
-                        MeshCoding coding = MeshCoding::Quantized);
+WrittenFile decodeToGlb(const std::filesystem::path& subd, const std::filesystem::path& out,
+                        const DensityRequest& request = {}, MeshCoding coding = MeshCoding::Quantized);
 
 }  // namespace subdfit::exporter

@@ -34,8 +34,8 @@ namespace {
 
 using Tag = std::array<char, 4>;
 constexpr Tag kCage{'C', 'A', 'G', 'E'}, kDisplacement{'D', 'I', 'S', 'P'}, kNormal{'N', 'O', 'R', 'M'},
-              kAtlasUvs{'A', 'U', 'V', 'S'}, kBaseColor{'B', 'C', 'O', 'L'}, kMetallicRoughness{'M', 'T', 'R', 'G'},
-              kNormalTexture{'N', 'T', 'E', 'X'}, kEmissive{'E', 'M', 'I', 'S'};
+    kAtlasUvs{'A', 'U', 'V', 'S'}, kBaseColor{'B', 'C', 'O', 'L'}, kMetallicRoughness{'M', 'T', 'R', 'G'},
+    kNormalTexture{'N', 'T', 'E', 'X'}, kEmissive{'E', 'M', 'I', 'S'};
 constexpr std::uint32_t kMostSections = 8;
 constexpr char kMagic[4] = {'S', 'U', 'B', 'D'};
 constexpr std::uint16_t kLimitShadingFlag = 1;
@@ -67,7 +67,8 @@ std::vector<float> carriedValues(const mesh::PolygonMesh& cage, const surface::T
     std::vector<float> out(size_t(to.nodeCount) * size_t(channels), 0.0f);
     auto copy = [&](int fromFace, int i, int j, int toFace, int ti, int tj) {
         const size_t a = size_t(from.node(fromFace, i, j)), b = size_t(to.node(toFace, ti, tj));
-        for (int c = 0; c < channels; ++c) out[b * size_t(channels) + size_t(c)] = values[a * size_t(channels) + size_t(c)];
+        for (int c = 0; c < channels; ++c)
+            out[b * size_t(channels) + size_t(c)] = values[a * size_t(channels) + size_t(c)];
     };
     for (int f = 0; f < cage.faceCount(); ++f) {
         const int n = cage.faceSizes[size_t(f)], r = correspondence.rotation[size_t(f)];
@@ -75,7 +76,8 @@ std::vector<float> carriedValues(const mesh::PolygonMesh& cage, const surface::T
         for (int j = 0; j <= T; ++j)
             for (int i = 0; i <= T; ++i) {
                 if (n != 4) {
-                    for (int k = 0; k < n; ++k) copy(fromPtex[size_t(f)] + (k + r) % n, i, j, toPtex[size_t(g)] + k, i, j);
+                    for (int k = 0; k < n; ++k)
+                        copy(fromPtex[size_t(f)] + (k + r) % n, i, j, toPtex[size_t(g)] + k, i, j);
                     continue;
                 }
                 // Decoded corner k is the cage's corner k + r: bilinear in the corners' (i, j).
@@ -102,8 +104,8 @@ surface::AppearanceAtlas carriedCornerUvs(const mesh::PolygonMesh& cage, const s
         const int g = correspondence.face[size_t(f)];
         for (int k = 0; k < (n == 4 ? 1 : n); ++k)
             for (int c = 0; c < 4; ++c) {
-                const size_t to = n == 4 ? 4 * size_t(toPtex[size_t(g)]) + size_t(c)
-                                         : 4 * size_t(toPtex[size_t(g)] + k) + size_t(c);
+                const size_t to =
+                    n == 4 ? 4 * size_t(toPtex[size_t(g)]) + size_t(c) : 4 * size_t(toPtex[size_t(g)] + k) + size_t(c);
                 const size_t from = n == 4 ? 4 * size_t(fromPtex[size_t(f)]) + size_t((c + r) % 4)
                                            : 4 * size_t(fromPtex[size_t(f)] + (k + r) % n) + size_t(c);
                 out.cornerUvs[to] = atlas.cornerUvs[from];
@@ -129,20 +131,24 @@ surface::SurfaceMaps carriedMaps(const mesh::PolygonMesh& cage, const surface::S
     } else if (maps.appearanceLayout.resolution > 0 && (maps.hasBaseColor() || maps.hasMetallicRoughness())) {
         out.appearanceLayout = surface::buildTexelLayout(decoded, maps.appearanceLayout.resolution);
         if (maps.hasBaseColor())
-            out.baseColor = carriedValues(cage, maps.appearanceLayout, maps.baseColor, 3, decoded, out.appearanceLayout, to);
+            out.baseColor =
+                carriedValues(cage, maps.appearanceLayout, maps.baseColor, 3, decoded, out.appearanceLayout, to);
         if (maps.hasMetallicRoughness())
             out.metallicRoughness = carriedValues(cage, maps.appearanceLayout, maps.metallicRoughness, 2, decoded,
                                                   out.appearanceLayout, to);
         // The reference's occlusion (shipped in the metallic-roughness image's red) and emission.
         if (maps.hasMetallicRoughness() && !maps.occlusion.empty())
-            out.occlusion = carriedValues(cage, maps.appearanceLayout, maps.occlusion, 1, decoded, out.appearanceLayout, to);
+            out.occlusion =
+                carriedValues(cage, maps.appearanceLayout, maps.occlusion, 1, decoded, out.appearanceLayout, to);
         if (!maps.emissive.empty())
-            out.emissive = carriedValues(cage, maps.appearanceLayout, maps.emissive, 3, decoded, out.appearanceLayout, to);
+            out.emissive =
+                carriedValues(cage, maps.appearanceLayout, maps.emissive, 3, decoded, out.appearanceLayout, to);
     }
     return out;
 }
 
-void writeMaps(const surface::TexelLayout& layout, const std::vector<float>& values, int channels, int bits, ByteWriter& out) {
+void writeMaps(const surface::TexelLayout& layout, const std::vector<float>& values, int channels, int bits,
+               ByteWriter& out) {
     out.putVarint(std::uint64_t(layout.resolution));
     out.putVarint(std::uint64_t(layout.nodeCount));
     std::vector<ChannelQuantisation> q;
@@ -160,16 +166,17 @@ void writeMaps(const surface::TexelLayout& layout, const std::vector<float>& val
 // border ones at most each tile's); its cost was priced with the file's sections.
 void readLattice(ByteReader& in, const mesh::PolygonMesh& cage, surface::TexelLayout& layout) {
     // Tiles have at most 64 cells a side; an atlas lattice is its texture's (surface::kMaxAtlasSize).
-    const int resolution = in.getIndex(layout.resolution > 0 ? std::uint64_t(layout.resolution) + 1 : 65, "map resolution");
+    const int resolution =
+        in.getIndex(layout.resolution > 0 ? std::uint64_t(layout.resolution) + 1 : 65, "map resolution");
     if (resolution < 1) throw Error(in.what() + ": map resolution 0");
     const std::uint64_t nodes = in.getVarint();
     if (layout.resolution == 0) {
         const std::uint64_t ptex = std::uint64_t(firstPtexFaces(cage).back()), side = std::uint64_t(resolution) + 1;
         const std::uint64_t most = ptex * side * side, fewest = ptex * (side - 2) * (side - 2);
         if (nodes > most || nodes < fewest)
-            throw Error(in.what() + ": node count " + std::to_string(nodes) + " does not match the cage's texel layout (" +
-                        std::to_string(fewest) + " to " + std::to_string(most) + " nodes at resolution " +
-                        std::to_string(resolution) + ")");
+            throw Error(in.what() + ": node count " + std::to_string(nodes) +
+                        " does not match the cage's texel layout (" + std::to_string(fewest) + " to " +
+                        std::to_string(most) + " nodes at resolution " + std::to_string(resolution) + ")");
         layout = surface::buildTexelLayout(cage, resolution);
     }
     if (layout.resolution != resolution) throw Error(in.what() + ": the maps disagree on their resolution");
@@ -218,9 +225,11 @@ void writeAppearance(const surface::SurfaceMaps& maps, AppearanceImage which, in
 // An appearance image's section: its lattice (built on the first), its coding and its JPEG,
 // whose header must give the size of the lattice's atlas (its pixels were priced with the
 // file's sections; they are not decoded here).
-ShippedImage readAppearance(ByteReader& in, const mesh::PolygonMesh& cage, AppearanceImage which, surface::SurfaceMaps& maps) {
+ShippedImage readAppearance(ByteReader& in, const mesh::PolygonMesh& cage, AppearanceImage which,
+                            surface::SurfaceMaps& maps) {
     surface::TexelLayout& layout = maps.appearanceLayout;
-    if (maps.appearanceAtlas.present() && layout.resolution == 0) layout = surface::atlasLattice(maps.appearanceAtlas.size);
+    if (maps.appearanceAtlas.present() && layout.resolution == 0)
+        layout = surface::atlasLattice(maps.appearanceAtlas.size);
     readLattice(in, cage, layout);
     const auto coding = in.get<std::uint8_t>();
     const bool occlusion = which == AppearanceImage::MetallicRoughness && coding == kJpegWithOcclusionCoding;
@@ -233,9 +242,13 @@ ShippedImage readAppearance(ByteReader& in, const mesh::PolygonMesh& cage, Appea
     if (const std::string problem = io::jpegStructureProblem(bytes); !problem.empty())
         throw Error(in.what() + ": a damaged JPEG (" + problem + ")");
     if (header->width != atlas.width || header->height != atlas.height)
-        throw Error(in.what() + ": the image is " + std::to_string(header->width) + " x " + std::to_string(header->height) +
-                    ", the atlas " + std::to_string(atlas.width) + " x " + std::to_string(atlas.height));
-    return {.which = which, .occlusion = occlusion, .width = header->width, .height = header->height,
+        throw Error(in.what() + ": the image is " + std::to_string(header->width) + " x " +
+                    std::to_string(header->height) + ", the atlas " + std::to_string(atlas.width) + " x " +
+                    std::to_string(atlas.height));
+    return {.which = which,
+            .occlusion = occlusion,
+            .width = header->width,
+            .height = header->height,
             .bytes = {bytes.begin(), bytes.end()}};
 }
 
@@ -254,8 +267,9 @@ Tag tagOf(AppearanceImage which) {
 void decodeAppearance(const ShippedImage& shipped, const std::string& what, surface::SurfaceMaps& maps) {
     const io::DecodedImage image = io::decodeImage(shipped.bytes.data(), shipped.bytes.size(), what);
     if (image.width != shipped.width || image.height != shipped.height)
-        throw Error(what + ": the image decodes to " + std::to_string(image.width) + " x " + std::to_string(image.height) +
-                    ", its header says " + std::to_string(shipped.width) + " x " + std::to_string(shipped.height));
+        throw Error(what + ": the image decodes to " + std::to_string(image.width) + " x " +
+                    std::to_string(image.height) + ", its header says " + std::to_string(shipped.width) + " x " +
+                    std::to_string(shipped.height));
     const surface::TexelLayout& layout = maps.appearanceLayout;
     std::vector<std::uint8_t> rgb(size_t(image.width) * size_t(image.height) * 3);
     for (size_t p = 0; p < rgb.size() / 3; ++p)
@@ -349,7 +363,9 @@ std::vector<std::uint64_t> priceMaps(const std::vector<SectionEntry>& sections, 
     bool tilesPriced = false, appearancePriced = false;
     auto priceTiles = [&](std::uint64_t resolution, bool& priced, const std::string& what) {
         const std::uint64_t side = std::min<std::uint64_t>(resolution, 64) + 1;
-        if (!priced) budget.spend(ptex * side * side, DecodeCost::kLatticeSlot, what + " of " + std::to_string(ptex * side * side) + " tile nodes");
+        if (!priced)
+            budget.spend(ptex * side * side, DecodeCost::kLatticeSlot,
+                         what + " of " + std::to_string(ptex * side * side) + " tile nodes");
         priced = true;
     };
     std::vector<std::uint64_t> most(sections.size(), 0);
@@ -362,8 +378,10 @@ std::vector<std::uint64_t> priceMaps(const std::vector<SectionEntry>& sections, 
             if (atlasSize < 2 || atlasSize > std::uint64_t(surface::kMaxAtlasSize))
                 throw Error(in.what() + ": atlas size " + std::to_string(atlasSize) + " out of range (2 to " +
                             std::to_string(surface::kMaxAtlasSize) + ")");
-            budget.spend(atlasSize * atlasSize, DecodeCost::kAtlasTexel, "an atlas of " + std::to_string(atlasSize) + " x " + std::to_string(atlasSize));
-            budget.spend(4 * ptex, DecodeCost::kLatticeSlot, "the atlas coordinates of " + std::to_string(ptex) + " faces");
+            budget.spend(atlasSize * atlasSize, DecodeCost::kAtlasTexel,
+                         "an atlas of " + std::to_string(atlasSize) + " x " + std::to_string(atlasSize));
+            budget.spend(4 * ptex, DecodeCost::kLatticeSlot,
+                         "the atlas coordinates of " + std::to_string(ptex) + " faces");
             most[k] = kHeader + 4 * ptex * (10 + 10 + 20);  // per corner a count, an index, a residual pair
             continue;
         }
@@ -371,11 +389,12 @@ std::vector<std::uint64_t> priceMaps(const std::vector<SectionEntry>& sections, 
         if (atlasSize == 0 || s.tag == kDisplacement || s.tag == kNormal) {
             // Interior nodes are each tile's own, border ones at most each tile's.
             const std::uint64_t side = std::min<std::uint64_t>(resolution, 64) + 1;
-            const std::uint64_t most = ptex * side * side, fewest = resolution > 64 ? 0 : ptex * (side - 2) * (side - 2);
+            const std::uint64_t most = ptex * side * side,
+                                fewest = resolution > 64 ? 0 : ptex * (side - 2) * (side - 2);
             if (resolution < 1 || resolution > 64 || nodes > most || nodes < fewest)
-                throw Error(in.what() + ": resolution " + std::to_string(resolution) + " and node count " + std::to_string(nodes) +
-                            " do not match the cage's texel layout (" + std::to_string(fewest) + " to " + std::to_string(most) +
-                            " nodes at resolution 1 to 64)");
+                throw Error(in.what() + ": resolution " + std::to_string(resolution) + " and node count " +
+                            std::to_string(nodes) + " do not match the cage's texel layout (" + std::to_string(fewest) +
+                            " to " + std::to_string(most) + " nodes at resolution 1 to 64)");
         }
         if (s.tag == kDisplacement || s.tag == kNormal) {
             priceTiles(resolution, tilesPriced, "a map lattice");
@@ -390,7 +409,7 @@ std::vector<std::uint64_t> priceMaps(const std::vector<SectionEntry>& sections, 
             pixels = columns * rows * tile * tile;  // export/map_atlas.h
         }
         budget.spend(pixels, DecodeCost::kAtlasPixel, "an image of " + std::to_string(pixels) + " pixels");
-        in.get<std::uint8_t>();  // coding
+        in.get<std::uint8_t>();                                                       // coding
         most[k] = kHeader + std::min(in.getVarint(), std::uint64_t(kMaxRawSection));  // the image's bytes
     }
     return most;
@@ -401,7 +420,8 @@ std::vector<std::uint64_t> priceMaps(const std::vector<SectionEntry>& sections, 
 SubdAsset shippableAsset(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps, int positionBits,
                          std::uint32_t decodeTriangles) {
     const CodedCage coded = encodeCage(cage, positionBits);
-    return SubdAsset{.cage = cage, .maps = carriedMaps(cage, maps, coded.decoded, coded.correspondence),
+    return SubdAsset{.cage = cage,
+                     .maps = carriedMaps(cage, maps, coded.decoded, coded.correspondence),
                      .decodeTriangles = decodeTriangles};
 }
 
@@ -430,12 +450,11 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
         sections.emplace_back(kAtlasUvs, std::move(section.bytes()));
     }
     const bool atlas = maps.appearanceAtlas.present();
-    for (const auto& [tag, which, present] : {std::tuple{kBaseColor, AppearanceImage::BaseColor, maps.hasBaseColor()},
-                                              std::tuple{kMetallicRoughness, AppearanceImage::MetallicRoughness,
-                                                         maps.hasMetallicRoughness()},
-                                              std::tuple{kNormalTexture, AppearanceImage::NormalTexture,
-                                                         atlas && !maps.normalTexture.empty()},
-                                              std::tuple{kEmissive, AppearanceImage::Emissive, !maps.emissive.empty()}}) {
+    for (const auto& [tag, which, present] :
+         {std::tuple{kBaseColor, AppearanceImage::BaseColor, maps.hasBaseColor()},
+          std::tuple{kMetallicRoughness, AppearanceImage::MetallicRoughness, maps.hasMetallicRoughness()},
+          std::tuple{kNormalTexture, AppearanceImage::NormalTexture, atlas && !maps.normalTexture.empty()},
+          std::tuple{kEmissive, AppearanceImage::Emissive, !maps.emissive.empty()}}) {
         if (maps.appearanceLayout.resolution == 0 || !present) continue;
         ByteWriter section;
         writeAppearance(maps, which, precision.appearanceQuality, section);
@@ -492,13 +511,15 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         const auto storedSize = in.get<std::uint32_t>();
         s.rawSize = in.get<std::uint32_t>();
         const bool known = s.tag == kCage || s.tag == kDisplacement || s.tag == kNormal || s.tag == kAtlasUvs ||
-                           s.tag == kBaseColor || s.tag == kMetallicRoughness || s.tag == kNormalTexture || s.tag == kEmissive;
+                           s.tag == kBaseColor || s.tag == kMetallicRoughness || s.tag == kNormalTexture ||
+                           s.tag == kEmissive;
         if (!known) throw Error(name + ": unknown section " + tagName(s.tag));
-        const bool again = std::any_of(sections.begin(), sections.end(), [&](const SectionEntry& e) { return e.tag == s.tag; });
+        const bool again =
+            std::any_of(sections.begin(), sections.end(), [&](const SectionEntry& e) { return e.tag == s.tag; });
         if ((k == 0) != (s.tag == kCage) || again) throw Error(name + ": section " + tagName(s.tag) + " out of place");
         if (s.rawSize > kMaxRawSection)
-            throw Error(name + ": section " + tagName(s.tag) + " holds " + std::to_string(s.rawSize) + " bytes, more than the " +
-                        std::to_string(kMaxRawSection) + " a section may");
+            throw Error(name + ": section " + tagName(s.tag) + " holds " + std::to_string(s.rawSize) +
+                        " bytes, more than the " + std::to_string(kMaxRawSection) + " a section may");
         s.stored = in.take(storedSize);
         if (ZSTD_getFrameContentSize(s.stored.data(), s.stored.size()) != s.rawSize)
             throw Error(name + ": section " + tagName(s.tag) + " does not decompress to its stated size");
@@ -518,7 +539,8 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         const std::size_t got = ZSTD_decompress(raw.data(), raw.size(), s.stored.data(), s.stored.size());
         if (ZSTD_isError(got) && ZSTD_getErrorCode(got) == ZSTD_error_checksum_wrong)
             throw Error(name + ": section " + tagName(s.tag) + " fails its checksum (damaged)");
-        if (ZSTD_isError(got) || got != s.rawSize) throw Error(name + ": section " + tagName(s.tag) + " does not decompress");
+        if (ZSTD_isError(got) || got != s.rawSize)
+            throw Error(name + ": section " + tagName(s.tag) + " does not decompress");
         return raw;
     };
     // Counts are read from each section's first bytes, before its checksum can be: where they
@@ -553,14 +575,17 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         else if (tag == kAtlasUvs) {
             if (asset.maps.appearanceLayout.resolution != 0) throw Error(name + ": section AUVS after the appearance");
             if (version == 4)
-                throw Error(name + ": .subd version 4 atlas coordinates (a development format); simplify the asset again");
+                throw Error(name +
+                            ": .subd version 4 atlas coordinates (a development format); simplify the asset again");
             asset.maps.appearanceAtlas = readAtlasUvs(section, asset.cage);
         } else if (tag == kBaseColor) {
             shipped.images.push_back(readAppearance(section, asset.cage, AppearanceImage::BaseColor, asset.maps));
         } else if (tag == kMetallicRoughness) {
-            shipped.images.push_back(readAppearance(section, asset.cage, AppearanceImage::MetallicRoughness, asset.maps));
+            shipped.images.push_back(
+                readAppearance(section, asset.cage, AppearanceImage::MetallicRoughness, asset.maps));
         } else if (tag == kNormalTexture) {
-            if (!asset.maps.appearanceAtlas.present()) throw Error(name + ": section " + tagName(tag) + " without AUVS");
+            if (!asset.maps.appearanceAtlas.present())
+                throw Error(name + ": section " + tagName(tag) + " without AUVS");
             shipped.images.push_back(readAppearance(section, asset.cage, AppearanceImage::NormalTexture, asset.maps));
         } else {
             shipped.images.push_back(readAppearance(section, asset.cage, AppearanceImage::Emissive, asset.maps));
@@ -570,7 +595,8 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
     const bool appearance = std::any_of(shipped.images.begin(), shipped.images.end(), [](const ShippedImage& image) {
         return image.which == AppearanceImage::BaseColor || image.which == AppearanceImage::MetallicRoughness;
     });
-    if (asset.maps.appearanceAtlas.present() && !appearance) throw Error(name + ": atlas coordinates without an appearance");
+    if (asset.maps.appearanceAtlas.present() && !appearance)
+        throw Error(name + ": atlas coordinates without an appearance");
     if (flags & kLimitShadingFlag) {
         if (!asset.maps.hasDisplacement()) throw Error(name + ": limit shading flagged without a displacement");
         asset.maps.shadingNormal = surface::ShadingNormal::Limit;
@@ -590,9 +616,11 @@ WrittenFile writeSubd(const std::filesystem::path& path, const SubdAsset& asset,
     return writeBytes(path, encodeSubd(asset, precision));
 }
 
-SubdAsset readSubd(const std::filesystem::path& path, DecodeBudget* budget, const std::function<void(const SubdOutline&)>& priced) {
+SubdAsset readSubd(const std::filesystem::path& path, DecodeBudget* budget,
+                   const std::function<void(const SubdOutline&)>& priced) {
     const std::string bytes = io::readInputFile(path);
-    return decodeSubd({reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()}, path.string(), budget, priced);
+    return decodeSubd({reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()}, path.string(), budget,
+                      priced);
 }
 
 }  // namespace subdfit::exporter

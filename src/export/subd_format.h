@@ -29,20 +29,22 @@ class DecodeBudget;
 // The cage as fitted and the maps laid out on the cage as it decodes (shippableAsset makes one).
 struct SubdAsset {
     mesh::PolygonMesh cage;
-    surface::SurfaceMaps maps;  // layout.resolution 0: none
+    surface::SurfaceMaps maps;          // layout.resolution 0: none
     std::uint32_t decodeTriangles = 0;  // the reference's triangle count; 0: unknown
 };
 
 struct SubdPrecision {
-    int positionBits = 14;      // per coordinate, over the cage's bounding cube (8..16), as Draco's default for meshes
-    int displacementBits = 12;  // over the heights' range (1..24)
-    int normalBits = 10;        // over each tangent-space channel's range (1..24)
+    int positionBits = 14;       // per coordinate, over the cage's bounding cube (8..16), as Draco's default for meshes
+    int displacementBits = 12;   // over the heights' range (1..24)
+    int normalBits = 10;         // over each tangent-space channel's range (1..24)
     int appearanceQuality = 90;  // JPEG quality of the appearance maps' atlases (1..100)
 
     // What `--map-bits`, `--appearance-quality` and `--position-bits` ask for: heights at
     // `mapBits`, normals at most 10 (finer than a renderer resolves a normal).
     static SubdPrecision forMapBits(int mapBits, int appearanceQuality = 90, int positionBits = 14) {
-        return {.positionBits = positionBits, .displacementBits = mapBits, .normalBits = mapBits < 10 ? mapBits : 10,
+        return {.positionBits = positionBits,
+                .displacementBits = mapBits,
+                .normalBits = mapBits < 10 ? mapBits : 10,
                 .appearanceQuality = appearanceQuality};
     }
 };
@@ -87,8 +89,8 @@ struct ShippedSubd {
 // What decodeSubd reads before it decodes the images (with OpenImageIO): the one reader of the
 // format, shared with the web decoder (apps/web), which leaves the images to the browser. The
 // images' pixels are priced in `budget` with their sections. Throws subdfit::Error as decodeSubd.
-ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::string& name, DecodeBudget* budget = nullptr,
-                            const std::function<void(const SubdOutline&)>& priced = {});
+ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::string& name,
+                            DecodeBudget* budget = nullptr, const std::function<void(const SubdOutline&)>& priced = {});
 
 WrittenFile writeSubd(const std::filesystem::path& path, const SubdAsset& asset, const SubdPrecision& precision = {});
 SubdAsset readSubd(const std::filesystem::path& path, DecodeBudget* budget = nullptr,

@@ -18,7 +18,8 @@ SurfaceGlb surfaceGlb(const mesh::PolygonMesh& cage, const surface::SurfaceMaps&
             textures.metallicRoughnessPng = encodeAppearancePng(atlas, maps, AppearanceImage::MetallicRoughness);
             textures.occlusionInMetallicRoughness = present.occlusion;
         }
-        if (present.normalTexture) textures.normalPng = encodeAppearancePng(atlas, maps, AppearanceImage::NormalTexture);
+        if (present.normalTexture)
+            textures.normalPng = encodeAppearancePng(atlas, maps, AppearanceImage::NormalTexture);
         if (present.emissive) textures.emissivePng = encodeAppearancePng(atlas, maps, AppearanceImage::Emissive);
     }
     withoutUnreadAttributes(glb.mesh, glb.textures);

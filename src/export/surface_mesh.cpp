@@ -27,17 +27,19 @@ SurfaceMaterial surfaceMaterial(const SurfaceTextures& textures) {
     return m;
 }
 
-GltfMesh surfaceGltfMesh(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps, const SurfaceTextures& textures,
-                         int segments) {
+GltfMesh surfaceGltfMesh(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps,
+                         const SurfaceTextures& textures, int segments) {
     if (!textures.baseColor) {
         // Without maps the texcoords still name each face's tile: a one-cell atlas, whose layout
         // needs only the number of tiles.
         surface::TexelLayout tiles;
         tiles.resolution = 1;
         for (int n : cage.faceSizes) tiles.ptexFaceCount += n == 4 ? 1 : n;
-        return gltfMesh(surface::tessellate(cage, maps, segments), atlasLayout(maps.layout.resolution > 0 ? maps.layout : tiles));
+        return gltfMesh(surface::tessellate(cage, maps, segments),
+                        atlasLayout(maps.layout.resolution > 0 ? maps.layout : tiles));
     }
-    if (!maps.appearanceAtlas.present()) return gltfMesh(surface::tessellate(cage, maps, segments), atlasLayout(maps.appearanceLayout));
+    if (!maps.appearanceAtlas.present())
+        return gltfMesh(surface::tessellate(cage, maps, segments), atlasLayout(maps.appearanceLayout));
     // The appearance in the reference's own atlas: the texture as it is, addressed by the
     // corners' coordinates blended across each face. Its one TEXCOORD_0 leaves no room for a
     // normal map on tiles (the search pairs an atlas with heights alone); the reference's own
@@ -45,7 +47,8 @@ GltfMesh surfaceGltfMesh(const mesh::PolygonMesh& cage, const surface::SurfaceMa
     // TANGENTs give (the fit's frame, not one each viewer derives its own way).
     if (textures.normalMap) throw Error("a fitted normal map beside an appearance atlas");
     surface::Tessellation tessellation = surface::tessellate(cage, maps, segments);
-    GltfMesh mesh = gltfMesh(std::move(tessellation), atlasLayout(maps.appearanceLayout));  // keeps the ptex coordinates
+    GltfMesh mesh =
+        gltfMesh(std::move(tessellation), atlasLayout(maps.appearanceLayout));  // keeps the ptex coordinates
     if (!textures.normalTexture) mesh.tangents.clear();
     for (size_t k = 0; k < mesh.uvs.size(); ++k) {
         const surface::PtexPoint& p = tessellation.ptex[k];

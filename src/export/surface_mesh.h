@@ -38,8 +38,8 @@ SurfaceMaterial surfaceMaterial(const SurfaceTextures& textures);
 // a base colour, else the geometric maps' (a one-cell layout without maps). TANGENTs stay unless
 // the images are on the reference's atlas without its normal texture. Throws subdfit::Error for
 // maps no decoder draws (a fitted normal map beside an atlas).
-GltfMesh surfaceGltfMesh(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps, const SurfaceTextures& textures,
-                         int segments);
+GltfMesh surfaceGltfMesh(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps,
+                         const SurfaceTextures& textures, int segments);
 
 // The fitted normal map on the mesh's texcoords' atlas (resampled onto the appearance lattice
 // with a base colour): 16-bit rgb = n·0.5 + 0.5, rows top first. Empty without a normal map.

@@ -42,7 +42,8 @@ GltfMesh primitiveOf(const mesh::PolygonMesh& triangles, const std::vector<glm::
                 remap[v] = std::uint32_t(out.positions.size());
                 out.positions.push_back(triangles.positions[v]);
                 if (!normals.empty()) out.normals.push_back(normals[v]);
-                if (!triangles.uvs.empty()) out.uvs.push_back(glm::vec2(uvTransform * glm::vec3(triangles.uvs[v], 1.0f)));
+                if (!triangles.uvs.empty())
+                    out.uvs.push_back(glm::vec2(uvTransform * glm::vec3(triangles.uvs[v], 1.0f)));
             }
             out.indices.push_back(remap[v]);
         }
@@ -65,13 +66,15 @@ public:
 
     // The material's JSON, adding the textures it names.
     json material(const mesh::Material& m) {
-        json pbr = {{"baseColorFactor", {m.baseColorFactor.r, m.baseColorFactor.g, m.baseColorFactor.b, m.baseColorFactor.a}},
-                    {"metallicFactor", m.metallicFactor},
-                    {"roughnessFactor", m.roughnessFactor}};
+        json pbr = {
+            {"baseColorFactor", {m.baseColorFactor.r, m.baseColorFactor.g, m.baseColorFactor.b, m.baseColorFactor.a}},
+            {"metallicFactor", m.metallicFactor},
+            {"roughnessFactor", m.roughnessFactor}};
         json out = {{"name", m.name.empty() ? "material" : m.name}, {"doubleSided", m.doubleSided}};
         if (auto t = texture(m.baseColorTexture)) pbr["baseColorTexture"] = *t;
         if (auto t = texture(m.metallicRoughnessTexture)) pbr["metallicRoughnessTexture"] = *t;
-        if (auto t = texture(m.normalTexture)) out["normalTexture"] = {{"index", (*t)["index"]}, {"scale", m.normalScale}};
+        if (auto t = texture(m.normalTexture))
+            out["normalTexture"] = {{"index", (*t)["index"]}, {"scale", m.normalScale}};
         if (auto t = texture(m.occlusionTexture))
             out["occlusionTexture"] = {{"index", (*t)["index"]}, {"strength", m.occlusionStrength}};
         if (auto t = texture(m.emissiveTexture)) out["emissiveTexture"] = *t;
@@ -116,7 +119,7 @@ private:
 
     const std::vector<EncodedImage>& images_;
     std::map<int, int> imageIndex_;  // image of the set -> image of the document
-    std::vector<int> imageOrder_;     // images of the set, in the document's order
+    std::vector<int> imageOrder_;    // images of the set, in the document's order
     json samplers_ = json::array(), textures_ = json::array();
 };
 
@@ -164,12 +167,14 @@ std::vector<unsigned char> document(const mesh::PolygonMesh& triangles, const st
             accessors.push_back(accessor(binary.addArray(part.positions, kArrayBuffer), kFloat, n, "VEC3"));
             accessors.back()["min"] = vec3Json(lo);
             accessors.back()["max"] = vec3Json(hi);
-            if (hasNormals) accessors.push_back(accessor(binary.addArray(part.normals, kArrayBuffer), kFloat, n, "VEC3"));
-            if (part.hasUvs()) accessors.push_back(accessor(binary.addArray(part.uvs, kArrayBuffer), kFloat, n, "VEC2"));
+            if (hasNormals)
+                accessors.push_back(accessor(binary.addArray(part.normals, kArrayBuffer), kFloat, n, "VEC3"));
+            if (part.hasUvs())
+                accessors.push_back(accessor(binary.addArray(part.uvs, kArrayBuffer), kFloat, n, "VEC2"));
             primitive["attributes"] = attributesFrom(first, hasNormals, part.hasUvs());
             primitive["indices"] = accessors.size();
-            accessors.push_back(
-                accessor(binary.addArray(part.indices, kElementArrayBuffer), kUnsignedInt, part.indices.size(), "SCALAR"));
+            accessors.push_back(accessor(binary.addArray(part.indices, kElementArrayBuffer), kUnsignedInt,
+                                         part.indices.size(), "SCALAR"));
         }
         primitives.push_back(primitive);
     }
@@ -191,8 +196,10 @@ std::vector<unsigned char> document(const mesh::PolygonMesh& triangles, const st
 }  // namespace
 
 WrittenFile writeTexturedGlb(const std::filesystem::path& path, const mesh::PolygonMesh& triangles,
-                             const std::vector<glm::vec3>& normals, const std::vector<EncodedImage>& images, bool draco) {
-    return writeTexturedGlb(path, triangles, normals, images, draco ? std::optional<DracoBits>(DracoBits{}) : std::nullopt);
+                             const std::vector<glm::vec3>& normals, const std::vector<EncodedImage>& images,
+                             bool draco) {
+    return writeTexturedGlb(path, triangles, normals, images,
+                            draco ? std::optional<DracoBits>(DracoBits{}) : std::nullopt);
 }
 
 WrittenFile writeTexturedGlb(const std::filesystem::path& path, const mesh::PolygonMesh& triangles,

@@ -24,7 +24,8 @@ struct EncodedImage {
 // colour texture; a material whose textures disagree keeps the base colour's). With `draco`
 // every primitive is KHR_draco_mesh_compression-coded. Throws subdfit::Error "path: problem".
 WrittenFile writeTexturedGlb(const std::filesystem::path& path, const mesh::PolygonMesh& triangles,
-                             const std::vector<glm::vec3>& normals, const std::vector<EncodedImage>& images, bool draco);
+                             const std::vector<glm::vec3>& normals, const std::vector<EncodedImage>& images,
+                             bool draco);
 // The same, Draco-coded at `draco`'s quantisation when given.
 WrittenFile writeTexturedGlb(const std::filesystem::path& path, const mesh::PolygonMesh& triangles,
                              const std::vector<glm::vec3>& normals, const std::vector<EncodedImage>& images,

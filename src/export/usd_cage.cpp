@@ -50,7 +50,8 @@ void writeTags(usda::Layer& layer, const mesh::SubdivisionTags& tags) {
     if (!tags.corners.empty()) {
         std::vector<int> indices;
         std::vector<float> sharpnesses;
-        for (const mesh::Corner& c : tags.corners) indices.push_back(c.vertex), sharpnesses.push_back(sharpness(c.sharpness));
+        for (const mesh::Corner& c : tags.corners)
+            indices.push_back(c.vertex), sharpnesses.push_back(sharpness(c.sharpness));
         layer.line("int[] cornerIndices = " + usda::array(indices));
         layer.line("float[] cornerSharpnesses = " + usda::array(sharpnesses));
     }
@@ -87,8 +88,8 @@ subdiv::RefinedCage usdCageOf(const mesh::PolygonMesh& cage, bool texCoords) {
 void writeCagePrim(usda::Layer& layer, const subdiv::RefinedCage& cage, const std::vector<UsdTexCoords>& texCoords,
                    const UsdCageOptions& options) {
     const mesh::PolygonMesh& mesh = cage.mesh;
-    SUBDFIT_CHECK(texCoords.empty() ||
-                  (cage.ptexFace.size() == size_t(mesh.faceCount()) && cage.cornerUv.size() == 4 * cage.ptexFace.size()));
+    SUBDFIT_CHECK(texCoords.empty() || (cage.ptexFace.size() == size_t(mesh.faceCount()) &&
+                                        cage.cornerUv.size() == 4 * cage.ptexFace.size()));
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
     lo -= glm::vec3(options.reach), hi += glm::vec3(options.reach);

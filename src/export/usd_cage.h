@@ -28,7 +28,7 @@ struct UsdTexCoords {
 
 struct UsdCageOptions {
     std::string name = "Cage";
-    std::string material;   // the bound material's path; "" for none
+    std::string material;  // the bound material's path; "" for none
     // How far the displacement may move the surface: widens the extent, and is RenderMan's
     // displacement bound.
     float reach = 0.0f;

@@ -15,11 +15,13 @@ std::vector<unsigned char> bytesOf(const std::string& text) { return {text.begin
 void warnOfWhatUsdCannotSay(const std::filesystem::path& package, const mesh::SubdivisionTags& tags) {
     if (tags.creaseMethod != mesh::CreaseMethod::Chaikin) return;
     auto semiSharp = [](float s) { return s > 0.0f && s < 10.0f; };
-    const bool any = std::any_of(tags.creases.begin(), tags.creases.end(), [&](const auto& c) { return semiSharp(c.sharpness); }) ||
-                     std::any_of(tags.corners.begin(), tags.corners.end(), [&](const auto& c) { return semiSharp(c.sharpness); });
+    const bool any =
+        std::any_of(tags.creases.begin(), tags.creases.end(), [&](const auto& c) { return semiSharp(c.sharpness); }) ||
+        std::any_of(tags.corners.begin(), tags.corners.end(), [&](const auto& c) { return semiSharp(c.sharpness); });
     if (any)
-        warn(package.string() + ": USD has no Chaikin crease method: the cage's semi-sharp creases render with the uniform "
-                                "rule there");
+        warn(package.string() +
+             ": USD has no Chaikin crease method: the cage's semi-sharp creases render with the uniform "
+             "rule there");
 }
 
 }  // namespace

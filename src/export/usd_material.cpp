@@ -20,7 +20,8 @@ bool hasGeometricMaps(const surface::SurfaceMaps& maps) {
     return maps.layout.resolution > 0 && (maps.hasDisplacement() || maps.hasNormal());
 }
 bool hasAppearance(const surface::SurfaceMaps& maps) {
-    return maps.appearanceLayout.resolution > 0 && (maps.hasBaseColor() || maps.hasMetallicRoughness() || !maps.emissive.empty());
+    return maps.appearanceLayout.resolution > 0 &&
+           (maps.hasBaseColor() || maps.hasMetallicRoughness() || !maps.emissive.empty());
 }
 
 // The heights as 16-bit texels over their range, and the scale and bias that undo it.
@@ -97,8 +98,10 @@ public:
     }
 
     // `type inputs:name.connect = <texture.outputs:output>` on the surface.
-    void connect(const std::string& type, const std::string& input, const std::string& texture, const std::string& output) {
-        connections_.push_back(type + " inputs:" + input + ".connect = <" + path_ + "/" + texture + ".outputs:" + output + ">");
+    void connect(const std::string& type, const std::string& input, const std::string& texture,
+                 const std::string& output) {
+        connections_.push_back(type + " inputs:" + input + ".connect = <" + path_ + "/" + texture +
+                               ".outputs:" + output + ">");
     }
 
     void surface(bool displaced) {
@@ -144,11 +147,10 @@ std::vector<UsdTexCoords> usdTexCoords(const surface::SurfaceMaps& maps) {
     return out;
 }
 
-bool hasUsdMaterial(const surface::SurfaceMaps& maps) {
-    return hasGeometricMaps(maps) || hasAppearance(maps);
-}
+bool hasUsdMaterial(const surface::SurfaceMaps& maps) { return hasGeometricMaps(maps) || hasAppearance(maps); }
 
-std::vector<UsdTextureFile> writeMaterialPrim(usda::Layer& layer, const surface::SurfaceMaps& maps, const std::string& path,
+std::vector<UsdTextureFile> writeMaterialPrim(usda::Layer& layer, const surface::SurfaceMaps& maps,
+                                              const std::string& path,
                                               const std::function<std::string(const std::string& name)>& assetPath) {
     SUBDFIT_CHECK(hasUsdMaterial(maps));
     // A normal map on tiles and a normal texture on the reference's atlas never come together
@@ -158,14 +160,18 @@ std::vector<UsdTextureFile> writeMaterialPrim(usda::Layer& layer, const surface:
     layer.block("def Material " + usda::quoted(name));
     const bool displaced = hasGeometricMaps(maps) && maps.hasDisplacement();
     layer.line("token outputs:surface.connect = <" + path + "/PreviewSurface.outputs:surface>");
-    if (displaced) layer.line("token outputs:displacement.connect = <" + path + "/PreviewSurface.outputs:displacement>");
+    if (displaced)
+        layer.line("token outputs:displacement.connect = <" + path + "/PreviewSurface.outputs:displacement>");
     Network network(layer, path, assetPath);
 
     if (hasGeometricMaps(maps)) {
         network.coordinates("HeightCoords", kHeightCoords);
         if (displaced) {
             HeightImage heights = heightImage(maps);
-            network.texture({.name = "Heights", .file = "displacement.png", .coordinates = "HeightCoords", .colorSpace = "raw",
+            network.texture({.name = "Heights",
+                             .file = "displacement.png",
+                             .coordinates = "HeightCoords",
+                             .colorSpace = "raw",
                              .scale = {heights.scale, heights.scale, heights.scale, 1.0f},
                              .bias = {heights.lo, heights.lo, heights.lo, 0.0f},
                              .outputs = {"float outputs:r"}},
@@ -173,8 +179,13 @@ std::vector<UsdTextureFile> writeMaterialPrim(usda::Layer& layer, const surface:
             network.connect("float", "displacement", "Heights", "r");
         }
         if (maps.hasNormal()) {
-            network.texture({.name = "NormalMap", .file = "normal.png", .coordinates = "HeightCoords", .colorSpace = "raw",
-                             .scale = kNormalScale, .bias = kNormalBias, .outputs = {"float3 outputs:rgb"}},
+            network.texture({.name = "NormalMap",
+                             .file = "normal.png",
+                             .coordinates = "HeightCoords",
+                             .colorSpace = "raw",
+                             .scale = kNormalScale,
+                             .bias = kNormalBias,
+                             .outputs = {"float3 outputs:rgb"}},
                             normalMapImage(maps));
             network.connect("normal3f", "normal", "NormalMap", "rgb");
         }
@@ -183,15 +194,20 @@ std::vector<UsdTextureFile> writeMaterialPrim(usda::Layer& layer, const surface:
         network.coordinates("AppearanceCoords", kAppearanceCoords);
         const AtlasLayout atlas = atlasLayout(maps.appearanceLayout);
         if (maps.hasBaseColor()) {
-            network.texture({.name = "BaseColor", .file = "base_color.png", .coordinates = "AppearanceCoords",
-                             .colorSpace = "sRGB", .outputs = {"float3 outputs:rgb"}},
+            network.texture({.name = "BaseColor",
+                             .file = "base_color.png",
+                             .coordinates = "AppearanceCoords",
+                             .colorSpace = "sRGB",
+                             .outputs = {"float3 outputs:rgb"}},
                             encodeAppearancePng(atlas, maps, AppearanceImage::BaseColor));
             network.connect("color3f", "diffuseColor", "BaseColor", "rgb");
         }
         if (maps.hasMetallicRoughness()) {
             const bool occlusion = !maps.occlusion.empty();
-            Network::Texture texture{.name = "MetallicRoughness", .file = "metallic_roughness.png",
-                                     .coordinates = "AppearanceCoords", .colorSpace = "raw",
+            Network::Texture texture{.name = "MetallicRoughness",
+                                     .file = "metallic_roughness.png",
+                                     .coordinates = "AppearanceCoords",
+                                     .colorSpace = "raw",
                                      .outputs = {"float outputs:g", "float outputs:b"}};
             if (occlusion) texture.outputs.insert(texture.outputs.begin(), "float outputs:r");
             network.texture(texture, encodeAppearancePng(atlas, maps, AppearanceImage::MetallicRoughness));
@@ -200,14 +216,21 @@ std::vector<UsdTextureFile> writeMaterialPrim(usda::Layer& layer, const surface:
             if (occlusion) network.connect("float", "occlusion", "MetallicRoughness", "r");
         }
         if (!maps.emissive.empty()) {
-            network.texture({.name = "Emission", .file = "emissive.png", .coordinates = "AppearanceCoords",
-                             .colorSpace = "sRGB", .outputs = {"float3 outputs:rgb"}},
+            network.texture({.name = "Emission",
+                             .file = "emissive.png",
+                             .coordinates = "AppearanceCoords",
+                             .colorSpace = "sRGB",
+                             .outputs = {"float3 outputs:rgb"}},
                             encodeAppearancePng(atlas, maps, AppearanceImage::Emissive));
             network.connect("color3f", "emissiveColor", "Emission", "rgb");
         }
         if (!maps.normalTexture.empty()) {
-            network.texture({.name = "NormalTexture", .file = "normal_texture.png", .coordinates = "AppearanceCoords",
-                             .colorSpace = "raw", .scale = kNormalScale, .bias = kNormalBias,
+            network.texture({.name = "NormalTexture",
+                             .file = "normal_texture.png",
+                             .coordinates = "AppearanceCoords",
+                             .colorSpace = "raw",
+                             .scale = kNormalScale,
+                             .bias = kNormalBias,
                              .outputs = {"float3 outputs:rgb"}},
                             encodeAppearancePng(atlas, maps, AppearanceImage::NormalTexture));
             network.connect("normal3f", "normal", "NormalTexture", "rgb");

@@ -34,7 +34,8 @@ bool hasUsdMaterial(const surface::SurfaceMaps& maps);
 // The Material prim at `path` (its last element the prim's name) into `layer`, inside the
 // current block; returns the images it reads, which `assetPath` names as the layer refers to
 // them (e.g. the name itself inside the package). Requires hasUsdMaterial(maps).
-std::vector<UsdTextureFile> writeMaterialPrim(usda::Layer& layer, const surface::SurfaceMaps& maps, const std::string& path,
+std::vector<UsdTextureFile> writeMaterialPrim(usda::Layer& layer, const surface::SurfaceMaps& maps,
+                                              const std::string& path,
                                               const std::function<std::string(const std::string& name)>& assetPath);
 
 }  // namespace subdfit::exporter

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-
 namespace subdfit::exporter {
 
 UsdStage usdStage(const SubdAsset& asset, const std::string& textureLocation) {

@@ -23,7 +23,8 @@ struct Placed {
 };
 
 void checkSize(std::size_t bytes) {
-    if (bytes > std::numeric_limits<std::uint32_t>::max()) throw Error("a .usdz past 4 GiB needs zip64, which this writer has not");
+    if (bytes > std::numeric_limits<std::uint32_t>::max())
+        throw Error("a .usdz past 4 GiB needs zip64, which this writer has not");
 }
 
 // The fields local and central headers share, from "version needed" to the extra field's length.

@@ -16,10 +16,12 @@ nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene:
     std::vector<exporter::WrittenFile> written;
     if (fitter.maps()) written = exporter::writeMapAtlases(o.out, maps, {.compact = o.compactMaps});
     if (o.preview)
-        written.push_back(exporter::writeSurfaceGlb(o.out / "fitted.glb", fittedWorld, maps, fitter.renderer().tessLevel(), o.draco));
+        written.push_back(
+            exporter::writeSurfaceGlb(o.out / "fitted.glb", fittedWorld, maps, fitter.renderer().tessLevel(), o.draco));
     const auto precision = exporter::SubdPrecision::forMapBits(o.mapBits, o.appearanceQuality, o.positionBits);
-    written.push_back(exporter::writeSubd(o.out / "asset.subd", exporter::shippableAsset(fittedWorld, maps, precision.positionBits, referenceTriangles),
-                                          precision));
+    written.push_back(exporter::writeSubd(
+        o.out / "asset.subd", exporter::shippableAsset(fittedWorld, maps, precision.positionBits, referenceTriangles),
+        precision));
     nlohmann::json files = nlohmann::json::object();
     for (const auto& file : written) files[file.path.filename().string()] = file.bytes;
     files.update(exportUsd(o, o.out));
@@ -29,7 +31,8 @@ nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene:
 nlohmann::json exportUsd(const FitOptions& o, const std::filesystem::path& dir) {
     nlohmann::json files = nlohmann::json::object();
     if (o.usd == UsdExport::None) return files;
-    const auto written = exporter::writeUsd(dir, exporter::readSubd(dir / "asset.subd"), o.usd == UsdExport::UsdzAndUsda);
+    const auto written =
+        exporter::writeUsd(dir, exporter::readSubd(dir / "asset.subd"), o.usd == UsdExport::UsdzAndUsda);
     for (const auto& file : written) files[file.path.filename().string()] = file.bytes;
     return files;
 }

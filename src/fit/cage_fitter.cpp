@@ -11,7 +11,7 @@
 namespace subdfit::fit {
 namespace {
 
-constexpr int kLossSlots = 256;  // see gradient.comp
+constexpr int kLossSlots = 256;             // see gradient.comp
 constexpr int kMostFacesInAlpha = 1 << 24;  // every integer up to 2^24 is a float
 
 std::vector<float> flatten(const std::vector<glm::vec3>& points) {
@@ -23,8 +23,7 @@ std::vector<float> flatten(const std::vector<glm::vec3>& points) {
 
 optim::Adjacency uploadAdjacency(const mesh::PolygonMesh& cage) {
     const auto adjacency = mesh::vertexAdjacency(cage);
-    return {gl::Buffer::fromVector(adjacency.offsets), gl::Buffer::fromVector(adjacency.neighbors),
-            cage.vertexCount()};
+    return {gl::Buffer::fromVector(adjacency.offsets), gl::Buffer::fromVector(adjacency.neighbors), cage.vertexCount()};
 }
 
 // A cage drawn at a shallower isolation level (subdiv::drawingIsolationLevel) gets half the
@@ -36,7 +35,8 @@ optim::Adjacency uploadAdjacency(const mesh::PolygonMesh& cage) {
 int tessLevelFor(const CageFitSettings& s, const mesh::PolygonMesh& cage) {
     const bool dense = subdiv::drawingIsolationLevel(cage) < subdiv::kIsolationLevel;
     const int segments = dense ? std::max(1, s.tessLevel / 2) : s.tessLevel;
-    return s.mapEffects.geometric() ? std::max(segments, (mesh::hasNonQuadFaces(cage) ? 2 : 1) * s.maps.resolution) : segments;
+    return s.mapEffects.geometric() ? std::max(segments, (mesh::hasNonQuadFaces(cage) ? 2 : 1) * s.maps.resolution)
+                                    : segments;
 }
 
 }  // namespace
@@ -52,8 +52,9 @@ CageFitter::CageFitter(gl::ProgramCache& programs, const mesh::PolygonMesh& cage
                                       : nullptr),
       adjacency_(uploadAdjacency(cage)),
       // Only a fit that uses it pays for the relaxation's topology.
-      relaxation_(settings.relaxation > 0.0f || settings.tangentialGradient < 1.0f ? std::make_optional<CageRelaxation>(cage)
-                                                                                  : std::nullopt),
+      relaxation_(settings.relaxation > 0.0f || settings.tangentialGradient < 1.0f
+                      ? std::make_optional<CageRelaxation>(cage)
+                      : std::nullopt),
       pointsPlus_(stencils_.makePointBuffer()),
       pointsMinus_(stencils_.makePointBuffer()),
       smoothScratch_(vertices_.gradient.bytes()),
@@ -95,12 +96,9 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
     const bool verticesOn = optimised(vertices_);
     const bool mapsOn = !mapTurns.empty() && (mapsStarted || !verticesOn);
     optim::ParameterGroup* perturbed = nullptr;
-    if (verticesOn && (!mapsOn || counter % 2 == 0))
-        perturbed = &vertices_;
-    else if (mapsOn)
-        perturbed = mapTurns[(verticesOn ? counter / 2 : counter) % mapTurns.size()];
-    else
-        return;  // nothing is optimised
+    if (verticesOn && (!mapsOn || counter % 2 == 0)) perturbed = &vertices_;
+    else if (mapsOn) perturbed = mapTurns[(verticesOn ? counter / 2 : counter) % mapTurns.size()];
+    else return;  // nothing is optimised
     ++samples_;
     optim::perturb(programs_, *perturbed, counter, settings_.seed);
     mark("perturb");
@@ -117,15 +115,16 @@ void CageFitter::accumulate(const scene::TargetSet& targets, std::span<const int
         mark("render θ+");
         renderer_.rasterize(programs_, minusSurface, camera, minus_, &mapsMinus);
         mark("render θ−");
-        sge::accumulateGradient(programs_, *perturbed, faceVertices(),
-                                {&plus_, &minus_, &targets.colors(), view, counter, settings_.seed,
-                                 1.0f / (pixels * float(views.size())), measureLoss, maps_.get(),
-                                 settings_.fullImageEstimator},
-                                loss_);
+        sge::accumulateGradient(
+            programs_, *perturbed, faceVertices(),
+            {&plus_, &minus_, &targets.colors(), view, counter, settings_.seed, 1.0f / (pixels * float(views.size())),
+             measureLoss, maps_.get(), settings_.fullImageEstimator},
+            loss_);
         mark("gradient G");
     }
     if (verticesPerturbed) {
-        sge::scatterFaceDeltas(programs_, vertices_, faceVertices(), counter, settings_.seed, settings_.fullImageEstimator);
+        sge::scatterFaceDeltas(programs_, vertices_, faceVertices(), counter, settings_.seed,
+                               settings_.fullImageEstimator);
         mark("scatter to vertices");
     }
     if (measureLoss) ++samplesSinceLoss_;
@@ -228,7 +227,8 @@ void CageFitter::updateVertices(float learningRate) {
                             smoothScratch_);
         mark("precondition");
         if (project)
-            relaxation_->projectGradient(programs_, vertices_.theta, vertices_.gradientSmooth, settings_.tangentialGradient);
+            relaxation_->projectGradient(programs_, vertices_.theta, vertices_.gradientSmooth,
+                                         settings_.tangentialGradient);
         optim::adamStep(programs_, vertices_, vertices_.gradientSmooth, learningRate);
         mark("Adam");
         vertices_.gradientSum.clearToZero();
@@ -308,9 +308,7 @@ int CageFitter::mapsStartStep() const {
     return int(std::ceil(settings_.mapsStartFraction * float(settings_.plannedSteps)));
 }
 
-void CageFitter::setVertices(const std::vector<glm::vec3>& positions) {
-    vertices_.write(flatten(positions));
-}
+void CageFitter::setVertices(const std::vector<glm::vec3>& positions) { vertices_.write(flatten(positions)); }
 
 CageFitter::State CageFitter::state() {
     State state{.steps = steps_, .samples = samples_};

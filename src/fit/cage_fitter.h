@@ -31,15 +31,15 @@ namespace subdfit::fit {
 
 struct CageFitSettings {
     optim::GroupSettings vertices{.sharedMoment = true};
-    float smoothingLambda = 4.0f;   // λ of the (I + λL)⁻¹ vertex-gradient preconditioner
-    int smoothingIterations = 8;    // damped Jacobi sweeps approximating that inverse
+    float smoothingLambda = 4.0f;  // λ of the (I + λL)⁻¹ vertex-gradient preconditioner
+    int smoothingIterations = 8;   // damped Jacobi sweeps approximating that inverse
     // Per vertex update, the fraction of the way each vertex slides within its tangent plane
     // towards its neighbours (fit/cage_relaxation.h); 0: off.
     float relaxation = 0.0f;
     // The fraction of the vertex gradient's tangential part kept (1: all of it).
     float tangentialGradient = 1.0f;
-    int plannedSteps = 0;           // > 0: anneal every learning rate ×0.1 over this many steps
-    int tessLevel = 8;              // segments per base-face edge (at least the map resolution)
+    int plannedSteps = 0;  // > 0: anneal every learning rate ×0.1 over this many steps
+    int tessLevel = 8;     // segments per base-face edge (at least the map resolution)
     int resolution = 256;
     std::uint32_t seed = 1;
     maps::MapEffects mapEffects{};  // which texel groups exist at all
@@ -148,7 +148,8 @@ private:
 
     gl::ProgramCache& programs_;
     CageFitSettings settings_;
-    std::shared_ptr<const subdiv::PatchSet> patches_;  // shared with fitters of the same topology (subdiv/table_cache.h)
+    std::shared_ptr<const subdiv::PatchSet>
+        patches_;  // shared with fitters of the same topology (subdiv/table_cache.h)
     render::StencilEvaluator stencils_;
     render::PatchRenderer renderer_;
     optim::ParameterGroup vertices_;
@@ -182,7 +183,7 @@ private:
     std::optional<DrawnSurfaceKey> drawnFrom_;
     render::RenderTarget plus_, minus_;
     int steps_ = 0, samplesSinceLoss_ = 0;
-    std::uint32_t samples_ = 0;  // perturbation counter: one per accumulate()
+    std::uint32_t samples_ = 0;                          // perturbation counter: one per accumulate()
     std::vector<optim::ParameterGroup*> pendingUpdate_;  // groups perturbed since the last update()
     std::vector<const optim::ParameterGroup*> frozen_;   // groups left out of the turns
 };

@@ -17,8 +17,8 @@ namespace subdfit::fit {
 // How each vertex may move, and what it averages (CPU, for the GPU pass and for tests).
 struct RelaxationTopology {
     enum Mode : int { Surface = 0, Crease = 1, Fixed = 2 };
-    std::vector<int> modes;                  // per vertex
-    std::vector<int> offsets, neighbors;     // CSR: the vertices each one averages
+    std::vector<int> modes;                   // per vertex
+    std::vector<int> offsets, neighbors;      // CSR: the vertices each one averages
     std::vector<int> cornerOffsets, corners;  // CSR of (previous, next) pairs: the face corners at a vertex
 };
 RelaxationTopology relaxationTopology(const mesh::PolygonMesh& cage);

@@ -82,8 +82,7 @@ private:
 
 }  // namespace
 
-void writeCheckpoint(const std::filesystem::path& path, const std::string& fingerprint,
-                     const FitState& state) {
+void writeCheckpoint(const std::filesystem::path& path, const std::string& fingerprint, const FitState& state) {
     Writer out;
     out.putBytes(fingerprint);
     out.put<std::int32_t>(state.steps);
@@ -133,7 +132,8 @@ std::optional<FitState> readCheckpoint(const std::filesystem::path& path, const 
     if (all.size() < kMagic.size() || all.substr(0, kMagic.size()) != kMagic)
         throw fileError(name, "checkpoint of another format version (this subdfit reads version " +
                                   std::string(1, kMagic.back()) + "); remove it to start over");
-    if (all.size() < kMagic.size() + sizeof(std::uint64_t)) throw fileError(name, "truncated checkpoint; remove it to start over");
+    if (all.size() < kMagic.size() + sizeof(std::uint64_t))
+        throw fileError(name, "truncated checkpoint; remove it to start over");
     const std::string_view payload = all.substr(0, all.size() - sizeof(std::uint64_t));
     std::uint64_t stored;
     std::memcpy(&stored, all.data() + payload.size(), sizeof stored);

@@ -12,8 +12,7 @@ namespace subdfit::fit {
 // Written atomically, so an interrupted write leaves the previous checkpoint intact. The format
 // (version in the magic's last byte, a checksum over everything before it) is private to
 // subdfit: a checkpoint resumes the build that wrote it or a later one of the same version.
-void writeCheckpoint(const std::filesystem::path& path, const std::string& fingerprint,
-                     const FitState& state);
+void writeCheckpoint(const std::filesystem::path& path, const std::string& fingerprint, const FitState& state);
 
 // Nothing when there is no file. Throws subdfit::Error naming the file when it is damaged
 // (checksum, truncation, counts beyond its size), of another version, or was written for other

@@ -31,6 +31,8 @@ std::string resolveDeviceDefaults(FitOptions& o, const std::string& renderer) {
            (hardware ? " (--views, --res, --steps override)" : "");
 }
 
-std::string resolveForCurrentDevice(FitOptions& o) { return resolveDeviceDefaults(o, context::currentGlInfo().renderer); }
+std::string resolveForCurrentDevice(FitOptions& o) {
+    return resolveDeviceDefaults(o, context::currentGlInfo().renderer);
+}
 
 }  // namespace subdfit::fit

@@ -55,12 +55,12 @@ struct FitOptions {
     std::filesystem::path cage, reference, out;
     // By the device unless given (fit/device_defaults.h): 24 views at 256², at most 4000 steps on
     // a software rasterizer; more of each on a hardware GPU, where a step costs little.
-    int views = kByDevice;   // training views (held-out views come in addition)
+    int views = kByDevice;  // training views (held-out views come in addition)
     int holdoutViews = 6;
     int resolution = kByDevice;
     int steps = kByDevice;
     int viewsPerStep = 1;
-    int samplesPerStep = 1;       // perturbations averaged per Adam step
+    int samplesPerStep = 1;  // perturbations averaged per Adam step
     int tessLevel = 8;
     std::uint32_t seed = 1;
     // The vertex perturbation and Adam step, as fractions of the cage's mean edge length (at most
@@ -68,33 +68,33 @@ struct FitOptions {
     // cage. The step shrinks as the schedule says.
     float epsilon = 0.08f;
     float learningRate = 0.15f;
-    float smoothing = 4.0f;       // λ of the Laplacian preconditioner (0: off)
+    float smoothing = 4.0f;  // λ of the Laplacian preconditioner (0: off)
     // c of every group's noise gate (optim::GroupSettings::noiseGate): a parameter whose running
     // gradient is within c times its expected noise of 0 barely moves; 0: plain Adam.
     float noiseGate = 0.0f;
-    float relaxation = 0.0f;      // tangential relaxation of the cage per vertex update (0: off)
-    float tangential = 0.2f;      // fraction of the vertex gradient's tangential part kept
+    float relaxation = 0.0f;  // tangential relaxation of the cage per vertex update (0: off)
+    float tangential = 0.2f;  // fraction of the vertex gradient's tangential part kept
     context::GlProvider glProvider = context::GlProvider::Auto;
     // How the scene is shaded; nothing ("auto"): what the reference's materials call for.
     std::optional<render::ShadingModel> shading;
-    maps::MapEffects maps;        // none by default
-    int mapResolution = 8;        // cells per ptex-face edge of each map tile
+    maps::MapEffects maps;  // none by default
+    int mapResolution = 8;  // cells per ptex-face edge of each map tile
     surface::ShadingNormal shadingNormal = surface::ShadingNormal::Displaced;  // what shades the displaced surface
     int appearanceResolution = 16;  // ... of the appearance maps (base colour, metallic-roughness)
     // simplify: texels per side of the appearance maps in the reference's own texture atlas
     // (surface/appearance_atlas.h); 0: per-face tiles of appearanceResolution.
     int appearanceAtlas = 0;
-    float mapsStart = 0.4f;       // fraction of the steps fitted by the cage alone before maps join
-    int mapBits = 12;             // bits per map value in asset.subd (over each channel's range)
-    int positionBits = 14;        // bits per cage coordinate in asset.subd (over its bounding cube)
-    int appearanceQuality = 90;   // JPEG quality of the appearance images in asset.subd
-    bool preview = false;         // also write fitted.glb: the displaced limit surface, tessLevel per face edge
-    bool draco = false;           // fitted.glb with KHR_draco_mesh_compression
+    float mapsStart = 0.4f;      // fraction of the steps fitted by the cage alone before maps join
+    int mapBits = 12;            // bits per map value in asset.subd (over each channel's range)
+    int positionBits = 14;       // bits per cage coordinate in asset.subd (over its bounding cube)
+    int appearanceQuality = 90;  // JPEG quality of the appearance images in asset.subd
+    bool preview = false;        // also write fitted.glb: the displaced limit surface, tessLevel per face edge
+    bool draco = false;          // fitted.glb with KHR_draco_mesh_compression
     UsdExport usd = UsdExport::Usdz;
-    bool compactMaps = false;     // ship maps as HALF EXR and 8-bit PNG (export/map_atlas.h)
-    bool resume = false;          // continue from out/checkpoint.bin when it exists
-    bool force = false;           // write into a non-empty folder that holds no subdfit results
-    int checkpointEvery = 100;    // steps between checkpoints (also written on interrupt and at the end)
+    bool compactMaps = false;   // ship maps as HALF EXR and 8-bit PNG (export/map_atlas.h)
+    bool resume = false;        // continue from out/checkpoint.bin when it exists
+    bool force = false;         // write into a non-empty folder that holds no subdfit results
+    int checkpointEvery = 100;  // steps between checkpoints (also written on interrupt and at the end)
     Schedule schedule = Schedule::Plateau;
 };
 
@@ -145,9 +145,9 @@ void forEachOption(Options& options, Visitor&& visit) {
 // An option spelt as words rather than a number: the maps, and every NamedEnum (an optional one
 // spells "not given" as "auto").
 template <class T>
-concept WordOption = std::is_same_v<T, maps::MapEffects> || NamedEnum<T> ||
-                     (requires { typename T::value_type; } && NamedEnum<typename T::value_type> &&
-                      std::is_same_v<T, std::optional<typename T::value_type>>);
+concept WordOption = std::is_same_v<T, maps::MapEffects> || NamedEnum<T> ||(requires {
+    typename T::value_type;
+} && NamedEnum<typename T::value_type> && std::is_same_v<T, std::optional<typename T::value_type>>);
 
 template <WordOption T>
 std::string optionText(const T& value) {

@@ -33,27 +33,27 @@ struct HoldoutScore : ViewSetScore {
 };
 
 struct FitReport {
-    FitOptions options;          // as run: settings and paths
-    int steps = 0;               // steps taken in all, those before a resume included
-    int resumedFromStep = 0;     // 0 when not resumed
-    double seconds = 0.0;        // the whole run: scene, fit, scoring
-    double fitSeconds = 0.0;     // the steps alone
+    FitOptions options;                                   // as run: settings and paths
+    int steps = 0;                                        // steps taken in all, those before a resume included
+    int resumedFromStep = 0;                              // 0 when not resumed
+    double seconds = 0.0;                                 // the whole run: scene, fit, scoring
+    double fitSeconds = 0.0;                              // the steps alone
     std::optional<ViewSetScore> trainBefore, trainAfter;  // none where the run was not asked for them
     HoldoutScore holdoutBefore, holdoutAfter;
     int holdoutSamplesPerPixel = 1;  // the held-out targets' supersampling, squared
-    bool finite = true;          // every parameter of every group
+    bool finite = true;              // every parameter of every group
     maps::MapEffects effects;
     std::vector<std::pair<std::string, int>> parameters;  // per group: name, count
-    int tessLevel = 0;           // as rendered (a crack-free power of two)
+    int tessLevel = 0;                                    // as rendered (a crack-free power of two)
     int cageVertices = 0, cageFaces = 0, patches = 0, referenceTriangles = 0;
     int cageCreases = 0, cageCorners = 0;  // OpenSubdiv tags: sharp edges, sharp vertices
     context::GlInfo gl;
     std::string glProvider;
     std::vector<gl::ProgramVariant> shaderVariants;  // every program the run compiled
     std::map<std::string, std::uintmax_t> exports;   // file name -> bytes
-    std::string stopReason = "steps";  // steps, converged, no_gain or interrupted
-    int bestStep = -1;                 // the step whose parameters were kept (plateau schedule)
-    std::vector<MonitorMeasurement> monitored;  // the plateau schedule's, those before a resume included
+    std::string stopReason = "steps";                // steps, converged, no_gain or interrupted
+    int bestStep = -1;                               // the step whose parameters were kept (plateau schedule)
+    std::vector<MonitorMeasurement> monitored;       // the plateau schedule's, those before a resume included
 
     bool interrupted() const { return stopReason == "interrupted"; }
 };

@@ -120,7 +120,8 @@ void FitRun::saveCheckpoint(const std::filesystem::path& checkpoint) {
 void FitRun::advance(bool measureLoss) {
     const auto began = Clock::now();
     const auto views = viewsForStep(options_, step());
-    for (int sample = 0; sample < options_.samplesPerStep; ++sample) fitter_->accumulate(scene_.training, views, measureLoss);
+    for (int sample = 0; sample < options_.samplesPerStep; ++sample)
+        fitter_->accumulate(scene_.training, views, measureLoss);
     fitter_->update();
     fitSeconds_ += secondsSince(began);
 }
@@ -221,7 +222,8 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
             hooks.progress({taken, options_.steps, fitter_->takeMeanLoss(), seconds, eta});
         }
         // On probation the monitor looks more often: a start that cannot pay is let go early.
-        if (plateau && taken % (schedule_.probationOver || schedule_.probationAsksAGain ? monitorEvery_ : kProbationEvery) == 0)
+        if (plateau &&
+            taken % (schedule_.probationOver || schedule_.probationAsksAGain ? monitorEvery_ : kProbationEvery) == 0)
             if (const auto ended = monitor()) {
                 stopReason_ = *ended;
                 break;
@@ -291,15 +293,21 @@ double FitRun::judgeOf(const std::vector<std::vector<float>>& theta, const FitHo
 
 int FitRun::judgeTheBest(const FitHooks& hooks) {
     if (judged_.stageStart != schedule_.stageStart)
-        judged_ = {.stageStart = schedule_.stageStart, .loss = judgeOf(schedule_.startTheta, hooks),
-                   .monitorLoss = schedule_.stageLosses.front(), .step = schedule_.stageStart,
+        judged_ = {.stageStart = schedule_.stageStart,
+                   .loss = judgeOf(schedule_.startTheta, hooks),
+                   .monitorLoss = schedule_.stageLosses.front(),
+                   .step = schedule_.stageStart,
                    .theta = schedule_.startTheta};
     judged_.lastJudged = step();
     if (schedule_.bestStep == judged_.step) return judged_.worseInARow;
     const double loss = judgeOf(schedule_.bestTheta, hooks);
     if (loss < judged_.loss) {
-        judged_ = {.stageStart = judged_.stageStart, .loss = loss, .monitorLoss = schedule_.bestLoss,
-                   .step = schedule_.bestStep, .theta = schedule_.bestTheta, .lastJudged = step()};
+        judged_ = {.stageStart = judged_.stageStart,
+                   .loss = loss,
+                   .monitorLoss = schedule_.bestLoss,
+                   .step = schedule_.bestStep,
+                   .theta = schedule_.bestTheta,
+                   .lastJudged = step()};
         return 0;
     }
     return ++judged_.worseInARow;
@@ -377,8 +385,8 @@ FitReport FitRun::writeResults(const std::filesystem::path& out, const context::
     mesh::writeObj(out / "cage.obj", fittedWorld);
     FitOptions exportOptions = options_;
     exportOptions.out = out;
-    const nlohmann::json exports = exportAsset(exportOptions, *fitter_, scene_.frame, fittedWorld,
-                                                std::uint32_t(scene_.reference.faceCount()));
+    const nlohmann::json exports =
+        exportAsset(exportOptions, *fitter_, scene_.frame, fittedWorld, std::uint32_t(scene_.reference.faceCount()));
     for (const auto& [file, bytes] : exports.items()) r.exports[file] = bytes.get<std::uintmax_t>();
     const int res = options_.resolution;
     io::writeImage(out / "before.png", holdoutBefore_.firstView, res, res);
@@ -392,7 +400,8 @@ void FitRun::setTessLevel(int level) {
     FitOptions options = options_;
     options.tessLevel = level;
     validate(options);
-    auto rebuilt = std::make_unique<CageFitter>(programs_, scene_.cage, fitSettings(options, scene_.cage, scene_.shading));
+    auto rebuilt =
+        std::make_unique<CageFitter>(programs_, scene_.cage, fitSettings(options, scene_.cage, scene_.shading));
     rebuilt->restore(fitter_->state());
     // The rates and switches someone set by hand stay as they were.
     const auto before = fitter_->groups(), after = rebuilt->groups();

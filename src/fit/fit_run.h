@@ -28,7 +28,7 @@ struct Progress {
 
 struct FitHooks {
     std::function<void(const Progress&)> progress{};
-    const std::atomic<bool>* cancel = nullptr;  // set: stop at the next step, checkpointed
+    const std::atomic<bool>* cancel = nullptr;            // set: stop at the next step, checkpointed
     std::function<void(const std::string& line)> note{};  // news for the user, e.g. "nothing to resume"
     // A loss on views the caller trusts more than the single-sample monitor (simplify: its
     // choosing views, supersampled), of the fitter's current state: a second opinion on the
@@ -107,7 +107,8 @@ public:
     // runs when the maps join; `fresh` is false in a run resumed past that point (the maps' θ
     // came from the checkpoint, but settings changed then must be made again).
     using MapsStart = std::function<void(bool fresh)>;
-    StopReason run(const std::filesystem::path& checkpoint, const FitHooks& hooks = {}, const MapsStart& startMaps = {});
+    StopReason run(const std::filesystem::path& checkpoint, const FitHooks& hooks = {},
+                   const MapsStart& startMaps = {});
 
     // Scores the current state and writes cage.obj, the exports (fitted.glb, maps) and the
     // before / after / target PNGs of held-out view 0 into `out`, each atomically. report.json
@@ -137,9 +138,9 @@ private:
     std::string fingerprint_;  // what a checkpoint must match
     int resumedFromStep_ = 0;
     ScheduleState schedule_;
-    int bestStep_ = -1;  // of the last stage ended
+    int bestStep_ = -1;       // of the last stage ended
     bool mapsGiven_ = false;  // startFrom set the maps (a bake): their stage starts near its optimum
-    void restoreBest();  // θ of every group back to the best monitored state
+    void restoreBest();       // θ of every group back to the best monitored state
     void writeTheta(const std::vector<std::vector<float>>& theta);
 
     // What hooks.judge has seen of the stage under way. Not checkpointed: a resumed stage is
@@ -157,9 +158,9 @@ private:
     // Judges the monitor's best state (the stage's start first, on its first call in a stage):
     // how many judgments in a row have found none below the judge's lowest.
     int judgeTheBest(const FitHooks& hooks);
-    void takeTheJudgedBest();  // the judge's lowest as the stage's best, restored
+    void takeTheJudgedBest();                    // the judge's lowest as the stage's best, restored
     void endJudgedStage(const FitHooks& hooks);  // the stage's end, judged
-    int probationSteps() const;  // of the stage under way
+    int probationSteps() const;                  // of the stage under way
     StopReason stopReason_ = StopReason::Reached;
     int monitorEvery_;
     int windowDoublings_ = StepSchedule::kMostWindowDoublings;

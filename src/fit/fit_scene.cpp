@@ -72,8 +72,8 @@ FitScene::FitScene(const FitOptions& o, gl::ProgramCache& programs, mesh::Polygo
       reference(normalized(mesh::triangulated(referenceWorld), frame)),
       referenceRenderer(reference, shading),
       training(programs, referenceRenderer, render::orbitCameras(o.views, o.seed), o.resolution),
-      holdout(programs, referenceRenderer, render::orbitCameras(o.holdoutViews, o.seed ^ 0x9e3779b9u),
-              o.resolution, kViewerSupersampling),
+      holdout(programs, referenceRenderer, render::orbitCameras(o.holdoutViews, o.seed ^ 0x9e3779b9u), o.resolution,
+              kViewerSupersampling),
       monitor(programs, referenceRenderer, render::orbitCameras(kMonitorViews, o.seed ^ 0x85ebca6bu), o.resolution) {}
 
 const scene::TargetSet& FitScene::choosing(gl::ProgramCache& programs) const {
@@ -123,8 +123,8 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
     settings.mapEffects = mapEffectsOf(o, shading);
     settings.shading = shading;
     settings.maps.resolution = o.mapResolution;
-    settings.maps.displacement.learningRate =
-        std::min(settings.maps.displacement.learningRate, kHeightStepSlope * edge / float(std::max(1, o.mapResolution)));
+    settings.maps.displacement.learningRate = std::min(settings.maps.displacement.learningRate,
+                                                       kHeightStepSlope * edge / float(std::max(1, o.mapResolution)));
     settings.maps.appearanceResolution = o.appearanceResolution;
     settings.maps.appearanceAtlas = o.appearanceAtlas;
     settings.maps.shadingNormal = o.shadingNormal;

@@ -31,11 +31,11 @@ public:
     // targets once and then tries several cages.
     void setCage(mesh::PolygonMesh cageWorld);
 
-    scene::SceneFrame frame;      // around the reference
-    render::ShadingModel shading; // options.shading, "auto" resolved from the reference
-    mesh::PolygonMesh cageWorld;  // as given, for writing results back with its tags and order
-    mesh::PolygonMesh cage;       // normalised
-    mesh::PolygonMesh reference;  // normalised, triangulated
+    scene::SceneFrame frame;       // around the reference
+    render::ShadingModel shading;  // options.shading, "auto" resolved from the reference
+    mesh::PolygonMesh cageWorld;   // as given, for writing results back with its tags and order
+    mesh::PolygonMesh cage;        // normalised
+    mesh::PolygonMesh reference;   // normalised, triangulated
     render::MeshRenderer referenceRenderer;
     scene::TargetSet training;
     // Another rotation of the view lattice, so no held-out view coincides with a training view;

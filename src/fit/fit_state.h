@@ -26,7 +26,7 @@ struct ScheduleState {
     bool probationAsksAGain = false;       // the later probation of one that passed the above
     int halvings = 0;
     int carriedHalvings = 0;  // the cage's, from the stage before: its step is 2^-(halvings + these)
-    std::vector<std::vector<float>> bestTheta{};  // per group, in CageFitter::groups() order; empty: none yet
+    std::vector<std::vector<float>> bestTheta{};   // per group, in CageFitter::groups() order; empty: none yet
     std::vector<std::vector<float>> startTheta{};  // the same at the stage's first measurement
 };
 

@@ -51,7 +51,8 @@ void blurLines(const std::vector<double>& in, std::vector<double>& out, int line
         for (int i = 0; i < length; ++i) {
             double sum = 0.0;
             for (int k = -kRadius; k <= kRadius; ++k)
-                sum += taps[size_t(k + kRadius)] * in[size_t(line) * lineStep + size_t(std::clamp(i + k, 0, length - 1)) * step];
+                sum += taps[size_t(k + kRadius)] *
+                       in[size_t(line) * lineStep + size_t(std::clamp(i + k, 0, length - 1)) * step];
             out[size_t(line) * lineStep + size_t(i) * step] = sum;
         }
 }

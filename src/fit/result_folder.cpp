@@ -59,7 +59,8 @@ NamedFile namedFile(const io::AssetFolder& folder, const std::string& name) {
 // so that a report cannot make the viewer read any other file.
 std::filesystem::path referenceOf(const nlohmann::json& report, std::vector<std::string>& notes) {
     const auto at = report.find("reference");
-    const std::optional<std::string> path = at != report.end() && at->is_object() ? stringAt(*at, "path") : std::nullopt;
+    const std::optional<std::string> path =
+        at != report.end() && at->is_object() ? stringAt(*at, "path") : std::nullopt;
     if (!path) {
         notes.push_back("report.json names no reference");
         return {};
@@ -67,7 +68,8 @@ std::filesystem::path referenceOf(const nlohmann::json& report, std::vector<std:
     const std::string shown = printable(*path, 160);
     const std::optional<std::string> digest = stringAt(*at, "xxh3_128");
     if (!digest) {
-        notes.push_back("the reference " + shown + " is not opened: report.json records no digest of it (give it with --reference)");
+        notes.push_back("the reference " + shown +
+                        " is not opened: report.json records no digest of it (give it with --reference)");
         return {};
     }
     if (const std::string problem = io::inputFileProblem(*path); !problem.empty()) {
@@ -76,7 +78,8 @@ std::filesystem::path referenceOf(const nlohmann::json& report, std::vector<std:
     }
     try {
         if (io::fileDigest(*path) != *digest) {
-            notes.push_back("the reference " + shown + " is not the file the result was made from (its digest differs)");
+            notes.push_back("the reference " + shown +
+                            " is not the file the result was made from (its digest differs)");
             return {};
         }
     } catch (const Error&) {
@@ -150,7 +153,9 @@ ResultFolder readResultFolder(const std::filesystem::path& dir) {
             folder.notes.push_back(shownName + ": " + file.problem + ", not shown");
             continue;
         }
-        folder.entries.push_back({.name = shownName, .levels = {file.file}, .bytes = bytesOf(numberOr(baseline, "bytes", 0.0)),
+        folder.entries.push_back({.name = shownName,
+                                  .levels = {file.file},
+                                  .bytes = bytesOf(numberOr(baseline, "bytes", 0.0)),
                                   .psnrHoldout = numberOr(baseline, "psnr_holdout", std::nan("")),
                                   .ssimHoldout = numberOr(baseline, "ssim_holdout", std::nan(""))});
     }

@@ -18,7 +18,7 @@ struct ShippedEntry {
     std::string name;  // "subdfit", or the baseline's: "decimation", "gltfpack", "bake"
     // Its files, finest first: one per entry today (a chain of levels of detail lists each).
     std::vector<std::filesystem::path> levels;
-    std::uintmax_t bytes = 0;  // what the budget counts; 0: not said
+    std::uintmax_t bytes = 0;                                       // what the budget counts; 0: not said
     double psnrHoldout = std::numeric_limits<double>::quiet_NaN();  // NaN: not measured
     double ssimHoldout = std::numeric_limits<double>::quiet_NaN();
 };
@@ -28,8 +28,8 @@ struct ResultFolder {
     // The reference as report.json names it; empty when that file is not there (`notes` says so).
     std::filesystem::path reference;
     nlohmann::json settings = nlohmann::json::object();  // report.json's settings (what the fit ran with)
-    std::vector<ShippedEntry> entries;  // subdfit first, then the baselines in the comparison's order
-    std::vector<std::string> notes;     // what could not be shown and why, one line each
+    std::vector<ShippedEntry> entries;                   // subdfit first, then the baselines in the comparison's order
+    std::vector<std::string> notes;                      // what could not be shown and why, one line each
 };
 
 // Throws subdfit::Error "DIR: problem" when DIR is not a folder holding a result (report.json and

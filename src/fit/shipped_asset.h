@@ -33,7 +33,7 @@ public:
 
     // Its renderer, maps and control vertices (the cage's θ), read-only in spirit.
     CageFitter& fitter() { return *fitter_; }
-    const mesh::PolygonMesh& cage() const { return cage_; }  // in the frame
+    const mesh::PolygonMesh& cage() const { return cage_; }     // in the frame
     const surface::SurfaceMaps& maps() const { return maps_; }  // in the frame
 
 private:

@@ -73,7 +73,8 @@ StepSchedule::Verdict StepSchedule::probation() const {
         // A gain that holds: the current window's mean below the start, not one early best that
         // the monitor's noise picked and every measurement since has stayed above.
         const std::vector<double>& recent = state_.window.empty() ? losses : state_.window;
-        const double level = std::accumulate(recent.begin(), recent.end(), 0.0) / double(std::max<size_t>(recent.size(), 1));
+        const double level =
+            std::accumulate(recent.begin(), recent.end(), 0.0) / double(std::max<size_t>(recent.size(), 1));
         const bool fell = !losses.empty() && level < (1.0 - kMinImprovement) * losses.front();
         // A window a halving has just restarted says little: three noisy points make any fall likely.
         const bool falling = state_.window.size() >= size_t(kWindow / 2) &&
@@ -82,8 +83,8 @@ StepSchedule::Verdict StepSchedule::probation() const {
     }
     if (state_.probationStopsOnlyARise) {
         const LossTrend trend = lossTrend(losses);
-        const bool rose = std::isfinite(trend.standardError) &&
-                          trend.fall + kProbationConfidence * trend.standardError < -kClearRise;
+        const bool rose =
+            std::isfinite(trend.standardError) && trend.fall + kProbationConfidence * trend.standardError < -kClearRise;
         return rose ? Verdict::NoGain : Verdict::Paying;
     }
     if (paying()) return Verdict::Paying;

@@ -31,7 +31,7 @@ bool likelyImproving(const LossTrend& trend, double minFall, double confidence);
 
 class StepSchedule {
 public:
-    static constexpr int kWindow = 10;                // measurements per decision at the full step
+    static constexpr int kWindow = 10;  // measurements per decision at the full step
     static constexpr int kMostWindowDoublings = 2;
     static constexpr double kMinImprovement = 0.005;  // relative fall per kWindow measurements worth going on for
     static constexpr double kConfidence = 0.5;        // standard errors: stall when P(fall >= min) < ~30 %
@@ -49,7 +49,7 @@ public:
 
     enum class Action { Continue, Halve, Converged };
     struct Decision {
-        bool best;      // the best loss so far: keep these parameters
+        bool best;  // the best loss so far: keep these parameters
         Action action;
     };
 

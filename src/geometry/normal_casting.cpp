@@ -11,7 +11,8 @@
 namespace subdfit::geometry {
 
 NormalCasts castAlongNormals(const SurfaceQueries& surface, std::span<const glm::vec3> origins,
-                             std::span<const glm::vec3> normals, float reach, float detour, std::optional<float> facing) {
+                             std::span<const glm::vec3> normals, float reach, float detour,
+                             std::optional<float> facing) {
     SUBDFIT_CHECK(origins.size() == normals.size());
     NormalCasts casts;
     casts.hits.resize(origins.size());

@@ -14,7 +14,7 @@ namespace subdfit::geometry {
 
 struct NormalCasts {
     std::vector<std::optional<RayHit>> hits;  // one per origin; distance signed along the normal
-    float facing = 1.0f;  // +1: the reference faces the way the normals point
+    float facing = 1.0f;                      // +1: the reference faces the way the normals point
 };
 
 // From each origin along ± its unit normal (a zero normal casts nothing), within `reach`: the

@@ -66,7 +66,8 @@ SurfaceDistance surfaceDistance(const mesh::PolygonMesh& a, const SurfaceQueries
     return result;
 }
 
-SurfaceDistance surfaceDistance(const mesh::PolygonMesh& a, const mesh::PolygonMesh& b, int samples, std::uint32_t seed) {
+SurfaceDistance surfaceDistance(const mesh::PolygonMesh& a, const mesh::PolygonMesh& b, int samples,
+                                std::uint32_t seed) {
     return surfaceDistance(a, SurfaceQueries(b), samples, seed);
 }
 

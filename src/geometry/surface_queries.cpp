@@ -57,7 +57,8 @@ struct SurfaceQueries::Embree {
     }
 };
 
-SurfaceQueries::SurfaceQueries(const mesh::PolygonMesh& triangles) : mesh_(triangles), embree_(std::make_unique<Embree>()) {
+SurfaceQueries::SurfaceQueries(const mesh::PolygonMesh& triangles)
+    : mesh_(triangles), embree_(std::make_unique<Embree>()) {
     for (int size : triangles.faceSizes) SUBDFIT_CHECK(size == 3);
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw Error("Embree could not create a device");
@@ -68,8 +69,8 @@ SurfaceQueries::SurfaceQueries(const mesh::PolygonMesh& triangles) : mesh_(trian
     RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                  3 * sizeof(float), triangles.positions.size()));
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                   3 * sizeof(unsigned), size_t(triangles.faceCount())));
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), size_t(triangles.faceCount())));
     for (size_t v = 0; v < triangles.positions.size(); ++v)
         for (int c = 0; c < 3; ++c) vertices[3 * v + size_t(c)] = triangles.positions[v][c];
     for (size_t i = 0; i < triangles.faceIndices.size(); ++i) indices[i] = unsigned(triangles.faceIndices[i]);
@@ -81,7 +82,8 @@ SurfaceQueries::SurfaceQueries(const mesh::PolygonMesh& triangles) : mesh_(trian
 
 SurfaceQueries::~SurfaceQueries() = default;
 
-std::optional<RayHit> SurfaceQueries::cast(const glm::vec3& origin, const glm::vec3& direction, float maxDistance) const {
+std::optional<RayHit> SurfaceQueries::cast(const glm::vec3& origin, const glm::vec3& direction,
+                                           float maxDistance) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit query{};
@@ -107,7 +109,7 @@ float SurfaceQueries::closestDistance(const glm::vec3& point) const {
 }
 
 std::optional<RayHit> SurfaceQueries::castBothWays(const glm::vec3& origin, const glm::vec3& direction,
-                                              float maxDistance) const {
+                                                   float maxDistance) const {
     auto ahead = cast(origin, direction, maxDistance);
     auto behind = cast(origin, -direction, ahead ? ahead->distance : maxDistance);
     if (behind) {
@@ -118,7 +120,7 @@ std::optional<RayHit> SurfaceQueries::castBothWays(const glm::vec3& origin, cons
 }
 
 std::optional<RayHit> SurfaceQueries::castFacing(const glm::vec3& origin, const glm::vec3& direction, float maxDistance,
-                                                float facing) const {
+                                                 float facing) const {
     constexpr int kSheets = 4;  // sheets passed through per direction before giving up
     std::optional<RayHit> best;
     for (const float way : {1.0f, -1.0f}) {

@@ -13,9 +13,7 @@ Buffer::Buffer(GLsizeiptr bytes, const void* data) : bytes_(bytes) {
     if (!data) clearToZero();
 }
 
-void Buffer::bindStorage(GLuint binding) const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, id());
-}
+void Buffer::bindStorage(GLuint binding) const { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, id()); }
 
 void Buffer::upload(const void* data, GLsizeiptr bytes, GLintptr offset) {
     SUBDFIT_CHECK(offset + bytes <= bytes_);
@@ -27,9 +25,7 @@ void Buffer::download(void* data, GLsizeiptr bytes, GLintptr offset) const {
     glGetNamedBufferSubData(id(), offset, bytes, data);
 }
 
-void Buffer::clearToZero() {
-    glClearNamedBufferData(id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-}
+void Buffer::clearToZero() { glClearNamedBufferData(id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr); }
 
 void Buffer::copyFrom(const Buffer& source) {
     SUBDFIT_CHECK(source.bytes_ == bytes_);

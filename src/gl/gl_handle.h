@@ -35,13 +35,29 @@ private:
     GLuint id_ = 0;
 };
 
-struct BufferTraits { static void destroy(GLuint id) noexcept { glDeleteBuffers(1, &id); } };
-struct TextureTraits { static void destroy(GLuint id) noexcept { glDeleteTextures(1, &id); } };
-struct SamplerTraits { static void destroy(GLuint id) noexcept { glDeleteSamplers(1, &id); } };
-struct FramebufferTraits { static void destroy(GLuint id) noexcept { glDeleteFramebuffers(1, &id); } };
-struct VertexArrayTraits { static void destroy(GLuint id) noexcept { glDeleteVertexArrays(1, &id); } };
-struct ProgramTraits { static void destroy(GLuint id) noexcept { glDeleteProgram(id); } };
-struct ShaderTraits { static void destroy(GLuint id) noexcept { glDeleteShader(id); } };
-struct QueryTraits { static void destroy(GLuint id) noexcept { glDeleteQueries(1, &id); } };
+struct BufferTraits {
+    static void destroy(GLuint id) noexcept { glDeleteBuffers(1, &id); }
+};
+struct TextureTraits {
+    static void destroy(GLuint id) noexcept { glDeleteTextures(1, &id); }
+};
+struct SamplerTraits {
+    static void destroy(GLuint id) noexcept { glDeleteSamplers(1, &id); }
+};
+struct FramebufferTraits {
+    static void destroy(GLuint id) noexcept { glDeleteFramebuffers(1, &id); }
+};
+struct VertexArrayTraits {
+    static void destroy(GLuint id) noexcept { glDeleteVertexArrays(1, &id); }
+};
+struct ProgramTraits {
+    static void destroy(GLuint id) noexcept { glDeleteProgram(id); }
+};
+struct ShaderTraits {
+    static void destroy(GLuint id) noexcept { glDeleteShader(id); }
+};
+struct QueryTraits {
+    static void destroy(GLuint id) noexcept { glDeleteQueries(1, &id); }
+};
 
 }  // namespace subdfit::gl

@@ -29,8 +29,7 @@ GlHandle<ShaderTraits> compile(const ShaderStage& stage, const Defines& defines)
     // The extension line must precede any non-preprocessor token, so it goes right after
     // #version; shaders test SUBDFIT_ATOMIC_FLOAT before using it.
     std::string source = "#version 450 core\n";
-    if (defines.count("SUBDFIT_ATOMIC_FLOAT"))
-        source += "#extension GL_NV_shader_atomic_float : require\n";
+    if (defines.count("SUBDFIT_ATOMIC_FLOAT")) source += "#extension GL_NV_shader_atomic_float : require\n";
     source += defineBlock(defines) + "#line 1\n" + expandedShaderSource(stage.file);
     GlHandle<ShaderTraits> shader(glCreateShader(stage.type));
     const char* text = source.c_str();
@@ -39,8 +38,8 @@ GlHandle<ShaderTraits> compile(const ShaderStage& stage, const Defines& defines)
     GLint ok = 0;
     glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
     if (!ok)
-        throw Error("shader " + stage.file + " failed to compile with defines {" +
-                    defineBlock(defines) + "}: " + infoLog(shader.id(), false));
+        throw Error("shader " + stage.file + " failed to compile with defines {" + defineBlock(defines) +
+                    "}: " + infoLog(shader.id(), false));
     return shader;
 }
 
@@ -67,15 +66,9 @@ GLint Program::location(const char* name) const {
     return it->second;
 }
 
-void Program::set(const char* name, int value) const {
-    glProgramUniform1i(id(), location(name), value);
-}
-void Program::set(const char* name, unsigned value) const {
-    glProgramUniform1ui(id(), location(name), value);
-}
-void Program::set(const char* name, float value) const {
-    glProgramUniform1f(id(), location(name), value);
-}
+void Program::set(const char* name, int value) const { glProgramUniform1i(id(), location(name), value); }
+void Program::set(const char* name, unsigned value) const { glProgramUniform1ui(id(), location(name), value); }
+void Program::set(const char* name, float value) const { glProgramUniform1f(id(), location(name), value); }
 void Program::set(const char* name, const glm::vec2& value) const {
     glProgramUniform2fv(id(), location(name), 1, glm::value_ptr(value));
 }

@@ -19,8 +19,7 @@ std::map<std::string, std::string>& registry() {
 
 std::string rawSource(const std::string& name) {
     if (name == "osd_patch_basis")
-        return "#define OSD_PATCH_BASIS_GLSL\n" +
-               OpenSubdiv::Osd::GLSLPatchShaderSource::GetPatchBasisShaderSource();
+        return "#define OSD_PATCH_BASIS_GLSL\n" + OpenSubdiv::Osd::GLSLPatchShaderSource::GetPatchBasisShaderSource();
     const auto& sources = registry();
     auto it = sources.find(name);
     if (it == sources.end()) throw Error("shader '" + name + "' is not in glsl/ nor among this program's own");

@@ -12,10 +12,8 @@ Texture::Texture(GLenum internalFormat, int width, int height, int layers)
     GLuint id = 0;
     glCreateTextures(layers > 0 ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D, 1, &id);
     handle_ = GlHandle<TextureTraits>(id);
-    if (layers > 0)
-        glTextureStorage3D(id, 1, internalFormat, width, height, layers);
-    else
-        glTextureStorage2D(id, 1, internalFormat, width, height);
+    if (layers > 0) glTextureStorage3D(id, 1, internalFormat, width, height, layers);
+    else glTextureStorage2D(id, 1, internalFormat, width, height);
     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -47,10 +45,15 @@ namespace {
 
 GLsizeiptr texelBytesOf(GLenum format) {
     switch (format) {
-        case GL_R32F: case GL_R32I: return 4;
-        case GL_RG32F: case GL_RG32I: case GL_RG32UI: return 8;
+        case GL_R32F:
+        case GL_R32I: return 4;
+        case GL_RG32F:
+        case GL_RG32I:
+        case GL_RG32UI: return 8;
         case GL_RGB32F: return 12;
-        case GL_RGBA32F: case GL_RGBA32I: case GL_RGBA32UI: return 16;
+        case GL_RGBA32F:
+        case GL_RGBA32I:
+        case GL_RGBA32UI: return 16;
         default: throw Error("no buffer texture of format " + std::to_string(format));
     }
 }

@@ -16,7 +16,8 @@ TimestampLog::Mark TimestampLog::now(const char* phase) const {
         mark.query.emplace(id);
     } else {
         glFinish();
-        mark.hostMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+        mark.hostMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
     }
     return mark;
 }
@@ -46,7 +47,8 @@ std::vector<std::pair<std::string, std::vector<double>>> TimestampLog::collect()
                 at = double(ns - roundStartNs) * 1e-6;
             }
             if (k > 0) {
-                auto it = std::find_if(phases.begin(), phases.end(), [&](const auto& p) { return p.first == round[k].phase; });
+                auto it = std::find_if(phases.begin(), phases.end(),
+                                       [&](const auto& p) { return p.first == round[k].phase; });
                 if (it == phases.end()) {
                     phases.push_back({round[k].phase, std::vector<double>(size_t(&round - rounds_.data()) + 1, 0.0)});
                     it = phases.end() - 1;

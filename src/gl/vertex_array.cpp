@@ -19,10 +19,8 @@ void VertexArray::elements(const Buffer& indices) const { glVertexArrayElementBu
 
 void VertexArray::recordAttribute(GLuint index, int components, GLuint offset, bool integer) {
     glEnableVertexArrayAttrib(id(), index);
-    if (integer)
-        glVertexArrayAttribIFormat(id(), index, 1, GL_INT, offset);
-    else
-        glVertexArrayAttribFormat(id(), index, components, GL_FLOAT, GL_FALSE, offset);
+    if (integer) glVertexArrayAttribIFormat(id(), index, 1, GL_INT, offset);
+    else glVertexArrayAttribFormat(id(), index, components, GL_FLOAT, GL_FALSE, offset);
     glVertexArrayAttribBinding(id(), index, kRecordBinding);
 }
 

@@ -25,9 +25,7 @@ AssetFolder::AssetFolder(const fs::path& assetFile, std::string kind) : kind_(st
     if (ec) throw fileError(assetFile.string(), "cannot resolve its folder: " + ec.message());
 }
 
-bool AssetFolder::containsLexically(const fs::path& path) const {
-    return isInside(path.lexically_normal(), folder_);
-}
+bool AssetFolder::containsLexically(const fs::path& path) const { return isInside(path.lexically_normal(), folder_); }
 
 AssetFolder::Resolved AssetFolder::resolve(const fs::path& path) const {
     Resolved out;

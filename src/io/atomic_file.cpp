@@ -106,7 +106,8 @@ void AtomicFile::commit() {
         fail(std::string("cannot write: ") + std::strerror(errno));
     }
     if (const std::string problem = outputFileProblem(destination_); !problem.empty()) fail(problem);
-    if (::rename(temporary_.c_str(), destination_.c_str()) != 0) fail(std::string("cannot replace: ") + std::strerror(errno));
+    if (::rename(temporary_.c_str(), destination_.c_str()) != 0)
+        fail(std::string("cannot replace: ") + std::strerror(errno));
     temporary_.clear();
     // The rename lives in the folder: sync it too (best effort; some filesystems refuse).
     syncPath(destination_.parent_path(), O_RDONLY | O_DIRECTORY);

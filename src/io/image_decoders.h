@@ -18,8 +18,10 @@ struct DecodedImage;
 // smaller on each side (rounded up). Throws subdfit::Error naming `name` for a corrupt or
 // truncated image. A JPEG whose entropy-coded data is damaged decodes as well as it can with one
 // warning (as browsers and engines draw it); a PNG's damage is refused.
-DecodedImage decodePng(std::span<const unsigned char> bytes, const ImageHeader& header, int factor, const std::string& name);
-DecodedImage decodeJpeg(std::span<const unsigned char> bytes, const ImageHeader& header, int factor, const std::string& name);
+DecodedImage decodePng(std::span<const unsigned char> bytes, const ImageHeader& header, int factor,
+                       const std::string& name);
+DecodedImage decodeJpeg(std::span<const unsigned char> bytes, const ImageHeader& header, int factor,
+                        const std::string& name);
 
 // A progressive JPEG's scans beyond this are refused: an ordinary one has about ten, and each
 // scan costs a pass over the whole image.

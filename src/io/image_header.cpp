@@ -42,10 +42,12 @@ std::optional<ImageHeader> pngHeader(std::span<const unsigned char> bytes) {
     // PNG 1.2: the 8-byte signature, then IHDR first: length 13, width, height (big-endian),
     // bit depth, colour type, compression, filter, interlace.
     static constexpr unsigned char kSignature[] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
-    if (bytes.size() < 33 || !std::equal(std::begin(kSignature), std::end(kSignature), bytes.begin())) return std::nullopt;
+    if (bytes.size() < 33 || !std::equal(std::begin(kSignature), std::end(kSignature), bytes.begin()))
+        return std::nullopt;
     if (!std::equal(bytes.begin() + 12, bytes.begin() + 16, "IHDR")) return std::nullopt;
     auto u32 = [&](std::size_t at) {
-        return std::uint32_t(bytes[at]) << 24 | std::uint32_t(bytes[at + 1]) << 16 | std::uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
+        return std::uint32_t(bytes[at]) << 24 | std::uint32_t(bytes[at + 1]) << 16 | std::uint32_t(bytes[at + 2]) << 8 |
+               bytes[at + 3];
     };
     const std::uint32_t width = u32(16), height = u32(20);
     if (width == 0 || height == 0 || width > 0x7FFFFFFFu || height > 0x7FFFFFFFu) return std::nullopt;
@@ -84,8 +86,8 @@ std::optional<ImageHeader> webpHeader(std::span<const unsigned char> bytes) {
     } else if (std::equal(bytes.begin() + 12, bytes.begin() + 16, "VP8 ")) {
         width = u16(26) & 0x3FFF, height = u16(28) & 0x3FFF;
     } else if (std::equal(bytes.begin() + 12, bytes.begin() + 16, "VP8L")) {
-        const std::uint32_t bits = std::uint32_t(bytes[21]) | std::uint32_t(bytes[22]) << 8 | std::uint32_t(bytes[23]) << 16 |
-                                   std::uint32_t(bytes[24]) << 24;
+        const std::uint32_t bits = std::uint32_t(bytes[21]) | std::uint32_t(bytes[22]) << 8 |
+                                   std::uint32_t(bytes[23]) << 16 | std::uint32_t(bytes[24]) << 24;
         width = int(bits & 0x3FFF) + 1, height = int((bits >> 14) & 0x3FFF) + 1;
     } else {
         return std::nullopt;
@@ -158,7 +160,8 @@ std::string jpegStructureProblem(std::span<const unsigned char> bytes) {
             for (int c = 0; c < components; ++c) {
                 const std::size_t p = begin + 6 + 3 * std::size_t(c);
                 const int h = bytes[p + 1] >> 4, v = bytes[p + 1] & 15;
-                if (h < 1 || h > 4 || v < 1 || v > 4 || bytes[p + 2] > 3 || !quant[bytes[p + 2]]) return "a bad frame header";
+                if (h < 1 || h > 4 || v < 1 || v > 4 || bytes[p + 2] > 3 || !quant[bytes[p + 2]])
+                    return "a bad frame header";
                 componentIds[c] = bytes[p];
             }
         } else if (marker == 0xDD) {
@@ -170,19 +173,23 @@ std::string jpegStructureProblem(std::span<const unsigned char> bytes) {
             const std::size_t tail = begin + 1 + 2 * count;
             const int ss = bytes[tail], se = bytes[tail + 1], ah = bytes[tail + 2] >> 4, al = bytes[tail + 2] & 15;
             const bool dc = ss == 0;
-            if (progressive && ((dc ? se != 0 : (ss > se || se > 63 || count != 1)) || (ah != 0 && al != ah - 1) || al > 13))
+            if (progressive &&
+                ((dc ? se != 0 : (ss > se || se > 63 || count != 1)) || (ah != 0 && al != ah - 1) || al > 13))
                 return "a bad progression";
             for (std::size_t c = 0; c < count; ++c) {
-                const int id = bytes[begin + 1 + 2 * c], dcTable = bytes[begin + 2 + 2 * c] >> 4, acTable = bytes[begin + 2 + 2 * c] & 15;
+                const int id = bytes[begin + 1 + 2 * c], dcTable = bytes[begin + 2 + 2 * c] >> 4,
+                          acTable = bytes[begin + 2 + 2 * c] & 15;
                 if (std::find(componentIds, componentIds + components, id) == componentIds + components)
                     return "a scan of a component the frame lacks";
                 const bool needsDc = !progressive || (dc && ah == 0), needsAc = !progressive || !dc;
-                if ((needsDc && (dcTable > 3 || !huffman[0][dcTable])) || (needsAc && (acTable > 3 || !huffman[1][acTable])))
+                if ((needsDc && (dcTable > 3 || !huffman[0][dcTable])) ||
+                    (needsAc && (acTable > 3 || !huffman[1][acTable])))
                     return "a scan naming a Huffman table that is not defined";
             }
             scan = true;
             at = end;
-            while (at + 1 < bytes.size() && !(bytes[at] == 0xFF && bytes[at + 1] != 0x00 && (bytes[at + 1] < 0xD0 || bytes[at + 1] > 0xD7)))
+            while (at + 1 < bytes.size() &&
+                   !(bytes[at] == 0xFF && bytes[at + 1] != 0x00 && (bytes[at + 1] < 0xD0 || bytes[at + 1] > 0xD7)))
                 ++at;
             continue;
         }

@@ -55,8 +55,9 @@ void drawTexts(const OIIO::ImageSpec& spec, std::vector<unsigned char>& rgb, con
                                              OIIO::ImageBufAlgo::TextAlignX::Left,
                                              OIIO::ImageBufAlgo::TextAlignY::Top)) {
             static bool warned = false;
-            if (!warned) warn(std::string("no captions on images: the font ") + kCaptionFont +
-                              " was not found (Debian: apt-get install fonts-dejavu-core)");
+            if (!warned)
+                warn(std::string("no captions on images: the font ") + kCaptionFont +
+                     " was not found (Debian: apt-get install fonts-dejavu-core)");
             warned = true;
             return;
         }
@@ -64,8 +65,8 @@ void drawTexts(const OIIO::ImageSpec& spec, std::vector<unsigned char>& rgb, con
 }
 
 // An OpenImageIO reader on bytes in memory; the proxy must outlive it.
-std::unique_ptr<OIIO::ImageInput> openImage(const unsigned char* bytes, std::size_t size, OIIO::Filesystem::IOMemReader& proxy,
-                                            const std::string& name) {
+std::unique_ptr<OIIO::ImageInput> openImage(const unsigned char* bytes, std::size_t size,
+                                            OIIO::Filesystem::IOMemReader& proxy, const std::string& name) {
     const char* format = formatOf(bytes, size);
     if (!format) throw fileError(name, "not an image format subdfit reads (PNG, JPEG, WebP, BMP, GIF, TIFF, EXR)");
     auto in = OIIO::ImageInput::open(std::string("memory.") + format, nullptr, &proxy);
@@ -80,11 +81,13 @@ bool streams(const char* format, const ImageHeader& header) {
 ImageHeader checkedHeader(const ImageHeader& header, const char* format, const std::string& name) {
     const std::string size = std::to_string(header.width) + " x " + std::to_string(header.height);
     if (header.width <= 0 || header.height <= 0 || header.channels <= 0 || header.pixels() > kMaxImagePixels)
-        throw fileError(name, "image of " + size + " pixels, more than subdfit reads (" + std::to_string(kMaxImagePixels) + ")");
+        throw fileError(
+            name, "image of " + size + " pixels, more than subdfit reads (" + std::to_string(kMaxImagePixels) + ")");
     if (!streams(format, header) && header.pixels() > kMaxWholeImagePixels)
-        throw fileError(name, "image of " + size + " pixels " +
-                                  (header.interlaced ? "stored interlaced" : "in a format decoded whole (all but PNG and JPEG)") +
-                                  ": more than the " + std::to_string(kMaxWholeImagePixels) + " subdfit decodes whole");
+        throw fileError(
+            name, "image of " + size + " pixels " +
+                      (header.interlaced ? "stored interlaced" : "in a format decoded whole (all but PNG and JPEG)") +
+                      ": more than the " + std::to_string(kMaxWholeImagePixels) + " subdfit decodes whole");
     if (header.channels > kMaxImageChannels)
         throw fileError(name, "image of " + std::to_string(header.channels) + " channels, more than the " +
                                   std::to_string(kMaxImageChannels) + " subdfit reads");
@@ -97,14 +100,17 @@ ImageHeader checkedHeader(const OIIO::ImageSpec& spec, const char* format, const
 }
 
 // The header of a format read here, not by OpenImageIO; nothing for the others.
-std::optional<ImageHeader> ownHeader(std::span<const unsigned char> bytes, std::string_view format, const std::string& name) {
+std::optional<ImageHeader> ownHeader(std::span<const unsigned char> bytes, std::string_view format,
+                                     const std::string& name) {
     std::optional<ImageHeader> header;
     if (format == "png") header = pngHeader(bytes);
     else if (format == "jpg") header = jpegHeader(bytes);
     else if (format == "gif") header = gifHeader(bytes);
     else if (format == "webp") header = webpHeader(bytes);
     else return std::nullopt;
-    if (!header) throw fileError(name, std::string("corrupt image: no ") + (format == "jpg" ? "JPEG frame" : "valid") + " header");
+    if (!header)
+        throw fileError(name,
+                        std::string("corrupt image: no ") + (format == "jpg" ? "JPEG frame" : "valid") + " header");
     return header;
 }
 
@@ -124,11 +130,13 @@ void readStrips(OIIO::ImageInput& in, const ImageHeader& header, ReducedImage& r
     const int yBegin = in.spec().y;
     for (int y0 = 0; y0 < header.height; y0 += kStripRows) {
         const int rows = std::min(kStripRows, header.height - y0);
-        if (!in.read_scanlines(0, 0, yBegin + y0, yBegin + y0 + rows, 0, 0, channels, OIIO::TypeDesc::UINT8, strip.data()))
+        if (!in.read_scanlines(0, 0, yBegin + y0, yBegin + y0 + rows, 0, 0, channels, OIIO::TypeDesc::UINT8,
+                               strip.data()))
             throw fileError(name, "corrupt image: " + oneLine(in.geterror()));
         for (int r = 0; r < rows; ++r) {
             for (std::size_t x = 0; x < std::size_t(header.width); ++x) {
-                const std::uint8_t* p = strip.data() + (std::size_t(r) * std::size_t(header.width) + x) * std::size_t(channels);
+                const std::uint8_t* p =
+                    strip.data() + (std::size_t(r) * std::size_t(header.width) + x) * std::size_t(channels);
                 std::uint8_t* q = row.data() + x * 4;
                 if (channels <= 2) {  // grey, grey + alpha
                     q[0] = q[1] = q[2] = p[0];
@@ -148,9 +156,10 @@ std::vector<std::uint8_t> pixelsAt(const DecodedImage& image, int width, int hei
     SUBDFIT_CHECK(width >= 1 && height >= 1 && image.width >= 1 && image.height >= 1);
     OIIO::ImageBuf source(OIIO::ImageSpec(image.width, image.height, 4, OIIO::TypeDesc::UINT8),
                           const_cast<std::uint8_t*>(image.rgba.data()));
-    OIIO::ImageBuf resized = width == image.width && height == image.height
-                                 ? source
-                                 : OIIO::ImageBufAlgo::resize(source, "", 0.0f, OIIO::ROI(0, width, 0, height, 0, 1, 0, 4));
+    OIIO::ImageBuf resized =
+        width == image.width && height == image.height
+            ? source
+            : OIIO::ImageBufAlgo::resize(source, "", 0.0f, OIIO::ROI(0, width, 0, height, 0, 1, 0, 4));
     std::vector<std::uint8_t> pixels(size_t(width) * size_t(height) * size_t(channels));
     if (!resized.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, channels), OIIO::TypeDesc::UINT8, pixels.data()))
         throw Error("cannot resize an image: " + oneLine(resized.geterror()));
@@ -171,14 +180,17 @@ ImageHeader readImageHeader(const void* data, std::size_t size, const std::strin
 
 int PixelBudget::spend(const ImageHeader& image, const std::string& name) {
     int factor = sideFactor(image);
-    auto pixels = [&](int f) { return std::int64_t(dividedUp(image.width, f)) * std::int64_t(dividedUp(image.height, f)); };
-    while (pixels(factor) > left_ && std::max(dividedUp(image.width, factor), dividedUp(image.height, factor)) > kSmallestBudgetedSide)
+    auto pixels = [&](int f) {
+        return std::int64_t(dividedUp(image.width, f)) * std::int64_t(dividedUp(image.height, f));
+    };
+    while (pixels(factor) > left_ &&
+           std::max(dividedUp(image.width, factor), dividedUp(image.height, factor)) > kSmallestBudgetedSide)
         ++factor;
     if (pixels(factor) > left_)
         throw fileError(name, "image of " + std::to_string(image.width) + " x " + std::to_string(image.height) +
                                   " pixels: with the images before it, more than the " + std::to_string(total_) +
-                                  " pixels subdfit decodes for one file, even at " + std::to_string(kSmallestBudgetedSide) +
-                                  " pixels a side");
+                                  " pixels subdfit decodes for one file, even at " +
+                                  std::to_string(kSmallestBudgetedSide) + " pixels a side");
     left_ -= pixels(factor);
     return factor;
 }
@@ -192,15 +204,17 @@ DecodedImage decodeImage(const void* data, std::size_t size, const std::string& 
     const auto* bytes = static_cast<const unsigned char*>(data);
     const char* format = formatOf(bytes, size);
     try {
-        if (format && std::string_view(format) == "png") return decodePng({bytes, size}, plan.header, plan.factor, name);
-        if (format && std::string_view(format) == "jpg") return decodeJpeg({bytes, size}, plan.header, plan.factor, name);
+        if (format && std::string_view(format) == "png")
+            return decodePng({bytes, size}, plan.header, plan.factor, name);
+        if (format && std::string_view(format) == "jpg")
+            return decodeJpeg({bytes, size}, plan.header, plan.factor, name);
         OIIO::Filesystem::IOMemReader memory(bytes, size);
         const auto in = openImage(bytes, size, memory, name);  // refuses an unknown format
         const ImageHeader header = checkedHeader(in->spec(), format, name);
         if (header.width != plan.header.width || header.height != plan.header.height)
             throw fileError(name, "corrupt image: its header says " + std::to_string(plan.header.width) + " x " +
-                                      std::to_string(plan.header.height) + ", its reader " + std::to_string(header.width) +
-                                      " x " + std::to_string(header.height));
+                                      std::to_string(plan.header.height) + ", its reader " +
+                                      std::to_string(header.width) + " x " + std::to_string(header.height));
         ReducedImage reduced(header.width, header.height, plan.factor);
         readStrips(*in, header, reduced, name);
         in->close();
@@ -229,14 +243,15 @@ std::vector<std::uint8_t> encodeImage(const DecodedImage& image, int width, int 
     OIIO::Filesystem::IOVecOutput proxy(bytes);
     const char* name = jpeg ? "image.jpg" : "image.png";
     auto out = OIIO::ImageOutput::create(name);
-    if (!out || !out->supports("ioproxy")) throw Error(std::string("no in-memory ") + (jpeg ? "JPEG" : "PNG") + " writer");
+    if (!out || !out->supports("ioproxy"))
+        throw Error(std::string("no in-memory ") + (jpeg ? "JPEG" : "PNG") + " writer");
     OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
     if (jpeg) {
         spec.attribute("Compression", "jpeg:" + std::to_string(std::clamp(quality, 1, 100)));
         if (fullChroma) spec.attribute("jpeg:subsampling", "4:4:4");
     }
-    if (!out->set_ioproxy(&proxy) || !out->open(name, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) ||
-        !out->close())
+    if (!out->set_ioproxy(&proxy) || !out->open(name, spec) ||
+        !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close())
         throw Error(std::string("cannot encode an image: ") + oneLine(out->geterror()));
     return bytes;
 }

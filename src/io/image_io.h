@@ -75,7 +75,8 @@ struct DecodePlan {
 };
 
 // readImageHeader, and the factor: kMaxDecodedSide's, or `budget`'s (which it spends) when given.
-DecodePlan planDecode(const void* data, std::size_t size, const std::string& nameForErrors, PixelBudget* budget = nullptr);
+DecodePlan planDecode(const void* data, std::size_t size, const std::string& nameForErrors,
+                      PixelBudget* budget = nullptr);
 
 // Decodes an image file's bytes (PNG, JPEG, WebP, BMP, GIF, TIFF, EXR: told apart by their first
 // bytes) as `plan` says, grey or RGB made RGBA (alpha 1), 16-bit and float made 8-bit, row strip
@@ -85,7 +86,8 @@ DecodePlan planDecode(const void* data, std::size_t size, const std::string& nam
 DecodedImage decodeImage(const void* data, std::size_t size, const std::string& nameForErrors, const DecodePlan& plan);
 
 // planDecode, then decodeImage.
-DecodedImage decodeImage(const void* data, std::size_t size, const std::string& nameForErrors, PixelBudget* budget = nullptr);
+DecodedImage decodeImage(const void* data, std::size_t size, const std::string& nameForErrors,
+                         PixelBudget* budget = nullptr);
 
 // `image` resized (filtered: OpenImageIO's default for the ratio) to width × height.
 DecodedImage resizedImage(const DecodedImage& image, int width, int height);

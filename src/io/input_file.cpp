@@ -79,8 +79,10 @@ void readInputFile(const std::filesystem::path& path, const std::function<void(s
 std::string readInputFile(const std::filesystem::path& path, std::uint64_t maxBytes) {
     std::string bytes;
     std::error_code sizeError;
-    if (const auto size = std::filesystem::file_size(path, sizeError); !sizeError && size <= maxBytes) bytes.reserve(size);
-    readInputFile(path, [&](std::string_view chunk) { bytes.append(chunk); }, maxBytes);
+    if (const auto size = std::filesystem::file_size(path, sizeError); !sizeError && size <= maxBytes)
+        bytes.reserve(size);
+    readInputFile(
+        path, [&](std::string_view chunk) { bytes.append(chunk); }, maxBytes);
     return bytes;
 }
 

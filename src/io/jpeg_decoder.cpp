@@ -86,7 +86,8 @@ bool readRows(jpeg_decompress_struct& jpeg, JpegErrors& errors, std::span<const 
             for (unsigned x = 0; x < jpeg.output_width; ++x) {
                 std::uint8_t* p = row + std::size_t(x) * 4;
                 const unsigned k = p[3];
-                p[0] = std::uint8_t(p[0] * k / 255), p[1] = std::uint8_t(p[1] * k / 255), p[2] = std::uint8_t(p[2] * k / 255);
+                p[0] = std::uint8_t(p[0] * k / 255), p[1] = std::uint8_t(p[1] * k / 255),
+                p[2] = std::uint8_t(p[2] * k / 255);
                 p[3] = 255;
             }
         reduced.addRow(row);
@@ -96,7 +97,8 @@ bool readRows(jpeg_decompress_struct& jpeg, JpegErrors& errors, std::span<const 
 
 }  // namespace
 
-DecodedImage decodeJpeg(std::span<const unsigned char> bytes, const ImageHeader& header, int factor, const std::string& name) {
+DecodedImage decodeJpeg(std::span<const unsigned char> bytes, const ImageHeader& header, int factor,
+                        const std::string& name) {
     const int scale = dctScale(factor);
     const int scaledWidth = dividedUp(header.width, scale), scaledHeight = dividedUp(header.height, scale);
     ReducedImage reduced(scaledWidth, scaledHeight, factor / scale);
@@ -115,7 +117,8 @@ DecodedImage decodeJpeg(std::span<const unsigned char> bytes, const ImageHeader&
     jpeg_destroy_decompress(&jpeg);
     if (!decoded) throw fileError(name, "corrupt image: " + printable(errors.error, 160));
     if (errors.warnings > 0)
-        warn(name + ": damaged JPEG data (" + printable(errors.firstWarning, 120) + "): decoded as well as it could be");
+        warn(name + ": damaged JPEG data (" + printable(errors.firstWarning, 120) +
+             "): decoded as well as it could be");
     return {reduced.width(), reduced.height(), reduced.take()};
 }
 

@@ -34,8 +34,9 @@ void checkOutputFolder(const fs::path& dir, const OutputFolderRule& rule) {
         bool ours = false;
         for (const std::string& marker : rule.ownMarkers) ours = ours || fs::exists(dir / marker, ec);
         if (!empty && !ours && !rule.force)
-            throw fileError(name, "is a folder with other files in it and no subdfit results; choose an empty or new "
-                                  "folder, or add --force to write into it");
+            throw fileError(name,
+                            "is a folder with other files in it and no subdfit results; choose an empty or new "
+                            "folder, or add --force to write into it");
     }
 
     // Writable: the folder itself, or the nearest existing folder it would be created in.

@@ -56,7 +56,8 @@ bool readRows(png_structp png, png_infop info, PngSource& source, std::uint8_t* 
     if (png_get_rowbytes(png, info) != png_size_t(width) * 4) png_error(png, "unexpected row layout");
     if (passes > 1) {
         for (int pass = 0; pass < passes; ++pass)
-            for (int y = 0; y < height; ++y) png_read_row(png, image + std::size_t(y) * std::size_t(width) * 4, nullptr);
+            for (int y = 0; y < height; ++y)
+                png_read_row(png, image + std::size_t(y) * std::size_t(width) * 4, nullptr);
         for (int y = 0; y < height; ++y) reduced.addRow(image + std::size_t(y) * std::size_t(width) * 4);
     } else {
         for (int y = 0; y < height; ++y) {
@@ -69,7 +70,8 @@ bool readRows(png_structp png, png_infop info, PngSource& source, std::uint8_t* 
 
 }  // namespace
 
-DecodedImage decodePng(std::span<const unsigned char> bytes, const ImageHeader& header, int factor, const std::string& name) {
+DecodedImage decodePng(std::span<const unsigned char> bytes, const ImageHeader& header, int factor,
+                       const std::string& name) {
     PngSource source{bytes.data(), bytes.size(), 0, {}};
     png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &source, onError, onWarning);
     if (!png) throw fileError(name, "out of memory while decoding it");

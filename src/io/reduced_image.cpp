@@ -8,8 +8,11 @@
 namespace subdfit::io {
 
 ReducedImage::ReducedImage(int width, int height, int factor)
-    : sourceWidth_(width), sourceHeight_(height), factor_(factor),
-      width_((width + factor - 1) / factor), height_((height + factor - 1) / factor) {
+    : sourceWidth_(width),
+      sourceHeight_(height),
+      factor_(factor),
+      width_((width + factor - 1) / factor),
+      height_((height + factor - 1) / factor) {
     SUBDFIT_CHECK(width >= 1 && height >= 1 && factor >= 1);
     rgba_.resize(std::size_t(width_) * std::size_t(height_) * 4);
     if (factor_ > 1) sums_.assign(std::size_t(width_) * 4, 0);

@@ -31,14 +31,17 @@ std::unique_ptr<optim::ParameterGroup> makeGroup(bool wanted, optim::GroupKind k
 }
 
 const gl::Buffer& version(const optim::ParameterGroup& group, ParameterVersion v) {
-    return v == ParameterVersion::Plus ? group.thetaPlus : v == ParameterVersion::Minus ? group.thetaMinus : group.theta;
+    return v == ParameterVersion::Plus    ? group.thetaPlus
+           : v == ParameterVersion::Minus ? group.thetaMinus
+                                          : group.theta;
 }
 
 bool isAppearance(const optim::ParameterGroup& group) {
     return group.kind() == optim::GroupKind::BaseColor || group.kind() == optim::GroupKind::MetallicRoughness;
 }
 
-surface::TexelLayout appearanceLayoutFor(const mesh::PolygonMesh& cage, MapEffects effects, const MapSettings& settings) {
+surface::TexelLayout appearanceLayoutFor(const mesh::PolygonMesh& cage, MapEffects effects,
+                                         const MapSettings& settings) {
     if (!effects.appearance()) return {};
     if (settings.appearanceAtlas > 0) return surface::atlasLattice(settings.appearanceAtlas);
     return surface::buildTexelLayout(cage, settings.appearanceResolution);
@@ -52,7 +55,8 @@ MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, 
       appearanceLayout_(appearanceLayoutFor(cage, effects, settings)),
       settings_(settings),
       faceNodes_(gl::Buffer::fromVector(concatenated(layout_.faceNodes, appearanceLayout_.faceNodes, layout_.halo))),
-      appearanceUvs_(effects.appearance() && settings.appearanceAtlas > 0 ? 4 * size_t(subdiv::ptexFaceCount(cage)) : 0),
+      appearanceUvs_(effects.appearance() && settings.appearanceAtlas > 0 ? 4 * size_t(subdiv::ptexFaceCount(cage))
+                                                                          : 0),
       appearanceUvBuffer_(GLsizeiptr(std::max<size_t>(1, appearanceUvs_.size())) * GLsizeiptr(sizeof(glm::vec2)),
                           appearanceUvs_.empty() ? nullptr : appearanceUvs_.data()),
       faceNodesView_(faceNodes_, GL_R32I),
@@ -69,8 +73,9 @@ MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, 
     // Mid grey and half rough until a bake (or the fit) says otherwise.
     baseColor_ = makeGroup(effects.baseColor, GroupKind::BaseColor, "base_color", appearanceLayout_, 3, 0.5f,
                            settings.baseColor, SUBDFIT_SEED_BASE_COLOR);
-    metallicRoughness_ = makeGroup(effects.metallicRoughness, GroupKind::MetallicRoughness, "metallic_roughness",
-                                   appearanceLayout_, 2, 0.0f, settings.metallicRoughness, SUBDFIT_SEED_METALLIC_ROUGHNESS);
+    metallicRoughness_ =
+        makeGroup(effects.metallicRoughness, GroupKind::MetallicRoughness, "metallic_roughness", appearanceLayout_, 2,
+                  0.0f, settings.metallicRoughness, SUBDFIT_SEED_METALLIC_ROUGHNESS);
     if (metallicRoughness_) {
         std::vector<float> values(size_t(metallicRoughness_->count()), 0.0f);
         for (size_t k = 0; k < values.size(); k += 2) values[k] = 0.5f;  // (roughness, metallic)
@@ -151,7 +156,8 @@ render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::Para
         if (displacement_) version(*displacement_, of(*displacement_)).bindStorage(SUBDFIT_SSBO_DISPLACEMENT);
         if (normalMap_) viewOf(*normalMap_, of(*normalMap_)).bind(SUBDFIT_UNIT_MAP_NORMAL);
         if (baseColor_) viewOf(*baseColor_, of(*baseColor_)).bind(SUBDFIT_UNIT_MAP_BASE_COLOR);
-        if (metallicRoughness_) viewOf(*metallicRoughness_, of(*metallicRoughness_)).bind(SUBDFIT_UNIT_MAP_METALLIC_ROUGHNESS);
+        if (metallicRoughness_)
+            viewOf(*metallicRoughness_, of(*metallicRoughness_)).bind(SUBDFIT_UNIT_MAP_METALLIC_ROUGHNESS);
         if (normalTexture_.view) normalTexture_.view->bind(SUBDFIT_UNIT_CARRIED_ATLAS_NORMAL);
         if (occlusion_.view) occlusion_.view->bind(SUBDFIT_UNIT_CARRIED_OCCLUSION);
         if (emissive_.view) emissive_.view->bind(SUBDFIT_UNIT_CARRIED_EMISSIVE);

@@ -85,7 +85,7 @@ private:
     MapEffects effects_;
     surface::TexelLayout layout_, appearanceLayout_;
     MapSettings settings_;
-    gl::Buffer faceNodes_;  // layout_'s table, appearanceLayout_'s, then layout_'s halo
+    gl::Buffer faceNodes_;                  // layout_'s table, appearanceLayout_'s, then layout_'s halo
     std::vector<glm::vec2> appearanceUvs_;  // with an atlas: 4 per ptex face
     gl::Buffer appearanceUvBuffer_;
     gl::BufferTexture faceNodesView_, appearanceUvView_;  // as the passes read them (maps.glsl)

@@ -13,17 +13,15 @@ namespace subdfit::mesh {
 
 namespace {
 
-const draco::PointAttribute* positionAttribute(const draco::Mesh& mesh, int uniqueId,
-                                               const std::string& path) {
-    const draco::PointAttribute* attribute =
-        uniqueId >= 0 ? mesh.GetAttributeByUniqueId(uint32_t(uniqueId))
-                      : mesh.GetNamedAttribute(draco::GeometryAttribute::POSITION);
+const draco::PointAttribute* positionAttribute(const draco::Mesh& mesh, int uniqueId, const std::string& path) {
+    const draco::PointAttribute* attribute = uniqueId >= 0 ? mesh.GetAttributeByUniqueId(uint32_t(uniqueId))
+                                                           : mesh.GetNamedAttribute(draco::GeometryAttribute::POSITION);
     if (!attribute)
         throw fileError(path, uniqueId >= 0 ? "Draco mesh has no attribute with id " + std::to_string(uniqueId)
                                             : std::string("Draco mesh has no POSITION attribute"));
     if (attribute->num_components() != 3)
-        throw fileError(path, "Draco position attribute has " +
-                                  std::to_string(int(attribute->num_components())) + " components, needs 3");
+        throw fileError(path, "Draco position attribute has " + std::to_string(int(attribute->num_components())) +
+                                  " components, needs 3");
     return attribute;
 }
 
@@ -32,10 +30,13 @@ template <int N>
 std::vector<glm::vec<N, float>> pointValues(const draco::Mesh& mesh, int uniqueId, glm::vec<N, float> fill,
                                             const std::string& path, const char* what) {
     const draco::PointAttribute* attribute = mesh.GetAttributeByUniqueId(uint32_t(uniqueId));
-    if (!attribute) throw fileError(path, std::string("Draco mesh has no ") + what + " attribute with id " + std::to_string(uniqueId));
+    if (!attribute)
+        throw fileError(path,
+                        std::string("Draco mesh has no ") + what + " attribute with id " + std::to_string(uniqueId));
     const int components = attribute->num_components();
     if (components < 2 || components > N)
-        throw fileError(path, std::string("Draco ") + what + " attribute has " + std::to_string(components) + " components");
+        throw fileError(path,
+                        std::string("Draco ") + what + " attribute has " + std::to_string(components) + " components");
     std::vector<glm::vec<N, float>> values(mesh.num_points(), fill);
     for (draco::PointIndex p(0); p < mesh.num_points(); ++p) {
         float v[N];
@@ -43,7 +44,9 @@ std::vector<glm::vec<N, float>> pointValues(const draco::Mesh& mesh, int uniqueI
         if (!attribute->ConvertValue<float>(attribute->mapped_index(p), int8_t(components), v))
             throw fileError(path, std::string("Draco ") + what + " cannot be converted to float");
         for (int c = 0; c < N; ++c) {
-            if (!std::isfinite(v[c])) throw fileError(path, std::string("non-finite Draco ") + what + " at point " + std::to_string(p.value()));
+            if (!std::isfinite(v[c]))
+                throw fileError(path,
+                                std::string("non-finite Draco ") + what + " at point " + std::to_string(p.value()));
             values[p.value()][c] = v[c];
         }
     }
@@ -92,7 +95,8 @@ PolygonMesh decodeDracoMesh(const char* data, size_t size, const std::string& pa
                 throw fileError(path, "Draco face " + std::to_string(f.value()) + " names a missing point");
             mesh.faceIndices.push_back(int(p.value()));
         }
-    if (ids.texCoord >= 0) mesh.uvs = pointValues<2>(dracoMesh, ids.texCoord, glm::vec2(0.0f), path, "texture coordinate");
+    if (ids.texCoord >= 0)
+        mesh.uvs = pointValues<2>(dracoMesh, ids.texCoord, glm::vec2(0.0f), path, "texture coordinate");
     if (ids.color >= 0) mesh.colors = pointValues<4>(dracoMesh, ids.color, glm::vec4(1.0f), path, "colour");
     if (ids.normal >= 0) mesh.normals = pointValues<3>(dracoMesh, ids.normal, glm::vec3(0.0f), path, "normal");
     return mesh;

@@ -57,8 +57,8 @@ T load(const unsigned char* p) {
 }
 
 // `bytes` bytes at `offset` in buffer view `view`, checked.
-const unsigned char* viewRange(const tinygltf::Model& model, int view, int offset, size_t bytes, const std::string& path,
-                               const std::string& what) {
+const unsigned char* viewRange(const tinygltf::Model& model, int view, int offset, size_t bytes,
+                               const std::string& path, const std::string& what) {
     const std::string_view range = bufferViewBytes(model, view, path);
     if (offset < 0 || size_t(offset) > range.size() || bytes > range.size() - size_t(offset))
         throw fileError(path, what + " (" + std::to_string(bytes) + " bytes at offset " + std::to_string(offset) +
@@ -82,10 +82,10 @@ void substituteSparse(const tinygltf::Model& model, const tinygltf::Accessor& ac
                              : indexType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
                                                                                    : 0;
     if (indexSize == 0) throw fileError(path, name + ": sparse indices must be unsigned byte, short or int");
-    const unsigned char* indices =
-        viewRange(model, sparse.indices.bufferView, sparse.indices.byteOffset, n * indexSize, path, name + "'s sparse indices");
-    const unsigned char* values =
-        viewRange(model, sparse.values.bufferView, sparse.values.byteOffset, n * elementSize, path, name + "'s sparse values");
+    const unsigned char* indices = viewRange(model, sparse.indices.bufferView, sparse.indices.byteOffset, n * indexSize,
+                                             path, name + "'s sparse indices");
+    const unsigned char* values = viewRange(model, sparse.values.bufferView, sparse.values.byteOffset, n * elementSize,
+                                            path, name + "'s sparse values");
     span.sparse.resize(span.count);
     for (size_t i = 0; i < span.count; ++i) span.sparse[i] = span.data ? span.data + i * span.stride : kZero;
     for (size_t k = 0, next = 0; k < n; ++k) {
@@ -107,7 +107,8 @@ ElementSpan resolve(const tinygltf::Model& model, int index, int expectedType, c
     const tinygltf::Accessor& accessor = model.accessors[size_t(index)];
     const bool colorType = expectedType == TINYGLTF_TYPE_VEC4 && accessor.type == TINYGLTF_TYPE_VEC3;  // COLOR_0
     if (accessor.type != expectedType && !colorType)
-        throw fileError(path, name + " has type " + std::to_string(accessor.type) + ", expected " + typeName(expectedType));
+        throw fileError(path,
+                        name + " has type " + std::to_string(accessor.type) + ", expected " + typeName(expectedType));
     const size_t components = size_t(tinygltf::GetNumComponentsInType(uint32_t(accessor.type)));
     const size_t elementSize = components * componentSize(accessor.componentType);
     if (elementSize == 0)
@@ -148,9 +149,8 @@ ElementSpan resolve(const tinygltf::Model& model, int index, int expectedType, c
     if (!fits)
         throw fileError(path, name + " (" + std::to_string(span.count) + " elements at offset " +
                                   std::to_string(offset) + ", stride " + std::to_string(span.stride) +
-                                  ") runs past the end of buffer view " +
-                                  std::to_string(accessor.bufferView) + " (" + std::to_string(view.size()) +
-                                  " bytes)");
+                                  ") runs past the end of buffer view " + std::to_string(accessor.bufferView) + " (" +
+                                  std::to_string(view.size()) + " bytes)");
     span.data = reinterpret_cast<const unsigned char*>(view.data()) + offset;
     if (accessor.sparse.isSparse) substituteSparse(model, accessor, elementSize, span, path, name);
     return span;
@@ -239,7 +239,8 @@ std::vector<glm::vec<N, float>> readNormalizedAttribute(const tinygltf::Model& m
                                                         const std::string& path, const char* what, bool quantized) {
     const ElementSpan span = resolve(model, accessor, type, path);
     const int t = span.componentType;
-    const bool unsignedInteger = t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    const bool unsignedInteger =
+        t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
     const bool signedInteger = t == TINYGLTF_COMPONENT_TYPE_BYTE || t == TINYGLTF_COMPONENT_TYPE_SHORT;
     const bool allowed = t == TINYGLTF_COMPONENT_TYPE_FLOAT || (span.normalized && unsignedInteger) ||
                          (quantized && (unsignedInteger || signedInteger));

@@ -11,7 +11,8 @@ FileAccess& self(void* userData) { return *static_cast<FileAccess*>(userData); }
 
 }  // namespace
 
-FileAccess::FileAccess(const std::filesystem::path& gltfPath) : folder_(gltfPath, "glTF"), baseDir_(folder_.path().string()) {}
+FileAccess::FileAccess(const std::filesystem::path& gltfPath)
+    : folder_(gltfPath, "glTF"), baseDir_(folder_.path().string()) {}
 
 std::string FileAccess::resolve(const std::string& joinedPath) {
     // tinygltf tries baseDir/uri, then ./uri: only the first is ours to allow.
@@ -39,7 +40,8 @@ tinygltf::FsCallbacks FileAccess::callbacks() {
         }
         try {
             out->clear();
-            io::readInputFile(file, [&](std::string_view chunk) { out->insert(out->end(), chunk.begin(), chunk.end()); });
+            io::readInputFile(file,
+                              [&](std::string_view chunk) { out->insert(out->end(), chunk.begin(), chunk.end()); });
             return true;
         } catch (const Error& e) {
             if (err) *err += e.what();

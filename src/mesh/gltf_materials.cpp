@@ -86,7 +86,9 @@ private:
 
     std::string imageName(int index) const {
         const std::string& uri = model_.images[size_t(index)].uri;
-        return path_ + ": " + (uri.empty() || uri.rfind("data:", 0) == 0 ? "image " + std::to_string(index) : "image '" + printable(uri) + "'");
+        return path_ + ": " +
+               (uri.empty() || uri.rfind("data:", 0) == 0 ? "image " + std::to_string(index)
+                                                          : "image '" + printable(uri) + "'");
     }
 
     // The images the materials use, each decoded once: images with the same bytes (eight naming
@@ -94,7 +96,8 @@ private:
     // pixels counted against the file's budget before the first image is decoded.
     std::vector<Image> decodedImages(std::vector<Material>& materials) const {
         std::vector<Image> images(model_.images.size());
-        for (size_t i = 0; i < images.size(); ++i) images[i].name = model_.images[i].uri.empty() ? "image " + std::to_string(i) : model_.images[i].uri;
+        for (size_t i = 0; i < images.size(); ++i)
+            images[i].name = model_.images[i].uri.empty() ? "image " + std::to_string(i) : model_.images[i].uri;
         std::map<int, int> same;  // used image -> the first with its bytes
         std::map<std::pair<std::uint64_t, size_t>, std::vector<int>> byContent;
         for (Material& m : materials)
@@ -138,7 +141,8 @@ private:
         TextureRef ref;
         if (index < 0) return ref;
         if (size_t(index) >= model_.textures.size())
-            throw fileError(path_, std::string(slot) + " names texture " + std::to_string(index) + ", which does not exist");
+            throw fileError(path_,
+                            std::string(slot) + " names texture " + std::to_string(index) + ", which does not exist");
         const tinygltf::Texture& texture = model_.textures[size_t(index)];
         int source = texture.source;
         if (source < 0 && !texture.extensions.empty()) {
@@ -184,30 +188,30 @@ private:
         out.metallicRoughnessTexture =
             textureOf(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
                       pbr.metallicRoughnessTexture.extensions, "metallicRoughnessTexture");
-        out.normalTexture = textureOf(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions,
-                                      "normalTexture");
+        out.normalTexture =
+            textureOf(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions, "normalTexture");
         out.normalScale = float(m.normalTexture.scale);
         out.occlusionTexture = textureOf(m.occlusionTexture.index, m.occlusionTexture.texCoord,
                                          m.occlusionTexture.extensions, "occlusionTexture");
         out.occlusionStrength = float(m.occlusionTexture.strength);
-        if (m.emissiveFactor.size() == 3) out.emissiveFactor = glm::vec3(m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]);
-        out.emissiveTexture = textureOf(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions,
-                                        "emissiveTexture");
-        out.alphaMode = m.alphaMode == "MASK" ? AlphaMode::Mask : m.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
+        if (m.emissiveFactor.size() == 3)
+            out.emissiveFactor = glm::vec3(m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]);
+        out.emissiveTexture = textureOf(m.emissiveTexture.index, m.emissiveTexture.texCoord,
+                                        m.emissiveTexture.extensions, "emissiveTexture");
+        out.alphaMode = m.alphaMode == "MASK"    ? AlphaMode::Mask
+                        : m.alphaMode == "BLEND" ? AlphaMode::Blend
+                                                 : AlphaMode::Opaque;
         out.alphaCutoff = float(m.alphaCutoff);
         out.doubleSided = m.doubleSided;
         for (const auto& [name, value] : m.extensions) {
-            if (name == kEmissiveStrength)
-                out.emissiveFactor *= float(number(value.Get("emissiveStrength"), 1.0));
-            else if (name == kUnlit)
-                out.unlit = true;
-            else
-                ignored_.insert(name);
+            if (name == kEmissiveStrength) out.emissiveFactor *= float(number(value.Get("emissiveStrength"), 1.0));
+            else if (name == kUnlit) out.unlit = true;
+            else ignored_.insert(name);
         }
         if (out.alphaMode == AlphaMode::Blend) ignored_.insert("alphaMode BLEND (rendered opaque)");
-        if (!std::isfinite(out.baseColorFactor.x + out.baseColorFactor.y + out.baseColorFactor.z + out.baseColorFactor.w +
-                           out.metallicFactor + out.roughnessFactor + out.emissiveFactor.x + out.emissiveFactor.y +
-                           out.emissiveFactor.z + out.normalScale + out.occlusionStrength))
+        if (!std::isfinite(out.baseColorFactor.x + out.baseColorFactor.y + out.baseColorFactor.z +
+                           out.baseColorFactor.w + out.metallicFactor + out.roughnessFactor + out.emissiveFactor.x +
+                           out.emissiveFactor.y + out.emissiveFactor.z + out.normalScale + out.occlusionStrength))
             throw fileError(path_, "material '" + m.name + "' has a non-finite factor");
         return out;
     }
@@ -219,8 +223,8 @@ private:
 
 }  // namespace
 
-bool keepImageBytes(tinygltf::Image* image, int, std::string*, std::string*, int, int, const unsigned char* bytes, int size,
-                    void*) {
+bool keepImageBytes(tinygltf::Image* image, int, std::string*, std::string*, int, int, const unsigned char* bytes,
+                    int size, void*) {
     image->image.assign(bytes, bytes + std::max(size, 0));
     image->width = image->height = image->component = image->bits = 0;
     return true;

@@ -53,14 +53,15 @@ std::uint64_t unsignedField(const json& object, const char* key, const std::stri
 // One compressed bufferView decoded: `count` elements of `byteStride` bytes, at most `budget`
 // bytes.
 std::string decodeView(const json& ext, std::string_view bin, std::uint64_t budget, const std::string& where) {
-    const std::uint64_t offset = unsignedField(ext, "byteOffset", where), length = unsignedField(ext, "byteLength", where),
+    const std::uint64_t offset = unsignedField(ext, "byteOffset", where),
+                        length = unsignedField(ext, "byteLength", where),
                         stride = unsignedField(ext, "byteStride", where), count = unsignedField(ext, "count", where);
     if (unsignedField(ext, "buffer", where) != 0)
         throw Error(where + " is compressed in a buffer other than the GLB's binary chunk, which is not read");
     if (offset > bin.size() || length > bin.size() - offset) throw Error(where + " lies outside the binary chunk");
     if (stride == 0 || stride > 256 || productExceeds(count, stride, std::min(budget, kMaxExpansion * length + 1024)))
-        throw Error(where + " has an impossible size (" + std::to_string(count) + " elements of " + std::to_string(stride) +
-                    " bytes from " + std::to_string(length) + " compressed bytes)");
+        throw Error(where + " has an impossible size (" + std::to_string(count) + " elements of " +
+                    std::to_string(stride) + " bytes from " + std::to_string(length) + " compressed bytes)");
     const std::string mode = ext.value("mode", ""), filter = ext.value("filter", "NONE");
     std::string out(size_t(count * stride), '\0');
     const auto* source = reinterpret_cast<const unsigned char*>(bin.data() + offset);
@@ -71,13 +72,15 @@ std::string decodeView(const json& ext, std::string_view bin, std::uint64_t budg
         status = meshopt_decodeIndexBuffer(out.data(), size_t(count), size_t(stride), source, size_t(length));
     else if (mode == "INDICES" && (stride == 2 || stride == 4))
         status = meshopt_decodeIndexSequence(out.data(), size_t(count), size_t(stride), source, size_t(length));
-    else
-        throw Error(where + " has mode '" + mode + "' with byteStride " + std::to_string(stride));
+    else throw Error(where + " has mode '" + mode + "' with byteStride " + std::to_string(stride));
     if (status != 0) throw Error(where + " does not decode (damaged, or a newer meshopt encoding)");
-    if (filter == "OCTAHEDRAL" && (stride == 4 || stride == 8)) meshopt_decodeFilterOct(out.data(), size_t(count), size_t(stride));
+    if (filter == "OCTAHEDRAL" && (stride == 4 || stride == 8))
+        meshopt_decodeFilterOct(out.data(), size_t(count), size_t(stride));
     else if (filter == "QUATERNION" && stride == 8) meshopt_decodeFilterQuat(out.data(), size_t(count), size_t(stride));
-    else if (filter == "EXPONENTIAL" && stride % 4 == 0) meshopt_decodeFilterExp(out.data(), size_t(count), size_t(stride));
-    else if (filter != "NONE") throw Error(where + " has filter '" + filter + "' with byteStride " + std::to_string(stride));
+    else if (filter == "EXPONENTIAL" && stride % 4 == 0)
+        meshopt_decodeFilterExp(out.data(), size_t(count), size_t(stride));
+    else if (filter != "NONE")
+        throw Error(where + " has filter '" + filter + "' with byteStride " + std::to_string(stride));
     return out;
 }
 
@@ -113,8 +116,9 @@ void expandMeshopt(std::string& bytes, const std::string& path) {
         for (size_t v = 0; v < doc["bufferViews"].size(); ++v) {
             json& view = doc["bufferViews"][v];
             if (!view.is_object() || !view.contains("extensions") || !view["extensions"].contains(kMeshopt)) continue;
-            const std::string decoded = decodeView(view["extensions"][kMeshopt], bin, kMaxDecodedBytes - (newBin.size() - bin.size()),
-                                                   "bufferViews[" + std::to_string(v) + "]");
+            const std::string decoded =
+                decodeView(view["extensions"][kMeshopt], bin, kMaxDecodedBytes - (newBin.size() - bin.size()),
+                           "bufferViews[" + std::to_string(v) + "]");
             newBin.append((4 - newBin.size() % 4) % 4, '\0');
             view["buffer"] = std::uint64_t{0};
             view["byteOffset"] = newBin.size();
@@ -143,7 +147,8 @@ void expandMeshopt(std::string& bytes, const std::string& path) {
         for (size_t v = 0; v < doc["bufferViews"].size(); ++v) {
             json& view = doc["bufferViews"][v];
             const std::uint64_t buffer = unsignedField(view, "buffer", "bufferViews[" + std::to_string(v) + "]");
-            if (!kept.count(buffer)) throw Error("bufferViews[" + std::to_string(v) + "] reads a fallback buffer uncompressed");
+            if (!kept.count(buffer))
+                throw Error("bufferViews[" + std::to_string(v) + "] reads a fallback buffer uncompressed");
             view["buffer"] = kept[buffer];
         }
         for (const char* list : {"extensionsUsed", "extensionsRequired"}) {

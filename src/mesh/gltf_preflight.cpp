@@ -40,9 +40,9 @@ void checkUnsignedFields(const json& doc, const std::string& path) {
             for (const char* key : keys) {
                 if (!key || !item.contains(key)) continue;
                 const json& value = item[key];
-                const bool ok = value.is_number_unsigned() ||
-                                (value.is_number_float() && value.get<double>() >= 0.0 &&
-                                 value.get<double>() == double(std::uint64_t(value.get<double>())));
+                const bool ok =
+                    value.is_number_unsigned() || (value.is_number_float() && value.get<double>() >= 0.0 &&
+                                                   value.get<double>() == double(std::uint64_t(value.get<double>())));
                 if (!ok)
                     throw fileError(path, std::string(array) + "[" + std::to_string(i) + "]." + key + " is " +
                                               value.dump() + ", not an integer >= 0");

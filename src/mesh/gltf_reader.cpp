@@ -33,8 +33,7 @@ namespace {
 constexpr const char* kDraco = "KHR_draco_mesh_compression";
 
 // A cage (or a reference read for its geometry) does not even decode its images.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-               void*) {
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
     return true;
 }
 
@@ -52,10 +51,8 @@ tinygltf::Model parseModel(const std::filesystem::path& path, bool decodeImages)
 
     gltf::FileAccess files(path);
     tinygltf::TinyGLTF loader;
-    if (decodeImages)
-        loader.SetImageLoader(&gltf::keepImageBytes, nullptr);
-    else
-        loader.SetImageLoader(&skipImage, nullptr);
+    if (decodeImages) loader.SetImageLoader(&gltf::keepImageBytes, nullptr);
+    else loader.SetImageLoader(&skipImage, nullptr);
     loader.SetFsCallbacks(files.callbacks());
     tinygltf::Model model;
     std::string err, warn;
@@ -109,7 +106,7 @@ struct MeshTriangles {
     std::vector<glm::vec2> uvs;
     std::vector<glm::vec4> colors;
     std::vector<glm::vec3> normals;  // the file's, or computed per primitive where it has none
-    std::vector<int> materials;  // the glTF material, -1 for none
+    std::vector<int> materials;      // the glTF material, -1 for none
 };
 
 // What unfolding part of a scene costs, counting every instance; saturating, so that a DAG of
@@ -130,8 +127,12 @@ struct UnfoldCost {
 class SceneMerger {
 public:
     SceneMerger(const tinygltf::Model& model, std::string path, bool appearance)
-        : model_(model), path_(std::move(path)), appearance_(appearance), meshes_(model.meshes.size()),
-          costs_(model.nodes.size()), visit_(model.nodes.size(), Visit::New) {
+        : model_(model),
+          path_(std::move(path)),
+          appearance_(appearance),
+          meshes_(model.meshes.size()),
+          costs_(model.nodes.size()),
+          visit_(model.nodes.size(), Visit::New) {
         mesh_.sourcePath = path_;
     }
 
@@ -168,7 +169,8 @@ private:
         constexpr int kMaxDepth = 1024;  // a deeper chain would exhaust the stack
         checkNode(index);
         const size_t n = size_t(index);
-        if (visit_[n] == Visit::OnPath) throw fileError(path_, "node " + std::to_string(index) + " is its own ancestor");
+        if (visit_[n] == Visit::OnPath)
+            throw fileError(path_, "node " + std::to_string(index) + " is its own ancestor");
         if (visit_[n] == Visit::Done) return costs_[n];
         if (depth > kMaxDepth) throw fileError(path_, "node hierarchy deeper than " + std::to_string(kMaxDepth));
         visit_[n] = Visit::OnPath;
@@ -187,9 +189,11 @@ private:
 
     void checkLimits(const UnfoldCost& total) const {
         auto refuse = [&](const std::string& what, std::int64_t count, std::int64_t limit) {
-            const std::string amount = count >= UnfoldCost::kSaturated ? "an astronomical number of" : std::to_string(count);
-            throw fileError(path_, "the scene unfolds into " + amount + " " + what + " (counting every instance), more than " +
-                                       std::to_string(limit) + ", the most subdfit takes");
+            const std::string amount =
+                count >= UnfoldCost::kSaturated ? "an astronomical number of" : std::to_string(count);
+            throw fileError(path_, "the scene unfolds into " + amount + " " + what +
+                                       " (counting every instance), more than " + std::to_string(limit) +
+                                       ", the most subdfit takes");
         };
         if (total.nodes > kMaxNodeInstances) refuse("nodes", total.nodes, kMaxNodeInstances);
         if (total.triangles > kMaxTriangles) refuse("triangles", total.triangles, kMaxTriangles);
@@ -257,12 +261,13 @@ private:
                     normals = gltf::readNormals(model_, a->second, path_);
             }
         }
-        if ((!uvs.empty() && uvs.size() != positions.size()) || (!colors.empty() && colors.size() != positions.size()) ||
+        if ((!uvs.empty() && uvs.size() != positions.size()) ||
+            (!colors.empty() && colors.size() != positions.size()) ||
             (!normals.empty() && normals.size() != positions.size()))
             throw fileError(path_, "a primitive's TEXCOORD_0, COLOR_0 or NORMAL has another count than its POSITION");
         if (indices.size() % 3 != 0)
-            throw fileError(path_, "a TRIANGLES primitive has " + std::to_string(indices.size()) +
-                                       " indices, not a multiple of 3");
+            throw fileError(
+                path_, "a TRIANGLES primitive has " + std::to_string(indices.size()) + " indices, not a multiple of 3");
         for (uint32_t i : indices)
             if (i >= positions.size())
                 throw fileError(path_, "index " + std::to_string(i) + " is out of range (the primitive has " +
@@ -290,7 +295,8 @@ private:
     // A primitive without NORMAL is shaded flat, as glTF asks of viewers (3.7.2.1): each triangle
     // gets three vertices of its own, with its face's normal.
     static void splitFlat(std::vector<glm::vec3>& positions, std::vector<uint32_t>& indices,
-                          std::vector<glm::vec2>& uvs, std::vector<glm::vec4>& colors, std::vector<glm::vec3>& normals) {
+                          std::vector<glm::vec2>& uvs, std::vector<glm::vec4>& colors,
+                          std::vector<glm::vec3>& normals) {
         PolygonMesh primitive;
         primitive.positions = std::move(positions);
         primitive.uvs = std::move(uvs);
@@ -351,8 +357,7 @@ private:
         for (size_t i = 0; i + 2 < v.size(); ++i) {
             if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
                 list.insert(list.end(), {v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
-            else
-                list.insert(list.end(), {v[0], v[i + 1], v[i + 2]});
+            else list.insert(list.end(), {v[0], v[i + 1], v[i + 2]});
         }
         return list;
     }
@@ -384,7 +389,8 @@ private:
             }
             mesh_.uvs.insert(mesh_.uvs.end(), triangles.uvs.begin(), triangles.uvs.end());
             mesh_.colors.insert(mesh_.colors.end(), triangles.colors.begin(), triangles.colors.end());
-            mesh_.faceMaterials.insert(mesh_.faceMaterials.end(), triangles.materials.begin(), triangles.materials.end());
+            mesh_.faceMaterials.insert(mesh_.faceMaterials.end(), triangles.materials.begin(),
+                                       triangles.materials.end());
         }
     }
 
@@ -403,7 +409,8 @@ private:
         int fallback = -1;
         for (int& m : mesh_.faceMaterials) {
             if (m >= 0 && size_t(m) < set->materials.size()) continue;
-            if (m >= 0) throw fileError(path_, "a primitive names material " + std::to_string(m) + ", which does not exist");
+            if (m >= 0)
+                throw fileError(path_, "a primitive names material " + std::to_string(m) + ", which does not exist");
             if (fallback < 0) {
                 Material plain = defaultMaterial();
                 if (model_.materials.empty()) plain.metallicFactor = 0.0f;

@@ -49,8 +49,8 @@ glm::vec4 sampleTexture(const MaterialSet& set, const TextureRef& texture, glm::
     };
     if (texture.nearest) return texel(int(std::lround(x)), int(std::lround(y)));
     const float ax = x - fx, ay = y - fy;
-    return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), ax), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), ax),
-                    ay);
+    return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), ax),
+                    glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), ax), ay);
 }
 
 MaterialSample sampleMaterial(const PolygonMesh& triangles, int triangle, float u, float v) {
@@ -58,18 +58,20 @@ MaterialSample sampleMaterial(const PolygonMesh& triangles, int triangle, float 
     const float w0 = 1.0f - u - v;
     auto corner = [&](int k) { return size_t(triangles.faceIndices[size_t(3 * triangle + k)]); };
     if (!triangles.colors.empty())
-        s.baseColor = w0 * triangles.colors[corner(0)] + u * triangles.colors[corner(1)] + v * triangles.colors[corner(2)];
+        s.baseColor =
+            w0 * triangles.colors[corner(0)] + u * triangles.colors[corner(1)] + v * triangles.colors[corner(2)];
     if (!triangles.materials) return s;
     const Material& m = triangles.materials->materials[size_t(triangles.faceMaterials[size_t(triangle)])];
-    const glm::vec2 uv = triangles.uvs.empty()
-                             ? glm::vec2(0.0f)
-                             : w0 * triangles.uvs[corner(0)] + u * triangles.uvs[corner(1)] + v * triangles.uvs[corner(2)];
+    const glm::vec2 uv = triangles.uvs.empty() ? glm::vec2(0.0f)
+                                               : w0 * triangles.uvs[corner(0)] + u * triangles.uvs[corner(1)] +
+                                                     v * triangles.uvs[corner(2)];
     s.baseColor *= m.baseColorFactor * sampleTexture(*triangles.materials, m.baseColorTexture, uv, true);
     const glm::vec4 mr = sampleTexture(*triangles.materials, m.metallicRoughnessTexture, uv, false);
     s.roughness = m.roughnessFactor * mr.g;
     s.metallic = m.metallicFactor * mr.b;
     if (m.occlusionTexture.present())
-        s.occlusion = 1.0f + m.occlusionStrength * (sampleTexture(*triangles.materials, m.occlusionTexture, uv, false).r - 1.0f);
+        s.occlusion =
+            1.0f + m.occlusionStrength * (sampleTexture(*triangles.materials, m.occlusionTexture, uv, false).r - 1.0f);
     if (m.emissiveFactor != glm::vec3(0.0f))
         s.emissive = m.emissiveFactor * glm::vec3(sampleTexture(*triangles.materials, m.emissiveTexture, uv, true));
     return s;

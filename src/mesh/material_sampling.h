@@ -12,8 +12,8 @@ namespace subdfit::mesh {
 struct MaterialSample {
     glm::vec4 baseColor{1.0f};  // linear RGBA: factor × texture × vertex colour
     float roughness = 1.0f, metallic = 0.0f;
-    float occlusion = 1.0f;          // 1 + strength × (texture − 1): 1 without an occlusion texture
-    glm::vec3 emissive{0.0f};        // linear: factor × texture
+    float occlusion = 1.0f;    // 1 + strength × (texture − 1): 1 without an occlusion texture
+    glm::vec3 emissive{0.0f};  // linear: factor × texture
 };
 
 // A texture's value at glTF texture coordinates `uv` (its KHR_texture_transform applied),

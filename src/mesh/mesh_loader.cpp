@@ -20,8 +20,9 @@ PolygonMesh readByExtension(const std::filesystem::path& path, MeshContent conte
     if (ext == ".obj") return readObj(path, content);
     if (ext == ".gltf" || ext == ".glb") return readGltf(path, content);
     if (ext == ".drc") return readDraco(path);
-    throw fileError(path.string(), (ext.empty() ? std::string("no file extension") : "unsupported mesh format '" + ext + "'") +
-                                       " (expected .obj, .gltf, .glb or .drc)");
+    throw fileError(path.string(),
+                    (ext.empty() ? std::string("no file extension") : "unsupported mesh format '" + ext + "'") +
+                        " (expected .obj, .gltf, .glb or .drc)");
 }
 
 PolygonMesh load(const std::filesystem::path& path, MeshContent content) {

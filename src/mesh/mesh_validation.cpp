@@ -19,7 +19,9 @@ bool inRange(int index, int count) { return index >= 0 && index < count; }
 void warnAboutCreasesOffEdges(const PolygonMesh& mesh) {
     if (mesh.tags.creases.empty()) return;
     std::unordered_set<std::uint64_t> edges;
-    auto key = [](int a, int b) { return std::uint64_t(std::uint32_t(std::min(a, b))) << 32 | std::uint32_t(std::max(a, b)); };
+    auto key = [](int a, int b) {
+        return std::uint64_t(std::uint32_t(std::min(a, b))) << 32 | std::uint32_t(std::max(a, b));
+    };
     size_t corner = 0;
     for (int size : mesh.faceSizes) {
         for (int k = 0; k < size; ++k)
@@ -48,11 +50,10 @@ void validateTags(const PolygonMesh& mesh) {
                                       " names a missing vertex or has a bad sharpness");
     for (const Corner& c : mesh.tags.corners)
         if (!inRange(c.vertex, vertices) || !(c.sharpness >= 0.0f))
-            throw fileError(path, "corner " + std::to_string(c.vertex) +
-                                      " names a missing vertex or has a bad sharpness");
+            throw fileError(path,
+                            "corner " + std::to_string(c.vertex) + " names a missing vertex or has a bad sharpness");
     for (int f : mesh.tags.holes)
-        if (!inRange(f, mesh.faceCount()))
-            throw fileError(path, "hole tag names missing face " + std::to_string(f));
+        if (!inRange(f, mesh.faceCount())) throw fileError(path, "hole tag names missing face " + std::to_string(f));
     warnAboutCreasesOffEdges(mesh);
 }
 

@@ -14,8 +14,8 @@ namespace subdfit::mesh::obj {
 
 struct MaterialLibrary {
     MaterialSet set;
-    std::vector<std::string> names;  // set.materials[i] is `newmtl names[i]`
-    void add(std::string name);      // a new material of that name
+    std::vector<std::string> names;           // set.materials[i] is `newmtl names[i]`
+    void add(std::string name);               // a new material of that name
     int find(const std::string& name) const;  // -1 when absent; the first of a repeated name
 
 private:

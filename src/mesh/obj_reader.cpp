@@ -44,17 +44,17 @@ public:
         const std::string& path = mesh_.sourcePath;
         if (mesh_.faceSizes.empty()) throw fileError(path, "no faces (empty mesh)");
         if (maxIndex_ >= mesh_.vertexCount())
-            LineContext{path, maxIndexLine_}.fail(
-                "face index " + std::to_string(maxIndex_ + 1) + " is out of range (the file has " +
-                std::to_string(mesh_.vertexCount()) + " vertices)");
+            LineContext{path, maxIndexLine_}.fail("face index " + std::to_string(maxIndex_ + 1) +
+                                                  " is out of range (the file has " +
+                                                  std::to_string(mesh_.vertexCount()) + " vertices)");
         for (const obj::TagIndexUse& use : tagIndexUses_) {
             const bool isFace = use.kind == obj::TagIndexUse::Kind::Face;
             const int count = isFace ? mesh_.faceCount() : mesh_.vertexCount();
             if (use.index < 0 || use.index >= count)
-                LineContext{path, use.line}.fail(
-                    "t " + use.tag + ": " + (isFace ? "face " : "vertex ") + std::to_string(use.index) +
-                    " is out of range (0-based; the file has " + std::to_string(count) +
-                    (isFace ? " faces)" : " vertices)"));
+                LineContext{path, use.line}.fail("t " + use.tag + ": " + (isFace ? "face " : "vertex ") +
+                                                 std::to_string(use.index) +
+                                                 " is out of range (0-based; the file has " + std::to_string(count) +
+                                                 (isFace ? " faces)" : " vertices)"));
         }
         if (appearance_) finishAppearance();
     }
@@ -68,8 +68,10 @@ private:
         else if (keyword == "t") obj::parseTagLine(line, at_, mesh_.tags, tagIndexUses_);
         else if (appearance_ && keyword == "vt") parseTexCoord(tokens);
         else if (appearance_ && keyword == "vn") parseNormal(tokens);
-        else if (appearance_ && keyword == "usemtl") material_ = materialNamed(std::string(obj::restOfLine(line, keyword)));
-        else if (appearance_ && keyword == "mtllib") libraries_.push_back({std::string(obj::restOfLine(line, keyword)), at_.line});
+        else if (appearance_ && keyword == "usemtl")
+            material_ = materialNamed(std::string(obj::restOfLine(line, keyword)));
+        else if (appearance_ && keyword == "mtllib")
+            libraries_.push_back({std::string(obj::restOfLine(line, keyword)), at_.line});
         // Everything else (comments, g, o, s, l, p, ...) is not what a cage or a reference
         // render needs.
     }
@@ -79,7 +81,8 @@ private:
         for (int axis = 0; axis < 2; ++axis) {
             const std::string_view token = tokens.next();
             if (token.empty() && axis == 1) break;  // "vt u" alone: v = 0
-            if (!obj::parseFloat(token, t[axis]) || !std::isfinite(t[axis])) at_.fail("bad texture coordinate " + quoted(token));
+            if (!obj::parseFloat(token, t[axis]) || !std::isfinite(t[axis]))
+                at_.fail("bad texture coordinate " + quoted(token));
         }
         // OBJ's v grows upwards from the image's bottom row; glTF's (and ours) downwards from its top.
         texCoords_.push_back({t.x, 1.0f - t.y});
@@ -127,7 +130,8 @@ private:
         if (appearance_) faceMaterialNames_.push_back(material_);
         if (size < 3) at_.fail("face with " + std::to_string(size) + " vertices (needs at least 3)");
         if (std::int64_t(mesh_.faceIndices.size()) > kMaxFaceCorners)
-            at_.fail("more than " + std::to_string(kMaxFaceCorners) + " face corners, the most subdfit reads from one file");
+            at_.fail("more than " + std::to_string(kMaxFaceCorners) +
+                     " face corners, the most subdfit reads from one file");
         mesh_.faceSizes.push_back(size);
     }
 
@@ -141,8 +145,7 @@ private:
         if (raw < 0) {
             // Relative to the vertices read so far.
             const int64_t index = int64_t(mesh_.vertexCount()) + raw;
-            if (index < 0)
-                at_.fail("face index " + std::to_string(raw) + " points before the first vertex");
+            if (index < 0) at_.fail("face index " + std::to_string(raw) + " points before the first vertex");
             return int(index);
         }
         if (raw > INT32_MAX) at_.fail("face index " + std::to_string(raw) + " is out of range");
@@ -169,8 +172,8 @@ private:
         if (!obj::parseInt(entry, raw) || raw == 0) at_.fail(std::string("bad ") + what + " index " + quoted(entry));
         const int64_t index = raw < 0 ? int64_t(count) + raw : raw - 1;
         if (index < 0 || index >= int64_t(count))
-            at_.fail(std::string(what) + " index " + std::to_string(raw) + " is out of range (" + std::to_string(count) +
-                     " read so far)");
+            at_.fail(std::string(what) + " index " + std::to_string(raw) + " is out of range (" +
+                     std::to_string(count) + " read so far)");
         return int(index);
     }
 
@@ -226,7 +229,7 @@ private:
     std::vector<glm::vec2> texCoords_;
     std::vector<glm::vec3> normals_;
     std::vector<int> cornerTexCoords_, cornerNormals_;  // per face corner, with appearance
-    std::vector<int> faceMaterialNames_;   // per face: into materialNames_, -1 before any usemtl
+    std::vector<int> faceMaterialNames_;                // per face: into materialNames_, -1 before any usemtl
     std::vector<std::string> materialNames_;
     std::unordered_map<std::string, int> materialIndex_;  // name -> into materialNames_
     std::vector<obj::LibraryUse> libraries_;

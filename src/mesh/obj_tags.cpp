@@ -16,12 +16,10 @@ struct TagValues {
     std::vector<std::string_view> strings;
 };
 
-int64_t parseCount(std::string_view text, const LineContext& at, const std::string& name,
-                   std::string_view counts) {
+int64_t parseCount(std::string_view text, const LineContext& at, const std::string& name, std::string_view counts) {
     int64_t n = 0;
     if (!parseInt(text, n) || n < 0)
-        at.fail("t " + name + ": bad value counts " + quoted(counts) +
-                " (expected nInts/nFloats/nStrings)");
+        at.fail("t " + name + ": bad value counts " + quoted(counts) + " (expected nInts/nFloats/nStrings)");
     return n;
 }
 
@@ -36,8 +34,7 @@ TagValues splitTagLine(std::string_view line, const LineContext& at) {
     const size_t slash1 = counts.find('/');
     const size_t slash2 = slash1 == std::string_view::npos ? slash1 : counts.find('/', slash1 + 1);
     if (slash2 == std::string_view::npos)
-        at.fail("t " + tag.name + ": bad value counts " + quoted(counts) +
-                " (expected nInts/nFloats/nStrings)");
+        at.fail("t " + tag.name + ": bad value counts " + quoted(counts) + " (expected nInts/nFloats/nStrings)");
     const int64_t nInts = parseCount(counts.substr(0, slash1), at, tag.name, counts);
     const int64_t nFloats = parseCount(counts.substr(slash1 + 1, slash2 - slash1 - 1), at, tag.name, counts);
     const int64_t nStrings = parseCount(counts.substr(slash2 + 1), at, tag.name, counts);
@@ -48,9 +45,8 @@ TagValues splitTagLine(std::string_view line, const LineContext& at) {
     // count is compared with the line on its own first, so their sum cannot overflow.
     const auto have = int64_t(values.size());
     if (nInts > have || nFloats > have || nStrings > have || nInts + nFloats + nStrings != have)
-        at.fail("t " + tag.name + " declares " + std::to_string(nInts) + "/" +
-                std::to_string(nFloats) + "/" + std::to_string(nStrings) + " values but the line has " +
-                std::to_string(have));
+        at.fail("t " + tag.name + " declares " + std::to_string(nInts) + "/" + std::to_string(nFloats) + "/" +
+                std::to_string(nStrings) + " values but the line has " + std::to_string(have));
 
     size_t i = 0;
     for (; i < size_t(nInts); ++i) {
@@ -166,8 +162,7 @@ void parseTagLine(std::string_view line, const LineContext& at, SubdivisionTags&
 
 std::string formatTagLines(const SubdivisionTags& tags) {
     std::string out;
-    if (tags.hasBoundary)
-        out += "t interpolateboundary 1/0/0 " + std::to_string(int(tags.boundary)) + "\n";
+    if (tags.hasBoundary) out += "t interpolateboundary 1/0/0 " + std::to_string(int(tags.boundary)) + "\n";
     if (tags.hasFaceVaryingBoundary)
         out += "t facevaryinginterpolateboundary 1/0/0 " + std::to_string(tags.faceVaryingBoundary) + "\n";
     if (tags.hasCreaseMethod)

@@ -20,7 +20,8 @@ std::uint64_t mixed(std::uint64_t x) {
 
 PointWelder::Slot* PointWelder::find(const Cell& cell) {
     const std::size_t mask = slots_.size() - 1;
-    std::size_t at = std::size_t(mixed(mixed(mixed(std::uint64_t(cell[0])) ^ std::uint64_t(cell[1])) ^ std::uint64_t(cell[2])));
+    std::size_t at =
+        std::size_t(mixed(mixed(mixed(std::uint64_t(cell[0])) ^ std::uint64_t(cell[1])) ^ std::uint64_t(cell[2])));
     for (;; at = (at + 1) & mask) {  // linear probing
         Slot& slot = slots_[at & mask];
         if (slot.head < 0 || slot.cell == cell) return &slot;
@@ -43,8 +44,8 @@ int PointWelder::indexOf(const glm::vec3& p, int& nextIndex) {
     const Cell side{at.x - float(cell[0]) < 0.5f ? -1 : 1, at.y - float(cell[1]) < 0.5f ? -1 : 1,
                     at.z - float(cell[2]) < 0.5f ? -1 : 1};
     for (int k = 0; k < 8; ++k) {
-        const Slot* slot = find(Cell{cell[0] + (k & 1 ? side[0] : 0), cell[1] + (k & 2 ? side[1] : 0),
-                                     cell[2] + (k & 4 ? side[2] : 0)});
+        const Slot* slot = find(
+            Cell{cell[0] + (k & 1 ? side[0] : 0), cell[1] + (k & 2 ? side[1] : 0), cell[2] + (k & 4 ? side[2] : 0)});
         for (int i = slot->head; i >= 0; i = points_[std::size_t(i)].next)
             if (glm::length(p - points_[std::size_t(i)].position) <= tolerance_) return points_[std::size_t(i)].index;
     }

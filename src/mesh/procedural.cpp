@@ -59,11 +59,11 @@ PolygonMesh makeLumpySphere(int subdivisions, float amplitude, std::uint32_t see
     PolygonMesh mesh;
     mesh.sourcePath = "lumpy-sphere";
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    mesh.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                      {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    std::vector<int> tris = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,
-                             11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8,
-                             3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+    mesh.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                      {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<int> tris = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                             4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+                             6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
     for (auto& p : mesh.positions) p = glm::normalize(p);
     for (int level = 0; level < subdivisions; ++level) {
         std::map<std::pair<int, int>, int> midpoints;
@@ -84,7 +84,10 @@ PolygonMesh makeLumpySphere(int subdivisions, float amplitude, std::uint32_t see
     std::mt19937 rng(seed);
     std::normal_distribution<float> normal;
     std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
-    struct Bump { glm::vec3 centre; float height, width; };
+    struct Bump {
+        glm::vec3 centre;
+        float height, width;
+    };
     std::vector<Bump> lumps;
     for (int k = 0; k < bumps; ++k)
         lumps.push_back({glm::normalize(glm::vec3(normal(rng), normal(rng), normal(rng))),
@@ -92,7 +95,8 @@ PolygonMesh makeLumpySphere(int subdivisions, float amplitude, std::uint32_t see
                          minWidth + (maxWidth - minWidth) * uniform(rng)});
     for (auto& p : mesh.positions) {
         float r = 1.0f;
-        for (const auto& bump : lumps) r += amplitude * bump.height * std::exp(-(1.0f - glm::dot(p, bump.centre)) / bump.width);
+        for (const auto& bump : lumps)
+            r += amplitude * bump.height * std::exp(-(1.0f - glm::dot(p, bump.centre)) / bump.width);
         p *= r;
     }
     mesh.faceSizes.assign(tris.size() / 3, 3);

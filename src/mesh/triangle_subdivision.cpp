@@ -27,8 +27,9 @@ PolygonMesh splitOnce(const PolygonMesh& in) {
     for (int f = 0; f < in.faceCount(); ++f) {
         const int* t = &in.faceIndices[3 * size_t(f)];
         const std::array<int, 3> m{midpoint(t[0], t[1]), midpoint(t[1], t[2]), midpoint(t[2], t[0])};
-        for (const std::array<int, 3>& child : {std::array<int, 3>{t[0], m[0], m[2]}, std::array<int, 3>{m[0], t[1], m[1]},
-                                                 std::array<int, 3>{m[2], m[1], t[2]}, m}) {
+        for (const std::array<int, 3>& child :
+             {std::array<int, 3>{t[0], m[0], m[2]}, std::array<int, 3>{m[0], t[1], m[1]},
+              std::array<int, 3>{m[2], m[1], t[2]}, m}) {
             out.faceSizes.push_back(3);
             out.faceIndices.insert(out.faceIndices.end(), child.begin(), child.end());
             if (!in.faceMaterials.empty()) out.faceMaterials.push_back(in.faceMaterials[size_t(f)]);

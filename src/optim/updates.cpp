@@ -18,10 +18,12 @@ const gl::ProgramSpec kPerturb{"perturb", {{GL_COMPUTE_SHADER, "perturb.comp"}}}
 const gl::ProgramSpec kResolve{"resolve_gradient", {{GL_COMPUTE_SHADER, "resolve_gradient.comp"}}};
 const gl::ProgramSpec kPrecondition{"precondition", {{GL_COMPUTE_SHADER, "precondition.comp"}}};
 const gl::ProgramSpec kSharedMoment{"shared_moment", {{GL_COMPUTE_SHADER, "shared_moment.comp"}}};
-const gl::ProgramSpec kAdam{"adam", {{GL_COMPUTE_SHADER, "adam.comp"}}, {"SUBDFIT_ADAM_SHARED_MOMENT", "SUBDFIT_ADAM_NOISE_GATE"}};
-const gl::ProgramSpec kVertexUpdate{"vertex_update",
-                                    {{GL_COMPUTE_SHADER, "vertex_update.comp"}},
-                                    {"SUBDFIT_ADAM_SHARED_MOMENT", "SUBDFIT_ADAM_NOISE_GATE", "SUBDFIT_PROJECT_TANGENTIAL"}};
+const gl::ProgramSpec kAdam{
+    "adam", {{GL_COMPUTE_SHADER, "adam.comp"}}, {"SUBDFIT_ADAM_SHARED_MOMENT", "SUBDFIT_ADAM_NOISE_GATE"}};
+const gl::ProgramSpec kVertexUpdate{
+    "vertex_update",
+    {{GL_COMPUTE_SHADER, "vertex_update.comp"}},
+    {"SUBDFIT_ADAM_SHARED_MOMENT", "SUBDFIT_ADAM_NOISE_GATE", "SUBDFIT_PROJECT_TANGENTIAL"}};
 // The most floats a group may hold for all its Jacobi sweeps (and a vertex group's whole update)
 // to run in one work group: two iterates in the 32 KB of shared memory that GL 4.3 guarantees.
 constexpr int kOneGroupFloats = 4096;
@@ -86,8 +88,8 @@ void resolveGradient(gl::ProgramCache& programs, ParameterGroup& group) {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
-void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency,
-                  float lambda, int iterations, gl::Buffer& scratch) {
+void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency, float lambda,
+                  int iterations, gl::Buffer& scratch) {
     if (iterations <= 0 || lambda <= 0.0f) {
         group.gradientSmooth.copyFrom(group.gradient);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -154,9 +156,9 @@ bool updatesInOneGroup(const ParameterGroup& group) { return group.count() <= kO
 void updateVertices(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency, float lambda,
                     int iterations, const TangentialProjection* projection, float learningRate) {
     SUBDFIT_CHECK(updatesInOneGroup(group) && group.count() == 3 * adjacency.vertexCount);
-    const auto& program = programs.get(kVertexUpdate, adamBits(group.settings()) | (projection ? kProjectTangential : 0),
-                                       {{"SUBDFIT_CHANNELS", "3"},
-                                        {"SUBDFIT_PRECONDITION_ONE_GROUP", std::to_string(kOneGroupFloats)}});
+    const auto& program =
+        programs.get(kVertexUpdate, adamBits(group.settings()) | (projection ? kProjectTangential : 0),
+                     {{"SUBDFIT_CHANNELS", "3"}, {"SUBDFIT_PRECONDITION_ONE_GROUP", std::to_string(kOneGroupFloats)}});
     program.use();
     program.set("uVertexCount", adjacency.vertexCount);
     program.set("uLambda", lambda);

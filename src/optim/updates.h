@@ -24,18 +24,21 @@ void resolveGradient(gl::ProgramCache& programs, ParameterGroup& group);
 // The group's parameter graph (CSR); each node holds group.count() / vertexCount floats.
 struct Adjacency {
     Adjacency(gl::Buffer offsets_, gl::Buffer indices_, int vertexCount_)
-        : offsets(std::move(offsets_)), indices(std::move(indices_)), offsetsView(offsets, GL_R32I),
-          indicesView(indices, GL_R32I), vertexCount(vertexCount_) {}
+        : offsets(std::move(offsets_)),
+          indices(std::move(indices_)),
+          offsetsView(offsets, GL_R32I),
+          indicesView(indices, GL_R32I),
+          vertexCount(vertexCount_) {}
     gl::Buffer offsets, indices;
     gl::BufferTexture offsetsView, indicesView;  // as the preconditioner reads them
-    int vertexCount;  // graph nodes
+    int vertexCount;                             // graph nodes
 };
 
 // g̃ = (I + λL)⁻¹ g by `iterations` Jacobi sweeps into group.gradientSmooth (a plain copy when
 // iterations == 0 or λ == 0): a small group's in one dispatch, a larger one's a dispatch per
 // sweep. `scratch` must be the size of the gradient.
-void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency,
-                  float lambda, int iterations, gl::Buffer& scratch);
+void precondition(gl::ProgramCache& programs, ParameterGroup& group, const Adjacency& adjacency, float lambda,
+                  int iterations, gl::Buffer& scratch);
 
 // Where a vertex gradient keeps only part of its component along the surface (g −= (1 − keep) P g,
 // glsl/tangent_frame.glsl): `bind` binds the cage's topology, as fit::CageRelaxation holds it.

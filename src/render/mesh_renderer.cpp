@@ -18,8 +18,8 @@ std::vector<std::string> meshDefines() {
                                    "SUBDFIT_NORMAL_TEXTURE", "SUBDFIT_OCCLUSION_TEXTURE", "SUBDFIT_EMISSIVE_TEXTURE"});
     return defines;
 }
-const gl::ProgramSpec kMeshRaster{"mesh_raster", {{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "mesh.frag"}},
-                                  meshDefines()};
+const gl::ProgramSpec kMeshRaster{
+    "mesh_raster", {{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "mesh.frag"}}, meshDefines()};
 constexpr gl::VariantBits kBaseColorTexture = 1u << 3, kMetallicRoughnessTexture = 1u << 4, kNormalTexture = 1u << 5,
                           kOcclusionTexture = 1u << 6, kEmissiveTexture = 1u << 7;
 
@@ -41,7 +41,8 @@ struct Slot {
     gl::VariantBits bit;
 };
 std::vector<Slot> slotsOf(const mesh::Material& m, ShadingModel shading) {
-    std::vector<Slot> slots{{&m.baseColorTexture, SUBDFIT_UNIT_BASE_COLOR, true, "ubaseColorTransform", kBaseColorTexture}};
+    std::vector<Slot> slots{
+        {&m.baseColorTexture, SUBDFIT_UNIT_BASE_COLOR, true, "ubaseColorTransform", kBaseColorTexture}};
     if (shading == ShadingModel::Unlit) return slots;
     slots.push_back({&m.normalTexture, SUBDFIT_UNIT_NORMAL, false, "unormalTransform", kNormalTexture});
     slots.push_back({&m.occlusionTexture, SUBDFIT_UNIT_OCCLUSION, false, "uocclusionTransform", kOcclusionTexture});
@@ -90,9 +91,8 @@ MeshRenderer::MeshRenderer(const mesh::PolygonMesh& triangles, ShadingModel shad
     std::iota(order.begin(), order.end(), 0);
     const bool material = shading_ != ShadingModel::Geometry;
     if (material)
-        std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-            return (*faceMaterials)[size_t(a)] < (*faceMaterials)[size_t(b)];
-        });
+        std::stable_sort(order.begin(), order.end(),
+                         [&](int a, int b) { return (*faceMaterials)[size_t(a)] < (*faceMaterials)[size_t(b)]; });
     std::vector<unsigned> indices;
     indices.reserve(size_t(faces) * 3);
     for (int f : order) {
@@ -107,8 +107,10 @@ MeshRenderer::MeshRenderer(const mesh::PolygonMesh& triangles, ShadingModel shad
     if (material) {
         // Absent attributes read as glTF's defaults: (0, 0) and opaque white.
         const size_t n = triangles.positions.size();
-        uvs_ = gl::Buffer::fromVector(triangles.uvs.empty() ? std::vector<glm::vec2>(n, glm::vec2(0.0f)) : triangles.uvs);
-        colors_ = gl::Buffer::fromVector(triangles.colors.empty() ? std::vector<glm::vec4>(n, glm::vec4(1.0f)) : triangles.colors);
+        uvs_ =
+            gl::Buffer::fromVector(triangles.uvs.empty() ? std::vector<glm::vec2>(n, glm::vec2(0.0f)) : triangles.uvs);
+        colors_ = gl::Buffer::fromVector(triangles.colors.empty() ? std::vector<glm::vec4>(n, glm::vec4(1.0f))
+                                                                  : triangles.colors);
         vertexArray_.attribute(2, uvs_, 2);
         vertexArray_.attribute(3, colors_, 4);
         for (const Batch& batch : batches_)
@@ -117,8 +119,10 @@ MeshRenderer::MeshRenderer(const mesh::PolygonMesh& triangles, ShadingModel shad
                 const mesh::Image& image = materials_->images[size_t(slot.ref->image)];
                 const auto key = std::make_pair(slot.ref->image, slot.srgb);
                 if (!textures_.count(key))
-                    textures_.emplace(key, gl::Texture::fromImage(image.rgba.data(), image.width, image.height, slot.srgb));
-                samplers_.emplace(slot.ref, gl::Sampler(glWrap(slot.ref->wrapS), glWrap(slot.ref->wrapT), slot.ref->nearest));
+                    textures_.emplace(key,
+                                      gl::Texture::fromImage(image.rgba.data(), image.width, image.height, slot.srgb));
+                samplers_.emplace(slot.ref,
+                                  gl::Sampler(glWrap(slot.ref->wrapS), glWrap(slot.ref->wrapT), slot.ref->nearest));
             }
     }
     vertexArray_.elements(indices_);
@@ -153,10 +157,8 @@ void MeshRenderer::draw(gl::ProgramCache& programs, const Camera& camera, const 
     for (size_t k = 0; k < batches_.size(); ++k) {
         const Batch& batch = batches_[k];
         const auto& program = programs.get(kMeshRaster, variantFor(batch.material));
-        if (k == 0)
-            beginRasterPass(program, camera, target);
-        else
-            useWithCamera(program, camera);
+        if (k == 0) beginRasterPass(program, camera, target);
+        else useWithCamera(program, camera);
         if (batch.material >= 0) setMaterial(program, materials_->materials[size_t(batch.material)]);
         vertexArray_.bind();
         glDrawElements(GL_TRIANGLES, batch.count, GL_UNSIGNED_INT,

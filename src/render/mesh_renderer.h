@@ -32,7 +32,7 @@ public:
 
 private:
     struct Batch {
-        int material;  // -1: none (Geometry)
+        int material;          // -1: none (Geometry)
         GLsizei first, count;  // in indices
     };
     void setMaterial(const gl::Program& program, const mesh::Material& material) const;

@@ -12,33 +12,33 @@
 namespace subdfit::render {
 namespace {
 
-const gl::ProgramSpec kPatchTessellate{"patch_tessellate",
-                                       {{GL_COMPUTE_SHADER, "tessellate.comp"}},
-                                       {"SUBDFIT_DISPLACEMENT", "SUBDFIT_LIMIT_SHADING", "SUBDFIT_GREGORY_PATCHES",
-                                        "SUBDFIT_SURFACE_PAIR"}};
+const gl::ProgramSpec kPatchTessellate{
+    "patch_tessellate",
+    {{GL_COMPUTE_SHADER, "tessellate.comp"}},
+    {"SUBDFIT_DISPLACEMENT", "SUBDFIT_LIMIT_SHADING", "SUBDFIT_GREGORY_PATCHES", "SUBDFIT_SURFACE_PAIR"}};
 constexpr gl::VariantBits kTessellateDisplacement = 1u << 0, kTessellateLimitShading = 1u << 1,
                           kTessellateGregory = 1u << 2, kTessellatePair = 1u << 3;
 
 const gl::ProgramSpec kDisplace{"patch_displace", {{GL_COMPUTE_SHADER, "displace.comp"}}, {"SUBDFIT_LIMIT_SHADING"}};
 constexpr gl::VariantBits kDisplaceLimitShading = 1u << 0;
 
-const gl::ProgramSpec kTriangulate{"patch_triangulate", {{GL_COMPUTE_SHADER, "triangulate.comp"}}, {"SUBDFIT_SURFACE_PAIR"}};
+const gl::ProgramSpec kTriangulate{
+    "patch_triangulate", {{GL_COMPUTE_SHADER, "triangulate.comp"}}, {"SUBDFIT_SURFACE_PAIR"}};
 constexpr gl::VariantBits kTriangulatePair = 1u << 0;
 
-const gl::ProgramSpec kPatchRaster{"patch_raster",
-                                   {{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "patch.frag"}},
-                                   [] {
-                                       std::vector<std::string> defines = kShadingDefines;  // bits 0-2
-                                       defines.insert(defines.end(), {"SUBDFIT_NORMAL_MAP", "SUBDFIT_BASE_COLOR_MAP",
-                                                                      "SUBDFIT_METALLIC_ROUGHNESS_MAP",
-                                                                      "SUBDFIT_APPEARANCE_ATLAS", "SUBDFIT_ATLAS_NORMAL_TEXTURE",
-                                                                      "SUBDFIT_CARRIED_OCCLUSION", "SUBDFIT_CARRIED_EMISSIVE",
-                                                                      "SUBDFIT_FACE_IN_ALPHA"});
-                                       return defines;
-                                   }()};
+const gl::ProgramSpec kPatchRaster{
+    "patch_raster", {{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "patch.frag"}}, [] {
+        std::vector<std::string> defines = kShadingDefines;  // bits 0-2
+        defines.insert(defines.end(),
+                       {"SUBDFIT_NORMAL_MAP", "SUBDFIT_BASE_COLOR_MAP", "SUBDFIT_METALLIC_ROUGHNESS_MAP",
+                        "SUBDFIT_APPEARANCE_ATLAS", "SUBDFIT_ATLAS_NORMAL_TEXTURE", "SUBDFIT_CARRIED_OCCLUSION",
+                        "SUBDFIT_CARRIED_EMISSIVE", "SUBDFIT_FACE_IN_ALPHA"});
+        return defines;
+    }()};
 constexpr gl::VariantBits kPatchNormalMap = 1u << 3, kPatchBaseColor = 1u << 4, kPatchMetallicRoughness = 1u << 5,
                           kPatchAppearanceAtlas = 1u << 6, kPatchAtlasNormal = 1u << 7,
-                          kPatchCarriedOcclusion = 1u << 8, kPatchCarriedEmissive = 1u << 9, kPatchFaceInAlpha = 1u << 10;
+                          kPatchCarriedOcclusion = 1u << 8, kPatchCarriedEmissive = 1u << 9,
+                          kPatchFaceInAlpha = 1u << 10;
 
 // A vertex of the evaluated surface (glsl/tessellate.comp): 16 floats.
 constexpr GLsizei kSurfaceVertexBytes = 16 * sizeof(float);
@@ -76,11 +76,11 @@ PatchRenderer::PatchRenderer(const subdiv::PatchSet& patches, int tessLevel, Sha
     quads_ = gl::Buffer::fromVector(tessellation.quads);
     quadsTexture_ = gl::BufferTexture(quads_, GL_RGBA32UI);
     // The record's layout is glsl/surface_vertex.glsl's; the locations are glsl/surface.vert's.
-    vertexArray_.recordAttribute(0, 3, 0);                                 // position
-    vertexArray_.recordAttribute(1, 3, 3 * sizeof(float));                 // normal
-    vertexArray_.recordAttribute(2, 3, 6 * sizeof(float));                 // ∂P/∂u
-    vertexArray_.recordAttribute(3, 3, 9 * sizeof(float));                 // ∂P/∂v
-    vertexArray_.recordAttribute(4, 2, 12 * sizeof(float));                // ptex (u, v)
+    vertexArray_.recordAttribute(0, 3, 0);                                     // position
+    vertexArray_.recordAttribute(1, 3, 3 * sizeof(float));                     // normal
+    vertexArray_.recordAttribute(2, 3, 6 * sizeof(float));                     // ∂P/∂u
+    vertexArray_.recordAttribute(3, 3, 9 * sizeof(float));                     // ∂P/∂v
+    vertexArray_.recordAttribute(4, 2, 12 * sizeof(float));                    // ptex (u, v)
     vertexArray_.recordAttribute(5, 1, 14 * sizeof(float), /*integer=*/true);  // ptex face
 }
 
@@ -88,7 +88,9 @@ PatchRenderer::Surface PatchRenderer::makeSurface() const {
     return {makeVertices(), gl::Buffer(GLsizeiptr(std::max(1, quadCount_)) * 6 * sizeof(std::uint32_t))};
 }
 
-gl::Buffer PatchRenderer::makeVertices() const { return gl::Buffer(GLsizeiptr(std::max(1, vertexCount_)) * kSurfaceVertexBytes); }
+gl::Buffer PatchRenderer::makeVertices() const {
+    return gl::Buffer(GLsizeiptr(std::max(1, vertexCount_)) * kSurfaceVertexBytes);
+}
 
 void PatchRenderer::evaluate(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
                              const PatchMaps* maps) const {
@@ -97,7 +99,8 @@ void PatchRenderer::evaluate(gl::ProgramCache& programs, const gl::Buffer& point
 }
 
 void PatchRenderer::evaluatePair(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
-                                 const gl::Buffer& secondPoints, const Surface& secondSurface, const PatchMaps* maps) const {
+                                 const gl::Buffer& secondPoints, const Surface& secondSurface,
+                                 const PatchMaps* maps) const {
     const Second second{secondPoints, secondSurface};
     tessellate(programs, points, surface.vertices, maps, &second);
     split(programs, surface, &secondSurface);
@@ -128,8 +131,9 @@ void PatchRenderer::displace(gl::ProgramCache& programs, const gl::Buffer& limit
 void PatchRenderer::tessellate(gl::ProgramCache& programs, const gl::Buffer& points, const gl::Buffer& vertices,
                                const PatchMaps* maps, const Second* second) const {
     const bool displaced = maps && maps->displacement;
-    const gl::VariantBits variant = (displaced ? kTessellateDisplacement | (maps->limitShading ? kTessellateLimitShading : 0) : 0) |
-                                    (second ? kTessellatePair : 0);
+    const gl::VariantBits variant =
+        (displaced ? kTessellateDisplacement | (maps->limitShading ? kTessellateLimitShading : 0) : 0) |
+        (second ? kTessellatePair : 0);
     patchInfoTexture_.bind(SUBDFIT_UNIT_PATCH_INFO);
     patchCvTexture_.bind(SUBDFIT_UNIT_PATCH_CVS);
     const gl::BufferTexture pointTexture(points, GL_RGB32F);
@@ -157,7 +161,8 @@ void PatchRenderer::tessellate(gl::ProgramCache& programs, const gl::Buffer& poi
 }
 
 void PatchRenderer::layOutHeights(gl::ProgramCache& programs, const PatchMaps& maps) const {
-    if (!heightTiles_ || heightTiles_->resolution() != maps.resolution) heightTiles_.emplace(faceCount_, maps.resolution);
+    if (!heightTiles_ || heightTiles_->resolution() != maps.resolution)
+        heightTiles_.emplace(faceCount_, maps.resolution);
     heightTiles_->fill(programs, maps);  // binds the maps too
 }
 
@@ -192,7 +197,8 @@ void PatchRenderer::rasterize(gl::ProgramCache& programs, const Surface& surface
     const bool carried = (mapBits & (kPatchBaseColor | kPatchMetallicRoughness)) && shading_ != ShadingModel::Geometry;
     const gl::VariantBits carriedBits =
         carried ? (maps->atlasNormal && (mapBits & kPatchAppearanceAtlas) ? kPatchAtlasNormal : 0) |
-                      (maps->carriedOcclusion ? kPatchCarriedOcclusion : 0) | (maps->carriedEmissive ? kPatchCarriedEmissive : 0)
+                      (maps->carriedOcclusion ? kPatchCarriedOcclusion : 0) |
+                      (maps->carriedEmissive ? kPatchCarriedEmissive : 0)
                 : 0;
     const gl::VariantBits targetBits = target.faceInAlpha() ? kPatchFaceInAlpha : 0;
     const auto& program = programs.get(kPatchRaster, shadingBits(shading_) | mapBits | carriedBits | targetBits);

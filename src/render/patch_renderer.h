@@ -26,16 +26,16 @@ namespace subdfit::render {
 // shader variant; whoever owns the maps binds their buffers.
 struct PatchMaps {
     bool displacement = false, normalMap = false;
-    bool limitShading = false;     // the heights place the surface, the limit normal shades it
+    bool limitShading = false;  // the heights place the surface, the limit normal shades it
     bool baseColor = false, metallicRoughness = false;
-    int resolution = 1;            // cells per ptex-face edge of the geometric maps
-    int appearanceResolution = 1;  // ... of the appearance maps
-    bool appearanceAtlas = false;  // the appearance lattice is an atlas's texel grid
-    bool atlasNormal = false;      // ... carrying the reference's normal texture
+    int resolution = 1;                                      // cells per ptex-face edge of the geometric maps
+    int appearanceResolution = 1;                            // ... of the appearance maps
+    bool appearanceAtlas = false;                            // the appearance lattice is an atlas's texel grid
+    bool atlasNormal = false;                                // ... carrying the reference's normal texture
     bool carriedOcclusion = false, carriedEmissive = false;  // the appearance lattice carries these
-    int appearanceTable = 0;       // where their lattice starts in the face-node table
-    int haloTable = 0;             // where the geometric lattice's ring across tile edges starts
-    std::function<void()> bind;    // the node table and the map values this pass reads
+    int appearanceTable = 0;                                 // where their lattice starts in the face-node table
+    int haloTable = 0;           // where the geometric lattice's ring across tile edges starts
+    std::function<void()> bind;  // the node table and the map values this pass reads
 };
 
 class PatchRenderer {
@@ -61,7 +61,8 @@ public:
     // with the same `maps` (θ+ and θ− of a vertex turn): one basis evaluated for both, half the
     // dispatches of two evaluate() calls, the same surfaces.
     void evaluatePair(gl::ProgramCache& programs, const gl::Buffer& points, const Surface& surface,
-                      const gl::Buffer& secondPoints, const Surface& secondSurface, const PatchMaps* maps = nullptr) const;
+                      const gl::Buffer& secondPoints, const Surface& secondSurface,
+                      const PatchMaps* maps = nullptr) const;
     // The same in two halves, for a cage that stays while its heights change: the limit surface
     // of `points` without heights, kept in `limitVertices` (a surface's vertices buffer), and
     // displaced by `maps`' heights into `surface` (the patches not evaluated again). The same

@@ -26,7 +26,7 @@ struct PatchTessellation {
     std::vector<glm::ivec2> samples;
     // 4 vertex indices each: (i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1) of their patch.
     std::vector<std::uint32_t> quads;
-    std::vector<SampleRun> runs;           // in patch order, each kind together
+    std::vector<SampleRun> runs;  // in patch order, each kind together
 };
 
 // `tessLevel`: segments per base-face edge, a power of two of at most 64.

@@ -32,8 +32,10 @@ void RenderTarget::bindAndClear() const {
     const float blackNoFace[] = {0, 0, 0, -1};
     const int noFace[] = {-1, -1, -1, -1};
     const float one = 1.0f;
-    glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, SUBDFIT_ATTACHMENT_COLOR, layout_.faceInAlpha ? blackNoFace : black);
-    if (!layout_.faceInAlpha) glClearNamedFramebufferiv(framebuffer_.id(), GL_COLOR, SUBDFIT_ATTACHMENT_FACE_ID, noFace);
+    glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, SUBDFIT_ATTACHMENT_COLOR,
+                              layout_.faceInAlpha ? blackNoFace : black);
+    if (!layout_.faceInAlpha)
+        glClearNamedFramebufferiv(framebuffer_.id(), GL_COLOR, SUBDFIT_ATTACHMENT_FACE_ID, noFace);
     if (layout_.patchUv) glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, SUBDFIT_ATTACHMENT_PATCH_UV, black);
     glClearNamedFramebufferfv(framebuffer_.id(), GL_DEPTH, 0, &one);
 }
@@ -81,7 +83,8 @@ std::vector<glm::vec2> RenderTarget::readPatchUv() const {
 
 std::vector<float> RenderTarget::readDepth() const {
     std::vector<float> pixels(size_t(width_) * height_);
-    glGetTextureImage(depth_.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(pixels.size() * sizeof(float)), pixels.data());
+    glGetTextureImage(depth_.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(pixels.size() * sizeof(float)),
+                      pixels.data());
     return pixels;
 }
 

@@ -15,8 +15,9 @@ ShadingModel shadingFor(const mesh::PolygonMesh& reference) {
         if (!used[k]) continue;
         const mesh::Material& m = reference.materials->materials[k];
         allUnlit = allUnlit && m.unlit;
-        specular = specular || (!m.unlit && (m.metallicFactor > 0.0f || m.roughnessFactor < 1.0f ||
-                                             m.metallicRoughnessTexture.present()));
+        specular =
+            specular ||
+            (!m.unlit && (m.metallicFactor > 0.0f || m.roughnessFactor < 1.0f || m.metallicRoughnessTexture.present()));
     }
     if (allUnlit) return ShadingModel::Unlit;
     return specular ? ShadingModel::MetallicRoughness : ShadingModel::Lambert;

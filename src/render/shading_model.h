@@ -32,8 +32,7 @@ gl::VariantBits shadingBits(ShadingModel model);
 template <>
 struct subdfit::EnumNames<subdfit::render::ShadingModel> {
     using M = render::ShadingModel;
-    static constexpr std::array names{std::pair{M::Geometry, std::string_view("geometry")},
-                                      std::pair{M::Unlit, std::string_view("unlit")},
-                                      std::pair{M::Lambert, std::string_view("lambert")},
-                                      std::pair{M::MetallicRoughness, std::string_view("pbr")}};
+    static constexpr std::array names{
+        std::pair{M::Geometry, std::string_view("geometry")}, std::pair{M::Unlit, std::string_view("unlit")},
+        std::pair{M::Lambert, std::string_view("lambert")}, std::pair{M::MetallicRoughness, std::string_view("pbr")}};
 };

@@ -37,8 +37,8 @@ TargetSet::TargetSet(gl::ProgramCache& programs, const render::MeshRenderer& ref
         throwIfStopRequested();
         if (supersampling_ == 1) {
             reference.draw(programs, cameras_[i], target);
-            glCopyImageSubData(target.color().id(), GL_TEXTURE_2D, 0, 0, 0, 0, colors_.id(), GL_TEXTURE_2D_ARRAY,
-                               0, 0, 0, i, resolution, resolution, 1);
+            glCopyImageSubData(target.color().id(), GL_TEXTURE_2D, 0, 0, 0, 0, colors_.id(), GL_TEXTURE_2D_ARRAY, 0, 0,
+                               0, i, resolution, resolution, 1);
         } else {
             const auto pixels = render(i, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
                 reference.draw(programs, camera, canvas);

@@ -19,8 +19,8 @@ namespace subdfit::scene {
 
 class TargetSet {
 public:
-    TargetSet(gl::ProgramCache& programs, const render::MeshRenderer& reference,
-              std::vector<render::Camera> cameras, int resolution, int supersampling = 1);
+    TargetSet(gl::ProgramCache& programs, const render::MeshRenderer& reference, std::vector<render::Camera> cameras,
+              int resolution, int supersampling = 1);
     ~TargetSet();
     TargetSet(TargetSet&&) noexcept;
 

@@ -18,13 +18,15 @@ using gl::groupsOf;
 
 // One variant for the vertices' turns and one per texel group's channel count; each with the
 // loss measured or not (most steps do not, and llvmpipe would run its code masked at every pixel).
-const gl::ProgramSpec kGradient{"gradient",
-                                {{GL_COMPUTE_SHADER, "gradient.comp"}},
-                                {"SUBDFIT_TEXELS", "SUBDFIT_FULL_IMAGE", "SUBDFIT_TEXELS_IN_ATLAS", "SUBDFIT_MEASURE_LOSS"}};
+const gl::ProgramSpec kGradient{
+    "gradient",
+    {{GL_COMPUTE_SHADER, "gradient.comp"}},
+    {"SUBDFIT_TEXELS", "SUBDFIT_FULL_IMAGE", "SUBDFIT_TEXELS_IN_ATLAS", "SUBDFIT_MEASURE_LOSS"}};
 constexpr gl::VariantBits kGradientTexels = 1u << 0, kGradientFullImage = 1u << 1, kGradientInAtlas = 1u << 2,
                           kGradientLoss = 1u << 3;
 const gl::ProgramSpec kScatterSums{"scatter_sums", {{GL_COMPUTE_SHADER, "scatter_sums.comp"}}};
-const gl::ProgramSpec kScatterVertices{"scatter_vertices", {{GL_COMPUTE_SHADER, "scatter_vertices.comp"}}, {"SUBDFIT_FULL_IMAGE"}};
+const gl::ProgramSpec kScatterVertices{
+    "scatter_vertices", {{GL_COMPUTE_SHADER, "scatter_vertices.comp"}}, {"SUBDFIT_FULL_IMAGE"}};
 
 }  // namespace
 
@@ -56,8 +58,9 @@ void accumulateGradient(gl::ProgramCache& programs, optim::ParameterGroup& group
     SUBDFIT_CHECK(in.plus->faceInAlpha() && in.minus->faceInAlpha());
     const gl::VariantBits lossBit = in.measureLoss ? kGradientLoss : 0;
     const auto& program =
-        texels ? programs.get(kGradient, kGradientTexels | (in.maps->inAtlas(group) ? kGradientInAtlas : 0) | lossBit,
-                              {{"SUBDFIT_TEXEL_CHANNELS", std::to_string(group.count() / in.maps->layoutOf(group).nodeCount)}})
+        texels ? programs.get(
+                     kGradient, kGradientTexels | (in.maps->inAtlas(group) ? kGradientInAtlas : 0) | lossBit,
+                     {{"SUBDFIT_TEXEL_CHANNELS", std::to_string(group.count() / in.maps->layoutOf(group).nodeCount)}})
                : programs.get(kGradient, (in.fullImage ? kGradientFullImage : 0) | lossBit);
     program.use();
     program.set("uTargetLayer", in.targetLayer);

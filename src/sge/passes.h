@@ -27,21 +27,21 @@ struct FaceVertexTable {
     gl::Buffer pairRegions, pairSlots;     // the pairs hashed by b in runs of slots per face a
     // How the passes read them: G the hashed pairs, the hand-off the rest.
     gl::BufferTexture faceOffsetsView, faceVerticesView, pairFacesView, pairRegionsView, pairSlotsView;
-    gl::Buffer faceDelta;                  // one fixed-point sum (two uints) per ptex face, then per pair
-    gl::Buffer vertexDelta;                // one fixed-point sum per base vertex: the sums that include it
+    gl::Buffer faceDelta;    // one fixed-point sum (two uints) per ptex face, then per pair
+    gl::Buffer vertexDelta;  // one fixed-point sum per base vertex: the sums that include it
     int faceCount, pairCount, vertexCount;
 };
 
 struct GradientInputs {
-    const render::RenderTarget* plus;   // laid out with the face ids in alpha
+    const render::RenderTarget* plus;  // laid out with the face ids in alpha
     const render::RenderTarget* minus;
     const gl::Texture* targets;  // the target colours, a layer per view
     int targetLayer;
     std::uint32_t counter, seed;
-    float lossScale;     // weight of each pixel's loss in the reported mean
-    bool measureLoss;    // also accumulate the loss (costs a target fetch on background pixels)
+    float lossScale;                      // weight of each pixel's loss in the reported mean
+    bool measureLoss;                     // also accumulate the loss (costs a target fetch on background pixels)
     maps::MapParameters* maps = nullptr;  // the texel groups' lattices, when the scene has them
-    bool fullImage = false;  // plain SPSA (every pixel to every vertex): benchmarks only
+    bool fullImage = false;               // plain SPSA (every pixel to every vertex): benchmarks only
 };
 
 // G for the perturbed `group`: accumulates Δ_p / (2 s_i ε) into group.gradientSum (vertices:

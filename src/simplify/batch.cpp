@@ -36,9 +36,10 @@ std::string stateOf(const nlohmann::json& status) {
 }
 
 void writeStatus(const fs::path& dir, const std::string& state, const nlohmann::json& details) {
-    nlohmann::json status = {{"state", state},
-                             {"time", std::chrono::duration_cast<std::chrono::seconds>(
-                                          std::chrono::system_clock::now().time_since_epoch()).count()}};
+    nlohmann::json status = {
+        {"state", state},
+        {"time", std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch())
+                     .count()}};
     if (details.is_object()) status.update(details);
     io::writeTextAtomically(dir / kStatusFile, jsonText(status, 2));
 }
@@ -49,8 +50,10 @@ nlohmann::json identityOf(const BatchItem& item) {
     std::error_code ec;
     const fs::path resolved = fs::weakly_canonical(reference, ec);
     const std::string digest = io::fileDigest(reference);  // throws, naming the file, if it is unreadable
-    return {{"input", {{"path", (ec ? reference : resolved).string()}, {"bytes", fs::file_size(reference, ec)},
-                       {"xxh3_128", digest}}},
+    return {{"input",
+             {{"path", (ec ? reference : resolved).string()},
+              {"bytes", fs::file_size(reference, ec)},
+              {"xxh3_128", digest}}},
             {"settings", settingsJson(item.options)}};
 }
 
@@ -67,7 +70,9 @@ struct AssetPaths {
     fs::path finished, partial, lock;
 
     AssetPaths(const fs::path& out, const std::string& name)
-        : finished(out / name), partial(out / (name + ".partial")), lock(out / kBatchFolder / "locks" / (name + ".lock")) {
+        : finished(out / name),
+          partial(out / (name + ".partial")),
+          lock(out / kBatchFolder / "locks" / (name + ".lock")) {
         for (const fs::path* p : {&finished, &partial, &lock}) {
             if (!io::isStrictlyInside(*p, out)) throw fileError(p->string(), "lies outside the batch's output folder");
             std::error_code ec;
@@ -79,8 +84,8 @@ struct AssetPaths {
 
 // Statuses are bookkeeping: failing to write one is reported, never thrown, so that an error
 // handler cannot itself fail and stop the batch.
-void writeStatusOrSay(const fs::path& dir, const std::string& state, const nlohmann::json& details,
-                      const BatchLog& say, const std::string& name) {
+void writeStatusOrSay(const fs::path& dir, const std::string& state, const nlohmann::json& details, const BatchLog& say,
+                      const std::string& name) {
     try {
         writeStatus(dir, state, details);
     } catch (const std::exception& e) {
@@ -103,13 +108,14 @@ nlohmann::json identityOrPath(const BatchItem& item) {
     } catch (const Interrupted&) {
         throw;
     } catch (const Error&) {
-        return nlohmann::json{{"input", {{"path", item.options.fit.reference.string()}}}, {"settings", settingsJson(item.options)}};
+        return nlohmann::json{{"input", {{"path", item.options.fit.reference.string()}}},
+                              {"settings", settingsJson(item.options)}};
     }
 }
 
 // Simplifies `item` into its partial folder and renames that into place once done; the route it shipped.
 std::string simplifyInto(const BatchItem& item, const AssetPaths& paths, const nlohmann::json& identity,
-                  const fit::FitHooks& hooks, const BatchLog& say) {
+                         const fit::FitHooks& hooks, const BatchLog& say) {
     SimplifyOptions options = item.options;
     options.fit.out = paths.partial;
     options.fit.resume = fs::exists(paths.partial / "checkpoint.bin");
@@ -119,7 +125,8 @@ std::string simplifyInto(const BatchItem& item, const AssetPaths& paths, const n
     try {
         const auto report = runSimplify(options, hooks);
         nlohmann::json details = identity;
-        details.update({{"psnr_holdout", report.subdfit.psnrHoldout}, {"bytes", report.subdfit.bytes},
+        details.update({{"psnr_holdout", report.subdfit.psnrHoldout},
+                        {"bytes", report.subdfit.bytes},
                         {"route", report.route.shipped}});
         writeStatus(paths.partial, "done", details);
         fs::remove_all(paths.finished);  // a stale folder: not done, or from another input
@@ -148,7 +155,8 @@ AssetResult runAsset(const BatchItem& item, const fs::path& out, const fit::FitH
         if (sameIdentity(finishedStatus, identity)) {
             say(item.name + ": done already, skipped");
             const auto route = finishedStatus.find("route");
-            return {AssetOutcome::Skipped, route != finishedStatus.end() && route->is_string() ? route->get<std::string>() : ""};
+            return {AssetOutcome::Skipped,
+                    route != finishedStatus.end() && route->is_string() ? route->get<std::string>() : ""};
         }
         say(item.name + ": its finished folder was made from another version of the input: redoing it");
     }
@@ -194,7 +202,8 @@ std::string assetName(const std::string& label, const std::string& identity) {
     for (const char c : label) {
         if (safe.size() == kMaxLabel) break;
         // A leading '.' would hide the folder (or make it . or ..); a leading '-' reads as an option.
-        const bool keep = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || ((c == '.' || c == '-') && !safe.empty());
+        const bool keep =
+            std::isalnum(static_cast<unsigned char>(c)) || c == '_' || ((c == '.' || c == '-') && !safe.empty());
         safe += keep && static_cast<unsigned char>(c) < 0x80 ? c : '_';
     }
     if (safe.empty()) safe = "asset";
@@ -230,9 +239,11 @@ std::vector<std::string> nameItems(std::vector<BatchItem>& items, const std::vec
     return dropped;
 }
 
-BatchSummary runBatch(const std::vector<BatchItem>& items, const fs::path& out, Shard shard,
-                      const fit::FitHooks& hooks, const BatchLog& log, bool force) {
-    const BatchLog say = [&](const std::string& line) { if (log) log(line); };
+BatchSummary runBatch(const std::vector<BatchItem>& items, const fs::path& out, Shard shard, const fit::FitHooks& hooks,
+                      const BatchLog& log, bool force) {
+    const BatchLog say = [&](const std::string& line) {
+        if (log) log(line);
+    };
     auto stopRequestedHere = [&] { return stopRequested() || (hooks.cancel && hooks.cancel->load()); };
     io::checkOutputFolder(out, {.ownMarkers = {kBatchFolder}, .force = force});
     fs::create_directories(out / kBatchFolder);

@@ -24,9 +24,9 @@
 namespace subdfit::simplify {
 
 struct BatchItem {
-    std::string name{};        // OUT/name: from assetName()
-    SimplifyOptions options;   // options.fit.out, .resume and .force are set by the batch
-    int line = 0;              // where the manifest names it (0: not from a manifest)
+    std::string name{};       // OUT/name: from assetName()
+    SimplifyOptions options;  // options.fit.out, .resume and .force are set by the batch
+    int line = 0;             // where the manifest names it (0: not from a manifest)
 };
 
 struct Shard {

@@ -84,8 +84,7 @@ void prepareToJudge(const mesh::PolygonMesh& cageWorld) {
     try {
         const exporter::SubdAsset shipped = ship(cageWorld, {}, 0, 0, 1.0f).decoded;
         subdiv::cachedPatchSet(shipped.cage, {.isolationLevel = subdiv::drawingIsolationLevel(shipped.cage)});
-    } catch (const Error&) {
-    }
+    } catch (const Error&) {}
 }
 
 namespace {
@@ -220,18 +219,23 @@ void record(const SearchInputs& in, Findings& found, const BudgetCandidate& c,
 // Judges one candidate: the cage with `baked` maps (laid out on it, as `recipe` says) and
 // `appearance`, encoded and decoded as it ships, scored when it fits. Every candidate is
 // recorded, those over the budget too, so that the report shows why they lost.
-BudgetCandidate judge(const SearchInputs& in, Findings& found, const std::shared_ptr<const mesh::PolygonMesh>& cageWorld,
-                      surface::SurfaceMaps baked, const MapRecipe& recipe, const Appearance& appearance,
+BudgetCandidate judge(const SearchInputs& in, Findings& found,
+                      const std::shared_ptr<const mesh::PolygonMesh>& cageWorld, surface::SurfaceMaps baked,
+                      const MapRecipe& recipe, const Appearance& appearance,
                       int positionBits = exporter::SubdPrecision{}.positionBits) {
     baked.setAppearance(appearance.maps);
     std::optional<TimedStage> timed(std::in_place, found.phases, "encode");
     Shipped shipped = ship(*cageWorld, baked, recipe.bits, appearance.quality, in.scene.frame.scale, positionBits);
     timed.emplace(found.phases, "render");
     const bool atlas = appearance.maps.appearanceAtlas.present();
-    BudgetCandidate c{.faces = cageWorld->faceCount(), .maps = recipe.effects, .mapResolution = recipe.resolution,
-                      .mapBits = recipe.bits, .positionBits = positionBits,
+    BudgetCandidate c{.faces = cageWorld->faceCount(),
+                      .maps = recipe.effects,
+                      .mapResolution = recipe.resolution,
+                      .mapBits = recipe.bits,
+                      .positionBits = positionBits,
                       .appearanceResolution = atlas ? 0 : appearance.maps.appearanceLayout.resolution,
-                      .appearanceQuality = appearance.quality, .appearanceAtlas = appearance.maps.appearanceAtlas.size,
+                      .appearanceQuality = appearance.quality,
+                      .appearanceAtlas = appearance.maps.appearanceAtlas.size,
                       .bytes = shipped.encoded->size()};
     const bool within = fits(in.search, c);
     if (within) scoreOnMonitor(in, *cageWorld, baked, appearance, c, shipped);
@@ -275,8 +279,9 @@ std::vector<Bare> judgeBare(const SearchInputs& in, Findings& found, const Tried
             if (in.say) {
                 const bool atlas = appearances[a].atlas > 0;
                 char line[96];
-                std::snprintf(line, sizeof line, atlas ? "%6d faces, appearance atlas %d" : "%6d faces, appearance T=%d",
-                              faces, atlas ? appearances[a].atlas : appearances[a].resolution);
+                std::snprintf(line, sizeof line,
+                              atlas ? "%6d faces, appearance atlas %d" : "%6d faces, appearance T=%d", faces,
+                              atlas ? appearances[a].atlas : appearances[a].resolution);
                 in.say(std::string(line) + ": predicted over budget, not baked");
             }
             endKind(a);
@@ -317,11 +322,13 @@ std::vector<const Bare*> worthMaps(const std::vector<Bare>& bare) {
     for (const Bare& b : bare) {
         const bool dominated = std::any_of(bare.begin(), bare.end(), [&](const Bare& o) {
             const BudgetCandidate &p = o.candidate, &q = b.candidate;
-            return p.bytes <= q.bytes && p.monitorLoss <= q.monitorLoss && (p.bytes < q.bytes || p.monitorLoss < q.monitorLoss);
+            return p.bytes <= q.bytes && p.monitorLoss <= q.monitorLoss &&
+                   (p.bytes < q.bytes || p.monitorLoss < q.monitorLoss);
         });
         if (!dominated) worth.push_back(&b);
     }
-    std::sort(worth.begin(), worth.end(), [](const Bare* x, const Bare* y) { return x->candidate.monitorLoss < y->candidate.monitorLoss; });
+    std::sort(worth.begin(), worth.end(),
+              [](const Bare* x, const Bare* y) { return x->candidate.monitorLoss < y->candidate.monitorLoss; });
     if (worth.size() > kMostAppearancesWithMaps) worth.resize(kMostAppearancesWithMaps);
     return worth;
 }
@@ -335,7 +342,8 @@ bool firstRungLikely(const SearchInputs& in, const Findings& found, int faces) {
     for (const BudgetCandidate& c : found.tried)
         if (!c.maps.any() && (bareBytesPerFace == 0.0 || double(c.bytes) / c.faces < bareBytesPerFace))
             bareBytesPerFace = double(c.bytes) / c.faces;
-    const auto rung = found.mapBytesPerFace.find(std::make_tuple(size_t(0), in.search.mapResolutions.front(), in.search.mapBits.front()));
+    const auto rung = found.mapBytesPerFace.find(
+        std::make_tuple(size_t(0), in.search.mapResolutions.front(), in.search.mapBits.front()));
     if (rung == found.mapBytesPerFace.end() || bareBytesPerFace == 0.0) return true;
     return (bareBytesPerFace + rung->second) * faces <= kPredictedOver * double(in.search.budget);
 }
@@ -359,8 +367,9 @@ void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& ca
             if (const auto measured = found.mapBytesPerFace.find(rung); measured != found.mapBytesPerFace.end()) {
                 const double predicted = double(bare.candidate.bytes) + measured->second * faces;
                 if (predicted > kPredictedOver * double(in.search.budget)) {
-                    if (in.say) in.say(describe(bare.candidate) + ": maps T=" + std::to_string(resolution) +
-                                       " predicted over budget, not tried");
+                    if (in.say)
+                        in.say(describe(bare.candidate) + ": maps T=" + std::to_string(resolution) +
+                               " predicted over budget, not tried");
                     break;
                 }
             }
@@ -444,11 +453,13 @@ void growBest(const SearchInputs& in, Findings& found, const Keep& keep) {
         appearance.quality = best.appearanceQuality;
         if (best.appearanceResolution > 0 || best.appearanceAtlas > 0)
             appearance.maps = bakeAppearance(cage->normalized, in.scene.reference,
-                                             {.effects = in.search.appearance, .resolution = best.appearanceResolution,
+                                             {.effects = in.search.appearance,
+                                              .resolution = best.appearanceResolution,
                                               .atlas = best.appearanceAtlas});
-        const surface::SurfaceMaps baked =
-            best.maps.any() ? bakeMaps(cage->normalized, in.scene.reference, {.effects = best.maps, .resolution = best.mapResolution})
-                            : surface::SurfaceMaps{};
+        const surface::SurfaceMaps baked = best.maps.any()
+                                               ? bakeMaps(cage->normalized, in.scene.reference,
+                                                          {.effects = best.maps, .resolution = best.mapResolution})
+                                               : surface::SurfaceMaps{};
         const MapRecipe recipe{.effects = best.maps, .resolution = best.mapResolution, .bits = best.mapBits};
         const BudgetCandidate grown = judge(in, found, cage->world, baked, recipe, appearance, best.positionBits);
         if (fits(in.search, grown)) {  // on from it while bytes are left
@@ -469,14 +480,14 @@ BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
     const bool fitted = lowest && fit::psnrFromLoss(lowest->candidate.monitorLoss) >= in.search.leastFittedMonitorPsnr;
     SettlingViews settling(in.programs, in.scene);
     const auto choose = [&](auto keep) {
-        return fitted ? settle(in.programs, in.scene, settling, found.fitting, keep) : lowestOf(found.fitting, keep, monitored);
+        return fitted ? settle(in.programs, in.scene, settling, found.fitting, keep)
+                      : lowestOf(found.fitting, keep, monitored);
     };
     const Fitting* chosen = choose(any);
     if (!chosen)
-        throw NoCageFits(in.referenceWorld.sourcePath, "no cage fits in " + std::to_string(in.search.budget) +
-                                                           " bytes (the smallest tried needs " +
-                                                           std::to_string(found.tried.empty() ? 0 : found.tried.back().bytes) +
-                                                           ")");
+        throw NoCageFits(in.referenceWorld.sourcePath,
+                         "no cage fits in " + std::to_string(in.search.budget) + " bytes (the smallest tried needs " +
+                             std::to_string(found.tried.empty() ? 0 : found.tried.back().bytes) + ")");
     BudgetChoice choice;
     choice.chosen = chosen->candidate;
     choice.cageWorld = *chosen->cageWorld;
@@ -491,8 +502,8 @@ BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
         found.tried[f.tried].settledViews = f.candidate.settledViews;
         if (in.say) {
             char line[80];
-            std::snprintf(line, sizeof line, ": loss %.4g on the monitor and %d training views", f.candidate.settledLoss,
-                          f.candidate.settledViews);
+            std::snprintf(line, sizeof line, ": loss %.4g on the monitor and %d training views",
+                          f.candidate.settledLoss, f.candidate.settledViews);
             in.say(describe(f.candidate) + line);
         }
     }
@@ -503,7 +514,8 @@ BudgetChoice settleChoice(const SearchInputs& in, Findings& found) {
 }  // namespace
 
 std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, int mostFaces) {
-    const double largest = std::min({double(budget) / kBytesPerCageFace, 0.5 * double(referenceTriangles), double(mostFaces)});
+    const double largest =
+        std::min({double(budget) / kBytesPerCageFace, 0.5 * double(referenceTriangles), double(mostFaces)});
     std::vector<int> counts;
     // Above the ladder, as many faces as the reference has triangles where the budget holds them:
     // a light asset shades best from a cage of its own density. On top of the ladder rather than
@@ -532,7 +544,8 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
         }();
         if (!cage) continue;  // smaller counts will not do better
         CageBakes bakes(cage->normalized, in.scene.reference);
-        if (!mapChoices.empty() && !search.mapResolutions.empty() && firstRungLikely(in, found, cage->world->faceCount()))
+        if (!mapChoices.empty() && !search.mapResolutions.empty() &&
+            firstRungLikely(in, found, cage->world->faceCount()))
             bakes.startAhead(0, {.effects = mapChoices.front(), .resolution = in.search.mapResolutions.front()});
         const std::vector<Bare> bare = judgeBare(in, found, *cage, appearances);
         for (const Bare* b : worthMaps(bare)) climbMapLadder(in, found, *cage, *b, mapChoices, bakes);
@@ -580,9 +593,9 @@ BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
     for (int bits = mapBits - 1; bits >= kFewestBits; --bits) ladder.emplace_back(bits, quality);
     for (size_t k = 0; k < ladder.size(); ++k) {
         precision = exporter::SubdPrecision::forMapBits(ladder[k].first, ladder[k].second, positionBits);
-        const auto encoded =
-            exporter::encodeSubd(exporter::shippableAsset(decoded.cage, decoded.maps, precision.positionBits, decoded.decodeTriangles),
-                                 precision);
+        const auto encoded = exporter::encodeSubd(
+            exporter::shippableAsset(decoded.cage, decoded.maps, precision.positionBits, decoded.decodeTriangles),
+            precision);
         if (encoded.size() <= budget || k + 1 == ladder.size()) {
             bytes = exporter::writeBytes(subd, encoded).bytes;
             if (bytes <= budget) break;
@@ -593,8 +606,9 @@ BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
 
 nlohmann::json toJson(const BudgetReport& report) {
     auto candidate = [](const BudgetCandidate& c) {
-        nlohmann::json j{{"faces", c.faces}, {"maps", maps::toString(c.maps)}, {"map_resolution", c.mapResolution},
-                         {"map_bits", c.mapBits}, {"position_bits", c.positionBits}, {"bytes", c.bytes}};
+        nlohmann::json j{
+            {"faces", c.faces},      {"maps", maps::toString(c.maps)},  {"map_resolution", c.mapResolution},
+            {"map_bits", c.mapBits}, {"position_bits", c.positionBits}, {"bytes", c.bytes}};
         if (c.maps.displacement && c.monitorLoss > 0.0) j["shading_normal"] = nameOf(c.shadingNormal);
         if (c.appearanceResolution > 0) j["appearance_resolution"] = c.appearanceResolution;
         if (c.appearanceAtlas > 0) j["appearance_atlas"] = c.appearanceAtlas;

@@ -20,30 +20,11 @@
 #include "fit/fit_scene.h"
 #include "gl/program_cache.h"
 #include "maps/map_effects.h"
+#include "simplify/budget_candidate.h"
 #include "simplify/cage/cage_ladder.h"
 #include "simplify/stage_seconds.h"
 
 namespace subdfit::simplify {
-
-struct BudgetCandidate {
-    int faces = 0;              // of the cage, as built
-    maps::MapEffects maps;      // none: the bare cage
-    int mapResolution = 0;      // 0 without maps
-    int mapBits = 0;            // per map value in asset.subd; 0 without maps
-    int positionBits = 14;      // per cage coordinate in asset.subd
-    // With heights, what shades them: whichever of the two scored lower on the monitor views
-    // (over budget, not judged: Displaced).
-    surface::ShadingNormal shadingNormal = surface::ShadingNormal::Displaced;
-    int appearanceResolution = 0;  // of the base colour (and metallic-roughness); 0 without
-    int appearanceQuality = 0;     // JPEG quality of the appearance images; 0 without
-    int appearanceAtlas = 0;       // texels per side of the appearance in the reference's atlas; 0: tiles
-    std::uintmax_t bytes = 0;   // of its asset.subd
-    double monitorLoss = 0.0;   // of the decoded asset; 0 when over budget (not rendered)
-    // Over the monitor views and `settledViews` training views, for those near the lowest monitor
-    // loss; 0 otherwise.
-    double settledLoss = 0.0;
-    int settledViews = 0;
-};
 
 struct BudgetSearch {
     std::uintmax_t budget = 0;
@@ -140,14 +121,14 @@ BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
 
 // report.json's `budget`: the search and what shipped.
 struct BudgetReport {
-    std::uintmax_t bytes = 0;  // the budget
-    bool derived = false;      // from the reference (no --budget): route.h's defaultBudget
+    std::uintmax_t bytes = 0;                // the budget
+    bool derived = false;                    // from the reference (no --budget): route.h's defaultBudget
     std::uintmax_t compressedReference = 0;  // what it was derived from
     BudgetCandidate chosen;
     std::vector<BudgetCandidate> tried;
-    double seconds = 0.0;      // the search's
-    StageSeconds phases;       // and where they went
-    BudgetShipment shipped;    // after the fit
+    double seconds = 0.0;    // the search's
+    StageSeconds phases;     // and where they went
+    BudgetShipment shipped;  // after the fit
 };
 
 // `bytes` (and, derived, `derived_from`: the reference compressed), `chosen`, `candidates`,

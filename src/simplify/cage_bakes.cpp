@@ -10,7 +10,8 @@ CageBakes::~CageBakes() {
 void CageBakes::startAhead(size_t choice, const BakeOptions& options) {
     const Key key{choice, options.resolution};
     if (bakes_.count(key)) return;
-    bakes_.emplace(key, std::async(std::launch::async, [this, options] { return bakeMaps(cage_, reference_, options); }).share());
+    bakes_.emplace(
+        key, std::async(std::launch::async, [this, options] { return bakeMaps(cage_, reference_, options); }).share());
 }
 
 const surface::SurfaceMaps& CageBakes::at(size_t choice, const BakeOptions& options) {

@@ -64,8 +64,10 @@ std::unique_ptr<fit::CageFitter> drawnAsFitted(gl::ProgramCache& programs, const
     for (float& d : maps.displacement) d *= scene.frame.scale;
     fit::CageFitSettings rendering;
     rendering.shading = scene.shading;
-    rendering.mapEffects = {.displacement = maps.hasDisplacement(), .normalMap = maps.hasNormal(),
-                            .baseColor = maps.hasBaseColor(), .metallicRoughness = maps.hasMetallicRoughness()};
+    rendering.mapEffects = {.displacement = maps.hasDisplacement(),
+                            .normalMap = maps.hasNormal(),
+                            .baseColor = maps.hasBaseColor(),
+                            .metallicRoughness = maps.hasMetallicRoughness()};
     rendering.maps.resolution = std::max(maps.layout.resolution, 1);
     rendering.maps.appearanceResolution = std::max(maps.appearanceLayout.resolution, 1);
     rendering.maps.appearanceAtlas = maps.appearanceAtlas.size;
@@ -91,7 +93,8 @@ const Fitting* preferred(const std::vector<Fitting>& fitting, const Keep& keep, 
     const double lowestLoss = loss(lowest->candidate), bytes = double(lowest->candidate.bytes);
     const Fitting* best = lowest;
     for (const Fitting& f : fitting) {
-        const double lossGivenUp = loss(f.candidate) / lowestLoss - 1.0, bytesSaved = 1.0 - double(f.candidate.bytes) / bytes;
+        const double lossGivenUp = loss(f.candidate) / lowestLoss - 1.0,
+                     bytesSaved = 1.0 - double(f.candidate.bytes) / bytes;
         if (keep(f.candidate) && lossGivenUp <= kLossTolerance && bytesSaved >= kBytesPerLoss * lossGivenUp &&
             f.candidate.bytes < best->candidate.bytes)
             best = &f;
@@ -105,10 +108,10 @@ SettlingViews::SettlingViews(gl::ProgramCache& programs, const fit::FitScene& sc
 double SettlingViews::loss(fit::CageFitter& fitter, size_t v) {
     const scene::TargetSet& views = block(v / kSettleBlock);
     const int k = int(v % kSettleBlock);
-    return fit::meanPixelLoss(views.render(k, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
-                                  fitter.render(camera, canvas);
-                              }),
-                              views.readColor(k));
+    return fit::meanPixelLoss(
+        views.render(k, [&](const render::Camera& camera,
+                            const render::RenderTarget& canvas) { fitter.render(camera, canvas); }),
+        views.readColor(k));
 }
 
 const scene::TargetSet& SettlingViews::block(size_t b) {
@@ -141,7 +144,8 @@ const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, Se
             for (size_t v = f->trainingLoss.size(); v < views; ++v) {
                 throwIfStopRequested();
                 auto& fitter = drawn[f];
-                if (!fitter) fitter = drawnAsFitted(programs, scene, exporter::decodeSubd(*f->encoded, "budget candidate"));
+                if (!fitter)
+                    fitter = drawnAsFitted(programs, scene, exporter::decodeSubd(*f->encoded, "budget candidate"));
                 f->trainingLoss.push_back(settling.loss(*fitter, v));
             }
     }
@@ -149,7 +153,8 @@ const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, Se
         f->candidate.settledLoss = settledLossOf(*f, scene.monitor.size(), views);
         f->candidate.settledViews = int(views);
     }
-    return preferred(fitting, [&](const BudgetCandidate& c) { return keep(c) && c.monitorLoss <= within; }, settled);
+    return preferred(
+        fitting, [&](const BudgetCandidate& c) { return keep(c) && c.monitorLoss <= within; }, settled);
 }
 
 }  // namespace subdfit::simplify

@@ -13,7 +13,7 @@
 #include "fit/fit_scene.h"
 #include "gl/program_cache.h"
 #include "mesh/polygon_mesh.h"
-#include "simplify/budget_search.h"
+#include "simplify/budget_candidate.h"
 
 namespace subdfit::simplify {
 
@@ -39,7 +39,7 @@ struct Fitting {
     BudgetCandidate candidate;
     std::shared_ptr<const mesh::PolygonMesh> cageWorld;
     std::shared_ptr<const std::vector<unsigned char>> encoded;
-    size_t tried;  // its place in Findings::tried
+    size_t tried;                        // its place in Findings::tried
     std::vector<double> trainingLoss{};  // on the training views drawn so far, in settling order
 };
 

@@ -9,9 +9,9 @@ namespace subdfit::simplify {
 
 struct FitVerdict {
     bool fitShips = true;
-    bool fitMoved = true;  // false: the fit ended at its bake (no losses measured)
+    bool fitMoved = true;                      // false: the fit ended at its bake (no losses measured)
     double fittedLoss = 0.0, bakedLoss = 0.0;  // on the choosing views
-    std::uintmax_t overBudgetBytes = 0;  // > 0: the fit won there, but its asset came to this, over the budget
+    std::uintmax_t overBudgetBytes = 0;        // > 0: the fit won there, but its asset came to this, over the budget
 };
 
 // Leaves in `run`'s fitter whichever of its fitted state and its bake (the scene's initial cage,

@@ -13,9 +13,9 @@
 namespace subdfit::simplify {
 
 struct ManifestLine {
-    int number = 0;                      // 1-based
-    std::filesystem::path reference{};   // as written
-    std::filesystem::path resolved{};    // relative ones from the manifest's folder
+    int number = 0;                     // 1-based
+    std::filesystem::path reference{};  // as written
+    std::filesystem::path resolved{};   // relative ones from the manifest's folder
     std::vector<std::string> options{};
 };
 

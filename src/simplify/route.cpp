@@ -28,7 +28,8 @@ std::uintmax_t defaultBudget(std::uintmax_t compressedReference) {
 
 TriangleChoice bestTriangleRoute(const Quality* decimation, const Quality* gltfpack) {
     TriangleChoice best;
-    for (const auto& [name, q] : {std::pair<const char*, const Quality*>{"decimation", decimation}, {"gltfpack", gltfpack}}) {
+    for (const auto& [name, q] :
+         {std::pair<const char*, const Quality*>{"decimation", decimation}, {"gltfpack", gltfpack}}) {
         if (!q || q->details.value("over_budget", false)) continue;
         if (!best.quality || q->psnrHoldout > best.quality->psnrHoldout) best = {name, q};
     }
@@ -36,11 +37,11 @@ TriangleChoice bestTriangleRoute(const Quality* decimation, const Quality* gltfp
 }
 
 Route chooseRoute(const Quality& cage, const TriangleChoice& triangles, std::optional<std::uintmax_t> budget) {
-    if (!triangles.quality)
-        return {.why = "no triangle route fits the budget"};
+    if (!triangles.quality) return {.why = "no triangle route fits the budget"};
     if (budget && cage.bytes > *budget)
-        return triangleRoute(triangles, "the cage codes to " + std::to_string(cage.bytes) + " bytes, over the budget: " +
-                                            triangles.name + " ships, the best triangle route within it");
+        return triangleRoute(triangles, "the cage codes to " + std::to_string(cage.bytes) +
+                                            " bytes, over the budget: " + triangles.name +
+                                            " ships, the best triangle route within it");
     const double lead = cage.psnrHoldout - triangles.quality->psnrHoldout;
     if (lead >= 0.0)
         return {.why = "the cage leads the best triangle route (" + triangles.name + ") by " + decibels(lead) +
@@ -54,17 +55,19 @@ std::optional<Route> routeBeforeFit(const TriangleChoice& triangles, Holds holds
     if (!triangles.quality) return std::nullopt;
     if (holds == Holds::Whole)
         return triangleRoute(triangles, "the reference fits the budget whole (" +
-                                            std::to_string(triangles.quality->bytes) + " bytes compressed): nothing to simplify");
+                                            std::to_string(triangles.quality->bytes) +
+                                            " bytes compressed): nothing to simplify");
     if (holds == Holds::EveryTriangle)
-        return triangleRoute(triangles, "decimation holds every triangle of the reference within the budget, which a "
-                                        "cage's limit surface only approximates (" + triangles.name +
-                                            " scores best of the triangle routes): no cage tried");
+        return triangleRoute(triangles,
+                             "decimation holds every triangle of the reference within the budget, which a "
+                             "cage's limit surface only approximates (" +
+                                 triangles.name + " scores best of the triangle routes): no cage tried");
     if (!candidateMonitorPsnr) return std::nullopt;
     const double lead = triangles.quality->details.value("monitor_psnr", 0.0) - *candidateMonitorPsnr;
     if (*candidateMonitorPsnr < leastFittedMonitorPsnr(triangles))
         return triangleRoute(triangles, triangles.name + " leads the best cage candidate by " + decibels(lead) +
-                                            " on the monitor views, more than a fit gains (" + decibels(kMostFitGainDb) +
-                                            "): no cage fitted");
+                                            " on the monitor views, more than a fit gains (" +
+                                            decibels(kMostFitGainDb) + "): no cage fitted");
     return std::nullopt;
 }
 

@@ -30,7 +30,7 @@ std::uintmax_t defaultBudget(std::uintmax_t compressedReference);
 
 // What shipped and why.
 struct Route {
-    std::string shipped = "cage";         // "cage", "decimation" or "gltfpack"
+    std::string shipped = "cage";               // "cage", "decimation" or "gltfpack"
     std::filesystem::path path = "asset.subd";  // in the output folder
     std::string why;
 };
@@ -49,7 +49,8 @@ TriangleChoice bestTriangleRoute(const Quality* decimation, const Quality* gltfp
 
 // The cage, unless `triangles` scores better on the held-out views at the budget, or the cage
 // codes over `budget` (where one was set) and a triangle route fits it.
-Route chooseRoute(const Quality& cage, const TriangleChoice& triangles, std::optional<std::uintmax_t> budget = std::nullopt);
+Route chooseRoute(const Quality& cage, const TriangleChoice& triangles,
+                  std::optional<std::uintmax_t> budget = std::nullopt);
 
 // How much of the reference the triangle route holds within the budget.
 enum class Holds { Part, EveryTriangle, Whole };  // Whole: every triangle and every texel

@@ -51,7 +51,8 @@ nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports
 
 // The fitted cage, as shipped (asset.subd): held-out scores and, with a full comparison, its
 // surface distance.
-Quality scoreCage(fit::FitRun& run, const fit::FitReport& fitted, const std::filesystem::path& out, const SimplifyOptions& o) {
+Quality scoreCage(fit::FitRun& run, const fit::FitReport& fitted, const std::filesystem::path& out,
+                  const SimplifyOptions& o) {
     Quality ours;
     ours.files = shippedFiles(fitted.exports);
     ours.bytes = totalBytes(ours.files);
@@ -174,14 +175,14 @@ struct TargetBudget {
     std::uintmax_t compressedReference = 0;  // 0 unless derived
 };
 
-TargetBudget targetBudget(const SimplifyOptions& options, const fit::FitScene& scene, const std::filesystem::path& staged,
-                          const fit::FitHooks& hooks, StageSeconds& stages) {
+TargetBudget targetBudget(const SimplifyOptions& options, const fit::FitScene& scene,
+                          const std::filesystem::path& staged, const fit::FitHooks& hooks, StageSeconds& stages) {
     if (options.budget || options.faces) return {.bytes = options.budget};
     const std::uintmax_t compressed = compressedReferenceBytes(scene, staged / "reference.glb");
     const std::uintmax_t budget = defaultBudget(compressed);
     if (hooks.note)
-        hooks.note("no --budget: " + std::to_string(budget) + " bytes (the reference compressed: " +
-                   std::to_string(compressed) + ")");
+        hooks.note("no --budget: " + std::to_string(budget) +
+                   " bytes (the reference compressed: " + std::to_string(compressed) + ")");
     stages.lap("default_budget");
     return {.bytes = budget, .compressedReference = compressed};
 }
@@ -228,8 +229,8 @@ PreFit decideBeforeFit(const SimplifyOptions& options, fit::FitOptions fitOption
         planned->derived = !options.budget;
         planned->compressedReference = target.compressedReference;
         if (options.route == RouteChoice::Auto)
-            decided.route = routeBeforeFit(decided.triangles.best(), Holds::Part,
-                                           fit::psnrFromLoss(planned->chosen.monitorLoss));
+            decided.route =
+                routeBeforeFit(decided.triangles.best(), Holds::Part, fit::psnrFromLoss(planned->chosen.monitorLoss));
     }
     return decided;
 }
@@ -261,7 +262,8 @@ void writeWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInpu
     verdict->fitShips = false;
     verdict->overBudgetBytes = in.report.budget->shipped.bytes;
     if (in.hooks.note)
-        in.hooks.note("the fitted asset codes to " + std::to_string(verdict->overBudgetBytes) + " bytes, over the budget: its bake ships");
+        in.hooks.note("the fitted asset codes to " + std::to_string(verdict->overBudgetBytes) +
+                      " bytes, over the budget: its bake ships");
     holdTheBake(run);
     writeCoded(run, plan, in);
 }
@@ -269,7 +271,8 @@ void writeWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInpu
 // Fits the plan's cage, writes its results into the staging folder, and weighs it against the
 // triangle route (made here at the cage's bytes when there is no budget): the better ships. With
 // --compare full, the bake route too.
-void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& triangles, std::optional<std::uintmax_t> budget) {
+void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& triangles,
+                 std::optional<std::uintmax_t> budget) {
     const SimplifyOptions& options = in.options;
     SimplifyReport& report = in.report;
     StageSeconds& stages = report.stages;
@@ -286,8 +289,10 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
     report.fitVerdict = keepTheFitWhereItPays(run, in.programs);
     if (report.fitVerdict->fittedLoss > report.fitVerdict->bakedLoss && in.hooks.note) {
         char line[160];
-        std::snprintf(line, sizeof line, "the fit did not improve on its bake on the choosing views (loss %.4g against %.4g): the bake ships",
-                      report.fitVerdict->fittedLoss, report.fitVerdict->bakedLoss);
+        std::snprintf(
+            line, sizeof line,
+            "the fit did not improve on its bake on the choosing views (loss %.4g against %.4g): the bake ships",
+            report.fitVerdict->fittedLoss, report.fitVerdict->bakedLoss);
         in.hooks.note(line);
     }
     stages.lap("fit");
@@ -302,7 +307,8 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
         stages.lap("triangle_route");
     }
     const TriangleChoice best = triangles.best();
-    report.route = options.route == RouteChoice::Cage ? Route{.why = "--route cage"} : chooseRoute(report.subdfit, best, budget);
+    report.route =
+        options.route == RouteChoice::Cage ? Route{.why = "--route cage"} : chooseRoute(report.subdfit, best, budget);
     if (report.route.shipped != "cage") {
         report.cage = report.subdfit;
         report.subdfit = shipTriangles(best, in.staged);
@@ -318,10 +324,10 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
 }  // namespace
 
 nlohmann::json toJson(const SimplifyReport& r) {
-    nlohmann::json report =
-        r.fit ? fit::toJson(*r.fit)
-              : nlohmann::json{{"settings", r.settings},
-                               {"reference", fit::referenceJson(r.reference, r.referenceTriangles)}};
+    nlohmann::json report = r.fit
+                                ? fit::toJson(*r.fit)
+                                : nlohmann::json{{"settings", r.settings},
+                                                 {"reference", fit::referenceJson(r.reference, r.referenceTriangles)}};
     // What shipped (where the cage did, its held-out PSNR is the fit's, from the same views).
     nlohmann::json shipped = toJson(r.subdfit);
     shipped.erase("path");  // `route` names it
@@ -368,10 +374,10 @@ nlohmann::json toJson(const SimplifyReport& r) {
         nlohmann::json& verdict = report["fit_verdict"] = {{"shipped", r.fitVerdict->fitShips ? "fit" : "bake"}};
         if (r.fitVerdict->fitMoved)
             verdict["choosing_loss"] = {{"fit", r.fitVerdict->fittedLoss}, {"bake", r.fitVerdict->bakedLoss}};
-        else
-            verdict["why"] = "the fit ended at its bake";
+        else verdict["why"] = "the fit ended at its bake";
         if (r.fitVerdict->overBudgetBytes > 0)
-            verdict["why"] = "the fitted asset coded to " + std::to_string(r.fitVerdict->overBudgetBytes) + " bytes, over the budget";
+            verdict["why"] = "the fitted asset coded to " + std::to_string(r.fitVerdict->overBudgetBytes) +
+                             " bytes, over the budget";
     }
     return report;
 }
@@ -415,14 +421,15 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
 
     // Every result lands in one commit, or none does.
     io::StagedFolder staged(out);
-    BaselineSettings baselineSettings{.dir = staged.path() / "baselines", .compactMaps = fitOptions.compactMaps,
+    BaselineSettings baselineSettings{.dir = staged.path() / "baselines",
+                                      .compactMaps = fitOptions.compactMaps,
                                       .surfaceSamples = options.surfaceSamples,
                                       .distance = options.compare == CompareLevel::Full};
     const TargetBudget target = targetBudget(options, scene, staged.path(), hooks, stages);
     report.budgetBytes = target.bytes.value_or(0);
     report.budgetDerived = target.bytes && !options.budget;
-    PreFit decided = decideBeforeFit(options, std::move(fitOptions), target, programs, scene, reference, baselineSettings,
-                                     hooks, stages);
+    PreFit decided = decideBeforeFit(options, std::move(fitOptions), target, programs, scene, reference,
+                                     baselineSettings, hooks, stages);
     TriangleBaselines& triangles = decided.triangles;
     report.budget = decided.plan ? decided.plan->budget : std::nullopt;
     if (decided.route) {
@@ -438,8 +445,8 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     // Weighed by the route (report.json's route.weighed), not kept as baselines.
     if (options.compare == CompareLevel::None) std::filesystem::remove_all(baselineSettings.dir);
     if (options.compare == CompareLevel::Full) {
-        writeComparisonImage(report, options.fit.resolution > 0 ? options.fit.resolution : scene.holdout.resolution(), scene,
-                             staged.path());
+        writeComparisonImage(report, options.fit.resolution > 0 ? options.fit.resolution : scene.holdout.resolution(),
+                             scene, staged.path());
         stages.lap("comparison_image");
     }
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

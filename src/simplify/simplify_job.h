@@ -20,30 +20,27 @@
 
 namespace subdfit::simplify {
 
-// The cage size the budget search's limits are scaled from (simplify_job.cpp).
-inline constexpr int kDefaultFaces = 1000;
-
 // What a simplify did: the route it shipped, the fit's report when a cage was fitted, and what
 // shipped and each baseline measured the same way at the same byte budget.
 struct SimplifyReport {
     nlohmann::json settings;            // fit::settingsJson of the run's options
     std::optional<fit::FitReport> fit;  // none when a triangle route shipped before any fit
     Route route;
-    Quality subdfit{};                  // what shipped: the fitted cage, or the triangle route
-    std::optional<Quality> cage;        // the fitted cage, where a triangle route shipped after its fit
+    Quality subdfit{};            // what shipped: the fitted cage, or the triangle route
+    std::optional<Quality> cage;  // the fitted cage, where a triangle route shipped after its fit
     // The baselines (the triangle ones at the budget); which are made is --compare's to say.
     std::optional<Quality> decimation, gltfpack, bake;
-    bool gltfpackMissing = false;       // asked for, but gltfpack is not on PATH
+    bool gltfpackMissing = false;  // asked for, but gltfpack is not on PATH
     int facesRequested = 0;
     std::optional<FitVerdict> fitVerdict;  // where a cage was fitted
-    std::optional<BudgetReport> budget;  // the search and what shipped, with a budget
-    std::uintmax_t budgetBytes = 0;      // the budget the routes were weighed at (0: the cage's bytes, --faces alone)
-    bool budgetDerived = false;          // from the reference (route.h's defaultBudget)
+    std::optional<BudgetReport> budget;    // the search and what shipped, with a budget
+    std::uintmax_t budgetBytes = 0;        // the budget the routes were weighed at (0: the cage's bytes, --faces alone)
+    bool budgetDerived = false;            // from the reference (route.h's defaultBudget)
     CompareLevel compare = CompareLevel::Full;
     std::filesystem::path reference;
     int referenceTriangles = 0;
     StageSeconds stages;
-    double seconds = 0.0;                // the whole run
+    double seconds = 0.0;  // the whole run
 };
 
 // report.json: the fit's keys (when one ran); what shipped: `route` (shipped, path, why, and the

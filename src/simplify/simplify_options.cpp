@@ -11,32 +11,45 @@ namespace detail {
 const std::vector<fit::TableRow<SimplifyMember>>& simplifyOptionTable() {
     using S = SimplifyOptions;
     static const std::vector<fit::TableRow<SimplifyMember>> rows = {
-        {{.key = "faces", .flag = "--faces",
+        {{.key = "faces",
+          .flag = "--faces",
           .help = "faces of the cage, 4..1000000 (default: the budget search's choice; with --budget, fixes the "
                   "cage and the search chooses only the maps; without, the cage is fitted as asked and weighed against "
                   "the triangle route at its bytes)",
-          .min = kLeastFaces, .max = kMostFaces, .setting = true},
+          .min = kLeastFaces,
+          .max = kMostFaces,
+          .setting = true},
          &S::faces},
-        {{.key = "cage_shape", .flag = "--cage-shape",
-          .help = "the cage's faces: triangles (the reference decimated; ships better) or quads (a quad-dominant remesh "
-                  "along the reference's cross field, to edit or rig)",
+        {{.key = "cage_shape",
+          .flag = "--cage-shape",
+          .help =
+              "the cage's faces: triangles (the reference decimated; ships better) or quads (a quad-dominant remesh "
+              "along the reference's cross field, to edit or rig)",
           .setting = true},
          &S::cageShape},
-        {{.key = "budget", .flag = "--budget",
-          .help = "bytes what ships may take, 100 B to 1 TB (20000, 20KB, 1.5MB, 2G): chooses the cage, maps and bits to "
-                  "fit them, or a triangle mesh where one ships better (default: a tenth of the reference compressed, at "
-                  "least 16 KB)",
+        {{.key = "budget",
+          .flag = "--budget",
+          .help =
+              "bytes what ships may take, 100 B to 1 TB (20000, 20KB, 1.5MB, 2G): chooses the cage, maps and bits to "
+              "fit them, or a triangle mesh where one ships better (default: a tenth of the reference compressed, at "
+              "least 16 KB)",
           .setting = true},
          &S::budget},
-        {{.key = "surface_samples", .flag = "", .help = "surface samples per side, for Chamfer and Hausdorff",
-          .min = 1000, .max = 1e9, .setting = true},
+        {{.key = "surface_samples",
+          .flag = "",
+          .help = "surface samples per side, for Chamfer and Hausdorff",
+          .min = 1000,
+          .max = 1e9,
+          .setting = true},
          &S::surfaceSamples},
-        {{.key = "compare", .flag = "--compare",
+        {{.key = "compare",
+          .flag = "--compare",
           .help = "what is compared beside what ships: none (only what chooses the route), fast (+ the triangle "
                   "baselines' files and scores), full (+ the bake route, surface distances, comparison.png)",
           .setting = true},
          &S::compare},
-        {{.key = "route", .flag = "--route",
+        {{.key = "route",
+          .flag = "--route",
           .help = "auto: ship the cage only where it wins, else the better triangle mesh; cage: ship the fitted cage "
                   "whatever the triangle route scores",
           .setting = true},
@@ -53,8 +66,9 @@ void validate(const SimplifyOptions& o) {
     if (o.budget && *o.budget < 100) throw OptionError("budget", "must be at least 100 bytes");
     if (o.surfaceSamples < 1000) throw OptionError("surface_samples", "must be >= 1000");
     if (o.fit.appearanceAtlas > 0 && o.fit.maps.normalMap)
-        throw OptionError("appearance_atlas", "takes heights alone (--maps displacement): the atlas's texture coordinates "
-                                              "leave the shipped glTF no room for a normal map on tiles");
+        throw OptionError("appearance_atlas",
+                          "takes heights alone (--maps displacement): the atlas's texture coordinates "
+                          "leave the shipped glTF no room for a normal map on tiles");
     fit::validate(o.fit);
 }
 

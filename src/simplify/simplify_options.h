@@ -48,7 +48,7 @@ inline fit::FitOptions simplifyFitDefaults() {
 
 struct SimplifyOptions {
     fit::FitOptions fit = simplifyFitDefaults();  // fit.reference: the dense asset; fit.cage is set by simplify
-    std::optional<int> faces;     // of the cage; none: chosen by the budget
+    std::optional<int> faces;                     // of the cage; none: chosen by the budget
     CageShape cageShape = CageShape::Triangles;
     // Bytes what ships may take (simplify/budget_search.h). Without it or `faces`, defaultBudget()
     // of the reference; with `faces` alone, the cage is fitted as asked and the triangle route
@@ -58,6 +58,10 @@ struct SimplifyOptions {
     CompareLevel compare = CompareLevel::Full;
     RouteChoice route = RouteChoice::Auto;
 };
+
+// The cage's faces with neither --faces nor a budget, and what the budget search's limits are
+// scaled from (simplify_plan.cpp).
+inline constexpr int kDefaultFaces = 1000;
 
 // The cage sizes --faces takes.
 inline constexpr int kLeastFaces = 4, kMostFaces = 1000000;

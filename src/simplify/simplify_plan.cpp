@@ -24,10 +24,15 @@ constexpr int kFewestQuadFaces = 16;
 
 // The bake route of a cage (normalised frame) with the run's own maps.
 BakeRoute bakeRouteOf(const mesh::PolygonMesh& cage, const fit::FitOptions& fit) {
-    return {.cage = cage, .effects = fit.maps, .resolution = fit.mapResolution, .bits = fit.mapBits,
+    return {.cage = cage,
+            .effects = fit.maps,
+            .resolution = fit.mapResolution,
+            .bits = fit.mapBits,
             .positionBits = fit.positionBits,
-            .appearanceResolution = fit.appearanceResolution, .appearanceQuality = fit.appearanceQuality,
-            .appearanceAtlas = fit.appearanceAtlas, .shadingNormal = fit.shadingNormal};
+            .appearanceResolution = fit.appearanceResolution,
+            .appearanceQuality = fit.appearanceQuality,
+            .appearanceAtlas = fit.appearanceAtlas,
+            .shadingNormal = fit.shadingNormal};
 }
 
 }  // namespace
@@ -52,8 +57,8 @@ BudgetSearch budgetSearchFor(const SimplifyOptions& o, std::uintmax_t budget, co
             .appearance = {.baseColor = scene.shading != render::ShadingModel::Geometry,
                            .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness},
             .appearanceQualities = {o.fit.appearanceQuality},
-            .appearanceAtlases = o.fit.appearanceAtlas > 0 ? std::vector<int>{o.fit.appearanceAtlas}
-                                                          : atlasSizesFor(scene.reference),
+            .appearanceAtlases =
+                o.fit.appearanceAtlas > 0 ? std::vector<int>{o.fit.appearanceAtlas} : atlasSizesFor(scene.reference),
             .bestWithMaps = o.compare == CompareLevel::Full};
 }
 
@@ -93,7 +98,10 @@ BakeRoute budgetBakeRoute(const BudgetChoice& choice, const BudgetSearch& search
     mesh::PolygonMesh cage = choice.bestWithMaps ? choice.bestWithMapsCage : choice.cageWorld;
     cage.positions = scene.frame.toNormalized(cage.positions);
     const bool appearance = route.appearanceResolution > 0 || route.appearanceAtlas > 0;
-    return {.cage = std::move(cage), .effects = route.maps, .resolution = route.mapResolution, .bits = route.mapBits,
+    return {.cage = std::move(cage),
+            .effects = route.maps,
+            .resolution = route.mapResolution,
+            .bits = route.mapBits,
             .positionBits = route.positionBits,
             .appearanceResolution = appearance ? route.appearanceResolution : fit.appearanceResolution,
             .appearanceQuality = appearance ? route.appearanceQuality : fit.appearanceQuality,
@@ -127,9 +135,12 @@ SimplifyPlan planWithinBudget(const SimplifyOptions& o, std::uintmax_t budget, d
     BakeRoute route = budgetBakeRoute(choice, search, fitOptions, scene);
     return {.fit = std::move(fitOptions),
             .bakeRoute = std::move(route),
-            .budget = BudgetReport{.bytes = budget, .chosen = choice.chosen, .tried = std::move(choice.tried), .seconds = seconds,
-                                   .phases = choice.phases, .shipped = {}}};
+            .budget = BudgetReport{.bytes = budget,
+                                   .chosen = choice.chosen,
+                                   .tried = std::move(choice.tried),
+                                   .seconds = seconds,
+                                   .phases = choice.phases,
+                                   .shipped = {}}};
 }
-
 
 }  // namespace subdfit::simplify

@@ -11,7 +11,7 @@
 #include "fit/fit_scene.h"
 #include "simplify/budget_search.h"
 #include "simplify/compare/baselines.h"
-#include "simplify/simplify_job.h"
+#include "simplify/simplify_options.h"
 
 namespace subdfit::simplify {
 

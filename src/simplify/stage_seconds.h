@@ -55,7 +55,9 @@ private:
 class TimedStage {
 public:
     TimedStage(StageSeconds& seconds, std::string stage) : seconds_(seconds), stage_(std::move(stage)) {}
-    ~TimedStage() { seconds_.add(stage_, std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count()); }
+    ~TimedStage() {
+        seconds_.add(stage_, std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
+    }
     TimedStage(const TimedStage&) = delete;
     TimedStage& operator=(const TimedStage&) = delete;
 

@@ -26,7 +26,8 @@ bool shadedFlat(const fit::FitScene& scene) {
     const std::vector<glm::vec3> normals = mesh::shadingNormals(r);
     for (size_t first = 0, f = 0; f < r.faceSizes.size(); first += size_t(r.faceSizes[f]), ++f) {
         if (r.faceSizes[f] != 3) return false;
-        const glm::vec3 a = r.positions[size_t(r.faceIndices[first])], b = r.positions[size_t(r.faceIndices[first + 1])],
+        const glm::vec3 a = r.positions[size_t(r.faceIndices[first])],
+                        b = r.positions[size_t(r.faceIndices[first + 1])],
                         c = r.positions[size_t(r.faceIndices[first + 2])];
         const glm::vec3 face = glm::cross(b - a, c - a);
         const float length = glm::length(face);
@@ -75,7 +76,8 @@ TriangleBaselines triangleBaselines(gl::ProgramCache& programs, const fit::FitSc
         const bool sameShading = withNormals || shadedFlat(scene);
         wholeTriangles = sameShading ? welded.faceCount() : std::numeric_limits<int>::max();
     }
-    if (!t.decimation->details.value("over_budget", true) && t.decimation->details.value("triangles", 0) >= wholeTriangles)
+    if (!t.decimation->details.value("over_budget", true) &&
+        t.decimation->details.value("triangles", 0) >= wholeTriangles)
         t.holds = everyTexel ? Holds::Whole : Holds::EveryTriangle;
     t.gltfpackMissing = level != CompareLevel::None && !t.gltfpack;
     return t;

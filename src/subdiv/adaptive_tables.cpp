@@ -19,8 +19,7 @@ AdaptiveTables buildAdaptiveTables(const mesh::PolygonMesh& mesh, int isolationL
     // Level 0 cannot draw non-quad faces; above 10 OpenSubdiv's stencil options (4-bit maxLevel,
     // default 10) and memory use stop making sense.
     if (isolationLevel < 1 || isolationLevel > 10)
-        throw Error("subdivision isolation level " + std::to_string(isolationLevel) +
-                    " is outside 1..10");
+        throw Error("subdivision isolation level " + std::to_string(isolationLevel) + " is outside 1..10");
 
     AdaptiveTables tables;
     tables.refiner = buildTopologyRefiner(mesh);
@@ -38,11 +37,10 @@ AdaptiveTables buildAdaptiveTables(const mesh::PolygonMesh& mesh, int isolationL
     tables.refiner->RefineAdaptive(adaptive);
 
     tables.patches.reset(Far::PatchTableFactory::Create(*tables.refiner, patchOptions));
-    if (!tables.patches)
-        throw fileError(meshName(mesh), "OpenSubdiv could not build patches: " + messages.summary());
+    if (!tables.patches) throw fileError(meshName(mesh), "OpenSubdiv could not build patches: " + messages.summary());
 
     Far::StencilTableFactory::Options stencilOptions;
-    stencilOptions.generateIntermediateLevels = true;  // patches use vertices of every level
+    stencilOptions.generateIntermediateLevels = true;   // patches use vertices of every level
     stencilOptions.factorizeIntermediateLevels = true;  // rows over base vertices only
     stencilOptions.generateControlVerts = false;
     stencilOptions.generateOffsets = true;
@@ -57,11 +55,9 @@ AdaptiveTables buildAdaptiveTables(const mesh::PolygonMesh& mesh, int isolationL
         tables.stencils.reset(Far::StencilTableFactory::AppendLocalPointStencilTable(
             *tables.refiner, tables.stencils.get(), local, /*factorize=*/true));
     }
-    if (!tables.stencils)
-        throw fileError(meshName(mesh), "OpenSubdiv could not build stencils: " + messages.summary());
+    if (!tables.stencils) throw fileError(meshName(mesh), "OpenSubdiv could not build stencils: " + messages.summary());
 
-    SUBDFIT_CHECK(tables.pointCount() ==
-                  tables.refiner->GetNumVerticesTotal() + tables.patches->GetNumLocalPoints());
+    SUBDFIT_CHECK(tables.pointCount() == tables.refiner->GetNumVerticesTotal() + tables.patches->GetNumLocalPoints());
     return tables;
 }
 

@@ -15,8 +15,7 @@ namespace Far = OpenSubdiv::Far;
 
 // One point of the refined + local point space, accumulated in double so the reference is
 // not limited by the summation order of long end-cap stencils.
-glm::dvec3 pointPosition(const Far::StencilTable& stencils, int point,
-                         std::span<const glm::vec3> base) {
+glm::dvec3 pointPosition(const Far::StencilTable& stencils, int point, std::span<const glm::vec3> base) {
     const int baseCount = int(base.size());
     if (point < baseCount) return glm::dvec3(base[point]);
     const Far::Stencil row = stencils.GetStencil(point - baseCount);
@@ -37,12 +36,10 @@ LimitEvaluator::LimitEvaluator(const mesh::PolygonMesh& mesh, const PatchSetOpti
       ptexFaceCount_(Far::PtexIndices(*tables_->refiner).GetNumFaces()) {}
 
 bool LimitEvaluator::hasSurface(int ptexFace, float u, float v) const {
-    return ptexFace >= 0 && ptexFace < ptexFaceCount_ &&
-           patchMap_->FindPatch(ptexFace, u, v) != nullptr;
+    return ptexFace >= 0 && ptexFace < ptexFaceCount_ && patchMap_->FindPatch(ptexFace, u, v) != nullptr;
 }
 
-LimitSample LimitEvaluator::evaluate(int ptexFace, float u, float v,
-                                     std::span<const glm::vec3> basePositions) const {
+LimitSample LimitEvaluator::evaluate(int ptexFace, float u, float v, std::span<const glm::vec3> basePositions) const {
     SUBDFIT_CHECK(int(basePositions.size()) == baseVertexCount());
     SUBDFIT_CHECK(hasSurface(ptexFace, u, v));
     const Far::PatchTable::PatchHandle& handle = *patchMap_->FindPatch(ptexFace, u, v);

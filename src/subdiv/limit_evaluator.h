@@ -35,8 +35,7 @@ public:
 
     // basePositions holds baseVertexCount() positions (the cage may have moved since it was
     // built: topology is fixed, positions are not). Requires hasSurface(ptexFace, u, v).
-    LimitSample evaluate(int ptexFace, float u, float v,
-                         std::span<const glm::vec3> basePositions) const;
+    LimitSample evaluate(int ptexFace, float u, float v, std::span<const glm::vec3> basePositions) const;
 
     // The limit position at (ptexFace, u, v) as weights on the base vertices: position =
     // Σ weight · base[vertex], for any positions (the surface is linear in its cage). Each

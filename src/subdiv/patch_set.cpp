@@ -35,8 +35,7 @@ void flattenPatches(const Far::PatchTable& patches, PatchSet& set) {
         const Far::ConstPatchParamArray params = patches.GetPatchParams(array);
         for (int p = 0; p < patches.GetNumPatches(array); ++p) {
             const Far::PatchParam& param = params[p];
-            set.patchInfo.emplace_back(int(set.patchCvIndices.size()), type,
-                                       std::bit_cast<int>(unsigned(param.field0)),
+            set.patchInfo.emplace_back(int(set.patchCvIndices.size()), type, std::bit_cast<int>(unsigned(param.field0)),
                                        std::bit_cast<int>(unsigned(param.field1)));
             set.patchCvIndices.insert(set.patchCvIndices.end(), &cvs[p * cvsPerPatch],
                                       &cvs[p * cvsPerPatch] + cvsPerPatch);

@@ -26,8 +26,8 @@ struct PatchSetOptions {
 };
 
 // Far::PatchDescriptor::Type values, the only two a PatchSet holds.
-inline constexpr int kRegularPatch = 6;        // bicubic B-spline, 16 CVs
-inline constexpr int kGregoryBasisPatch = 9;   // end cap at extraordinary vertices, 20 CVs
+inline constexpr int kRegularPatch = 6;       // bicubic B-spline, 16 CVs
+inline constexpr int kGregoryBasisPatch = 9;  // end cap at extraordinary vertices, 20 CVs
 
 inline int patchCvCount(int patchType) { return patchType == kRegularPatch ? 16 : 20; }
 
@@ -56,7 +56,6 @@ struct PatchSet {
         return {unsigned(patchInfo[patch].z), unsigned(patchInfo[patch].w)};
     }
 };
-
 
 // Throws subdfit::Error (naming mesh.sourcePath) when the cage cannot be subdivided.
 PatchSet buildPatchSet(const mesh::PolygonMesh& mesh, const PatchSetOptions& options = {});

@@ -25,8 +25,7 @@ void checkIndices(const mesh::PolygonMesh& mesh) {
     const auto isVertex = [&](int v) { return v >= 0 && v < vertexCount; };
     if (vertexCount == 0 || faceCount == 0) fail("the cage has no vertices or no faces");
 
-    if (std::accumulate(mesh.faceSizes.begin(), mesh.faceSizes.end(), std::size_t(0)) !=
-        mesh.faceIndices.size())
+    if (std::accumulate(mesh.faceSizes.begin(), mesh.faceSizes.end(), std::size_t(0)) != mesh.faceIndices.size())
         fail("face sizes do not add up to the number of face indices");
     for (int f = 0; f < faceCount; ++f) {
         if (mesh.faceSizes[f] < 3) fail("face " + std::to_string(f) + " has fewer than 3 vertices");
@@ -47,7 +46,8 @@ void checkIndices(const mesh::PolygonMesh& mesh) {
         std::vector<char> hole(size_t(faceCount), 0);
         for (int h : mesh.tags.holes)
             if (h >= 0 && h < faceCount) hole[size_t(h)] = 1;
-        if (std::count(hole.begin(), hole.end(), 1) == faceCount) fail("every face is tagged as a hole: nothing to render");
+        if (std::count(hole.begin(), hole.end(), 1) == faceCount)
+            fail("every face is tagged as a hole: nothing to render");
     }
 
     const auto isSharpness = [](float s) { return std::isfinite(s) && s >= 0.0f; };
@@ -57,8 +57,7 @@ void checkIndices(const mesh::PolygonMesh& mesh) {
                  " has a vertex out of range or a bad sharpness");
     for (const mesh::Corner& c : mesh.tags.corners)
         if (!isVertex(c.vertex) || !isSharpness(c.sharpness))
-            fail("corner " + std::to_string(c.vertex) +
-                 " is out of range or has a bad sharpness");
+            fail("corner " + std::to_string(c.vertex) + " is out of range or has a bad sharpness");
     for (int h : mesh.tags.holes)
         if (h < 0 || h >= faceCount) fail("hole face " + std::to_string(h) + " is out of range");
 }
@@ -91,9 +90,7 @@ Sdc::Options sdcOptions(const mesh::SubdivisionTags& tags) {
     using O = Sdc::Options;
     O options;
     switch (tags.boundary) {
-        case mesh::BoundaryInterpolation::None:
-            options.SetVtxBoundaryInterpolation(O::VTX_BOUNDARY_NONE);
-            break;
+        case mesh::BoundaryInterpolation::None: options.SetVtxBoundaryInterpolation(O::VTX_BOUNDARY_NONE); break;
         case mesh::BoundaryInterpolation::EdgeAndCorner:
             options.SetVtxBoundaryInterpolation(O::VTX_BOUNDARY_EDGE_AND_CORNER);
             break;
@@ -102,12 +99,9 @@ Sdc::Options sdcOptions(const mesh::SubdivisionTags& tags) {
             break;
     }
     options.SetFVarLinearInterpolation(fvarInterpolation(tags.faceVaryingBoundary));
-    options.SetCreasingMethod(tags.creaseMethod == mesh::CreaseMethod::Chaikin
-                                  ? O::CREASE_CHAIKIN
-                                  : O::CREASE_UNIFORM);
-    options.SetTriangleSubdivision(tags.triangles == mesh::TriangleSubdivision::Smooth
-                                       ? O::TRI_SUB_SMOOTH
-                                       : O::TRI_SUB_CATMARK);
+    options.SetCreasingMethod(tags.creaseMethod == mesh::CreaseMethod::Chaikin ? O::CREASE_CHAIKIN : O::CREASE_UNIFORM);
+    options.SetTriangleSubdivision(tags.triangles == mesh::TriangleSubdivision::Smooth ? O::TRI_SUB_SMOOTH
+                                                                                       : O::TRI_SUB_CATMARK);
     return options;
 }
 
@@ -144,12 +138,11 @@ RefinerPtr buildTopologyRefiner(const mesh::PolygonMesh& mesh) {
 
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
     OsdMessageScope messages;
-    RefinerPtr refiner(
-        Factory::Create(desc, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, sdcOptions(tags))));
+    RefinerPtr refiner(Factory::Create(desc, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, sdcOptions(tags))));
     if (!refiner) {
         const std::string why = messages.summary();
-        throw fileError(meshName(mesh), "OpenSubdiv rejected the cage topology" +
-                                            (why.empty() ? std::string() : ": " + why));
+        throw fileError(meshName(mesh),
+                        "OpenSubdiv rejected the cage topology" + (why.empty() ? std::string() : ": " + why));
     }
     return refiner;
 }

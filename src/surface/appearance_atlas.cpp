@@ -40,7 +40,8 @@ glm::mat2 atlasUvJacobian(const AppearanceAtlas& atlas, int face, float u, float
     return glm::mat2(glm::mix(c[1] - c[0], c[2] - c[3], v), glm::mix(c[3] - c[0], c[2] - c[1], u));
 }
 
-glm::vec4 atlasTangent(glm::vec3 normal, glm::vec3 dPdu, glm::vec3 dPdv, const glm::mat2& jacobian, glm::vec4 fallback) {
+glm::vec4 atlasTangent(glm::vec3 normal, glm::vec3 dPdu, glm::vec3 dPdv, const glm::mat2& jacobian,
+                       glm::vec4 fallback) {
     // [∂P/∂s ∂P/∂t] = [∂P/∂u ∂P/∂v] · J⁻¹, J's columns ∂(s, t)/∂u and ∂(s, t)/∂v.
     const float det = glm::determinant(jacobian);
     if (!(std::abs(det) > 1e-12f)) return fallback;

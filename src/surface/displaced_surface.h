@@ -14,7 +14,7 @@ namespace subdfit::surface {
 
 struct SurfaceVertex {
     glm::vec3 position;
-    glm::vec3 normal;   // unit, of the displaced surface (of the limit surface: SurfaceMaps::shadingNormal)
+    glm::vec3 normal;  // unit, of the displaced surface (of the limit surface: SurfaceMaps::shadingNormal)
     // xyz: unit, orthogonal to the normal, along dP/du; w = ±1 so that cross(normal, xyz) · w
     // points along dP/dv: the frame the normal map's (x, y) is expressed in.
     glm::vec4 tangent;

@@ -59,7 +59,8 @@ void addRelief(mesh::PolygonMesh& surface, const ReliefOptions& o) {
     std::vector<Wave> waves;
     for (int w = 0; w < o.waves; ++w) {
         const glm::vec3 direction = glm::normalize(glm::vec3(gaussian(rng), gaussian(rng), gaussian(rng)) + 1e-6f);
-        const float wavelength = o.shortestWavelength * std::pow(o.longestWavelength / o.shortestWavelength, unit(rng)) * diagonal;
+        const float wavelength =
+            o.shortestWavelength * std::pow(o.longestWavelength / o.shortestWavelength, unit(rng)) * diagonal;
         waves.push_back({direction * (2.0f * float(M_PI) / wavelength), 2.0f * float(M_PI) * unit(rng)});
     }
     // A sum of N unit sines has RMS sqrt(N / 2).

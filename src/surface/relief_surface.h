@@ -10,10 +10,10 @@
 namespace subdfit::surface {
 
 struct ReliefOptions {
-    int segments = 24;              // per cage-face edge
-    float amplitude = 0.004f;       // RMS height, a fraction of the bounding-box diagonal
+    int segments = 24;                                            // per cage-face edge
+    float amplitude = 0.004f;                                     // RMS height, a fraction of the bounding-box diagonal
     float shortestWavelength = 0.02f, longestWavelength = 0.06f;  // same units
-    int waves = 16;                 // plane waves summed, random directions and phases
+    int waves = 16;                                               // plane waves summed, random directions and phases
     std::uint32_t seed = 1;
 };
 

@@ -42,7 +42,8 @@ Tessellation tessellate(const mesh::PolygonMesh& cage, const SurfaceMaps& maps, 
                 out.normals.push_back(vertex.normal);
                 out.tangents.push_back(maps.appearanceAtlas.present()
                                            ? atlasTangent(vertex.normal, vertex.dPdu, vertex.dPdv,
-                                                          atlasUvJacobian(maps.appearanceAtlas, face, u, v), vertex.tangent)
+                                                          atlasUvJacobian(maps.appearanceAtlas, face, u, v),
+                                                          vertex.tangent)
                                            : vertex.tangent);
                 out.ptex.push_back({face, u, v});
             }

@@ -21,7 +21,7 @@ struct PtexPoint {
 
 struct Tessellation {
     std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals;   // unit normals of the displaced surface
+    std::vector<glm::vec3> normals;  // unit normals of the displaced surface
     // The frame of the normal texture the maps carry, as glTF's TANGENT: SurfaceVertex::tangent
     // (along the ptex face's u) for tiles; with an appearance atlas, along its coordinates
     // (surface::atlasTangent).

@@ -36,7 +36,8 @@ float blend(int i, int j, float fx, float fy, const Value& value) {
 }
 
 glm::ivec2 inward(int edge) {
-    static constexpr std::array<glm::ivec2, 4> steps{glm::ivec2(0, 1), glm::ivec2(-1, 0), glm::ivec2(0, -1), glm::ivec2(1, 0)};
+    static constexpr std::array<glm::ivec2, 4> steps{glm::ivec2(0, 1), glm::ivec2(-1, 0), glm::ivec2(0, -1),
+                                                     glm::ivec2(1, 0)};
     return steps[size_t(edge)];
 }
 
@@ -56,11 +57,13 @@ std::vector<int> haloNodes(const TexelLayout& layout) {
         for (int edge = 0; edge < 4; ++edge) {
             auto sameNodes = [&](int other, int otherEdge, bool reversed) {
                 for (int k = 0; k <= n; ++k)
-                    if (nodeAt(face, edgePosition(edge, k, n)) != nodeAt(other, edgePosition(otherEdge, reversed ? n - k : k, n)))
+                    if (nodeAt(face, edgePosition(edge, k, n)) !=
+                        nodeAt(other, edgePosition(otherEdge, reversed ? n - k : k, n)))
                         return false;
                 return true;
             };
-            if (nodeAt(face, edgePosition(edge, 0, n)) == nodeAt(face, edgePosition(edge, n, n))) continue;  // collapsed
+            if (nodeAt(face, edgePosition(edge, 0, n)) == nodeAt(face, edgePosition(edge, n, n)))
+                continue;  // collapsed
             int matches = 0, across = -1, acrossEdge = -1;
             bool acrossReversed = false;
             for (const auto& [other, otherEdge] : edgesAtEndpoint[nodeAt(face, edgePosition(edge, 0, n))]) {
@@ -134,7 +137,8 @@ TexelLayout layOut(const mesh::PolygonMesh& cage, int resolution) {
                 const bool border = i == 0 || j == 0 || i == n || j == n;
                 const size_t at = size_t(face) * perFace + size_t(j) * size_t(n + 1) + size_t(i);
                 // Interior nodes (and holes) are their tile's own.
-                layout.faceNodes[at] = border && surface[size_t(face)] ? welder.indexOf(borderPoints[at], next) : next++;
+                layout.faceNodes[at] =
+                    border && surface[size_t(face)] ? welder.indexOf(borderPoints[at], next) : next++;
             }
     layout.nodeCount = next;
     layout.halo = haloNodes(layout);
@@ -229,7 +233,9 @@ float sampleBilinear(const TexelLayout& layout, std::span<const float> values, i
     const float x = std::clamp(u, 0.0f, 1.0f) * float(n), y = std::clamp(v, 0.0f, 1.0f) * float(n);
     const int i = std::min(int(x), n - 1), j = std::min(int(y), n - 1);
     const float fx = x - float(i), fy = y - float(j);
-    return blend(i, j, fx, fy, [&](int a, int b) { return values[size_t(layout.node(face, a, b)) * size_t(stride) + size_t(channel)]; });
+    return blend(i, j, fx, fy, [&](int a, int b) {
+        return values[size_t(layout.node(face, a, b)) * size_t(stride) + size_t(channel)];
+    });
 }
 
 float nodeValueAcross(const TexelLayout& layout, std::span<const float> values, int face, int i, int j) {
@@ -239,8 +245,10 @@ float nodeValueAcross(const TexelLayout& layout, std::span<const float> values, 
     const int k = edge == 0 || edge == 2 ? i : j;
     if (const int across = layout.halo[(size_t(face) * 4 + size_t(edge)) * size_t(n + 1) + size_t(k)]; across >= 0)
         return values[size_t(across)];
-    const glm::ivec2 border = glm::clamp(glm::ivec2(i, j), glm::ivec2(0), glm::ivec2(n)), inner = 2 * border - glm::ivec2(i, j);
-    return 2.0f * values[size_t(layout.node(face, border.x, border.y))] - values[size_t(layout.node(face, inner.x, inner.y))];
+    const glm::ivec2 border = glm::clamp(glm::ivec2(i, j), glm::ivec2(0), glm::ivec2(n)),
+                     inner = 2 * border - glm::ivec2(i, j);
+    return 2.0f * values[size_t(layout.node(face, border.x, border.y))] -
+           values[size_t(layout.node(face, inner.x, inner.y))];
 }
 
 namespace {

@@ -14,9 +14,9 @@
 namespace subdfit::surface {
 
 struct TexelLayout {
-    int resolution = 0;     // T: cells per ptex-face edge
+    int resolution = 0;  // T: cells per ptex-face edge
     int ptexFaceCount = 0;
-    int nodeCount = 0;      // distinct parameters per channel
+    int nodeCount = 0;           // distinct parameters per channel
     std::vector<int> faceNodes;  // [face][j][i] -> node, i along u, j along v, (T+1)² per face
     // The ring of nodes just outside each tile, in the tile's own (i, j): [face][edge][k] -> the
     // neighbouring tile's node one row in from the shared edge, or -1 where there is none (a

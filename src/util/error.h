@@ -26,9 +26,7 @@ private:
 };
 
 // "path: problem" -- every input error names the file it is about.
-inline Error fileError(const std::string& path, const std::string& problem) {
-    return Error(path + ": " + problem);
-}
+inline Error fileError(const std::string& path, const std::string& problem) { return Error(path + ": " + problem); }
 
 // A broken internal contract: a bug, not the input's fault. SUBDFIT_CHECK throws it rather than
 // aborting, so that a batch records the asset as failed and goes on to the next, and a run
@@ -42,5 +40,4 @@ public:
 
 }  // namespace subdfit
 
-#define SUBDFIT_CHECK(expr) \
-    ((expr) ? void(0) : ::subdfit::checkFailed(#expr, __FILE__, __LINE__))
+#define SUBDFIT_CHECK(expr) ((expr) ? void(0) : ::subdfit::checkFailed(#expr, __FILE__, __LINE__))

@@ -14,11 +14,11 @@ std::size_t printableSequence(std::string_view s) {
     if (length == 0 || s.size() < length) return 0;
     for (std::size_t k = 1; k < length; ++k)
         if ((byte(k) & 0xC0) != 0x80) return 0;
-    if (lead == 0xC2 && byte(1) < 0xA0) return 0;               // C1 controls
-    if (lead == 0xE0 && byte(1) < 0xA0) return 0;               // overlong
-    if (lead == 0xED && byte(1) >= 0xA0) return 0;              // surrogates
-    if (lead == 0xF0 && byte(1) < 0x90) return 0;               // overlong
-    if (lead == 0xF4 && byte(1) >= 0x90) return 0;              // beyond U+10FFFF
+    if (lead == 0xC2 && byte(1) < 0xA0) return 0;   // C1 controls
+    if (lead == 0xE0 && byte(1) < 0xA0) return 0;   // overlong
+    if (lead == 0xED && byte(1) >= 0xA0) return 0;  // surrogates
+    if (lead == 0xF0 && byte(1) < 0x90) return 0;   // overlong
+    if (lead == 0xF4 && byte(1) >= 0x90) return 0;  // beyond U+10FFFF
     return length;
 }
 

@@ -53,9 +53,9 @@ double innerProduct(const std::vector<T>& a, const std::vector<T>& b) {
 
 // `rowWeight[s]` = w_s ≥ 0 (0 drops the row). Returns x (x0.size() unknowns).
 template <class T>
-std::vector<T> solveDampedLeastSquares(const SparseRows& L, const std::vector<T>& targets, const std::vector<double>& rowWeight,
-                                       const std::vector<T>& x0, double dampingFraction, int iterations = 200,
-                                       double tolerance = 1e-8) {
+std::vector<T> solveDampedLeastSquares(const SparseRows& L, const std::vector<T>& targets,
+                                       const std::vector<double>& rowWeight, const std::vector<T>& x0,
+                                       double dampingFraction, int iterations = 200, double tolerance = 1e-8) {
     const std::size_t n = x0.size();
     std::vector<double> diagonal(n, 0.0);
     for (std::size_t s = 0; s < L.rows(); ++s)
@@ -73,7 +73,8 @@ std::vector<T> solveDampedLeastSquares(const SparseRows& L, const std::vector<T>
         for (std::size_t s = 0; s < L.rows(); ++s) {
             if (rowWeight[s] == 0.0) continue;
             const T r = rowWeight[s] * L.apply(s, x);
-            for (std::size_t e = L.offsets[s]; e < L.offsets[s + 1]; ++e) out[std::size_t(L.column[e])] += L.weight[e] * r;
+            for (std::size_t e = L.offsets[s]; e < L.offsets[s + 1]; ++e)
+                out[std::size_t(L.column[e])] += L.weight[e] * r;
         }
         return out;
     };
@@ -82,7 +83,8 @@ std::vector<T> solveDampedLeastSquares(const SparseRows& L, const std::vector<T>
     for (std::size_t s = 0; s < L.rows(); ++s) {
         if (rowWeight[s] == 0.0) continue;
         const T residual = rowWeight[s] * (targets[s] - L.apply(s, x0));
-        for (std::size_t e = L.offsets[s]; e < L.offsets[s + 1]; ++e) r[std::size_t(L.column[e])] += L.weight[e] * residual;
+        for (std::size_t e = L.offsets[s]; e < L.offsets[s + 1]; ++e)
+            r[std::size_t(L.column[e])] += L.weight[e] * residual;
     }
     std::vector<T> x = x0, z(n), p;
     for (std::size_t i = 0; i < n; ++i) z[i] = r[i] / diagonal[i];

@@ -59,8 +59,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         try {
             const auto read = subdfit::fit::readCheckpoint(path, kFingerprint);
             if (!read || !same(*read, state)) std::abort();  // a flipped byte was read as data
-        } catch (const subdfit::Error&) {
-        }
+        } catch (const subdfit::Error&) {}
         return 0;
     }
     if (FILE* f = std::fopen(path.c_str(), "wb")) {
@@ -69,7 +68,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     try {
         (void)subdfit::fit::readCheckpoint(path, kFingerprint);
-    } catch (const subdfit::Error&) {
-    }
+    } catch (const subdfit::Error&) {}
     return 0;
 }

@@ -24,13 +24,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
         const auto mesh = subdfit::mesh::loadMesh(path);
         (void)subdfit::mesh::vertexNormals(subdfit::mesh::triangulated(mesh));
-    } catch (const subdfit::Error&) {
-    }
+    } catch (const subdfit::Error&) {}
     // As a reference: texture coordinates, colours, materials and embedded images too.
     try {
         const auto mesh = subdfit::mesh::loadReference(path);
         (void)subdfit::mesh::vertexNormals(subdfit::mesh::triangulated(mesh));
-    } catch (const subdfit::Error&) {
-    }
+    } catch (const subdfit::Error&) {}
     return 0;
 }

@@ -23,7 +23,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                 for (char c : word)
                     if (static_cast<unsigned char>(c) < 0x20 && c != '\t') std::abort();
         }
-    } catch (const subdfit::Error&) {
-    }
+    } catch (const subdfit::Error&) {}
     return 0;
 }

@@ -32,8 +32,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (!(data[11] & 0x80)) count %= 4096;  // mostly counts the data could hold, sometimes any
     const bool indices = mode != "ATTRIBUTES";
     const std::string compressed(reinterpret_cast<const char*>(data + 12), size - 12);
-    const nlohmann::json ext = {{"buffer", 0}, {"byteOffset", 0}, {"byteLength", compressed.size()}, {"byteStride", stride},
-                                {"mode", mode}, {"filter", filter}, {"count", count}};
+    const nlohmann::json ext = {{"buffer", 0},          {"byteOffset", 0}, {"byteLength", compressed.size()},
+                                {"byteStride", stride}, {"mode", mode},    {"filter", filter},
+                                {"count", count}};
     nlohmann::json primitive = {{"attributes", {{"POSITION", indices ? 1 : 0}}}};
     if (indices) primitive["indices"] = 0;
     nlohmann::json doc;
@@ -42,14 +43,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     doc["scenes"] = nlohmann::json::array({{{"nodes", {0}}}});
     doc["nodes"] = nlohmann::json::array({{{"mesh", 0}}});
     doc["meshes"] = nlohmann::json::array({{{"primitives", nlohmann::json::array({primitive})}}});
-    doc["accessors"] = nlohmann::json::array(
-        {{{"bufferView", 0}, {"componentType", indices ? (stride == 2 ? 5123 : 5125) : 5126}, {"count", count % 65536},
-          {"type", indices ? "SCALAR" : "VEC3"}},
-         {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}}});
-    doc["bufferViews"] = nlohmann::json::array({{{"buffer", 1}, {"byteLength", 0}, {"extensions", {{"EXT_meshopt_compression", ext}}}},
-                                               {{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}}});
-    doc["buffers"] = nlohmann::json::array({{{"byteLength", std::max<size_t>(compressed.size(), 36)}},
-                                           {{"byteLength", 0}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}}});
+    doc["accessors"] =
+        nlohmann::json::array({{{"bufferView", 0},
+                                {"componentType", indices ? (stride == 2 ? 5123 : 5125) : 5126},
+                                {"count", count % 65536},
+                                {"type", indices ? "SCALAR" : "VEC3"}},
+                               {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}}});
+    doc["bufferViews"] =
+        nlohmann::json::array({{{"buffer", 1}, {"byteLength", 0}, {"extensions", {{"EXT_meshopt_compression", ext}}}},
+                               {{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}}});
+    doc["buffers"] = nlohmann::json::array(
+        {{{"byteLength", std::max<size_t>(compressed.size(), 36)}},
+         {{"byteLength", 0}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}}});
     std::string bin = compressed;
     if (bin.size() < 36) bin.resize(36, '\0');
     std::string bytes = subdfit::test::glb(doc, bin);
@@ -67,7 +72,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     try {
         (void)subdfit::mesh::loadReference(path);
-    } catch (const subdfit::Error&) {
-    }
+    } catch (const subdfit::Error&) {}
     return 0;
 }

@@ -51,7 +51,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     write(dir / "m.mtl", std::string(reinterpret_cast<const char*>(data), size));
     try {
         (void)subdfit::mesh::loadReference(dir / "m.obj");
-    } catch (const subdfit::Error&) {
-    }
+    } catch (const subdfit::Error&) {}
     return 0;
 }

@@ -52,13 +52,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         const subdfit::fit::ResultFolder result = subdfit::fit::readResultFolder(dir);
         for (const auto& entry : result.entries)
             for (const auto& file : entry.levels)
-                if (!subdfit::io::isStrictlyInside(fs::canonical(file), dir) || !fs::is_regular_file(file)) std::abort();
+                if (!subdfit::io::isStrictlyInside(fs::canonical(file), dir) || !fs::is_regular_file(file))
+                    std::abort();
         if (!result.reference.empty()) std::abort();  // no file here has a digest the input could know
         for (const auto& note : result.notes)
             for (char c : note)
                 if (static_cast<unsigned char>(c) < 0x20) std::abort();
         if (!result.settings.is_object()) std::abort();
-    } catch (const subdfit::Error&) {
-    }
+    } catch (const subdfit::Error&) {}
     return 0;
 }

@@ -28,8 +28,7 @@ using subdfit::fuzz::Bytes;
 void decode(const Bytes& bytes) {
     try {
         (void)subdfit::exporter::decodeSubd(bytes, "fuzz.subd");
-    } catch (const subdfit::Error&) {
-    }
+    } catch (const subdfit::Error&) {}
 }
 
 }  // namespace
@@ -52,8 +51,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         try {
             const auto read = subdfit::exporter::decodeSubd(bad, "flipped.subd");
             if (read.cage.positions.size() != asset.cage.positions.size()) std::abort();  // a flip was read as data
-        } catch (const subdfit::Error&) {
-        }
+        } catch (const subdfit::Error&) {}
         return 0;
     }
     decode(Bytes(data, data + size));

@@ -187,8 +187,9 @@ TEST(AppearanceEffects, ASceneWithoutMaterialsCompilesAndRunsNoMaterialWork) {
     };
     gl::ProgramCache plain(platformDefines());
     run(render::ShadingModel::Geometry, plain);
-    for (const char* define : {"SUBDFIT_SHADING_UNLIT", "SUBDFIT_SHADING_LAMBERT", "SUBDFIT_SHADING_PBR",
-                               "SUBDFIT_BASE_COLOR_TEXTURE", "SUBDFIT_BASE_COLOR_MAP", "SUBDFIT_METALLIC_ROUGHNESS_MAP"})
+    for (const char* define :
+         {"SUBDFIT_SHADING_UNLIT", "SUBDFIT_SHADING_LAMBERT", "SUBDFIT_SHADING_PBR", "SUBDFIT_BASE_COLOR_TEXTURE",
+          "SUBDFIT_BASE_COLOR_MAP", "SUBDFIT_METALLIC_ROUGHNESS_MAP"})
         EXPECT_FALSE(anyVariantDefines(plain, define)) << define;
     // Its only texel group is the displacement: one channel, and no three-channel G variant.
     for (const auto& v : plain.variants()) {
@@ -204,14 +205,15 @@ TEST(AppearanceEffects, ASceneWithoutMaterialsCompilesAndRunsNoMaterialWork) {
     EXPECT_FALSE(anyVariantDefines(colored, "SUBDFIT_METALLIC_ROUGHNESS_MAP"));
     bool threeChannels = false;
     for (const auto& v : colored.variants())
-        threeChannels = threeChannels || (v.defines.count("SUBDFIT_TEXEL_CHANNELS") && v.defines.at("SUBDFIT_TEXEL_CHANNELS") == "3");
+        threeChannels = threeChannels ||
+                        (v.defines.count("SUBDFIT_TEXEL_CHANNELS") && v.defines.at("SUBDFIT_TEXEL_CHANNELS") == "3");
     EXPECT_TRUE(threeChannels);
     expectNoGlError();
 }
 
 // A small simplify of `reference` into dir/out: 120 faces, T = 2 heights, appearance T = 4, a preview.
-simplify::SimplifyOptions smallColouredSimplify(const std::filesystem::path& reference, const std::filesystem::path& dir,
-                                                int steps) {
+simplify::SimplifyOptions smallColouredSimplify(const std::filesystem::path& reference,
+                                                const std::filesystem::path& dir, int steps) {
     simplify::SimplifyOptions o = smallSimplify(reference, dir / "out", steps);
     o.fit.mapResolution = 2;
     o.fit.appearanceResolution = 4;
@@ -255,7 +257,9 @@ TEST(AppearanceSimplify, AGlowOnTilesIsCarriedAndShipped) {
     sphere.materials = std::make_shared<mesh::MaterialSet>(mesh::MaterialSet{{plain, glowing}, {}});
     for (int f = 0; f < sphere.faceCount(); ++f) {
         const auto* v = &sphere.faceIndices[size_t(3 * f)];
-        const float y = (sphere.positions[size_t(v[0])].y + sphere.positions[size_t(v[1])].y + sphere.positions[size_t(v[2])].y) / 3.0f;
+        const float y =
+            (sphere.positions[size_t(v[0])].y + sphere.positions[size_t(v[1])].y + sphere.positions[size_t(v[2])].y) /
+            3.0f;
         sphere.faceMaterials.push_back(y > 0.2f ? 1 : 0);
     }
     exporter::writeTexturedGlb(dir / "glow.glb", sphere, mesh::vertexNormals(sphere), {}, false);

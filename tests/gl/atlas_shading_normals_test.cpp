@@ -40,7 +40,8 @@ double atlasLoss(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& referen
     gl::ProgramCache& cache = programs();
     const render::MeshRenderer renderer(reference, render::ShadingModel::Lambert);
     const scene::TargetSet targets(cache, renderer, render::orbitCameras(4, 2), 96);
-    const surface::SurfaceMaps maps = simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 64, 0.3f, carried);
+    const surface::SurfaceMaps maps =
+        simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 64, 0.3f, carried);
     EXPECT_EQ(maps.normalTexture.empty(), !carried);
     fit::CageFitSettings settings;
     settings.resolution = 96;
@@ -61,8 +62,9 @@ TEST(AtlasShadingNormals, TheCarriedTextureMakesTheCageShadeAsTheReference) {
     const mesh::PolygonMesh tilted = tiledLimitSurface(cage, 0.5f), plain = tiledLimitSurface(cage, 0.0f);
     const double own = atlasLoss(cage, tilted, false), carried = atlasLoss(cage, tilted, true);
     const double untilted = atlasLoss(cage, plain, false);
-    std::printf("image loss against tilted normals: %.4g with the cage's own, %.4g carried (%.4g against its own normals)\n",
-                own, carried, untilted);
+    std::printf(
+        "image loss against tilted normals: %.4g with the cage's own, %.4g carried (%.4g against its own normals)\n",
+        own, carried, untilted);
     EXPECT_LT(carried, 0.25 * own);
 }
 

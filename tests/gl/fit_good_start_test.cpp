@@ -88,7 +88,8 @@ TEST(FitFromAGoodStart, RenderDrawsMovedVerticesWhereTheyAre) {
     fit::FitScene scene(fit::resolved(o), programs(), start.cage, start.reference);
     fit::CageFitter fitter(programs(), scene.cage, fit::fitSettings(o, scene.cage, scene.shading));
     auto drawn = [&](fit::CageFitter& f) {
-        return scene.monitor.render(0, [&](const render::Camera& camera, const render::RenderTarget& canvas) { f.render(camera, canvas); });
+        return scene.monitor.render(
+            0, [&](const render::Camera& camera, const render::RenderTarget& canvas) { f.render(camera, canvas); });
     };
     const auto before = drawn(fitter);
     EXPECT_EQ(drawn(fitter), before);  // drawn again from the points evaluated once

@@ -39,9 +39,9 @@ Recovery recover(const std::string& shape, float sigma, int steps) {
     for (const auto& p : fitted) EXPECT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
     r.vertexErrorAfter = rmsDistance(fitted, truePositions);
     r.lossAfter = totalLoss(fitter, *scene.targets);
-    std::printf("%s: vertex RMS %.4f -> %.4f (x%.2f), loss %.1f -> %.1f (x%.2f)\n", shape.c_str(),
-                r.vertexErrorBefore, r.vertexErrorAfter, r.vertexErrorBefore / r.vertexErrorAfter, r.lossBefore,
-                r.lossAfter, r.lossBefore / r.lossAfter);
+    std::printf("%s: vertex RMS %.4f -> %.4f (x%.2f), loss %.1f -> %.1f (x%.2f)\n", shape.c_str(), r.vertexErrorBefore,
+                r.vertexErrorAfter, r.vertexErrorBefore / r.vertexErrorAfter, r.lossBefore, r.lossAfter,
+                r.lossBefore / r.lossAfter);
     return r;
 }
 

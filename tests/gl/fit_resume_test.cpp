@@ -41,8 +41,9 @@ TEST(FitResume, InterruptedRunContinuesToTheSameResult) {
     // Stop after 20 steps, as Ctrl-C would: results of the steps taken are written.
     std::atomic<bool> cancel{false};
     auto interruptedOptions = smallFit(dir, "resumed");
-    const auto interrupted = fit::runFit(
-        interruptedOptions, {.progress = [&](const fit::Progress& p) { cancel = cancel || p.step >= 20; }, .cancel = &cancel});
+    const auto interrupted =
+        fit::runFit(interruptedOptions,
+                    {.progress = [&](const fit::Progress& p) { cancel = cancel || p.step >= 20; }, .cancel = &cancel});
     EXPECT_TRUE(interrupted.interrupted());
     EXPECT_EQ(interrupted.steps, 20);
     EXPECT_TRUE(std::filesystem::exists(interruptedOptions.out / "cage.obj"));

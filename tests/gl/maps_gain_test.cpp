@@ -24,7 +24,8 @@ double heldOutLoss(const std::string& name, maps::MapEffects effects, std::uint3
     o.mapsStart = 0.1f;  // what the map buys, given the steps to buy it
     // 96 quads under 80 small bumps: the cage can round the sphere, not raise the bumps. A map
     // cell spans about two pixels.
-    fit::FitScene scene(fit::resolved(o), programs(), mesh::makeQuadSphere(4), mesh::makeLumpySphere(5, 0.05f, 7, 80, 0.005f, 0.015f));
+    fit::FitScene scene(fit::resolved(o), programs(), mesh::makeQuadSphere(4),
+                        mesh::makeLumpySphere(5, 0.05f, 7, 80, 0.005f, 0.015f));
     fit::FitRun run(fit::resolved(o), programs(), scene);
     run.run(o.out / "checkpoint.bin");
     expectNoGlError();

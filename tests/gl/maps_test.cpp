@@ -66,7 +66,8 @@ TEST(MapsGradient, DisplacementTexelsAgreeWithFiniteDifferences) {
 // heights of every other node are skipped between the vertices.
 TEST(MapsTessellation, EveryMapCellGetsASegmentOnQuadAndTriangleCages) {
     for (const bool triangles : {false, true}) {
-        const mesh::PolygonMesh cage = triangles ? mesh::triangulated(mesh::makeQuadSphere(1)) : mesh::makeQuadSphere(1);
+        const mesh::PolygonMesh cage =
+            triangles ? mesh::triangulated(mesh::makeQuadSphere(1)) : mesh::makeQuadSphere(1);
         fit::CageFitSettings settings;
         settings.mapEffects.displacement = true;
         settings.maps.resolution = 8;
@@ -115,7 +116,8 @@ TEST(MapsBump, FlatCageRecoversABumpInTheDisplacementMap) {
     errorFlat = std::sqrt(errorFlat / samples);
     errorFitted = std::sqrt(errorFitted / samples);
     const float peak = *std::max_element(heights.begin(), heights.end());
-    std::printf("bump: height RMS error %.4f (no map) -> %.4f (fitted map), map peak %.3f\n", errorFlat, errorFitted, peak);
+    std::printf("bump: height RMS error %.4f (no map) -> %.4f (fitted map), map peak %.3f\n", errorFlat, errorFitted,
+                peak);
     EXPECT_LT(errorFitted, 0.4 * errorFlat);
     EXPECT_GT(peak, 0.0f);
     expectNoGlError();
@@ -237,7 +239,8 @@ TEST(MapsShading, LimitShadingIgnoresTheHeightsSlopes) {
     };
     const double limit = colourSpread(surface::ShadingNormal::Limit);
     const double displaced = colourSpread(surface::ShadingNormal::Displaced);
-    std::printf("red spread over a flat cage with rough heights: limit-shaded %.5f, displaced %.5f\n", limit, displaced);
+    std::printf("red spread over a flat cage with rough heights: limit-shaded %.5f, displaced %.5f\n", limit,
+                displaced);
     EXPECT_LT(limit, 2e-3);
     EXPECT_GT(displaced, 10.0 * limit + 0.01);
     expectNoGlError();

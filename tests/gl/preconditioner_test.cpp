@@ -26,7 +26,8 @@ std::vector<float> jacobiOnCpu(const mesh::VertexAdjacency& graph, const std::ve
             const float scale = 1.0f / (1.0f + lambda * float(end - begin));
             for (int c = 0; c < channels; ++c) {
                 float neighbourSum = 0.0f;
-                for (int n = begin; n < end; ++n) neighbourSum += iterate[size_t(channels * graph.neighbors[size_t(n)] + c)];
+                for (int n = begin; n < end; ++n)
+                    neighbourSum += iterate[size_t(channels * graph.neighbors[size_t(n)] + c)];
                 const size_t i = size_t(channels * v + c);
                 next[i] = iterate[i] + omega * ((g[i] + lambda * neighbourSum) * scale - iterate[i]);
             }

@@ -138,8 +138,7 @@ Reprojection reproject(const Cage& cage, const Camera& camera, const Frame& fram
         // covers a steep stretch of surface, where (u,v) is legitimately ill-conditioned.
         const glm::vec3 normal = glm::cross(sample.dPdu, sample.dPdv);
         const glm::vec3 toEye = camera.eye - sample.position;
-        if (glm::length(normal) > 0.0f &&
-            std::abs(glm::dot(glm::normalize(normal), glm::normalize(toEye))) < 0.1f)
+        if (glm::length(normal) > 0.0f && std::abs(glm::dot(glm::normalize(normal), glm::normalize(toEye))) < 0.1f)
             continue;
         const glm::vec4 clip = viewProjection * glm::vec4(sample.position, 1.0f);
         const glm::vec2 projected = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * float(kResolution);
@@ -160,18 +159,18 @@ void saveForInspection(const std::string& name, const Frame& frame) {
     std::vector<glm::vec4> ids(frame.faceId.size());
     for (size_t i = 0; i < ids.size(); ++i) {
         const unsigned h = unsigned(frame.faceId[i]) * 2654435761u;
-        ids[i] = frame.faceId[i] < 0 ? glm::vec4(0.0f)
-                                     : glm::vec4(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u), 255.0f) / 255.0f;
+        ids[i] = frame.faceId[i] < 0
+                     ? glm::vec4(0.0f)
+                     : glm::vec4(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u), 255.0f) / 255.0f;
     }
     io::writeImage(dir / "face_id.png", ids, kResolution, kResolution);
     std::cout << "  images in " << dir.string() << "\n";
 }
 
 void expectReprojects(const std::string& name, const Reprojection& r, const Frame& frame, size_t minSamples) {
-    std::cout << "[ reproject ] " << name << ": " << r.errors.size() << " samples, median "
-              << r.median() << " px, max " << r.worstError << " px (pixel " << r.worst % kResolution << ","
-              << r.worst / kResolution << "), " << 100.0 * r.fractionBelow(kMaxErrorPixels) << " % < "
-              << kMaxErrorPixels << " px\n";
+    std::cout << "[ reproject ] " << name << ": " << r.errors.size() << " samples, median " << r.median() << " px, max "
+              << r.worstError << " px (pixel " << r.worst % kResolution << "," << r.worst / kResolution << "), "
+              << 100.0 * r.fractionBelow(kMaxErrorPixels) << " % < " << kMaxErrorPixels << " px\n";
     ::testing::Test::RecordProperty(name + "_median_px", std::to_string(r.median()));
     ::testing::Test::RecordProperty(name + "_max_px", std::to_string(r.worstError));
     EXPECT_GE(r.errors.size(), minSamples);
@@ -210,11 +209,10 @@ TEST_P(IdBufferReprojection, LimitPointAtFaceUvProjectsOntoItsPixel) {
 
 mesh::PolygonMesh loadAsset(const char* relative) { return mesh::loadMesh(test::assetPath(relative)); }
 
-INSTANTIATE_TEST_SUITE_P(
-    Cages, IdBufferReprojection,
-    ::testing::Values(CageCase{"torus", [] { return loadAsset("osd-shapes/catmark_torus.obj"); }},
-                      CageCase{"spot", [] { return loadAsset("spot/spot_control_mesh.obj"); }}),
-    [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Cages, IdBufferReprojection,
+                         ::testing::Values(CageCase{"torus", [] { return loadAsset("osd-shapes/catmark_torus.obj"); }},
+                                           CageCase{"spot", [] { return loadAsset("spot/spot_control_mesh.obj"); }}),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 // The tessellation is evaluated with one basis per pass (glsl/tessellate.comp): a cage without
 // extraordinary vertices compiles no Gregory variant, one with them compiles both (what each kind
@@ -320,20 +318,20 @@ TEST_P(IdBufferLargeCage, FacesOfPatchesBeyond1024AreRightAndAllFacesAppear) {
     int lateSeen = 0;
     for (int face : lateFaces) lateSeen += seen.count(face) > 0;
     std::cout << "[ cage ] " << GetParam().name << ": " << seen.size() << " of " << cage.patches.ptexFaceCount
-              << " ptex faces seen (max id " << (seen.empty() ? -1 : *seen.rbegin()) << "), " << lateSeen
-              << " of " << lateFaces.size() << " late faces\n";
+              << " ptex faces seen (max id " << (seen.empty() ? -1 : *seen.rbegin()) << "), " << lateSeen << " of "
+              << lateFaces.size() << " late faces\n";
     // Concave cages hide some faces from every view (the bishop's inner shell); a sphere none.
     EXPECT_GE(double(lateSeen), GetParam().minSeenFraction * double(lateFaces.size()));
     EXPECT_GE(double(seen.size()), GetParam().minSeenFraction * double(cage.patches.ptexFaceCount));
     test::expectNoGlError();
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Cages, IdBufferLargeCage,
-    // 1536 quads: ptex ids beyond 1024 as well as patches beyond 1024.
-    ::testing::Values(CageCase{"quad_sphere_16", [] { return mesh::makeQuadSphere(16); }, 1.0},
-                      CageCase{"bishop", [] { return loadAsset("osd-shapes/catmark_bishop.obj"); }, 0.7}),
-    [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Cages, IdBufferLargeCage,
+                         // 1536 quads: ptex ids beyond 1024 as well as patches beyond 1024.
+                         ::testing::Values(CageCase{"quad_sphere_16", [] { return mesh::makeQuadSphere(16); }, 1.0},
+                                           CageCase{"bishop", [] { return loadAsset("osd-shapes/catmark_bishop.obj"); },
+                                                    0.7}),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace subdfit::render

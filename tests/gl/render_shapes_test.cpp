@@ -138,9 +138,8 @@ TEST_P(RenderShapes, LoadsBuildsAndRendersCleanly) {
             return !std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) || !std::isfinite(c.w);
         }));
         const int covered = int(std::count_if(ids.begin(), ids.end(), [](int id) { return id >= 0; }));
-        const int outOfRange = int(std::count_if(ids.begin(), ids.end(), [&](int id) {
-            return id < -1 || id >= patches.ptexFaceCount;
-        }));
+        const int outOfRange =
+            int(std::count_if(ids.begin(), ids.end(), [&](int id) { return id < -1 || id >= patches.ptexFaceCount; }));
         const int holes = closed ? int(pinholes(ids).size()) : 0;
         totalPinholes += holes;
         EXPECT_EQ(nonFinite, 0) << "pixels with NaN/Inf colour";
@@ -153,8 +152,7 @@ TEST_P(RenderShapes, LoadsBuildsAndRendersCleanly) {
     }
     RecordProperty("outcome", "rendered");
     std::cout << "[ outcome ] " << name << ": rendered, " << patches.patchCount() << " patches, ptex "
-              << patches.ptexFaceCount << (closed ? ", closed" : ", open") << ", pinholes " << totalPinholes
-              << "\n";
+              << patches.ptexFaceCount << (closed ? ", closed" : ", open") << ", pinholes " << totalPinholes << "\n";
     test::expectNoGlError();
 }
 

@@ -21,8 +21,8 @@ struct FitScene {
     std::unique_ptr<scene::TargetSet> targets;
 };
 
-inline FitScene makeFitScene(gl::ProgramCache& programs, mesh::PolygonMesh cage, mesh::PolygonMesh reference,
-                             int views, int resolution, std::uint32_t seed = 1) {
+inline FitScene makeFitScene(gl::ProgramCache& programs, mesh::PolygonMesh cage, mesh::PolygonMesh reference, int views,
+                             int resolution, std::uint32_t seed = 1) {
     FitScene s;
     reference = mesh::triangulated(reference);
     const auto frame = scene::frameAround(reference.positions);

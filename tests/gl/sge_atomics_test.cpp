@@ -39,7 +39,8 @@ TEST(SgeAtomics, TheGradientRepeatsBitForBitUnderContention) {
     double scale = 0.0;
     for (float g : first.gradient) scale = std::max(scale, double(std::abs(g)));
     ASSERT_GT(scale, 0.0);
-    for (int run = 0; run < 3; ++run) EXPECT_EQ(sumsWith(programs(), scene, 8).gradient, first.gradient) << "run " << run;
+    for (int run = 0; run < 3; ++run)
+        EXPECT_EQ(sumsWith(programs(), scene, 8).gradient, first.gradient) << "run " << run;
     expectNoGlError();
 }
 
@@ -54,7 +55,8 @@ TEST(SgeAtomics, CompareAndSwapLossMatchesNativeFloatAtomics) {
     // Same sums in a different order: float rounding only.
     EXPECT_NEAR(a.loss, b.loss, 1e-4 * a.loss);
     bool sawCas = false;
-    for (const auto& v : compareAndSwap.variants()) sawCas = sawCas || (v.name == "gradient" && !v.defines.count("SUBDFIT_ATOMIC_FLOAT"));
+    for (const auto& v : compareAndSwap.variants())
+        sawCas = sawCas || (v.name == "gradient" && !v.defines.count("SUBDFIT_ATOMIC_FLOAT"));
     EXPECT_TRUE(sawCas);
     expectNoGlError();
 }

@@ -105,7 +105,8 @@ TEST(SgeGradient, OneSampleFollowsTheUnionRule) {
         reached.erase(std::unique(reached.begin(), reached.end()), reached.end());
         facesDiffer += fp != fm && fp >= 0 && fm >= 0;
         for (int v : reached)
-            for (size_t c = 0; c < 3; ++c) expected[3 * size_t(v) + c] += delta / (2.0 * epsilon) * sign(3 * size_t(v) + c);
+            for (size_t c = 0; c < 3; ++c)
+                expected[3 * size_t(v) + c] += delta / (2.0 * epsilon) * sign(3 * size_t(v) + c);
     }
     RecordProperty("pixels_between_two_faces", std::to_string(facesDiffer));
     EXPECT_GT(facesDiffer, 100);  // the pair sums are exercised

@@ -33,7 +33,8 @@ exporter::SubdAsset shippedBumps(const mesh::PolygonMesh& cage) {
     maps.layout = surface::buildTexelLayout(cage, 4);
     maps.displacement.resize(size_t(maps.layout.nodeCount));
     const float scale = 1.0f / scene::frameAround(cage.positions).scale;  // the cage's radius
-    for (size_t i = 0; i < maps.displacement.size(); ++i) maps.displacement[i] = 0.04f * scale * std::sin(1.7f * float(i));
+    for (size_t i = 0; i < maps.displacement.size(); ++i)
+        maps.displacement[i] = 0.04f * scale * std::sin(1.7f * float(i));
     const auto bytes = exporter::encodeSubd(exporter::shippableAsset(cage, maps));
     return exporter::decodeSubd(bytes, "bumps.subd");
 }
@@ -89,15 +90,16 @@ TEST_P(ShippedAssetDepth, TheDrawnSurfaceIsTheDecodedOne) {
     surface::SurfaceMaps flat = asset.maps;
     flat.displacement.clear();
     const Agreement without = compare(drawn, surface::tessellate(asset.cage, flat, kSegments), frame);
-    std::printf("  without heights: coverage differs on %.0f, depth on %.0f\n", without.coverageMismatch, without.depthMismatch);
+    std::printf("  without heights: coverage differs on %.0f, depth on %.0f\n", without.coverageMismatch,
+                without.depthMismatch);
     EXPECT_GT(without.coverageMismatch + without.depthMismatch, 0.2 * without.covered);
     test::expectNoGlError();
 }
 
 // Quads and extraordinary vertices; semi-sharp creases; triangles (ptex sub-faces); a boundary.
 INSTANTIATE_TEST_SUITE_P(Cages, ShippedAssetDepth,
-                         testing::Values("catmark_cube.obj", "catmark_cube_creases1.obj", "catmark_pyramid_creases0.obj",
-                                         "catmark_flap.obj"),
+                         testing::Values("catmark_cube.obj", "catmark_cube_creases1.obj",
+                                         "catmark_pyramid_creases0.obj", "catmark_flap.obj"),
                          [](const auto& info) {
                              std::string name = info.param.substr(0, info.param.find('.'));
                              for (char& c : name)

@@ -95,7 +95,8 @@ TEST(SimplifyBudget, ShipsWithinTheBudgetAndListsTheCandidates) {
         if (c["bytes"].get<std::uintmax_t>() > kBudget) continue;
         const bool near = c["monitor_loss"].get<double>() <= 1.2 * lowestMonitored;
         const bool nearAmongMaps = c["maps"] != "none" && c["monitor_loss"].get<double>() <= 1.2 * lowestWithMaps;
-        EXPECT_EQ(c.contains("settled_loss"), (near && nearCount > 1) || (nearAmongMaps && nearWithMaps > 1)) << c.dump();
+        EXPECT_EQ(c.contains("settled_loss"), (near && nearCount > 1) || (nearAmongMaps && nearWithMaps > 1))
+            << c.dump();
         if (near && c.contains("settled_loss") && c["settled_loss"].get<double>() < bestLoss) {
             bestLoss = c["settled_loss"].get<double>();
             bestBytes = double(c["bytes"].get<std::uintmax_t>());
@@ -192,7 +193,8 @@ fit::FitScene smallSearchScene(const mesh::PolygonMesh& reference, const std::st
 // simplify chooses on the monitor's cameras drawn as a viewer shows them, as the held-out views
 // judge what ships; the fit's own schedule reads them single-sample, as it fits.
 TEST(SimplifyBudget, ChoicesSeeTheMonitorCamerasAsAViewerDoes) {
-    const fit::FitScene scene = smallSearchScene(mesh::makeLumpySphere(5, 0.15f, 5, 40, 0.005f, 0.02f), "simplify_choosing");
+    const fit::FitScene scene =
+        smallSearchScene(mesh::makeLumpySphere(5, 0.15f, 5, 40, 0.005f, 0.02f), "simplify_choosing");
     const auto& choosing = scene.choosing(programs());
     EXPECT_EQ(scene.monitor.supersampling(), 1);
     EXPECT_EQ(choosing.supersampling(), fit::kViewerSupersampling);
@@ -304,11 +306,13 @@ TEST(SimplifyBudget, HeightsOnAFacetedReferenceShadeWithTheLimitNormal) {
     auto o = budgeted(dir / "faceted.obj", dir / "out", 4000);
     o.fit.resolution = 128;
     o.fit.maps = {.displacement = true};
-    o.route = simplify::RouteChoice::Cage;  // it ships whole as triangles otherwise: this is about the cage the search finds
+    o.route =
+        simplify::RouteChoice::Cage;  // it ships whole as triangles otherwise: this is about the cage the search finds
     const auto report = simplify::toJson(simplify::runSimplify(o));
     int ownDensity = 0;
     for (const auto& c : report["budget"]["candidates"]) {
-        if (c["faces"].get<int>() != faceted.faceCount() || !c.contains("shading_normal") || !c.contains("monitor_loss"))
+        if (c["faces"].get<int>() != faceted.faceCount() || !c.contains("shading_normal") ||
+            !c.contains("monitor_loss"))
             continue;
         ++ownDensity;
         EXPECT_EQ(c["shading_normal"], "limit") << c.dump();

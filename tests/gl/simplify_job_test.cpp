@@ -49,7 +49,8 @@ TEST(SimplifyJob, ReportMatchesTheFilesAndComparesAtEqualBytes) {
     const auto dir = scratchDir("simplify_job");
     mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 4));
     auto options = smallMappedSimplify(dir / "lumpy.obj", dir / "out");
-    options.route = simplify::RouteChoice::Cage;  // what a fitted cage ships, whether or not the triangle route scores better
+    options.route =
+        simplify::RouteChoice::Cage;  // what a fitted cage ships, whether or not the triangle route scores better
     const auto report = simplify::toJson(simplify::runSimplify(options));
     EXPECT_EQ(report["route"]["shipped"], "cage");
 
@@ -67,14 +68,16 @@ TEST(SimplifyJob, ReportMatchesTheFilesAndComparesAtEqualBytes) {
     for (const char* convenience : {"asset.usdz", "normal.png", "fitted.glb"}) {
         EXPECT_FALSE(report["files"].contains(convenience)) << convenience;
         ASSERT_TRUE(fs::exists(dir / "out" / convenience)) << convenience;
-        EXPECT_EQ(report["exports"][convenience].get<std::uintmax_t>(), fs::file_size(dir / "out" / convenience)) << convenience;
+        EXPECT_EQ(report["exports"][convenience].get<std::uintmax_t>(), fs::file_size(dir / "out" / convenience))
+            << convenience;
     }
     EXPECT_FALSE(fs::exists(dir / "out" / "cage.glb"));
     EXPECT_EQ(report["bytes"].get<std::uintmax_t>(), onDisk);
 
     const auto& decimation = report["baselines"]["decimation"];
     const auto& bake = report["baselines"]["bake"];
-    EXPECT_LE(decimation["bytes"].get<std::uintmax_t>(), onDisk);  // --faces alone: the route is weighed at the cage's bytes
+    EXPECT_LE(decimation["bytes"].get<std::uintmax_t>(),
+              onDisk);                                   // --faces alone: the route is weighed at the cage's bytes
     EXPECT_GT(decimation["triangles"].get<int>(), 120);  // the maps' bytes buy it more triangles
     EXPECT_EQ(fs::file_size(dir / "out" / "baselines" / "decimated.glb"), decimation["bytes"].get<std::uintmax_t>());
     // The bake ships the same cage and map formats: within a few percent of subdfit's bytes.
@@ -114,9 +117,10 @@ TEST(SimplifyJob, ResumedAfterTheBakeEndsWhereAStraightRunDoes) {
     options.fit.out = dir / "resumed";
     std::atomic<bool> cancel{false};
     // Interrupted, simplify keeps its checkpoint and writes no results.
-    EXPECT_THROW(simplify::runSimplify(options, {.progress = [&](const fit::Progress& p) { cancel = cancel || p.step >= 14; },
-                                                 .cancel = &cancel}),
-                 Interrupted);
+    EXPECT_THROW(
+        simplify::runSimplify(
+            options, {.progress = [&](const fit::Progress& p) { cancel = cancel || p.step >= 14; }, .cancel = &cancel}),
+        Interrupted);
     EXPECT_TRUE(fs::exists(dir / "resumed" / "checkpoint.bin"));
     EXPECT_FALSE(fs::exists(dir / "resumed" / "report.json"));
     EXPECT_FALSE(fs::exists(dir / "resumed" / "initial_cage.obj"));
@@ -158,7 +162,8 @@ TEST(SimplifyJob, TwoRunsOfOneSeedWriteTheSameFiles) {
         EXPECT_EQ(readBytes(dir / "first" / name), readBytes(dir / "second" / name)) << name;
     for (const char* name : {"cage.obj", "fitted.glb", "initial_cage.obj"})
         EXPECT_EQ(readBytes(dir / "first" / name), readBytes(dir / "second" / name)) << name;
-    for (const char* key : {"psnr_holdout", "psnr_holdout_initial", "chamfer"}) EXPECT_EQ(first[key], second[key]) << key;
+    for (const char* key : {"psnr_holdout", "psnr_holdout_initial", "chamfer"})
+        EXPECT_EQ(first[key], second[key]) << key;
 }
 
 TEST(SimplifyBatch, SkipsFinishedResumesInterruptedAndRecordsFailures) {
@@ -211,7 +216,8 @@ TEST(SimplifyBatch, SkipsFinishedResumesInterruptedAndRecordsFailures) {
     const auto resumed = readJson(out / "lumpy" / "report.json");
     EXPECT_EQ(resumed["resumed_from_step"], 5);
     // To the end of its 20 steps, or of its probation when that found no gain.
-    EXPECT_TRUE(resumed["steps"] == 20 || (resumed["stop_reason"] == "no_gain" && resumed["steps"] == 10)) << resumed["steps"];
+    EXPECT_TRUE(resumed["steps"] == 20 || (resumed["stop_reason"] == "no_gain" && resumed["steps"] == 10))
+        << resumed["steps"];
     EXPECT_EQ(readJson(out / "ball" / "report.json")["resumed_from_step"], 0);
 
     // And once more: nothing left to do but the failure.

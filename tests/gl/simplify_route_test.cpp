@@ -109,7 +109,8 @@ void writeFacesSplitEastWest(std::ostream& obj, const mesh::PolygonMesh& triangl
     for (int f = 0; f < triangles.faceCount(); ++f) {
         const int* corner = &triangles.faceIndices[size_t(3 * f)];
         const bool east = triangles.positions[size_t(corner[0])].x + triangles.positions[size_t(corner[1])].x +
-                              triangles.positions[size_t(corner[2])].x > 0.0f;
+                              triangles.positions[size_t(corner[2])].x >
+                          0.0f;
         obj << 'f';
         for (int k = 0; k < 3; ++k) obj << ' ' << corner[k] + 1 << separator << corner[k] + 1 + (east ? n : 0);
         obj << '\n';
@@ -127,7 +128,8 @@ TEST(SimplifyRoute, ASmoothReferenceSplitAtTextureSeamsShipsItsNormals) {
         std::ofstream obj(dir / "seams.obj");
         for (const auto& p : light.positions) obj << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
         for (int side = 0; side < 2; ++side)
-            for (const auto& p : light.positions) obj << "vt " << 0.5f * (float(side) + 0.5f + 0.5f * p.y) << ' ' << 0.5f + 0.5f * p.z << '\n';
+            for (const auto& p : light.positions)
+                obj << "vt " << 0.5f * (float(side) + 0.5f + 0.5f * p.y) << ' ' << 0.5f + 0.5f * p.z << '\n';
         writeFacesSplitEastWest(obj, light, "/");
     }
     ASSERT_GT(mesh::loadReference(dir / "seams.obj").vertexCount(), n);  // split along the seam

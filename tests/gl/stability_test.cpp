@@ -50,12 +50,13 @@ class ShapeFit : public ::testing::TestWithParam<std::string> {};
 TEST_P(ShapeFit, ShortFitStaysFiniteAndDoesNotDiverge) {
     const auto truth = mesh::readObj(assetPath("osd-shapes/" + GetParam() + ".obj"));
     const auto reference = surface::limitMesh(truth, 4);
-    if (reference.faceCount() == 0) GTEST_SKIP() << GetParam() << " has no limit surface (every face a hole or dropped)";
+    if (reference.faceCount() == 0)
+        GTEST_SKIP() << GetParam() << " has no limit surface (every face a hole or dropped)";
     auto scene = makeFitScene(programs(), truth, reference, 4, 64);
     scene.cage.positions = noised(scene.cage.positions, 0.02f, 5);
     fit::CageFitSettings settings;
     settings.resolution = 64;
-    settings.plannedSteps = 100;  // at 40 the first, noisiest Adam steps can still dominate
+    settings.plannedSteps = 100;              // at 40 the first, noisiest Adam steps can still dominate
     settings.mapEffects.displacement = true;  // the texel path through every topology too
     settings.maps.resolution = 2;
     settings.mapsStartFraction = 0.5f;
@@ -70,8 +71,7 @@ TEST_P(ShapeFit, ShortFitStaysFiniteAndDoesNotDiverge) {
     expectNoGlError();
 }
 
-INSTANTIATE_TEST_SUITE_P(Osd, ShapeFit, ::testing::ValuesIn(shapeNames()),
-                         [](const auto& info) { return info.param; });
+INSTANTIATE_TEST_SUITE_P(Osd, ShapeFit, ::testing::ValuesIn(shapeNames()), [](const auto& info) { return info.param; });
 
 // --- scale -----------------------------------------------------------------------------------
 
@@ -138,8 +138,8 @@ TEST(Stability, ObjectFullyOffScreenGivesZeroGradient) {
 }
 
 TEST(Stability, PartlyOffScreenAndGrazingViewsStayFinite) {
-    for (const auto& camera : {lookingAt({0, 0, 3.5f}, {1.2f, 0, 0}),      // half the object out of frame
-                               lookingAt({0, 0, 3.5f}, {0, 0, 0}, 2.0f),   // zoomed into one patch
+    for (const auto& camera : {lookingAt({0, 0, 3.5f}, {1.2f, 0, 0}),       // half the object out of frame
+                               lookingAt({0, 0, 3.5f}, {0, 0, 0}, 2.0f),    // zoomed into one patch
                                lookingAt({3.0f, 0.02f, 0}, {0, 1.1f, 0})})  // grazing the top
     {
         const auto c = gradientFrom(camera);

@@ -24,10 +24,11 @@ TEST(TargetSet, ASupersampledPixelIsTheMeanOfItsBlockOfSamples) {
     const TargetSet targets(programs, renderer, render::orbitCameras(2, 1), kResolution, kFactor);
 
     std::vector<glm::vec4> samples;
-    const std::vector<glm::vec4> filtered = targets.render(1, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
-        renderer.draw(programs, camera, canvas);
-        samples = canvas.readColor();
-    });
+    const std::vector<glm::vec4> filtered =
+        targets.render(1, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
+            renderer.draw(programs, camera, canvas);
+            samples = canvas.readColor();
+        });
     ASSERT_EQ(samples.size(), size_t(kFine) * kFine);
     ASSERT_EQ(filtered.size(), size_t(kResolution) * kResolution);
     int partial = 0;  // pixels on an outline: some samples on Spot, some on the background

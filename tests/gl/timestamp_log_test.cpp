@@ -15,7 +15,8 @@ namespace {
 
 TEST(TimestampLog, PhasesInFirstMarkedOrderOneValuePerRound) {
     test::programs();  // the context
-    optim::ParameterGroup group(optim::GroupKind::Other, "x", std::vector<float>(100'000, 0.0f), optim::GroupSettings{1.0f});
+    optim::ParameterGroup group(optim::GroupKind::Other, "x", std::vector<float>(100'000, 0.0f),
+                                optim::GroupSettings{1.0f});
     for (PhaseClock clock : {PhaseClock::GpuTimestamp, PhaseClock::HostAfterFinish}) {
         TimestampLog log(clock);
         for (int round = 0; round < 2; ++round) {

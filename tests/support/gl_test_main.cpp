@@ -26,9 +26,7 @@ void installSharedContextListener() {
 const context::GlContext& glContext() { return *sharedContext; }
 gl::ProgramCache& programs() { return *sharedPrograms; }
 
-gl::Defines platformDefines() {
-    return gl::platformDefines();
-}
+gl::Defines platformDefines() { return gl::platformDefines(); }
 
 void expectNoGlError() {
     const GLenum error = glGetError();

@@ -35,7 +35,9 @@ inline std::vector<unsigned char> plainGridCage(int n, const std::vector<std::ar
     for (int axis = 0; axis < 3; ++axis)
         for (int j = 0; j < side; ++j)
             for (int i = 0; i < side; ++i)
-                out.put<std::uint16_t>(axis == 0 ? std::uint16_t(i * 65535 / n) : axis == 1 ? std::uint16_t(j * 65535 / n) : 0);
+                out.put<std::uint16_t>(axis == 0   ? std::uint16_t(i * 65535 / n)
+                                       : axis == 1 ? std::uint16_t(j * 65535 / n)
+                                                   : 0);
     for (int f = 0; f < n * n; ++f) out.putVarint(4);
     std::int64_t previous = 0;
     for (int j = 0; j < n; ++j)

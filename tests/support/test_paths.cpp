@@ -12,7 +12,8 @@ std::filesystem::path sharedAssetPath(const std::string& relative) {
     auto p = std::filesystem::path(SUBDFIT_SHARED_ASSETS) / relative;
     if (std::filesystem::exists(p)) return p;
     // The OpenSubdiv shapes are also bundled (license allows), so a user's clone runs those tests.
-    if (relative.rfind("osd-shapes", 0) == 0 && std::filesystem::exists(assetPath(relative))) return assetPath(relative);
+    if (relative.rfind("osd-shapes", 0) == 0 && std::filesystem::exists(assetPath(relative)))
+        return assetPath(relative);
     return {};
 }
 

@@ -15,7 +15,6 @@ std::filesystem::path scratchDir(const std::string& name);
 }  // namespace subdfit::test
 
 // Skips the current test with a message when a shared (non-bundled) asset is missing.
-#define SUBDFIT_REQUIRE_SHARED(var, relative)                                          \
-    const auto var = ::subdfit::test::sharedAssetPath(relative);                      \
-    if (var.empty()) GTEST_SKIP() << "shared asset " << (relative)                     \
-                                  << " not found (only in the development checkout)"
+#define SUBDFIT_REQUIRE_SHARED(var, relative)                    \
+    const auto var = ::subdfit::test::sharedAssetPath(relative); \
+    if (var.empty()) GTEST_SKIP() << "shared asset " << (relative) << " not found (only in the development checkout)"

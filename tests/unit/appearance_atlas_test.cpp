@@ -50,8 +50,9 @@ mesh::PolygonMesh triangles(const mesh::PolygonMesh& quads) {
     size_t offset = 0;
     for (int n : quads.faceSizes) {
         for (int k = 1; k + 1 < n; ++k) {
-            out.faceIndices.insert(out.faceIndices.end(), {quads.faceIndices[offset], quads.faceIndices[offset + size_t(k)],
-                                                           quads.faceIndices[offset + size_t(k) + 1]});
+            out.faceIndices.insert(out.faceIndices.end(),
+                                   {quads.faceIndices[offset], quads.faceIndices[offset + size_t(k)],
+                                    quads.faceIndices[offset + size_t(k) + 1]});
             out.faceSizes.push_back(3);
         }
         offset += size_t(n);
@@ -87,7 +88,8 @@ TEST(AtlasBake, APlaneGetsItsOwnTextureCoordinatesAndTexture) {
         worst = std::max(worst, error);
         if (f % 4 != 0 && f % 4 != 3 && f / 4 != 0 && f / 4 != 3) worstInside = std::max(worstInside, error);
     });
-    std::printf("texture coordinate error: %.4g inside, %.4g on boundary faces (a face spans 0.25)\n", worstInside, worst);
+    std::printf("texture coordinate error: %.4g inside, %.4g on boundary faces (a face spans 0.25)\n", worstInside,
+                worst);
     EXPECT_LT(worstInside, 1e-3f);
     EXPECT_LT(worst, 0.25f * 0.1f);
     // The texels are the texture downscaled: red grows along a row, green down a column.
@@ -101,13 +103,13 @@ TEST(AtlasBake, ChartBordersKeepTheirColourNotTheGutters) {
     // black around: every texel of a coarse atlas is the chart's orange, those its border cuts
     // through and the gutter's too.
     mesh::PolygonMesh reference = triangles(mesh::makeQuadGrid(8));
-    for (const glm::vec3& p : reference.positions)
-        reference.uvs.push_back({0.5f + 0.2f * p.x, 0.5f - 0.2f * p.y});
+    for (const glm::vec3& p : reference.positions) reference.uvs.push_back({0.5f + 0.2f * p.x, 0.5f - 0.2f * p.y});
     paint(reference, [](int x, int y) -> Rgba {
         const bool chart = x >= 19 && x < 45 && y >= 19 && y < 45;  // texel centres inside [0.3, 0.7]
         return chart ? Rgba{255, 128, 0, 255} : Rgba{0, 0, 0, 255};
     });
-    const surface::SurfaceMaps maps = simplify::bakeAtlasAppearance(mesh::makeQuadGrid(2), reference, {.baseColor = true}, 8);
+    const surface::SurfaceMaps maps =
+        simplify::bakeAtlasAppearance(mesh::makeQuadGrid(2), reference, {.baseColor = true}, 8);
     ASSERT_EQ(maps.baseColor.size(), 3u * 8 * 8);
     for (size_t t = 0; t < 64; ++t) {
         EXPECT_NEAR(maps.baseColor[3 * t], 1.0f, 0.02f) << "texel " << t;
@@ -197,7 +199,8 @@ surface::AppearanceAtlas someAtlas(const mesh::PolygonMesh& cage, int size) {
         const bool otherChart = f % 3 == 0;
         for (const glm::vec2 corner : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}) {
             const glm::vec3 p = limit.evaluate(f, corner.x, corner.y, cage.positions).position;
-            atlas.cornerUvs.push_back(glm::vec2(0.3f + 0.25f * p.x, 0.4f + 0.3f * p.y) + (otherChart ? glm::vec2(0.5f, 0.0f) : glm::vec2(0.0f)));
+            atlas.cornerUvs.push_back(glm::vec2(0.3f + 0.25f * p.x, 0.4f + 0.3f * p.y) +
+                                      (otherChart ? glm::vec2(0.5f, 0.0f) : glm::vec2(0.0f)));
         }
     }
     return atlas;
@@ -278,7 +281,8 @@ TEST(AtlasUvCoding, ATriangleCagesMidpointsAndCentresArePredicted) {
     std::uniform_int_distribution<int> jitter(-128, 127);
     auto noise = [&] { return step * glm::vec2(float(jitter(rng)), float(jitter(rng))); };
     std::vector<glm::vec2> vertexUv;
-    for (const glm::vec3& p : cage.positions) vertexUv.push_back(glm::vec2(0.5f + 0.4f * p.x, 0.5f + 0.4f * p.y) + noise());
+    for (const glm::vec3& p : cage.positions)
+        vertexUv.push_back(glm::vec2(0.5f + 0.4f * p.x, 0.5f + 0.4f * p.y) + noise());
     surface::AppearanceAtlas predictable{.size = kSize, .cornerUvs = {}}, jittered = predictable;
     for (int t = 0; t < cage.faceCount(); ++t) {
         auto uv = [&](int i) { return vertexUv[size_t(cage.faceIndices[size_t(3 * t + (i + 3) % 3)])]; };
@@ -287,8 +291,9 @@ TEST(AtlasUvCoding, ATriangleCagesMidpointsAndCentresArePredicted) {
         for (int i = 0; i < 3; ++i) {  // sub-face i: (0,0) at vertex i, (1,0) towards i + 1, (0,1) towards i − 1
             const glm::vec2 next = 0.5f * (uv(i) + uv(i + 1)), previous = 0.5f * (uv(i - 1) + uv(i));
             predictable.cornerUvs.insert(predictable.cornerUvs.end(), {uv(i), next, centre, previous});
-            jittered.cornerUvs.insert(jittered.cornerUvs.end(), {uv(i), next + edgeNoise[size_t(i)], centre + centreNoise,
-                                                                 previous + edgeNoise[size_t((i + 2) % 3)]});
+            jittered.cornerUvs.insert(
+                jittered.cornerUvs.end(),
+                {uv(i), next + edgeNoise[size_t(i)], centre + centreNoise, previous + edgeNoise[size_t((i + 2) % 3)]});
         }
     }
     const size_t predicted = packedAtlasUvs(cage, predictable), unpredictable = packedAtlasUvs(cage, jittered);
@@ -315,7 +320,8 @@ TEST(AtlasUvCoding, TheShippedFileCarriesTheAtlas) {
     for (size_t k = 0; k < back.maps.appearanceAtlas.cornerUvs.size(); ++k)
         ASSERT_LE(glm::distance(back.maps.appearanceAtlas.cornerUvs[k], asset.maps.appearanceAtlas.cornerUvs[k]), step);
     double error = 0.0;
-    for (size_t k = 0; k < maps.baseColor.size(); ++k) error = std::max(error, double(std::abs(back.maps.baseColor[k] - maps.baseColor[k])));
+    for (size_t k = 0; k < maps.baseColor.size(); ++k)
+        error = std::max(error, double(std::abs(back.maps.baseColor[k] - maps.baseColor[k])));
     EXPECT_LT(error, 0.08);  // JPEG at quality 90
 }
 
@@ -328,10 +334,10 @@ TEST(AtlasTangent, FollowsTheAtlasCoordinatesAndTheirHandedness) {
     const auto tangent = [&](glm::vec2 alongU, glm::vec2 alongV) {
         return surface::atlasTangent(n, dPdu, dPdv, glm::mat2(alongU, alongV), fallback);
     };
-    EXPECT_EQ(tangent({0.1f, 0}, {0, -0.1f}), glm::vec4(1, 0, 0, 1));    // s along x, t down the image
-    EXPECT_EQ(tangent({-0.1f, 0}, {0, -0.1f}), glm::vec4(-1, 0, 0, -1)); // mirrored in s
-    EXPECT_EQ(tangent({0.1f, 0}, {0, 0.1f}), glm::vec4(1, 0, 0, -1));    // mirrored in t
-    EXPECT_EQ(tangent({0, 0.1f}, {0.1f, 0}), glm::vec4(0, 1, 0, 1));     // s along y, t along x: turned
+    EXPECT_EQ(tangent({0.1f, 0}, {0, -0.1f}), glm::vec4(1, 0, 0, 1));     // s along x, t down the image
+    EXPECT_EQ(tangent({-0.1f, 0}, {0, -0.1f}), glm::vec4(-1, 0, 0, -1));  // mirrored in s
+    EXPECT_EQ(tangent({0.1f, 0}, {0, 0.1f}), glm::vec4(1, 0, 0, -1));     // mirrored in t
+    EXPECT_EQ(tangent({0, 0.1f}, {0.1f, 0}), glm::vec4(0, 1, 0, 1));      // s along y, t along x: turned
     EXPECT_EQ(tangent({0, 0}, {0, 0}), fallback);                         // a face the atlas collapses
     EXPECT_EQ(surface::atlasTangent(n, glm::vec3(0), glm::vec3(0), glm::mat2(1.0f), fallback), fallback);  // a pole
 }

@@ -66,24 +66,31 @@ mesh::PolygonMesh tiltedPlane(glm::vec3 (*tilt)(glm::vec3 p)) {
 
 // The normal the renderer shades the cage with at ptex (u, v) of `face` (glsl/patch.frag's
 // atlasMappedNormal): the texture bilinear between texel centres, in the surface's frame.
-glm::vec3 shadedNormal(const surface::DisplacedSurface& surface, const surface::SurfaceMaps& maps, int face, float u, float v,
-                       glm::vec3 facing = glm::vec3(0, 0, 1)) {
+glm::vec3 shadedNormal(const surface::DisplacedSurface& surface, const surface::SurfaceMaps& maps, int face, float u,
+                       float v, glm::vec3 facing = glm::vec3(0, 0, 1)) {
     const surface::SurfaceVertex p = surface.at(face, u, v);
     const float h = 1e-3f;
-    const glm::vec2 duv1 = (surface::atlasUvAt(maps.appearanceAtlas, face, u + h, v) - surface::atlasUvAt(maps.appearanceAtlas, face, u - h, v)) / (2 * h);
-    const glm::vec2 duv2 = (surface::atlasUvAt(maps.appearanceAtlas, face, u, v + h) - surface::atlasUvAt(maps.appearanceAtlas, face, u, v - h)) / (2 * h);
-    const glm::vec3 n = glm::dot(p.normal, facing) < 0.0f ? -p.normal : p.normal;  // seen from the side the author faces
+    const glm::vec2 duv1 = (surface::atlasUvAt(maps.appearanceAtlas, face, u + h, v) -
+                            surface::atlasUvAt(maps.appearanceAtlas, face, u - h, v)) /
+                           (2 * h);
+    const glm::vec2 duv2 = (surface::atlasUvAt(maps.appearanceAtlas, face, u, v + h) -
+                            surface::atlasUvAt(maps.appearanceAtlas, face, u, v - h)) /
+                           (2 * h);
+    const glm::vec3 n =
+        glm::dot(p.normal, facing) < 0.0f ? -p.normal : p.normal;  // seen from the side the author faces
     const auto frame = simplify::normalTextureFrame(p.dPdu, p.dPdv, duv1, duv2, n);
     if (!frame) return n;
     const int size = maps.appearanceAtlas.size;
-    const glm::vec2 at = glm::clamp(surface::atlasUvAt(maps.appearanceAtlas, face, u, v) * float(size) - 0.5f, 0.0f, float(size - 1));
+    const glm::vec2 at =
+        glm::clamp(surface::atlasUvAt(maps.appearanceAtlas, face, u, v) * float(size) - 0.5f, 0.0f, float(size - 1));
     const int i = std::min(int(at.x), size - 2), j = std::min(int(at.y), size - 2);
     const float a = at.x - float(i), b = at.y - float(j);
     auto texel = [&](int x, int y) {
         const float* t = &maps.normalTexture[3 * (size_t(y) * size_t(size) + size_t(x))];
         return glm::vec3(t[0], t[1], t[2]) * 2.0f - 1.0f;
     };
-    const glm::vec3 t = glm::mix(glm::mix(texel(i, j), texel(i + 1, j), a), glm::mix(texel(i, j + 1), texel(i + 1, j + 1), a), b);
+    const glm::vec3 t =
+        glm::mix(glm::mix(texel(i, j), texel(i + 1, j), a), glm::mix(texel(i, j + 1), texel(i + 1, j + 1), a), b);
     return glm::normalize(*frame * t);
 }
 
@@ -103,7 +110,8 @@ AngleStats compare(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& ma
         for (float v = 0.1f; v < 1.0f; v += 0.2f)
             for (float u = 0.1f; u < 1.0f; u += 0.2f) {
                 const glm::vec2 uv = surface::atlasUvAt(maps.appearanceAtlas, f, u, v);
-                const float a = angle(shadedNormal(surface, maps, f, u, v), expected(glm::vec3(2.0f * uv.x - 1.0f, 1.0f - 2.0f * uv.y, 0.0f)));
+                const float a = angle(shadedNormal(surface, maps, f, u, v),
+                                      expected(glm::vec3(2.0f * uv.x - 1.0f, 1.0f - 2.0f * uv.y, 0.0f)));
                 s.mean += a, s.worst = std::max(s.worst, a), ++count;
             }
     }
@@ -118,17 +126,19 @@ TEST(AtlasShadingNormals, ABulgingCageShadesAsTheFlatReferenceItStandsFor) {
         return 0.25f * std::cos(0.5f * std::numbers::pi_v<float> * x) * std::cos(0.5f * std::numbers::pi_v<float> * y);
     });
     auto up = [](glm::vec3) { return glm::vec3(0, 0, 1); };
-    const surface::SurfaceMaps plain = simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 16, 0.5f, false);
+    const surface::SurfaceMaps plain =
+        simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 16, 0.5f, false);
     ASSERT_TRUE(plain.normalTexture.empty());  // the reference has no normal texture
     surface::SurfaceMaps flat = plain;
     flat.normalTexture.assign(3 * 16 * 16, 0.5f);
     for (size_t t = 0; t < 16 * 16; ++t) flat.normalTexture[3 * t + 2] = 1.0f;
     const AngleStats before = compare(cage, flat, up);
-    const surface::SurfaceMaps carried = simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 16, 0.5f, true);
+    const surface::SurfaceMaps carried =
+        simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 16, 0.5f, true);
     ASSERT_EQ(carried.normalTexture.size(), 3u * 16 * 16);
     const AngleStats after = compare(cage, carried, up);
-    std::printf("shading normal error: %.2f° mean, %.2f° worst before; %.2f°, %.2f° carried\n", before.mean, before.worst,
-                after.mean, after.worst);
+    std::printf("shading normal error: %.2f° mean, %.2f° worst before; %.2f°, %.2f° carried\n", before.mean,
+                before.worst, after.mean, after.worst);
     EXPECT_GT(before.mean, 8.0f);
     EXPECT_LT(after.mean, 1.0f);
     EXPECT_LT(after.worst, 3.0f);
@@ -139,7 +149,8 @@ TEST(AtlasShadingNormals, ACageOnTheReferenceTakesItsAuthorsTiltedNormals) {
     auto tilt = [](glm::vec3 p) { return glm::vec3(0.3f * std::sin(1.5f * p.x), 0.2f * std::cos(2.0f * p.y), 1.0f); };
     const mesh::PolygonMesh reference = tiltedPlane(tilt);
     const mesh::PolygonMesh cage = mesh::makeQuadGrid(4);
-    const surface::SurfaceMaps carried = simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 16, 0.5f, true);
+    const surface::SurfaceMaps carried =
+        simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 16, 0.5f, true);
     const AngleStats after = compare(cage, carried, tilt);
     std::printf("shading normal error: %.2f° mean, %.2f° worst\n", after.mean, after.worst);
     EXPECT_LT(after.mean, 1.0f);

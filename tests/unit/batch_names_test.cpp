@@ -19,9 +19,21 @@ bool isSafeName(const std::string& name) {
 }
 
 TEST(BatchNames, HostileLabelsGiveSafeNames) {
-    const std::string labels[] = {"..", ".", "...", "", "../../etc/passwd", "/abs/path", "a/b\\c", "tab\there",
-                                  "new\nline", std::string("nul\0x", 5), "caf\xc3\xa9", std::string(300, 'x'), ".hidden",
-                                  "-dash", "a:b*c?d"};
+    const std::string labels[] = {"..",
+                                  ".",
+                                  "...",
+                                  "",
+                                  "../../etc/passwd",
+                                  "/abs/path",
+                                  "a/b\\c",
+                                  "tab\there",
+                                  "new\nline",
+                                  std::string("nul\0x", 5),
+                                  "caf\xc3\xa9",
+                                  std::string(300, 'x'),
+                                  ".hidden",
+                                  "-dash",
+                                  "a:b*c?d"};
     for (const std::string& label : labels) {
         const std::string name = assetName(label, "identity");
         EXPECT_TRUE(isSafeName(name)) << "label '" << label << "' gave '" << name << "'";

@@ -67,7 +67,8 @@ TEST(CageCoding, TwoVerticesOnOneCellStillGoThroughDraco) {
     // Vertex 0's nearest other vertex brought onto it.
     size_t nearest = 1;
     for (size_t v = 1; v < cage.positions.size(); ++v)
-        if (glm::distance(cage.positions[v], cage.positions[0]) < glm::distance(cage.positions[nearest], cage.positions[0]))
+        if (glm::distance(cage.positions[v], cage.positions[0]) <
+            glm::distance(cage.positions[nearest], cage.positions[0]))
             nearest = v;
     cage.positions[nearest] = cage.positions[0];
     const auto coded = encodeCage(cage, kCoarse);
@@ -75,7 +76,8 @@ TEST(CageCoding, TwoVerticesOnOneCellStillGoThroughDraco) {
     expectSameFaces(cage, coded);
     float farthest = 0.0f;
     for (size_t v = 0; v < cage.positions.size(); ++v) {
-        const glm::vec3 error = glm::abs(coded.decoded.positions[size_t(coded.correspondence.vertex[v])] - cage.positions[v]);
+        const glm::vec3 error =
+            glm::abs(coded.decoded.positions[size_t(coded.correspondence.vertex[v])] - cage.positions[v]);
         farthest = std::max({farthest, error.x, error.y, error.z});
     }
     EXPECT_GT(farthest, 0.51f * step);  // one was moved

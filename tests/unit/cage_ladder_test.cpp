@@ -38,10 +38,13 @@ TEST(CageLadder, PreparesEachCageBeforeHandingItOver) {
     const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 5);
     std::mutex mutex;
     std::vector<int> prepared;  // on a builder's thread, before each cage is handed over
-    CageLadder ladder(reference, {400, 160}, CageShape::Triangles, [&](const mesh::PolygonMesh& cage) {
-        const std::lock_guard lock(mutex);
-        prepared.push_back(cage.faceCount());
-    }, 2);
+    CageLadder ladder(
+        reference, {400, 160}, CageShape::Triangles,
+        [&](const mesh::PolygonMesh& cage) {
+            const std::lock_guard lock(mutex);
+            prepared.push_back(cage.faceCount());
+        },
+        2);
     for (size_t k = 0; k < 2; ++k) {
         const std::optional<mesh::PolygonMesh> cage = ladder.take(k);
         ASSERT_TRUE(cage.has_value());

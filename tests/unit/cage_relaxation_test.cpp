@@ -51,7 +51,8 @@ TEST(CageRelaxation, TheLowPassKeepsAGradedLayoutAndDropsVertexNoise) {
     // The layout's own offsets change slowly from vertex to vertex: the low pass keeps most.
     const double cleanScale = rmsDifference(clean, std::vector<glm::vec3>(clean.size(), glm::vec3(0.0f)), topology);
     EXPECT_GT(cleanScale, 1e-3);
-    EXPECT_LT(rmsDifference(restOffsets(grid, topology, CageRelaxation::kRestPasses), clean, topology), 0.5 * cleanScale);
+    EXPECT_LT(rmsDifference(restOffsets(grid, topology, CageRelaxation::kRestPasses), clean, topology),
+              0.5 * cleanScale);
 
     auto noised = grid;
     std::mt19937 rng(7);

@@ -32,8 +32,14 @@ FitState sampleState() {
     // Where a plateau schedule stands: resumed, it must continue with the same step and best.
     state.learningRateScale = 0.25f;
     state.mapsStartStep = 30;
-    state.schedule = {.bestLoss = 0.125, .bestStep = 36, .window = {0.5, 0.25, 0.125}, .stageLosses = {1.0, 0.5},
-                      .stageStart = 3, .probationOver = true, .halvings = 2, .carriedHalvings = 3,
+    state.schedule = {.bestLoss = 0.125,
+                      .bestStep = 36,
+                      .window = {0.5, 0.25, 0.125},
+                      .stageLosses = {1.0, 0.5},
+                      .stageStart = 3,
+                      .probationOver = true,
+                      .halvings = 2,
+                      .carriedHalvings = 3,
                       .bestTheta = {state.groups[0].theta, state.groups[1].moment1},
                       .startTheta = {state.groups[1].theta, state.groups[0].moment1}};
     state.monitored = {{.step = 0, .seconds = 0.0, .loss = 1.0}, {.step = 10, .seconds = 1.5, .loss = 0.5}};
@@ -136,8 +142,8 @@ TEST_F(Checkpoint, ACountBeyondTheFileAllocatesNothing) {
     payload += "fp";
     put(std::int32_t(1));
     put(std::uint32_t(1));
-    put(std::uint32_t(1));      // one group
-    put(std::int32_t(1));       // its Adam steps
+    put(std::uint32_t(1));        // one group
+    put(std::int32_t(1));         // its Adam steps
     put(std::uint64_t(1) << 42);  // theta: 2^40 floats
     const std::uint64_t checksum = hash64(payload);
     writeBytes(path_, payload + std::string(reinterpret_cast<const char*>(&checksum), sizeof checksum));

@@ -54,7 +54,8 @@ TEST(ComparisonImage, EveryColumnAndTheErrorRowAreLabelled) {
     EXPECT_GT(brightPixels(image, 0, kRes, band + kRes, image.height), 100);
     // Under subdfit (no error) black; under the darker decimation its error shows.
     EXPECT_EQ(brightPixels(image, kRes, 2 * kRes, band + kRes, image.height), 0);
-    const std::uint8_t* error = &image.rgba[4 * (size_t(band + kRes + kRes / 2) * size_t(image.width) + 2 * kRes + kRes / 2)];
+    const std::uint8_t* error =
+        &image.rgba[4 * (size_t(band + kRes + kRes / 2) * size_t(image.width) + 2 * kRes + kRes / 2)];
     EXPECT_GT(error[0], 100);  // an RMS error of 0.2: red towards yellow
 }
 

@@ -29,7 +29,8 @@ std::vector<unsigned char> asVersion5(std::vector<unsigned char> bytes) {
 TEST(DecodeDensity, FollowsTheRecordedTriangleCountWithinTwice) {
     const auto cage = mesh::makeQuadSphere(6);  // 216 quads
     for (std::uint32_t reference : {500u, 5000u, 50000u, 211000u, 2000000u}) {
-        const SubdAsset asset = decodeSubd(encodeSubd({.cage = cage, .maps = {}, .decodeTriangles = reference}), "a.subd");
+        const SubdAsset asset =
+            decodeSubd(encodeSubd({.cage = cage, .maps = {}, .decodeTriangles = reference}), "a.subd");
         ASSERT_EQ(asset.decodeTriangles, reference);
         const DecodeDensity d = decodeDensity(asset, {}, "a.subd");
         EXPECT_EQ(d.triangles, 2 * std::int64_t(d.segments) * d.segments * 216);
@@ -50,11 +51,13 @@ TEST(DecodeDensity, AskedForCountsAndSegmentsWithinTheLimit) {
     EXPECT_EQ(decodeDensity(asset, {.segments = 3, .triangles = 0}, "a.subd").segments, 3);
     EXPECT_EQ(decodeDensity(asset, {.segments = 0, .triangles = 1}, "a.subd").segments, 1);  // at least the cage
     EXPECT_EQ(decodeDensity(asset, {.segments = 0, .triangles = kMaxDecodeTriangles}, "a.subd").segments, 64);
-    const std::string tooMany = test::errorMessage([&] { decodeDensity(asset, {.segments = 0, .triangles = kMaxDecodeTriangles + 1}, "a.subd"); });
+    const std::string tooMany = test::errorMessage(
+        [&] { decodeDensity(asset, {.segments = 0, .triangles = kMaxDecodeTriangles + 1}, "a.subd"); });
     EXPECT_NE(tooMany.find("a.subd"), std::string::npos) << tooMany;
     EXPECT_NE(tooMany.find(std::to_string(kMaxDecodeTriangles)), std::string::npos) << tooMany;
     const SubdAsset big{.cage = mesh::makeQuadGrid(300), .maps = {}, .decodeTriangles = 0};
-    const std::string dense = test::errorMessage([&] { decodeDensity(big, {.segments = 64, .triangles = 0}, "big.subd"); });
+    const std::string dense =
+        test::errorMessage([&] { decodeDensity(big, {.segments = 64, .triangles = 0}, "big.subd"); });
     EXPECT_NE(dense.find("big.subd: 64 segments"), std::string::npos) << dense;
     EXPECT_THROW(decodeDensity(asset, {.segments = 2, .triangles = 100}, "a.subd"), OptionError);
 }

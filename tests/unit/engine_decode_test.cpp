@@ -148,7 +148,8 @@ TEST(EngineDecode, ThreeLevelsWhoseErrorsRiseAsTheirTrianglesFall) {
     EXPECT_EQ(lods[0]["max_distance"], 0.0);
     EXPECT_EQ(lods[0]["screen_size"], 1.0);
     for (size_t k = 0; k < 3; ++k) {
-        EXPECT_EQ(mesh::loadMesh(dir / lods[k]["file"].get<std::string>()).faceCount(), lods[k]["triangles"].get<int>());
+        EXPECT_EQ(mesh::loadMesh(dir / lods[k]["file"].get<std::string>()).faceCount(),
+                  lods[k]["triangles"].get<int>());
         EXPECT_EQ(fs::file_size(dir / lods[k]["file"].get<std::string>()), lods[k]["bytes"].get<std::uintmax_t>());
         // Heights alone ship no image, so nothing reads texture coordinates or tangents.
         const nlohmann::json level = glbJson(dir / lods[k]["file"].get<std::string>());
@@ -179,11 +180,13 @@ TEST(EngineDecode, MaxErrorChoosesTheCoarsestDensityWithinTheBound) {
     ASSERT_GT(within.density.segments, 1);
     ASSERT_LT(within.density.segments, within.referenceSegments);
     const auto fine = surface::triangleMesh(surface::tessellate(asset.cage, asset.maps, within.referenceSegments));
-    const auto coarser = surface::triangleMesh(surface::tessellate(asset.cage, asset.maps, within.density.segments - 1));
+    const auto coarser =
+        surface::triangleMesh(surface::tessellate(asset.cage, asset.maps, within.density.segments - 1));
     EXPECT_GT(geometry::surfaceDistance(coarser, fine, kErrorSamples).hausdorff, 0.004);
     // A tighter bound asks for more segments; as a fraction of the diagonal, the same rule.
     DecodeBudget again("lumpy.subd");
-    EXPECT_GT(densityWithin(asset, {.value = 0.001, .ofDiagonal = false}, again).density.segments, within.density.segments);
+    EXPECT_GT(densityWithin(asset, {.value = 0.001, .ofDiagonal = false}, again).density.segments,
+              within.density.segments);
     DecodeBudget relative("lumpy.subd");
     const ErrorDensity percent = densityWithin(asset, {.value = 0.001, .ofDiagonal = true}, relative);
     EXPECT_LE(percent.maxDistance, percent.bound);
@@ -213,10 +216,11 @@ TEST(EngineDecode, TheLevelsAreWrittenTogetherOrNotAtAll) {
     const auto dir = test::scratchDir("engine_decode_together");
     writeSubd(dir / "asset.subd", lumpySphere(2000, 2));
     const std::string stem(246, 'a');  // stem_lod1.glb fits; stem_lods.json does not
-    const std::string refusal = test::errorMessage([&] { decodeForEngines(dir / "asset.subd", dir / (stem + ".glb"), {.lods = 2}); });
+    const std::string refusal =
+        test::errorMessage([&] { decodeForEngines(dir / "asset.subd", dir / (stem + ".glb"), {.lods = 2}); });
     EXPECT_NE(refusal.find("bytes, more than the 255"), std::string::npos) << refusal;
     EXPECT_TRUE(fs::is_empty(dir / "") || (fs::directory_iterator(dir)->path().filename() == "asset.subd" &&
-                                            std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1));
+                                           std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1));
 
     const fs::path latin1 = dir / "caf\xe9.subd";
     fs::copy_file(dir / "asset.subd", latin1);
@@ -233,7 +237,8 @@ TEST(EngineDecode, AnErrorBoundBelowWhatTheSurfaceResolvesIsClampedToTheFinest) 
     writeSubd(dir / "asset.subd", lumpySphere(2000, 2));
     std::string said;
     const WarningSink previous = setWarningSink([&](const std::string& w) { said += w + "\n"; });
-    decodeForEngines(dir / "asset.subd", dir / "fine.glb", {.maxError = ErrorBound{.value = 1e-32, .ofDiagonal = true}, .lods = 1});
+    decodeForEngines(dir / "asset.subd", dir / "fine.glb",
+                     {.maxError = ErrorBound{.value = 1e-32, .ofDiagonal = true}, .lods = 1});
     setWarningSink(previous);
     EXPECT_NE(said.find("below what the surface resolves"), std::string::npos) << said;
     std::ifstream file(dir / "fine_lods.json");
@@ -253,7 +258,8 @@ TEST(EngineDecode, BadErrorBoundsAndLevelCountsAreRefused) {
     }
     const auto dir = test::scratchDir("engine_decode_bad");
     writeSubd(dir / "asset.subd", lumpySphere(1000));
-    EXPECT_THROW(decodeForEngines(dir / "asset.subd", dir / "x.glb", {.maxError = ErrorBound{.value = 0.0}}), OptionError);
+    EXPECT_THROW(decodeForEngines(dir / "asset.subd", dir / "x.glb", {.maxError = ErrorBound{.value = 0.0}}),
+                 OptionError);
     EXPECT_THROW(decodeForEngines(dir / "asset.subd", dir / "x.glb", {.lods = kMostLods + 1}), OptionError);
     EXPECT_FALSE(fs::exists(dir / "x.glb"));
 }

@@ -57,8 +57,8 @@ float gpuBilinear(const std::vector<float>& image, int width, int height, glm::v
     auto texel = [&](int px, int py) {
         return image[size_t(std::clamp(py, 0, height - 1)) * width + size_t(std::clamp(px, 0, width - 1))];
     };
-    return (1 - fx) * (1 - fy) * texel(x0, y0) + fx * (1 - fy) * texel(x0 + 1, y0) +
-           (1 - fx) * fy * texel(x0, y0 + 1) + fx * fy * texel(x0 + 1, y0 + 1);
+    return (1 - fx) * (1 - fy) * texel(x0, y0) + fx * (1 - fy) * texel(x0 + 1, y0) + (1 - fx) * fy * texel(x0, y0 + 1) +
+           fx * fy * texel(x0 + 1, y0 + 1);
 }
 
 TEST(ExportAtlas, TilesFormASquareishGridWithoutOverlap) {
@@ -134,7 +134,8 @@ TEST(ExportAtlas, FilesReadBackWithTheNodeValuesAtTheirPixels) {
         for (int j = 0; j <= 4; ++j)
             for (int i = 0; i <= 4; ++i) {
                 const int node = maps.layout.node(face, i, j);
-                const size_t pixel = size_t(atlas.tileOrigins[face].y + j) * atlas.width + atlas.tileOrigins[face].x + i;
+                const size_t pixel =
+                    size_t(atlas.tileOrigins[face].y + j) * atlas.width + atlas.tileOrigins[face].x + i;
                 ASSERT_EQ(exr.pixels[pixel], maps.displacement[node]) << "face " << face << " node " << i << "," << j;
                 const glm::vec3 n = glm::normalize(glm::vec3(maps.normal[2 * node], maps.normal[2 * node + 1], 1.0f));
                 for (int c = 0; c < 3; ++c)

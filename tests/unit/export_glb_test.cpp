@@ -220,9 +220,8 @@ TEST_F(ExportGlb, PlainGlbReadsBackWithEveryVertex) {
 }
 
 TEST_F(ExportGlb, DracoGlbIsSmallerAndDecodesToTheSameSurface) {
-    std::cout << "plain " << plain_->bytes << " bytes, Draco " << draco_->bytes << " bytes ("
-              << tess_->vertexCount() << " vertices, " << tess_->triangleCount() << " triangles, PNG "
-              << png_->size() << " bytes)\n";
+    std::cout << "plain " << plain_->bytes << " bytes, Draco " << draco_->bytes << " bytes (" << tess_->vertexCount()
+              << " vertices, " << tess_->triangleCount() << " triangles, PNG " << png_->size() << " bytes)\n";
     EXPECT_LT(draco_->bytes, plain_->bytes);
 
     const mesh::PolygonMesh read = mesh::readGltf(draco_->path);
@@ -358,7 +357,8 @@ TEST(ExportTessellation, CollapsedDerivativesStayFinite) {
     std::vector<int> ring;
     for (int f = 0; f < cage.faceCount(); ++f) {
         const std::span<const int> quad(&cage.faceIndices[size_t(f) * 4], 4);
-        if (std::find(quad.begin(), quad.end(), centre) != quad.end()) ring.insert(ring.end(), quad.begin(), quad.end());
+        if (std::find(quad.begin(), quad.end(), centre) != quad.end())
+            ring.insert(ring.end(), quad.begin(), quad.end());
     }
     for (int v : ring) cage.positions[size_t(v)] = cage.positions[size_t(centre)];
     surface::SurfaceMaps maps;

@@ -28,15 +28,17 @@ mesh::PolygonMesh cubeGrid(int n) {
 
 // The reference's vertex nearest to `p`, exactly as the reference has it.
 glm::vec3 vertexNear(const mesh::PolygonMesh& reference, const glm::vec3& p) {
-    return *std::min_element(reference.positions.begin(), reference.positions.end(),
-                             [&](const glm::vec3& a, const glm::vec3& b) { return glm::distance(a, p) < glm::distance(b, p); });
+    return *std::min_element(
+        reference.positions.begin(), reference.positions.end(),
+        [&](const glm::vec3& a, const glm::vec3& b) { return glm::distance(a, p) < glm::distance(b, p); });
 }
 
 // The 12 triangles of a cube whose corners are the reference's vertices nearest (±1, ±1, ±1).
 mesh::PolygonMesh boxCage(const mesh::PolygonMesh& reference) {
     mesh::PolygonMesh cage;
     for (int k = 0; k < 8; ++k)
-        cage.positions.push_back(vertexNear(reference, {k & 1 ? 1.0f : -1.0f, k & 2 ? 1.0f : -1.0f, k & 4 ? 1.0f : -1.0f}));
+        cage.positions.push_back(
+            vertexNear(reference, {k & 1 ? 1.0f : -1.0f, k & 2 ? 1.0f : -1.0f, k & 4 ? 1.0f : -1.0f}));
     const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     for (const auto& q : quads) {
         cage.faceIndices.insert(cage.faceIndices.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});

@@ -199,9 +199,9 @@ TEST(StepSchedule, AProbationThatStopsOnlyARiseLetsAFlatStartGoOn) {
     auto verdict = [](const std::vector<double>& losses) {
         return probationVerdict({.probationStopsOnlyARise = true}, losses, 5);
     };
-    EXPECT_EQ(verdict({1.0, 1.0002, 1.0007, 1.0001, 1.0009, 1.0004}), StepSchedule::Verdict::Paying);   // flat
-    EXPECT_EQ(verdict({1.0, 0.998, 0.994, 0.99, 0.985, 0.98}), StepSchedule::Verdict::Paying);          // falling
-    EXPECT_EQ(verdict({1.0, 1.0015, 1.003, 1.012, 1.02, 1.027}), StepSchedule::Verdict::NoGain);        // rising
+    EXPECT_EQ(verdict({1.0, 1.0002, 1.0007, 1.0001, 1.0009, 1.0004}), StepSchedule::Verdict::Paying);  // flat
+    EXPECT_EQ(verdict({1.0, 0.998, 0.994, 0.99, 0.985, 0.98}), StepSchedule::Verdict::Paying);         // falling
+    EXPECT_EQ(verdict({1.0, 1.0015, 1.003, 1.012, 1.02, 1.027}), StepSchedule::Verdict::NoGain);       // rising
     // A fall and a rise back, which the full probation halves for, is not a clear rise here.
     EXPECT_EQ(verdict({1.0, 0.97, 0.99, 1.0, 1.005, 1.004}), StepSchedule::Verdict::Paying);
 }
@@ -223,7 +223,8 @@ TEST(StepSchedule, ALaterProbationAsksTheHeightsForAGain) {
     EXPECT_EQ(verdict({1.0, 1.0005, 1.0, 1.0005, 1.0, 0.999, 0.998, 0.997, 0.9965}), StepSchedule::Verdict::Paying);
     // One early best 1 % below the start, every measurement since creeping above it (the 1M relief
     // at 50 KB): the gain did not hold.
-    EXPECT_EQ(verdict({1.0, 0.9902, 0.993, 0.9961, 1.0009, 1.0046, 1.0037, 1.0052, 1.0093}), StepSchedule::Verdict::NoGain);
+    EXPECT_EQ(verdict({1.0, 0.9902, 0.993, 0.9961, 1.0009, 1.0046, 1.0037, 1.0052, 1.0093}),
+              StepSchedule::Verdict::NoGain);
 }
 
 TEST(DeviceDefaults, SoftwareRenderersAreRecognised) {

@@ -32,19 +32,22 @@ std::string bufferBytes(std::uint16_t first, std::uint16_t second) {
 }
 
 json sparseTriangle(bool withBase) {
-    json accessor = {{"componentType", 5126}, {"count", 3}, {"type", "VEC3"},
-                     {"sparse", {{"count", 2},
-                                 {"indices", {{"bufferView", 1}, {"componentType", 5123}}},
-                                 {"values", {{"bufferView", 2}}}}}};
+    json accessor = {
+        {"componentType", 5126},
+        {"count", 3},
+        {"type", "VEC3"},
+        {"sparse",
+         {{"count", 2}, {"indices", {{"bufferView", 1}, {"componentType", 5123}}}, {"values", {{"bufferView", 2}}}}}};
     if (withBase) accessor["bufferView"] = 0;
     return {{"asset", {{"version", "2.0"}}},
             {"scenes", {{{"nodes", {0}}}}},
             {"nodes", {{{"mesh", 0}}}},
             {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}}}},
             {"accessors", {accessor}},
-            {"bufferViews", {{{"buffer", 0}, {"byteLength", 36}},
-                             {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 4}},
-                             {{"buffer", 0}, {"byteOffset", 40}, {"byteLength", 24}}}},
+            {"bufferViews",
+             {{{"buffer", 0}, {"byteLength", 36}},
+              {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 4}},
+              {{"buffer", 0}, {"byteOffset", 40}, {"byteLength", 24}}}},
             {"buffers", {{{"uri", "sparse.bin"}, {"byteLength", 64}}}}};
 }
 
@@ -86,7 +89,8 @@ TEST(GltfSparse, SubstitutionsThatDoNotAddUpAreRefusedNamingTheFile) {
         {writeAsset("order.gltf", sparseTriangle(true), 2, 1), "sparse index 1 is not above the one before it"},
         {writeAsset("repeat.gltf", sparseTriangle(true), 1, 1), "sparse index 1 is not above the one before it"},
         {writeAsset("many.gltf", tooMany), "4 sparse values, where 1 to 3 may be"},
-        {writeAsset("view.gltf", pastTheView), "sparse values (24 bytes at offset 8) run past the end of buffer view 2"},
+        {writeAsset("view.gltf", pastTheView),
+         "sparse values (24 bytes at offset 8) run past the end of buffer view 2"},
         {writeAsset("type.gltf", badIndexType), "sparse indices must be unsigned byte, short or int"},
     };
     for (const auto& c : cases) {

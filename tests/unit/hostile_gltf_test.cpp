@@ -68,7 +68,7 @@ protected:
 TEST_F(HostileGltf, AReferenceInsideTheFolderLoads) {
     EXPECT_EQ(loadMesh(gltfWith("ok.bin")).faceCount(), 1);
     write(dir_ / "asset" / "my file.bin", triangleBytes());
-    EXPECT_EQ(loadMesh(gltfWith("my%20file.bin")).faceCount(), 1);  // percent-decoded
+    EXPECT_EQ(loadMesh(gltfWith("my%20file.bin")).faceCount(), 1);    // percent-decoded
     EXPECT_EQ(loadMesh(gltfWith("./sub/../ok.bin")).faceCount(), 1);  // climbs, but stays inside
 }
 
@@ -105,7 +105,8 @@ TEST_F(HostileGltf, TheCurrentFolderIsNeverSearched) {
     fs::current_path(previous);
     EXPECT_NE(message.find("scene.gltf"), std::string::npos) << message;
     EXPECT_NE(message.find("not found"), std::string::npos) << message;
-    EXPECT_EQ(message.find("size mismatch"), std::string::npos) << "the message tells the outside file's size: " << message;
+    EXPECT_EQ(message.find("size mismatch"), std::string::npos)
+        << "the message tells the outside file's size: " << message;
 }
 
 TEST_F(HostileGltf, AFifoIsNotOpened) {
@@ -130,8 +131,11 @@ TEST_F(HostileGltf, AnImageOutsideTheFolderIsRefusedToo) {
 }
 
 TEST_F(HostileGltf, NegativeOffsetsAndLengthsAreRefused) {
-    for (const auto& [array, key] : {std::pair{"bufferViews", "byteOffset"}, {"bufferViews", "byteLength"},
-                                     {"accessors", "byteOffset"}, {"accessors", "count"}, {"buffers", "byteLength"}}) {
+    for (const auto& [array, key] : {std::pair{"bufferViews", "byteOffset"},
+                                     {"bufferViews", "byteLength"},
+                                     {"accessors", "byteOffset"},
+                                     {"accessors", "count"},
+                                     {"buffers", "byteLength"}}) {
         SCOPED_TRACE(std::string(array) + "." + key);
         json doc = triangleGltf("ok.bin");
         doc[array][0][key] = -8;

@@ -25,8 +25,8 @@ using test::glb;
 
 // One triangle whose positions view is meshopt-compressed with the given declared layout.
 json compressedTriangle(std::uint64_t count, std::uint64_t stride, const std::string& mode = "ATTRIBUTES") {
-    const json ext = {{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 64}, {"byteStride", stride}, {"mode", mode},
-                      {"count", count}};
+    const json ext = {{"buffer", 0},          {"byteOffset", 0}, {"byteLength", 64},
+                      {"byteStride", stride}, {"mode", mode},    {"count", count}};
     return {{"asset", {{"version", "2.0"}}},
             {"extensionsUsed", {"EXT_meshopt_compression"}},
             {"extensionsRequired", {"EXT_meshopt_compression"}},
@@ -35,7 +35,9 @@ json compressedTriangle(std::uint64_t count, std::uint64_t stride, const std::st
             {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}}}},
             {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}}}},
             {"bufferViews", {{{"buffer", 1}, {"byteLength", 36}, {"extensions", {{"EXT_meshopt_compression", ext}}}}}},
-            {"buffers", {{{"byteLength", 64}}, {{"byteLength", 36}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}}}}};
+            {"buffers",
+             {{{"byteLength", 64}},
+              {{"byteLength", 36}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}}}}};
 }
 
 void expectRefusedNaming(const std::string& message, const std::string& file, const std::string& problem) {
@@ -65,8 +67,8 @@ TEST(HostileMeshopt, ACountWhoseProductWrapsIsRefusedBeforeDecoding) {
 // Views declaring 2 GiB each from 64 compressed bytes: refused before their buffers exist.
 TEST(HostileMeshopt, ViewsTogetherMayNotDecodeBeyondTheLimit) {
     json doc = compressedTriangle(3, 12);
-    const json big = {{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 64}, {"byteStride", 256}, {"mode", "ATTRIBUTES"},
-                      {"count", std::uint64_t(1) << 23}};  // 2 GiB each
+    const json big = {{"buffer", 0},       {"byteOffset", 0},      {"byteLength", 64},
+                      {"byteStride", 256}, {"mode", "ATTRIBUTES"}, {"count", std::uint64_t(1) << 23}};  // 2 GiB each
     json views = json::array();
     for (int k = 0; k < 4; ++k)
         views.push_back({{"buffer", 1}, {"byteLength", 36}, {"extensions", {{"EXT_meshopt_compression", big}}}});

@@ -80,7 +80,8 @@ TEST_F(HostileObj, AMapThatIsASymlinkOutOfTheFolderIsNeverRead) {
 
 TEST_F(HostileObj, SymlinksThatStayInsideTheFolderAreFollowed) {
     fs::create_directories(dir_ / "asset" / "maps");
-    io::writeImage(dir_ / "asset" / "maps" / "real.png", {{0, 0, 1, 1}, {0, 0, 1, 1}, {0, 0, 1, 1}, {0, 0, 1, 1}}, 2, 2);
+    io::writeImage(dir_ / "asset" / "maps" / "real.png", {{0, 0, 1, 1}, {0, 0, 1, 1}, {0, 0, 1, 1}, {0, 0, 1, 1}}, 2,
+                   2);
     fs::create_symlink("maps/real.png", dir_ / "asset" / "t.png");
     writeText(dir_ / "asset" / "lib" / "real.mtl", "newmtl x\nmap_Kd t.png\n");
     fs::create_symlink("lib/real.mtl", dir_ / "asset" / "m.mtl");
@@ -131,7 +132,9 @@ TEST_F(HostileObj, TensOfThousandsOfMaterialNamesLoadInLinearTime) {
     alarm(0);
     ASSERT_TRUE(mesh.materials);
     ASSERT_EQ(mesh.faceMaterials.size(), size_t(kNames));
-    for (int f : {0, 1, kMaterials - 1}) EXPECT_EQ(mesh.materials->materials.at(size_t(mesh.faceMaterials[size_t(f)])).name, "material" + std::to_string(f));
+    for (int f : {0, 1, kMaterials - 1})
+        EXPECT_EQ(mesh.materials->materials.at(size_t(mesh.faceMaterials[size_t(f)])).name,
+                  "material" + std::to_string(f));
     // Names the library lacks share one plain material.
     EXPECT_EQ(mesh.faceMaterials[size_t(kMaterials)], mesh.faceMaterials[size_t(kNames - 1)]);
     EXPECT_EQ(mesh.materials->materials.size(), size_t(kMaterials) + 1);

@@ -44,8 +44,8 @@ constexpr std::size_t kMB = std::size_t(1) << 20;
 struct Section {
     std::string tag;
     Bytes raw;
-    Bytes stored = {};           // the zstd frame as written (default: raw compressed)
-    std::size_t declared = 0;    // the raw size the header states (default: raw's)
+    Bytes stored = {};         // the zstd frame as written (default: raw compressed)
+    std::size_t declared = 0;  // the raw size the header states (default: raw's)
 };
 
 Bytes compressed(const Bytes& raw) {
@@ -75,7 +75,8 @@ Bytes container(const std::vector<Section>& sections) {
 
 fs::path written(const std::string& name, const Bytes& bytes) {
     const fs::path path = test::scratchDir("hostile_subd") / name;
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
     return path;
 }
 
@@ -109,7 +110,8 @@ TEST(HostileSubd, ALargePlainCageDecodesWithinItsBudgetByDefault) {
 TEST(HostileSubd, ADensityBeyondTheHardLimitIsRefusedBeforeAllocating) {
     const fs::path subd = written("grid200_64.subd", container({{"CAGE", plainGridCage(200)}}));
     const fs::path glb = subd.parent_path() / "never.glb";
-    expectRefused(test::runBounded(256 * kMB, 20, [&] { decodeToGlb(subd, glb, {.segments = 64}); }), "grid200_64.subd", "triangles");
+    expectRefused(test::runBounded(256 * kMB, 20, [&] { decodeToGlb(subd, glb, {.segments = 64}); }), "grid200_64.subd",
+                  "triangles");
     EXPECT_FALSE(fs::exists(glb));
 }
 
@@ -137,7 +139,8 @@ TEST(HostileSubd, AZstdBombIsRefusedBeforeItInflates) {
     ZSTD_outBuffer out{frame.data(), frame.size(), 0};
     const Bytes zeros(kMB, 0);
     std::size_t fed = 0;
-    for (ZSTD_inBuffer in{head.data(), head.size(), 0}; in.pos < in.size;) ZSTD_compressStream2(context, &out, &in, ZSTD_e_continue);
+    for (ZSTD_inBuffer in{head.data(), head.size(), 0}; in.pos < in.size;)
+        ZSTD_compressStream2(context, &out, &in, ZSTD_e_continue);
     fed += head.size();
     while (fed < rawSize) {
         const std::size_t n = std::min(zeros.size(), rawSize - fed);
@@ -157,7 +160,9 @@ TEST(HostileSubd, AZstdBombIsRefusedBeforeItInflates) {
 
 TEST(HostileSubd, DuplicateCreasesAreRefused) {
     const std::vector<std::array<int, 2>> creases(1000, std::array<int, 2>{0, 1});
-    const std::string message = test::errorMessage([&] { decodeSubd(container({{"CAGE", plainGridCage(4, creases)}}), "creases.subd"); });
+    const std::string message = test::errorMessage([&] {
+        decodeSubd(container({{"CAGE", plainGridCage(4, creases)}}), "creases.subd");
+    });
     EXPECT_NE(message.find("creases.subd"), std::string::npos) << message;
     EXPECT_NE(message.find("duplicate crease"), std::string::npos) << message;
     // One crease per edge is fine, in either direction.
@@ -169,7 +174,8 @@ TEST(HostileSubd, AnAtlasSizeBeyondTheLimitIsRefusedAtReading) {
     const auto cage = mesh::makeQuadSphere(2);
     const CodedCage coded = encodeCage(cage, 14);
     const int ptex = surface::buildTexelLayout(coded.decoded, 1).ptexFaceCount;
-    surface::AppearanceAtlas atlas{.size = 5000, .cornerUvs = std::vector<glm::vec2>(4 * size_t(ptex), glm::vec2(0.5f))};
+    surface::AppearanceAtlas atlas{.size = 5000,
+                                   .cornerUvs = std::vector<glm::vec2>(4 * size_t(ptex), glm::vec2(0.5f))};
     ByteWriter auvs, bcol;
     writeAtlasUvs(coded.decoded, atlas, auvs);
     bcol.putVarint(4999);
@@ -178,7 +184,8 @@ TEST(HostileSubd, AnAtlasSizeBeyondTheLimitIsRefusedAtReading) {
     bcol.putVarint(1);
     bcol.put<std::uint8_t>(0);
     const Bytes file = container({{"CAGE", coded.bytes}, {"AUVS", auvs.bytes()}, {"BCOL", bcol.bytes()}});
-    expectRefused(test::runBounded(256 * kMB, 10, [&] { decodeSubd(file, "atlas.subd"); }), "atlas.subd", "atlas size 5000");
+    expectRefused(test::runBounded(256 * kMB, 10, [&] { decodeSubd(file, "atlas.subd"); }), "atlas.subd",
+                  "atlas size 5000");
 }
 
 // A small JPEG whose SOF0 says 16384 × 16384, as the base colour of a 4-quad cage whose atlas
@@ -200,7 +207,8 @@ TEST(HostileSubd, AnImageIsCheckedAgainstTheAtlasBeforeItIsDecoded) {
     bcol.putVarint(jpeg.size());
     bcol.putBytes({jpeg.data(), jpeg.size()});
     const Bytes file = container({{"CAGE", coded.bytes}, {"BCOL", bcol.bytes()}});
-    expectRefused(test::runBounded(256 * kMB, 10, [&] { decodeSubd(file, "jpeg.subd"); }), "jpeg.subd", "16384 x 16384");
+    expectRefused(test::runBounded(256 * kMB, 10, [&] { decodeSubd(file, "jpeg.subd"); }), "jpeg.subd",
+                  "16384 x 16384");
 }
 
 TEST(HostileSubd, ControlBytesInATagAreNotEchoed) {
@@ -217,8 +225,11 @@ TEST(HostileSubd, DecodeWritesOverRegularFilesOnly) {
     const fs::path dir = subd.parent_path();
     ASSERT_EQ(mkfifo((dir / "fifo.glb").c_str(), 0600), 0);
     fs::create_directories(dir / "folder.glb");
-    for (const auto& [out, problem] : std::vector<std::pair<fs::path, std::string>>{
-             {dir / "fifo.glb", "not a regular file"}, {dir / "folder.glb", "folder"}, {subd, "is the input"}, {"", "empty"}}) {
+    for (const auto& [out, problem] :
+         std::vector<std::pair<fs::path, std::string>>{{dir / "fifo.glb", "not a regular file"},
+                                                       {dir / "folder.glb", "folder"},
+                                                       {subd, "is the input"},
+                                                       {"", "empty"}}) {
         const std::string message = test::errorMessage([&] { decodeToGlb(subd, out); });
         EXPECT_NE(message.find(problem), std::string::npos) << out << ": " << message;
     }
@@ -238,8 +249,9 @@ TEST(HostileSubd, DamageInsideASectionIsRefusedAsEveryDecoderRefusesIt) {
     EXPECT_NO_THROW(decodeSubd(readBytes(dir / "box.subd"), "box.subd"));
     EXPECT_EQ(test::errorMessage([&] { decodeSubd(readBytes(dir / "section_bit_flipped.subd"), "flipped.subd"); }),
               "flipped.subd: section DISP fails its checksum (damaged)");
-    EXPECT_EQ(test::errorMessage([&] { readShippedSubd(readBytes(dir / "jpeg_huffman_table_damaged.subd"), "jpeg.subd"); }),
-              "jpeg.subd: BCOL section: a damaged JPEG (a bad Huffman table)");
+    EXPECT_EQ(
+        test::errorMessage([&] { readShippedSubd(readBytes(dir / "jpeg_huffman_table_damaged.subd"), "jpeg.subd"); }),
+        "jpeg.subd: BCOL section: a damaged JPEG (a bad Huffman table)");
 
     // Any bit of any section's frame, here of a freshly encoded asset with heights.
     const Bytes good = encodeSubd(lumpyAsset());
@@ -251,7 +263,8 @@ TEST(HostileSubd, DamageInsideASectionIsRefusedAsEveryDecoderRefusesIt) {
         const std::uint64_t sum = hash64({reinterpret_cast<const char*>(flipped.data()), flipped.size() - 8});
         std::memcpy(flipped.data() + flipped.size() - 8, &sum, 8);
         const std::string tag(reinterpret_cast<const char*>(good.data() + at), 4);
-        EXPECT_EQ(test::errorMessage([&] { decodeSubd(flipped, "f.subd"); }), "f.subd: section " + tag + " fails its checksum (damaged)");
+        EXPECT_EQ(test::errorMessage([&] { decodeSubd(flipped, "f.subd"); }),
+                  "f.subd: section " + tag + " fails its checksum (damaged)");
         at += 12 + storedSize;
     }
 }
@@ -264,7 +277,8 @@ TEST(HostileSubd, AVersion7SectionWithoutAChecksumIsRefused) {
     file.insert(file.begin() + 12, {0, 0, 0, 0});
     const std::uint64_t sum = hash64({reinterpret_cast<const char*>(file.data()), file.size() - 8});
     std::memcpy(file.data() + file.size() - 8, &sum, 8);
-    EXPECT_EQ(test::errorMessage([&] { decodeSubd(file, "bare.subd"); }), "bare.subd: section CAGE has no checksum of its content");
+    EXPECT_EQ(test::errorMessage([&] { decodeSubd(file, "bare.subd"); }),
+              "bare.subd: section CAGE has no checksum of its content");
 }
 
 }  // namespace

@@ -131,19 +131,21 @@ std::string lyingJpeg(int width, int height) {
 // One quad whose material's base colour is `image` (a file beside it).
 void writeTexturedObj(const fs::path& dir, const std::string& image) {
     writeText(dir / "m.mtl", "newmtl x\nmap_Kd " + image + "\n");
-    writeText(dir / "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nusemtl x\nf 1/1 2/2 3/3\n");
+    writeText(dir / "m.obj",
+              "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nusemtl x\nf 1/1 2/2 3/3\n");
 }
 
 // Loads `file` in a bounded child, which throws unless it decoded its images at no more than
 // subdfit uses (at most `side` on a side) and within `pixels` together.
-test::BoundedOutcome loadWithinUse(const fs::path& file, std::size_t memory, unsigned seconds, int side = io::kMaxDecodedSide,
-                                   std::int64_t pixels = io::kMaxImagePixelsPerFile) {
+test::BoundedOutcome loadWithinUse(const fs::path& file, std::size_t memory, unsigned seconds,
+                                   int side = io::kMaxDecodedSide, std::int64_t pixels = io::kMaxImagePixelsPerFile) {
     return test::runBounded(memory, seconds, [&] {
         const PolygonMesh mesh = loadReference(file);
         std::int64_t total = 0;
         for (const Image& image : mesh.materials->images) {
             if (image.width > side || image.height > side)
-                throw Error(image.name + " decoded at " + std::to_string(image.width) + " x " + std::to_string(image.height));
+                throw Error(image.name + " decoded at " + std::to_string(image.width) + " x " +
+                            std::to_string(image.height));
             total += std::int64_t(image.width) * image.height;
         }
         if (total > pixels || total == 0) throw Error(std::to_string(total) + " pixels decoded");
@@ -183,19 +185,23 @@ std::string texturedGltf(const std::vector<std::string>& images, const std::vect
                       std::to_string(k) + "}";
     }
     return R"({"asset":{"version":"2.0"},
-  "buffers":[{"uri":"data:application/octet-stream;base64,)" + buffer + R"(","byteLength":60}],
+  "buffers":[{"uri":"data:application/octet-stream;base64,)" +
+           buffer + R"(","byteLength":60}],
   "bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":24}],
   "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},
                {"bufferView":1,"componentType":5126,"count":3,"type":"VEC2"}],
-  "images":[)" + imageList + R"(],"textures":[)" + textures + R"(],"materials":[)" + materials + R"(],
-  "meshes":[{"primitives":[)" + primitives + R"(]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})";
+  "images":[)" +
+           imageList + R"(],"textures":[)" + textures + R"(],"materials":[)" + materials + R"(],
+  "meshes":[{"primitives":[)" +
+           primitives + R"(]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})";
 }
 
 TEST(HostileTextures, A16kPngBehindAnMtlMapIsRefusedOnItsHeader) {
     const fs::path dir = test::scratchDir("hostile_textures_mtl");
     writeText(dir / "bomb.png", bombPng(16384, 16384));
     writeText(dir / "m.mtl", "newmtl x\nmap_Kd bomb.png\n");
-    writeText(dir / "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nusemtl x\nf 1/1 2/2 3/3\n");
+    writeText(dir / "m.obj",
+              "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nusemtl x\nf 1/1 2/2 3/3\n");
     expectRefused(test::runBounded(256 * kMB, 20, [&] { loadReference(dir / "m.obj"); }), "bomb.png", "pixels");
 }
 
@@ -227,7 +233,10 @@ TEST(HostileTextures, ImagesTogetherAreDecodedSmallerToFitThePixelBudget) {
 TEST(HostileTextures, ThePixelBudgetRefusesAnImageItCannotFitEvenReduced) {
     io::PixelBudget budget(std::int64_t(300) * 300);
     EXPECT_EQ(budget.spend({8192, 8192, 4, false}, "a.png"), 28);  // 293², the largest that fits
-    EXPECT_NE(test::errorMessage([&] { budget.spend({8192, 8192, 4, false}, "b.png"); }).find("b.png"), std::string::npos);
+    EXPECT_NE(test::errorMessage([&] {
+                  budget.spend({8192, 8192, 4, false}, "b.png");
+              }).find("b.png"),
+              std::string::npos);
 }
 
 // Decompression bombs within the per-image cap: a 0.5 MB PNG of 11585² RGBA (537 MB decoded),
@@ -260,9 +269,10 @@ TEST(HostileTextures, AJpegClaimingAHugeFrameIsDecodedSmallAndOnce) {
         const std::string slot = R"("baseColorTexture":)" + index + "}";
         const size_t at = gltf.find(slot);
         ASSERT_NE(at, std::string::npos);
-        gltf.replace(at, slot.size(), R"("baseColorTexture":)" + index + R"(,"metallicRoughnessTexture":)" + index +
-                                          R"(},"normalTexture":)" + index + R"(,"occlusionTexture":)" + index +
-                                          R"(,"emissiveTexture":)" + index);
+        gltf.replace(at, slot.size(),
+                     R"("baseColorTexture":)" + index + R"(,"metallicRoughnessTexture":)" + index +
+                         R"(},"normalTexture":)" + index + R"(,"occlusionTexture":)" + index +
+                         R"(,"emissiveTexture":)" + index);
     }
     writeText(dir / "eight.gltf", gltf);
     const auto eight = loadWithinUse(dir / "eight.gltf", 384 * kMB, 20);
@@ -277,8 +287,8 @@ TEST(HostileTextures, AnImageOfThousandsOfChannelsIsRefusedNamingIt) {
     spec.attribute("compression", "zip");
     const std::vector<std::uint16_t> zeros(std::size_t(64) * 64 * 4000, 0);
     auto out = OIIO::ImageOutput::create((dir / "many.exr").string());
-    ASSERT_TRUE(out && out->open((dir / "many.exr").string(), spec) && out->write_image(OIIO::TypeDesc::HALF, zeros.data()) &&
-                out->close());
+    ASSERT_TRUE(out && out->open((dir / "many.exr").string(), spec) &&
+                out->write_image(OIIO::TypeDesc::HALF, zeros.data()) && out->close());
     writeTexturedObj(dir, "many.exr");
     expectRefused(test::runBounded(256 * kMB, 20, [&] { loadReference(dir / "m.obj"); }), "many.exr", "4000 channels");
 }
@@ -319,7 +329,8 @@ TEST(HostileTextures, OneFileNamedByEightImagesIsDecodedOnce) {
     const fs::path dir = test::scratchDir("hostile_textures_eight");
     io::DecodedImage big{4096, 2048, std::vector<std::uint8_t>(4096 * 2048 * 4, 200)};
     const auto png = io::encodeImage(big, big.width, big.height, io::ImageFormat::Png);
-    std::ofstream(dir / "big.png", std::ios::binary).write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+    std::ofstream(dir / "big.png", std::ios::binary)
+        .write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
     writeText(dir / "eight.gltf", texturedGltf(std::vector<std::string>(8, "big.png")));
     const auto outcome = test::runBounded(160 * kMB, 30, [&] {
         const PolygonMesh mesh = loadReference(dir / "eight.gltf");
@@ -354,8 +365,8 @@ TEST(HostileTextures, AProgressiveJpegOfEndlessScansIsRefused) {
     std::vector<std::uint8_t> pixels(64 * 64 * 3);
     for (size_t k = 0; k < pixels.size(); ++k) pixels[k] = std::uint8_t(k * 31);
     auto out = OIIO::ImageOutput::create((dir / "p.jpg").string());
-    ASSERT_TRUE(out && out->open((dir / "p.jpg").string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) &&
-                out->close());
+    ASSERT_TRUE(out && out->open((dir / "p.jpg").string(), spec) &&
+                out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) && out->close());
     std::ifstream in(dir / "p.jpg", std::ios::binary);
     const std::string jpeg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const size_t lastScan = jpeg.rfind("\xff\xda"), end = jpeg.rfind("\xff\xd9");
@@ -364,7 +375,8 @@ TEST(HostileTextures, AProgressiveJpegOfEndlessScansIsRefused) {
     for (int k = 0; k < 150; ++k) endless += jpeg.substr(lastScan, end - lastScan);
     writeText(dir / "endless.jpg", endless + "\xff\xd9");
     writeTexturedObj(dir, "endless.jpg");
-    expectRefused(test::runBounded(256 * kMB, 10, [&] { loadReference(dir / "m.obj"); }), "endless.jpg", "more than 100 scans");
+    expectRefused(test::runBounded(256 * kMB, 10, [&] { loadReference(dir / "m.obj"); }), "endless.jpg",
+                  "more than 100 scans");
 }
 
 // An image whose URI names no file: a warning naming it, and the surface renders without it.
@@ -385,11 +397,12 @@ TEST(HostileTextures, AMissingGltfImageIsAWarningNamingIt) {
 TEST(HostileTextures, TextureTransformsBeyondAnyFloatAreRefused) {
     const fs::path dir = test::scratchDir("hostile_textures_transform");
     io::writeImage(dir / "small.png", std::vector<glm::vec4>(4, {1, 0, 0, 1}), 2, 2);
-    for (const auto& [name, extension] : std::vector<std::pair<std::string, std::string>>{
-             {"offset.gltf", R"({"offset":[1e300,0]})"},
-             {"scale.gltf", R"({"scale":[1,-1e300]})"},
-             {"texcoord.gltf", R"({"texCoord":1e30})"}}) {
-        writeText(dir / name, texturedGltf({"small.png"}, {}, R"(,"extensions":{"KHR_texture_transform":)" + extension + "}"));
+    for (const auto& [name, extension] :
+         std::vector<std::pair<std::string, std::string>>{{"offset.gltf", R"({"offset":[1e300,0]})"},
+                                                          {"scale.gltf", R"({"scale":[1,-1e300]})"},
+                                                          {"texcoord.gltf", R"({"texCoord":1e30})"}}) {
+        writeText(dir / name,
+                  texturedGltf({"small.png"}, {}, R"(,"extensions":{"KHR_texture_transform":)" + extension + "}"));
         std::string said;
         const auto previous = setWarningSink([&](const std::string& w) { said += w + "\n"; });
         said += test::errorMessage([&] { loadReference(dir / name); });

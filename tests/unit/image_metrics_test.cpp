@@ -55,7 +55,8 @@ double directSsim(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>&
                     for (int i = -5; i <= 5; ++i) {
                         const size_t p = size_t(std::clamp(y + j, 0, size - 1) * size + std::clamp(x + i, 0, size - 1));
                         const double w = taps[i + 5] * taps[j + 5] / (total * total);
-                        const double u = std::clamp(double(a[p][c]), 0.0, 1.0), v = std::clamp(double(b[p][c]), 0.0, 1.0);
+                        const double u = std::clamp(double(a[p][c]), 0.0, 1.0),
+                                     v = std::clamp(double(b[p][c]), 0.0, 1.0);
                         mx += w * u;
                         my += w * v;
                         xx += w * u * u;
@@ -106,7 +107,8 @@ TEST(StructuralSimilarity, EmptyBackgroundDoesNotLiftTheScore) {
     auto framed = [](const std::vector<glm::vec4>& image) {
         std::vector<glm::vec4> out(size_t(4 * kSize * kSize), glm::vec4(0.0f));
         for (int y = 0; y < kSize; ++y)
-            for (int x = 0; x < kSize; ++x) out[size_t((y + kSize / 2) * 2 * kSize + x + kSize / 2)] = image[size_t(y * kSize + x)];
+            for (int x = 0; x < kSize; ++x)
+                out[size_t((y + kSize / 2) * 2 * kSize + x + kSize / 2)] = image[size_t(y * kSize + x)];
         return out;
     };
     EXPECT_NEAR(structuralSimilarity(framed(other), framed(clean), 2 * kSize, 2 * kSize),

@@ -46,9 +46,11 @@ PolygonMesh disk(int n, bool fan) {
 TEST(InputLimits, NonRegularFilesAreNeverOpenedForReading) {
     const auto dir = test::scratchDir("input_limits");
     ASSERT_EQ(mkfifo((dir / "pipe.obj").c_str(), 0600), 0);
-    EXPECT_NE(test::errorMessage([&] { loadMesh(dir / "pipe.obj"); }).find("pipe.obj: is not a regular file"), std::string::npos);
+    EXPECT_NE(test::errorMessage([&] { loadMesh(dir / "pipe.obj"); }).find("pipe.obj: is not a regular file"),
+              std::string::npos);
     fs::create_symlink("/dev/zero", dir / "zero.obj");
-    EXPECT_NE(test::errorMessage([&] { loadMesh(dir / "zero.obj"); }).find("zero.obj: is not a regular file"), std::string::npos);
+    EXPECT_NE(test::errorMessage([&] { loadMesh(dir / "zero.obj"); }).find("zero.obj: is not a regular file"),
+              std::string::npos);
     fs::create_directory(dir / "folder.obj");
     EXPECT_NE(test::errorMessage([&] { loadMesh(dir / "folder.obj"); }).find("is a folder"), std::string::npos);
 }
@@ -71,7 +73,8 @@ TEST(InputLimits, ALargeNgonIsRefusedAsACageButTriangulatedAsAReference) {
 }
 
 TEST(InputLimits, AVertexOfTooHighValenceIsRefusedInACage) {
-    const std::string message = test::errorMessage([&] { subdiv::buildTopologyRefiner(disk(kMaxCageValence + 1, true)); });
+    const std::string message =
+        test::errorMessage([&] { subdiv::buildTopologyRefiner(disk(kMaxCageValence + 1, true)); });
     EXPECT_NE(message.find("vertex 0 is shared by more than 128 faces"), std::string::npos) << message;
     EXPECT_NO_THROW(subdiv::buildTopologyRefiner(disk(66, true)));  // OpenSubdiv's own valence-66 pole
 }
@@ -95,7 +98,8 @@ TEST(InputLimits, ACreaseBetweenVerticesThatShareNoEdgeIsWarnedAbout) {
     loadMesh(dir / "quad.obj");
     setWarningSink(previous);
     ASSERT_EQ(warnings.size(), 1u);
-    EXPECT_NE(warnings[0].find("quad.obj: 1 crease tag joins vertices that share no edge (first: 0-2)"), std::string::npos)
+    EXPECT_NE(warnings[0].find("quad.obj: 1 crease tag joins vertices that share no edge (first: 0-2)"),
+              std::string::npos)
         << warnings[0];
 }
 

@@ -31,7 +31,8 @@ double meanDistance(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& refe
 
 float largestMove(const mesh::PolygonMesh& a, const mesh::PolygonMesh& b) {
     float largest = 0.0f;
-    for (size_t v = 0; v < a.positions.size(); ++v) largest = std::max(largest, glm::length(a.positions[v] - b.positions[v]));
+    for (size_t v = 0; v < a.positions.size(); ++v)
+        largest = std::max(largest, glm::length(a.positions[v] - b.positions[v]));
     return largest;
 }
 
@@ -67,14 +68,16 @@ TEST(CageSource, CagesFromItsDecimationCopyLieAsClose) {
         const mesh::PolygonMesh welded = weldedTriangles(reference);
         for (const int faces : {300, 800}) {
             const CageSource direct(reference), viaCopy(reference, true, faces);
-            const mesh::PolygonMesh fromReference = direct.cage({.faces = faces}), fromCopy = viaCopy.cage({.faces = faces});
+            const mesh::PolygonMesh fromReference = direct.cage({.faces = faces}),
+                                    fromCopy = viaCopy.cage({.faces = faces});
             EXPECT_NE(fromCopy.positions, fromReference.positions) << "the copy was decimated from";
             EXPECT_LE(fromCopy.faceCount(), faces);
             logRatios += std::log(meanDistance(fromCopy, welded) / meanDistance(fromReference, welded));
             // A cage grown past the ladder's top, from the copy too.
             const mesh::PolygonMesh grownFromCopy = viaCopy.cage({.faces = 2 * faces});
             EXPECT_NE(grownFromCopy.positions, direct.cage({.faces = 2 * faces}).positions);
-            logRatios += std::log(meanDistance(grownFromCopy, welded) / meanDistance(direct.cage({.faces = 2 * faces}), welded));
+            logRatios +=
+                std::log(meanDistance(grownFromCopy, welded) / meanDistance(direct.cage({.faces = 2 * faces}), welded));
             cases += 2;
             if (seed == 3u && faces == 300) {  // more faces than the copy serves: from the reference
                 EXPECT_EQ(viaCopy.cage({.faces = 900}).positions, direct.cage({.faces = 900}).positions);
@@ -151,7 +154,8 @@ mesh::PolygonMesh tube(int n) {
 double meanTriangleQuality(const mesh::PolygonMesh& m) {
     double sum = 0.0;
     for (int f = 0; f < m.faceCount(); ++f) {
-        const glm::vec3 a = m.positions[size_t(m.faceIndices[size_t(3 * f)])], b = m.positions[size_t(m.faceIndices[size_t(3 * f + 1)])],
+        const glm::vec3 a = m.positions[size_t(m.faceIndices[size_t(3 * f)])],
+                        b = m.positions[size_t(m.faceIndices[size_t(3 * f + 1)])],
                         c = m.positions[size_t(m.faceIndices[size_t(3 * f + 2)])];
         const double edges = glm::dot(b - a, b - a) + glm::dot(c - b, c - b) + glm::dot(a - c, a - c);
         sum += edges > 0.0 ? 4.0 * std::sqrt(3.0) * 0.5 * glm::length(glm::cross(b - a, c - a)) / edges : 0.0;
@@ -205,8 +209,10 @@ TEST(InitialCageTriangles, FeaturesAndBoundariesStay) {
         int pinned = 0;
         for (size_t v = 0; v < decimated.positions.size(); ++v) {
             const glm::vec3 p = decimated.positions[v];
-            const bool onBoxEdge = int(std::abs(std::abs(p.x) - 1.0f) < 1e-5f) + int(std::abs(std::abs(p.y) - 1.0f) < 1e-5f) +
-                                       int(std::abs(std::abs(p.z) - 1.0f) < 1e-5f) >= 2;
+            const bool onBoxEdge = int(std::abs(std::abs(p.x) - 1.0f) < 1e-5f) +
+                                       int(std::abs(std::abs(p.y) - 1.0f) < 1e-5f) +
+                                       int(std::abs(std::abs(p.z) - 1.0f) < 1e-5f) >=
+                                   2;
             const bool onTubeEnd = std::abs(std::abs(p.z) - 2.0f) < 1e-5f;
             if (onBoxEdge || onTubeEnd) {
                 EXPECT_EQ(moved.positions[v], p);

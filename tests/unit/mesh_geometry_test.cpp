@@ -55,11 +55,11 @@ TEST(MeshGeometry, CubeNormalsPointOutwards) {
 TEST(MeshGeometry, DegenerateMeshesGiveFiniteOutput) {
     PolygonMesh mesh;
     mesh.positions = {
-        {0, 0, 0}, {0, 0, 0}, {0, 0, 0},             // a point-sized triangle
-        {0, 0, 0}, {1, 0, 0}, {2, 0, 0},             // a collinear one
-        {1e-30f, 0, 0}, {0, 1e-30f, 0}, {0, 0, 0},   // tiny but not zero
-        {3e38f, 0, 0}, {0, 3e38f, 0}, {-3e38f, 0, 0},  // huge
-        {7, 7, 7},                                   // used by no face
+        {0, 0, 0},      {0, 0, 0},      {0, 0, 0},       // a point-sized triangle
+        {0, 0, 0},      {1, 0, 0},      {2, 0, 0},       // a collinear one
+        {1e-30f, 0, 0}, {0, 1e-30f, 0}, {0, 0, 0},       // tiny but not zero
+        {3e38f, 0, 0},  {0, 3e38f, 0},  {-3e38f, 0, 0},  // huge
+        {7, 7, 7},                                       // used by no face
     };
     mesh.faceSizes = {3, 3, 3, 3, 4};
     mesh.faceIndices = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 3, 4, 4, 3};

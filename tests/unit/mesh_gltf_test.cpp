@@ -81,7 +81,7 @@ TEST(MeshGltf, InstancesEveryNodeWithItsTransformAndMirroredWinding) {
     ASSERT_EQ(mesh.faceCount(), 2);
     ASSERT_EQ(mesh.vertexCount(), 6);
     EXPECT_EQ(mesh.positions[1], glm::vec3(11, 0, 0));  // translated by +10 x
-    EXPECT_EQ(mesh.positions[4], glm::vec3(-1, 0, 0));   // mirrored in x
+    EXPECT_EQ(mesh.positions[4], glm::vec3(-1, 0, 0));  // mirrored in x
     // Both triangles face +Z: the mirrored copy had its winding flipped back.
     for (int f = 0; f < 2; ++f) {
         const glm::vec3 a = mesh.positions[size_t(mesh.faceIndices[3 * f])];

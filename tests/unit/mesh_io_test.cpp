@@ -147,7 +147,7 @@ TEST(MeshObj, ReadsFaceEntryFormsNegativeIndicesAndCrlf) {
                                 "mtllib x.mtl\r\n"
                                 "o thing\r\n"
                                 "v 0 0 0\r\n"
-                                "v +1.5 0 0 1\r\n"          // w is ignored, '+' accepted
+                                "v +1.5 0 0 1\r\n"            // w is ignored, '+' accepted
                                 "v 0 1e-3 0 0.5 0.5 0.5\r\n"  // vertex colours ignored
                                 "v 1 1 -0\r\n"
                                 "vt 0 0\r\nvn 0 0 1\r\n"

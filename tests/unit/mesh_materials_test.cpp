@@ -77,10 +77,13 @@ std::string triangleGltf(const std::string& textureInfo, const std::string& imag
   "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":24}],
   "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
                {"bufferView":1,"componentType":5126,"count":3,"type":"VEC2"}],
-  "images":[{"uri":")" + imageUri + R"("}],
+  "images":[{"uri":")" +
+           imageUri + R"("}],
   "samplers":[{"magFilter":9728,"wrapS":33071,"wrapT":33648}],
-  "textures":[)" + texture + R"(],
-  "materials":[{"pbrMetallicRoughness":{"baseColorTexture":)" + textureInfo + R"(,"roughnessFactor":0.25},
+  "textures":[)" +
+           texture + R"(],
+  "materials":[{"pbrMetallicRoughness":{"baseColorTexture":)" +
+           textureInfo + R"(,"roughnessFactor":0.25},
                 "extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":4}},"emissiveFactor":[0.5,0,0]}],
   "meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"material":0}]}],
   "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})";
@@ -89,9 +92,11 @@ std::string triangleGltf(const std::string& textureInfo, const std::string& imag
 TEST(MeshMaterials, SamplersTextureTransformAndEmissiveStrengthAreRead) {
     const fs::path dir = test::scratchDir("materials_transform");
     writeCheckerPng(dir / "checker.png");
-    writeText(dir / "t.gltf", triangleGltf(
-        R"({"index":0,"extensions":{"KHR_texture_transform":{"offset":[0.5,0],"rotation":1.5707963,"scale":[2,1]}}})",
-        "checker.png"));
+    writeText(
+        dir / "t.gltf",
+        triangleGltf(
+            R"({"index":0,"extensions":{"KHR_texture_transform":{"offset":[0.5,0],"rotation":1.5707963,"scale":[2,1]}}})",
+            "checker.png"));
     const PolygonMesh mesh = loadReference(dir / "t.gltf");
     ASSERT_TRUE(mesh.materials);
     const Material& m = mesh.materials->materials.at(0);
@@ -130,8 +135,8 @@ TEST(MeshMaterials, AWebpOnlyTextureIsReadAndAnUndecodableOneIsNamed) {
     EXPECT_GT(image.rgba[0], 200);  // red, give or take WebP's loss
     EXPECT_LT(image.rgba[1], 60);
 
-    writeText(dir / "ktx.gltf", triangleGltf(R"({"index":0})", "red.webp",
-                                             R"({"extensions":{"KHR_texture_basisu":{"source":0}}})"));
+    writeText(dir / "ktx.gltf",
+              triangleGltf(R"({"index":0})", "red.webp", R"({"extensions":{"KHR_texture_basisu":{"source":0}}})"));
     std::vector<std::string> warnings;
     const auto previous = setWarningSink([&](const std::string& w) { warnings.push_back(w); });
     const PolygonMesh untextured = loadReference(dir / "ktx.gltf");
@@ -172,10 +177,12 @@ TEST(MeshMaterials, AnImageCutShortIsRefusedInOneLine) {
 TEST(MeshMaterials, ObjWithMtlHasItsBaseColourAndSplitsVerticesAtTextureSeams) {
     const fs::path dir = test::scratchDir("materials_obj");
     writeCheckerPng(dir / "checker.png");
-    writeText(dir / "m.mtl", "newmtl painted\nKd 0.5 0.25 1\nNs 198\nmap_Kd checker.png\nillum 2\n\nnewmtl plain\nKd 0.2\n");
+    writeText(dir / "m.mtl",
+              "newmtl painted\nKd 0.5 0.25 1\nNs 198\nmap_Kd checker.png\nillum 2\n\nnewmtl plain\nKd 0.2\n");
     // Two triangles sharing the edge 2-3, with different vt on one side of it.
-    writeText(dir / "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
-                             "usemtl painted\nf 1/1 2/2 3/3\nusemtl plain\nf 1/5 3/3 4/4\n");
+    writeText(dir / "m.obj",
+              "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
+              "usemtl painted\nf 1/1 2/2 3/3\nusemtl plain\nf 1/5 3/3 4/4\n");
     const PolygonMesh mesh = loadReference(dir / "m.obj");
     ASSERT_TRUE(mesh.materials);
     EXPECT_EQ(mesh.vertexCount(), 5);  // vertex 1 appears with two texture coordinates
@@ -202,7 +209,6 @@ TEST(MeshMaterials, AnMtlMapOutsideTheFolderIsRefused) {
     EXPECT_NE(message.find("m.mtl: line 2"), std::string::npos) << message;
     EXPECT_NE(message.find("outside"), std::string::npos) << message;
 }
-
 
 // KHR_mesh_quantization lets texture coordinates be signed and not normalized (gltfpack -vt):
 // read, as the extension defines them.

@@ -22,7 +22,8 @@ std::vector<float> nodeValues(const mesh::PolygonMesh& cage, const surface::Texe
     const auto limit = surface::tessellate(cage, {}, kResolution);
     for (size_t k = 0; k < limit.vertexCount(); ++k) {
         const auto& at = limit.ptex[k];
-        const int node = layout.node(at.face, int(std::lround(at.u * kResolution)), int(std::lround(at.v * kResolution)));
+        const int node =
+            layout.node(at.face, int(std::lround(at.u * kResolution)), int(std::lround(at.v * kResolution)));
         values[size_t(node)] = value(limit.positions[k]);
     }
     return values;
@@ -56,7 +57,8 @@ TEST(NodeCoding, ASmoothMapFarFromItsMeanCostsAboutOneByteANode) {
     EXPECT_EQ(coded.bytes[0], 8) << "the corners lean fully on their neighbours";
     EXPECT_EQ(coded.bytes[1], 8) << "so do the interpolated nodes";
     EXPECT_LT(double(coded.bytes.size()), 1.02 * layout.nodeCount + 2.0);
-    for (size_t n = 0; n < values.size(); ++n) ASSERT_LE(std::abs(coded.decoded[n] - values[n]), 0.5f * q.step * 1.001f);
+    for (size_t n = 0; n < values.size(); ++n)
+        ASSERT_LE(std::abs(coded.decoded[n] - values[n]), 0.5f * q.step * 1.001f);
 }
 
 TEST(NodeCoding, NoiseIsPredictedByItsMean) {
@@ -72,7 +74,8 @@ TEST(NodeCoding, NoiseIsPredictedByItsMean) {
     const Coded coded = roundTrip(layout, values, q);
     EXPECT_LE(coded.bytes[0], 2) << "corner lean, in eighths";
     EXPECT_LE(coded.bytes[1], 4) << "interpolated lean, in eighths";
-    for (size_t n = 0; n < values.size(); ++n) ASSERT_LE(std::abs(coded.decoded[n] - values[n]), 0.5f * q.step * 1.001f);
+    for (size_t n = 0; n < values.size(); ++n)
+        ASSERT_LE(std::abs(coded.decoded[n] - values[n]), 0.5f * q.step * 1.001f);
 }
 
 TEST(NodeCoding, AnImpossibleLeanIsRefused) {

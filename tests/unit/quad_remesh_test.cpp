@@ -28,7 +28,8 @@ int boundaryEdges(const mesh::PolygonMesh& m) {
     std::map<std::pair<int, int>, int> uses;
     for (int f = 0, first = 0; f < m.faceCount(); first += m.faceSizes[size_t(f)], ++f)
         for (int k = 0; k < m.faceSizes[size_t(f)]; ++k)
-            ++uses[std::minmax(m.faceIndices[size_t(first + k)], m.faceIndices[size_t(first + (k + 1) % m.faceSizes[size_t(f)])])];
+            ++uses[std::minmax(m.faceIndices[size_t(first + k)],
+                               m.faceIndices[size_t(first + (k + 1) % m.faceSizes[size_t(f)])])];
     return int(std::count_if(uses.begin(), uses.end(), [](const auto& e) { return e.second == 1; }));
 }
 
@@ -36,7 +37,8 @@ double shareOfValence4(const mesh::PolygonMesh& m) {
     std::map<std::pair<int, int>, int> edges;
     for (int f = 0, first = 0; f < m.faceCount(); first += m.faceSizes[size_t(f)], ++f)
         for (int k = 0; k < m.faceSizes[size_t(f)]; ++k)
-            edges[std::minmax(m.faceIndices[size_t(first + k)], m.faceIndices[size_t(first + (k + 1) % m.faceSizes[size_t(f)])])] = 1;
+            edges[std::minmax(m.faceIndices[size_t(first + k)],
+                              m.faceIndices[size_t(first + (k + 1) % m.faceSizes[size_t(f)])])] = 1;
     std::vector<int> valence(size_t(m.vertexCount()), 0);
     for (const auto& [e, _] : edges) ++valence[size_t(e.first)], ++valence[size_t(e.second)];
     return double(std::count(valence.begin(), valence.end(), 4)) / double(valence.size());
@@ -61,7 +63,8 @@ TEST(QuadRemesh, ASphereIsClosedQuadsOnTheSphere) {
 }
 
 TEST(QuadRemesh, DenseShapesOfManyKindsComeOutQuadDominant) {
-    for (const char* name : {"catmark_bishop.obj", "catmark_pawn.obj", "catmark_helmet.obj", "catmark_gregory_test8.obj", "catmark_torus.obj"}) {
+    for (const char* name : {"catmark_bishop.obj", "catmark_pawn.obj", "catmark_helmet.obj",
+                             "catmark_gregory_test8.obj", "catmark_torus.obj"}) {
         mesh::PolygonMesh shape = mesh::loadMesh(test::assetPath(std::string("osd-shapes/") + name));
         // The cage's limit surface, as a dense reference: split the cage's triangulation finely.
         const mesh::PolygonMesh dense = weldedTriangles(mesh::triangulated(shape));
@@ -71,7 +74,8 @@ TEST(QuadRemesh, DenseShapesOfManyKindsComeOutQuadDominant) {
 }
 
 TEST(QuadRemesh, AnOpenSheetKeepsItsBoundary) {
-    const mesh::PolygonMesh sheet = mesh::triangulated(mesh::makeQuadGrid(40, [](float u, float v) { return 0.2f * std::sin(3 * u) * std::cos(2 * v); }));
+    const mesh::PolygonMesh sheet = mesh::triangulated(
+        mesh::makeQuadGrid(40, [](float u, float v) { return 0.2f * std::sin(3 * u) * std::cos(2 * v); }));
     const QuadRemesh r = quadRemesh(sheet, {.vertices = 400});
     expectGoodQuads(r, 400, "sheet");
     EXPECT_GT(boundaryEdges(r.mesh), 40);
@@ -94,14 +98,16 @@ TEST(QuadRemesh, AQuadCageLiesOnItsReference) {
 }
 
 TEST(QuadRemesh, SplittingLongEdgesKeepsTheMeshConforming) {
-    const mesh::PolygonMesh box = weldedTriangles(mesh::triangulated(mesh::loadMesh(test::assetPath("osd-shapes/catmark_cube.obj"))));
+    const mesh::PolygonMesh box =
+        weldedTriangles(mesh::triangulated(mesh::loadMesh(test::assetPath("osd-shapes/catmark_cube.obj"))));
     const mesh::PolygonMesh split = splitLongEdges(box, 0.1f);
     EXPECT_TRUE(isManifold(split));
     EXPECT_EQ(boundaryEdges(split), 0);
     for (int f = 0; f < split.faceCount(); ++f)
         for (int k = 0; k < 3; ++k)
             EXPECT_LE(glm::distance(split.positions[size_t(split.faceIndices[size_t(3 * f + k)])],
-                                    split.positions[size_t(split.faceIndices[size_t(3 * f + (k + 1) % 3)])]), 0.1f);
+                                    split.positions[size_t(split.faceIndices[size_t(3 * f + (k + 1) % 3)])]),
+                      0.1f);
 }
 
 }  // namespace

@@ -38,7 +38,8 @@ PtexPoint ptexPoint(const subdiv::PatchSet& patches, glm::ivec2 sample, int tess
     const int depth = param.GetDepth() - (param.NonQuadRoot() ? 1 : 0);
     const long unit = long(tessLevel) << 12;  // finer than any patch's segment
     const long scale = unit >> depth;
-    return {param.GetFaceId(), long(param.GetU()) * scale + i * scale / level, long(param.GetV()) * scale + j * scale / level};
+    return {param.GetFaceId(), long(param.GetU()) * scale + i * scale / level,
+            long(param.GetV()) * scale + j * scale / level};
 }
 
 TEST(PatchTessellation, EveryPatchIsAGridOfItsDepthsSegments) {
@@ -55,7 +56,8 @@ TEST(PatchTessellation, EveryPatchIsAGridOfItsDepthsSegments) {
             for (int j = 0; j < level; ++j)
                 for (int i = 0; i < level; ++i, ++quad) {
                     ASSERT_LE(4 * quad + 4, t.quads.size()) << cage.name;
-                    const PtexPoint expected[4] = {corner(i, j), corner(i + 1, j), corner(i + 1, j + 1), corner(i, j + 1)};
+                    const PtexPoint expected[4] = {corner(i, j), corner(i + 1, j), corner(i + 1, j + 1),
+                                                   corner(i, j + 1)};
                     for (int k = 0; k < 4; ++k) {
                         const std::uint32_t v = t.quads[4 * quad + size_t(k)];
                         ASSERT_LT(v, t.samples.size()) << cage.name;

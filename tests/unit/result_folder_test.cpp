@@ -24,7 +24,9 @@ void writeFile(const std::filesystem::path& path, const std::string& text) {
     std::ofstream(path) << text;
 }
 
-std::filesystem::path resolvedPath(const std::filesystem::path& path) { return std::filesystem::weakly_canonical(path); }
+std::filesystem::path resolvedPath(const std::filesystem::path& path) {
+    return std::filesystem::weakly_canonical(path);
+}
 
 nlohmann::json simplifyReport(const std::filesystem::path& reference) {
     return {{"bytes", 18415},
@@ -35,7 +37,8 @@ nlohmann::json simplifyReport(const std::filesystem::path& reference) {
             {"comparison_columns", {"reference", "subdfit", "decimation", "gltfpack", "bake"}},
             {"baselines",
              {{"bake", {{"bytes", 17710}, {"psnr_holdout", 29.4}, {"path", "baselines/bake/asset.subd"}}},
-              {"decimation", {{"bytes", 18404}, {"psnr_holdout", 23.5}, {"ssim_holdout", 0.35}, {"path", "baselines/decimated.glb"}}},
+              {"decimation",
+               {{"bytes", 18404}, {"psnr_holdout", 23.5}, {"ssim_holdout", 0.35}, {"path", "baselines/decimated.glb"}}},
               {"gltfpack", {{"skipped", "gltfpack is not on PATH"}}}}}};
 }
 
@@ -54,7 +57,8 @@ TEST(ResultFolder, ReadsTheAssetTheReferenceAndTheBaselinesThatAreThere) {
     EXPECT_EQ(folder.entries[0].bytes, 18415u);
     EXPECT_DOUBLE_EQ(folder.entries[0].psnrHoldout, 30.1);
     EXPECT_EQ(folder.entries[1].name, "decimation");
-    EXPECT_EQ(folder.entries[1].levels, std::vector<std::filesystem::path>{resolvedPath(dir / "baselines/decimated.glb")});
+    EXPECT_EQ(folder.entries[1].levels,
+              std::vector<std::filesystem::path>{resolvedPath(dir / "baselines/decimated.glb")});
     EXPECT_DOUBLE_EQ(folder.entries[1].ssimHoldout, 0.35);
     ASSERT_EQ(folder.notes.size(), 2u);
     EXPECT_NE(folder.notes[0].find("gltfpack"), std::string::npos);
@@ -85,8 +89,10 @@ TEST(ResultFolder, AFitFolderHasNoBaselinesAndItsBytesFromTheExports) {
 
 TEST(ResultFolder, AFolderWithoutAResultIsRefusedNamingIt) {
     const auto dir = test::scratchDir("result_folder_none");
-    EXPECT_NE(test::errorMessage([&] { readResultFolder(dir / "missing"); }).find("missing: not a folder"), std::string::npos);
-    EXPECT_NE(test::errorMessage([&] { readResultFolder(dir); }).find("not a subdfit result: no report.json"), std::string::npos);
+    EXPECT_NE(test::errorMessage([&] { readResultFolder(dir / "missing"); }).find("missing: not a folder"),
+              std::string::npos);
+    EXPECT_NE(test::errorMessage([&] { readResultFolder(dir); }).find("not a subdfit result: no report.json"),
+              std::string::npos);
     writeFile(dir / "report.json", "{");
     EXPECT_NE(test::errorMessage([&] { readResultFolder(dir); }).find("no asset.subd"), std::string::npos);
     writeFile(dir / "asset.subd", "SUBD");
@@ -105,10 +111,17 @@ TEST(ResultFolder, BaselinesNamedOutsideTheFolderAreLeftOutWithANote) {
     ASSERT_EQ(mkfifo((dir / "baselines/fifo.glb").c_str(), 0600), 0);
     fs::create_directory(dir / "baselines/folder.glb");
     nlohmann::json baselines = nlohmann::json::object();
-    const std::vector<std::string> paths = {(root / "outside/secret.obj").string(), "../outside/secret.obj", "baselines/link.obj",
-                                            "baselines/d/secret.obj", "baselines/fifo.glb", "baselines/folder.glb",
-                                            "baselines/../../outside/secret.obj", "", "\x1b]0;owned\x07x.glb"};
-    for (size_t k = 0; k < paths.size(); ++k) baselines[std::string(1, char('a' + k))] = {{"path", paths[k]}, {"bytes", 10}};
+    const std::vector<std::string> paths = {(root / "outside/secret.obj").string(),
+                                            "../outside/secret.obj",
+                                            "baselines/link.obj",
+                                            "baselines/d/secret.obj",
+                                            "baselines/fifo.glb",
+                                            "baselines/folder.glb",
+                                            "baselines/../../outside/secret.obj",
+                                            "",
+                                            "\x1b]0;owned\x07x.glb"};
+    for (size_t k = 0; k < paths.size(); ++k)
+        baselines[std::string(1, char('a' + k))] = {{"path", paths[k]}, {"bytes", 10}};
     writeFile(dir / "report.json", nlohmann::json{{"baselines", baselines}, {"settings", "not an object"}}.dump());
 
     const ResultFolder folder = readResultFolder(dir);
@@ -131,15 +144,19 @@ TEST(ResultFolder, WhatShippedMustBeARegularFileInsideTheFolder) {
     writeFile(root / "outside.glb", "glTF");
     writeFile(dir / "asset.glb", "glTF");
     fs::create_symlink(root / "outside.glb", dir / "link.glb");
-    for (const std::string& path : {(root / "outside.glb").string(), std::string("../outside.glb"), std::string("link.glb")}) {
+    for (const std::string& path :
+         {(root / "outside.glb").string(), std::string("../outside.glb"), std::string("link.glb")}) {
         writeFile(dir / "report.json", nlohmann::json{{"route", {{"path", path}}}}.dump());
-        EXPECT_NE(test::errorMessage([&] { readResultFolder(dir); }).find("report.json: what shipped"), std::string::npos) << path;
+        EXPECT_NE(test::errorMessage([&] { readResultFolder(dir); }).find("report.json: what shipped"),
+                  std::string::npos)
+            << path;
     }
     // report.json itself may not lead elsewhere.
     writeFile(root / "elsewhere.json", "{}");
     fs::remove(dir / "report.json");
     fs::create_symlink(root / "elsewhere.json", dir / "report.json");
-    EXPECT_NE(test::errorMessage([&] { readResultFolder(dir); }).find("report.json: not a regular file inside"), std::string::npos);
+    EXPECT_NE(test::errorMessage([&] { readResultFolder(dir); }).find("report.json: not a regular file inside"),
+              std::string::npos);
 }
 
 TEST(ResultFolder, TheReferenceIsOpenedOnlyWhenItIsTheFileTheResultWasMadeFrom) {

@@ -39,7 +39,7 @@ TEST(ShadingNormal, LimitShadingMovesThePointButNotTheNormal) {
         for (float u : {0.1f, 0.4f, 0.7f})
             for (float v : {0.2f, 0.5f, 0.9f}) {
                 const auto b = bumpy.at(f, u, v), s = smooth.at(f, u, v), limit = bare.at(f, u, v);
-                EXPECT_LT(glm::length(s.position - b.position), 1e-6f);   // the heights place both alike
+                EXPECT_LT(glm::length(s.position - b.position), 1e-6f);     // the heights place both alike
                 EXPECT_GT(glm::dot(s.normal, limit.normal), 1.0f - 1e-6f);  // only one is shaded by them
                 EXPECT_LT(glm::length(s.dPdu - limit.dPdu) + glm::length(s.dPdv - limit.dPdv), 1e-5f);
                 tilt += std::acos(std::min(1.0f, glm::dot(b.normal, limit.normal)));
@@ -72,7 +72,8 @@ TEST(ShadingNormal, FlagsTheFileCannotMeanAreRefused) {
         return bytes;
     };
     const auto bare = exporter::encodeSubd(exporter::shippableAsset(cage, {}));
-    const auto heights = exporter::encodeSubd(exporter::shippableAsset(cage, roughHeights(cage, 2, surface::ShadingNormal::Displaced)));
+    const auto heights =
+        exporter::encodeSubd(exporter::shippableAsset(cage, roughHeights(cage, 2, surface::ShadingNormal::Displaced)));
     EXPECT_EQ(exporter::decodeSubd(withFlags(heights, 1), "ok.subd").maps.shadingNormal, surface::ShadingNormal::Limit);
     const std::string noHeights = errorMessage([&] { exporter::decodeSubd(withFlags(bare, 1), "bare.subd"); });
     EXPECT_EQ(noHeights, "bare.subd: limit shading flagged without a displacement");

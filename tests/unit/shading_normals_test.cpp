@@ -34,13 +34,17 @@ fs::path writeTriangle(const std::string& name, const std::vector<float>& normal
         normals.empty() ? "" : R"(,{"bufferView":0,"byteOffset":36,"componentType":5126,"count":3,"type":"VEC3"})";
     const std::string normalAttribute = normals.empty() ? "" : R"(,"NORMAL":1)";
     std::ofstream(dir / "t.gltf") << R"({"asset":{"version":"2.0"},
-  "buffers":[{"uri":"t.bin","byteLength":)" + std::to_string(data.size() * 4) + R"(}],
-  "bufferViews":[{"buffer":0,"byteLength":)" + std::to_string(data.size() * 4) + R"(}],
+  "buffers":[{"uri":"t.bin","byteLength":)" +
+                                         std::to_string(data.size() * 4) + R"(}],
+  "bufferViews":[{"buffer":0,"byteLength":)" +
+                                         std::to_string(data.size() * 4) + R"(}],
   "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,-1],"max":[1,1,0]})" +
                                          normalAccessor + R"(],
   "materials":[{}],
-  "meshes":[{"primitives":[{"attributes":{"POSITION":0)" + normalAttribute + R"(},"material":0}]}],
-  "nodes":[{"mesh":0,"matrix":)" + matrix + R"(}],"scenes":[{"nodes":[0]}],"scene":0})";
+  "meshes":[{"primitives":[{"attributes":{"POSITION":0)" +
+                                         normalAttribute + R"(},"material":0}]}],
+  "nodes":[{"mesh":0,"matrix":)" + matrix +
+                                         R"(}],"scenes":[{"nodes":[0]}],"scene":0})";
     return dir / "t.gltf";
 }
 
@@ -153,7 +157,9 @@ TEST(ShadingNormals, AnObjTextureSeamDoesNotCreaseTheShading) {
     for (int v = 0; v < m.vertexCount(); ++v) {
         if (m.positions[size_t(v)] != glm::vec3(0.0f)) continue;
         if (first < 0) first = v;
-        else EXPECT_GT(glm::dot(m.normals[size_t(first)], m.normals[size_t(v)]), 0.99999f) << "the two copies shade alike";
+        else
+            EXPECT_GT(glm::dot(m.normals[size_t(first)], m.normals[size_t(v)]), 0.99999f)
+                << "the two copies shade alike";
     }
     // And the split copies are not each their own face's flat normal: both faces were averaged.
     const auto split = vertexNormals(m);

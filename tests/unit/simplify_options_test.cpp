@@ -20,7 +20,8 @@ SimplifyOptions parsed(std::vector<std::string> args) {
 }
 
 TEST(SimplifyOptionsCli, ReadsEachFlagIntoItsField) {
-    const SimplifyOptions given = parsed({"--faces", "200", "--budget", "20KB", "--compare", "none", "--route", "cage", "--map-res", "6"});
+    const SimplifyOptions given =
+        parsed({"--faces", "200", "--budget", "20KB", "--compare", "none", "--route", "cage", "--map-res", "6"});
     EXPECT_EQ(given.faces, 200);
     EXPECT_EQ(given.budget, 20000u);
     EXPECT_EQ(given.compare, CompareLevel::None);

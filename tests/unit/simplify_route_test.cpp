@@ -49,7 +49,8 @@ TEST(SimplifyRoute, ACageOverTheBudgetShipsOnlyWhereNoTriangleRouteFits) {
     EXPECT_NE(over.why.find("1219 bytes, over the budget"), std::string::npos) << over.why;
     EXPECT_EQ(simplify::chooseRoute(scored(30.0, 940), best, 940).shipped, "cage");
     EXPECT_EQ(simplify::chooseRoute(scored(30.0, 1219), best).shipped, "cage");  // no budget set
-    EXPECT_EQ(simplify::chooseRoute(scored(30.0, 1219), simplify::bestTriangleRoute(nullptr, nullptr), 940).shipped, "cage");
+    EXPECT_EQ(simplify::chooseRoute(scored(30.0, 1219), simplify::bestTriangleRoute(nullptr, nullptr), 940).shipped,
+              "cage");
 }
 
 TEST(SimplifyRoute, BeforeTheFitTrianglesShipWhenTheyHoldEveryTriangleOrLeadFar) {
@@ -69,7 +70,7 @@ TEST(SimplifyRoute, BeforeTheFitTrianglesShipWhenTheyHoldEveryTriangleOrLeadFar)
 }
 
 TEST(SimplifyRoute, TheDefaultBudgetIsATenthOfTheReferenceCompressedNeverMoreThanIt) {
-    EXPECT_EQ(simplify::defaultBudget(5000), 5000u);                  // light: its whole self
+    EXPECT_EQ(simplify::defaultBudget(5000), 5000u);  // light: its whole self
     EXPECT_EQ(simplify::defaultBudget(100000), simplify::kSmallestDefaultBudget);
     EXPECT_EQ(simplify::defaultBudget(3000000), 300000u);
 }

@@ -69,7 +69,8 @@ TEST(SimplifyDecimate, ClosedMeshStaysClosedWithinTheBudget) {
 // that follows trades exactness at the vertices for the whole faces: limit_fit_test.cpp.)
 TEST(SimplifyInitialCage, LimitSurfaceInterpolatesTheDecimatedVertices) {
     const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 9);
-    const mesh::PolygonMesh raw = initialCage(reference, {.faces = 300, .interpolationIterations = 0, .limitFit = {.rounds = 0}});
+    const mesh::PolygonMesh raw =
+        initialCage(reference, {.faces = 300, .interpolationIterations = 0, .limitFit = {.rounds = 0}});
     const mesh::PolygonMesh cage = initialCage(reference, {.faces = 300, .limitFit = {.rounds = 0}});
     ASSERT_EQ(cage.faceIndices, raw.faceIndices);
     EXPECT_EQ(cage.tags.triangles, mesh::TriangleSubdivision::Smooth);
@@ -144,8 +145,8 @@ TEST(SurfaceQueries, CastFacingPassesThroughSheetsFacingTheOtherWay) {
 TEST(SurfaceQueries, ClosestDistanceIsExact) {
     const mesh::PolygonMesh plane = mesh::triangulated(mesh::makeQuadGrid(4));  // [−1, 1]², z = 0
     const geometry::SurfaceQueries queries(plane);
-    EXPECT_NEAR(queries.closestDistance({0.3f, -0.2f, 0.7f}), 0.7f, 1e-6f);   // above a face
-    EXPECT_NEAR(queries.closestDistance({1.5f, 0.0f, 0.0f}), 0.5f, 1e-6f);    // beyond an edge
+    EXPECT_NEAR(queries.closestDistance({0.3f, -0.2f, 0.7f}), 0.7f, 1e-6f);            // above a face
+    EXPECT_NEAR(queries.closestDistance({1.5f, 0.0f, 0.0f}), 0.5f, 1e-6f);             // beyond an edge
     EXPECT_NEAR(queries.closestDistance({2.0f, 2.0f, 1.0f}), std::sqrt(3.0f), 1e-5f);  // past a corner
 }
 
@@ -180,7 +181,8 @@ TEST(SimplifyBake, SphereHeightsAndNormals) {
                 const auto s = limit.evaluate(f, float(i) / 4.0f, float(j) / 4.0f, cage.positions);
                 const float expected = kRadius - glm::length(s.position);
                 worstHeight = std::max(worstHeight, double(std::abs(maps.displacement[size_t(node)] - expected)));
-                worstTilt = std::max(worstTilt, double(std::hypot(maps.normal[2 * size_t(node)], maps.normal[2 * size_t(node) + 1])));
+                worstTilt = std::max(
+                    worstTilt, double(std::hypot(maps.normal[2 * size_t(node)], maps.normal[2 * size_t(node) + 1])));
             }
     EXPECT_LT(worstHeight, 3e-3);  // the reference's own facets and the ray's slant
     EXPECT_LT(worstTilt, 0.1);
@@ -193,10 +195,11 @@ TEST(SimplifyBake, LeastSquaresHeightsLieCloserThanPointSamples) {
     const mesh::PolygonMesh reference = mesh::triangulated(mesh::makeLumpySphere(5, 0.04f, 3, 400, 0.002f, 0.004f));
     const mesh::PolygonMesh cage = initialCage(reference, {.faces = 200});
     auto distance = [&](bool leastSquares) {
-        const auto maps = bakeMaps(cage, reference, {.effects = {.displacement = true}, .resolution = 3,
-                                                     .leastSquaresHeights = leastSquares});
+        const auto maps = bakeMaps(
+            cage, reference, {.effects = {.displacement = true}, .resolution = 3, .leastSquaresHeights = leastSquares});
         for (float d : maps.displacement) EXPECT_TRUE(std::isfinite(d));
-        return geometry::surfaceDistance(surface::triangleMesh(surface::tessellate(cage, maps, 6)), reference, 20000).meanDistance;
+        return geometry::surfaceDistance(surface::triangleMesh(surface::tessellate(cage, maps, 6)), reference, 20000)
+            .meanDistance;
     };
     const double pointSampled = distance(false), fitted = distance(true);
     EXPECT_LT(fitted, 0.9 * pointSampled) << "point-sampled " << pointSampled << ", least squares " << fitted;
@@ -221,7 +224,8 @@ TEST(SimplifyBake, AppearanceFittedAcrossCellsLiesCloserThanPointSamples) {
     const mesh::PolygonMesh cage = mesh::makeQuadGrid(4);  // nodes every 4 texels, stripes every 5
 
     auto error = [&](bool acrossCells) {
-        const auto maps = bakeAppearance(cage, reference, {.effects = {.baseColor = true}, .resolution = 4, .acrossCells = acrossCells});
+        const auto maps = bakeAppearance(cage, reference,
+                                         {.effects = {.baseColor = true}, .resolution = 4, .acrossCells = acrossCells});
         const subdiv::LimitEvaluator limit(cage);
         double sum = 0.0;
         int samples = 0;
@@ -229,8 +233,10 @@ TEST(SimplifyBake, AppearanceFittedAcrossCellsLiesCloserThanPointSamples) {
             for (float v = 0.05f; v < 1.0f; v += 0.1f)
                 for (float u = 0.05f; u < 1.0f; u += 0.1f) {
                     const glm::vec3 p = limit.evaluate(f, u, v, cage.positions).position;
-                    const float expected = mesh::linearToSrgb(
-                        mesh::sampleTexture(*reference.materials, material.baseColorTexture, {(p.x + 1.0f) / 2.0f, (1.0f - p.y) / 2.0f}, true).r);
+                    const float expected =
+                        mesh::linearToSrgb(mesh::sampleTexture(*reference.materials, material.baseColorTexture,
+                                                               {(p.x + 1.0f) / 2.0f, (1.0f - p.y) / 2.0f}, true)
+                                               .r);
                     const float baked = surface::sampleBilinear(maps.appearanceLayout, maps.baseColor, 3, 0, f, u, v);
                     EXPECT_TRUE(std::isfinite(baked));
                     sum += double(baked - expected) * double(baked - expected);
@@ -267,7 +273,8 @@ TEST(SimplifyDeterminism, InitialCageBakeAndDistanceRepeatExactly) {
     EXPECT_EQ(first.displacement, second.displacement);
     EXPECT_EQ(first.normal, second.normal);
 
-    const auto a = geometry::surfaceDistance(cage, reference, 20000), b = geometry::surfaceDistance(cage, reference, 20000);
+    const auto a = geometry::surfaceDistance(cage, reference, 20000),
+               b = geometry::surfaceDistance(cage, reference, 20000);
     EXPECT_EQ(a.chamferL2Squared, b.chamferL2Squared);
     EXPECT_EQ(a.hausdorff, b.hausdorff);
 }

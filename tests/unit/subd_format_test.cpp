@@ -55,7 +55,8 @@ float largestDistance(const std::vector<glm::vec3>& a, const std::vector<glm::ve
 
 // The cage renumbered as it decodes, with its own unquantised positions: what the decoded cage
 // must match.
-mesh::PolygonMesh renumbered(const mesh::PolygonMesh& cage, const CageCorrespondence& to, const mesh::PolygonMesh& decoded) {
+mesh::PolygonMesh renumbered(const mesh::PolygonMesh& cage, const CageCorrespondence& to,
+                             const mesh::PolygonMesh& decoded) {
     mesh::PolygonMesh out = decoded;
     for (size_t v = 0; v < cage.positions.size(); ++v) out.positions[size_t(to.vertex[v])] = cage.positions[v];
     return out;
@@ -119,7 +120,8 @@ TEST_P(SubdRoundTrip, DecodesTheFittedSurfaceWithinTheQuantisationSteps) {
     const auto reference = renumbered(cage, to, decoded.cage);
     float extent = 0.0f;
     for (const auto& p : cage.positions)
-        for (const auto& q : cage.positions) extent = std::max({extent, std::abs(p.x - q.x), std::abs(p.y - q.y), std::abs(p.z - q.z)});
+        for (const auto& q : cage.positions)
+            extent = std::max({extent, std::abs(p.x - q.x), std::abs(p.y - q.y), std::abs(p.z - q.z)});
     const float positionStep = extent / float((1 << precision.positionBits) - 1);
     EXPECT_LE(largestDistance(decoded.cage.positions, reference.positions), positionStep * 0.87f + 1e-7f);
 
@@ -140,7 +142,8 @@ TEST_P(SubdRoundTrip, DecodesTheFittedSurfaceWithinTheQuantisationSteps) {
     // limit stencils' weights sum to one; Catmull-Clark's absolute sums stay below 2); and the
     // maps carried onto the renumbered cage give the surface they gave before, point for point
     // (a tile carried to the wrong face or turned the wrong way would move points by the heights).
-    const auto before = surface::tessellate(reference, asset.maps, 4), after = surface::tessellate(decoded.cage, decoded.maps, 4);
+    const auto before = surface::tessellate(reference, asset.maps, 4),
+               after = surface::tessellate(decoded.cage, decoded.maps, 4);
     ASSERT_EQ(before.vertexCount(), after.vertexCount());
     float largestHeight = 0.0f;
     for (float h : maps.displacement) largestHeight = std::max(largestHeight, std::abs(h));
@@ -210,7 +213,8 @@ TEST(SubdFormat, AppearanceMapsRoundTripWithinJpegError) {
         worst = std::max(worst, e);
         sum += e;
     }
-    std::printf("base colour after JPEG: mean error %.4f, worst %.4f\n", sum / double(shipped.maps.baseColor.size()), worst);
+    std::printf("base colour after JPEG: mean error %.4f, worst %.4f\n", sum / double(shipped.maps.baseColor.size()),
+                worst);
     // JPEG at quality 90 with full chroma: a few 8-bit steps on average, more at tile borders,
     // where the atlas puts unrelated faces side by side.
     EXPECT_LT(sum / double(shipped.maps.baseColor.size()), 4.0 / 255.0);
@@ -234,8 +238,10 @@ TEST(SubdFormat, EmissionAndOcclusionOnTilesRoundTrip) {
     ASSERT_EQ(decoded.maps.emissive.size(), 3 * nodes);
     ASSERT_EQ(decoded.maps.occlusion.size(), nodes);
     double emission = 0.0, occlusion = 0.0;
-    for (size_t k = 0; k < 3 * nodes; ++k) emission += std::abs(double(decoded.maps.emissive[k]) - double(shipped.maps.baseColor[k]));
-    for (size_t n = 0; n < nodes; ++n) occlusion += std::abs(double(decoded.maps.occlusion[n]) - double(shipped.maps.baseColor[3 * n]));
+    for (size_t k = 0; k < 3 * nodes; ++k)
+        emission += std::abs(double(decoded.maps.emissive[k]) - double(shipped.maps.baseColor[k]));
+    for (size_t n = 0; n < nodes; ++n)
+        occlusion += std::abs(double(decoded.maps.occlusion[n]) - double(shipped.maps.baseColor[3 * n]));
     EXPECT_LT(emission / double(3 * nodes), 4.0 / 255.0);  // JPEG at quality 90, as the base colour
     EXPECT_LT(occlusion / double(nodes), 4.0 / 255.0);
 }

@@ -73,7 +73,8 @@ TEST(SubdShipped, TheReaderKeepsTheImagesEncodedAndDecodeSubdDecodesThem) {
 
 // The file with its BCOL section's JPEG replaced by `jpeg` (sections re-compressed, checksums
 // recomputed).
-std::vector<unsigned char> withBaseColorJpeg(const std::vector<unsigned char>& file, const std::vector<unsigned char>& jpeg) {
+std::vector<unsigned char> withBaseColorJpeg(const std::vector<unsigned char>& file,
+                                             const std::vector<unsigned char>& jpeg) {
     ByteReader in(std::span<const unsigned char>(file).first(file.size() - 8), "file");
     ByteWriter out;
     out.putBytes(in.take(8));
@@ -116,14 +117,16 @@ TEST(SubdShipped, AnImageOfTheWrongSizeIsRefusedFromItsHeader) {
     const ShippedImage& image = shipped.images[0];
     const io::DecodedImage wider{image.width + 1, image.height,
                                  std::vector<std::uint8_t>(size_t(image.width + 1) * size_t(image.height) * 4, 128)};
-    const auto bad = withBaseColorJpeg(good, io::encodeImage(wider, wider.width, wider.height, io::ImageFormat::Jpeg, 90));
+    const auto bad =
+        withBaseColorJpeg(good, io::encodeImage(wider, wider.width, wider.height, io::ImageFormat::Jpeg, 90));
     const std::string expected = "bad.subd: BCOL section: the image is " + std::to_string(image.width + 1) + " x " +
                                  std::to_string(image.height) + ", the atlas " + std::to_string(image.width) + " x " +
                                  std::to_string(image.height);
     EXPECT_EQ(test::errorMessage([&] { readShippedSubd(bad, "bad.subd"); }), expected);
     EXPECT_EQ(test::errorMessage([&] { decodeSubd(bad, "bad.subd"); }), expected);
     const auto png = withBaseColorJpeg(good, io::encodeImage(wider, image.width, image.height, io::ImageFormat::Png));
-    EXPECT_EQ(test::errorMessage([&] { readShippedSubd(png, "png.subd"); }), "png.subd: BCOL section: not a JPEG image");
+    EXPECT_EQ(test::errorMessage([&] { readShippedSubd(png, "png.subd"); }),
+              "png.subd: BCOL section: not a JPEG image");
     // The same JPEG put back decodes as before.
     EXPECT_EQ(readShippedSubd(withBaseColorJpeg(good, image.bytes), "same.subd").images[0].bytes, image.bytes);
 }

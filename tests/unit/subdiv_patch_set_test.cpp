@@ -29,8 +29,8 @@
 // function from libosdCPU but does not install its header (far/patchBasis.h), so declare it.
 namespace OpenSubdiv::OPENSUBDIV_VERSION::Far::internal {
 template <typename REAL>
-int EvaluatePatchBasis(int patchType, PatchParam const& param, REAL s, REAL t, REAL wP[],
-                       REAL wDs[], REAL wDt[], REAL wDss[], REAL wDst[], REAL wDtt[]);
+int EvaluatePatchBasis(int patchType, PatchParam const& param, REAL s, REAL t, REAL wP[], REAL wDs[], REAL wDt[],
+                       REAL wDss[], REAL wDst[], REAL wDtt[]);
 }  // namespace OpenSubdiv::OPENSUBDIV_VERSION::Far::internal
 
 namespace subdfit::subdiv {
@@ -165,8 +165,7 @@ struct Location {
 };
 
 // OpenSubdiv's LimitStencilTable for the same cage and isolation level, built its own way.
-std::unique_ptr<const Far::LimitStencilTable> limitStencils(const PolygonMesh& mesh,
-                                                            int isolationLevel,
+std::unique_ptr<const Far::LimitStencilTable> limitStencils(const PolygonMesh& mesh, int isolationLevel,
                                                             const std::vector<Location>& locations) {
     RefinerPtr refiner = buildTopologyRefiner(mesh);
     Far::TopologyRefiner::AdaptiveOptions adaptive(isolationLevel);
@@ -181,8 +180,7 @@ std::unique_ptr<const Far::LimitStencilTable> limitStencils(const PolygonMesh& m
         a.t = &l.v;
         arrays.push_back(a);
     }
-    std::unique_ptr<const Far::LimitStencilTable> table(
-        Far::LimitStencilTableFactory::Create(*refiner, arrays));
+    std::unique_ptr<const Far::LimitStencilTable> table(Far::LimitStencilTableFactory::Create(*refiner, arrays));
     EXPECT_TRUE(table);
     EXPECT_EQ(table->GetNumStencils(), int(locations.size()));  // no location in a hole
     return table;
@@ -207,8 +205,7 @@ std::vector<LimitSample> limitStencilReference(const PolygonMesh& mesh, int isol
 
 // The GPU's path: points from the stencil CSR, the patch found in the flattened patch arrays,
 // the basis from patch type + PatchParam bits.
-LimitSample evaluatePatchSet(const PatchSet& set, const std::vector<glm::vec3>& points,
-                             const Location& l) {
+LimitSample evaluatePatchSet(const PatchSet& set, const std::vector<glm::vec3>& points, const Location& l) {
     for (int patch = 0; patch < set.patchCount(); ++patch) {
         const Far::PatchParam param = set.patchParam(patch);
         if (param.GetFaceId() != l.ptexFace) continue;
@@ -217,8 +214,7 @@ LimitSample evaluatePatchSet(const PatchSet& set, const std::vector<glm::vec3>& 
         if (l.u < u0 || l.u > u0 + frac || l.v < v0 || l.v > v0 + frac) continue;
         const glm::ivec4 info = set.patchInfo[patch];
         float wP[20], wDu[20], wDv[20];
-        Far::internal::EvaluatePatchBasis<float>(info.y, param, l.u, l.v, wP, wDu, wDv, nullptr,
-                                                 nullptr, nullptr);
+        Far::internal::EvaluatePatchBasis<float>(info.y, param, l.u, l.v, wP, wDu, wDv, nullptr, nullptr, nullptr);
         LimitSample s;
         for (int k = 0; k < patchCvCount(info.y); ++k) {
             const glm::vec3 cv = points[set.patchCvIndices[info.x + k]];
@@ -247,12 +243,11 @@ std::vector<Location> sampleLocations(const PatchSet& set) {
     return locations;
 }
 
-void expectNear(const glm::vec3& actual, const glm::vec3& expected, float tolerance,
-                const std::string& what) {
+void expectNear(const glm::vec3& actual, const glm::vec3& expected, float tolerance, const std::string& what) {
     const float scale = std::max(1.0f, glm::length(expected));
     EXPECT_LE(glm::length(actual - expected), tolerance * scale)
-        << what << ": got (" << actual.x << ", " << actual.y << ", " << actual.z << "), want ("
-        << expected.x << ", " << expected.y << ", " << expected.z << ")";
+        << what << ": got (" << actual.x << ", " << actual.y << ", " << actual.z << "), want (" << expected.x << ", "
+        << expected.y << ", " << expected.z << ")";
 }
 
 // ---- tests ---------------------------------------------------------------------------------
@@ -304,8 +299,8 @@ TEST(SubdivPatchSet, PatchSetAndEvaluatorMatchOpenSubdivLimitStencils) {
             ASSERT_EQ(reference.size(), locations.size());
             for (std::size_t i = 0; i < locations.size(); ++i) {
                 const Location& l = locations[i];
-                const std::string where = "ptex " + std::to_string(l.ptexFace) + " (" +
-                                          std::to_string(l.u) + ", " + std::to_string(l.v) + ")";
+                const std::string where = "ptex " + std::to_string(l.ptexFace) + " (" + std::to_string(l.u) + ", " +
+                                          std::to_string(l.v) + ")";
                 const LimitSample s = evaluatePatchSet(set, points, l);
                 const LimitSample e = evaluator.evaluate(l.ptexFace, l.u, l.v, mesh.positions);
                 for (const auto& [sample, who] : {std::pair{s, "patch set"}, std::pair{e, "evaluator"}}) {
@@ -397,8 +392,7 @@ TEST(SubdivPatchSet, NonQuadFacesGetOnePtexFacePerCorner) {
     const PolygonMesh pyramid = pentagonPyramid();
     const PatchSet set = buildPatchSet(pyramid);
     ASSERT_EQ(set.ptexFaceCount, 5 + 5 * 3);
-    EXPECT_EQ(set.ptexToBaseFace, (std::vector<int>{0, 0, 0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3,
-                                                    4, 4, 4, 5, 5, 5}));
+    EXPECT_EQ(set.ptexToBaseFace, (std::vector<int>{0, 0, 0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5, 5, 5}));
 }
 
 TEST(SubdivPatchSet, InfinitelySharpCreaseStaysOnItsLine) {
@@ -446,8 +440,8 @@ TEST(SubdivPatchSet, OnlyRegularAndGregoryPatchesNoDeeperThanIsolation) {
                 const glm::ivec4 info = set.patchInfo[patch];
                 EXPECT_TRUE(info.y == kRegularPatch || info.y == kGregoryBasisPatch) << info.y;
                 deepest = std::max(deepest, int(set.patchParam(patch).GetDepth()));
-                const int nextOffset = patch + 1 < set.patchCount() ? set.patchInfo[patch + 1].x
-                                                                     : int(set.patchCvIndices.size());
+                const int nextOffset =
+                    patch + 1 < set.patchCount() ? set.patchInfo[patch + 1].x : int(set.patchCvIndices.size());
                 EXPECT_EQ(nextOffset, info.x + patchCvCount(info.y));
                 for (int k = 0; k < patchCvCount(info.y); ++k) {
                     const int point = set.patchCvIndices[info.x + k];
@@ -511,7 +505,8 @@ TEST(SubdivPatchSet, PositionWeightsAreTheEvaluatedLimitOnce) {
                 EXPECT_TRUE(vertices.insert(vertex).second) << "face " << f << ": vertex " << vertex << " twice";
                 weighted += weight * glm::dvec3(cage.positions[size_t(vertex)]);
             }
-            expectNear(glm::vec3(weighted), evaluator.evaluate(f, uv.x, uv.y, cage.positions).position, 1e-5f, "weights");
+            expectNear(glm::vec3(weighted), evaluator.evaluate(f, uv.x, uv.y, cage.positions).position, 1e-5f,
+                       "weights");
         }
 }
 
@@ -615,7 +610,8 @@ TEST(SubdivPatchSet, DenseCagesAreDrawnShallowerWithinAFractionOfAPixel) {
     EXPECT_EQ(drawingIsolationLevel(creased), 3);  // one that needs the third level keeps it
     // Infinitely sharp tags never decay: no level resolves them, and none is asked for.
     creased.tags.creases.back().sharpness = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE;
-    creased.tags.corners.push_back({.vertex = triangles.faceIndices[5], .sharpness = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE});
+    creased.tags.corners.push_back(
+        {.vertex = triangles.faceIndices[5], .sharpness = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE});
     EXPECT_EQ(drawingIsolationLevel(creased), 1);
 
     // What the shallower levels change is a fraction of a pixel at 256², where an edge spans about
@@ -641,7 +637,8 @@ TEST(LimitEvaluator, EvaluatesACageAtTheLevelItIsDrawnAt) {
             for (float v : kSampleCoords) {
                 const glm::vec3 p = drawn.evaluate(f, u, v, dense.positions).position;
                 ASSERT_EQ(p, level1.evaluate(f, u, v, dense.positions).position) << "face " << f;
-                apartFromLevel3 = std::max(apartFromLevel3, double(glm::length(p - level3.evaluate(f, u, v, dense.positions).position)));
+                apartFromLevel3 = std::max(apartFromLevel3,
+                                           double(glm::length(p - level3.evaluate(f, u, v, dense.positions).position)));
             }
     EXPECT_GT(apartFromLevel3, 0.0);  // the end caps of level 1 are not level 3's
     const PolygonMesh light = cubeCage(8, true);

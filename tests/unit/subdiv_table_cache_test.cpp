@@ -58,7 +58,8 @@ TEST(SubdivTableCache, TheLeastRecentlyUsedLeaveFirst) {
             return Weighed{points};
         });
     };
-    const mesh::PolygonMesh light = mesh::makeQuadSphere(1), dense = mesh::makeQuadSphere(2), other = mesh::makeQuadSphere(3);
+    const mesh::PolygonMesh light = mesh::makeQuadSphere(1), dense = mesh::makeQuadSphere(2),
+                            other = mesh::makeQuadSphere(3);
     get(light, 10);
     get(dense, 60);
     get(light, 10);  // used again: now the more recent of the two

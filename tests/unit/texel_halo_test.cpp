@@ -35,7 +35,8 @@ std::vector<glm::vec3> nodePositions(const mesh::PolygonMesh& cage, const surfac
     for (int f = 0; f < layout.ptexFaceCount; ++f)
         for (int j = 0; j <= n; ++j)
             for (int i = 0; i <= n; ++i)
-                at[size_t(layout.node(f, i, j))] = limit.evaluate(f, float(i) / float(n), float(j) / float(n), cage.positions).position;
+                at[size_t(layout.node(f, i, j))] =
+                    limit.evaluate(f, float(i) / float(n), float(j) / float(n), cage.positions).position;
     return at;
 }
 
@@ -51,8 +52,14 @@ TEST(TexelHalo, EachEdgeSeesTheNeighbouringTileOneRowIn) {
             for (int k = 1; k < n; ++k) {  // the corners' rings are checked through the slopes below
                 const int across = layout.halo[(size_t(f) * 4 + size_t(edge)) * size_t(n + 1) + size_t(k)];
                 ASSERT_GE(across, 0) << "a closed cage has a tile across every edge";
-                const glm::ivec2 border = edge == 0 ? glm::ivec2(k, 0) : edge == 1 ? glm::ivec2(n, k) : edge == 2 ? glm::ivec2(k, n) : glm::ivec2(0, k);
-                const glm::ivec2 inner = edge == 0 ? glm::ivec2(k, 1) : edge == 1 ? glm::ivec2(n - 1, k) : edge == 2 ? glm::ivec2(k, n - 1) : glm::ivec2(1, k);
+                const glm::ivec2 border = edge == 0   ? glm::ivec2(k, 0)
+                                          : edge == 1 ? glm::ivec2(n, k)
+                                          : edge == 2 ? glm::ivec2(k, n)
+                                                      : glm::ivec2(0, k);
+                const glm::ivec2 inner = edge == 0   ? glm::ivec2(k, 1)
+                                         : edge == 1 ? glm::ivec2(n - 1, k)
+                                         : edge == 2 ? glm::ivec2(k, n - 1)
+                                                     : glm::ivec2(1, k);
                 const glm::vec3 b = position[size_t(layout.node(f, border.x, border.y))];
                 const glm::vec3 in = position[size_t(layout.node(f, inner.x, inner.y))];
                 const glm::vec3 out = position[size_t(across)];
@@ -111,21 +118,27 @@ TEST(TexelHalo, ShadingNormalsAgreeAcrossFaceEdges) {
     const auto cage = mesh::makeQuadSphere(4);
     const surface::SurfaceMaps maps = displacedBy(cage, 4, 0.01f, 7);  // ~1/4 of a cell: a rough bake
     const surface::DisplacedSurface surface(cage, maps);
-    const Kink across = kinkAtSharedNodes(maps.layout, [&](int f, float u, float v) { return surface.at(f, u, v).normal; });
+    const Kink across =
+        kinkAtSharedNodes(maps.layout, [&](int f, float u, float v) { return surface.at(f, u, v).normal; });
 
     // What one-sided differences at the tile's border (each tile on its own) gave.
     const subdiv::LimitEvaluator limit(cage);
     const float h = 0.5f / float(maps.layout.resolution);
     const Kink oneSided = kinkAtSharedNodes(maps.layout, [&](int f, float u, float v) {
-        auto d = [&](float a, float b) { return surface::sampleBilinear(maps.layout, maps.displacement, 1, 0, f, a, b); };
-        const float u0 = std::max(u - h, 0.0f), u1 = std::min(u + h, 1.0f), v0 = std::max(v - h, 0.0f), v1 = std::min(v + h, 1.0f);
+        auto d = [&](float a, float b) {
+            return surface::sampleBilinear(maps.layout, maps.displacement, 1, 0, f, a, b);
+        };
+        const float u0 = std::max(u - h, 0.0f), u1 = std::min(u + h, 1.0f), v0 = std::max(v - h, 0.0f),
+                    v1 = std::min(v + h, 1.0f);
         const auto s = limit.evaluate(f, u, v, cage.positions);
         const glm::vec3 n = glm::normalize(glm::cross(s.dPdu, s.dPdv));
-        const glm::vec3 du = s.dPdu + (d(u1, v) - d(u0, v)) / (u1 - u0) * n, dv = s.dPdv + (d(u, v1) - d(u, v0)) / (v1 - v0) * n;
+        const glm::vec3 du = s.dPdu + (d(u1, v) - d(u0, v)) / (u1 - u0) * n,
+                        dv = s.dPdv + (d(u, v1) - d(u, v0)) / (v1 - v0) * n;
         return glm::normalize(glm::cross(du, dv));
     });
-    std::printf("shading kink at shared edge nodes: one-sided mean %.4f worst %.4f rad, across tiles mean %.5f worst %.5f\n",
-                oneSided.mean, oneSided.worst, across.mean, across.worst);
+    std::printf(
+        "shading kink at shared edge nodes: one-sided mean %.4f worst %.4f rad, across tiles mean %.5f worst %.5f\n",
+        oneSided.mean, oneSided.worst, across.mean, across.worst);
     EXPECT_GT(oneSided.mean, 0.05);  // the random heights do kink the one-sided normals
     EXPECT_LT(across.mean, 0.02 * oneSided.mean);
     EXPECT_LT(across.worst, 0.1 * oneSided.worst);

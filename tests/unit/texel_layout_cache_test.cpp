@@ -41,7 +41,8 @@ TEST(TexelLayoutCache, OtherPositionsOnTheSameTopologyGetTheirOwnLayout) {
 TEST(TexelLayoutCache, ALayoutDependsOnTheShapeNotOnWhereItStands) {
     const mesh::PolygonMesh cage = mesh::makeQuadSphere(3);
     const surface::TexelLayout home = surface::buildTexelLayout(cage, 4);
-    for (const auto& [scale, offset] : {std::pair{1.0f, glm::vec3(1e5f, -3e4f, 2e5f)}, std::pair{1e-4f, glm::vec3(0.3f)}}) {
+    for (const auto& [scale, offset] :
+         {std::pair{1.0f, glm::vec3(1e5f, -3e4f, 2e5f)}, std::pair{1e-4f, glm::vec3(0.3f)}}) {
         mesh::PolygonMesh moved = cage;
         for (auto& p : moved.positions) p = p * scale + offset;
         expectSameLayout(surface::buildTexelLayout(moved, 4), home);

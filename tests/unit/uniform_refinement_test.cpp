@@ -71,7 +71,8 @@ TEST_P(RefinedPtex, ChildFacesMapOntoThePtexFacesExactly) {
     for (const auto& p : cage.positions) size = std::max(size, glm::length(p));
     int compared = 0;
     for (int f = 0; f < refined.mesh.faceCount(); ++f)
-        for (const glm::vec2 ab : {glm::vec2(0.5f), glm::vec2(0.1f, 0.8f), glm::vec2(0.9f, 0.3f), glm::vec2(1.0f, 0.0f)}) {
+        for (const glm::vec2 ab :
+             {glm::vec2(0.5f), glm::vec2(0.1f, 0.8f), glm::vec2(0.9f, 0.3f), glm::vec2(1.0f, 0.0f)}) {
             const glm::vec2* c = &refined.cornerUv[4 * size_t(f)];
             const glm::vec2 uv = glm::mix(glm::mix(c[0], c[1], ab.x), glm::mix(c[3], c[2], ab.x), ab.y);
             const int ptex = refined.ptexFace[size_t(f)];
@@ -79,7 +80,8 @@ TEST_P(RefinedPtex, ChildFacesMapOntoThePtexFacesExactly) {
             if (!theirs.hasSurface(f, ab.x, ab.y)) continue;
             const auto a = theirs.evaluate(f, ab.x, ab.y, refined.mesh.positions);
             const auto b = ours.evaluate(ptex, uv.x, uv.y, cage.positions);
-            ASSERT_LT(glm::length(a.position - b.position), 1e-5f * size) << "face " << f << " at " << ab.x << ", " << ab.y;
+            ASSERT_LT(glm::length(a.position - b.position), 1e-5f * size)
+                << "face " << f << " at " << ab.x << ", " << ab.y;
             ++compared;
         }
     EXPECT_GT(compared, refined.mesh.faceCount());
@@ -98,7 +100,8 @@ INSTANTIATE_TEST_SUITE_P(Shapes, RefinedOnce,
 INSTANTIATE_TEST_SUITE_P(Shapes, RefinedPtex,
                          ::testing::Values("spot/spot_control_mesh.obj", "osd-shapes/catmark_inf_crease0.obj",
                                            "osd-shapes/catmark_hole_test1.obj", "osd-shapes/catmark_smoothtris0.obj",
-                                           "osd-shapes/catmark_edgecorner.obj", "osd-shapes/catmark_pyramid_creases2.obj"),
+                                           "osd-shapes/catmark_edgecorner.obj",
+                                           "osd-shapes/catmark_pyramid_creases2.obj"),
                          shapeName);
 
 // Spot has triangles and pentagons beside its quads; tessellated as they are, their per-corner

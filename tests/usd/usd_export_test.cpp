@@ -49,10 +49,12 @@ std::string readText(const fs::path& path) {
 json readWithUsd(const fs::path& stage, const fs::path& out) {
     const fs::path python = SUBDFIT_USD_PYTHON;
     if (!fs::exists(python))
-        throw std::runtime_error(python.string() + " is missing: run .ci/setup, which installs the pinned usd-core wheel");
+        throw std::runtime_error(python.string() +
+                                 " is missing: run .ci/setup, which installs the pinned usd-core wheel");
     const fs::path log = out.string() + ".log";
-    const std::string command = quotedPath(python) + " " + quotedPath(fs::path(SUBDFIT_SOURCE_DIR) / "tests/usd/read_usd.py") +
-                                " " + quotedPath(stage) + " " + quotedPath(out) + " > " + quotedPath(log) + " 2>&1";
+    const std::string command = quotedPath(python) + " " +
+                                quotedPath(fs::path(SUBDFIT_SOURCE_DIR) / "tests/usd/read_usd.py") + " " +
+                                quotedPath(stage) + " " + quotedPath(out) + " > " + quotedPath(log) + " 2>&1";
     if (std::system(command.c_str()) != 0) throw std::runtime_error("read_usd.py failed:\n" + readText(log));
     std::cout << readText(log);
     std::ifstream in(out / "stage.json");
@@ -63,7 +65,9 @@ json readWithUsd(const fs::path& stage, const fs::path& out) {
 struct Image {
     int width = 0, height = 0, channels = 0, bits = 0;
     std::vector<float> texels;
-    float at(int x, int y, int c) const { return texels[(size_t(y) * size_t(width) + size_t(x)) * size_t(channels) + size_t(c)]; }
+    float at(int x, int y, int c) const {
+        return texels[(size_t(y) * size_t(width) + size_t(x)) * size_t(channels) + size_t(c)];
+    }
     // Bilinear at pixel coordinates (x, y), texel centres on integers: a GPU's filtering at full
     // resolution, clamped to the edge.
     float bilinear(float x, float y, int c) const {
@@ -89,7 +93,8 @@ Image readImage(const fs::path& path) {
 // The cage as the stage holds it, as a PolygonMesh our OpenSubdiv code evaluates.
 mesh::PolygonMesh cageOf(const json& usd) {
     mesh::PolygonMesh cage;
-    for (const auto& p : usd["points"]) cage.positions.emplace_back(p[0].get<float>(), p[1].get<float>(), p[2].get<float>());
+    for (const auto& p : usd["points"])
+        cage.positions.emplace_back(p[0].get<float>(), p[1].get<float>(), p[2].get<float>());
     cage.faceSizes = usd["faceVertexCounts"].get<std::vector<int>>();
     cage.faceIndices = usd["faceVertexIndices"].get<std::vector<int>>();
     const std::string boundary = usd["interpolateBoundary"];
@@ -97,7 +102,7 @@ mesh::PolygonMesh cageOf(const json& usd) {
                          : boundary == "edgeAndCorner" ? mesh::BoundaryInterpolation::EdgeAndCorner
                                                        : mesh::BoundaryInterpolation::EdgeOnly;
     cage.tags.triangles = usd["triangleSubdivisionRule"] == "smooth" ? mesh::TriangleSubdivision::Smooth
-                                                                      : mesh::TriangleSubdivision::Catmark;
+                                                                     : mesh::TriangleSubdivision::Catmark;
     const auto creaseIndices = usd["creaseIndices"].get<std::vector<int>>();
     const auto creaseSharpnesses = usd["creaseSharpnesses"].get<std::vector<float>>();
     const auto lengths = usd["creaseLengths"].get<std::vector<int>>();
@@ -111,7 +116,8 @@ mesh::PolygonMesh cageOf(const json& usd) {
     }
     const auto cornerIndices = usd["cornerIndices"].get<std::vector<int>>();
     const auto cornerSharpnesses = usd["cornerSharpnesses"].get<std::vector<float>>();
-    for (size_t k = 0; k < cornerIndices.size(); ++k) cage.tags.corners.push_back({cornerIndices[k], cornerSharpnesses[k]});
+    for (size_t k = 0; k < cornerIndices.size(); ++k)
+        cage.tags.corners.push_back({cornerIndices[k], cornerSharpnesses[k]});
     cage.tags.holes = usd["holeIndices"].get<std::vector<int>>();
     cage.sourcePath = "the USD stage's cage";
     return cage;
@@ -149,10 +155,11 @@ void checkExport(const exporter::SubdAsset& shipped, const fs::path& dir, const 
     const json usd = readWithUsd(dir / "asset.usdz", dir / "read");
     ASSERT_TRUE(usd["opened"].get<bool>());
     int errors = 0;
-    for (const auto& finding : usd["validation"]) errors += finding["type"].get<std::string>().find("Error") != std::string::npos;
+    for (const auto& finding : usd["validation"])
+        errors += finding["type"].get<std::string>().find("Error") != std::string::npos;
     EXPECT_EQ(errors, 0) << usd["validation"].dump(1);
     EXPECT_GE(usd["validators"].size(), 20u);  // the pinned usd-core registers 30
-    EXPECT_EQ(usd["stage"]["upAxis"], "Y");  // as the glTF beside it, whatever the source
+    EXPECT_EQ(usd["stage"]["upAxis"], "Y");    // as the glTF beside it, whatever the source
     EXPECT_EQ(usd["stage"]["metersPerUnit"].get<double>(), 1.0);
     EXPECT_TRUE(usd["stage"]["hasAuthoredMetersPerUnit"].get<bool>());
     EXPECT_EQ(usd["stage"]["defaultPrim"], "/Asset");
@@ -184,8 +191,7 @@ void checkExport(const exporter::SubdAsset& shipped, const fs::path& dir, const 
         EXPECT_EQ(theirs.tags.holes, tags.holes);
         EXPECT_EQ(theirs.faceIndices, shipped.cage.faceIndices);
     }
-    for (const auto& c : theirs.tags.creases)
-        EXPECT_LE(c.sharpness, 10.0f);  // USD's SHARPNESS_INFINITE is 10
+    for (const auto& c : theirs.tags.creases) EXPECT_LE(c.sharpness, 10.0f);  // USD's SHARPNESS_INFINITE is 10
 
     // The same patches: a refined cage is evaluated one isolation level shallower.
     const subdiv::LimitEvaluator ours(shipped.cage, {.isolationLevel = 3});
@@ -243,10 +249,12 @@ void checkExport(const exporter::SubdAsset& shipped, const fs::path& dir, const 
                 if (heights) {
                     ASSERT_EQ(n, 4);
                     const json& st = cage["primvars"]["st"];
-                    const glm::vec2 value = glm::mix(glm::mix(cornerValue(st, f, 0), cornerValue(st, f, 1), ab.x),
-                                                     glm::mix(cornerValue(st, f, 3), cornerValue(st, f, 2), ab.x), ab.y);
+                    const glm::vec2 value =
+                        glm::mix(glm::mix(cornerValue(st, f, 0), cornerValue(st, f, 1), ab.x),
+                                 glm::mix(cornerValue(st, f, 3), cornerValue(st, f, 2), ab.x), ab.y);
                     const TilePoint at = tilePointOf(*atlas, value);
-                    ASSERT_GE(at.face, 0) << "st " << value.x << ", " << value.y << " of face " << f << " is on no tile";
+                    ASSERT_GE(at.face, 0)
+                        << "st " << value.x << ", " << value.y << " of face " << f << " is on no tile";
                     face = at.face, uv = at.uv;
                     const double height = heightImage.bilinear(at.pixel.x, at.pixel.y, 0) * scale + bias;
                     const double ours = surface::sampleBilinear(maps.layout, maps.displacement, 1, 0, face, uv.x, uv.y);
@@ -284,8 +292,11 @@ surface::SurfaceMaps wavyMaps(const mesh::PolygonMesh& cage, int resolution, boo
                 if (!limit.hasSurface(face, u, v)) continue;
                 const glm::vec3 p = limit.evaluate(face, u, v, cage.positions).position / size;
                 const auto node = size_t(maps.layout.node(face, i, j));
-                maps.displacement[node] = 0.03f * size * (std::sin(9.0f * p.x + 2.0f * p.z) * std::cos(7.0f * p.y) + 0.3f);
-                if (normal) maps.normal[2 * node] = 0.3f * std::sin(5.0f * p.y), maps.normal[2 * node + 1] = 0.2f * std::cos(6.0f * p.x);
+                maps.displacement[node] =
+                    0.03f * size * (std::sin(9.0f * p.x + 2.0f * p.z) * std::cos(7.0f * p.y) + 0.3f);
+                if (normal)
+                    maps.normal[2 * node] = 0.3f * std::sin(5.0f * p.y),
+                                    maps.normal[2 * node + 1] = 0.2f * std::cos(6.0f * p.x);
             }
     return maps;
 }
@@ -327,7 +338,8 @@ TEST_P(UsdExport, OpensValidAndReproducesTheCageAndItsHeights) {
     // The text beside the package: the same stage, its images read from inside the package.
     const json beside = readWithUsd(dir / "asset.usda", dir / "read_text");
     EXPECT_TRUE(beside["validation"].empty()) << beside["validation"].dump(1);
-    EXPECT_NE(beside["material"]["inputs"]["displacement"]["resolved"].get<std::string>().find("asset.usdz[displacement.png]"),
+    EXPECT_NE(beside["material"]["inputs"]["displacement"]["resolved"].get<std::string>().find(
+                  "asset.usdz[displacement.png]"),
               std::string::npos);
     EXPECT_EQ(beside["cage"]["points"], readWithUsd(dir / "asset.usdz", dir / "read_again")["cage"]["points"]);
 }
@@ -358,8 +370,10 @@ TEST(UsdExport, ATexturedAssetCarriesItsAppearance) {
     const mesh::PolygonMesh reference = mesh::loadReference(assetPath("gltf/Duck/Duck.glb"));
     ASSERT_EQ(simplify::atlasUnsuitability(reference), "");
     const mesh::PolygonMesh cage = simplify::initialCage(reference, {.faces = 150});
-    surface::SurfaceMaps maps = simplify::bakeMaps(cage, reference, {.effects = {.displacement = true}, .resolution = 3});
-    maps.setAppearance(simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true, .metallicRoughness = true}, 32));
+    surface::SurfaceMaps maps =
+        simplify::bakeMaps(cage, reference, {.effects = {.displacement = true}, .resolution = 3});
+    maps.setAppearance(
+        simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true, .metallicRoughness = true}, 32));
     const size_t texels = size_t(maps.appearanceLayout.nodeCount);
     maps.occlusion.assign(texels, 0.0f);
     maps.emissive.assign(3 * texels, 0.0f);
@@ -378,7 +392,7 @@ TEST(UsdExport, ATexturedAssetCarriesItsAppearance) {
     const json usd = readWithUsd(dir / "asset.usdz", dir / "read_appearance");
     const json& inputs = usd["material"]["inputs"];
     const std::map<std::string, std::pair<std::string, std::string>> expected{
-        {"diffuseColor", {"sRGB", "rgb"}}, {"roughness", {"raw", "g"}},  {"metallic", {"raw", "b"}},
+        {"diffuseColor", {"sRGB", "rgb"}}, {"roughness", {"raw", "g"}},        {"metallic", {"raw", "b"}},
         {"occlusion", {"raw", "r"}},       {"emissiveColor", {"sRGB", "rgb"}}, {"normal", {"raw", "rgb"}}};
     for (const auto& [input, how] : expected) {
         ASSERT_TRUE(inputs.contains(input)) << input;
@@ -402,7 +416,8 @@ TEST(UsdExport, ATexturedAssetCarriesItsAppearance) {
             const TilePoint at = tilePointOf(heights, cornerValue(usd["cage"]["primvars"]["st"], f, k));
             ASSERT_GE(at.face, 0);
             const glm::vec2 uv = surface::atlasUvAt(asset.maps.appearanceAtlas, at.face, at.uv.x, at.uv.y);
-            worst = std::max(worst, glm::length(cornerValue(usd["cage"]["primvars"]["st1"], f, k) - glm::vec2(uv.x, 1.0f - uv.y)));
+            worst = std::max(
+                worst, glm::length(cornerValue(usd["cage"]["primvars"]["st1"], f, k) - glm::vec2(uv.x, 1.0f - uv.y)));
         }
     EXPECT_LT(worst, 1e-5f);
 }

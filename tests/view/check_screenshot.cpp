@@ -49,7 +49,9 @@ float difference(const Image& a, int x, int y, const Image& b, int u, int v) {
 
 // The background is a vertical gradient: each row's own background is the rightmost pixel of its
 // stretch [left, right).
-bool isObject(const Image& image, int x, int y, int right) { return difference(image, x, y, image, right - 1, y) > 0.06f; }
+bool isObject(const Image& image, int x, int y, int right) {
+    return difference(image, x, y, image, right - 1, y) > 0.06f;
+}
 
 // The object in [left, right) × [top, height): there, and centred.
 int checkObject(const std::string& file, const Image& image, int left, int right, int top, const char* what) {
@@ -70,8 +72,8 @@ int checkObject(const std::string& file, const Image& image, int left, int right
     const double centreX = 0.5 * (left + right), centreY = 0.5 * image.height;
     if (std::abs(cx - centreX) > 0.15 * (right - left) || std::abs(cy - centreY) > 0.15 * image.height) {
         char where[160];
-        std::snprintf(where, sizeof where, "%s: object centred at (%.0f, %.0f), its centre is (%.0f, %.0f)", what, cx, cy,
-                      centreX, centreY);
+        std::snprintf(where, sizeof where, "%s: object centred at (%.0f, %.0f), its centre is (%.0f, %.0f)", what, cx,
+                      cy, centreX, centreY);
         return fail(file, where);
     }
     return 0;
@@ -130,7 +132,9 @@ int main(int argc, char** argv) {
     long varied = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < left; ++x)
-            if (std::abs(image.at(x, y, 0) - image.at(0, h / 2, 0)) + std::abs(image.at(x, y, 1) - image.at(0, h / 2, 1)) > 0.1f)
+            if (std::abs(image.at(x, y, 0) - image.at(0, h / 2, 0)) +
+                    std::abs(image.at(x, y, 1) - image.at(0, h / 2, 1)) >
+                0.1f)
                 ++varied;
     if (double(varied) / (double(left) * h) < 0.01) return fail(file, "the control panel is missing");
     return 0;

@@ -27,10 +27,12 @@ extern "C" {
 
 // The decoded surface, or null with subd_error() saying why in one line. `triangles` 0: the
 // default density; `name` (UTF-8) names the file in messages.
-EMSCRIPTEN_KEEPALIVE Result* subd_decode(const std::uint8_t* bytes, std::uint32_t size, double triangles, const char* name) {
+EMSCRIPTEN_KEEPALIVE Result* subd_decode(const std::uint8_t* bytes, std::uint32_t size, double triangles,
+                                         const char* name) {
     try {
         if (!(triangles >= 0.0) || triangles > double(subdfit::exporter::kMaxDecodeTriangles))
-            throw subdfit::Error("invalid option: triangles: must be in 0.." + std::to_string(subdfit::exporter::kMaxDecodeTriangles));
+            throw subdfit::Error("invalid option: triangles: must be in 0.." +
+                                 std::to_string(subdfit::exporter::kMaxDecodeTriangles));
         auto decoded = subdfit::web::decode({bytes, size}, std::int64_t(triangles), name);
         Result* result = &decoded->result;
         live.emplace(result, std::move(decoded));
@@ -46,5 +48,4 @@ EMSCRIPTEN_KEEPALIVE Result* subd_decode(const std::uint8_t* bytes, std::uint32_
 EMSCRIPTEN_KEEPALIVE const char* subd_error() { return lastError.c_str(); }
 
 EMSCRIPTEN_KEEPALIVE void subd_free(Result* result) { live.erase(result); }
-
 }

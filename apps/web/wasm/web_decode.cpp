@@ -34,9 +34,10 @@ std::unique_ptr<Decoded> decode(std::span<const std::uint8_t> bytes, std::int64_
     // Every count the file states, and the triangles to write, priced before they are allocated.
     exporter::DecodeBudget budget(name);
     exporter::DecodeDensity density;
-    exporter::ShippedSubd shipped = exporter::readShippedSubd(bytes, name, &budget, [&](const exporter::SubdOutline& outline) {
-        density = exporter::pricedDensity(outline, {.triangles = triangles}, budget);
-    });
+    exporter::ShippedSubd shipped =
+        exporter::readShippedSubd(bytes, name, &budget, [&](const exporter::SubdOutline& outline) {
+            density = exporter::pricedDensity(outline, {.triangles = triangles}, budget);
+        });
     const exporter::SubdAsset& asset = shipped.asset;
     const int segments = density.segments;
     exporter::SurfaceTextures textures{.normalMap = asset.maps.hasNormal()};
@@ -62,9 +63,11 @@ std::unique_ptr<Decoded> decode(std::span<const std::uint8_t> bytes, std::int64_
         // 8 bits a channel, as a browser decodes decode's 16-bit PNG.
         auto& rgba = out->pixels.emplace_back(std::size_t(normal.width) * std::size_t(normal.height) * 4, 255);
         for (std::size_t p = 0; p < rgba.size() / 4; ++p)
-            for (int c = 0; c < 3; ++c) rgba[4 * p + std::size_t(c)] = std::uint8_t((unsigned(normal.rgb[3 * p + std::size_t(c)]) * 255u + 32767u) / 65535u);
-        out->images.push_back({2, 0, std::uint32_t(normal.width), std::uint32_t(normal.height), rgba.data(),
-                               std::uint32_t(rgba.size())});
+            for (int c = 0; c < 3; ++c)
+                rgba[4 * p + std::size_t(c)] =
+                    std::uint8_t((unsigned(normal.rgb[3 * p + std::size_t(c)]) * 255u + 32767u) / 65535u);
+        out->images.push_back(
+            {2, 0, std::uint32_t(normal.width), std::uint32_t(normal.height), rgba.data(), std::uint32_t(rgba.size())});
     }
 
     const exporter::SurfaceMaterial material = exporter::surfaceMaterial(textures);

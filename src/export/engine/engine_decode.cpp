@@ -37,22 +37,26 @@ std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, con
         DecodeBudget budget(subd.string());
         // The whole chain is priced before any of it is made (with the file, where the density
         // is the default or asked for; an error bound's once it is known).
-        const DecodeInput input = readForDecode(subd, o.maxError ? DensityRequest{} : o.density, budget, o.maxError ? 1 : levels);
+        const DecodeInput input =
+            readForDecode(subd, o.maxError ? DensityRequest{} : o.density, budget, o.maxError ? 1 : levels);
         const SubdAsset& asset = input.asset;
         DecodeDensity density = input.density;
         std::optional<ErrorDensity> fromError;
         if (o.maxError) {
             fromError = densityWithin(asset, *o.maxError, budget);
             density = fromError->density;
-            budget.spend(1, lodChainBytes(density, levels),
-                         std::to_string(levels) + " levels of detail from " + std::to_string(density.triangles) + " triangles");
+            budget.spend(
+                1, lodChainBytes(density, levels),
+                std::to_string(levels) + " levels of detail from " + std::to_string(density.triangles) + " triangles");
         }
         SurfaceGlb glb = surfaceGlb(asset.cage, asset.maps, density.segments);
         LodChain chain = lodChain(asset, std::move(glb.mesh), density.segments, levels, o.screenSize);
         if (int(chain.levels.size()) < levels)
             warn(out.string() + ": " + std::to_string(chain.levels.size()) + " levels of detail written, not " +
-                 std::to_string(levels) + ": neither a coarser tessellation nor meshoptimizer's simplification (texture "
-                 "seams and borders kept) gives level " + std::to_string(chain.levels.size()) + " fewer triangles than " +
+                 std::to_string(levels) +
+                 ": neither a coarser tessellation nor meshoptimizer's simplification (texture "
+                 "seams and borders kept) gives level " +
+                 std::to_string(chain.levels.size()) + " fewer triangles than " +
                  std::to_string(chain.levels.back().mesh.triangleCount()));
 
         std::vector<std::vector<unsigned char>> encoded;
@@ -60,14 +64,16 @@ std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, con
         for (LodLevel& level : chain.levels) {
             withoutUnreadAttributes(level.mesh, glb.textures);
             encoded.push_back(encodeFittedGlb(level.mesh, glb.textures, o.coding));
-            meshBytes.push_back(glb.textures.any() ? encodeFittedGlb(level.mesh, {}, o.coding).size() : encoded.back().size());
+            meshBytes.push_back(glb.textures.any() ? encodeFittedGlb(level.mesh, {}, o.coding).size()
+                                                   : encoded.back().size());
         }
         // The JSON first, from the bytes each level will have; then every file at once.
         std::vector<std::pair<std::filesystem::path, std::string_view>> files;
         nlohmann::json lods = nlohmann::json::array();
         for (size_t k = 0; k < chain.levels.size(); ++k) {
             const LodLevel& level = chain.levels[k];
-            files.emplace_back(lodPath(out, int(k)), std::string_view(reinterpret_cast<const char*>(encoded[k].data()), encoded[k].size()));
+            files.emplace_back(lodPath(out, int(k)),
+                               std::string_view(reinterpret_cast<const char*>(encoded[k].data()), encoded[k].size()));
             nlohmann::json entry = {{"lod", k},
                                     {"file", lodPath(out, int(k)).filename().string()},
                                     {"triangles", level.mesh.triangleCount()},
@@ -93,8 +99,9 @@ std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, con
                  {{"pixel_error", o.screenSize.pixelError},
                   {"screen_height", o.screenSize.screenHeight},
                   {"bounding_sphere_radius", chain.boundingRadius},
-                  {"screen_size", "2 * pixel_error * bounding_sphere_radius / (max_distance * screen_height): the "
-                                  "bounding sphere's diameter over the screen height below which the level may be drawn"}}},
+                  {"screen_size",
+                   "2 * pixel_error * bounding_sphere_radius / (max_distance * screen_height): the "
+                   "bounding sphere's diameter over the screen height below which the level may be drawn"}}},
                 {"lods", lods}};
             if (fromError)
                 doc["max_error"] = {{"bound", fromError->bound},

@@ -36,11 +36,13 @@ ErrorDensity densityWithin(const SubdAsset& asset, const ErrorBound& bound, Deco
                           !budget.fits(1, decodeOutputBytes(densityAt(asset.cage, finest)))))
         --finest;
     const DecodeDensity reference = densityAt(asset.cage, finest);
-    budget.spend(1, decodeOutputBytes(reference), "the reference tessellation of --max-error (" +
-                                                std::to_string(reference.triangles) + " triangles)");
+    budget.spend(1, decodeOutputBytes(reference),
+                 "the reference tessellation of --max-error (" + std::to_string(reference.triangles) + " triangles)");
     const mesh::PolygonMesh fine = surface::triangleMesh(surface::tessellate(asset.cage, asset.maps, finest));
-    ErrorDensity out{.density = reference, .maxDistance = 0.0,
-                     .bound = bound.ofDiagonal ? bound.value * diagonalOf(fine) : bound.value, .referenceSegments = finest};
+    ErrorDensity out{.density = reference,
+                     .maxDistance = 0.0,
+                     .bound = bound.ofDiagonal ? bound.value * diagonalOf(fine) : bound.value,
+                     .referenceSegments = finest};
     // Below what float positions resolve no density but the finest can be told within the
     // bound: decode at it, and say so, rather than bisect down to it for nothing.
     if (const double floor = kResolvableFraction * diagonalOf(fine); out.bound < floor) {
@@ -53,7 +55,8 @@ ErrorDensity densityWithin(const SubdAsset& asset, const ErrorBound& bound, Deco
     std::map<int, double> errors{{finest, 0.0}};
     auto error = [&](int segments) {
         if (!errors.count(segments)) {
-            const mesh::PolygonMesh coarse = surface::triangleMesh(surface::tessellate(asset.cage, asset.maps, segments));
+            const mesh::PolygonMesh coarse =
+                surface::triangleMesh(surface::tessellate(asset.cage, asset.maps, segments));
             errors[segments] = geometry::surfaceDistance(coarse, fine, kErrorSamples).hausdorff;
         }
         return errors[segments];

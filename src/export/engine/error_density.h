@@ -21,7 +21,7 @@ struct ErrorDensity {
     double maxDistance = 0.0;  // of `density` to the reference, in the asset's units
     double bound = 0.0;        // E in the asset's units
     int referenceSegments = 0;
-    bool clamped = false;      // E was below kResolvableFraction of the diagonal: the finest density
+    bool clamped = false;  // E was below kResolvableFraction of the diagonal: the finest density
 };
 
 // The smallest error, as a fraction of the reference's diagonal, that float positions resolve.

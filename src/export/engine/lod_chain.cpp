@@ -131,9 +131,9 @@ LodChain lodChain(const SubdAsset& asset, GltfMesh full, int segments, int count
     }
     for (size_t k = 1; k < chain.levels.size(); ++k) {
         LodLevel& level = chain.levels[k];
-        const double size = level.maxDistance > 0.0
-                                ? 2.0 * rule.pixelError * chain.boundingRadius / (level.maxDistance * double(rule.screenHeight))
-                                : 1.0;
+        const double size = level.maxDistance > 0.0 ? 2.0 * rule.pixelError * chain.boundingRadius /
+                                                          (level.maxDistance * double(rule.screenHeight))
+                                                    : 1.0;
         level.screenSize = std::min(size, chain.levels[k - 1].screenSize);
     }
     return chain;

@@ -28,7 +28,8 @@ std::vector<char> chartCoverage(const mesh::PolygonMesh& reference, int grid) {
     std::vector<char> covered(size_t(grid) * size_t(grid), 0);
     for (int f = 0; f < reference.faceCount(); ++f) {
         glm::vec2 t[3];
-        for (int k = 0; k < 3; ++k) t[k] = reference.uvs[size_t(reference.faceIndices[size_t(3 * f + k)])] * float(grid);
+        for (int k = 0; k < 3; ++k)
+            t[k] = reference.uvs[size_t(reference.faceIndices[size_t(3 * f + k)])] * float(grid);
         const float area = (t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[2].x - t[0].x) * (t[1].y - t[0].y);
         if (!(std::abs(area) > 0.0f)) continue;
         const auto lo = glm::max(glm::floor(glm::min(t[0], glm::min(t[1], t[2]))), glm::vec2(0.0f));
@@ -85,7 +86,8 @@ public:
             }
         for (size_t t = 0; t < ring_.size(); ++t)
             if (ring_[t] == kNever)
-                for (size_t k = 0; k < channels; ++k) values[channels * t + k] = filled ? float(mean[k] / double(filled)) : 0.0f;
+                for (size_t k = 0; k < channels; ++k)
+                    values[channels * t + k] = filled ? float(mean[k] / double(filled)) : 0.0f;
     }
 
 private:
@@ -130,7 +132,8 @@ TexelSum sumTexel(const mesh::MaterialSet& set, const mesh::Material& m, AtlasCh
             ++sum.count;
             const glm::vec2 uv((float(i) + (float(a) + 0.5f) / float(samples)) / float(size),
                                (float(j) + (float(b) + 0.5f) / float(samples)) / float(size));
-            sum.color += glm::vec3(m.baseColorFactor) * glm::vec3(mesh::sampleTexture(set, m.baseColorTexture, uv, true));
+            sum.color +=
+                glm::vec3(m.baseColorFactor) * glm::vec3(mesh::sampleTexture(set, m.baseColorTexture, uv, true));
             const glm::vec4 t = mesh::sampleTexture(set, m.metallicRoughnessTexture, uv, false);
             sum.roughnessMetallic += glm::vec2(m.roughnessFactor * t.g, m.metallicFactor * t.b);
             if (channels.normal) {
@@ -139,8 +142,10 @@ TexelSum sumTexel(const mesh::MaterialSet& set, const mesh::Material& m, AtlasCh
                 if (glm::length(tangent) > 1e-6f) sum.normal += glm::normalize(tangent);
             }
             if (channels.occlusion)
-                sum.occlusion += 1.0f + m.occlusionStrength * (mesh::sampleTexture(set, m.occlusionTexture, uv, false).r - 1.0f);
-            if (channels.emissive) sum.emission += m.emissiveFactor * glm::vec3(mesh::sampleTexture(set, m.emissiveTexture, uv, true));
+                sum.occlusion +=
+                    1.0f + m.occlusionStrength * (mesh::sampleTexture(set, m.occlusionTexture, uv, false).r - 1.0f);
+            if (channels.emissive)
+                sum.emission += m.emissiveFactor * glm::vec3(mesh::sampleTexture(set, m.emissiveTexture, uv, true));
         }
     return sum;
 }
@@ -161,7 +166,8 @@ struct AtlasTexels {
         roughnessMetallic[2 * texel] = std::clamp(sum.roughnessMetallic.x / count, 0.0f, 1.0f);
         roughnessMetallic[2 * texel + 1] = std::clamp(sum.roughnessMetallic.y / count, 0.0f, 1.0f);
         if (channels.normal) {
-            const glm::vec3 unit = glm::length(sum.normal) > 1e-6f ? glm::normalize(sum.normal) : glm::vec3(0.0f, 0.0f, 1.0f);
+            const glm::vec3 unit =
+                glm::length(sum.normal) > 1e-6f ? glm::normalize(sum.normal) : glm::vec3(0.0f, 0.0f, 1.0f);
             for (int k = 0; k < 3; ++k) normals.push_back(unit[k] * 0.5f + 0.5f);
         }
         if (channels.occlusion) occlusions.push_back(std::clamp(sum.occlusion / count, 0.0f, 1.0f));
@@ -182,7 +188,8 @@ std::string atlasUnsuitability(const mesh::PolygonMesh& reference) {
         return "it has several materials";
     if (!m->baseColorTexture.present() && !m->metallicRoughnessTexture.present()) return "its material has no texture";
     for (const mesh::TextureRef* t : {&m->baseColorTexture, &m->metallicRoughnessTexture})
-        if (t->present() && t->uvTransform != glm::mat3(1.0f)) return "its textures are transformed (KHR_texture_transform)";
+        if (t->present() && t->uvTransform != glm::mat3(1.0f))
+            return "its textures are transformed (KHR_texture_transform)";
     for (const glm::vec2& uv : reference.uvs)
         if (!(uv.x >= -kUvSlack && uv.y >= -kUvSlack && uv.x <= 1.0f + kUvSlack && uv.y <= 1.0f + kUvSlack))
             return "its texture coordinates leave [0, 1]";
@@ -230,14 +237,16 @@ surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const me
     const mesh::Material& m = *atlasMaterial(reference);
     surface::SurfaceMaps maps;
     maps.appearanceLayout = surface::atlasLattice(size);
-    maps.appearanceAtlas = {.size = size,
-                            .cornerUvs = atlasCornerUvs(cage, reference, maxDistance > 0.0f ? maxDistance : mesh::meanEdgeLength(cage))};
+    maps.appearanceAtlas = {
+        .size = size,
+        .cornerUvs = atlasCornerUvs(cage, reference, maxDistance > 0.0f ? maxDistance : mesh::meanEdgeLength(cage))};
     // Each texel the mean of the material over the part of its square that a chart covers (a
     // box filter in linear units, as a renderer's mip chain, without the gutter), a few samples
     // a source texel.
     const int samples = std::clamp((atlasSourceSize(reference) + size - 1) / size, 1, 8);
     const std::vector<char> covered = chartCoverage(reference, size * samples);
-    const AtlasChannels channels{.normal = m.normalTexture.present(), .occlusion = m.occlusionTexture.present(),
+    const AtlasChannels channels{.normal = m.normalTexture.present(),
+                                 .occlusion = m.occlusionTexture.present(),
                                  .emissive = m.emissiveFactor != glm::vec3(0.0f)};
     const size_t texels = size_t(size) * size_t(size);
     AtlasTexels baked(texels);
@@ -248,7 +257,8 @@ surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const me
     if (shadingNormals) {
         if (baked.normals.empty())
             for (size_t t = 0; t < texels; ++t) baked.normals.insert(baked.normals.end(), {0.5f, 0.5f, 1.0f});
-        carryShadingNormals(cage, maps, reference, maxDistance > 0.0f ? maxDistance : mesh::meanEdgeLength(cage), baked.normals);
+        carryShadingNormals(cage, maps, reference, maxDistance > 0.0f ? maxDistance : mesh::meanEdgeLength(cage),
+                            baked.normals);
     }
     const GutterFill fillGutter(baked.reached, size);
     fillGutter(baked.color, 3);

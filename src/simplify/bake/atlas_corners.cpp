@@ -41,9 +41,7 @@ bool solve4(std::array<std::array<double, 4>, 4> m, std::array<glm::dvec2, 4>& b
 }
 
 // Bilinear weights of ptex (u, v) on the corners (0, 0), (1, 0), (1, 1), (0, 1).
-std::array<double, 4> cornerWeights(double u, double v) {
-    return {(1 - u) * (1 - v), u * (1 - v), u * v, (1 - u) * v};
-}
+std::array<double, 4> cornerWeights(double u, double v) { return {(1 - u) * (1 - v), u * (1 - v), u * v, (1 - u) * v}; }
 
 struct Hit {
     glm::vec3 point;
@@ -66,9 +64,11 @@ std::vector<int> agreeingHits(const std::array<std::optional<Hit>, kGrid * kGrid
             const int a = members[k], ai = a % kGrid, aj = a / kGrid;
             for (const auto& [di, dj] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
                 const int bi = ai + di, bj = aj + dj, b = bj * kGrid + bi;
-                if (bi < 0 || bj < 0 || bi >= kGrid || bj >= kGrid || !hits[size_t(b)] || component[size_t(b)] >= 0) continue;
+                if (bi < 0 || bj < 0 || bi >= kGrid || bj >= kGrid || !hits[size_t(b)] || component[size_t(b)] >= 0)
+                    continue;
                 const Hit &p = *hits[size_t(a)], &q = *hits[size_t(b)];
-                const float allowed = 3.0f * std::max(p.uvPerLength, q.uvPerLength) * glm::distance(p.point, q.point) + 1e-4f;
+                const float allowed =
+                    3.0f * std::max(p.uvPerLength, q.uvPerLength) * glm::distance(p.point, q.point) + 1e-4f;
                 if (glm::distance(p.uv, q.uv) > allowed) continue;
                 component[size_t(b)] = int(components.size());
                 members.push_back(b);
@@ -83,7 +83,8 @@ std::vector<int> agreeingHits(const std::array<std::optional<Hit>, kGrid * kGrid
 
 // The corners' coordinates that best give the agreeing hits' coordinates by bilinear blending,
 // held towards their mean where the hits leave a corner undetermined.
-std::array<glm::vec2, 4> fitCorners(const std::array<std::optional<Hit>, kGrid * kGrid>& hits, const std::vector<int>& use) {
+std::array<glm::vec2, 4> fitCorners(const std::array<std::optional<Hit>, kGrid * kGrid>& hits,
+                                    const std::vector<int>& use) {
     std::array<std::array<double, 4>, 4> m{};
     std::array<glm::dvec2, 4> b{};
     glm::dvec2 mean(0.0);
@@ -106,7 +107,8 @@ std::array<glm::vec2, 4> fitCorners(const std::array<std::optional<Hit>, kGrid *
         corners.fill(glm::vec2(mean));
         return corners;
     }
-    for (int c = 0; c < 4; ++c) corners[size_t(c)] = glm::clamp(glm::vec2(b[size_t(c)]), glm::vec2(-1.0f), glm::vec2(2.0f));
+    for (int c = 0; c < 4; ++c)
+        corners[size_t(c)] = glm::clamp(glm::vec2(b[size_t(c)]), glm::vec2(-1.0f), glm::vec2(2.0f));
     return corners;
 }
 
@@ -125,7 +127,8 @@ void weldCorners(const mesh::PolygonMesh& cage, std::vector<glm::vec2>& corners,
     for (int f = 0; f < points.ptexFaceCount; ++f) {
         if (!found[size_t(f)]) continue;
         float extent = 0.0f;
-        for (int k = 1; k < 4; ++k) extent = std::max(extent, glm::distance(corners[4 * size_t(f)], corners[4 * size_t(f) + size_t(k)]));
+        for (int k = 1; k < 4; ++k)
+            extent = std::max(extent, glm::distance(corners[4 * size_t(f)], corners[4 * size_t(f) + size_t(k)]));
         const float tolerance = 0.25f * extent + 1e-5f;
         for (int k = 0; k < 4; ++k) {
             const int node = surface::cornerPoint(points, f, k);
@@ -187,10 +190,12 @@ void snapToVertexMeans(const mesh::PolygonMesh& cage, std::vector<glm::vec2>& co
         for (int i = 0; i < n; ++i) {
             const int f = first + i;
             float extent = 0.0f;
-            for (int k = 1; k < 4; ++k) extent = std::max(extent, glm::distance(corners[4 * size_t(f)], corners[4 * size_t(f) + size_t(k)]));
+            for (int k = 1; k < 4; ++k)
+                extent = std::max(extent, glm::distance(corners[4 * size_t(f)], corners[4 * size_t(f) + size_t(k)]));
             valueAt(f, 0).movable = false;
-            for (const auto& [k, prediction] : {std::pair{1, 0.5f * (vertex(i) + vertex(i + 1))}, std::pair{3, 0.5f * (vertex(i - 1) + vertex(i))},
-                                                std::pair{2, centre}}) {
+            for (const auto& [k, prediction] :
+                 {std::pair{1, 0.5f * (vertex(i) + vertex(i + 1))}, std::pair{3, 0.5f * (vertex(i - 1) + vertex(i))},
+                  std::pair{2, centre}}) {
                 Value& value = valueAt(f, k);
                 value.movable = value.movable && glm::distance(value.uv, prediction) <= kTolerance * extent;
                 value.predictions += prediction;
@@ -201,13 +206,15 @@ void snapToVertexMeans(const mesh::PolygonMesh& cage, std::vector<glm::vec2>& co
     for (int f = 0; f < points.ptexFaceCount; ++f)
         for (int k = 0; k < 4; ++k) {
             const Value& value = valueAt(f, k);
-            if (value.movable && value.count > 0) corners[4 * size_t(f) + size_t(k)] = value.predictions / float(value.count);
+            if (value.movable && value.count > 0)
+                corners[4 * size_t(f) + size_t(k)] = value.predictions / float(value.count);
         }
 }
 
 }  // namespace
 
-std::vector<glm::vec2> atlasCornerUvs(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference, float maxDistance) {
+std::vector<glm::vec2> atlasCornerUvs(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
+                                      float maxDistance) {
     const subdiv::LimitEvaluator limit(cage);
     const int faces = limit.ptexFaceCount();
     // Sized, not constructed with the size: GCC 12 misreads the latter's release (-Wfree-nonheap-object).
@@ -219,7 +226,8 @@ std::vector<glm::vec2> atlasCornerUvs(const mesh::PolygonMesh& cage, const mesh:
         if (!limit.hasSurface(f, 0.5f, 0.5f)) continue;
         for (int k = 0; k < kGrid * kGrid; ++k) {
             // A hair inside the face: the derivatives vanish at some extraordinary corners.
-            const glm::vec2 uv = glm::mix(glm::vec2(float(k % kGrid), float(k / kGrid)) / float(kGrid - 1), glm::vec2(0.5f), 1e-3f);
+            const glm::vec2 uv =
+                glm::mix(glm::vec2(float(k % kGrid), float(k / kGrid)) / float(kGrid - 1), glm::vec2(0.5f), 1e-3f);
             const subdiv::LimitSample s = limit.evaluate(f, uv.x, uv.y, cage.positions);
             const glm::vec3 n = glm::cross(s.dPdu, s.dPdv);
             origins[size_t(f) * kGrid * kGrid + size_t(k)] = s.position;
@@ -227,7 +235,8 @@ std::vector<glm::vec2> atlasCornerUvs(const mesh::PolygonMesh& cage, const mesh:
         }
     }
     const geometry::SurfaceQueries surface(reference);
-    const geometry::NormalCasts casts = geometry::castAlongNormals(surface, origins, normals, maxDistance, 0.25f * maxDistance);
+    const geometry::NormalCasts casts =
+        geometry::castAlongNormals(surface, origins, normals, maxDistance, 0.25f * maxDistance);
     auto texcoord = [&](int triangle, float u, float v) {
         auto at = [&](int k) { return reference.uvs[size_t(reference.faceIndices[size_t(3 * triangle + k)])]; };
         return (1.0f - u - v) * at(0) + u * at(1) + v * at(2);
@@ -243,12 +252,14 @@ std::vector<glm::vec2> atlasCornerUvs(const mesh::PolygonMesh& cage, const mesh:
             const glm::vec3 p0 = reference.positions[size_t(reference.faceIndices[base])],
                             p1 = reference.positions[size_t(reference.faceIndices[base + 1])],
                             p2 = reference.positions[size_t(reference.faceIndices[base + 2])];
-            const glm::vec2 t0 = texcoord(hit->triangle, 0, 0), t1 = texcoord(hit->triangle, 1, 0), t2 = texcoord(hit->triangle, 0, 1);
+            const glm::vec2 t0 = texcoord(hit->triangle, 0, 0), t1 = texcoord(hit->triangle, 1, 0),
+                            t2 = texcoord(hit->triangle, 0, 1);
             const float area = glm::length(glm::cross(p1 - p0, p2 - p0));
             const float uvArea = std::abs((t1.x - t0.x) * (t2.y - t0.y) - (t2.x - t0.x) * (t1.y - t0.y));
             const glm::vec3 point = origins[size_t(f) * kGrid * kGrid + size_t(k)] +
                                     hit->distance * normals[size_t(f) * kGrid * kGrid + size_t(k)];
-            hits[size_t(k)] = Hit{point, texcoord(hit->triangle, hit->u, hit->v), area > 0.0f ? std::sqrt(uvArea / area) : 0.0f};
+            hits[size_t(k)] =
+                Hit{point, texcoord(hit->triangle, hit->u, hit->v), area > 0.0f ? std::sqrt(uvArea / area) : 0.0f};
         }
         const std::vector<int> use = agreeingHits(hits);
         if (use.empty()) continue;
@@ -260,6 +271,5 @@ std::vector<glm::vec2> atlasCornerUvs(const mesh::PolygonMesh& cage, const mesh:
     snapToVertexMeans(cage, corners);
     return corners;
 }
-
 
 }  // namespace subdfit::simplify

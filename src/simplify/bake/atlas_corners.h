@@ -16,6 +16,7 @@ namespace subdfit::simplify {
 
 // 4 per ptex face of `cage`, at ptex (0, 0), (1, 0), (1, 1), (0, 1); rays reach `maxDistance`.
 // A face no ray placed takes what its corners' neighbours agreed on.
-std::vector<glm::vec2> atlasCornerUvs(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference, float maxDistance);
+std::vector<glm::vec2> atlasCornerUvs(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
+                                      float maxDistance);
 
 }  // namespace subdfit::simplify

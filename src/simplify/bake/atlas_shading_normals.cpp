@@ -21,7 +21,8 @@ constexpr int kSamples = 2;
 // [0, 1]², each triangle in every bucket its coordinates' bounding box touches.
 class UvTriangleGrid {
 public:
-    UvTriangleGrid(const mesh::PolygonMesh& reference, int grid) : reference_(reference), grid_(grid), buckets_(size_t(grid) * size_t(grid)) {
+    UvTriangleGrid(const mesh::PolygonMesh& reference, int grid)
+        : reference_(reference), grid_(grid), buckets_(size_t(grid) * size_t(grid)) {
         for (int f = 0; f < reference.faceCount(); ++f) {
             glm::vec2 lo(1e30f), hi(-1e30f);
             for (int k = 0; k < 3; ++k) {
@@ -29,7 +30,8 @@ public:
                 lo = glm::min(lo, t), hi = glm::max(hi, t);
             }
             for (int y = cell(lo.y); y <= cell(hi.y); ++y)
-                for (int x = cell(lo.x); x <= cell(hi.x); ++x) buckets_[size_t(y) * size_t(grid_) + size_t(x)].push_back(f);
+                for (int x = cell(lo.x); x <= cell(hi.x); ++x)
+                    buckets_[size_t(y) * size_t(grid_) + size_t(x)].push_back(f);
         }
     }
 

@@ -63,7 +63,8 @@ glm::vec3 unitNormal(const glm::vec3& dPdu, const glm::vec3& dPdv, const glm::ve
 glm::vec2 heightGradient(const surface::TexelLayout& layout, const std::vector<float>& d, const NodeSite& s) {
     auto at = [&](int i, int j) { return surface::nodeValueAcross(layout, d, s.face, i, j); };
     const float halfResolution = 0.5f * float(layout.resolution);
-    return {(at(s.i + 1, s.j) - at(s.i - 1, s.j)) * halfResolution, (at(s.i, s.j + 1) - at(s.i, s.j - 1)) * halfResolution};
+    return {(at(s.i + 1, s.j) - at(s.i - 1, s.j)) * halfResolution,
+            (at(s.i, s.j + 1) - at(s.i, s.j - 1)) * halfResolution};
 }
 
 // How far beyond the nearest point of the reference a node's hit may lie, as a fraction of the
@@ -80,8 +81,8 @@ struct NodeHits {
     float facing = 1.0f;  // which way the reference faces the limit normals (+1: along them)
 };
 
-NodeHits castNodes(const mesh::PolygonMesh& cage, const surface::TexelLayout& layout, const geometry::SurfaceQueries& surface,
-                   float maxDistance) {
+NodeHits castNodes(const mesh::PolygonMesh& cage, const surface::TexelLayout& layout,
+                   const geometry::SurfaceQueries& surface, float maxDistance) {
     NodeHits h;
     h.sites = nodeSites(layout);
     const size_t nodes = h.sites.size();
@@ -96,7 +97,8 @@ NodeHits castNodes(const mesh::PolygonMesh& cage, const surface::TexelLayout& la
         h.normals[n] = unitNormal(h.samples[n].dPdu, h.samples[n].dPdv, glm::vec3(0.0f, 0.0f, 1.0f));
         origins[n] = h.samples[n].position;
     }
-    geometry::NormalCasts casts = geometry::castAlongNormals(surface, origins, h.normals, maxDistance, kDetour * maxDistance);
+    geometry::NormalCasts casts =
+        geometry::castAlongNormals(surface, origins, h.normals, maxDistance, kDetour * maxDistance);
     h.hits = std::move(casts.hits);
     h.facing = casts.facing;
     return h;
@@ -110,9 +112,11 @@ struct PtexPoint {
 
 // Casts from `points` of the cage's limit surface along its normal there to the reference, facing
 // as the nodes found it (the cells between the nodes are sampled as the nodes are).
-std::vector<std::optional<geometry::RayHit>> castFromLimit(const mesh::PolygonMesh& cage, const subdiv::LimitEvaluator& limit,
-                                                           const std::vector<PtexPoint>& points, const geometry::SurfaceQueries& surface,
-                                                           float maxDistance, float facing) {
+std::vector<std::optional<geometry::RayHit>> castFromLimit(const mesh::PolygonMesh& cage,
+                                                           const subdiv::LimitEvaluator& limit,
+                                                           const std::vector<PtexPoint>& points,
+                                                           const geometry::SurfaceQueries& surface, float maxDistance,
+                                                           float facing) {
     std::vector<glm::vec3> origins(points.size()), normals(points.size());
     parallelFor(0, int(points.size()), [&](int k) {
         const PtexPoint& p = points[size_t(k)];
@@ -129,7 +133,8 @@ float maxDistanceFor(const BakeOptions& options, const mesh::PolygonMesh& cage) 
 
 // Nodes no ray found the reference from take the mean of their found neighbours, spreading
 // outwards until every node has a value (a node graph without any found node keeps its own).
-void fillMissing(const surface::TexelLayout& layout, std::vector<float>& values, int channels, std::vector<char> found) {
+void fillMissing(const surface::TexelLayout& layout, std::vector<float>& values, int channels,
+                 std::vector<char> found) {
     const auto graph = surface::nodeAdjacency(layout);
     for (bool changed = true; changed;) {
         changed = false;
@@ -182,8 +187,8 @@ std::vector<float> leastSquaresHeights(const mesh::PolygonMesh& cage, const surf
         if (f % 256 == 0) throwIfStopRequested();
         for (int j = 0; j < t; ++j)
             for (int i = 0; i < t; ++i) {
-                const std::array<int, 4> corners{layout.node(f, i, j), layout.node(f, i + 1, j), layout.node(f, i, j + 1),
-                                                 layout.node(f, i + 1, j + 1)};
+                const std::array<int, 4> corners{layout.node(f, i, j), layout.node(f, i + 1, j),
+                                                 layout.node(f, i, j + 1), layout.node(f, i + 1, j + 1)};
                 const glm::vec2 centre = (glm::vec2(float(i), float(j)) + 0.5f) / float(t);
                 if (std::any_of(corners.begin(), corners.end(), [&](int c) { return !nodeHits.hits[size_t(c)]; }) ||
                     !limit.hasSurface(f, centre.x, centre.y))
@@ -247,7 +252,7 @@ surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
         const float u = hits[n]->u, v = hits[n]->v;
         auto vertexNormal = [&](int k) { return referenceNormals[size_t(reference.faceIndices[size_t(3 * tri + k)])]; };
         glm::vec3 r = (1.0f - u - v) * vertexNormal(0) + u * vertexNormal(1) + v * vertexNormal(2);
-        if (glm::dot(r, N) < 0.0f) r = -r;  // the reference may wind the other way
+        if (glm::dot(r, N) < 0.0f) r = -r;               // the reference may wind the other way
         const float z = std::max(glm::dot(r, N), 0.2f);  // a map cannot tilt past ~78°
         maps.normal[2 * n] = glm::dot(r, T) / z;
         maps.normal[2 * n + 1] = glm::dot(r, B) / z;
@@ -284,8 +289,9 @@ constexpr glm::vec2 kCellSamples[] = {{0.25f, 0.25f}, {0.75f, 0.25f}, {0.25f, 0.
 // texture finer than the lattice (a coarse cage's tiles span many of a dense reference's texels).
 // `color` and `roughnessMetallic` come in as the point samples (where a node's ray found the
 // reference; elsewhere filled in) and go out fitted.
-void fitAppearanceAcrossCells(const mesh::PolygonMesh& cage, const surface::TexelLayout& layout, const NodeHits& nodeHits,
-                              const mesh::PolygonMesh& reference, const geometry::SurfaceQueries& surface, float maxDistance,
+void fitAppearanceAcrossCells(const mesh::PolygonMesh& cage, const surface::TexelLayout& layout,
+                              const NodeHits& nodeHits, const mesh::PolygonMesh& reference,
+                              const geometry::SurfaceQueries& surface, float maxDistance,
                               std::vector<glm::dvec3>& color, std::vector<glm::dvec2>& roughnessMetallic) {
     const subdiv::LimitEvaluator limit(cage);
     const int t = layout.resolution;
@@ -310,7 +316,8 @@ void fitAppearanceAcrossCells(const mesh::PolygonMesh& cage, const surface::Texe
         if (!limit.hasSurface(face, 0.5f, 0.5f)) continue;
         for (int j = 0; j < t; ++j)
             for (int i = 0; i < t; ++i)
-                for (const glm::vec2 f : kCellSamples) samples.push_back({face, (glm::vec2(float(i), float(j)) + f) / float(t)});
+                for (const glm::vec2 f : kCellSamples)
+                    samples.push_back({face, (glm::vec2(float(i), float(j)) + f) / float(t)});
     }
     const auto hits = castFromLimit(cage, limit, samples, surface, maxDistance, nodeHits.facing);
     std::vector<std::array<float, 5>> found(samples.size());
@@ -332,15 +339,18 @@ void fitAppearanceAcrossCells(const mesh::PolygonMesh& cage, const surface::Texe
     }
     const std::vector<double> weights(rows.rows(), 1.0);
     constexpr double kDamping = 1e-3;  // as the heights: holds nodes few samples see
-    tbb::parallel_invoke([&] { color = solveDampedLeastSquares(rows, colorTargets, weights, color, kDamping); },
-                         [&] { roughnessMetallic = solveDampedLeastSquares(rows, rmTargets, weights, roughnessMetallic, kDamping); });
+    tbb::parallel_invoke(
+        [&] { color = solveDampedLeastSquares(rows, colorTargets, weights, color, kDamping); },
+        [&] { roughnessMetallic = solveDampedLeastSquares(rows, rmTargets, weights, roughnessMetallic, kDamping); });
 }
 
 }  // namespace
 
 surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
                                     const AppearanceBakeOptions& options) {
-    if (options.atlas > 0) return bakeAtlasAppearance(cage, reference, options.effects, options.atlas, options.maxDistance, options.shadingNormals);
+    if (options.atlas > 0)
+        return bakeAtlasAppearance(cage, reference, options.effects, options.atlas, options.maxDistance,
+                                   options.shadingNormals);
     surface::SurfaceMaps maps;
     maps.appearanceLayout = surface::buildTexelLayout(cage, options.resolution);
     const geometry::SurfaceQueries surface(reference);
@@ -391,7 +401,8 @@ surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::P
 }
 
 AppearanceBakeOptions appearanceBakeOf(const maps::MapParameters& parameters) {
-    return {.effects = parameters.effects(), .resolution = parameters.appearanceLayout().resolution,
+    return {.effects = parameters.effects(),
+            .resolution = parameters.appearanceLayout().resolution,
             .atlas = parameters.appearanceAtlas().size};
 }
 

@@ -12,7 +12,7 @@ namespace subdfit::simplify {
 
 struct BakeOptions {
     maps::MapEffects effects{.displacement = true, .normalMap = true};
-    int resolution = 8;          // cells per ptex-face edge, as surface::TexelLayout
+    int resolution = 8;  // cells per ptex-face edge, as surface::TexelLayout
     // Farthest hit taken, in the meshes' units (none: height 0, flat normal); 0 = the cage's
     // mean edge length, since a surface farther than a cage edge is a different part of the
     // reference (the far wall of a hole, the other ear), not the one this face stands for.
@@ -29,7 +29,7 @@ surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
 
 struct AppearanceBakeOptions {
     maps::MapEffects effects{.baseColor = true, .metallicRoughness = true};
-    int resolution = 16;  // cells per ptex-face edge of the appearance lattice
+    int resolution = 16;       // cells per ptex-face edge of the appearance lattice
     float maxDistance = 0.0f;  // as BakeOptions
     // Texels per side of an atlas in the reference's own texture space instead of tiles
     // (simplify/bake/atlas_bake.h; the reference must be suitable); 0: tiles.

@@ -35,7 +35,8 @@ CageLadder::~CageLadder() {
 void CageLadder::build(const mesh::PolygonMesh& reference, const std::vector<int>& faceCounts, const Prepare& prepare,
                        unsigned builders) {
     try {
-        source_.emplace(reference, true, faceCounts.empty() ? 0 : *std::max_element(faceCounts.begin(), faceCounts.end()));
+        source_.emplace(reference, true,
+                        faceCounts.empty() ? 0 : *std::max_element(faceCounts.begin(), faceCounts.end()));
         std::vector<std::jthread> helpers;
         for (unsigned h = 1; h < builders; ++h) helpers.emplace_back([&] { buildRungs(faceCounts, prepare); });
         buildRungs(faceCounts, prepare);

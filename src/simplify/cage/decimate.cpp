@@ -44,9 +44,9 @@ mesh::PolygonMesh weldedTriangles(const mesh::PolygonMesh& input) {
     const mesh::PolygonMesh triangles = mesh::triangulated(input);
     const std::vector<unsigned> indices(triangles.faceIndices.begin(), triangles.faceIndices.end());
     std::vector<unsigned> remap(triangles.positions.size());
-    const size_t unique = meshopt_generateVertexRemap(remap.data(), indices.data(), indices.size(),
-                                                      triangles.positions.data(), triangles.positions.size(),
-                                                      sizeof(glm::vec3));
+    const size_t unique =
+        meshopt_generateVertexRemap(remap.data(), indices.data(), indices.size(), triangles.positions.data(),
+                                    triangles.positions.size(), sizeof(glm::vec3));
     std::vector<glm::vec3> positions(unique);
     for (size_t v = 0; v < remap.size(); ++v)
         if (remap[v] != ~0u) positions[remap[v]] = triangles.positions[v];
@@ -65,14 +65,16 @@ mesh::PolygonMesh decimate(const mesh::PolygonMesh& triangles, int targetTriangl
     const size_t vertexCount = triangles.positions.size();
     std::vector<unsigned> out(indices.size());
     // Any error is allowed (a relative 1 is the whole mesh): the face budget is what binds.
-    out.resize(meshopt_simplify(out.data(), indices.data(), indices.size(), positions, vertexCount,
-                                sizeof(glm::vec3), target, 1.0f));
+    out.resize(meshopt_simplify(out.data(), indices.data(), indices.size(), positions, vertexCount, sizeof(glm::vec3),
+                                target, 1.0f));
     if (out.size() > target * 2 || out.empty()) {
         out.resize(indices.size());
         out.resize(meshopt_simplifySloppy(out.data(), indices.data(), indices.size(), positions, vertexCount,
                                           sizeof(glm::vec3), target, 1.0f));
     }
-    if (out.empty()) throw fileError(triangles.sourcePath, "decimation to " + std::to_string(targetTriangles) + " triangles left nothing");
+    if (out.empty())
+        throw fileError(triangles.sourcePath,
+                        "decimation to " + std::to_string(targetTriangles) + " triangles left nothing");
     return compacted(triangles.positions, out, triangles.sourcePath);
 }
 

@@ -18,7 +18,9 @@ namespace {
 
 constexpr float kInfinitelySharp = 10.0f;
 
-float angleBetween(const glm::vec3& a, const glm::vec3& b) { return std::acos(std::clamp(glm::dot(a, b), -1.0f, 1.0f)); }
+float angleBetween(const glm::vec3& a, const glm::vec3& b) {
+    return std::acos(std::clamp(glm::dot(a, b), -1.0f, 1.0f));
+}
 
 glm::vec3 unitOr0(const glm::vec3& v) {
     const float length = glm::length(v);
@@ -145,7 +147,8 @@ FeatureCount HardEdges::tag(mesh::PolygonMesh& cage) const {
     const FeatureAngles& angles = angles_;
     std::vector<int> onReference(cage.positions.size(), -1);
     for (size_t v = 0; v < cage.positions.size(); ++v)
-        if (const auto it = features.vertexAt.find(cage.positions[v]); it != features.vertexAt.end()) onReference[v] = it->second;
+        if (const auto it = features.vertexAt.find(cage.positions[v]); it != features.vertexAt.end())
+            onReference[v] = it->second;
 
     FeatureCount count;
     for (const auto& [edge, faces] : edgeFaces(cage)) {

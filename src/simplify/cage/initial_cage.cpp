@@ -58,7 +58,8 @@ public:
             const VertexSite& s = sites[v];
             onSurface_[v] = s.ptexFace >= 0 && evaluator.hasSurface(s.ptexFace, s.u, s.v);
             if (onSurface_[v])
-                for (const auto& [vertex, weight] : evaluator.positionWeights(s.ptexFace, s.u, s.v)) stencils_.add(vertex, weight);
+                for (const auto& [vertex, weight] : evaluator.positionWeights(s.ptexFace, s.u, s.v))
+                    stencils_.add(vertex, weight);
             stencils_.endRow();
         }
     }
@@ -66,12 +67,13 @@ public:
     std::vector<glm::vec3> operator()(const std::vector<glm::vec3>& positions) const {
         const std::vector<glm::dvec3> at(positions.begin(), positions.end());
         std::vector<glm::vec3> limit(positions.size());
-        for (size_t v = 0; v < positions.size(); ++v) limit[v] = onSurface_[v] ? glm::vec3(stencils_.apply(v, at)) : positions[v];
+        for (size_t v = 0; v < positions.size(); ++v)
+            limit[v] = onSurface_[v] ? glm::vec3(stencils_.apply(v, at)) : positions[v];
         return limit;
     }
 
 private:
-    SparseRows stencils_;       // row v: vertex v's limit position (empty off the surface)
+    SparseRows stencils_;  // row v: vertex v's limit position (empty off the surface)
     std::vector<char> onSurface_;
 };
 
@@ -122,7 +124,8 @@ void evenOutTriangles(mesh::PolygonMesh& triangles, int rounds) {
 
 }  // namespace
 
-std::vector<glm::vec3> limitPositionsOfVertices(const mesh::PolygonMesh& cage, const std::vector<glm::vec3>& positions) {
+std::vector<glm::vec3> limitPositionsOfVertices(const mesh::PolygonMesh& cage,
+                                                const std::vector<glm::vec3>& positions) {
     return VertexLimits(cage)(positions);
 }
 
@@ -131,7 +134,8 @@ mesh::PolygonMesh initialCage(const mesh::PolygonMesh& reference, const InitialC
 }
 
 CageSource::CageSource(const mesh::PolygonMesh& reference, bool hardEdges, int mostFaces)
-    : reference_(reference), welded_(weldedTriangles(reference)),
+    : reference_(reference),
+      welded_(weldedTriangles(reference)),
       surface_(std::make_unique<geometry::SurfaceQueries>(welded_)) {
     if (hardEdges) hardEdges_.emplace(mesh::triangulated(reference));
     const int copyFaces = kDecimationCopyFactor * mostFaces;
@@ -154,7 +158,7 @@ std::optional<mesh::PolygonMesh> CageSource::quadCage(int faces) const {
     // The regions' mean lattice points lie in tangent planes: onto the reference along the normal.
     mesh::PolygonMesh cage = std::move(remeshed.mesh);
     for (size_t v = 0; v < cage.positions.size(); ++v)
-        if (const auto hit = surface_->castBothWays(cage.positions[v], remeshed.normals[v], remeshed.longestEdge))
+        if (const auto hit = surface_->castBothWays(cage.positions[v], remeshed.normals[v], remeshed.edgeLength))
             cage.positions[v] += remeshed.normals[v] * hit->distance;
     return cage;
 }

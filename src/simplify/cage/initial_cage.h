@@ -36,10 +36,10 @@ struct InitialCageOptions {
     // vertices as faces, a triangle cage half as many).
     int faces = 1000;
     CageShape shape = CageShape::Triangles;
-    int evenOutRounds = 3;            // tangential smoothing of decimation's slivers (features stay)
-    int interpolationIterations = 16; // P += V − limit(P) sweeps (each ÷~2 the gap)
-    LimitFitOptions limitFit{};       // .rounds = 0: the interpolated cage as it is
-    bool hardEdges = true;            // the reference's hard edges as creases (simplify/cage/feature_edges.h)
+    int evenOutRounds = 3;             // tangential smoothing of decimation's slivers (features stay)
+    int interpolationIterations = 16;  // P += V − limit(P) sweeps (each ÷~2 the gap)
+    LimitFitOptions limitFit{};        // .rounds = 0: the interpolated cage as it is
+    bool hardEdges = true;             // the reference's hard edges as creases (simplify/cage/feature_edges.h)
 };
 
 // `reference` in any units, any polygons. A quad cage is a quad remesh of the reference (where

@@ -34,7 +34,8 @@ Samples samplesOf(const subdiv::LimitEvaluator& limit, int samplesPerEdge) {
         for (int f = int(c) * kFacesPerChunk; f < end; ++f)
             for (int j = 0; j < samplesPerEdge; ++j)
                 for (int i = 0; i < samplesPerEdge; ++i) {
-                    const glm::vec2 uv((float(i) + 0.5f) / float(samplesPerEdge), (float(j) + 0.5f) / float(samplesPerEdge));
+                    const glm::vec2 uv((float(i) + 0.5f) / float(samplesPerEdge),
+                                       (float(j) + 0.5f) / float(samplesPerEdge));
                     if (!limit.hasSurface(f, uv.x, uv.y)) continue;
                     for (const auto& [v, w] : limit.positionWeights(f, uv.x, uv.y)) chunk.stencils.add(v, w);
                     chunk.stencils.endRow();
@@ -81,7 +82,8 @@ LimitFitReport fitLimitToSurface(mesh::PolygonMesh& cage, const mesh::PolygonMes
             origins[s] = at.position;
             normals[s] = glm::length(n) > 1e-20f ? glm::normalize(n) : glm::vec3(0.0f);
         });
-        const geometry::NormalCasts casts = geometry::castAlongNormals(surface, origins, normals, reach, options.detour * reach);
+        const geometry::NormalCasts casts =
+            geometry::castAlongNormals(surface, origins, normals, reach, options.detour * reach);
         double squares = 0.0;
         report.hits = 0;
         for (size_t s = 0; s < L.size(); ++s) {

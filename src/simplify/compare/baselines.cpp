@@ -50,7 +50,8 @@ public:
     std::vector<glm::vec3> at(const mesh::PolygonMesh& decimated) const {
         std::vector<glm::vec3> normals = mesh::vertexNormals(decimated);  // where a vertex is not the reference's
         for (size_t v = 0; v < decimated.positions.size(); ++v)
-            if (const auto it = index_.find(decimated.positions[v]); it != index_.end()) normals[v] = normals_[it->second];
+            if (const auto it = index_.find(decimated.positions[v]); it != index_.end())
+                normals[v] = normals_[it->second];
         return normals;
     }
 
@@ -76,13 +77,16 @@ std::uintmax_t writeDecimation(const fit::FitScene& scene, const ReferenceNormal
 std::uintmax_t writeReferenceAsItIs(const fit::FitScene& scene, const VertexEncoding& encoding,
                                     const std::filesystem::path& path) {
     const auto normals = encoding.normals ? mesh::shadingNormals(scene.reference) : std::vector<glm::vec3>{};
-    return exporter::writeMeshGlb(path, scene.frame.toWorld(scene.reference.positions), normals, indicesOf(scene.reference),
+    return exporter::writeMeshGlb(path, scene.frame.toWorld(scene.reference.positions), normals,
+                                  indicesOf(scene.reference),
                                   exporter::DracoBits{.position = encoding.positionBits, .normal = encoding.normalBits})
         .bytes;
 }
 
 // Where a budget's triangle count is first looked for: about two bytes a triangle.
-int firstGuess(std::uintmax_t budget, int most) { return int(std::min<std::uintmax_t>(std::uintmax_t(most), budget / 2 + 1)); }
+int firstGuess(std::uintmax_t budget, int most) {
+    return int(std::min<std::uintmax_t>(std::uintmax_t(most), budget / 2 + 1));
+}
 
 // The probes of a dense reference's baselines (the counts and encodings tried) start from a copy
 // decimated once to this many times the first guess (the fewest position bits fit about twice
@@ -102,9 +106,12 @@ void scoreShipped(gl::ProgramCache& programs, const fit::FitScene& scene, const 
                   const BaselineSettings& settings, Quality& q) {
     const mesh::PolygonMesh shipped = readBack(path, scene);
     const render::MeshRenderer renderer(shipped, scene.shading);
-    scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
-        renderer.draw(programs, camera, target);
-    }, q);
+    scoreHoldout(
+        scene.holdout,
+        [&](const render::Camera& camera, const render::RenderTarget& target) {
+            renderer.draw(programs, camera, target);
+        },
+        q);
     if (settings.distance) q.distance = worldDistance(shipped, scene.reference, scene.frame, settings.surfaceSamples);
     q.details["triangles"] = shipped.faceCount();
 }
@@ -126,32 +133,35 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
     };
     const std::optional<mesh::PolygonMesh> probeSource = probeSourceFor(welded, budget);
     Decimations fromReference(welded, decimate), fromCopy(probeSource ? *probeSource : welded, decimate);
-    EncodedChoice chosen = bestEncoding(programs, scene, budget, (probeSource ? *probeSource : welded).faceCount(), path,
-                                        shipFrom(probeSource ? fromCopy : fromReference),
+    EncodedChoice chosen = bestEncoding(programs, scene, budget, (probeSource ? *probeSource : welded).faceCount(),
+                                        path, shipFrom(probeSource ? fromCopy : fromReference),
                                         {.positionBits = 14, .normals = false}, firstGuess(budget, welded.faceCount()));
     if (probeSource) {
         // What ships: the reference itself decimated, at the most triangles that fit, looked for from the probes' choice.
         const auto ship = shipFrom(fromReference);
-        chosen.triangles = mostWithinBudget(kFewestTriangles, welded.faceCount(), budget, [&](int triangles) {
-            return chosen.bytes = ship(chosen.encoding, triangles);
-        }, chosen.triangles);
+        chosen.triangles = mostWithinBudget(
+            kFewestTriangles, welded.faceCount(), budget,
+            [&](int triangles) { return chosen.bytes = ship(chosen.encoding, triangles); }, chosen.triangles);
     }
     Quality q;
     q.bytes = chosen.bytes;
     q.files = {{"decimated.glb", chosen.bytes}};
     q.shipped = settings.dir.filename() / path.filename();
-    q.details = {{"over_budget", chosen.bytes > budget}, {"encoding", toJson(chosen.encoding)},
-                 {"monitor_psnr", chosen.monitorPsnr}, {"encodings_tried", chosen.tried}};
+    q.details = {{"over_budget", chosen.bytes > budget},
+                 {"encoding", toJson(chosen.encoding)},
+                 {"monitor_psnr", chosen.monitorPsnr},
+                 {"encodings_tried", chosen.tried}};
     if (probeSource) q.details["probes_decimated_from"] = probeSource->faceCount();
     scoreShipped(programs, scene, path, settings, q);
     return q;
 }
 
 std::uintmax_t writeWholeDecimation(const fit::FitScene& scene, const mesh::PolygonMesh& welded, bool normals,
-                                   const std::filesystem::path& path) {
+                                    const std::filesystem::path& path) {
     const VertexEncoding encoding{.positionBits = 14, .normals = normals};
     if (normals && !mesh::oneNormalPerPosition(scene.reference)) return writeReferenceAsItIs(scene, encoding, path);
-    return writeDecimation(scene, ReferenceNormals(scene.reference), decimate(welded, welded.faceCount()), encoding, path);
+    return writeDecimation(scene, ReferenceNormals(scene.reference), decimate(welded, welded.faceCount()), encoding,
+                           path);
 }
 
 std::uintmax_t runGltfpack(const std::filesystem::path& gltfpack, const std::filesystem::path& input,
@@ -160,8 +170,8 @@ std::uintmax_t runGltfpack(const std::filesystem::path& gltfpack, const std::fil
     throwIfStopRequested();
     char text[32];
     std::snprintf(text, sizeof text, "%.9f", ratio);
-    std::vector<std::string> arguments{"-i", input.string(), "-o", output.string(), "-si", text,
-                                       "-vp", std::to_string(encoding.positionBits)};
+    std::vector<std::string> arguments{"-i",  input.string(), "-o",  output.string(),
+                                       "-si", text,           "-vp", std::to_string(encoding.positionBits)};
     arguments.insert(arguments.end(), extra.begin(), extra.end());
     const int status = io::runProgram(gltfpack, arguments);
     if (status != 0 || !std::filesystem::exists(output))
@@ -187,9 +197,11 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
         int triangles;
     };
     std::vector<std::filesystem::path> written;
-    const auto writeInput = [&](const mesh::PolygonMesh& m, const std::vector<glm::vec3>& normals, const std::string& name) {
+    const auto writeInput = [&](const mesh::PolygonMesh& m, const std::vector<glm::vec3>& normals,
+                                const std::string& name) {
         const Input input{settings.dir / (name + ".glb"), settings.dir / (name + "_bare.glb"), m.faceCount()};
-        exporter::writeMeshGlb(input.withNormals, scene.frame.toWorld(m.positions), normals, indicesOf(m), /*draco=*/false);
+        exporter::writeMeshGlb(input.withNormals, scene.frame.toWorld(m.positions), normals, indicesOf(m),
+                               /*draco=*/false);
         exporter::writeMeshGlb(input.without, scene.frame.toWorld(m.positions), {}, indicesOf(m), /*draco=*/false);
         written.insert(written.end(), {input.withNormals, input.without});
         return input;
@@ -218,9 +230,9 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
                                        firstGuess(budget, welded.faceCount()));
         if (copy) {
             const auto ship = shipFrom(whole);
-            c.triangles = mostWithinBudget(kFewestTriangles, whole.triangles, budget, [&](int triangles) {
-                return c.bytes = ship(c.encoding, triangles);
-            }, c.triangles);
+            c.triangles = mostWithinBudget(
+                kFewestTriangles, whole.triangles, budget,
+                [&](int triangles) { return c.bytes = ship(c.encoding, triangles); }, c.triangles);
         }
         return c;
     };
@@ -234,8 +246,11 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
     q.bytes = chosen.bytes;
     q.files = {{"gltfpack.glb", chosen.bytes}};
     q.shipped = settings.dir.filename() / output.filename();
-    q.details = {{"over_budget", chosen.bytes > budget}, {"command", gltfpackCommand(chosen.encoding, flags)},
-                 {"encoding", toJson(chosen.encoding)}, {"monitor_psnr", chosen.monitorPsnr}, {"encodings_tried", chosen.tried}};
+    q.details = {{"over_budget", chosen.bytes > budget},
+                 {"command", gltfpackCommand(chosen.encoding, flags)},
+                 {"encoding", toJson(chosen.encoding)},
+                 {"monitor_psnr", chosen.monitorPsnr},
+                 {"encodings_tried", chosen.tried}};
     if (copy) q.details["probes_decimated_from"] = copy->triangles;
     scoreShipped(programs, scene, output, settings, q);
     return q;
@@ -269,14 +284,18 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     Quality q;
     exporter::writeMapAtlases(dir, bakedWorld, {.compact = settings.compactMaps});
     const auto precision = exporter::SubdPrecision::forMapBits(route.bits, route.appearanceQuality, route.positionBits);
-    q.files = {{"asset.subd", exporter::writeSubd(dir / "asset.subd",
-                                                  exporter::shippableAsset(cageWorld, bakedWorld, precision.positionBits,
-                                                                           std::uint32_t(scene.reference.faceCount())),
-                                                  precision)
-                                  .bytes}};
+    q.files = {
+        {"asset.subd", exporter::writeSubd(dir / "asset.subd",
+                                           exporter::shippableAsset(cageWorld, bakedWorld, precision.positionBits,
+                                                                    std::uint32_t(scene.reference.faceCount())),
+                                           precision)
+                           .bytes}};
     q.bytes = totalBytes(q.files);
     q.shipped = settings.dir.filename() / dir.filename() / "asset.subd";
-    q.details = {{"faces", cage.faceCount()}, {"map_resolution", mapResolution}, {"map_bits", route.bits}, {"position_bits", route.positionBits},
+    q.details = {{"faces", cage.faceCount()},
+                 {"map_resolution", mapResolution},
+                 {"map_bits", route.bits},
+                 {"position_bits", route.positionBits},
                  {"shading_normal", nameOf(route.shadingNormal)}};
 
     // Rendered by the fitter's own renderer with the baked values in its map groups.
@@ -290,11 +309,13 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     rendering.tessLevel = settings.segments;
     fit::CageFitter bakedScene(programs, cage, rendering);
     fit::writeMaps(bakedScene, baked);
-    scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
-        bakedScene.render(camera, target);
-    }, q);
+    scoreHoldout(
+        scene.holdout,
+        [&](const render::Camera& camera, const render::RenderTarget& target) { bakedScene.render(camera, target); },
+        q);
     if (settings.distance)
-        q.distance = shippedDistance(dir / "asset.subd", settings.segments, scene.frame, scene.reference, settings.surfaceSamples);
+        q.distance = shippedDistance(dir / "asset.subd", settings.segments, scene.frame, scene.reference,
+                                     settings.surfaceSamples);
     return q;
 }
 

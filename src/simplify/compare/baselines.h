@@ -30,21 +30,21 @@ class FitScene;
 namespace subdfit::simplify {
 
 struct BaselineSettings {
-    std::filesystem::path dir;   // where the baselines' shipped files go
-    bool compactMaps = true;     // and maps
-    int surfaceSamples = 100000; // per side, for the surface distance
-    int segments = 8;            // tessellation of limit surfaces for the surface distance
-    bool distance = true;        // measure the surface distance (the comparison's; not what a route needs)
+    std::filesystem::path dir;    // where the baselines' shipped files go
+    bool compactMaps = true;      // and maps
+    int surfaceSamples = 100000;  // per side, for the surface distance
+    int segments = 8;             // tessellation of limit surfaces for the surface distance
+    bool distance = true;         // measure the surface distance (the comparison's; not what a route needs)
 };
 
 // The bake route's recipe: a cage (normalised frame) and how the maps baked onto it ship,
 // unfitted.
 struct BakeRoute {
     mesh::PolygonMesh cage;
-    maps::MapEffects effects;  // none means displacement and normal: a bake route without maps is no bake
-    int resolution = 4;        // map cells per face edge
-    int bits = 12;             // per map value in its asset.subd
-    int positionBits = 14;     // per cage coordinate in its asset.subd
+    maps::MapEffects effects;       // none means displacement and normal: a bake route without maps is no bake
+    int resolution = 4;             // map cells per face edge
+    int bits = 12;                  // per map value in its asset.subd
+    int positionBits = 14;          // per cage coordinate in its asset.subd
     int appearanceResolution = 16;  // its appearance lattice and JPEG quality (scenes with materials)
     int appearanceQuality = 90;
     int appearanceAtlas = 0;  // texels per side when the appearance is in the reference's atlas; 0: tiles
@@ -60,7 +60,7 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
 // reference's normals at 10 where `normals`; welded unless its normals split): writes `path`,
 // returns its bytes.
 std::uintmax_t writeWholeDecimation(const fit::FitScene& scene, const mesh::PolygonMesh& welded, bool normals,
-                                   const std::filesystem::path& path);
+                                    const std::filesystem::path& path);
 
 // Writes dir/gltfpack.glb; nothing (and no file) when gltfpack is not installed.
 std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::FitScene& scene,

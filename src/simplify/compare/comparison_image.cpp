@@ -57,7 +57,8 @@ void drawRamp(const Layout& l, int top, int height, int pad, std::vector<glm::ve
     const int span = std::max(1, l.res - 2 * pad - 1);
     for (int y = top; y < std::min(top + height, l.height()); ++y)
         for (int x = pad; x <= pad + span; ++x)
-            pixels[size_t(l.height() - 1 - y) * size_t(l.width()) + size_t(x)] = heatColour(float(x - pad) / float(span));
+            pixels[size_t(l.height() - 1 - y) * size_t(l.width()) + size_t(x)] =
+                heatColour(float(x - pad) / float(span));
 }
 
 // The captions: each column's name and figures in the band, and in the cell under the reference

@@ -51,8 +51,9 @@ geometry::SurfaceDistance worldDistance(const mesh::PolygonMesh& candidate, cons
     return d;
 }
 
-geometry::SurfaceDistance shippedDistance(const std::filesystem::path& subd, int segments, const scene::SceneFrame& frame,
-                                          const mesh::PolygonMesh& reference, int samples) {
+geometry::SurfaceDistance shippedDistance(const std::filesystem::path& subd, int segments,
+                                          const scene::SceneFrame& frame, const mesh::PolygonMesh& reference,
+                                          int samples) {
     const exporter::SubdAsset shipped = exporter::readSubd(subd);
     mesh::PolygonMesh surface = surface::triangleMesh(surface::tessellate(shipped.cage, shipped.maps, segments));
     surface.positions = frame.toNormalized(surface.positions);

@@ -35,7 +35,7 @@ struct Quality {
     // report.json's `path`, what a viewer shows. Empty: not said.
     std::filesystem::path shipped;
     nlohmann::json details = nlohmann::json::object();  // what else the report should say
-    std::vector<glm::vec4> view;  // held-out view 0 as rendered, for the side-by-side
+    std::vector<glm::vec4> view;                        // held-out view 0 as rendered, for the side-by-side
 };
 
 // What report.json and the terminal say for a distance a run did not measure.
@@ -62,8 +62,8 @@ geometry::SurfaceDistance worldDistance(const mesh::PolygonMesh& candidate, cons
 
 // The same for a shipped .subd file as a consumer gets it: decoded, displaced, tessellated with
 // `segments` per face edge; `frame` is the scene's (the file is in world units).
-geometry::SurfaceDistance shippedDistance(const std::filesystem::path& subd, int segments, const scene::SceneFrame& frame,
-                                          const mesh::PolygonMesh& reference, int samples);
-
+geometry::SurfaceDistance shippedDistance(const std::filesystem::path& subd, int segments,
+                                          const scene::SceneFrame& frame, const mesh::PolygonMesh& reference,
+                                          int samples);
 
 }  // namespace subdfit::simplify

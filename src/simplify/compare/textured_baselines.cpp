@@ -64,7 +64,8 @@ private:
         } else {
             for (const io::DecodedImage& above : decoded(divisor / 2))
                 level.push_back(above.rgba.empty() ? io::DecodedImage{}
-                                                   : io::resizedImage(above, std::max(1, above.width / 2), std::max(1, above.height / 2)));
+                                                   : io::resizedImage(above, std::max(1, above.width / 2),
+                                                                      std::max(1, above.height / 2)));
         }
         return decoded_[divisor] = std::move(level);
     }
@@ -105,9 +106,10 @@ std::optional<Shipped> weighScales(gl::ProgramCache& programs, const fit::FitSce
         Shipped candidate{.divisor = divisor, .choice = {}};
         const auto& images = textures.at(divisor, candidate.textureBytes);
         if (candidate.textureBytes >= budget) continue;
-        candidate.triangles = mostWithinBudget(kFewestTriangles, most, budget, [&](int triangles) {
-            return candidate.bytes = ship(encoding, images, triangles);
-        }, best ? std::optional<int>(best->triangles) : std::nullopt);
+        candidate.triangles = mostWithinBudget(
+            kFewestTriangles, most, budget,
+            [&](int triangles) { return candidate.bytes = ship(encoding, images, triangles); },
+            best ? std::optional<int>(best->triangles) : std::nullopt);
         if (candidate.bytes > budget && best) continue;
         const double psnr = monitorPsnr(programs, scene, readBack(output, scene));
         const bool better = !best || (candidate.bytes <= budget && psnr > bestPsnr) || best->bytes > budget;
@@ -140,9 +142,10 @@ Shipped bestScale(gl::ProgramCache& programs, const fit::FitScene& scene, std::u
         best->triangles = kFewestTriangles;
     }
     const auto& images = textures.at(best->divisor, best->textureBytes);
-    best->choice = bestEncoding(programs, scene, budget, most, output, [&](const VertexEncoding& encoding, int triangles) {
-        return ship(encoding, images, triangles);
-    }, start, best->triangles);
+    best->choice = bestEncoding(
+        programs, scene, budget, most, output,
+        [&](const VertexEncoding& encoding, int triangles) { return ship(encoding, images, triangles); }, start,
+        best->triangles);
     best->triangles = best->choice.triangles;
     best->bytes = best->choice.bytes;
     return *best;
@@ -155,17 +158,17 @@ Quality scored(gl::ProgramCache& programs, const fit::FitScene& scene, const std
     q.bytes = shipped.bytes;
     q.files = {{output.filename().string(), shipped.bytes}};
     q.shipped = settings.dir.filename() / output.filename();
-    q.details = {{"triangles", candidate.faceCount()},
-                 {"texture_scale", 1.0 / shipped.divisor},
-                 {"texture_bytes", shipped.textureBytes},
-                 {"over_budget", shipped.bytes > budget},
-                 {"encoding", toJson(shipped.choice.encoding)},
-                 {"monitor_psnr", shipped.choice.monitorPsnr},
+    q.details = {{"triangles", candidate.faceCount()},          {"texture_scale", 1.0 / shipped.divisor},
+                 {"texture_bytes", shipped.textureBytes},       {"over_budget", shipped.bytes > budget},
+                 {"encoding", toJson(shipped.choice.encoding)}, {"monitor_psnr", shipped.choice.monitorPsnr},
                  {"encodings_tried", shipped.choice.tried}};
     const render::MeshRenderer renderer(candidate, scene.shading);
-    scoreHoldout(scene.holdout, [&](const render::Camera& camera, const render::RenderTarget& target) {
-        renderer.draw(programs, camera, target);
-    }, q);
+    scoreHoldout(
+        scene.holdout,
+        [&](const render::Camera& camera, const render::RenderTarget& target) {
+            renderer.draw(programs, camera, target);
+        },
+        q);
     if (settings.distance) q.distance = worldDistance(candidate, scene.reference, scene.frame, settings.surfaceSamples);
     return q;
 }
@@ -194,7 +197,8 @@ mesh::PolygonMesh decimateTextured(const mesh::PolygonMesh& triangles, int targe
     }
     // The vertices the kept triangles use, with their texture coordinates.
     std::vector<unsigned> remap(triangles.positions.size());
-    const size_t used = meshopt_optimizeVertexFetchRemap(remap.data(), kept.data(), kept.size(), triangles.positions.size());
+    const size_t used =
+        meshopt_optimizeVertexFetchRemap(remap.data(), kept.data(), kept.size(), triangles.positions.size());
     mesh::PolygonMesh out;
     out.sourcePath = triangles.sourcePath;
     out.materials = triangles.materials;
@@ -224,8 +228,9 @@ std::uintmax_t writeTexturedDecimation(const fit::FitScene& scene, mesh::Polygon
                                        const VertexEncoding& encoding, const std::filesystem::path& path) {
     const auto normals = encoding.normals ? mesh::shadingNormals(decimated) : std::vector<glm::vec3>{};
     decimated.positions = scene.frame.toWorld(decimated.positions);
-    return exporter::writeTexturedGlb(path, decimated, normals, images,
-                                      exporter::DracoBits{.position = encoding.positionBits, .normal = encoding.normalBits})
+    return exporter::writeTexturedGlb(
+               path, decimated, normals, images,
+               exporter::DracoBits{.position = encoding.positionBits, .normal = encoding.normalBits})
         .bytes;
 }
 
@@ -234,7 +239,8 @@ std::uintmax_t writeTexturedDecimation(const fit::FitScene& scene, mesh::Polygon
 std::uintmax_t writeWholeTextured(const fit::FitScene& scene, const std::filesystem::path& path) {
     std::uintmax_t textureBytes = 0;
     return writeTexturedDecimation(scene, decimateTextured(scene.reference, scene.reference.faceCount()),
-                                   ScaledTextures(*scene.reference.materials).at(1, textureBytes), VertexEncoding{}, path);
+                                   ScaledTextures(*scene.reference.materials).at(1, textureBytes), VertexEncoding{},
+                                   path);
 }
 
 Quality texturedDecimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
@@ -242,11 +248,12 @@ Quality texturedDecimationBaseline(gl::ProgramCache& programs, const fit::FitSce
     const auto output = settings.dir / "decimated.glb";
     Decimations decimations(scene.reference, decimateTextured);
     ScaledTextures textures(*scene.reference.materials);
-    const Shipped shipped = bestScale(programs, scene, budget, output, textures, {.positionBits = 14, .normals = true},
-                                      [&](const VertexEncoding& encoding, const auto& images, int triangles) {
-        throwIfStopRequested();
-        return writeTexturedDecimation(scene, decimations.at(triangles), images, encoding, output);
-    });
+    const Shipped shipped =
+        bestScale(programs, scene, budget, output, textures, {.positionBits = 14, .normals = true},
+                  [&](const VertexEncoding& encoding, const auto& images, int triangles) {
+                      throwIfStopRequested();
+                      return writeTexturedDecimation(scene, decimations.at(triangles), images, encoding, output);
+                  });
     return scored(programs, scene, output, shipped, budget, settings);
 }
 
@@ -269,11 +276,13 @@ std::optional<Quality> texturedGltfpackBaseline(gl::ProgramCache& programs, cons
     std::vector<std::string> flags{"-cc"};
     auto ship = [&](const VertexEncoding& encoding, const std::vector<exporter::EncodedImage>& images, int triangles) {
         if (auto bytes = imageBytes(images); bytes != writtenImages || encoding.normals != writtenNormals) {
-            exporter::writeTexturedGlb(input, world, encoding.normals ? normals : std::vector<glm::vec3>{}, images, /*draco=*/false);
+            exporter::writeTexturedGlb(input, world, encoding.normals ? normals : std::vector<glm::vec3>{}, images,
+                                       /*draco=*/false);
             writtenImages = std::move(bytes);
             writtenNormals = encoding.normals;
         }
-        return runGltfpack(*gltfpack, input, output, double(triangles) / double(scene.reference.faceCount()), encoding, flags);
+        return runGltfpack(*gltfpack, input, output, double(triangles) / double(scene.reference.faceCount()), encoding,
+                           flags);
     };
     const VertexEncoding start{.positionBits = 14, .normals = true, .normalBits = kGltfpackNormalBits};
     ScaledTextures textures(*scene.reference.materials);

@@ -71,9 +71,11 @@ mesh::PolygonMesh readBack(const std::filesystem::path& path, const fit::FitScen
 
 double monitorPsnr(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& candidate) {
     const render::MeshRenderer renderer(candidate, scene.shading);
-    return fit::score(scene.choosing(programs), [&](const render::Camera& camera, const render::RenderTarget& target) {
-               renderer.draw(programs, camera, target);
-           }).psnr;
+    return fit::score(scene.choosing(programs),
+                      [&](const render::Camera& camera, const render::RenderTarget& target) {
+                          renderer.draw(programs, camera, target);
+                      })
+        .psnr;
 }
 
 EncodedChoice bestEncoding(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget, int most,
@@ -87,7 +89,8 @@ EncodedChoice bestEncoding(gl::ProgramCache& programs, const fit::FitScene& scen
     auto attempt = [&](const VertexEncoding& encoding) {
         throwIfStopRequested();
         std::uintmax_t bytes = 0;
-        const int triangles = mostWithinBudget(kFewestTriangles, most, budget, [&](int n) { return bytes = ship(encoding, n); }, hint);
+        const int triangles = mostWithinBudget(
+            kFewestTriangles, most, budget, [&](int n) { return bytes = ship(encoding, n); }, hint);
         last = encoding;
         const double psnr = monitorPsnr(programs, scene, readBack(path, scene));
         nlohmann::json tried = toJson(encoding);

@@ -82,7 +82,8 @@ std::vector<glm::vec3> restrictedOrientation(const GraphLevel& fine, const std::
             sum[p] = q[size_t(v)];
             seen[p] = 1;
         } else {
-            const auto [mine, theirs] = closestDirections(sum[p], coarse.normals[p], q[size_t(v)], fine.normals[size_t(v)]);
+            const auto [mine, theirs] =
+                closestDirections(sum[p], coarse.normals[p], q[size_t(v)], fine.normals[size_t(v)]);
             sum[p] = mine + theirs;
         }
     }
@@ -115,7 +116,8 @@ std::pair<glm::vec3, glm::vec3> closestDirections(const glm::vec3& q0, const glm
     return closest;
 }
 
-LatticeStep latticeStep(const glm::vec3& oa, const glm::vec3& qa, const glm::vec3& na, const glm::vec3& ob, float scale) {
+LatticeStep latticeStep(const glm::vec3& oa, const glm::vec3& qa, const glm::vec3& na, const glm::vec3& ob,
+                        float scale) {
     const glm::vec3 d = ob - oa;
     return {int(std::lround(glm::dot(d, qa) / scale)), int(std::lround(glm::dot(d, glm::cross(na, qa)) / scale))};
 }
@@ -171,9 +173,9 @@ std::vector<glm::vec3> positionField(const std::vector<GraphLevel>& levels, cons
                 for (int k = level.offsets[size_t(v)]; k < level.offsets[size_t(v) + 1]; ++k) {
                     const int u = level.neighbors[size_t(k)];
                     const float w = level.weights[size_t(k)];
-                    const auto [mine, theirs] = closestLatticePoints(p, n, ql[size_t(v)], sum, level.positions[size_t(u)],
-                                                                     level.normals[size_t(u)], ql[size_t(u)], o[size_t(u)],
-                                                                     0.5f * (scale + level.scales[size_t(u)]));
+                    const auto [mine, theirs] = closestLatticePoints(
+                        p, n, ql[size_t(v)], sum, level.positions[size_t(u)], level.normals[size_t(u)], ql[size_t(u)],
+                        o[size_t(u)], 0.5f * (scale + level.scales[size_t(u)]));
                     sum = (mine * weightSum + theirs * w) / (weightSum + w);
                     sum -= n * glm::dot(n, sum - p);
                     weightSum += w;

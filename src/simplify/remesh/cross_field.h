@@ -19,8 +19,8 @@ namespace subdfit::simplify::remesh {
 // Gauss-Seidel sweeps per level: many where a level is small (cheap, and where the field finds
 // its shape), few on the large fine levels, which only settle what the coarser ones carried down.
 struct FieldSweeps {
-    int orientation = 24, position = 24;          // on levels of up to `smallLevel` samples
-    int fineOrientation = 4, finePosition = 6;    // on larger ones
+    int orientation = 24, position = 24;        // on levels of up to `smallLevel` samples
+    int fineOrientation = 4, finePosition = 6;  // on larger ones
     int smallLevel = 4096;
 };
 
@@ -42,6 +42,7 @@ std::pair<glm::vec3, glm::vec3> closestDirections(const glm::vec3& q0, const glm
 struct LatticeStep {
     int i = 0, j = 0;
 };
-LatticeStep latticeStep(const glm::vec3& oa, const glm::vec3& qa, const glm::vec3& na, const glm::vec3& ob, float scale);
+LatticeStep latticeStep(const glm::vec3& oa, const glm::vec3& qa, const glm::vec3& na, const glm::vec3& ob,
+                        float scale);
 
 }  // namespace subdfit::simplify::remesh

@@ -35,7 +35,9 @@ private:
     std::vector<int> parent_;
 };
 
-std::uint64_t edgeKey(int a, int b) { return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b)); }
+std::uint64_t edgeKey(int a, int b) {
+    return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
+}
 
 struct Triangle {
     std::array<int, 3> v;
@@ -51,7 +53,9 @@ void dropOverlaps(std::vector<Triangle>& triangles) {
         std::unordered_map<std::uint64_t, std::vector<int>> uses;
         for (int t = 0; t < int(triangles.size()); ++t)
             if (triangles[size_t(t)].alive)
-                for (int k = 0; k < 3; ++k) uses[edgeKey(triangles[size_t(t)].v[size_t(k)], triangles[size_t(t)].v[size_t((k + 1) % 3)])].push_back(t);
+                for (int k = 0; k < 3; ++k)
+                    uses[edgeKey(triangles[size_t(t)].v[size_t(k)], triangles[size_t(t)].v[size_t((k + 1) % 3)])]
+                        .push_back(t);
         bool changed = false;
         for (auto& [key, list] : uses) {
             const int a = int(key >> 32), b = int(std::uint32_t(key));
@@ -62,7 +66,8 @@ void dropOverlaps(std::vector<Triangle>& triangles) {
                 return false;
             };
             if (list.size() <= 1 || (list.size() == 2 && forward(list[0]) != forward(list[1]))) continue;
-            std::stable_sort(list.begin(), list.end(), [&](int x, int y) { return triangles[size_t(x)].support > triangles[size_t(y)].support; });
+            std::stable_sort(list.begin(), list.end(),
+                             [&](int x, int y) { return triangles[size_t(x)].support > triangles[size_t(y)].support; });
             const bool firstForward = forward(list[0]);
             bool partnerKept = false;
             for (size_t i = 1; i < list.size(); ++i) {
@@ -86,7 +91,9 @@ Polygons pairedIntoQuads(const std::vector<Triangle>& dual, const std::unordered
     std::unordered_map<std::uint64_t, std::vector<int>> edgeTriangles;
     for (int t = 0; t < int(dual.size()); ++t)
         if (dual[size_t(t)].alive)
-            for (int k = 0; k < 3; ++k) edgeTriangles[edgeKey(dual[size_t(t)].v[size_t(k)], dual[size_t(t)].v[size_t((k + 1) % 3)])].push_back(t);
+            for (int k = 0; k < 3; ++k)
+                edgeTriangles[edgeKey(dual[size_t(t)].v[size_t(k)], dual[size_t(t)].v[size_t((k + 1) % 3)])].push_back(
+                    t);
     struct Diagonal {
         float score;
         int t0, t1;
@@ -95,22 +102,27 @@ Polygons pairedIntoQuads(const std::vector<Triangle>& dual, const std::unordered
     std::vector<char> paired(dual.size(), 0);
     Polygons faces;
     auto pairUp = [&](std::vector<Diagonal>& diagonals) {
-        std::sort(diagonals.begin(), diagonals.end(), [](const Diagonal& x, const Diagonal& y) { return x.score != y.score ? x.score > y.score : x.key < y.key; });
+        std::sort(diagonals.begin(), diagonals.end(), [](const Diagonal& x, const Diagonal& y) {
+            return x.score != y.score ? x.score > y.score : x.key < y.key;
+        });
         for (const Diagonal& d : diagonals) {
             if (paired[size_t(d.t0)] || paired[size_t(d.t1)]) continue;
             paired[size_t(d.t0)] = paired[size_t(d.t1)] = 1;
             // t0 = (a, b, x) rotated so that it runs the diagonal a → b; t1 runs b → a to its y.
             const int a = int(d.key >> 32), b = int(std::uint32_t(d.key));
             std::array<int, 3> v0 = dual[size_t(d.t0)].v, v1 = dual[size_t(d.t1)].v;
-            while (!(v0[0] == a && v0[1] == b) && !(v0[0] == b && v0[1] == a)) std::rotate(v0.begin(), v0.begin() + 1, v0.end());
+            while (!(v0[0] == a && v0[1] == b) && !(v0[0] == b && v0[1] == a))
+                std::rotate(v0.begin(), v0.begin() + 1, v0.end());
             while (!(v1[0] == v0[1] && v1[1] == v0[0])) std::rotate(v1.begin(), v1.begin() + 1, v1.end());
             faces.push_back({v0[0], v1[2], v0[1], v0[2]});
         }
     };
     std::vector<Diagonal> diagonals;
     for (const auto& [key, list] : edgeTriangles)
-        if (const auto votes = diagonalVotes.find(key); list.size() == 2 && votes != diagonalVotes.end() && votes->second > 0)
-            diagonals.push_back({float(dual[size_t(list[0])].support + dual[size_t(list[1])].support), list[0], list[1], key});
+        if (const auto votes = diagonalVotes.find(key);
+            list.size() == 2 && votes != diagonalVotes.end() && votes->second > 0)
+            diagonals.push_back(
+                {float(dual[size_t(list[0])].support + dual[size_t(list[1])].support), list[0], list[1], key});
     pairUp(diagonals);
     diagonals.clear();
     auto length = [&](int a, int b) { return glm::distance(regionPosition[size_t(a)], regionPosition[size_t(b)]); };
@@ -136,8 +148,10 @@ Polygons pairedIntoQuads(const std::vector<Triangle>& dual, const std::unordered
 ExtractedMesh extractQuads(const mesh::PolygonMesh& triangles, const GraphLevel& finest,
                            const std::vector<glm::vec3>& orientation, const std::vector<glm::vec3>& position) {
     const int n = finest.size();
-    auto step = [&](int a, int b) { return latticeStep(position[size_t(a)], orientation[size_t(a)], finest.normals[size_t(a)], position[size_t(b)],
-                                                        0.5f * (finest.scales[size_t(a)] + finest.scales[size_t(b)])); };
+    auto step = [&](int a, int b) {
+        return latticeStep(position[size_t(a)], orientation[size_t(a)], finest.normals[size_t(a)], position[size_t(b)],
+                           0.5f * (finest.scales[size_t(a)] + finest.scales[size_t(b)]));
+    };
 
     // The regions: samples joined through neighbours on the same lattice point.
     DisjointSets sets(n);
@@ -159,7 +173,8 @@ ExtractedMesh extractQuads(const mesh::PolygonMesh& triangles, const GraphLevel&
             const int b = finest.neighbors[size_t(k)];
             if (region[size_t(a)] == region[size_t(b)]) continue;
             const LatticeStep s = step(a, b);
-            diagonalVotes[edgeKey(region[size_t(a)], region[size_t(b)])] += std::abs(s.i) == 1 && std::abs(s.j) == 1 ? 1 : -1;
+            diagonalVotes[edgeKey(region[size_t(a)], region[size_t(b)])] +=
+                std::abs(s.i) == 1 && std::abs(s.j) == 1 ? 1 : -1;
         }
 
     std::vector<Triangle> dual;
@@ -177,7 +192,8 @@ ExtractedMesh extractQuads(const mesh::PolygonMesh& triangles, const GraphLevel&
     dropOverlaps(dual);
 
     // Each region's vertex at its mean lattice point.
-    std::vector<glm::vec3> regionPosition(size_t(regions), glm::vec3(0.0f)), normalSum(size_t(regions), glm::vec3(0.0f));
+    std::vector<glm::vec3> regionPosition(size_t(regions), glm::vec3(0.0f)),
+        normalSum(size_t(regions), glm::vec3(0.0f));
     std::vector<float> weight(size_t(regions), 0.0f);
     for (int a = 0; a < n; ++a) {
         const float w = std::max(finest.areas[size_t(a)], 1e-30f);
@@ -196,9 +212,11 @@ ExtractedMesh extractQuads(const mesh::PolygonMesh& triangles, const GraphLevel&
     std::unordered_map<std::uint64_t, int> inputEdgeUses;
     for (int f = 0; f < triangles.faceCount(); ++f)
         for (int k = 0; k < 3; ++k)
-            ++inputEdgeUses[edgeKey(triangles.faceIndices[size_t(3 * f + k)], triangles.faceIndices[size_t(3 * f + (k + 1) % 3)])];
+            ++inputEdgeUses[edgeKey(triangles.faceIndices[size_t(3 * f + k)],
+                                    triangles.faceIndices[size_t(3 * f + (k + 1) % 3)])];
     for (const auto& [key, uses] : inputEdgeUses)
-        if (uses != 2) inside[size_t(region[size_t(key >> 32)])] = inside[size_t(region[size_t(std::uint32_t(key))])] = 0;
+        if (uses != 2)
+            inside[size_t(region[size_t(key >> 32)])] = inside[size_t(region[size_t(std::uint32_t(key))])] = 0;
     for (int r : copiedFrom) inside.push_back(inside[size_t(r)]);
     closeHoles(faces, inside);
 

@@ -15,7 +15,7 @@
 namespace subdfit::simplify::remesh {
 
 struct ExtractedMesh {
-    mesh::PolygonMesh mesh;    // positions: each region's mean lattice point
+    mesh::PolygonMesh mesh;          // positions: each region's mean lattice point
     std::vector<glm::vec3> normals;  // each vertex's mean sample normal
 };
 

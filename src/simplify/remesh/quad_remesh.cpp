@@ -18,32 +18,17 @@ namespace {
 constexpr float kSamplesPerEdge = 3.0f;
 constexpr double kCountTolerance = 0.05;
 
-// A third of each triangle's area to each of its vertices.
-std::vector<double> vertexAreas(const mesh::PolygonMesh& triangles) {
-    std::vector<double> areas(triangles.positions.size(), 0.0);
+// The edge length that makes the quads, one vertex to each edge length squared of surface,
+// number about `vertices`.
+float evenEdgeLength(const mesh::PolygonMesh& triangles, int vertices) {
+    double area = 0.0;
     for (size_t c = 0; c + 2 < triangles.faceIndices.size(); c += 3) {
-        const int* v = &triangles.faceIndices[c];
-        const glm::vec3 p0 = triangles.positions[size_t(v[0])];
-        const double third = double(glm::length(glm::cross(triangles.positions[size_t(v[1])] - p0,
-                                                           triangles.positions[size_t(v[2])] - p0))) / 6.0;
-        for (int k = 0; k < 3; ++k) areas[size_t(v[k])] += third;
+        const glm::vec3 p0 = triangles.positions[size_t(triangles.faceIndices[c])];
+        area += 0.5 * double(glm::length(glm::cross(triangles.positions[size_t(triangles.faceIndices[c + 1])] - p0,
+                                                    triangles.positions[size_t(triangles.faceIndices[c + 2])] - p0)));
     }
-    return areas;
-}
-
-// The edge length at each vertex: `relative` (or even) scaled so that the quads, one vertex to
-// each edge length squared of surface, number about `vertices`.
-std::vector<float> edgeLengths(const mesh::PolygonMesh& triangles, const std::vector<float>& relative, int vertices) {
-    const std::vector<double> areas = vertexAreas(triangles);
-    std::vector<float> lengths(areas.size(), 1.0f);
-    if (relative.size() == lengths.size())
-        for (size_t v = 0; v < lengths.size(); ++v) lengths[v] = std::isfinite(relative[v]) && relative[v] > 0.0f ? relative[v] : 1.0f;
-    double quads = 0.0;  // at factor 1
-    for (size_t v = 0; v < areas.size(); ++v) quads += areas[v] / (double(lengths[v]) * lengths[v]);
-    if (!(quads > 0.0)) throw fileError(triangles.sourcePath, "has no surface to remesh");
-    const float factor = float(std::sqrt(quads / double(vertices)));
-    for (float& length : lengths) length *= factor;
-    return lengths;
+    if (!(area > 0.0)) throw fileError(triangles.sourcePath, "has no surface to remesh");
+    return float(std::sqrt(area / double(vertices)));
 }
 
 }  // namespace
@@ -55,14 +40,12 @@ double QuadRemesh::quadShare() const {
 
 QuadRemesh quadRemesh(const mesh::PolygonMesh& triangles, const QuadRemeshOptions& options) {
     if (options.vertices < 8) throw Error("a quad remesh needs at least 8 vertices");
-    std::vector<float> lengths = edgeLengths(triangles, options.relativeEdge, options.vertices);
-    const float longestEdge = *std::max_element(lengths.begin(), lengths.end());
-    for (float& length : lengths) length /= kSamplesPerEdge;
-    const mesh::PolygonMesh samples = splitLongEdges(triangles, lengths);
-    for (float& length : lengths) length *= kSamplesPerEdge;
-    std::vector<GraphLevel> levels = surfaceHierarchy(samples, std::move(lengths));
+    const float edge = evenEdgeLength(triangles, options.vertices);
+    const mesh::PolygonMesh samples = splitLongEdges(triangles, edge / kSamplesPerEdge);
+    std::vector<GraphLevel> levels = surfaceHierarchy(samples, std::vector<float>(samples.positions.size(), edge));
     const std::vector<glm::vec3> orientation = orientationField(levels, options.sweeps);
-    ExtractedMesh extracted = extractQuads(samples, levels[0], orientation, positionField(levels, orientation, options.sweeps));
+    ExtractedMesh extracted =
+        extractQuads(samples, levels[0], orientation, positionField(levels, orientation, options.sweeps));
     // Singularities and the seams where spacing changes lose some vertices: once, the spacing
     // that makes up for it.
     const double missing = double(options.vertices) / std::max(extracted.mesh.vertexCount(), 1);
@@ -73,7 +56,7 @@ QuadRemesh quadRemesh(const mesh::PolygonMesh& triangles, const QuadRemeshOption
     }
     if (extracted.mesh.faceCount() == 0 || !isManifold(extracted.mesh))
         throw fileError(triangles.sourcePath, "its quad remesh is not a manifold mesh");
-    return {std::move(extracted.mesh), std::move(extracted.normals), longestEdge};
+    return {std::move(extracted.mesh), std::move(extracted.normals), edge};
 }
 
 }  // namespace subdfit::simplify::remesh

@@ -15,16 +15,13 @@ namespace subdfit::simplify::remesh {
 
 struct QuadRemeshOptions {
     int vertices = 1000;  // about how many the remesh has
-    // The quads' edge length wanted at each vertex of the input, up to a common factor (the count
-    // sets it): where detail needs vertices closer. Empty: even.
-    std::vector<float> relativeEdge;
     FieldSweeps sweeps{};
 };
 
 struct QuadRemesh {
     mesh::PolygonMesh mesh;          // quads, a few triangles and small polygons
     std::vector<glm::vec3> normals;  // per vertex, the input's there
-    float longestEdge = 0.0f;        // the longest edge length asked anywhere
+    float edgeLength = 0.0f;         // asked of the quads
     double quadShare() const;        // of the faces
 };
 

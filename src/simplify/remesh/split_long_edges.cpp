@@ -9,22 +9,18 @@
 namespace subdfit::simplify::remesh {
 
 mesh::PolygonMesh splitLongEdges(const mesh::PolygonMesh& triangles, float longest) {
-    std::vector<float> lengths(triangles.positions.size(), longest);
-    return splitLongEdges(triangles, lengths);
-}
-
-mesh::PolygonMesh splitLongEdges(const mesh::PolygonMesh& triangles, std::vector<float>& longest) {
     mesh::PolygonMesh mesh = triangles;
     for (int pass = 0; pass < 32; ++pass) {
         std::unordered_map<std::uint64_t, int> midpoint;  // split edge → its new vertex
-        auto key = [](int a, int b) { return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b)); };
+        auto key = [](int a, int b) {
+            return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
+        };
         for (size_t c = 0; c < mesh.faceIndices.size(); ++c) {
             const int a = mesh.faceIndices[c], b = mesh.faceIndices[c - c % 3 + (c + 1) % 3];
-            const float limit = std::min(longest[size_t(a)], longest[size_t(b)]);
-            if (glm::distance(mesh.positions[size_t(a)], mesh.positions[size_t(b)]) > limit && !midpoint.count(key(a, b))) {
+            if (glm::distance(mesh.positions[size_t(a)], mesh.positions[size_t(b)]) > longest &&
+                !midpoint.count(key(a, b))) {
                 midpoint[key(a, b)] = mesh.vertexCount();
                 mesh.positions.push_back(0.5f * (mesh.positions[size_t(a)] + mesh.positions[size_t(b)]));
-                longest.push_back(0.5f * (longest[size_t(a)] + longest[size_t(b)]));
             }
         }
         if (midpoint.empty()) break;

@@ -9,8 +9,4 @@ namespace subdfit::simplify::remesh {
 // 2, 3 or 4 its split edges make (the mesh stays conforming), until none is longer.
 mesh::PolygonMesh splitLongEdges(const mesh::PolygonMesh& triangles, float longest);
 
-// The same with a longest length per vertex (an edge may be as long as the shorter of its ends'),
-// which a new vertex takes as the mean of its edge's: `longest` grows with the mesh.
-mesh::PolygonMesh splitLongEdges(const mesh::PolygonMesh& triangles, std::vector<float>& longest);
-
 }  // namespace subdfit::simplify::remesh

@@ -86,7 +86,8 @@ GraphLevel coarser(GraphLevel& fine) {
             const int pa = fine.parent[size_t(a)], pb = fine.parent[size_t(fine.neighbors[size_t(k)])];
             if (pa != pb) edges.push_back({pa, pb, fine.weights[size_t(k)]});
         }
-    std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
+    std::sort(edges.begin(), edges.end(),
+              [](const Edge& x, const Edge& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
     coarse.offsets.assign(size_t(coarse.size()) + 1, 0);
     for (size_t e = 0; e < edges.size(); ++e) {
         if (e > 0 && edges[e].a == edges[e - 1].a && edges[e].b == edges[e - 1].b) {

@@ -27,6 +27,7 @@ struct GraphLevel {
 // Level 0 is `triangles`' vertices and edges, with `scales` (one per vertex); each next level
 // merges matched pairs of neighbours (about half as many samples, their mean scale) until at
 // most `coarsest` are left or merging stalls.
-std::vector<GraphLevel> surfaceHierarchy(const mesh::PolygonMesh& triangles, std::vector<float> scales, int coarsest = 64);
+std::vector<GraphLevel> surfaceHierarchy(const mesh::PolygonMesh& triangles, std::vector<float> scales,
+                                         int coarsest = 64);
 
 }  // namespace subdfit::simplify::remesh

@@ -26,7 +26,8 @@ Bytes read(const std::string& path) {
 void write(const std::string& path, Bytes bytes) {
     const std::uint64_t sum = subdfit::hash64({reinterpret_cast<const char*>(bytes.data()), bytes.size() - 8});
     std::memcpy(bytes.data() + bytes.size() - 8, &sum, 8);
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
 std::uint32_t u32(const Bytes& b, std::size_t at) {

@@ -32,8 +32,8 @@ int main(int argc, char** argv) {
     mesh.Start(4);
     const int pos = mesh.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
     for (int f = 0; f < 4; ++f)
-        mesh.SetAttributeValuesForFace(pos, draco::FaceIndex(f), kCorners[kFaces[f][0]],
-                                       kCorners[kFaces[f][1]], kCorners[kFaces[f][2]]);
+        mesh.SetAttributeValuesForFace(pos, draco::FaceIndex(f), kCorners[kFaces[f][0]], kCorners[kFaces[f][1]],
+                                       kCorners[kFaces[f][2]]);
     draco::EncoderBuffer meshBuffer;
     if (!encoder.EncodeMeshToBuffer(*mesh.Finalize(), &meshBuffer).ok()) return 1;
     save(dir + "/tetrahedron.drc", meshBuffer.data(), meshBuffer.size());

@@ -30,7 +30,8 @@ Bytes heights(std::uint64_t T, std::uint64_t nodes, std::uint64_t zeros) {
     return std::move(out.bytes());
 }
 
-void write(const std::string& path, const std::vector<std::pair<const char*, Bytes>>& sections, std::uint32_t padTo = 0) {
+void write(const std::string& path, const std::vector<std::pair<const char*, Bytes>>& sections,
+           std::uint32_t padTo = 0) {
     ByteWriter file;
     file.putBytes({reinterpret_cast<const unsigned char*>("SUBD"), 4});
     file.put<std::uint16_t>(5);
@@ -46,7 +47,8 @@ void write(const std::string& path, const std::vector<std::pair<const char*, Byt
     }
     const auto& bytes = file.bytes();
     file.put<std::uint64_t>(hash64({reinterpret_cast<const char*>(bytes.data()), bytes.size()}));
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(file.bytes().data()), std::streamsize(file.bytes().size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(file.bytes().data()), std::streamsize(file.bytes().size()));
 }
 
 int main(int argc, char** argv) {
@@ -55,7 +57,8 @@ int main(int argc, char** argv) {
     write(dir + "/plain_2m_quads.subd", {{"CAGE", test::plainGridCage(1415)}});
     write(dir + "/one_node_at_resolution_64.subd", {{"CAGE", test::plainGridCage(141)}, {"DISP", heights(64, 1, 64)}});
     const std::uint64_t side = 1000 * 2 + 1;
-    write(dir + "/heights_on_1m_faces.subd", {{"CAGE", test::plainGridCage(1000)}, {"DISP", heights(2, side * side, side * side)}});
+    write(dir + "/heights_on_1m_faces.subd",
+          {{"CAGE", test::plainGridCage(1000)}, {"DISP", heights(2, side * side, side * side)}});
     Bytes bomb = test::plainGridCage(2);
     bomb.resize(bomb.size() + (std::size_t(60) << 20), 0);  // within the section limit, far beyond a 4-face cage
     write(dir + "/zstd_bomb.subd", {{"CAGE", bomb}});
