@@ -16,6 +16,7 @@ namespace {
 
 // Samples per quad edge the fields need: fewer, and a quad's region may hold no sample.
 constexpr float kSamplesPerEdge = 3.0f;
+// A remesh further than this from the vertices asked is made once more at a corrected spacing.
 constexpr double kCountTolerance = 0.05;
 
 // The edge length that makes the quads, one vertex to each edge length squared of surface,
@@ -40,18 +41,19 @@ double QuadRemesh::quadShare() const {
 
 QuadRemesh quadRemesh(const mesh::PolygonMesh& triangles, const QuadRemeshOptions& options) {
     if (options.vertices < 8) throw Error("a quad remesh needs at least 8 vertices");
-    const float edge = evenEdgeLength(triangles, options.vertices);
+    float edge = evenEdgeLength(triangles, options.vertices);
     const mesh::PolygonMesh samples = splitLongEdges(triangles, edge / kSamplesPerEdge);
     std::vector<GraphLevel> levels = surfaceHierarchy(samples, std::vector<float>(samples.positions.size(), edge));
     const std::vector<glm::vec3> orientation = orientationField(levels, options.sweeps);
     ExtractedMesh extracted =
         extractQuads(samples, levels[0], orientation, positionField(levels, orientation, options.sweeps));
-    // Singularities and the seams where spacing changes lose some vertices: once, the spacing
-    // that makes up for it.
+    // The field's singularities and the regions' ragged edges lose some vertices: once, the
+    // spacing that makes up for it.
     const double missing = double(options.vertices) / std::max(extracted.mesh.vertexCount(), 1);
     if (std::abs(missing - 1.0) > kCountTolerance) {
+        edge /= float(std::sqrt(missing));
         for (GraphLevel& level : levels)
-            for (float& scale : level.scales) scale /= float(std::sqrt(missing));
+            for (float& scale : level.scales) scale = edge;
         extracted = extractQuads(samples, levels[0], orientation, positionField(levels, orientation, options.sweeps));
     }
     if (extracted.mesh.faceCount() == 0 || !isManifold(extracted.mesh))
