@@ -126,6 +126,82 @@ void FitRun::advance(bool measureLoss) {
     fitSeconds_ += secondsSince(began);
 }
 
+// The schedule judges a step by its loss on the monitor views, the start included: the
+// kept state is never worse than where the stage began. Returns why the stage ends, if it does.
+std::optional<StopReason> FitRun::monitor(StepSchedule& schedule, const FitHooks& hooks) {
+    const double monitorLoss = score(*fitter_, scene_.monitor).loss;
+    monitored_.push_back({step(), fitSecondsBefore_ + fitSeconds_, monitorLoss});
+    const bool first = schedule_.stageStart < 0;
+    const StepSchedule::Decision decision = schedule.record(monitorLoss, step());
+    if (decision.best) schedule_.bestTheta = readTheta(*fitter_);
+    if (first) schedule_.startTheta = readTheta(*fitter_);
+    if (decision.action == StepSchedule::Action::Halve) {
+        // Clearly worse than the best (not only noisier): back to the best state, with the
+        // smaller step. A start that was already close (a limit-interpolated cage, baked
+        // maps) is not left where too large a step took it, which can take hundreds of steps
+        // to come back from.
+        if (monitorLoss > kRestoreAbove * schedule_.bestLoss) restoreBest();
+        applyStep();
+    }
+    if (!schedule_.probationOver && step() - schedule_.stageStart >= probationSteps())
+        if (const auto ended = endProbation(schedule, hooks)) return ended;
+    const int lastJudged = judged_.stageStart == schedule_.stageStart ? judged_.lastJudged : schedule_.stageStart;
+    if (hooks.judge && schedule_.probationOver && step() - lastJudged >= kJudgeEvery &&
+        judgeTheBest(hooks) >= kJudgedWorse) {
+        takeTheJudgedBest();
+        if (hooks.note)
+            hooks.note("the monitor's best has not improved on the judging views in " +
+                       std::to_string(step() - judged_.step) + " steps: the stage stops (stop_reason converged)");
+        return StopReason::Converged;
+    }
+    if (decision.action == StepSchedule::Action::Converged) return StopReason::Converged;
+    return std::nullopt;
+}
+
+// The end of the stage's probation: whether the steps pay, and if not, why the stage ends.
+std::optional<StopReason> FitRun::endProbation(StepSchedule& schedule, const FitHooks& hooks) {
+    schedule_.probationOver = true;
+    const StepSchedule::Verdict verdict = schedule.probation();
+    if (verdict == StepSchedule::Verdict::StepTooLarge) {
+        const int stageSteps = step() - schedule_.stageStart;
+        restoreBest();
+        schedule.retryFromBest(step());
+        applyStep();
+        if (hooks.note)
+            hooks.note("the start gained and then lost it in " + std::to_string(stageSteps) +
+                       " steps: the step is halved, on probation again from the best state");
+    } else if (verdict == StepSchedule::Verdict::Paying && schedule_.probationStopsOnlyARise) {
+        // A start that lay flat must have gained by kLateProbation times as many steps.
+        schedule_.probationStopsOnlyARise = false;
+        schedule_.probationAsksAGain = true;
+        schedule_.probationOver = false;
+    } else if (verdict == StepSchedule::Verdict::Paying && hooks.judge && judgeTheBest(hooks) > 0) {
+        // The monitor's gain is not the judge's: the stage ends where it started.
+        takeTheJudgedBest();
+        if (hooks.note)
+            hooks.note("the monitor's gain in " + std::to_string(step() - schedule_.stageStart) +
+                       " steps is a loss on the judging views: the stage stops (stop_reason no_gain)");
+        return StopReason::NoGain;
+    } else if (verdict == StepSchedule::Verdict::NoGain) {
+        // A best found on a first probation is the noise's pick (the monitor views are
+        // few): the stage ends where it started, never below it on other views. The later
+        // one keeps its best, as a stage that converged would.
+        if (!schedule_.probationAsksAGain) {
+            schedule_.bestTheta = schedule_.startTheta;
+            schedule_.bestLoss = schedule_.stageLosses.front();
+            schedule_.bestStep = schedule_.stageStart;
+        }
+        restoreBest();
+        if (hooks.note)
+            hooks.note((schedule_.probationStopsOnlyARise ? "the steps made the start worse in "
+                                                          : "no gain on the start in ") +
+                       std::to_string(step() - schedule_.stageStart) +
+                       " steps, and none likely: the stage stops (stop_reason no_gain)");
+        return StopReason::NoGain;
+    }
+    return std::nullopt;
+}
+
 StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, const FitHooks& hooks) {
     until = std::min(until, options_.steps);
     const int first = step();
@@ -133,79 +209,9 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
     const int reportEvery = std::max(1, options_.steps / 50);
     const bool plateau = options_.schedule == Schedule::Plateau;
     StepSchedule schedule(schedule_, windowDoublings_);
-    // The schedule judges a step by its loss on the monitor views, the start included: the
-    // kept state is never worse than where the stage began. Returns why the stage ends, if it does.
-    auto monitor = [&]() -> std::optional<StopReason> {
-        const double monitorLoss = score(*fitter_, scene_.monitor).loss;
-        monitored_.push_back({step(), fitSecondsBefore_ + fitSeconds_, monitorLoss});
-        const bool first = schedule_.stageStart < 0;
-        const StepSchedule::Decision decision = schedule.record(monitorLoss, step());
-        if (decision.best) schedule_.bestTheta = readTheta(*fitter_);
-        if (first) schedule_.startTheta = readTheta(*fitter_);
-        if (decision.action == StepSchedule::Action::Halve) {
-            // Clearly worse than the best (not only noisier): back to the best state, with the
-            // smaller step. A start that was already close (a limit-interpolated cage, baked
-            // maps) is not left where too large a step took it, which can take hundreds of steps
-            // to come back from.
-            if (monitorLoss > kRestoreAbove * schedule_.bestLoss) restoreBest();
-            applyStep();
-        }
-        if (!schedule_.probationOver && step() - schedule_.stageStart >= probationSteps()) {
-            schedule_.probationOver = true;
-            const StepSchedule::Verdict verdict = schedule.probation();
-            if (verdict == StepSchedule::Verdict::StepTooLarge) {
-                const int stageSteps = step() - schedule_.stageStart;
-                restoreBest();
-                schedule.retryFromBest(step());
-                applyStep();
-                if (hooks.note)
-                    hooks.note("the start gained and then lost it in " + std::to_string(stageSteps) +
-                               " steps: the step is halved, on probation again from the best state");
-            } else if (verdict == StepSchedule::Verdict::Paying && schedule_.probationStopsOnlyARise) {
-                // A start that lay flat must have gained by kLateProbation times as many steps.
-                schedule_.probationStopsOnlyARise = false;
-                schedule_.probationAsksAGain = true;
-                schedule_.probationOver = false;
-            } else if (verdict == StepSchedule::Verdict::Paying && hooks.judge && judgeTheBest(hooks) > 0) {
-                // The monitor's gain is not the judge's: the stage ends where it started.
-                takeTheJudgedBest();
-                if (hooks.note)
-                    hooks.note("the monitor's gain in " + std::to_string(step() - schedule_.stageStart) +
-                               " steps is a loss on the judging views: the stage stops (stop_reason no_gain)");
-                return StopReason::NoGain;
-            } else if (verdict == StepSchedule::Verdict::NoGain) {
-                // A best found on a first probation is the noise's pick (the monitor views are
-                // few): the stage ends where it started, never below it on other views. The later
-                // one keeps its best, as a stage that converged would.
-                if (!schedule_.probationAsksAGain) {
-                    schedule_.bestTheta = schedule_.startTheta;
-                    schedule_.bestLoss = schedule_.stageLosses.front();
-                    schedule_.bestStep = schedule_.stageStart;
-                }
-                restoreBest();
-                if (hooks.note)
-                    hooks.note((schedule_.probationStopsOnlyARise ? "the steps made the start worse in "
-                                                                  : "no gain on the start in ") +
-                               std::to_string(step() - schedule_.stageStart) +
-                               " steps, and none likely: the stage stops (stop_reason no_gain)");
-                return StopReason::NoGain;
-            }
-        }
-        const int lastJudged = judged_.stageStart == schedule_.stageStart ? judged_.lastJudged : schedule_.stageStart;
-        if (hooks.judge && schedule_.probationOver && step() - lastJudged >= kJudgeEvery &&
-            judgeTheBest(hooks) >= kJudgedWorse) {
-            takeTheJudgedBest();
-            if (hooks.note)
-                hooks.note("the monitor's best has not improved on the judging views in " +
-                           std::to_string(step() - judged_.step) + " steps: the stage stops (stop_reason converged)");
-            return StopReason::Converged;
-        }
-        if (decision.action == StepSchedule::Action::Converged) return StopReason::Converged;
-        return std::nullopt;
-    };
     if (plateau && schedule_.bestStep < 0) {
         applyStep();
-        monitor();
+        monitor(schedule, hooks);
     }
     stopReason_ = StopReason::Reached;
     while (step() < until) {
@@ -224,7 +230,7 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
         // On probation the monitor looks more often: a start that cannot pay is let go early.
         if (plateau &&
             taken % (schedule_.probationOver || schedule_.probationAsksAGain ? monitorEvery_ : kProbationEvery) == 0)
-            if (const auto ended = monitor()) {
+            if (const auto ended = monitor(schedule, hooks)) {
                 stopReason_ = *ended;
                 break;
             }

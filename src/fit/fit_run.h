@@ -161,6 +161,9 @@ private:
     void takeTheJudgedBest();                    // the judge's lowest as the stage's best, restored
     void endJudgedStage(const FitHooks& hooks);  // the stage's end, judged
     int probationSteps() const;                  // of the stage under way
+    // The monitor views' loss now, recorded into `schedule`, and why the stage ends, if it does.
+    std::optional<StopReason> monitor(StepSchedule& schedule, const FitHooks& hooks);
+    std::optional<StopReason> endProbation(StepSchedule& schedule, const FitHooks& hooks);
     StopReason stopReason_ = StopReason::Reached;
     int monitorEvery_;
     int windowDoublings_ = StepSchedule::kMostWindowDoublings;
