@@ -19,6 +19,7 @@
 #include "export/subd_format.h"
 #include "mesh/input_limits.h"
 #include "mesh/mesh_validation.h"
+#include "util/disjoint_sets.h"
 #include "util/error.h"
 
 namespace subdfit::exporter {
@@ -308,12 +309,7 @@ void polygonsFromTriangles(const std::vector<int>& corners, std::span<const unsi
     auto from = [&](size_t t, int k) { return corners[3 * t + size_t(k)]; };
     auto to = [&](size_t t, int k) { return corners[3 * t + size_t((k + 1) % 3)]; };
 
-    std::vector<int> root(triangles);
-    std::iota(root.begin(), root.end(), 0);
-    auto find = [&](int t) {
-        while (root[size_t(t)] != t) t = root[size_t(t)] = root[size_t(root[size_t(t)])];
-        return t;
-    };
+    DisjointSets polygons{int(triangles)};  // a polygon's root is its first triangle
     std::unordered_map<std::uint64_t, int> interiorEdges;
     for (size_t t = 0; t < triangles; ++t) {
         if (interior[t] >= 7) throw Error(what + ": bad polygon mark");
@@ -324,12 +320,11 @@ void polygonsFromTriangles(const std::vector<int>& corners, std::span<const unsi
     for (const auto& [key, t] : interiorEdges) {
         const auto twin = interiorEdges.find(edgeKey(int(key & 0xffffffffu), int(key >> 32)));
         if (twin == interiorEdges.end()) throw Error(what + ": an interior edge without its twin");
-        const int a = find(t), b = find(twin->second);
-        root[size_t(std::max(a, b))] = std::min(a, b);  // a polygon's root is its first triangle
+        polygons.join(t, twin->second);
     }
     // Each polygon's boundary as vertex -> next vertex, then walked from its start.
     std::vector<std::vector<size_t>> members(triangles);
-    for (size_t t = 0; t < triangles; ++t) members[size_t(find(int(t)))].push_back(t);
+    for (size_t t = 0; t < triangles; ++t) members[size_t(polygons.find(int(t)))].push_back(t);
     std::unordered_map<int, int> next;
     for (size_t first = 0; first < triangles; ++first) {
         if (members[first].empty()) continue;

@@ -3,6 +3,8 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "util/disjoint_sets.h"
+
 namespace subdfit::simplify::remesh {
 namespace {
 
@@ -29,25 +31,20 @@ struct Corners {
 std::vector<int> splitFans(Polygons& faces, int vertexCount) {
     const Corners corners(faces);
     const int n = int(corners.face.size());
-    std::vector<int> fan(static_cast<size_t>(n));
-    std::iota(fan.begin(), fan.end(), 0);
-    auto find = [&](int c) {
-        while (fan[size_t(c)] != c) c = fan[size_t(c)] = fan[size_t(fan[size_t(c)])];
-        return c;
-    };
+    DisjointSets fans(n);
     // A corner at v and the corner at v of the face across the edge entering it are one fan.
     for (int c = 0; c < n; ++c) {
         const auto& f = faces[size_t(corners.face[size_t(c)])];
         const int k = corners.index[size_t(c)];
         const int v = f[size_t(k)], previous = f[(size_t(k) + f.size() - 1) % f.size()];
         const auto across = corners.starting.find(directedKey(v, previous));
-        if (across != corners.starting.end()) fan[size_t(find(c))] = find(across->second);
+        if (across != corners.starting.end()) fans.join(c, across->second);
     }
     std::vector<int> firstFan(size_t(vertexCount), -1), copied;
     std::unordered_map<int, int> vertexOfFan;
     for (int c = 0; c < n; ++c) {
         int& v = faces[size_t(corners.face[size_t(c)])][size_t(corners.index[size_t(c)])];
-        const int root = find(c);
+        const int root = fans.find(c);
         if (firstFan[size_t(v)] < 0) firstFan[size_t(v)] = root;
         if (firstFan[size_t(v)] == root) continue;
         const auto [it, added] = vertexOfFan.emplace(root, vertexCount + int(copied.size()));

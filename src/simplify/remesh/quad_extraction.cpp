@@ -11,6 +11,7 @@
 
 #include "simplify/remesh/cross_field.h"
 #include "simplify/remesh/polygon_repair.h"
+#include "util/disjoint_sets.h"
 
 namespace subdfit::simplify::remesh {
 namespace {
@@ -18,22 +19,6 @@ namespace {
 // Two leftover triangles make a quad across an edge at least this long against their others (a
 // square's diagonal is 1.41 its sides; a flat rhombus's short diagonal is less than 1).
 constexpr float kShortestDiagonal = 1.0f;
-
-class DisjointSets {
-public:
-    explicit DisjointSets(int n) : parent_(size_t(n)) { std::iota(parent_.begin(), parent_.end(), 0); }
-    int find(int x) {
-        while (parent_[size_t(x)] != x) x = parent_[size_t(x)] = parent_[size_t(parent_[size_t(x)])];
-        return x;
-    }
-    void join(int a, int b) {
-        a = find(a), b = find(b);
-        if (a != b) parent_[size_t(std::max(a, b))] = std::min(a, b);
-    }
-
-private:
-    std::vector<int> parent_;
-};
 
 std::uint64_t edgeKey(int a, int b) {
     return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
