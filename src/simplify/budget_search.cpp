@@ -430,17 +430,51 @@ void fewerPositionBits(const SearchInputs& in, Findings& found, const Keep& keep
     }
 }
 
+// How a kind of asset's bytes grow with its faces, bytes ~ faces^exponent: from the two most
+// faces of the same maps and appearance tried at one precision. Positions cost less a vertex the
+// denser the cage (their prediction improves); connectivity and maps grow in proportion. 1
+// (proportional: a growth that undershoots, never overshoots) where unmeasured.
+double bytesExponent(const std::vector<BudgetCandidate>& tried, const BudgetCandidate& kind) {
+    // By position bits: the two most faces (most, next).
+    std::map<int, std::pair<const BudgetCandidate*, const BudgetCandidate*>> largest;
+    for (const BudgetCandidate& c : tried) {
+        const bool same = c.maps == kind.maps && c.mapResolution == kind.mapResolution && c.mapBits == kind.mapBits &&
+                          c.appearanceResolution == kind.appearanceResolution &&
+                          c.appearanceAtlas == kind.appearanceAtlas && c.bytes > 0;
+        if (!same) continue;
+        auto& [most, next] = largest[c.positionBits];
+        if (!most || c.faces > most->faces) {
+            next = most;
+            most = &c;
+        } else if (c.faces < most->faces && (!next || c.faces > next->faces)) {
+            next = &c;
+        }
+    }
+    double exponent = 1.0;
+    int spanFaces = 0;
+    for (const auto& [bits, pair] : largest) {
+        const auto [most, next] = pair;
+        if (!next || most->faces < 1.2 * next->faces || most->faces <= spanFaces) continue;
+        spanFaces = most->faces;
+        exponent = std::log(double(most->bytes) / double(next->bytes)) / std::log(double(most->faces) / next->faces);
+    }
+    return std::clamp(exponent, 0.7, 1.0);
+}
+
 // Phase five: the ladder's steps leave bytes unspent. The preferred kind of asset so far (of
-// those `keep` takes) on a cage grown to what the budget holds (bytes grow about in proportion
-// to the faces), shrinking until it fits and growing on while it leaves bytes.
+// those `keep` takes) on a cage grown to what the budget holds (bytes ~ faces^bytesExponent),
+// shrinking until it fits and growing on while over kGrowthSlack of the budget is left.
 template <class Keep>
 void growBest(const SearchInputs& in, Findings& found, const Keep& keep) {
+    constexpr double kGrowthTarget = 0.97, kGrowthSlack = 1.05;
     const Fitting* ladderBest = preferred(found.fitting, keep, monitored);
     if (!ladderBest) return;
     const BudgetCandidate best = ladderBest->candidate;
     int fromFaces = best.faces;
-    double scale = 0.97 * double(in.search.budget) / double(best.bytes);
-    for (int attempt = 0; attempt < 3 && scale > 1.05; ++attempt) {
+    double exponent = bytesExponent(found.tried, best);
+    double scale = std::pow(kGrowthTarget * double(in.search.budget) / double(best.bytes), 1.0 / exponent);
+    std::uintmax_t fromBytes = best.bytes;
+    for (int attempt = 0; attempt < 3 && scale > kGrowthSlack; ++attempt) {
         const int most = std::max(in.search.mostGrownFaces, in.search.faceCounts.front());
         const int faces = std::min(int(std::lround(fromFaces * scale)), most);
         if (faces <= int(fromFaces * 1.05)) break;
@@ -462,9 +496,14 @@ void growBest(const SearchInputs& in, Findings& found, const Keep& keep) {
                                                : surface::SurfaceMaps{};
         const MapRecipe recipe{.effects = best.maps, .resolution = best.mapResolution, .bits = best.mapBits};
         const BudgetCandidate grown = judge(in, found, cage->world, baked, recipe, appearance, best.positionBits);
-        if (fits(in.search, grown)) {  // on from it while bytes are left
+        if (fits(in.search, grown)) {     // on from it while bytes are left
+            if (grown.bytes > fromBytes)  // the exponent as this growth measured it
+                exponent = std::clamp(std::log(double(grown.bytes) / double(fromBytes)) /
+                                          std::log(double(grown.faces) / double(fromFaces)),
+                                      0.7, 1.0);
             fromFaces = grown.faces;
-            scale = 0.97 * double(in.search.budget) / double(grown.bytes);
+            fromBytes = grown.bytes;
+            scale = std::pow(kGrowthTarget * double(in.search.budget) / double(grown.bytes), 1.0 / exponent);
         } else {
             scale = 1.0 + 0.6 * (scale - 1.0);
         }
