@@ -10,7 +10,7 @@
 #include <fstream>
 #include <map>
 
-#include "export/subd_decode.h"
+#include "export/engine/subd_decode.h"
 #include "bench_commands.h"
 #include "bench_common.h"
 #include "fit/fit_job.h"

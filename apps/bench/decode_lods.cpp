@@ -13,7 +13,7 @@
 #include "plot.h"
 #include "export/engine/engine_decode.h"
 #include "export/engine/surface_error.h"
-#include "export/subd_decode.h"
+#include "export/engine/subd_decode.h"
 #include "geometry/surface_distance.h"
 #include "io/external_program.h"
 #include "mesh/mesh_geometry.h"

@@ -7,7 +7,7 @@
 
 #include "bench_commands.h"
 #include "bench_common.h"
-#include "export/glb_writer.h"
+#include "export/gltf/glb_writer.h"
 #include "fit/fit_job.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_loader.h"

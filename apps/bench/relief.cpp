@@ -5,8 +5,8 @@
 #include <cstdio>
 
 #include "bench_commands.h"
-#include "export/glb_writer.h"
-#include "export/textured_glb.h"
+#include "export/gltf/glb_writer.h"
+#include "export/gltf/textured_glb.h"
 #include "io/image_io.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_loader.h"

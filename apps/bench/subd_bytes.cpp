@@ -4,19 +4,19 @@
 #include <iterator>
 #include <vector>
 
-#include "export/subd_format.h"
+#include "codec/subd_format.h"
 
 namespace subdfit::bench {
 
 SubdBytes subdBytes(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
     const std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in), {}};
-    const exporter::ShippedSubd shipped = exporter::readShippedSubd(bytes, file.string());
+    const codec::ShippedSubd shipped = codec::readShippedSubd(bytes, file.string());
     SubdBytes out;
     out.file = bytes.size();
     out.sections.insert(shipped.sectionBytes.begin(), shipped.sectionBytes.end());
     const mesh::PolygonMesh& cage = shipped.asset.cage;
-    out.cage = exporter::cageByteParts(cage, shipped.positionBits);
+    out.cage = codec::cageByteParts(cage, shipped.positionBits);
     out.faces = cage.faceCount();
     out.vertices = cage.vertexCount();
     out.positionBits = shipped.positionBits;

@@ -95,13 +95,13 @@ int main(int argc, char** argv) {
     decodeCommand->add_option("--out", decodeOut, "the .glb to write (a new file, or a regular file to replace)")
         ->required();
     auto* tess = decodeCommand->add_option("--tess", decode.density.segments, "segments per face edge, 1..64")
-                     ->check(CLI::Range(1, subdfit::exporter::kMaxDecodeSegments));
+                     ->check(CLI::Range(1, subdfit::codec::kMaxDecodeSegments));
     auto* triangles =
         decodeCommand
             ->add_option("--triangles", decode.density.triangles,
                          "about this many triangles (default: the reference's, as asset.subd records it; at most " +
-                             std::to_string(subdfit::exporter::kMaxDecodeTriangles) + ")")
-            ->check(CLI::Range(std::int64_t(1), subdfit::exporter::kMaxDecodeTriangles))
+                             std::to_string(subdfit::codec::kMaxDecodeTriangles) + ")")
+            ->check(CLI::Range(std::int64_t(1), subdfit::codec::kMaxDecodeTriangles))
             ->excludes(tess);
     const CLI::Validator errorBound(
         [](std::string& text) {

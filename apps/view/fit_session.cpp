@@ -29,7 +29,7 @@ FitInputs refineInputs(const ResultInputs& result, fit::FitOptions& options) {
     if (!result.folder || !reference || !ours)
         throw Error(result.title +
                     ": nothing to refine: --refine takes a fit or simplify folder whose reference is there");
-    const exporter::SubdAsset& asset = *ours->levels.front().asset;
+    const codec::SubdAsset& asset = *ours->levels.front().asset;
     const surface::SurfaceMaps& maps = asset.maps;
     options.cage = ours->levels.front().path;
     options.reference = result.folder->reference;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "export/decode_density.h"
+#include "codec/decode_density.h"
 #include "mesh/mesh_loader.h"
 #include "util/error.h"
 
@@ -29,7 +29,7 @@ bool isSubd(const std::filesystem::path& path) {
 
 LoadedLevel loadLevel(const std::filesystem::path& path) {
     LoadedLevel level{.path = path};
-    if (isSubd(path)) level.asset = exporter::readSubd(path);
+    if (isSubd(path)) level.asset = codec::readSubd(path);
     else level.mesh = mesh::triangulated(mesh::loadReference(path));
     return level;
 }
@@ -137,7 +137,7 @@ void ResultColumn::build() {
     wireframe_.reset();
     if (level.asset) {
         const int tess =
-            tessLevel_ > 0 ? tessLevel_ : exporter::decodeDensity(*level.asset, {}, level.path.string()).segments;
+            tessLevel_ > 0 ? tessLevel_ : codec::decodeDensity(*level.asset, {}, level.path.string()).segments;
         asset_ =
             std::make_unique<fit::ShippedAsset>(programs_, *level.asset, scene_.frame, shadingOf(scene_, level), tess);
         wireframe_ = std::make_unique<CageWireframe>(asset_->cage());

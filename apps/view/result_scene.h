@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "export/subd_format.h"
+#include "codec/subd_format.h"
 #include "fit/result_folder.h"
 #include "fit/shipped_asset.h"
 #include "render/mesh_renderer.h"
@@ -21,7 +21,7 @@ namespace subdfit::view {
 // One file of a column, read: an asset.subd, or triangles (world units) with their appearance.
 struct LoadedLevel {
     std::filesystem::path path;
-    std::optional<exporter::SubdAsset> asset{};
+    std::optional<codec::SubdAsset> asset{};
     mesh::PolygonMesh mesh{};
 };
 

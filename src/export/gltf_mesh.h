@@ -9,7 +9,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "export/map_atlas.h"
+#include "codec/map_atlas.h"
 #include "surface/tessellation.h"
 
 namespace subdfit::exporter {
@@ -42,9 +42,9 @@ struct GltfMesh {
 };
 
 // The tessellation with each vertex's ptex (face, u, v) turned into texcoords of `atlas`.
-GltfMesh gltfMesh(const surface::Tessellation& tessellation, const AtlasLayout& atlas);
+GltfMesh gltfMesh(const surface::Tessellation& tessellation, const codec::AtlasLayout& atlas);
 // The same, taking the tessellation's positions, normals, tangents and indices instead of
 // copying them (a decode's largest arrays); its ptex coordinates stay.
-GltfMesh gltfMesh(surface::Tessellation&& tessellation, const AtlasLayout& atlas);
+GltfMesh gltfMesh(surface::Tessellation&& tessellation, const codec::AtlasLayout& atlas);
 
 }  // namespace subdfit::exporter

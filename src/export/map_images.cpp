@@ -1,4 +1,4 @@
-#include "export/map_atlas.h"
+#include "export/map_images.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -22,10 +22,10 @@ constexpr const char* kMetallicRoughnessFile = "metallic_roughness.png";
 constexpr const char* kNormalTextureFile = "normal_texture.png";
 constexpr const char* kEmissiveFile = "emissive.png";
 
-WrittenFile writeDisplacementExr(const std::filesystem::path& path, const AtlasLayout& atlas,
-                                 const surface::SurfaceMaps& maps, bool half) {
-    const std::vector<float> pixels = displacementAtlas(atlas, maps);
-    return writeOutput(path, [&](const std::filesystem::path& temporary) {
+io::WrittenFile writeDisplacementExr(const std::filesystem::path& path, const codec::AtlasLayout& atlas,
+                                     const surface::SurfaceMaps& maps, bool half) {
+    const std::vector<float> pixels = codec::displacementAtlas(atlas, maps);
+    return io::writeOutput(path, [&](const std::filesystem::path& temporary) {
         auto out = OIIO::ImageOutput::create(temporary.string());
         if (!out) throw fileError(path.string(), "no OpenEXR writer in this OpenImageIO build");
         OIIO::ImageSpec spec(atlas.width, atlas.height, 1, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
@@ -38,7 +38,8 @@ WrittenFile writeDisplacementExr(const std::filesystem::path& path, const AtlasL
     });
 }
 
-nlohmann::json manifest(const AtlasLayout& atlas, const surface::SurfaceMaps& maps, const AtlasOutputs& outputs) {
+nlohmann::json manifest(const codec::AtlasLayout& atlas, const surface::SurfaceMaps& maps,
+                        const AtlasOutputs& outputs) {
     nlohmann::json doc = {
         {"generator", "subdfit"},
         {"resolution", atlas.resolution},
@@ -90,35 +91,36 @@ std::vector<unsigned char> encodePng(int width, int height, int channels, const 
     return bytes;
 }
 
-std::vector<unsigned char> encodeNormalPng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps, bool eightBit) {
-    const std::vector<std::uint16_t> pixels = normalAtlas(atlas, maps);
+std::vector<unsigned char> encodeNormalPng(const codec::AtlasLayout& atlas, const surface::SurfaceMaps& maps,
+                                           bool eightBit) {
+    const std::vector<std::uint16_t> pixels = codec::normalAtlas(atlas, maps);
     if (!eightBit) return encodePng(atlas.width, atlas.height, 3, pixels.data(), true, kNormalFile);
     std::vector<std::uint8_t> pixels8;
     for (std::uint16_t p : pixels) pixels8.push_back(std::uint8_t((unsigned(p) * 255u + 32767u) / 65535u));
     return encodePng(atlas.width, atlas.height, 3, pixels8.data(), false, kNormalFile);
 }
 
-std::vector<unsigned char> encodeAppearancePng(const AtlasLayout& atlas, const surface::SurfaceMaps& maps,
-                                               AppearanceImage which) {
-    const auto pixels = appearancePixels(atlas, maps, which);
+std::vector<unsigned char> encodeAppearancePng(const codec::AtlasLayout& atlas, const surface::SurfaceMaps& maps,
+                                               codec::AppearanceImage which) {
+    const auto pixels = codec::appearancePixels(atlas, maps, which);
     const char* names[] = {kBaseColorFile, kMetallicRoughnessFile, kNormalTextureFile, kEmissiveFile};
     return encodePng(atlas.width, atlas.height, 3, pixels.data(), false, names[int(which)]);
 }
 
-std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const surface::SurfaceMaps& maps,
-                                         const AtlasOutputs& outputs) {
-    std::vector<WrittenFile> written;
+std::vector<io::WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const surface::SurfaceMaps& maps,
+                                             const AtlasOutputs& outputs) {
+    std::vector<io::WrittenFile> written;
     nlohmann::json doc;
     if (maps.layout.resolution > 0) {
-        const AtlasLayout atlas = atlasLayout(maps.layout);
+        const codec::AtlasLayout atlas = codec::atlasLayout(maps.layout);
         if (maps.hasDisplacement() && outputs.displacement)
             written.push_back(writeDisplacementExr(dir / kDisplacementFile, atlas, maps, outputs.compact));
         if (maps.hasNormal() && outputs.normal)
-            written.push_back(writeBytes(dir / kNormalFile, encodeNormalPng(atlas, maps, outputs.compact)));
+            written.push_back(io::writeBytes(dir / kNormalFile, encodeNormalPng(atlas, maps, outputs.compact)));
         doc = manifest(atlas, maps, outputs);
     }
     if (maps.appearanceLayout.resolution > 0) {
-        const AtlasLayout atlas = atlasLayout(maps.appearanceLayout);
+        const codec::AtlasLayout atlas = codec::atlasLayout(maps.appearanceLayout);
         nlohmann::json appearance = manifest(atlas, {}, outputs);
         appearance.erase("generator");
         if (maps.appearanceAtlas.present()) {
@@ -131,29 +133,30 @@ std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const
                            "sample bilinearly, clamped to the edge"}};
         }
         if (maps.hasBaseColor()) {
-            written.push_back(
-                writeBytes(dir / kBaseColorFile, encodeAppearancePng(atlas, maps, AppearanceImage::BaseColor)));
+            written.push_back(io::writeBytes(dir / kBaseColorFile,
+                                             encodeAppearancePng(atlas, maps, codec::AppearanceImage::BaseColor)));
             appearance["baseColor"] = {{"file", kBaseColorFile},
                                        {"encoding", "8-bit sRGB RGB, as glTF's baseColorTexture"}};
         }
         if (maps.hasMetallicRoughness()) {
-            written.push_back(writeBytes(dir / kMetallicRoughnessFile,
-                                         encodeAppearancePng(atlas, maps, AppearanceImage::MetallicRoughness)));
+            written.push_back(
+                io::writeBytes(dir / kMetallicRoughnessFile,
+                               encodeAppearancePng(atlas, maps, codec::AppearanceImage::MetallicRoughness)));
             appearance["metallicRoughness"] = {
                 {"file", kMetallicRoughnessFile},
                 {"encoding", "8-bit RGB, G roughness, B metallic, as glTF's metallicRoughnessTexture"}};
         }
         if (!maps.occlusion.empty()) appearance["occlusion"] = {{"file", kMetallicRoughnessFile}, {"channel", "R"}};
         if (!maps.normalTexture.empty()) {
-            written.push_back(
-                writeBytes(dir / kNormalTextureFile, encodeAppearancePng(atlas, maps, AppearanceImage::NormalTexture)));
+            written.push_back(io::writeBytes(dir / kNormalTextureFile,
+                                             encodeAppearancePng(atlas, maps, codec::AppearanceImage::NormalTexture)));
             appearance["normalTexture"] = {
                 {"file", kNormalTextureFile},
                 {"encoding", "8-bit RGB as glTF's normalTexture, in the atlas coordinates' tangent frame"}};
         }
         if (!maps.emissive.empty()) {
-            written.push_back(
-                writeBytes(dir / kEmissiveFile, encodeAppearancePng(atlas, maps, AppearanceImage::Emissive)));
+            written.push_back(io::writeBytes(dir / kEmissiveFile,
+                                             encodeAppearancePng(atlas, maps, codec::AppearanceImage::Emissive)));
             appearance["emissive"] = {{"file", kEmissiveFile},
                                       {"encoding", "8-bit sRGB RGB, as glTF's emissiveTexture"}};
         }
@@ -163,7 +166,7 @@ std::vector<WrittenFile> writeMapAtlases(const std::filesystem::path& dir, const
     if (outputs.manifest && !doc.is_null()) {
         const std::string text = jsonText(doc, 2);
         written.push_back(
-            writeBytes(dir / kManifestFile, {reinterpret_cast<const unsigned char*>(text.data()), text.size()}));
+            io::writeBytes(dir / kManifestFile, {reinterpret_cast<const unsigned char*>(text.data()), text.size()}));
     }
     return written;
 }

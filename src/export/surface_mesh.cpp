@@ -1,6 +1,6 @@
 #include "export/surface_mesh.h"
 
-#include "export/map_atlas.h"
+#include "codec/map_atlas.h"
 #include "surface/appearance_atlas.h"
 #include "surface/tessellation.h"
 #include "util/error.h"
@@ -36,10 +36,10 @@ GltfMesh surfaceGltfMesh(const mesh::PolygonMesh& cage, const surface::SurfaceMa
         tiles.resolution = 1;
         for (int n : cage.faceSizes) tiles.ptexFaceCount += n == 4 ? 1 : n;
         return gltfMesh(surface::tessellate(cage, maps, segments),
-                        atlasLayout(maps.layout.resolution > 0 ? maps.layout : tiles));
+                        codec::atlasLayout(maps.layout.resolution > 0 ? maps.layout : tiles));
     }
     if (!maps.appearanceAtlas.present())
-        return gltfMesh(surface::tessellate(cage, maps, segments), atlasLayout(maps.appearanceLayout));
+        return gltfMesh(surface::tessellate(cage, maps, segments), codec::atlasLayout(maps.appearanceLayout));
     // The appearance in the reference's own atlas: the texture as it is, addressed by the
     // corners' coordinates blended across each face. Its one TEXCOORD_0 leaves no room for a
     // normal map on tiles (the search pairs an atlas with heights alone); the reference's own
@@ -48,7 +48,7 @@ GltfMesh surfaceGltfMesh(const mesh::PolygonMesh& cage, const surface::SurfaceMa
     if (textures.normalMap) throw Error("a fitted normal map beside an appearance atlas");
     surface::Tessellation tessellation = surface::tessellate(cage, maps, segments);
     GltfMesh mesh =
-        gltfMesh(std::move(tessellation), atlasLayout(maps.appearanceLayout));  // keeps the ptex coordinates
+        gltfMesh(std::move(tessellation), codec::atlasLayout(maps.appearanceLayout));  // keeps the ptex coordinates
     if (!textures.normalTexture) mesh.tangents.clear();
     for (size_t k = 0; k < mesh.uvs.size(); ++k) {
         const surface::PtexPoint& p = tessellation.ptex[k];
@@ -62,12 +62,12 @@ NormalImage surfaceNormalImage(const surface::SurfaceMaps& maps, const SurfaceTe
     // With a material every texture sits on the appearance atlas, so that one TEXCOORD_0 serves
     // them all (any viewer reads it): the normal map is resampled onto its lattice.
     if (textures.baseColor) {
-        const surface::SurfaceMaps onLattice = normalOnAppearanceLattice(maps);
-        const AtlasLayout atlas = atlasLayout(onLattice.layout);
-        return {atlas.width, atlas.height, normalAtlas(atlas, onLattice)};
+        const surface::SurfaceMaps onLattice = codec::normalOnAppearanceLattice(maps);
+        const codec::AtlasLayout atlas = codec::atlasLayout(onLattice.layout);
+        return {atlas.width, atlas.height, codec::normalAtlas(atlas, onLattice)};
     }
-    const AtlasLayout atlas = atlasLayout(maps.layout);
-    return {atlas.width, atlas.height, normalAtlas(atlas, maps)};
+    const codec::AtlasLayout atlas = codec::atlasLayout(maps.layout);
+    return {atlas.width, atlas.height, codec::normalAtlas(atlas, maps)};
 }
 
 }  // namespace subdfit::exporter

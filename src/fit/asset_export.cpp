@@ -2,10 +2,11 @@
 
 #include <algorithm>
 
-#include "export/map_atlas.h"
-#include "export/subd_format.h"
-#include "export/surface_glb.h"
-#include "export/usd_export.h"
+#include "codec/map_atlas.h"
+#include "export/map_images.h"
+#include "codec/subd_format.h"
+#include "export/gltf/surface_glb.h"
+#include "export/usd/usd_export.h"
 
 namespace subdfit::fit {
 
@@ -13,14 +14,14 @@ nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene:
                            const mesh::PolygonMesh& fittedWorld, std::uint32_t referenceTriangles) {
     surface::SurfaceMaps maps = fitter.surfaceMaps();
     for (float& d : maps.displacement) d /= frame.scale;  // heights back to world units
-    std::vector<exporter::WrittenFile> written;
+    std::vector<io::WrittenFile> written;
     if (fitter.maps()) written = exporter::writeMapAtlases(o.out, maps, {.compact = o.compactMaps});
     if (o.preview)
         written.push_back(
             exporter::writeSurfaceGlb(o.out / "fitted.glb", fittedWorld, maps, fitter.renderer().tessLevel(), o.draco));
-    const auto precision = exporter::SubdPrecision::forMapBits(o.mapBits, o.appearanceQuality, o.positionBits);
-    written.push_back(exporter::writeSubd(
-        o.out / "asset.subd", exporter::shippableAsset(fittedWorld, maps, precision.positionBits, referenceTriangles),
+    const auto precision = codec::SubdPrecision::forMapBits(o.mapBits, o.appearanceQuality, o.positionBits);
+    written.push_back(codec::writeSubd(
+        o.out / "asset.subd", codec::shippableAsset(fittedWorld, maps, precision.positionBits, referenceTriangles),
         precision));
     nlohmann::json files = nlohmann::json::object();
     for (const auto& file : written) files[file.path.filename().string()] = file.bytes;
@@ -31,8 +32,7 @@ nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene:
 nlohmann::json exportUsd(const FitOptions& o, const std::filesystem::path& dir) {
     nlohmann::json files = nlohmann::json::object();
     if (o.usd == UsdExport::None) return files;
-    const auto written =
-        exporter::writeUsd(dir, exporter::readSubd(dir / "asset.subd"), o.usd == UsdExport::UsdzAndUsda);
+    const auto written = exporter::writeUsd(dir, codec::readSubd(dir / "asset.subd"), o.usd == UsdExport::UsdzAndUsda);
     for (const auto& file : written) files[file.path.filename().string()] = file.bytes;
     return files;
 }

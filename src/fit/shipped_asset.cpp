@@ -31,7 +31,7 @@ CageFitSettings drawingSettings(const surface::SurfaceMaps& maps, render::Shadin
     return settings;
 }
 
-ShippedAsset::ShippedAsset(gl::ProgramCache& programs, const exporter::SubdAsset& asset, const scene::SceneFrame& frame,
+ShippedAsset::ShippedAsset(gl::ProgramCache& programs, const codec::SubdAsset& asset, const scene::SceneFrame& frame,
                            render::ShadingModel shading, int tessLevel)
     : programs_(programs), cage_(asset.cage), maps_(normalizedMaps(asset.maps, frame)), shading_(shading) {
     cage_.positions = frame.toNormalized(cage_.positions);

@@ -2,7 +2,7 @@
 // A shipped asset.subd drawn as a consumer's decoder gets it: the decoded cage's limit surface
 // with its maps, tessellated on the GPU by the fitter's own renderer, which is the pass simplify
 // scores subdfit and the bake route with, and the surface `subdfit decode` writes as triangles.
-#include "export/subd_format.h"
+#include "codec/subd_format.h"
 #include "fit/cage_fitter.h"
 #include "render/shading_model.h"
 #include "scene/scene_frame.h"
@@ -24,7 +24,7 @@ public:
     // `asset` in world units, drawn in `frame` at `tessLevel` segments per base-face edge (the
     // renderer's crack-free level at least). Needs a current GL context; `programs` must outlive
     // the object.
-    ShippedAsset(gl::ProgramCache& programs, const exporter::SubdAsset& asset, const scene::SceneFrame& frame,
+    ShippedAsset(gl::ProgramCache& programs, const codec::SubdAsset& asset, const scene::SceneFrame& frame,
                  render::ShadingModel shading, int tessLevel);
 
     void draw(const render::Camera& camera, const render::RenderTarget& target) { fitter_->render(camera, target); }

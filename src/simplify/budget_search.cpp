@@ -9,7 +9,7 @@
 #include <optional>
 #include <tuple>
 
-#include "export/subd_format.h"
+#include "codec/subd_format.h"
 #include "fit/image_metrics.h"
 #include "simplify/bake/atlas_bake.h"
 #include "simplify/bake/bake.h"
@@ -44,7 +44,7 @@ std::string describe(const BudgetCandidate& c) {
     std::snprintf(line, sizeof line, "%6d faces, maps %-19s T=%d, %2d bits: %8ju bytes", c.faces,
                   maps::toString(c.maps).c_str(), c.mapResolution, c.mapBits, c.bytes);
     std::string text = line;
-    if (c.positionBits != exporter::SubdPrecision{}.positionBits)
+    if (c.positionBits != codec::SubdPrecision{}.positionBits)
         text += ", " + std::to_string(c.positionBits) + "-bit positions";
     if (c.shadingNormal == surface::ShadingNormal::Limit) text += ", limit-shaded";
     if (c.appearanceAtlas > 0)
@@ -61,28 +61,28 @@ std::string describe(const BudgetCandidate& c) {
 // A candidate as it ships: encoded (its bytes) and decoded again (what is judged).
 struct Shipped {
     std::shared_ptr<const std::vector<unsigned char>> encoded;
-    exporter::SubdAsset decoded;
+    codec::SubdAsset decoded;
 };
 
-exporter::SubdPrecision precisionOf(int mapBits, int appearanceQuality, int positionBits) {
-    return exporter::SubdPrecision::forMapBits(
-        mapBits, appearanceQuality > 0 ? appearanceQuality : exporter::SubdPrecision{}.appearanceQuality, positionBits);
+codec::SubdPrecision precisionOf(int mapBits, int appearanceQuality, int positionBits) {
+    return codec::SubdPrecision::forMapBits(
+        mapBits, appearanceQuality > 0 ? appearanceQuality : codec::SubdPrecision{}.appearanceQuality, positionBits);
 }
 
 Shipped ship(const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps maps, int mapBits, int appearanceQuality,
-             float frameScale, int positionBits = exporter::SubdPrecision{}.positionBits) {
+             float frameScale, int positionBits = codec::SubdPrecision{}.positionBits) {
     for (float& d : maps.displacement) d /= frameScale;  // heights in world units, as shipped
     const auto precision = precisionOf(mapBits, appearanceQuality, positionBits);
     auto encoded = std::make_shared<const std::vector<unsigned char>>(
-        exporter::encodeSubd(exporter::shippableAsset(cageWorld, maps, precision.positionBits), precision));
-    return {encoded, exporter::decodeSubd(*encoded, "budget candidate")};
+        codec::encodeSubd(codec::shippableAsset(cageWorld, maps, precision.positionBits), precision));
+    return {encoded, codec::decodeSubd(*encoded, "budget candidate")};
 }
 
 }  // namespace
 
 void prepareToJudge(const mesh::PolygonMesh& cageWorld) {
     try {
-        const exporter::SubdAsset shipped = ship(cageWorld, {}, 0, 0, 1.0f).decoded;
+        const codec::SubdAsset shipped = ship(cageWorld, {}, 0, 0, 1.0f).decoded;
         subdiv::cachedPatchSet(shipped.cage, {.isolationLevel = subdiv::drawingIsolationLevel(shipped.cage)});
     } catch (const Error&) {}
 }
@@ -222,7 +222,7 @@ void record(const SearchInputs& in, Findings& found, const BudgetCandidate& c,
 BudgetCandidate judge(const SearchInputs& in, Findings& found,
                       const std::shared_ptr<const mesh::PolygonMesh>& cageWorld, surface::SurfaceMaps baked,
                       const MapRecipe& recipe, const Appearance& appearance,
-                      int positionBits = exporter::SubdPrecision{}.positionBits) {
+                      int positionBits = codec::SubdPrecision{}.positionBits) {
     baked.setAppearance(appearance.maps);
     std::optional<TimedStage> timed(std::in_place, found.phases, "encode");
     Shipped shipped = ship(*cageWorld, baked, recipe.bits, appearance.quality, in.scene.frame.scale, positionBits);
@@ -404,15 +404,15 @@ void fewerPositionBits(const SearchInputs& in, Findings& found, const Keep& keep
     const Fitting* best = preferred(found.fitting, keep, monitored);
     if (!best) return;
     const BudgetCandidate start = best->candidate;
-    const exporter::SubdAsset shipped = exporter::decodeSubd(*best->encoded, "budget candidate");
+    const codec::SubdAsset shipped = codec::decodeSubd(*best->encoded, "budget candidate");
     const auto cageWorld = std::make_shared<const mesh::PolygonMesh>(shipped.cage);
     for (int bits : kFewerPositionBits) {
         if (bits >= start.positionBits) continue;
         throwIfStopRequested();
         std::optional<TimedStage> timed(std::in_place, found.phases, "encode");
         const auto precision = precisionOf(start.mapBits, start.appearanceQuality, bits);
-        const auto encoded = std::make_shared<const std::vector<unsigned char>>(exporter::encodeSubd(
-            exporter::shippableAsset(shipped.cage, shipped.maps, bits, shipped.decodeTriangles), precision));
+        const auto encoded = std::make_shared<const std::vector<unsigned char>>(codec::encodeSubd(
+            codec::shippableAsset(shipped.cage, shipped.maps, bits, shipped.decodeTriangles), precision));
         BudgetCandidate c = start;
         c.positionBits = bits;
         c.bytes = encoded->size();
@@ -421,7 +421,7 @@ void fewerPositionBits(const SearchInputs& in, Findings& found, const Keep& keep
         const bool within = fits(in.search, c);
         if (within) {
             timed.emplace(found.phases, "render");
-            const auto drawn = drawnAsFitted(in.programs, in.scene, exporter::decodeSubd(*encoded, "budget candidate"));
+            const auto drawn = drawnAsFitted(in.programs, in.scene, codec::decodeSubd(*encoded, "budget candidate"));
             c.monitorLoss = fit::score(*drawn, in.scene.choosing(in.programs)).loss;
         }
         const bool kept = within && c.monitorLoss <= (1.0 + kLossTolerance) * start.monitorLoss;
@@ -618,10 +618,10 @@ std::vector<int> atlasSizesFor(const mesh::PolygonMesh& reference) {
 
 BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t bytes, std::uintmax_t budget,
                                 int mapBits, int positionBits, int appearanceQuality) {
-    auto precision = exporter::SubdPrecision::forMapBits(mapBits, appearanceQuality, positionBits);
+    auto precision = codec::SubdPrecision::forMapBits(mapBits, appearanceQuality, positionBits);
     auto shipment = [&] { return BudgetShipment{precision.displacementBits, precision.appearanceQuality, bytes}; };
     if (bytes <= budget) return shipment();
-    const exporter::SubdAsset decoded = exporter::readSubd(subd);
+    const codec::SubdAsset decoded = codec::readSubd(subd);
     std::vector<std::pair<int, int>> ladder;  // (bits, quality), coarser and coarser
     // Quality in small steps: a JPEG's bytes fall a few per cent a step, and every byte left is
     // detail lost.
@@ -631,12 +631,12 @@ BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
         while (quality - kQualityStep >= kLowestQuality) ladder.emplace_back(mapBits, quality -= kQualityStep);
     for (int bits = mapBits - 1; bits >= kFewestBits; --bits) ladder.emplace_back(bits, quality);
     for (size_t k = 0; k < ladder.size(); ++k) {
-        precision = exporter::SubdPrecision::forMapBits(ladder[k].first, ladder[k].second, positionBits);
-        const auto encoded = exporter::encodeSubd(
-            exporter::shippableAsset(decoded.cage, decoded.maps, precision.positionBits, decoded.decodeTriangles),
+        precision = codec::SubdPrecision::forMapBits(ladder[k].first, ladder[k].second, positionBits);
+        const auto encoded = codec::encodeSubd(
+            codec::shippableAsset(decoded.cage, decoded.maps, precision.positionBits, decoded.decodeTriangles),
             precision);
         if (encoded.size() <= budget || k + 1 == ladder.size()) {
-            bytes = exporter::writeBytes(subd, encoded).bytes;
+            bytes = io::writeBytes(subd, encoded).bytes;
             if (bytes <= budget) break;
         }
     }

@@ -57,7 +57,7 @@ bool clearlyAhead(const std::vector<Fitting*>& near, int monitorViews, size_t vi
 }  // namespace
 
 std::unique_ptr<fit::CageFitter> drawnAsFitted(gl::ProgramCache& programs, const fit::FitScene& scene,
-                                               const exporter::SubdAsset& shipped) {
+                                               const codec::SubdAsset& shipped) {
     mesh::PolygonMesh cage = shipped.cage;
     cage.positions = scene.frame.toNormalized(cage.positions);
     surface::SurfaceMaps maps = shipped.maps;
@@ -145,7 +145,7 @@ const Fitting* settle(gl::ProgramCache& programs, const fit::FitScene& scene, Se
                 throwIfStopRequested();
                 auto& fitter = drawn[f];
                 if (!fitter)
-                    fitter = drawnAsFitted(programs, scene, exporter::decodeSubd(*f->encoded, "budget candidate"));
+                    fitter = drawnAsFitted(programs, scene, codec::decodeSubd(*f->encoded, "budget candidate"));
                 f->trainingLoss.push_back(settling.loss(*fitter, v));
             }
     }

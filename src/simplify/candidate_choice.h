@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "export/subd_format.h"
+#include "codec/subd_format.h"
 #include "fit/cage_fitter.h"
 #include "fit/fit_scene.h"
 #include "gl/program_cache.h"
@@ -57,7 +57,7 @@ const Fitting* preferred(const std::vector<Fitting>& fitting, const Keep& keep, 
 
 // The decoded candidate in a fitter of its own, drawn as the fit would draw it.
 std::unique_ptr<fit::CageFitter> drawnAsFitted(gl::ProgramCache& programs, const fit::FitScene& scene,
-                                               const exporter::SubdAsset& shipped);
+                                               const codec::SubdAsset& shipped);
 
 // The training cameras drawn as `choosing` is (fit::kViewerSupersampling), in settling order, a
 // block of kSettleBlock at a time as the settling asks for them: most settlings end within a few

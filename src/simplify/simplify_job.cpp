@@ -12,7 +12,7 @@
 #include "io/staged_folder.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
-#include "export/subd_format.h"
+#include "codec/subd_format.h"
 #include "simplify/bake/atlas_bake.h"
 #include "simplify/bake/bake.h"
 #include "simplify/compare/baselines.h"

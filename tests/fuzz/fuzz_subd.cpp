@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "export/subd_format.h"
+#include "codec/subd_format.h"
 #include "mesh/procedural.h"
 #include "subd_container.h"
 #include "util/error.h"
@@ -27,7 +27,7 @@ using subdfit::fuzz::Bytes;
 
 void decode(const Bytes& bytes) {
     try {
-        (void)subdfit::exporter::decodeSubd(bytes, "fuzz.subd");
+        (void)subdfit::codec::decodeSubd(bytes, "fuzz.subd");
     } catch (const subdfit::Error&) {}
 }
 
@@ -39,17 +39,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         return 0;
     }
     if (size >= 7 && data[0] == 'R') {
-        subdfit::exporter::SubdAsset asset{.cage = subdfit::mesh::makeQuadSphere(1 + data[1] % 3), .maps = {}};
+        subdfit::codec::SubdAsset asset{.cage = subdfit::mesh::makeQuadSphere(1 + data[1] % 3), .maps = {}};
         asset.maps.layout = subdfit::surface::buildTexelLayout(asset.cage, 1 + data[2] % 4);
         for (int n = 0; n < asset.maps.layout.nodeCount; ++n)
             asset.maps.displacement.push_back(float(data[6 + size_t(n) % (size - 6)]) / 100.0f);
-        const Bytes good = subdfit::exporter::encodeSubd(asset);
+        const Bytes good = subdfit::codec::encodeSubd(asset);
         Bytes bad = good;
         uint32_t where;
         std::memcpy(&where, data + 2, 4);
         bad[where % bad.size()] ^= static_cast<unsigned char>(1 + where / bad.size() % 255);
         try {
-            const auto read = subdfit::exporter::decodeSubd(bad, "flipped.subd");
+            const auto read = subdfit::codec::decodeSubd(bad, "flipped.subd");
             if (read.cage.positions.size() != asset.cage.positions.size()) std::abort();  // a flip was read as data
         } catch (const subdfit::Error&) {}
         return 0;

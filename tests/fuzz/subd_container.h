@@ -9,15 +9,15 @@
 #include <utility>
 #include <vector>
 
-#include "export/byte_stream.h"
-#include "export/subd_format.h"
+#include "codec/byte_stream.h"
+#include "codec/subd_format.h"
 #include "util/hash.h"
 
 namespace subdfit::fuzz {
 
 using Bytes = std::vector<unsigned char>;
 
-inline void putSection(exporter::ByteWriter& file, const char* tag, const Bytes& raw) {
+inline void putSection(codec::ByteWriter& file, const char* tag, const Bytes& raw) {
     ZSTD_CCtx* context = ZSTD_createCCtx();
     ZSTD_CCtx_setParameter(context, ZSTD_c_checksumFlag, 1);
     Bytes stored(ZSTD_compressBound(raw.size()));
@@ -30,9 +30,9 @@ inline void putSection(exporter::ByteWriter& file, const char* tag, const Bytes&
 }
 
 inline Bytes container(const std::vector<std::pair<const char*, Bytes>>& sections, uint32_t decodeTriangles = 0) {
-    exporter::ByteWriter file;
+    codec::ByteWriter file;
     file.putBytes({reinterpret_cast<const unsigned char*>("SUBD"), 4});
-    file.put<uint16_t>(exporter::kSubdVersion);
+    file.put<uint16_t>(codec::kSubdVersion);
     file.put<uint16_t>(0);
     file.put<uint32_t>(uint32_t(sections.size()));
     file.put<uint32_t>(decodeTriangles);

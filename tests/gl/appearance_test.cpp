@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "export/subd_format.h"
-#include "export/textured_glb.h"
+#include "codec/subd_format.h"
+#include "export/gltf/textured_glb.h"
 #include "gl_test_context.h"
 #include "gradient_checks.h"
 #include "mesh/mesh_loader.h"
@@ -229,7 +229,7 @@ TEST(AppearanceSimplify, TheDuckShipsInColour) {
     const auto effects = report["effects"];
     EXPECT_NE(std::find(effects.begin(), effects.end(), "base_color"), effects.end()) << effects;
     // The shipped file carries the base colour, on the lattice the options asked for.
-    const auto shipped = exporter::readSubd(dir / "out" / "asset.subd");
+    const auto shipped = codec::readSubd(dir / "out" / "asset.subd");
     ASSERT_TRUE(shipped.maps.hasBaseColor());
     EXPECT_EQ(shipped.maps.appearanceLayout.resolution, 4);
     // The duck is yellow wherever it is not its orange beak or black eyes: most nodes are.
@@ -266,7 +266,7 @@ TEST(AppearanceSimplify, AGlowOnTilesIsCarriedAndShipped) {
 
     const auto report = simplify::toJson(simplify::runSimplify(smallColouredSimplify(dir / "glow.glb", dir, 10)));
     EXPECT_NE(report["shader_variants"].dump().find("SUBDFIT_CARRIED_EMISSIVE"), std::string::npos);
-    const auto shipped = exporter::readSubd(dir / "out" / "asset.subd");
+    const auto shipped = codec::readSubd(dir / "out" / "asset.subd");
     ASSERT_EQ(shipped.maps.emissive.size(), 3 * size_t(shipped.maps.appearanceLayout.nodeCount));
     int lit = 0, dark = 0;
     const auto& e = shipped.maps.emissive;

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "export/subd_decode.h"
-#include "export/subd_format.h"
+#include "export/engine/subd_decode.h"
+#include "codec/subd_format.h"
 #include "fit/shipped_asset.h"
 #include "gl_test_context.h"
 #include "mesh/mesh_loader.h"
@@ -28,15 +28,15 @@ constexpr int kSegments = 64;  // both sides (the GPU most), so the chords of ei
 
 // An asset as `simplify` ships it: `cage` (world units) with bumpy heights on a T = 4 lattice,
 // through the encoder and back.
-exporter::SubdAsset shippedBumps(const mesh::PolygonMesh& cage) {
+codec::SubdAsset shippedBumps(const mesh::PolygonMesh& cage) {
     surface::SurfaceMaps maps;
     maps.layout = surface::buildTexelLayout(cage, 4);
     maps.displacement.resize(size_t(maps.layout.nodeCount));
     const float scale = 1.0f / scene::frameAround(cage.positions).scale;  // the cage's radius
     for (size_t i = 0; i < maps.displacement.size(); ++i)
         maps.displacement[i] = 0.04f * scale * std::sin(1.7f * float(i));
-    const auto bytes = exporter::encodeSubd(exporter::shippableAsset(cage, maps));
-    return exporter::decodeSubd(bytes, "bumps.subd");
+    const auto bytes = codec::encodeSubd(codec::shippableAsset(cage, maps));
+    return codec::decodeSubd(bytes, "bumps.subd");
 }
 
 // Eye-space distance of each covered pixel (negative: background).
@@ -75,7 +75,7 @@ Agreement compare(ShippedAsset& drawn, const surface::Tessellation& decoded, con
 class ShippedAssetDepth : public testing::TestWithParam<std::string> {};
 
 TEST_P(ShippedAssetDepth, TheDrawnSurfaceIsTheDecodedOne) {
-    const exporter::SubdAsset asset = shippedBumps(mesh::loadMesh(test::assetPath("osd-shapes/" + GetParam())));
+    const codec::SubdAsset asset = shippedBumps(mesh::loadMesh(test::assetPath("osd-shapes/" + GetParam())));
     const scene::SceneFrame frame = scene::frameAround(asset.cage.positions);
     ShippedAsset drawn(test::programs(), asset, frame, render::ShadingModel::Geometry, kSegments);
     ASSERT_EQ(drawn.fitter().renderer().tessLevel(), kSegments);

@@ -10,7 +10,7 @@
 #include <map>
 
 #include "error_message.h"
-#include "export/subd_format.h"
+#include "codec/subd_format.h"
 #include "fit/fit_scene.h"
 #include "gl_test_context.h"
 #include "mesh/mesh_geometry.h"
@@ -134,7 +134,7 @@ TEST(SimplifyBudget, ShipsWithinTheBudgetAndListsTheCandidates) {
     EXPECT_GE(twins, 1);
     EXPECT_EQ(report["settings"]["position_bits"], budget["chosen"]["position_bits"]);
     const int bits = budget["chosen"]["position_bits"].get<int>();
-    const auto cageShipped = exporter::readSubd(dir / "out" / "asset.subd").cage;
+    const auto cageShipped = codec::readSubd(dir / "out" / "asset.subd").cage;
     EXPECT_TRUE(onPositionGrid(cageShipped.positions, bits)) << bits;
     EXPECT_FALSE(onPositionGrid(cageShipped.positions, bits - 2)) << bits;
     // What was chosen is what was fitted.
@@ -148,7 +148,7 @@ TEST(SimplifyBudget, ShipsWithinTheBudgetAndListsTheCandidates) {
             << c.dump();
     if (budget["chosen"].contains("shading_normal")) {
         EXPECT_EQ(report["settings"]["shading_normal"], budget["chosen"]["shading_normal"]);
-        const auto shipped = exporter::readSubd(dir / "out" / "asset.subd");
+        const auto shipped = codec::readSubd(dir / "out" / "asset.subd");
         EXPECT_EQ(nameOf(shipped.maps.shadingNormal), budget["chosen"]["shading_normal"].get<std::string>());
     }
     // The triangle baselines are held to the budget; a dense reference at a budget this tight

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "export/glb_writer.h"
-#include "export/textured_glb.h"
+#include "export/gltf/glb_writer.h"
+#include "export/gltf/textured_glb.h"
 #include "fit/result_folder.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_loader.h"

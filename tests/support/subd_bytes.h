@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "export/byte_stream.h"
+#include "codec/byte_stream.h"
 
 #include <zstd.h>
 
@@ -25,7 +25,7 @@ inline std::vector<unsigned char> checksummedFrame(const std::vector<unsigned ch
 // compresses to almost nothing), boundary "edge and corner" (with "none" a grid's border faces
 // have no surface), with `creases` as (v0, v1) pairs of sharpness 2.
 inline std::vector<unsigned char> plainGridCage(int n, const std::vector<std::array<int, 2>>& creases = {}) {
-    exporter::ByteWriter out;
+    codec::ByteWriter out;
     const int side = n + 1;
     out.put<std::uint8_t>(0);
     out.putVarint(std::uint64_t(side) * std::uint64_t(side));

@@ -13,8 +13,8 @@
 
 #include <zstd.h>
 
-#include "export/atlas_uv_coding.h"
-#include "export/subd_format.h"
+#include "codec/atlas_uv_coding.h"
+#include "codec/subd_format.h"
 #include "mesh/procedural.h"
 #include "simplify/bake/atlas_bake.h"
 #include "subdiv/limit_evaluator.h"
@@ -234,33 +234,33 @@ TEST(AtlasBake, SaysWhatTilesLeaveOut) {
 TEST(AtlasUvCoding, RoundTripsWithinTheQuantisationStep) {
     const mesh::PolygonMesh cage = mesh::makeQuadSphere(3);
     const surface::AppearanceAtlas atlas = someAtlas(cage, 128);
-    exporter::ByteWriter out;
-    exporter::writeAtlasUvs(cage, atlas, out);
-    exporter::ByteReader in(out.bytes(), "AUVS");
-    const surface::AppearanceAtlas back = exporter::readAtlasUvs(in, cage);
+    codec::ByteWriter out;
+    codec::writeAtlasUvs(cage, atlas, out);
+    codec::ByteReader in(out.bytes(), "AUVS");
+    const surface::AppearanceAtlas back = codec::readAtlasUvs(in, cage);
     EXPECT_EQ(in.remaining(), 0u);
     ASSERT_EQ(back.size, 128);
     ASSERT_EQ(back.cornerUvs.size(), atlas.cornerUvs.size());
-    const float step = std::ldexp(1.0f, -exporter::atlasUvBits(128));
+    const float step = std::ldexp(1.0f, -codec::atlasUvBits(128));
     for (size_t k = 0; k < atlas.cornerUvs.size(); ++k)
         EXPECT_LE(glm::distance(back.cornerUvs[k], atlas.cornerUvs[k]), step) << "corner " << k;
     // Shared corners are stored once: fewer than 4 bytes a ptex corner before entropy coding.
     EXPECT_LT(out.bytes().size(), 4 * atlas.cornerUvs.size());
 
     for (size_t cut : {size_t(1), out.bytes().size() / 2, out.bytes().size() - 1}) {
-        exporter::ByteReader truncated(std::span(out.bytes()).first(cut), "AUVS");
-        EXPECT_THROW(exporter::readAtlasUvs(truncated, cage), Error) << "cut at " << cut;
+        codec::ByteReader truncated(std::span(out.bytes()).first(cut), "AUVS");
+        EXPECT_THROW(codec::readAtlasUvs(truncated, cage), Error) << "cut at " << cut;
     }
 }
 
 // The AUVS section of `atlas` on `cage` as asset.subd stores it (zstd), having checked that it
 // round-trips within the quantisation step.
 size_t packedAtlasUvs(const mesh::PolygonMesh& cage, const surface::AppearanceAtlas& atlas) {
-    exporter::ByteWriter out;
-    exporter::writeAtlasUvs(cage, atlas, out);
-    exporter::ByteReader in(out.bytes(), "AUVS");
-    const surface::AppearanceAtlas back = exporter::readAtlasUvs(in, cage);
-    const float step = std::ldexp(1.0f, -exporter::atlasUvBits(atlas.size));
+    codec::ByteWriter out;
+    codec::writeAtlasUvs(cage, atlas, out);
+    codec::ByteReader in(out.bytes(), "AUVS");
+    const surface::AppearanceAtlas back = codec::readAtlasUvs(in, cage);
+    const float step = std::ldexp(1.0f, -codec::atlasUvBits(atlas.size));
     for (size_t k = 0; k < atlas.cornerUvs.size(); ++k)
         EXPECT_LE(glm::distance(back.cornerUvs[k], atlas.cornerUvs[k]), step) << "corner " << k;
     std::vector<char> packed(ZSTD_compressBound(out.bytes().size()));
@@ -276,7 +276,7 @@ TEST(AtlasUvCoding, ATriangleCagesMidpointsAndCentresArePredicted) {
     // cost jittered on their own.
     const mesh::PolygonMesh cage = triangles(mesh::makeQuadGrid(16));
     constexpr int kSize = 128;
-    const float step = std::ldexp(1.0f, -exporter::atlasUvBits(kSize));
+    const float step = std::ldexp(1.0f, -codec::atlasUvBits(kSize));
     std::mt19937 rng(3);
     std::uniform_int_distribution<int> jitter(-128, 127);
     auto noise = [&] { return step * glm::vec2(float(jitter(rng)), float(jitter(rng))); };
@@ -310,13 +310,13 @@ TEST(AtlasUvCoding, TheShippedFileCarriesTheAtlas) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> unit(0.2f, 0.8f);
     for (int k = 0; k < 3 * 32 * 32; ++k) maps.baseColor.push_back(k % 3 == 0 ? float(k % 96) / 96.0f : 0.5f);
-    const exporter::SubdAsset asset = exporter::shippableAsset(cage, maps, 14);
-    const auto bytes = exporter::encodeSubd(asset);
-    const exporter::SubdAsset back = exporter::decodeSubd(bytes, "atlas.subd");
+    const codec::SubdAsset asset = codec::shippableAsset(cage, maps, 14);
+    const auto bytes = codec::encodeSubd(asset);
+    const codec::SubdAsset back = codec::decodeSubd(bytes, "atlas.subd");
     ASSERT_TRUE(back.maps.appearanceAtlas.present());
     EXPECT_EQ(back.maps.appearanceLayout.nodeCount, 32 * 32);
     ASSERT_EQ(back.maps.appearanceAtlas.cornerUvs.size(), asset.maps.appearanceAtlas.cornerUvs.size());
-    const float step = std::ldexp(1.0f, -exporter::atlasUvBits(32));
+    const float step = std::ldexp(1.0f, -codec::atlasUvBits(32));
     for (size_t k = 0; k < back.maps.appearanceAtlas.cornerUvs.size(); ++k)
         ASSERT_LE(glm::distance(back.maps.appearanceAtlas.cornerUvs[k], asset.maps.appearanceAtlas.cornerUvs[k]), step);
     double error = 0.0;

@@ -7,12 +7,12 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "export/cage_coding.h"
+#include "codec/cage_coding.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
 #include "test_paths.h"
 
-namespace subdfit::exporter {
+namespace subdfit::codec {
 namespace {
 
 constexpr int kBits = 14;
@@ -132,4 +132,4 @@ TEST(CageCoding, ANonManifoldCageKeepsItsFaces) {
 }
 
 }  // namespace
-}  // namespace subdfit::exporter
+}  // namespace subdfit::codec

@@ -6,15 +6,15 @@
 #include <cstring>
 
 #include "error_message.h"
-#include "export/decode_density.h"
-#include "export/subd_decode.h"
-#include "export/subd_format.h"
+#include "codec/decode_density.h"
+#include "export/engine/subd_decode.h"
+#include "codec/subd_format.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
 #include "test_paths.h"
 #include "util/hash.h"
 
-namespace subdfit::exporter {
+namespace subdfit::codec {
 namespace {
 
 // The same file as version 5 wrote it: no decode triangles in the header.
@@ -80,11 +80,11 @@ TEST(DecodeDensity, OlderFilesStillReadAndFallBackToTheCage) {
 TEST(DecodeDensity, DecodeWritesAboutTheRecordedCount) {
     const auto dir = test::scratchDir("decode_density");
     writeSubd(dir / "asset.subd", {.cage = mesh::makeQuadSphere(6), .maps = {}, .decodeTriangles = 30000});
-    decodeToGlb(dir / "asset.subd", dir / "out.glb");
+    exporter::decodeToGlb(dir / "asset.subd", dir / "out.glb");
     const int triangles = mesh::loadMesh(dir / "out.glb").faceCount();
     EXPECT_GE(triangles, 15000);
     EXPECT_LE(triangles, 60000);
 }
 
 }  // namespace
-}  // namespace subdfit::exporter
+}  // namespace subdfit::codec

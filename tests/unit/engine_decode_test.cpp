@@ -17,9 +17,9 @@
 #include "export/engine/engine_decode.h"
 #include "export/engine/error_density.h"
 #include "export/engine/surface_error.h"
-#include "export/meshopt_encoding.h"
-#include "export/subd_decode.h"
-#include "export/surface_glb.h"
+#include "export/gltf/meshopt_encoding.h"
+#include "export/engine/subd_decode.h"
+#include "export/gltf/surface_glb.h"
 #include "geometry/surface_distance.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
@@ -33,7 +33,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // A lumpy sphere: heights on 4-cell tiles, so that coarser densities do lose detail.
-SubdAsset lumpySphere(std::uint32_t decodeTriangles, int n = 4) {
+codec::SubdAsset lumpySphere(std::uint32_t decodeTriangles, int n = 4) {
     const auto cage = mesh::makeQuadSphere(n);
     surface::SurfaceMaps maps;
     maps.layout = surface::buildTexelLayout(cage, 4);
@@ -41,7 +41,7 @@ SubdAsset lumpySphere(std::uint32_t decodeTriangles, int n = 4) {
     std::uniform_real_distribution<float> height(-0.04f, 0.04f);
     maps.displacement.resize(size_t(maps.layout.nodeCount));
     for (float& d : maps.displacement) d = height(rng);
-    return shippableAsset(cage, maps, 14, decodeTriangles);
+    return codec::shippableAsset(cage, maps, 14, decodeTriangles);
 }
 
 nlohmann::json glbJson(const fs::path& path) {
@@ -54,7 +54,7 @@ nlohmann::json glbJson(const fs::path& path) {
 
 TEST(EngineDecode, MeshoptOutputReadsBackAsTheFloatSurfaceWithinItsQuantisation) {
     const auto dir = test::scratchDir("engine_decode_meshopt");
-    writeSubd(dir / "asset.subd", lumpySphere(20000));
+    codec::writeSubd(dir / "asset.subd", lumpySphere(20000));
     const auto compact = decodeToGlb(dir / "asset.subd", dir / "compact.glb", {}, MeshCoding::Meshopt);
     const auto plain = decodeToGlb(dir / "asset.subd", dir / "plain.glb", {}, MeshCoding::Float);
     EXPECT_LT(compact.bytes * 3, plain.bytes);  // positions, normals, tangents, texcoords packed
@@ -79,7 +79,7 @@ TEST(EngineDecode, MeshoptOutputReadsBackAsTheFloatSurfaceWithinItsQuantisation)
 // no material, texture coordinates or tangents for a surface that has no image.
 TEST(EngineDecode, TheDefaultIsQuantisedWithNoDecoderNeeded) {
     const auto dir = test::scratchDir("engine_decode_quantized");
-    writeSubd(dir / "asset.subd", lumpySphere(20000));
+    codec::writeSubd(dir / "asset.subd", lumpySphere(20000));
     const auto quantized = decodeToGlb(dir / "asset.subd", dir / "quantized.glb");
     const auto plain = decodeToGlb(dir / "asset.subd", dir / "plain.glb", {}, MeshCoding::Float);
     EXPECT_LT(quantized.bytes * 2, plain.bytes);
@@ -110,7 +110,7 @@ TEST(EngineDecode, TheDefaultIsQuantisedWithNoDecoderNeeded) {
 // engines' do) within a degree or two of the float file's at the same point.
 TEST(EngineDecode, OctahedralNormalsReadBackAsTheFloatOnes) {
     const auto dir = test::scratchDir("engine_decode_normals");
-    writeSubd(dir / "asset.subd", lumpySphere(3000));
+    codec::writeSubd(dir / "asset.subd", lumpySphere(3000));
     decodeForEngines(dir / "asset.subd", dir / "compact.glb", EngineDecodeOptions{.coding = MeshCoding::Meshopt});
     decodeToGlb(dir / "asset.subd", dir / "plain.glb", {}, MeshCoding::Float);
     const nlohmann::json doc = glbJson(dir / "compact.glb");
@@ -136,7 +136,7 @@ TEST(EngineDecode, OctahedralNormalsReadBackAsTheFloatOnes) {
 
 TEST(EngineDecode, ThreeLevelsWhoseErrorsRiseAsTheirTrianglesFall) {
     const auto dir = test::scratchDir("engine_decode_lods");
-    writeSubd(dir / "asset.subd", lumpySphere(40000));
+    codec::writeSubd(dir / "asset.subd", lumpySphere(40000));
     const auto written = decodeForEngines(dir / "asset.subd", dir / "lumpy.glb", {.lods = 3});
     ASSERT_EQ(written.size(), 4u);  // three .glb and the JSON
     for (const char* name : {"lumpy.glb", "lumpy_lod1.glb", "lumpy_lod2.glb", "lumpy_lods.json"})
@@ -173,8 +173,8 @@ TEST(EngineDecode, ThreeLevelsWhoseErrorsRiseAsTheirTrianglesFall) {
 // The density --max-error picks is within the bound of the reference tessellation, and one
 // segment fewer is not.
 TEST(EngineDecode, MaxErrorChoosesTheCoarsestDensityWithinTheBound) {
-    const SubdAsset asset = lumpySphere(0, 2);  // 24 quads: a reference of 64 segments stays small
-    DecodeBudget budget("lumpy.subd");
+    const codec::SubdAsset asset = lumpySphere(0, 2);  // 24 quads: a reference of 64 segments stays small
+    codec::DecodeBudget budget("lumpy.subd");
     const ErrorDensity within = densityWithin(asset, {.value = 0.004, .ofDiagonal = false}, budget);
     EXPECT_LE(within.maxDistance, 0.004);
     ASSERT_GT(within.density.segments, 1);
@@ -184,10 +184,10 @@ TEST(EngineDecode, MaxErrorChoosesTheCoarsestDensityWithinTheBound) {
         surface::triangleMesh(surface::tessellate(asset.cage, asset.maps, within.density.segments - 1));
     EXPECT_GT(geometry::surfaceDistance(coarser, fine, kErrorSamples).hausdorff, 0.004);
     // A tighter bound asks for more segments; as a fraction of the diagonal, the same rule.
-    DecodeBudget again("lumpy.subd");
+    codec::DecodeBudget again("lumpy.subd");
     EXPECT_GT(densityWithin(asset, {.value = 0.001, .ofDiagonal = false}, again).density.segments,
               within.density.segments);
-    DecodeBudget relative("lumpy.subd");
+    codec::DecodeBudget relative("lumpy.subd");
     const ErrorDensity percent = densityWithin(asset, {.value = 0.001, .ofDiagonal = true}, relative);
     EXPECT_LE(percent.maxDistance, percent.bound);
     EXPECT_GT(percent.bound, 0.001);  // the sphere's diagonal is over 1
@@ -198,14 +198,15 @@ TEST(EngineDecode, MaxErrorChoosesTheCoarsestDensityWithinTheBound) {
 // gives way to what the budget holds, and an asked-for density that would pass it is refused.
 TEST(EngineDecode, AChainOfLevelsIsPricedWholeBeforeItStarts) {
     const mesh::PolygonMesh cage = mesh::makeQuadGrid(100);
-    const SubdOutline outline{.cage = cage, .decodeTriangles = 1u << 22};
-    DecodeBudget one("one.subd"), chain("chain.subd"), asked("asked.subd");
-    const DecodeDensity single = pricedDensity(outline, {}, one);
-    const DecodeDensity eight = pricedDensity(outline, {}, chain, 8);
+    const codec::SubdOutline outline{.cage = cage, .decodeTriangles = 1u << 22};
+    codec::DecodeBudget one("one.subd"), chain("chain.subd"), asked("asked.subd");
+    const codec::DecodeDensity single = codec::pricedDensity(outline, {}, one);
+    const codec::DecodeDensity eight = codec::pricedDensity(outline, {}, chain, 8);
     EXPECT_GT(single.triangles, 3'000'000);
     EXPECT_LT(eight.triangles, single.triangles);
-    EXPECT_LE(decodeOutputBytes(eight) + lodChainBytes(eight, 8), kDecodeBudgetBytes);
-    const std::string refusal = test::errorMessage([&] { pricedDensity(outline, {.triangles = 4'000'000}, asked, 8); });
+    EXPECT_LE(decodeOutputBytes(eight) + lodChainBytes(eight, 8), codec::kDecodeBudgetBytes);
+    const std::string refusal =
+        test::errorMessage([&] { codec::pricedDensity(outline, {.triangles = 4'000'000}, asked, 8); });
     EXPECT_NE(refusal.find("asked.subd"), std::string::npos) << refusal;
     EXPECT_NE(refusal.find("8 levels of detail"), std::string::npos) << refusal;
 }
@@ -214,7 +215,7 @@ TEST(EngineDecode, AChainOfLevelsIsPricedWholeBeforeItStarts) {
 // writes none of them; an input name that is not UTF-8 reaches the JSON replaced, not as an error.
 TEST(EngineDecode, TheLevelsAreWrittenTogetherOrNotAtAll) {
     const auto dir = test::scratchDir("engine_decode_together");
-    writeSubd(dir / "asset.subd", lumpySphere(2000, 2));
+    codec::writeSubd(dir / "asset.subd", lumpySphere(2000, 2));
     const std::string stem(246, 'a');  // stem_lod1.glb fits; stem_lods.json does not
     const std::string refusal =
         test::errorMessage([&] { decodeForEngines(dir / "asset.subd", dir / (stem + ".glb"), {.lods = 2}); });
@@ -234,7 +235,7 @@ TEST(EngineDecode, TheLevelsAreWrittenTogetherOrNotAtAll) {
 // 1e-30 % of the diagonal is no distance floats resolve: the finest density at once, said so.
 TEST(EngineDecode, AnErrorBoundBelowWhatTheSurfaceResolvesIsClampedToTheFinest) {
     const auto dir = test::scratchDir("engine_decode_tiny_bound");
-    writeSubd(dir / "asset.subd", lumpySphere(2000, 2));
+    codec::writeSubd(dir / "asset.subd", lumpySphere(2000, 2));
     std::string said;
     const WarningSink previous = setWarningSink([&](const std::string& w) { said += w + "\n"; });
     decodeForEngines(dir / "asset.subd", dir / "fine.glb",
@@ -257,7 +258,7 @@ TEST(EngineDecode, BadErrorBoundsAndLevelCountsAreRefused) {
         EXPECT_NE(problem.find("must be a positive distance"), std::string::npos);
     }
     const auto dir = test::scratchDir("engine_decode_bad");
-    writeSubd(dir / "asset.subd", lumpySphere(1000));
+    codec::writeSubd(dir / "asset.subd", lumpySphere(1000));
     EXPECT_THROW(decodeForEngines(dir / "asset.subd", dir / "x.glb", {.maxError = ErrorBound{.value = 0.0}}),
                  OptionError);
     EXPECT_THROW(decodeForEngines(dir / "asset.subd", dir / "x.glb", {.lods = kMostLods + 1}), OptionError);

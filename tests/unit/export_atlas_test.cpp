@@ -11,7 +11,8 @@
 #include <random>
 #include <set>
 
-#include "export/map_atlas.h"
+#include "codec/map_atlas.h"
+#include "export/map_images.h"
 #include "surface/texel_layout.h"
 #include "mesh/procedural.h"
 #include "test_paths.h"
@@ -63,7 +64,7 @@ float gpuBilinear(const std::vector<float>& image, int width, int height, glm::v
 
 TEST(ExportAtlas, TilesFormASquareishGridWithoutOverlap) {
     const surface::SurfaceMaps maps = distinctMaps(4);
-    const AtlasLayout atlas = atlasLayout(maps.layout);
+    const codec::AtlasLayout atlas = codec::atlasLayout(maps.layout);
     ASSERT_EQ(maps.layout.ptexFaceCount, 96);
     EXPECT_EQ(atlas.tileSize, 5);
     EXPECT_EQ(atlas.columns, 10);  // ceil(sqrt(96))
@@ -84,16 +85,16 @@ TEST(ExportAtlas, TilesFormASquareishGridWithoutOverlap) {
 
     surface::TexelLayout nine = maps.layout;
     nine.ptexFaceCount = 9;
-    EXPECT_EQ(atlasLayout(nine).columns, 3);  // an exact square stays exact
+    EXPECT_EQ(codec::atlasLayout(nine).columns, 3);  // an exact square stays exact
     nine.ptexFaceCount = 10;
-    EXPECT_EQ(atlasLayout(nine).columns, 4);
-    EXPECT_EQ(atlasLayout(nine).rows, 3);
+    EXPECT_EQ(codec::atlasLayout(nine).columns, 4);
+    EXPECT_EQ(codec::atlasLayout(nine).rows, 3);
 }
 
 TEST(ExportAtlas, GpuBilinearAtTheAtlasUvReproducesTheNodeInterpolation) {
     const surface::SurfaceMaps maps = distinctMaps(4);
-    const AtlasLayout atlas = atlasLayout(maps.layout);
-    const std::vector<float> image = displacementAtlas(atlas, maps);
+    const codec::AtlasLayout atlas = codec::atlasLayout(maps.layout);
+    const std::vector<float> image = codec::displacementAtlas(atlas, maps);
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (int face = 0; face < maps.layout.ptexFaceCount; ++face)
@@ -101,22 +102,23 @@ TEST(ExportAtlas, GpuBilinearAtTheAtlasUvReproducesTheNodeInterpolation) {
             // Include the tile borders, where a wrong half-texel would reach the next tile.
             const float u = k < 4 ? float(k & 1) : unit(rng), v = k < 4 ? float(k >> 1) : unit(rng);
             const float expected = surface::sampleBilinear(maps.layout, maps.displacement, 1, 0, face, u, v);
-            EXPECT_NEAR(gpuBilinear(image, atlas.width, atlas.height, atlasUv(atlas, face, u, v)), expected, 1e-5f)
+            EXPECT_NEAR(gpuBilinear(image, atlas.width, atlas.height, codec::atlasUv(atlas, face, u, v)), expected,
+                        1e-5f)
                 << "face " << face << " (" << u << ", " << v << ")";
         }
 }
 
 TEST(ExportAtlas, FilesReadBackWithTheNodeValuesAtTheirPixels) {
     const surface::SurfaceMaps maps = distinctMaps(4);
-    const AtlasLayout atlas = atlasLayout(maps.layout);
+    const codec::AtlasLayout atlas = codec::atlasLayout(maps.layout);
     const fs::path dir = test::scratchDir("export_atlas_files");
-    const std::vector<WrittenFile> written = writeMapAtlases(dir, maps);
+    const std::vector<io::WrittenFile> written = writeMapAtlases(dir, maps);
 
     ASSERT_EQ(written.size(), 3u);
     EXPECT_EQ(written[0].path, dir / "displacement.exr");
     EXPECT_EQ(written[1].path, dir / "normal.png");
     EXPECT_EQ(written[2].path, dir / "maps.json");
-    for (const WrittenFile& file : written) EXPECT_EQ(file.bytes, fs::file_size(file.path)) << file.path;
+    for (const io::WrittenFile& file : written) EXPECT_EQ(file.bytes, fs::file_size(file.path)) << file.path;
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 3);  // no temporaries
 
     const Image exr = readImage(dir / "displacement.exr");
@@ -166,7 +168,7 @@ TEST(ExportAtlas, AbsentMapsWriteOnlyTheManifest) {
     maps.displacement.clear();
     maps.normal.clear();
     const fs::path dir = test::scratchDir("export_atlas_absent");
-    const std::vector<WrittenFile> written = writeMapAtlases(dir, maps);
+    const std::vector<io::WrittenFile> written = writeMapAtlases(dir, maps);
     ASSERT_EQ(written.size(), 1u);
     EXPECT_EQ(written[0].path.filename(), "maps.json");
     std::ifstream in(dir / "maps.json");

@@ -12,9 +12,10 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
-#include "export/glb_writer.h"
+#include "export/gltf/glb_writer.h"
 #include "export/gltf_mesh.h"
-#include "export/map_atlas.h"
+#include "codec/map_atlas.h"
+#include "export/map_images.h"
 #include "io/input_file.h"
 #include "mesh/gltf_reader.h"
 #include "mesh/mesh_geometry.h"
@@ -69,7 +70,7 @@ std::span<const float> floats(const std::vector<Vec>& v) {
 
 // What fitted.glb encodes: the displaced limit surface's tessellation with atlas texcoords.
 GltfMesh fittedMesh(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps, int segments) {
-    return gltfMesh(surface::tessellate(cage, maps, segments), atlasLayout(maps.layout));
+    return gltfMesh(surface::tessellate(cage, maps, segments), codec::atlasLayout(maps.layout));
 }
 
 void expectWellFormed(const GltfMesh& tess) {
@@ -140,10 +141,10 @@ protected:
     static void SetUpTestSuite() {
         asset_ = new Asset;
         tess_ = new GltfMesh(fittedMesh(asset_->cage, asset_->maps, 8));
-        png_ = new std::vector<unsigned char>(encodeNormalPng(atlasLayout(asset_->maps.layout), asset_->maps));
+        png_ = new std::vector<unsigned char>(encodeNormalPng(codec::atlasLayout(asset_->maps.layout), asset_->maps));
         dir_ = new fs::path(test::scratchDir("export_glb"));
-        plain_ = new WrittenFile(writeFittedGlb(*dir_ / "fitted.glb", *tess_, *png_, false));
-        draco_ = new WrittenFile(writeFittedGlb(*dir_ / "fitted_draco.glb", *tess_, *png_, true));
+        plain_ = new io::WrittenFile(writeFittedGlb(*dir_ / "fitted.glb", *tess_, *png_, false));
+        draco_ = new io::WrittenFile(writeFittedGlb(*dir_ / "fitted_draco.glb", *tess_, *png_, true));
     }
     static void TearDownTestSuite() {
         delete asset_, delete tess_, delete png_, delete dir_, delete plain_, delete draco_;
@@ -152,7 +153,7 @@ protected:
     static inline GltfMesh* tess_ = nullptr;
     static inline std::vector<unsigned char>* png_ = nullptr;
     static inline fs::path* dir_ = nullptr;
-    static inline WrittenFile *plain_ = nullptr, *draco_ = nullptr;
+    static inline io::WrittenFile *plain_ = nullptr, *draco_ = nullptr;
 };
 
 TEST_F(ExportGlb, TessellationIsFiniteUnitAndOutward) {
@@ -278,7 +279,7 @@ TEST_F(ExportGlb, DracoGlbIsSmallerAndDecodesToTheSameSurface) {
 // No image, no material: the surface is drawn as a reader draws a mesh without one, as it drew
 // a reference that had none (not in a grey of subdfit's own).
 TEST_F(ExportGlb, GlbWithoutNormalMapHasNoTexture) {
-    const WrittenFile file = writeFittedGlb(*dir_ / "untextured.glb", *tess_, FittedTextures{}, false);
+    const io::WrittenFile file = writeFittedGlb(*dir_ / "untextured.glb", *tess_, FittedTextures{}, false);
     const json doc = readGlb(file.path).document;
     EXPECT_FALSE(doc.contains("images"));
     EXPECT_FALSE(doc.contains("textures"));
@@ -293,8 +294,8 @@ TEST_F(ExportGlb, PlainMeshGlbHasOnlyPositionsAndRoundTrips) {
     const std::vector<std::uint32_t> indices(cage.faceIndices.begin(), cage.faceIndices.end());
     for (bool draco : {false, true}) {
         SCOPED_TRACE(draco ? "draco" : "plain");
-        const WrittenFile file = writeMeshGlb(*dir_ / (draco ? "cage_draco.glb" : "cage.glb"), cage.positions, {},
-                                              indices, draco, {{"subdivision", "catmull-clark"}});
+        const io::WrittenFile file = writeMeshGlb(*dir_ / (draco ? "cage_draco.glb" : "cage.glb"), cage.positions, {},
+                                                  indices, draco, {{"subdivision", "catmull-clark"}});
         const json doc = readGlb(file.path).document;
         EXPECT_EQ(doc["meshes"][0]["extras"]["subdivision"], "catmull-clark");
         EXPECT_EQ(doc["meshes"][0]["primitives"][0]["attributes"].size(), 1u);

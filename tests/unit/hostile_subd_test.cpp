@@ -20,11 +20,11 @@
 #include "bounded_run.h"
 #include "error_message.h"
 #include "subd_bytes.h"
-#include "export/atlas_uv_coding.h"
-#include "export/byte_stream.h"
-#include "export/cage_coding.h"
-#include "export/subd_decode.h"
-#include "export/subd_format.h"
+#include "codec/atlas_uv_coding.h"
+#include "codec/byte_stream.h"
+#include "codec/cage_coding.h"
+#include "export/engine/subd_decode.h"
+#include "codec/subd_format.h"
 #include "io/image_io.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
@@ -32,7 +32,7 @@
 #include "test_paths.h"
 #include "util/hash.h"
 
-namespace subdfit::exporter {
+namespace subdfit::codec {
 namespace {
 
 namespace fs = std::filesystem;
@@ -101,7 +101,7 @@ TEST(HostileSubd, ALargePlainCageDecodesWithinItsBudgetByDefault) {
     const Bytes file = container({{"CAGE", plainGridCage(200)}});
     EXPECT_LT(file.size(), 8000u);
     const fs::path subd = written("grid200.subd", file), glb = subd.parent_path() / "grid200.glb";
-    const auto outcome = test::runBounded(512 * kMB, 60, [&] { decodeToGlb(subd, glb); });
+    const auto outcome = test::runBounded(512 * kMB, 60, [&] { exporter::decodeToGlb(subd, glb); });
     ASSERT_TRUE(outcome.finished) << outcome.problem;
     ASSERT_EQ(outcome.error, "");
     EXPECT_LE(mesh::loadMesh(glb).faceCount(), 1 << 20);
@@ -110,8 +110,8 @@ TEST(HostileSubd, ALargePlainCageDecodesWithinItsBudgetByDefault) {
 TEST(HostileSubd, ADensityBeyondTheHardLimitIsRefusedBeforeAllocating) {
     const fs::path subd = written("grid200_64.subd", container({{"CAGE", plainGridCage(200)}}));
     const fs::path glb = subd.parent_path() / "never.glb";
-    expectRefused(test::runBounded(256 * kMB, 20, [&] { decodeToGlb(subd, glb, {.segments = 64}); }), "grid200_64.subd",
-                  "triangles");
+    expectRefused(test::runBounded(256 * kMB, 20, [&] { exporter::decodeToGlb(subd, glb, {.segments = 64}); }),
+                  "grid200_64.subd", "triangles");
     EXPECT_FALSE(fs::exists(glb));
 }
 
@@ -230,14 +230,15 @@ TEST(HostileSubd, DecodeWritesOverRegularFilesOnly) {
                                                        {dir / "folder.glb", "folder"},
                                                        {subd, "is the input"},
                                                        {"", "empty"}}) {
-        const std::string message = test::errorMessage([&] { decodeToGlb(subd, out); });
+        const std::string message = test::errorMessage([&] { exporter::decodeToGlb(subd, out); });
         EXPECT_NE(message.find(problem), std::string::npos) << out << ": " << message;
     }
     EXPECT_TRUE(fs::is_fifo(dir / "fifo.glb"));
     EXPECT_TRUE(fs::is_directory(dir / "folder.glb"));
     EXPECT_NO_THROW(readSubd(subd));
     std::ofstream(dir / "old.glb") << "old";
-    EXPECT_EQ(test::errorMessage([&] { decodeToGlb(subd, dir / "old.glb"); }), "");  // a regular file is replaced
+    EXPECT_EQ(test::errorMessage([&] { exporter::decodeToGlb(subd, dir / "old.glb"); }),
+              "");  // a regular file is replaced
     EXPECT_GT(fs::file_size(dir / "old.glb"), 100u);
 }
 
@@ -282,4 +283,4 @@ TEST(HostileSubd, AVersion7SectionWithoutAChecksumIsRefused) {
 }
 
 }  // namespace
-}  // namespace subdfit::exporter
+}  // namespace subdfit::codec

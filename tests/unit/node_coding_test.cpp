@@ -5,12 +5,12 @@
 #include <cmath>
 #include <random>
 
-#include "export/node_coding.h"
+#include "codec/node_coding.h"
 #include "mesh/procedural.h"
 #include "surface/tessellation.h"
 #include "surface/texel_layout.h"
 
-namespace subdfit::exporter {
+namespace subdfit::codec {
 namespace {
 
 constexpr int kResolution = 4;
@@ -93,4 +93,4 @@ TEST(NodeCoding, AnImpossibleLeanIsRefused) {
 }
 
 }  // namespace
-}  // namespace subdfit::exporter
+}  // namespace subdfit::codec

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "error_message.h"
-#include "export/subd_format.h"
+#include "codec/subd_format.h"
 #include "mesh/procedural.h"
 #include "surface/displaced_surface.h"
 #include "util/hash.h"
@@ -51,14 +51,14 @@ TEST(ShadingNormal, LimitShadingMovesThePointButNotTheNormal) {
 TEST(ShadingNormal, TheChoiceShipsInTheSubdHeader) {
     const auto cage = mesh::makeQuadSphere(3);
     for (const auto shading : {surface::ShadingNormal::Displaced, surface::ShadingNormal::Limit}) {
-        const auto bytes = exporter::encodeSubd(exporter::shippableAsset(cage, roughHeights(cage, 2, shading)));
-        EXPECT_EQ(exporter::decodeSubd(bytes, "shaded.subd").maps.shadingNormal, shading);
+        const auto bytes = codec::encodeSubd(codec::shippableAsset(cage, roughHeights(cage, 2, shading)));
+        EXPECT_EQ(codec::decodeSubd(bytes, "shaded.subd").maps.shadingNormal, shading);
     }
     // Without heights there is nothing for it to say: never set.
     surface::SurfaceMaps bare;
     bare.shadingNormal = surface::ShadingNormal::Limit;
-    const auto bytes = exporter::encodeSubd(exporter::shippableAsset(cage, bare));
-    EXPECT_EQ(exporter::decodeSubd(bytes, "bare.subd").maps.shadingNormal, surface::ShadingNormal::Displaced);
+    const auto bytes = codec::encodeSubd(codec::shippableAsset(cage, bare));
+    EXPECT_EQ(codec::decodeSubd(bytes, "bare.subd").maps.shadingNormal, surface::ShadingNormal::Displaced);
 }
 
 // A header whose flags say what the file cannot mean is refused in one line, checksum or not.
@@ -71,13 +71,13 @@ TEST(ShadingNormal, FlagsTheFileCannotMeanAreRefused) {
         std::memcpy(bytes.data() + body, &sum, 8);
         return bytes;
     };
-    const auto bare = exporter::encodeSubd(exporter::shippableAsset(cage, {}));
+    const auto bare = codec::encodeSubd(codec::shippableAsset(cage, {}));
     const auto heights =
-        exporter::encodeSubd(exporter::shippableAsset(cage, roughHeights(cage, 2, surface::ShadingNormal::Displaced)));
-    EXPECT_EQ(exporter::decodeSubd(withFlags(heights, 1), "ok.subd").maps.shadingNormal, surface::ShadingNormal::Limit);
-    const std::string noHeights = errorMessage([&] { exporter::decodeSubd(withFlags(bare, 1), "bare.subd"); });
+        codec::encodeSubd(codec::shippableAsset(cage, roughHeights(cage, 2, surface::ShadingNormal::Displaced)));
+    EXPECT_EQ(codec::decodeSubd(withFlags(heights, 1), "ok.subd").maps.shadingNormal, surface::ShadingNormal::Limit);
+    const std::string noHeights = errorMessage([&] { codec::decodeSubd(withFlags(bare, 1), "bare.subd"); });
     EXPECT_EQ(noHeights, "bare.subd: limit shading flagged without a displacement");
-    const std::string unknown = errorMessage([&] { exporter::decodeSubd(withFlags(heights, 4), "new.subd"); });
+    const std::string unknown = errorMessage([&] { codec::decodeSubd(withFlags(heights, 4), "new.subd"); });
     EXPECT_EQ(unknown, "new.subd: unknown flags");
 }
 

@@ -11,17 +11,17 @@
 #include "error_message.h"
 #include <glm/geometric.hpp>
 
-#include "export/cage_coding.h"
-#include "export/node_coding.h"
-#include "export/subd_decode.h"
-#include "export/subd_format.h"
+#include "codec/cage_coding.h"
+#include "codec/node_coding.h"
+#include "export/engine/subd_decode.h"
+#include "codec/subd_format.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
 #include "surface/tessellation.h"
 #include "test_paths.h"
 #include "util/error.h"
 
-namespace subdfit::exporter {
+namespace subdfit::codec {
 namespace {
 
 // Smooth heights and normal-map offsets with some fine detail, on the cage's texel layout.
@@ -273,7 +273,7 @@ TEST(SubdDecode, WritesTheDisplacedSurfaceAndNothingForABadFile) {
     const auto dir = test::scratchDir("subd_decode");
     const auto cage = mesh::makeQuadSphere(3);
     writeSubd(dir / "asset.subd", shippableAsset(cage, someMaps(cage, 4, 2)));
-    const auto written = decodeToGlb(dir / "asset.subd", dir / "decoded.glb");
+    const auto written = exporter::decodeToGlb(dir / "asset.subd", dir / "decoded.glb");
     const auto mesh = mesh::loadMesh(written.path);
     EXPECT_EQ(mesh.faceCount(), cage.faceCount() * 4 * 4 * 2);  // 4 segments (the maps' T), 2 triangles each
 
@@ -281,15 +281,15 @@ TEST(SubdDecode, WritesTheDisplacedSurfaceAndNothingForABadFile) {
         std::ofstream truncated(dir / "truncated.subd", std::ios::binary);
         truncated << "SUBD\x01";
     }
-    EXPECT_THROW(decodeToGlb(dir / "truncated.subd", dir / "never.glb"), Error);
+    EXPECT_THROW(exporter::decodeToGlb(dir / "truncated.subd", dir / "never.glb"), Error);
     EXPECT_FALSE(std::filesystem::exists(dir / "never.glb"));
-    EXPECT_THROW(decodeToGlb(dir / "missing.subd", dir / "never.glb"), Error);
+    EXPECT_THROW(exporter::decodeToGlb(dir / "missing.subd", dir / "never.glb"), Error);
 }
 
 }  // namespace
-}  // namespace subdfit::exporter
+}  // namespace subdfit::codec
 
-namespace subdfit::exporter {
+namespace subdfit::codec {
 namespace {
 
 // A decimator's cage comes in no useful vertex order: the plain coding's index deltas are then
@@ -312,4 +312,4 @@ TEST(SubdFormat, AShuffledCageShipsInFewBytesPerVertex) {
 }
 
 }  // namespace
-}  // namespace subdfit::exporter
+}  // namespace subdfit::codec

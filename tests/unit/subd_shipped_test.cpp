@@ -7,8 +7,8 @@
 #include "error_message.h"
 #include "subd_bytes.h"
 
-#include "export/byte_stream.h"
-#include "export/subd_format.h"
+#include "codec/byte_stream.h"
+#include "codec/subd_format.h"
 #include "export/surface_mesh.h"
 #include "io/image_header.h"
 #include "io/image_io.h"
@@ -17,7 +17,7 @@
 #include "util/error.h"
 #include "util/hash.h"
 
-namespace subdfit::exporter {
+namespace subdfit::codec {
 namespace {
 
 // A base colour, roughness-metallic and emission on tiles of the cage, all grey 0.5.
@@ -134,16 +134,16 @@ TEST(SubdShipped, AnImageOfTheWrongSizeIsRefusedFromItsHeader) {
 TEST(SubdShipped, TheSurfaceDecodeWritesHasTheMaterialsTexturesAndFactors) {
     const auto cage = mesh::makeQuadSphere(2);
     const SubdAsset asset = decodeSubd(encodeSubd(greyAppearance(cage, 4)), "grey.subd");
-    const SurfaceTextures textures = SurfaceTextures::of(asset.maps);
+    const exporter::SurfaceTextures textures = exporter::SurfaceTextures::of(asset.maps);
     EXPECT_TRUE(textures.baseColor && textures.metallicRoughness && textures.occlusion && textures.emissive);
     EXPECT_FALSE(textures.normalMap || textures.normalTexture);
-    const SurfaceMaterial material = surfaceMaterial(textures);
+    const exporter::SurfaceMaterial material = exporter::surfaceMaterial(textures);
     EXPECT_EQ(material.metallicFactor, 1.0);
     EXPECT_EQ(material.roughnessFactor, 1.0);
     EXPECT_EQ(material.emissiveFactor[0], 1.0);
-    EXPECT_EQ(surfaceMaterial({}).roughnessFactor, 0.5);  // Blender's default surface without a base colour
+    EXPECT_EQ(exporter::surfaceMaterial({}).roughnessFactor, 0.5);  // Blender's default surface without a base colour
 
-    const GltfMesh mesh = surfaceGltfMesh(asset.cage, asset.maps, textures, 3);
+    const exporter::GltfMesh mesh = surfaceGltfMesh(asset.cage, asset.maps, textures, 3);
     const auto tessellation = surface::tessellate(asset.cage, asset.maps, 3);
     EXPECT_EQ(mesh.positions, tessellation.positions);
     EXPECT_EQ(mesh.indices, tessellation.indices);
@@ -153,8 +153,8 @@ TEST(SubdShipped, TheSurfaceDecodeWritesHasTheMaterialsTexturesAndFactors) {
         EXPECT_LT(uv.x, 1.0f);
         EXPECT_LT(uv.y * float(atlas.height), float(atlas.height));
     }
-    EXPECT_TRUE(surfaceNormalImage(asset.maps, textures).empty());
+    EXPECT_TRUE(exporter::surfaceNormalImage(asset.maps, textures).empty());
 }
 
 }  // namespace
-}  // namespace subdfit::exporter
+}  // namespace subdfit::codec

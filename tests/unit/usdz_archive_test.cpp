@@ -8,8 +8,8 @@
 #include <charconv>
 #include <cstring>
 
-#include "export/usda_text.h"
-#include "export/usdz_archive.h"
+#include "export/usd/usda_text.h"
+#include "export/usd/usdz_archive.h"
 #include "util/error.h"
 
 namespace subdfit {

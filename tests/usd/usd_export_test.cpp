@@ -18,9 +18,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "export/map_atlas.h"
-#include "export/subd_format.h"
-#include "export/usd_export.h"
+#include "codec/map_atlas.h"
+#include "codec/subd_format.h"
+#include "export/usd/usd_export.h"
 #include "mesh/mesh_loader.h"
 #include "simplify/bake/atlas_bake.h"
 #include "simplify/bake/bake.h"
@@ -137,7 +137,7 @@ struct TilePoint {
     int face;
     glm::vec2 uv, pixel;
 };
-TilePoint tilePointOf(const exporter::AtlasLayout& atlas, glm::vec2 st) {
+TilePoint tilePointOf(const codec::AtlasLayout& atlas, glm::vec2 st) {
     const glm::vec2 pixel(st.x * float(atlas.width) - 0.5f, (1.0f - st.y) * float(atlas.height) - 0.5f);
     const glm::ivec2 tile = glm::clamp(glm::ivec2(glm::floor((pixel + 0.5f) / float(atlas.tileSize))), glm::ivec2(0),
                                        glm::ivec2(atlas.columns - 1, atlas.rows - 1));
@@ -151,7 +151,7 @@ struct Expected {
 };
 
 // Everything the header promises, for `shipped` exported into `dir`.
-void checkExport(const exporter::SubdAsset& shipped, const fs::path& dir, const Expected& expected) {
+void checkExport(const codec::SubdAsset& shipped, const fs::path& dir, const Expected& expected) {
     const json usd = readWithUsd(dir / "asset.usdz", dir / "read");
     ASSERT_TRUE(usd["opened"].get<bool>());
     int errors = 0;
@@ -202,7 +202,7 @@ void checkExport(const exporter::SubdAsset& shipped, const fs::path& dir, const 
     const bool heights = maps.hasDisplacement();
     json displacement;
     Image heightImage;
-    std::optional<exporter::AtlasLayout> atlas;
+    std::optional<codec::AtlasLayout> atlas;
     float scale = 0.0f, bias = 0.0f;
     if (heights) {
         ASSERT_TRUE(usd["material"]["inputs"].contains("displacement"));
@@ -217,7 +217,7 @@ void checkExport(const exporter::SubdAsset& shipped, const fs::path& dir, const 
             << displacement["resolved"];
         heightImage = readImage(displacement["extracted"].get<std::string>());
         EXPECT_EQ(heightImage.bits, 16);
-        atlas = exporter::atlasLayout(maps.layout);
+        atlas = codec::atlasLayout(maps.layout);
         ASSERT_EQ(heightImage.width, atlas->width);
         ASSERT_EQ(heightImage.height, atlas->height);
         scale = displacement["scale"][0].get<float>(), bias = displacement["bias"][0].get<float>();
@@ -302,8 +302,8 @@ surface::SurfaceMaps wavyMaps(const mesh::PolygonMesh& cage, int resolution, boo
 }
 
 // What ships: encoded as asset.subd, decoded again.
-exporter::SubdAsset shipped(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps) {
-    return exporter::decodeSubd(exporter::encodeSubd(exporter::shippableAsset(cage, maps)), "test asset");
+codec::SubdAsset shipped(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps) {
+    return codec::decodeSubd(codec::encodeSubd(codec::shippableAsset(cage, maps)), "test asset");
 }
 
 bool allQuads(const mesh::PolygonMesh& cage) {
@@ -323,7 +323,7 @@ class UsdExport : public ::testing::TestWithParam<Shape> {};
 // and corners on an open surface.
 TEST_P(UsdExport, OpensValidAndReproducesTheCageAndItsHeights) {
     const mesh::PolygonMesh cage = mesh::loadMesh(assetPath(GetParam().file));
-    const exporter::SubdAsset asset = shipped(cage, wavyMaps(cage, 4, GetParam().normal));
+    const codec::SubdAsset asset = shipped(cage, wavyMaps(cage, 4, GetParam().normal));
     const fs::path dir = scratchDir(std::string("usd_") + fs::path(GetParam().file).stem().string());
     exporter::writeUsd(dir, asset, true);
     checkExport(asset, dir, {.refined = !allQuads(cage)});
@@ -356,7 +356,7 @@ INSTANTIATE_TEST_SUITE_P(Shapes, UsdExport,
 TEST(UsdExport, ABareTriangleCageIsWrittenAsItIs) {
     const mesh::PolygonMesh cage = mesh::loadMesh(assetPath("spot/spot_control_mesh.obj"));
     ASSERT_FALSE(allQuads(cage));
-    const exporter::SubdAsset asset = shipped(cage, {});
+    const codec::SubdAsset asset = shipped(cage, {});
     const fs::path dir = scratchDir("usd_bare_spot");
     exporter::writeUsd(dir, asset);
     checkExport(asset, dir, {.refined = false});
@@ -383,7 +383,7 @@ TEST(UsdExport, ATexturedAssetCarriesItsAppearance) {
         maps.emissive[3 * k] = float(k % 5) / 4.0f;
         maps.normalTexture[3 * k + 2] = 1.0f;
     }
-    const exporter::SubdAsset asset = shipped(cage, maps);
+    const codec::SubdAsset asset = shipped(cage, maps);
     ASSERT_TRUE(asset.maps.appearanceAtlas.present());
     const fs::path dir = scratchDir("usd_duck_atlas");
     exporter::writeUsd(dir, asset);
@@ -403,13 +403,13 @@ TEST(UsdExport, ATexturedAssetCarriesItsAppearance) {
     }
     // The base colour's texels are the shipped ones, and st1 is the atlas coordinates subdfit
     // blends across each ptex face, at every corner of the stage's faces.
-    const exporter::AtlasLayout grid = exporter::atlasLayout(asset.maps.appearanceLayout);
-    const auto pixels = exporter::appearancePixels(grid, asset.maps, exporter::AppearanceImage::BaseColor);
+    const codec::AtlasLayout grid = codec::atlasLayout(asset.maps.appearanceLayout);
+    const auto pixels = codec::appearancePixels(grid, asset.maps, codec::AppearanceImage::BaseColor);
     const Image baseColor = readImage(inputs["diffuseColor"]["extracted"].get<std::string>());
     ASSERT_EQ(baseColor.width * baseColor.height * 3, int(pixels.size()));
     for (size_t k = 0; k < pixels.size(); ++k) ASSERT_EQ(std::lround(baseColor.texels[k] * 255.0f), pixels[k]) << k;
     const mesh::PolygonMesh theirs = cageOf(usd["cage"]);
-    const exporter::AtlasLayout heights = exporter::atlasLayout(asset.maps.layout);
+    const codec::AtlasLayout heights = codec::atlasLayout(asset.maps.layout);
     float worst = 0.0f;
     for (int f = 0; f < theirs.faceCount(); ++f)
         for (int k = 0; k < 4; ++k) {
@@ -430,7 +430,7 @@ TEST(UsdExport, AnAppearanceOnTilesHasItsOwnCoordinates) {
     ASSERT_FALSE(cage.tags.creases.empty());
     surface::SurfaceMaps maps = wavyMaps(cage, 2, false);
     maps.setAppearance(simplify::bakeAppearance(cage, reference, {.effects = {.baseColor = true}, .resolution = 4}));
-    const exporter::SubdAsset asset = shipped(cage, maps);
+    const codec::SubdAsset asset = shipped(cage, maps);
     const fs::path dir = scratchDir("usd_box_tiles");
     exporter::writeUsd(dir, asset);
     checkExport(asset, dir, {.refined = true});

@@ -9,7 +9,7 @@
 #include <string>
 #include <unordered_map>
 
-#include "export/decode_density.h"
+#include "codec/decode_density.h"
 #include "util/error.h"
 #include "web_decode.h"
 
@@ -30,9 +30,9 @@ extern "C" {
 EMSCRIPTEN_KEEPALIVE Result* subd_decode(const std::uint8_t* bytes, std::uint32_t size, double triangles,
                                          const char* name) {
     try {
-        if (!(triangles >= 0.0) || triangles > double(subdfit::exporter::kMaxDecodeTriangles))
+        if (!(triangles >= 0.0) || triangles > double(subdfit::codec::kMaxDecodeTriangles))
             throw subdfit::Error("invalid option: triangles: must be in 0.." +
-                                 std::to_string(subdfit::exporter::kMaxDecodeTriangles));
+                                 std::to_string(subdfit::codec::kMaxDecodeTriangles));
         auto decoded = subdfit::web::decode({bytes, size}, std::int64_t(triangles), name);
         Result* result = &decoded->result;
         live.emplace(result, std::move(decoded));

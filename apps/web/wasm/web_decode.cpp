@@ -2,8 +2,8 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "export/decode_budget.h"
-#include "export/decode_density.h"
+#include "codec/decode_budget.h"
+#include "codec/decode_density.h"
 #include "export/surface_mesh.h"
 #include "util/error.h"
 #include "util/warnings.h"
@@ -11,12 +11,12 @@
 namespace subdfit::web {
 namespace {
 
-std::uint32_t roleOf(exporter::AppearanceImage which) {
+std::uint32_t roleOf(codec::AppearanceImage which) {
     switch (which) {
-        case exporter::AppearanceImage::BaseColor: return 0;
-        case exporter::AppearanceImage::MetallicRoughness: return 1;
-        case exporter::AppearanceImage::NormalTexture: return 2;
-        case exporter::AppearanceImage::Emissive: return 3;
+        case codec::AppearanceImage::BaseColor: return 0;
+        case codec::AppearanceImage::MetallicRoughness: return 1;
+        case codec::AppearanceImage::NormalTexture: return 2;
+        case codec::AppearanceImage::Emissive: return 3;
     }
     return 0;
 }
@@ -32,17 +32,16 @@ std::unique_ptr<Decoded> decode(std::span<const std::uint8_t> bytes, std::int64_
     } restore{previous};
 
     // Every count the file states, and the triangles to write, priced before they are allocated.
-    exporter::DecodeBudget budget(name);
-    exporter::DecodeDensity density;
-    exporter::ShippedSubd shipped =
-        exporter::readShippedSubd(bytes, name, &budget, [&](const exporter::SubdOutline& outline) {
-            density = exporter::pricedDensity(outline, {.triangles = triangles}, budget);
-        });
-    const exporter::SubdAsset& asset = shipped.asset;
+    codec::DecodeBudget budget(name);
+    codec::DecodeDensity density;
+    codec::ShippedSubd shipped = codec::readShippedSubd(bytes, name, &budget, [&](const codec::SubdOutline& outline) {
+        density = codec::pricedDensity(outline, {.triangles = triangles}, budget);
+    });
+    const codec::SubdAsset& asset = shipped.asset;
     const int segments = density.segments;
     exporter::SurfaceTextures textures{.normalMap = asset.maps.hasNormal()};
     for (const auto& image : shipped.images) {
-        using exporter::AppearanceImage;
+        using codec::AppearanceImage;
         textures.baseColor |= image.which == AppearanceImage::BaseColor;
         textures.metallicRoughness |= image.which == AppearanceImage::MetallicRoughness;
         textures.occlusion |= image.occlusion;

@@ -2,8 +2,8 @@
 // The web decoder's work, without its WebAssembly glue (subd_web.cpp), so that it builds natively
 // too: the fuzz target tests/fuzz/fuzz_web.cpp runs it under ASan and UBSan. asset.subd bytes in,
 // the surface `subdfit decode` writes out as arrays, through the same reader (readShippedSubd),
-// decode budget and density choice (pricedDensity: export/decode_budget.h,
-// export/decode_density.h) and surface (surfaceGltfMesh, surfaceNormalImage, surfaceMaterial).
+// decode budget and density choice (pricedDensity: codec/decode_budget.h,
+// codec/decode_density.h) and surface (surfaceGltfMesh, surfaceNormalImage, surfaceMaterial).
 // Appearance images stay the JPEGs the file carries (their markers checked by the reader): the
 // browser decodes them. apps/web/js/subd_core.mjs reads the Result.
 #include <cstdint>
@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "export/gltf_mesh.h"
-#include "export/subd_format.h"
+#include "codec/subd_format.h"
 
 namespace subdfit::web {
 
@@ -47,7 +47,7 @@ struct Decoded {
     exporter::GltfMesh mesh;
     std::vector<Image> images;
     std::vector<std::vector<std::uint8_t>> pixels;
-    std::vector<exporter::ShippedImage> shipped;
+    std::vector<codec::ShippedImage> shipped;
     std::string warnings;
 };
 

@@ -5,8 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "export/subd_decode.h"
-#include "export/surface_glb.h"
+#include "export/engine/subd_decode.h"
+#include "export/gltf/surface_glb.h"
 #include "io/atomic_file.h"
 #include "util/error.h"
 #include "util/warnings.h"
@@ -25,8 +25,8 @@ std::filesystem::path lodJsonPath(const std::filesystem::path& out) {
     return path.replace_filename(out.stem().string() + "_lods.json");
 }
 
-std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, const std::filesystem::path& out,
-                                          const EngineDecodeOptions& o) {
+std::vector<io::WrittenFile> decodeForEngines(const std::filesystem::path& subd, const std::filesystem::path& out,
+                                              const EngineDecodeOptions& o) {
     if (o.maxError && !(o.maxError->value > 0.0 && std::isfinite(o.maxError->value)))
         throw OptionError("max-error", "must be a positive distance");
     if (o.lods < 0 || o.lods > kMostLods) throw OptionError("lods", "must be in 1.." + std::to_string(kMostLods));
@@ -34,13 +34,13 @@ std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, con
     for (int k = 0; k < levels; ++k) io::checkOutputFile(lodPath(out, k), subd);
     if (o.lods > 0) io::checkOutputFile(lodJsonPath(out), subd);
     try {
-        DecodeBudget budget(subd.string());
+        codec::DecodeBudget budget(subd.string());
         // The whole chain is priced before any of it is made (with the file, where the density
         // is the default or asked for; an error bound's once it is known).
         const DecodeInput input =
-            readForDecode(subd, o.maxError ? DensityRequest{} : o.density, budget, o.maxError ? 1 : levels);
-        const SubdAsset& asset = input.asset;
-        DecodeDensity density = input.density;
+            readForDecode(subd, o.maxError ? codec::DensityRequest{} : o.density, budget, o.maxError ? 1 : levels);
+        const codec::SubdAsset& asset = input.asset;
+        codec::DecodeDensity density = input.density;
         std::optional<ErrorDensity> fromError;
         if (o.maxError) {
             fromError = densityWithin(asset, *o.maxError, budget);
@@ -112,7 +112,7 @@ std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, con
             files.emplace_back(lodJsonPath(out), json);
         }
         io::writeFilesTogether(files);
-        std::vector<WrittenFile> written;
+        std::vector<io::WrittenFile> written;
         for (const auto& [path, bytes] : files) written.push_back({.path = path, .bytes = bytes.size()});
         return written;
     } catch (const std::bad_alloc&) {

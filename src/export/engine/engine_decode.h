@@ -8,16 +8,16 @@
 #include <optional>
 #include <vector>
 
-#include "export/decode_density.h"
+#include "codec/decode_density.h"
 #include "export/engine/error_density.h"
 #include "export/engine/lod_chain.h"
-#include "export/glb_writer.h"
-#include "export/output_file.h"
+#include "export/gltf/glb_writer.h"
+#include "io/output_file.h"
 
 namespace subdfit::exporter {
 
 struct EngineDecodeOptions {
-    DensityRequest density{};              // --triangles / --tess; 0: the default
+    codec::DensityRequest density{};       // --triangles / --tess; 0: the default
     std::optional<ErrorBound> maxError{};  // --max-error, instead of `density`
     int lods = 0;                          // --lods K: K files and the JSON; 0: one file, no JSON
     MeshCoding coding = MeshCoding::Quantized;
@@ -28,8 +28,8 @@ struct EngineDecodeOptions {
 // JSON to `<stem>_lods.json`. Every mesh is built and encoded before the first file is written
 // (each atomically). Throws subdfit::Error as decodeToGlb (export/subd_decode.h), and for an
 // error bound that is not positive.
-std::vector<WrittenFile> decodeForEngines(const std::filesystem::path& subd, const std::filesystem::path& out,
-                                          const EngineDecodeOptions& options);
+std::vector<io::WrittenFile> decodeForEngines(const std::filesystem::path& subd, const std::filesystem::path& out,
+                                              const EngineDecodeOptions& options);
 
 // Where level `k` of `out` goes, and the JSON.
 std::filesystem::path lodPath(const std::filesystem::path& out, int k);

@@ -30,12 +30,12 @@ std::string printableNumber(double value) {
 
 }  // namespace
 
-ErrorDensity densityWithin(const SubdAsset& asset, const ErrorBound& bound, DecodeBudget& budget) {
-    int finest = kMaxDecodeSegments;
-    while (finest > 1 && (densityAt(asset.cage, finest).triangles > kMaxDecodeTriangles ||
-                          !budget.fits(1, decodeOutputBytes(densityAt(asset.cage, finest)))))
+ErrorDensity densityWithin(const codec::SubdAsset& asset, const ErrorBound& bound, codec::DecodeBudget& budget) {
+    int finest = codec::kMaxDecodeSegments;
+    while (finest > 1 && (codec::densityAt(asset.cage, finest).triangles > codec::kMaxDecodeTriangles ||
+                          !budget.fits(1, decodeOutputBytes(codec::densityAt(asset.cage, finest)))))
         --finest;
-    const DecodeDensity reference = densityAt(asset.cage, finest);
+    const codec::DecodeDensity reference = codec::densityAt(asset.cage, finest);
     budget.spend(1, decodeOutputBytes(reference),
                  "the reference tessellation of --max-error (" + std::to_string(reference.triangles) + " triangles)");
     const mesh::PolygonMesh fine = surface::triangleMesh(surface::tessellate(asset.cage, asset.maps, finest));
@@ -67,7 +67,7 @@ ErrorDensity densityWithin(const SubdAsset& asset, const ErrorBound& bound, Deco
         if (error(mid) <= out.bound) hi = mid;
         else lo = mid + 1;
     }
-    out.density = densityAt(asset.cage, hi);
+    out.density = codec::densityAt(asset.cage, hi);
     out.maxDistance = error(hi);
     return out;
 }

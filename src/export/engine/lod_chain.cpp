@@ -10,7 +10,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "export/decode_density.h"
+#include "codec/decode_density.h"
 #include "export/engine/surface_error.h"
 #include "export/surface_mesh.h"
 #include "geometry/surface_distance.h"
@@ -89,7 +89,7 @@ double boundingRadius(const GltfMesh& mesh) {
 
 }  // namespace
 
-LodChain lodChain(const SubdAsset& asset, GltfMesh full, int segments, int count, const ScreenSizeRule& rule) {
+LodChain lodChain(const codec::SubdAsset& asset, GltfMesh full, int segments, int count, const ScreenSizeRule& rule) {
     SUBDFIT_CHECK(count >= 1 && count <= kMostLods);
     const SurfaceTextures textures = SurfaceTextures::of(asset.maps);
     const bool textured = textures.baseColor || textures.normalMap || textures.normalTexture;
@@ -109,7 +109,7 @@ LodChain lodChain(const SubdAsset& asset, GltfMesh full, int segments, int count
         const std::size_t target = previous.mesh.triangleCount() / 2;
         std::vector<LodLevel> candidates;
         int s = coarsestSegments - 1;
-        while (s >= 1 && std::size_t(densityAt(asset.cage, s).triangles) > target) --s;
+        while (s >= 1 && std::size_t(codec::densityAt(asset.cage, s).triangles) > target) --s;
         std::size_t triangles = target;
         if (s >= 1) {
             candidates.push_back({.mesh = surfaceGltfMesh(asset.cage, asset.maps, textures, s), .segments = s});

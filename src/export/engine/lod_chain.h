@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "export/gltf_mesh.h"
-#include "export/subd_format.h"
+#include "codec/subd_format.h"
 
 namespace subdfit::exporter {
 
@@ -37,7 +37,8 @@ struct LodChain {
 
 // The chain of `count` levels (1..kMostLods) from `full`, the decode of `asset` at `segments`.
 // A level that cannot have fewer triangles than the one before ends the chain early.
-LodChain lodChain(const SubdAsset& asset, GltfMesh full, int segments, int count, const ScreenSizeRule& rule = {});
+LodChain lodChain(const codec::SubdAsset& asset, GltfMesh full, int segments, int count,
+                  const ScreenSizeRule& rule = {});
 
 inline constexpr int kMostLods = 8;
 

@@ -4,9 +4,10 @@
 #include <cstdio>
 #include <functional>
 
-#include "export/glb_writer.h"
-#include "export/map_atlas.h"
-#include "export/subd_format.h"
+#include "export/gltf/glb_writer.h"
+#include "codec/map_atlas.h"
+#include "export/map_images.h"
+#include "codec/subd_format.h"
 #include "fit/cage_fitter.h"
 #include "fit/fit_run.h"
 #include "fit/fit_scene.h"
@@ -283,13 +284,12 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
     for (float& d : bakedWorld.displacement) d /= scene.frame.scale;
     Quality q;
     exporter::writeMapAtlases(dir, bakedWorld, {.compact = settings.compactMaps});
-    const auto precision = exporter::SubdPrecision::forMapBits(route.bits, route.appearanceQuality, route.positionBits);
-    q.files = {
-        {"asset.subd", exporter::writeSubd(dir / "asset.subd",
-                                           exporter::shippableAsset(cageWorld, bakedWorld, precision.positionBits,
-                                                                    std::uint32_t(scene.reference.faceCount())),
-                                           precision)
-                           .bytes}};
+    const auto precision = codec::SubdPrecision::forMapBits(route.bits, route.appearanceQuality, route.positionBits);
+    q.files = {{"asset.subd", codec::writeSubd(dir / "asset.subd",
+                                               codec::shippableAsset(cageWorld, bakedWorld, precision.positionBits,
+                                                                     std::uint32_t(scene.reference.faceCount())),
+                                               precision)
+                                  .bytes}};
     q.bytes = totalBytes(q.files);
     q.shipped = settings.dir.filename() / dir.filename() / "asset.subd";
     q.details = {{"faces", cage.faceCount()},

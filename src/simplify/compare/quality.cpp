@@ -1,6 +1,6 @@
 #include "simplify/compare/quality.h"
 
-#include "export/subd_format.h"
+#include "codec/subd_format.h"
 #include "fit/fit_scene.h"
 #include "fit/image_metrics.h"
 #include "surface/tessellation.h"
@@ -54,7 +54,7 @@ geometry::SurfaceDistance worldDistance(const mesh::PolygonMesh& candidate, cons
 geometry::SurfaceDistance shippedDistance(const std::filesystem::path& subd, int segments,
                                           const scene::SceneFrame& frame, const mesh::PolygonMesh& reference,
                                           int samples) {
-    const exporter::SubdAsset shipped = exporter::readSubd(subd);
+    const codec::SubdAsset shipped = codec::readSubd(subd);
     mesh::PolygonMesh surface = surface::triangleMesh(surface::tessellate(shipped.cage, shipped.maps, segments));
     surface.positions = frame.toNormalized(surface.positions);
     return worldDistance(surface, reference, frame, samples);

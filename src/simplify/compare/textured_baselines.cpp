@@ -7,7 +7,7 @@
 #include <functional>
 #include <map>
 
-#include "export/textured_glb.h"
+#include "export/gltf/textured_glb.h"
 #include "fit/fit_scene.h"
 #include "io/external_program.h"
 #include "io/image_io.h"

@@ -9,12 +9,12 @@
 #include <utility>
 #include <vector>
 
-#include "export/byte_stream.h"
+#include "codec/byte_stream.h"
 #include "subd_bytes.h"
 #include "util/hash.h"
 
 using namespace subdfit;
-using namespace subdfit::exporter;
+using namespace subdfit::codec;
 using Bytes = std::vector<unsigned char>;
 
 // A displacement section of resolution T stating `nodes` nodes, all residuals zero.

@@ -1,0 +1,184 @@
+#include "codec/node_coding.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace subdfit::codec {
+namespace {
+
+// A node of a T×T tile and the two coded nodes it is interpolated from ((a, a) for the
+// corners, predicted from their neighbours instead: cornerPredictors).
+struct Prediction {
+    int i, j;            // the node
+    int ai, aj, bi, bj;  // its bracket
+    float w;             // weight of b
+    bool corner;
+};
+
+// The coding order of one tile: corners, then for s = the largest power of two below T down to
+// 1, the odd multiples of s along u on the rows coded so far, then along v on every column.
+std::vector<Prediction> codingOrder(int T) {
+    std::vector<Prediction> order;
+    for (int j : {0, T})
+        for (int i : {0, T}) order.push_back({i, j, i, j, i, j, 0.0f, true});
+    std::vector<bool> rowCoded(size_t(T) + 1, false), columnCoded(size_t(T) + 1, false);
+    rowCoded[0] = rowCoded[size_t(T)] = columnCoded[0] = columnCoded[size_t(T)] = true;
+    int s = 1;
+    while (s * 2 < T) s *= 2;
+    for (; s >= 1; s /= 2) {
+        auto bracket = [&](int x) { return std::pair{x - s, std::min(x + s, T)}; };
+        std::vector<int> fresh;  // odd multiples of s below T
+        for (int x = s; x < T; x += 2 * s) fresh.push_back(x);
+        for (int j = 0; j <= T; ++j) {
+            if (!rowCoded[size_t(j)]) continue;
+            for (int i : fresh) {
+                const auto [a, b] = bracket(i);
+                order.push_back({i, j, a, j, b, j, float(i - a) / float(b - a), false});
+            }
+        }
+        for (int i : fresh) columnCoded[size_t(i)] = true;
+        for (int j : fresh) {
+            const auto [a, b] = bracket(j);
+            for (int i = 0; i <= T; ++i)
+                if (columnCoded[size_t(i)]) order.push_back({i, j, i, a, i, b, float(j - a) / float(b - a), false});
+        }
+        for (int j : fresh) rowCoded[size_t(j)] = true;
+    }
+    return order;
+}
+
+// What a node is predicted from: the weighted sum of up to four decoded nodes, or, with none,
+// the channel's center.
+struct Predictors {
+    std::array<int, 4> nodes{};
+    std::array<float, 4> weights{};
+    int count = 0;
+    bool corner = false;  // a tile corner (else interpolated between two coded nodes)
+    void add(int node, float weight) {
+        nodes[size_t(count)] = node;
+        weights[size_t(count++)] = weight;
+    }
+};
+
+// A corner is predicted from what is already decoded around it: the mean of its coded tile
+// neighbours one cell away (a neighbouring tile often coded the shared edge already), else of
+// the tile's coded corners, else the center. Most corners are shared, and predicting them from
+// the center cost a raw value each.
+Predictors cornerPredictors(const surface::TexelLayout& layout, int face, int i, int j,
+                            const std::vector<bool>& coded) {
+    const int T = layout.resolution;
+    Predictors p;
+    p.corner = true;
+    for (const auto& [ni, nj] : {std::pair{i == 0 ? 1 : T - 1, j}, std::pair{i, j == 0 ? 1 : T - 1}})
+        if (const int n = layout.node(face, ni, nj); coded[size_t(n)]) p.add(n, 1.0f);
+    if (p.count == 0)
+        for (const int cj : {0, T})
+            for (const int ci : {0, T})
+                if (const int n = layout.node(face, ci, cj); coded[size_t(n)] && p.count < 4) p.add(n, 1.0f);
+    for (int k = 0; k < p.count; ++k) p.weights[size_t(k)] = 1.0f / float(p.count);
+    return p;
+}
+
+template <class Visit>
+void forEachNode(const surface::TexelLayout& layout, Visit&& visit) {
+    const auto order = codingOrder(layout.resolution);
+    std::vector<bool> coded(size_t(layout.nodeCount), false);
+    for (int face = 0; face < layout.ptexFaceCount; ++face)
+        for (const Prediction& p : order) {
+            const int node = layout.node(face, p.i, p.j);
+            if (coded[size_t(node)]) continue;
+            Predictors predictors;
+            if (p.corner) {
+                predictors = cornerPredictors(layout, face, p.i, p.j, coded);
+            } else {
+                predictors.add(layout.node(face, p.ai, p.aj), 1.0f - p.w);
+                predictors.add(layout.node(face, p.bi, p.bj), p.w);
+            }
+            coded[size_t(node)] = true;
+            visit(node, predictors);
+        }
+}
+
+// Predictions lean from the channel's center towards what the neighbours say by lean / kLeanSteps:
+// fully on a smooth map, hardly on a noisy one, where the neighbours' own noise would double the
+// residuals' spread.
+constexpr int kLeanSteps = 8;
+
+struct Leans {
+    int corner = kLeanSteps, interpolated = kLeanSteps;
+};
+
+float predicted(const Predictors& p, const std::vector<float>& decoded, float center, const Leans& leans) {
+    if (p.count == 0) return center;
+    float neighbours = 0.0f;
+    for (int k = 0; k < p.count; ++k) neighbours += p.weights[size_t(k)] * decoded[size_t(p.nodes[size_t(k)])];
+    const int lean = p.corner ? leans.corner : leans.interpolated;
+    return center + float(lean) / float(kLeanSteps) * (neighbours - center);
+}
+
+// The leans that code the channel in the fewest bits, estimated on the original values (what
+// the decoded ones are within half a step of), a residual r costing about log2(1 + |r|).
+Leans chooseLeans(const surface::TexelLayout& layout, const std::vector<float>& original,
+                  const ChannelQuantisation& q) {
+    std::array<double, kLeanSteps + 1> cornerCost{}, interpolatedCost{};
+    forEachNode(layout, [&](int node, const Predictors& from) {
+        if (from.count == 0) return;
+        auto& cost = from.corner ? cornerCost : interpolatedCost;
+        for (int lean = 0; lean <= kLeanSteps; ++lean) {
+            const float prediction = predicted(from, original, q.center, {lean, lean});
+            cost[size_t(lean)] += std::log2(1.0 + std::abs(std::round((original[size_t(node)] - prediction) / q.step)));
+        }
+    });
+    auto cheapest = [](const auto& cost) { return int(std::min_element(cost.begin(), cost.end()) - cost.begin()); };
+    return {cheapest(cornerCost), cheapest(interpolatedCost)};
+}
+
+}  // namespace
+
+ChannelQuantisation quantisationFor(std::span<const float> values, int stride, int channel, int bits) {
+    float low = std::numeric_limits<float>::infinity(), high = -low;
+    for (size_t k = size_t(channel); k < values.size(); k += size_t(stride)) {
+        low = std::min(low, values[k]);
+        high = std::max(high, values[k]);
+    }
+    if (!(high > low)) return {.center = std::isfinite(low) ? low : 0.0f, .step = 1.0f};
+    return {.center = 0.5f * (low + high), .step = (high - low) / float((1u << std::clamp(bits, 1, 24)) - 1u)};
+}
+
+void encodeNodes(const surface::TexelLayout& layout, std::span<const float> values, int stride, int channel,
+                 const ChannelQuantisation& q, ByteWriter& out) {
+    std::vector<float> original(size_t(layout.nodeCount));
+    for (size_t n = 0; n < original.size(); ++n) original[n] = values[n * size_t(stride) + size_t(channel)];
+    const Leans leans = chooseLeans(layout, original, q);
+    out.put<std::uint8_t>(std::uint8_t(leans.corner));
+    out.put<std::uint8_t>(std::uint8_t(leans.interpolated));
+    std::vector<float> decoded(size_t(layout.nodeCount), 0.0f);
+    forEachNode(layout, [&](int node, const Predictors& from) {
+        const float prediction = predicted(from, decoded, q.center, leans);
+        const double residual = std::round((double(original[size_t(node)]) - prediction) / q.step);
+        const auto r = std::int64_t(std::clamp(residual, -9.0e15, 9.0e15));
+        out.putSigned(r);
+        decoded[size_t(node)] = prediction + float(double(r) * q.step);
+    });
+}
+
+void decodeNodes(const surface::TexelLayout& layout, std::span<float> values, int stride, int channel,
+                 const ChannelQuantisation& q, ByteReader& in) {
+    Leans leans;
+    leans.corner = in.get<std::uint8_t>();
+    leans.interpolated = in.get<std::uint8_t>();
+    if (leans.corner > kLeanSteps || leans.interpolated > kLeanSteps) throw Error(in.what() + ": bad prediction lean");
+    std::vector<float> decoded(size_t(layout.nodeCount), 0.0f);
+    forEachNode(layout, [&](int node, const Predictors& from) {
+        const float prediction = predicted(from, decoded, q.center, leans);
+        const float value = prediction + float(double(in.getSigned()) * q.step);
+        if (!std::isfinite(value)) throw Error(in.what() + ": a map value is not finite");
+        decoded[size_t(node)] = value;
+        values[size_t(node) * size_t(stride) + size_t(channel)] = value;
+    });
+}
+
+}  // namespace subdfit::codec
