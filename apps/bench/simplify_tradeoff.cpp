@@ -62,13 +62,11 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
                          " T=" + std::to_string(chosen.mapResolution);
             }
             std::vector<std::pair<std::string, const simplify::Quality*>> methods{{"subdfit", &report.subdfit}};
-            for (const auto& [method, q] :
-                 {std::pair<const char*, const std::optional<simplify::Quality>*>{"cage", &report.cage},
-                  {"decimation", &report.decimation},
-                  {"gltfpack", &report.gltfpack},
-                  {"bake", &report.bake}})
-                if (*q && (method != std::string("decimation") || o.compare != simplify::CompareLevel::None))
-                    methods.emplace_back(method, &**q);
+            if (report.cage) methods.emplace_back("cage", &*report.cage);
+            for (const simplify::MadeBaseline& b : report.triangles)
+                if (b.name != "decimation" || o.compare != simplify::CompareLevel::None)
+                    methods.emplace_back(b.name, &b.quality);
+            if (report.bake) methods.emplace_back("bake", &*report.bake);
             for (const auto& [method, q] : methods) {
                 const double seconds = method == "subdfit" ? report.seconds : 0.0;
                 const geometry::SurfaceDistance d =

@@ -32,19 +32,18 @@ void printComparison(const subdfit::simplify::SimplifyReport& r) {
                  r.route.why.c_str());
     std::fprintf(stderr, "%-11s %10s %12s %8s %14s %12s\n", "", "bytes", "PSNR (dB)", "SSIM", "mean distance",
                  "Chamfer");
-    auto row = [](const char* name, const std::optional<subdfit::simplify::Quality>& q) {
+    auto row = [](const std::string& name, const subdfit::simplify::Quality* q) {
         if (!q) return;
-        std::fprintf(stderr, "%-11s %10llu %12.2f %8.4f ", name, (unsigned long long)q->bytes, q->psnrHoldout,
+        std::fprintf(stderr, "%-11s %10llu %12.2f %8.4f ", name.c_str(), (unsigned long long)q->bytes, q->psnrHoldout,
                      q->ssimHoldout);
         if (q->distance)
             std::fprintf(stderr, "%14.4e %12.4e\n", q->distance->meanDistance, q->distance->chamferL2Squared);
         else std::fprintf(stderr, "%14s %12s\n", subdfit::simplify::kNotMeasured, subdfit::simplify::kNotMeasured);
     };
-    row("subdfit", r.subdfit);
-    row("cage", r.cage);
-    row("decimation", r.decimation);
-    row("gltfpack", r.gltfpack);
-    row("bake", r.bake);
+    row("subdfit", &r.subdfit);
+    row("cage", r.cage ? &*r.cage : nullptr);
+    for (const subdfit::simplify::MadeBaseline& b : r.triangles) row(b.name, &b.quality);
+    row("bake", r.bake ? &*r.bake : nullptr);
     std::fprintf(stderr, "seconds by stage:");
     for (const auto& [stage, seconds] : r.stages.stages()) std::fprintf(stderr, " %s %.1f", stage.c_str(), seconds);
     std::fprintf(stderr, "\n");

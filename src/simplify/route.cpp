@@ -26,12 +26,11 @@ std::uintmax_t defaultBudget(std::uintmax_t compressedReference) {
     return std::min(compressedReference, std::max(compressedReference / 10, kSmallestDefaultBudget));
 }
 
-TriangleChoice bestTriangleRoute(const Quality* decimation, const Quality* gltfpack) {
+TriangleChoice bestTriangleRoute(std::span<const MadeBaseline> made) {
     TriangleChoice best;
-    for (const auto& [name, q] :
-         {std::pair<const char*, const Quality*>{"decimation", decimation}, {"gltfpack", gltfpack}}) {
-        if (!q || q->details.value("over_budget", false)) continue;
-        if (!best.quality || q->psnrHoldout > best.quality->psnrHoldout) best = {name, q};
+    for (const MadeBaseline& b : made) {
+        if (b.quality.details.value("over_budget", false)) continue;
+        if (!best.quality || b.quality.psnrHoldout > best.quality->psnrHoldout) best = {b.name, &b.quality};
     }
     return best;
 }

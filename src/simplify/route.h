@@ -6,11 +6,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "simplify/compare/quality.h"
+#include "simplify/compare/triangle_baseline.h"
 #include "util/named_enum.h"
 
 namespace subdfit::simplify {
@@ -39,21 +41,18 @@ struct Route {
 // (docs/results.md): a triangle route ahead of the chosen candidate by more is shipped unfitted.
 inline constexpr double kMostFitGainDb = 1.5;
 
-// The triangle route that scores best on the held-out views of those given (any may be null),
-// with its name; none when none is given.
+// The triangle route that scores best on the held-out views of those made within the budget,
+// with its name; none when none is.
 struct TriangleChoice {
     std::string name;
     const Quality* quality = nullptr;
 };
-TriangleChoice bestTriangleRoute(const Quality* decimation, const Quality* gltfpack);
+TriangleChoice bestTriangleRoute(std::span<const MadeBaseline> made);
 
 // The cage, unless `triangles` scores better on the held-out views at the budget, or the cage
 // codes over `budget` (where one was set) and a triangle route fits it.
 Route chooseRoute(const Quality& cage, const TriangleChoice& triangles,
                   std::optional<std::uintmax_t> budget = std::nullopt);
-
-// How much of the reference the triangle route holds within the budget.
-enum class Holds { Part, EveryTriangle, Whole };  // Whole: every triangle and every texel
 
 // Before any fit: the triangle route, when it holds every triangle of the reference (a cage's
 // limit surface only approximates them, and its appearance comes from the same textures), or

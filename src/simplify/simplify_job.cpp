@@ -69,8 +69,7 @@ void writeComparisonImage(const SimplifyReport& report, int resolution, const fi
                           const std::filesystem::path& out) {
     std::vector<ComparisonColumn> columns{{"subdfit", &report.subdfit}};
     if (report.cage) columns.push_back({"fitted cage", &*report.cage});
-    if (report.decimation) columns.push_back({"decimation + Draco", &*report.decimation});
-    if (report.gltfpack) columns.push_back({"gltfpack", &*report.gltfpack});
+    for (const MadeBaseline& b : report.triangles) columns.push_back({b.title, &b.quality});
     if (report.bake) columns.push_back({"bake", &*report.bake});
     writeComparison(out / "comparison.png", resolution, scene.holdout.readColor(0), columns);
 }
@@ -336,30 +335,27 @@ nlohmann::json toJson(const SimplifyReport& r) {
     report["seconds_by_stage"] = r.stages.toJson();
 
     nlohmann::json route = toJson(r.route), weighed = nlohmann::json::object();
-    auto weigh = [&](const char* name, const Quality& q) {
+    auto weigh = [&](const std::string& name, const Quality& q) {
         weighed[name] = {{"psnr_holdout", q.psnrHoldout}, {"bytes", q.bytes}};
     };
     if (r.fit) weigh("cage", r.cage ? *r.cage : r.subdfit);
-    if (r.decimation) weigh("decimation", *r.decimation);
-    if (r.gltfpack) weigh("gltfpack", *r.gltfpack);
+    for (const MadeBaseline& b : r.triangles) weigh(b.name, b.quality);
     route["weighed"] = weighed;
     report["route"] = route;
 
     if (r.compare != CompareLevel::None) {
         nlohmann::json baselines = nlohmann::json::object(), margins = nlohmann::json::object();
         nlohmann::json columns = {"reference", "subdfit"};
-        auto add = [&](const char* name, const std::optional<Quality>& q) {
+        auto add = [&](const std::string& name, const Quality* q) {
             if (!q) return;
             baselines[name] = toJson(*q);
             margins[name] = r.subdfit.psnrHoldout - q->psnrHoldout;
             columns.push_back(name);
         };
-        add("cage", r.cage);
-        add("decimation", r.decimation);
-        add("gltfpack", r.gltfpack);
-        add("bake", r.bake);
-        if (r.gltfpackMissing)
-            baselines["gltfpack"] = {{"skipped", "gltfpack is not on PATH (Debian: apt-get install gltfpack)"}};
+        add("cage", r.cage ? &*r.cage : nullptr);
+        for (const MadeBaseline& b : r.triangles) add(b.name, &b.quality);
+        add("bake", r.bake ? &*r.bake : nullptr);
+        for (const auto& [name, why] : r.unavailable) baselines[name] = {{"skipped", why}};
         report["baselines"] = baselines;
         report["margin_db"] = margins;
         report["comparison_columns"] = columns;
@@ -439,9 +435,8 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
         fitAndWeigh({options, hooks, programs, scene, reference, *context, staged.path(), baselineSettings, report},
                     *decided.plan, triangles, target.bytes);
     }
-    report.decimation = std::move(triangles.decimation);
-    report.gltfpack = std::move(triangles.gltfpack);
-    report.gltfpackMissing = triangles.gltfpackMissing;
+    report.triangles = std::move(triangles.made);
+    report.unavailable = std::move(triangles.unavailable);
     // Weighed by the route (report.json's route.weighed), not kept as baselines.
     if (options.compare == CompareLevel::None) std::filesystem::remove_all(baselineSettings.dir);
     if (options.compare == CompareLevel::Full) {

@@ -28,9 +28,11 @@ struct SimplifyReport {
     Route route;
     Quality subdfit{};            // what shipped: the fitted cage, or the triangle route
     std::optional<Quality> cage;  // the fitted cage, where a triangle route shipped after its fit
-    // The baselines (the triangle ones at the budget); which are made is --compare's to say.
-    std::optional<Quality> decimation, gltfpack, bake;
-    bool gltfpackMissing = false;  // asked for, but gltfpack is not on PATH
+    // The baselines: the triangle ones at the budget (decimation first), and the bake route;
+    // which are made is --compare's to say.
+    std::vector<MadeBaseline> triangles;
+    std::vector<std::pair<std::string, std::string>> unavailable;  // asked for, not made here: name, why
+    std::optional<Quality> bake;
     int facesRequested = 0;
     std::optional<FitVerdict> fitVerdict;  // where a cage was fitted
     std::optional<BudgetReport> budget;    // the search and what shipped, with a budget

@@ -5,10 +5,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "fit/fit_scene.h"
 #include "gl/program_cache.h"
 #include "simplify/compare/baselines.h"
+#include "simplify/compare/triangle_baseline.h"
 #include "simplify/route.h"
 
 namespace subdfit::simplify {
@@ -17,15 +21,13 @@ namespace subdfit::simplify {
 // its bytes, what the default budget is made from.
 std::uintmax_t compressedReferenceBytes(const fit::FitScene& scene, const std::filesystem::path& scratch);
 
-// The triangle baselines at a budget: decimation + Draco always (the route weighs it), gltfpack
-// unless --compare none.
+// The triangle baselines at a budget (triangleBaselinesFor): decimation + Draco always (the
+// route weighs it), the others unless --compare none.
 struct TriangleBaselines {
-    std::optional<Quality> decimation, gltfpack;
-    bool gltfpackMissing = false;
-    Holds holds = Holds::Part;  // of the reference, by the decimation
-    TriangleChoice best() const {
-        return bestTriangleRoute(decimation ? &*decimation : nullptr, gltfpack ? &*gltfpack : nullptr);
-    }
+    std::vector<MadeBaseline> made;                                // decimation first
+    std::vector<std::pair<std::string, std::string>> unavailable;  // name, why
+    Holds holds = Holds::Part;                                     // of the reference, by the decimation
+    TriangleChoice best() const { return bestTriangleRoute(made); }
 };
 
 // Their files go to settings.dir.

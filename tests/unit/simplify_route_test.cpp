@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include "simplify/compare/triangle_encoding.h"
 #include "simplify/route.h"
@@ -21,9 +23,17 @@ Quality scored(double psnr, std::uintmax_t bytes, bool overBudget = false) {
     return q;
 }
 
+// The triangle baselines as made, named as the route names them.
+std::vector<simplify::MadeBaseline> made(std::optional<Quality> decimation, std::optional<Quality> gltfpack = {}) {
+    std::vector<simplify::MadeBaseline> m;
+    if (decimation) m.push_back({"decimation", "decimation + Draco", *decimation});
+    if (gltfpack) m.push_back({"gltfpack", "gltfpack", *gltfpack});
+    return m;
+}
+
 TEST(SimplifyRoute, TheCageShipsOnlyWhereItWinsOnTheHeldOutViews) {
-    const Quality decimation = scored(31.0, 19000), gltfpack = scored(30.0, 18000);
-    const auto best = simplify::bestTriangleRoute(&decimation, &gltfpack);
+    const auto baselines = made(scored(31.0, 19000), scored(30.0, 18000));
+    const auto best = simplify::bestTriangleRoute(baselines);
     EXPECT_EQ(best.name, "decimation");
     const auto lost = simplify::chooseRoute(scored(30.5, 18500), best);
     EXPECT_EQ(lost.shipped, "decimation");
@@ -36,27 +46,28 @@ TEST(SimplifyRoute, TheCageShipsOnlyWhereItWinsOnTheHeldOutViews) {
 
 TEST(SimplifyRoute, ATriangleRouteOverTheBudgetIsNeverShipped) {
     const Quality over = scored(50.0, 30000, /*overBudget=*/true), within = scored(20.0, 19000);
-    EXPECT_EQ(simplify::bestTriangleRoute(&over, &within).name, "gltfpack");
-    EXPECT_EQ(simplify::bestTriangleRoute(&over, nullptr).quality, nullptr);
-    EXPECT_EQ(simplify::chooseRoute(scored(10.0, 100), simplify::bestTriangleRoute(&over, nullptr)).shipped, "cage");
+    EXPECT_EQ(simplify::bestTriangleRoute(made(over, within)).name, "gltfpack");
+    const auto overAlone = made(over);
+    EXPECT_EQ(simplify::bestTriangleRoute(overAlone).quality, nullptr);
+    EXPECT_EQ(simplify::chooseRoute(scored(10.0, 100), simplify::bestTriangleRoute(overAlone)).shipped, "cage");
 }
 
 TEST(SimplifyRoute, ACageOverTheBudgetShipsOnlyWhereNoTriangleRouteFits) {
-    const Quality decimation = scored(20.0, 900);
-    const auto best = simplify::bestTriangleRoute(&decimation, nullptr);
+    const auto baselines = made(scored(20.0, 900));
+    const auto best = simplify::bestTriangleRoute(baselines);
     const auto over = simplify::chooseRoute(scored(30.0, 1219), best, 940);
     EXPECT_EQ(over.shipped, "decimation");
     EXPECT_NE(over.why.find("1219 bytes, over the budget"), std::string::npos) << over.why;
     EXPECT_EQ(simplify::chooseRoute(scored(30.0, 940), best, 940).shipped, "cage");
     EXPECT_EQ(simplify::chooseRoute(scored(30.0, 1219), best).shipped, "cage");  // no budget set
-    EXPECT_EQ(simplify::chooseRoute(scored(30.0, 1219), simplify::bestTriangleRoute(nullptr, nullptr), 940).shipped,
-              "cage");
+    EXPECT_EQ(simplify::chooseRoute(scored(30.0, 1219), simplify::bestTriangleRoute({}), 940).shipped, "cage");
 }
 
 TEST(SimplifyRoute, BeforeTheFitTrianglesShipWhenTheyHoldEveryTriangleOrLeadFar) {
     Quality decimation = scored(40.0, 5000);
     decimation.details["monitor_psnr"] = 40.0;
-    const auto best = simplify::bestTriangleRoute(&decimation, nullptr);
+    const auto baselines = made(decimation);
+    const auto best = simplify::bestTriangleRoute(baselines);
     using simplify::Holds;
     const auto whole = simplify::routeBeforeFit(best, Holds::Whole, std::nullopt);
     ASSERT_TRUE(whole);
