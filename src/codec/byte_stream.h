@@ -1,5 +1,5 @@
 #pragma once
-// Little-endian bytes for the .subd container (export/subd_format.h): fixed-width integers,
+// Little-endian bytes for the .subd container (codec/subd_format.h): fixed-width integers,
 // floats and LEB128 varints out, the same back in with every read bounds-checked, so a truncated
 // or hostile file fails with one message instead of reading past its end.
 #include <bit>

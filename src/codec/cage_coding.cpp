@@ -78,7 +78,7 @@ Grid gridFor(const std::vector<glm::vec3>& positions, int bits) {
     return {.origin = positions.empty() ? glm::vec3(0.0f) : low, .extent = extent > 0.0f ? extent : 1.0f, .bits = bits};
 }
 
-// Draco's decoder makes one vertex of two on one grid cell (export/cage_coding.h): where a coarse
+// Draco's decoder makes one vertex of two on one grid cell (codec/cage_coding.h): where a coarse
 // grid puts two there, the later moves to the free neighbouring cell nearest its position, one
 // step away, about the quantisation's own error. Each cell's vertex then, or nothing when a vertex
 // finds no free cell.

@@ -1,5 +1,5 @@
 #pragma once
-// The control cage inside a .subd file (its CAGE section, export/subd_format.h): positions
+// The control cage inside a .subd file (its CAGE section, codec/subd_format.h): positions
 // quantised over the cage's bounding cube, and the connectivity either
 //  - through Draco (coding 1): the cage fan-triangulated, edgebreaker-coded with the quantised
 //    positions as an integer attribute (parallelogram prediction), plus one byte per triangle

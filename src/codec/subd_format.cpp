@@ -198,7 +198,7 @@ std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int c
     return values;
 }
 
-// An appearance map as a JPEG of its atlas (export/map_atlas.h), 8-bit sRGB: textures carry
+// An appearance map as a JPEG of its atlas (codec/map_atlas.h), 8-bit sRGB: textures carry
 // detail node prediction codes poorly, and what JPEG drops a viewer hardly sees. A metallic-
 // roughness image whose red channel holds the occlusion says so by its coding.
 constexpr std::uint8_t kJpegCoding = 1, kJpegWithOcclusionCoding = 2;
@@ -346,7 +346,7 @@ std::uint64_t priceCage(const SectionEntry& cage, const std::string& name, Decod
     budget.spend(faces, DecodeCost::kCageFace, "a cage of " + std::to_string(faces) + " faces");
     budget.spend(vertices, DecodeCost::kCageVertex, "a cage of " + std::to_string(vertices) + " vertices");
     // Positions, and per face at most kMaxCageFaceSize corners of an index, a Draco flag, an
-    // edge's crease; per vertex a corner tag; per face a hole (export/cage_coding.h).
+    // edge's crease; per vertex a corner tag; per face a hole (codec/cage_coding.h).
     return kSectionHeadBytes + 30 * vertices + (5 + 1 + 24) * std::uint64_t(mesh::kMaxCageFaceSize) * faces + 8 * faces;
 }
 
@@ -406,7 +406,7 @@ std::vector<std::uint64_t> priceMaps(const std::vector<SectionEntry>& sections, 
         if (atlasSize == 0) {
             priceTiles(resolution, appearancePriced, "an appearance lattice");
             const std::uint64_t tile = resolution + 1;
-            pixels = columns * rows * tile * tile;  // export/map_atlas.h
+            pixels = columns * rows * tile * tile;  // codec/map_atlas.h
         }
         budget.spend(pixels, DecodeCost::kAtlasPixel, "an image of " + std::to_string(pixels) + " pixels");
         in.get<std::uint8_t>();                                                       // coding

@@ -4,7 +4,7 @@
 // turns it back into triangles. docs/asset-subd-format.md specifies the bytes (header, sections,
 // trailer) and which versions a reader takes; encodeSubd writes them and decodeSubd checks every
 // part before it trusts it, pricing every count the file states against a decode budget
-// (export/decode_budget.h) before anything of that size is allocated.
+// (codec/decode_budget.h) before anything of that size is allocated.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -99,7 +99,7 @@ SubdAsset readSubd(const std::filesystem::path& path, DecodeBudget* budget = nul
 
 // The asset to encode for `cage` and `maps` (laid out on `cage`), decoding by default to
 // `decodeTriangles` (0: unknown): the decoder rebuilds the texel
-// layout from the decoded cage, whose vertices and faces may be renumbered (export/cage_coding.h)
+// layout from the decoded cage, whose vertices and faces may be renumbered (codec/cage_coding.h)
 // and whose node welding may differ in degenerate places, so the node values are carried over
 // to that layout tile by tile.
 SubdAsset shippableAsset(const mesh::PolygonMesh& cage, const surface::SurfaceMaps& maps,

@@ -20,7 +20,7 @@ struct GltfMesh {
     // xyz: unit, orthogonal to the normal, along dP/du; w = ±1 so that cross(normal, xyz) · w
     // points along dP/dv -- the frame the normal map's (x, y) is expressed in.
     std::vector<glm::vec4> tangents;
-    std::vector<glm::vec2> uvs;  // atlas texcoords (export/map_atlas.h), glTF convention
+    std::vector<glm::vec2> uvs;  // atlas texcoords (codec/map_atlas.h), glTF convention
     // Pixels of the atlas the uvs address: how much texcoord precision an encoder must keep.
     glm::ivec2 atlasSize{0, 0};
     // Triangles, counter-clockwise seen from outside (the cage's own winding).

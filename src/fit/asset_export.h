@@ -1,10 +1,10 @@
 #pragma once
 // What a fit ships besides cage.obj: asset.subd, the cage and maps in one compact file
-// (export/subd_format.h, the maps at --map-bits) that `subdfit decode` turns into triangles;
+// (codec/subd_format.h, the maps at --map-bits) that `subdfit decode` turns into triangles;
 // displacement.exr, normal.png and maps.json when the scene has maps (for DCC tools); and with
 // --preview fitted.glb -- the cage's limit surface tessellated as rendered, displaced, with the
 // normal map, in world units (--draco: Draco-compressed); asset.usdz (--usd), what asset.subd
-// holds as a USD package that DCC tools and renderers open (export/usd_export.h).
+// holds as a USD package that DCC tools and renderers open (export/usd/usd_export.h).
 #include <cstdint>
 
 #include <nlohmann/json.hpp>

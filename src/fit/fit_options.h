@@ -32,7 +32,7 @@ inline constexpr int kByDevice = -1;
 // steps, the step annealed x0.1 over them.
 enum class Schedule { Plateau, Anneal };
 
-// What the USD export writes beside asset.subd (export/usd_export.h).
+// What the USD export writes beside asset.subd (export/usd/usd_export.h).
 enum class UsdExport { Usdz, UsdzAndUsda, None };
 
 }  // namespace subdfit::fit
@@ -91,7 +91,7 @@ struct FitOptions {
     bool preview = false;        // also write fitted.glb: the displaced limit surface, tessLevel per face edge
     bool draco = false;          // fitted.glb with KHR_draco_mesh_compression
     UsdExport usd = UsdExport::Usdz;
-    bool compactMaps = false;   // ship maps as HALF EXR and 8-bit PNG (export/map_atlas.h)
+    bool compactMaps = false;   // ship maps as HALF EXR and 8-bit PNG (codec/map_atlas.h)
     bool resume = false;        // continue from out/checkpoint.bin when it exists
     bool force = false;         // write into a non-empty folder that holds no subdfit results
     int checkpointEvery = 100;  // steps between checkpoints (also written on interrupt and at the end)

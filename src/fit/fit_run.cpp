@@ -240,7 +240,27 @@ StopReason FitRun::runTo(int until, const std::filesystem::path& checkpoint, con
     return stopReason_;
 }
 
-StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& hooks, const MapsStart& startMaps) {
+void FitRun::joinMaps(const MapStage& stage, bool fresh) {
+    maps::MapParameters* parameters = fitter_->maps();
+    if (fresh && stage.startFrom) {
+        mesh::PolygonMesh current = scene_.cage;
+        current.positions = fitter_->vertices();
+        const surface::SurfaceMaps start = stage.startFrom(current);
+        // Made before the first step, it is where the fit starts: the report's start is scored
+        // on it, so that the fit's gain reads as its own, not the start's.
+        if (step() == 0) startFrom(start);
+        else writeMaps(*fitter_, start);
+    }
+    if (stage.freezeCage) fitter_->setOptimised(fitter_->vertexGroup(), false);
+    for (optim::ParameterGroup* g : parameters->groups()) {
+        const bool appearance = g == parameters->baseColor() || g == parameters->metallicRoughness();
+        fitter_->setRates(*g, g->settings().epsilon,
+                          (appearance ? stage.appearanceRate : stage.geometricRate) * g->settings().learningRate);
+        if (stage.noiseGate) g->settings().noiseGate = *stage.noiseGate;
+    }
+}
+
+StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& hooks, const MapStage& maps) {
     if (fitter_->maps()) {
         const bool pastStart = step() > fitter_->mapsStartStep();
         const StopReason cage = runTo(fitter_->mapsStartStep(), checkpoint, hooks);
@@ -256,8 +276,8 @@ StopReason FitRun::run(const std::filesystem::path& checkpoint, const FitHooks& 
             if (!mapsGiven_) schedule_.probationOver = true;
         }
         const bool givenBefore = mapsGiven_;
-        if (startMaps) startMaps(!pastStart);
-        // Heights that startMaps bakes as they join start near their optimum, but their loss can
+        joinMaps(maps, !pastStart);
+        // Heights that a stage's startFrom bakes as they join start near their optimum, but their loss can
         // lie flat for dozens of steps before it falls (docs/optimizer.md): their probation stops
         // only a start the steps clearly make worse, and a later one (kLateProbation) a start
         // they have not improved by then. Maps given before the run keep the full one.

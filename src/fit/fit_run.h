@@ -49,6 +49,17 @@ const char* toString(StopReason reason);
 // cost a render of each, twice, and a caller that reads only the held-out ones can skip them.
 enum class ReportScores { TrainingAndHoldout, HoldoutOnly };
 
+// How the maps join a fit: data the plan hands the run. A run resumed past the join has the
+// maps' θ from its checkpoint (no `startFrom`), but the settings are made again.
+struct MapStage {
+    // The maps they start from, made from the cage as fitted so far (a bake); empty: as they are.
+    std::function<surface::SurfaceMaps(const mesh::PolygonMesh& cage)> startFrom{};
+    bool freezeCage = false;           // the cage stays where it is from then on
+    float geometricRate = 1.0f;        // a factor on the geometric maps' learning rates from then on
+    float appearanceRate = 1.0f;       // and on the appearance maps'
+    std::optional<float> noiseGate{};  // every map group's from then on, where set
+};
+
 class FitRun {
 public:
     // Builds the fitter and scores the starting state (the report's "before"). Needs the
@@ -103,12 +114,8 @@ public:
     void endStage(bool keepStep = false);
 
     // The whole fit in its stages: the cage alone until the maps' planned start (or until it has
-    // converged), then with the maps, each stage ending at its best state. `startMaps` (if any)
-    // runs when the maps join; `fresh` is false in a run resumed past that point (the maps' θ
-    // came from the checkpoint, but settings changed then must be made again).
-    using MapsStart = std::function<void(bool fresh)>;
-    StopReason run(const std::filesystem::path& checkpoint, const FitHooks& hooks = {},
-                   const MapsStart& startMaps = {});
+    // converged), then with the maps as `maps` says, each stage ending at its best state.
+    StopReason run(const std::filesystem::path& checkpoint, const FitHooks& hooks = {}, const MapStage& maps = {});
 
     // Scores the current state and writes cage.obj, the exports (fitted.glb, maps) and the
     // before / after / target PNGs of held-out view 0 into `out`, each atomically. report.json
@@ -138,7 +145,9 @@ private:
     std::string fingerprint_;  // what a checkpoint must match
     int resumedFromStep_ = 0;
     ScheduleState schedule_;
-    int bestStep_ = -1;       // of the last stage ended
+    int bestStep_ = -1;  // of the last stage ended
+    // The maps joining as `stage` says; `fresh`: not resumed past the join.
+    void joinMaps(const MapStage& stage, bool fresh);
     bool mapsGiven_ = false;  // startFrom set the maps (a bake): their stage starts near its optimum
     void restoreBest();       // θ of every group back to the best monitored state
     void writeTheta(const std::vector<std::vector<float>>& theta);

@@ -30,7 +30,7 @@ std::optional<ImageHeader> jpegHeader(std::span<const unsigned char> bytes);
 // tests), one 8-bit baseline, extended or progressive Huffman frame, scans whose components and
 // tables exist and whose progression is valid, only the markers libjpeg knows. The entropy-coded
 // data is not decoded: a decoder draws damage there as well as it can. The shipped asset's
-// images are checked with this before any decoder sees them (export/subd_format.h), so that
+// images are checked with this before any decoder sees them (codec/subd_format.h), so that
 // `subdfit decode` (libjpeg) and the web decoder (the browser's) refuse the same files.
 std::string jpegStructureProblem(std::span<const unsigned char> bytes);
 

@@ -43,7 +43,7 @@ constexpr float kRefineVertexRate = 1.0f / 30.0f;
 // off (docs/optimizer.md).
 constexpr float kRefineNoiseGate = 1.0f;
 
-// What subdfit ships: asset.subd (cage and maps, export/subd_format.h). asset.usdz, the map
+// What subdfit ships: asset.subd (cage and maps, codec/subd_format.h). asset.usdz, the map
 // atlases and fitted.glb are conveniences for DCC tools and viewers, not what the budget counts.
 nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports) {
     return {{"asset.subd", exports.at("asset.subd")}};
@@ -74,31 +74,20 @@ void writeComparisonImage(const SimplifyReport& report, int resolution, const fi
     writeComparison(out / "comparison.png", resolution, scene.holdout.readColor(0), columns);
 }
 
-// The maps join the fit at `bakeStep`: baked onto the cage as fitted so far (what the bake route
-// would ship for this cage), then only refined, with the cage frozen. A run resumed past that
-// step has the maps from its checkpoint (`baked` false) but must freeze and slow them again.
-void startMaps(fit::FitRun& run, bool bake) {
-    fit::CageFitter& fitter = run.fitter();
-    auto* parameters = fitter.maps();
-    if (bake) {
-        mesh::PolygonMesh current = run.scene().cage;
-        current.positions = fitter.vertices();
-        const surface::SurfaceMaps baked = bakeFor(current, run.scene().reference, *parameters);
-        // Baked before the first step, the bake is where the fit starts: the report's start is
-        // scored on it, so that the fit's gain reads as its own, not the bake's.
-        if (run.step() == 0) run.startFrom(baked);
-        else fit::writeMaps(fitter, baked);
-    }
-    // The bake fits this cage: moving it now would slide the maps off the detail they hold.
-    fitter.setOptimised(fitter.vertexGroup(), false);
-    // Every map moves from here: the appearance at its full rate, the geometric maps slowed.
-    // Heights held back until the appearance had converged scored lower held out on every
-    // textured case measured (docs/measurements.md).
-    for (auto* g : parameters->groups()) {
-        const bool appearanceGroup = g == parameters->baseColor() || g == parameters->metallicRoughness();
-        fitter.setRates(*g, g->settings().epsilon, (appearanceGroup ? 1.0f : kRefineRate) * g->settings().learningRate);
-        g->settings().noiseGate = kRefineNoiseGate;
-    }
+// The maps join the fit baked onto the cage as fitted so far (what the bake route would ship for
+// this cage), then are only refined: the cage frozen (moving it would slide the maps off the
+// detail they hold), the appearance at its full rate, the geometric maps slowed. Heights held
+// back until the appearance had converged scored lower held out on every textured case
+// measured (docs/measurements.md).
+fit::MapStage mapStage(fit::FitRun& run) {
+    return {.startFrom =
+                [&run](const mesh::PolygonMesh& cage) {
+                    return bakeFor(cage, run.scene().reference, *run.fitter().maps());
+                },
+            .freezeCage = true,
+            .geometricRate = kRefineRate,
+            .appearanceRate = 1.0f,
+            .noiseGate = kRefineNoiseGate};
 }
 
 // Never a silent loss: an appearance on tiles carries the fitted colours and the reference's
@@ -149,7 +138,7 @@ void fitStages(fit::FitRun& run, const std::filesystem::path& checkpoint, bool r
     if (resume && !resumed && hooks.note)
         hooks.note("no checkpoint at " + checkpoint.string() + " to resume: starting from step 0");
     startAppearance(run, resumed);
-    if (run.run(checkpoint, hooks, [&](bool fresh) { startMaps(run, fresh); }) == fit::StopReason::Cancelled)
+    if (run.run(checkpoint, hooks, mapStage(run)) == fit::StopReason::Cancelled)
         throw Interrupted("interrupted at step " + std::to_string(run.step()) + " of " +
                           std::to_string(run.options().steps) + ", checkpointed in " + checkpoint.string());
 }

@@ -17,7 +17,7 @@
 namespace subdfit::surface {
 
 // The largest atlas: texels per side of its square texture. The one limit the options, the
-// .subd reader (export/atlas_uv_coding.h) and the lattice below all check.
+// .subd reader (codec/atlas_uv_coding.h) and the lattice below all check.
 inline constexpr int kMaxAtlasSize = 2048;
 
 struct AppearanceAtlas {

@@ -51,12 +51,14 @@ TEST(FitStages, MapsJoiningAConvergedCageStartAtTheFullStep) {
     std::atomic<bool> cancel{false};
     float mapsScale = 0.0f, cageFactor = 0.0f;
     int joinedAt = -1;
-    run.run(dir / "checkpoint.bin", {.cancel = &cancel}, [&](bool) {
-        joinedAt = run.step();
-        mapsScale = fitter.learningRateScale();
-        cageFactor = fitter.vertexRateFactor();
-        cancel = true;
-    });
+    // Observed as the maps join: their start leaves them as they are.
+    run.run(dir / "checkpoint.bin", {.cancel = &cancel}, {.startFrom = [&](const mesh::PolygonMesh&) {
+                joinedAt = run.step();
+                mapsScale = fitter.learningRateScale();
+                cageFactor = fitter.vertexRateFactor();
+                cancel = true;
+                return surface::SurfaceMaps{};
+            }});
     ASSERT_GE(joinedAt, 0);
     ASSERT_LT(joinedAt, int(0.9f * float(o.steps))) << "the cage did not converge before the maps' planned start";
     EXPECT_EQ(mapsScale, 1.0f);
@@ -64,7 +66,7 @@ TEST(FitStages, MapsJoiningAConvergedCageStartAtTheFullStep) {
     expectNoGlError();
 }
 
-// Interrupted as the maps join (the cage frozen by startMaps), a resumed run freezes it again and
+// Interrupted as the maps join (the cage frozen by their stage), a resumed run freezes it again and
 // ends where a straight run does.
 TEST(FitStages, ARunInterruptedAsTheMapsJoinEndsWhereAStraightRunDoes) {
     const auto dir = scratchDir("fit_stages_resume");
@@ -78,12 +80,14 @@ TEST(FitStages, ARunInterruptedAsTheMapsJoinEndsWhereAStraightRunDoes) {
         if (resume) {
             EXPECT_TRUE(run->resume(checkpoint));
         }
-        auto& fitter = run->fitter();
-        const auto stopped = run->run(checkpoint, hooks, [&, r = run.get()](bool fresh) {
-            if (fresh) joinedAt = r->step();
-            fitter.setOptimised(fitter.vertexGroup(), false);
-            if (cancelWhenJoined) *cancelWhenJoined = true;
-        });
+        fit::MapStage stage{.startFrom =
+                                [&, r = run.get()](const mesh::PolygonMesh&) {
+                                    joinedAt = r->step();
+                                    if (cancelWhenJoined) *cancelWhenJoined = true;
+                                    return surface::SurfaceMaps{};
+                                },
+                            .freezeCage = true};
+        const auto stopped = run->run(checkpoint, hooks, stage);
         return std::make_pair(stopped, std::move(run));
     };
     auto [straightStop, straight] = fit(dir / "straight.bin", false, {});
@@ -116,7 +120,10 @@ TEST(FitStages, AFitWithoutMapsStopsOnItsProbation) {
     fit::FitRun run(fit::resolved(o), programs(), scene);
     run.setWindowDoublings(0);
     bool mapsStarted = false;
-    const auto stopped = run.run(dir / "checkpoint.bin", {}, [&](bool) { mapsStarted = true; });
+    const auto stopped = run.run(dir / "checkpoint.bin", {}, {.startFrom = [&](const mesh::PolygonMesh&) {
+                                     mapsStarted = true;
+                                     return surface::SurfaceMaps{};
+                                 }});
     EXPECT_EQ(stopped, fit::StopReason::NoGain);
     EXPECT_LT(run.step(), o.steps);
     EXPECT_FALSE(mapsStarted);

@@ -35,7 +35,7 @@ std::string readBytes(const fs::path& path) {
 }
 
 // Whether every position lies on a grid of 2^bits − 1 steps over the positions' bounding cube
-// (asset.subd's quantisation of a cage, export/cage_coding.h).
+// (asset.subd's quantisation of a cage, codec/cage_coding.h).
 bool onPositionGrid(const std::vector<glm::vec3>& positions, int bits) {
     glm::vec3 lo(1e30f), hi(-1e30f);
     for (const glm::vec3& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);

@@ -1,4 +1,4 @@
-// The map node coder (export/node_coding.h): a smooth map's residuals are near zero, corners
+// The map node coder (codec/node_coding.h): a smooth map's residuals are near zero, corners
 // included, and a noisy map is predicted by its mean rather than by its noisy neighbours.
 #include <gtest/gtest.h>
 

@@ -131,7 +131,7 @@ glm::vec2 cornerValue(const json& primvar, int f, int k) {
     return {primvar["values"][index][0].get<float>(), primvar["values"][index][1].get<float>()};
 }
 
-// Where USD `st` falls on the atlas's tiles: the ptex face and its (u, v) (export/map_atlas.h's
+// Where USD `st` falls on the atlas's tiles: the ptex face and its (u, v) (codec/map_atlas.h's
 // formula inverted, v flipped to glTF's convention).
 struct TilePoint {
     int face;

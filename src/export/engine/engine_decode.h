@@ -3,7 +3,7 @@
 // from an error bound (--max-error, error_density.h); optionally a chain of levels of detail
 // (--lods, lod_chain.h) described in a JSON beside them; every mesh quantised
 // (KHR_mesh_quantization, which every glTF reader opens), meshopt-compressed where the caller
-// asks, or floats (export/glb_writer.h MeshCoding).
+// asks, or floats (export/gltf/glb_writer.h MeshCoding).
 #include <filesystem>
 #include <optional>
 #include <vector>
@@ -26,7 +26,7 @@ struct EngineDecodeOptions {
 
 // `out` is level 0; level k (k >= 1) goes to `<stem>_lod<k>.glb` beside it, and with --lods the
 // JSON to `<stem>_lods.json`. Every mesh is built and encoded before the first file is written
-// (each atomically). Throws subdfit::Error as decodeToGlb (export/subd_decode.h), and for an
+// (each atomically). Throws subdfit::Error as decodeToGlb (export/engine/subd_decode.h), and for an
 // error bound that is not positive.
 std::vector<io::WrittenFile> decodeForEngines(const std::filesystem::path& subd, const std::filesystem::path& out,
                                               const EngineDecodeOptions& options);

@@ -1,8 +1,8 @@
 #pragma once
 // `subdfit decode`: a shipped .subd file back to what any glTF viewer or engine reads, the
 // displaced limit surface as triangles (with the normal map, if the file has one, as the
-// material's normalTexture), as densely as export/decode_density.h chooses. Reads nothing but the
-// file; what it decodes and writes is priced against one budget (export/decode_budget.h) before
+// material's normalTexture), as densely as codec/decode_density.h chooses. Reads nothing but the
+// file; what it decodes and writes is priced against one budget (codec/decode_budget.h) before
 // it is allocated; `out` is written only over a regular file (or where nothing is). The LOD chain
 // and the density from an error bound are export/engine/engine_decode.h's.
 #include <filesystem>

@@ -19,7 +19,7 @@ namespace subdfit::exporter {
 // tessellation has them, uint32 indices); with texcoords or a normal map, one material
 // (metallic 0, roughness 0.6; normalTexture = the embedded `normalPng` unless it is empty,
 // sampled LINEAR without mipmaps and clamped, as the atlas requires). With `draco`,
-// the primitive is KHR_draco_mesh_compression-encoded (export/draco_encoding.h) and the
+// the primitive is KHR_draco_mesh_compression-encoded (export/gltf/draco_encoding.h) and the
 // extension is required. Written atomically; throws subdfit::Error "path: problem".
 io::WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh& tess,
                                std::span<const unsigned char> normalPng, bool draco);
@@ -38,8 +38,8 @@ io::WrittenFile writeFittedGlb(const std::filesystem::path& path, const GltfMesh
                                bool draco);
 
 // How a writer stores the mesh: float accessors as they are; KHR_draco_mesh_compression
-// (export/draco_encoding.h); KHR_mesh_quantization alone, which every glTF reader opens with no
-// decoder set; or with EXT_meshopt_compression besides (export/meshopt_encoding.h), what engines
+// (export/gltf/draco_encoding.h); KHR_mesh_quantization alone, which every glTF reader opens with no
+// decoder set; or with EXT_meshopt_compression besides (export/gltf/meshopt_encoding.h), what engines
 // with meshoptimizer's decoder load smallest. The extensions a coding uses are required.
 enum class MeshCoding { Float, Draco, Quantized, Meshopt };
 

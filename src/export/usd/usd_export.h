@@ -1,6 +1,6 @@
 #pragma once
 // The USD export beside asset.subd: asset.usdz, one self-contained package (the layer of
-// export/usd_stage.h and its images, export/usdz_archive.h), and on request asset.usda, the
+// export/usd/usd_stage.h and its images, export/usd/usdz_archive.h), and on request asset.usda, the
 // same layer as text, its images read from inside the package.
 #include <filesystem>
 #include <vector>

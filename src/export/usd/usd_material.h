@@ -3,7 +3,7 @@
 // along the normal, in the cage's units), the appearance as its colour, metallic, roughness,
 // occlusion, emission and normal inputs, each read by a UsdUVTexture from an image of the package.
 //
-// The heights' image is a 16-bit grey PNG of the map atlas (export/map_atlas.h: a (T+1)² pixel
+// The heights' image is a 16-bit grey PNG of the map atlas (codec/map_atlas.h: a (T+1)² pixel
 // tile per ptex face, the nodes on pixel centres, so bilinear filtering at full resolution is
 // exactly subdfit's bilinear tile), read raw through face-varying `st`; its scale and bias
 // turn a texel t in [0, 1] into the height lo + t·(hi − lo), lo and hi the heights' range.

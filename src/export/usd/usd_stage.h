@@ -1,7 +1,7 @@
 #pragma once
 // The shipped asset as one USD layer: /Asset (an Xform, kind "component", the default prim)
-// holding /Asset/Cage (export/usd_cage.h) bound to /Asset/Materials/Surface
-// (export/usd_material.h), with the images that material reads. docs/usd.md says what each
+// holding /Asset/Cage (export/usd/usd_cage.h) bound to /Asset/Materials/Surface
+// (export/usd/usd_material.h), with the images that material reads. docs/usd.md says what each
 // renderer and DCC tool makes of it.
 #include <string>
 #include <vector>
