@@ -500,8 +500,8 @@ void growBest(const SearchInputs& in, Findings& found, const Keep& keep) {
                                                : surface::SurfaceMaps{};
         const MapRecipe recipe{.effects = best.maps, .resolution = best.mapResolution, .bits = best.mapBits};
         const BudgetCandidate grown = judge(in, found, cage->world, baked, recipe, appearance, best.positionBits);
-        if (fits(in.search, grown)) {     // on from it while bytes are left
-            if (grown.bytes > fromBytes)  // the exponent as this growth measured it
+        if (fits(in.search, grown)) {                                // on from it while bytes are left
+            if (grown.bytes > fromBytes && grown.faces > fromFaces)  // the exponent as this growth measured it
                 exponent = std::clamp(std::log(double(grown.bytes) / double(fromBytes)) /
                                           std::log(double(grown.faces) / double(fromFaces)),
                                       0.7, 1.0);
