@@ -6,6 +6,7 @@
 #include <zstd.h>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <array>
@@ -381,6 +382,14 @@ int longestEdge(const std::vector<Cell>& cells, const std::vector<int>& corners,
     return longest;
 }
 
+// Whether quad v's diagonal from corner a is longer than each of its sides.
+bool diagonalIsLongest(const std::vector<glm::vec3>& p, const int* v, int a) {
+    const float diagonal = glm::distance(p[size_t(v[a])], p[size_t(v[a + 2])]);
+    for (int k = 0; k < 4; ++k)
+        if (glm::distance(p[size_t(v[k])], p[size_t(v[(k + 1) % 4])]) >= diagonal) return false;
+    return true;
+}
+
 // The polygon marks of a quad-dominant cage cost a byte per triangle as they are, where a
 // triangle of a quad has one mark, nearly always on its longest edge: each triangle's 2-bit
 // symbol, four to a byte (low bits first), says 0: no edge inside a polygon; 1: its longest
@@ -457,6 +466,13 @@ std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBo
         };
         while (apex < n && !free(apex)) ++apex;
         if (apex == n) return std::nullopt;
+        // A quad whose diagonal from corner 0 is not the longer edge of both its triangles, split
+        // along the other one where that is: the polygon marks' commonest symbol names a
+        // triangle's longest edge (pairMarks). Only then: a mesh whose diagonals all run one way
+        // is what Draco's traversal codes cheapest.
+        if (n == 4 && apex == 0 && !diagonalIsLongest(cage.positions, v, 0) && free(1) &&
+            diagonalIsLongest(cage.positions, v, 1))
+            apex = 1;
         for (int k = 1; k + 1 < n; ++k)
             corners.insert(corners.end(), {v[apex], v[(apex + k) % n], v[(apex + k + 1) % n]});
         for (int k = 2; k + 1 < n; ++k)
