@@ -6,7 +6,6 @@
 #include <zstd.h>
 
 #include <glm/common.hpp>
-#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <array>
@@ -26,8 +25,9 @@
 namespace subdfit::codec {
 namespace {
 
-// kDraco's polygon marks are a byte per triangle; kDracoPairs' are coded by pairMarks().
-enum Coding : std::uint8_t { kPlain = 0, kDraco = 1, kDracoPairs = 2 };
+// kDraco's polygon marks are a byte per triangle; kDracoPairs' are coded by pairMarks(),
+// kDracoOnce's by onceMarks().
+enum Coding : std::uint8_t { kPlain = 0, kDraco = 1, kDracoPairs = 2, kDracoOnce = 3 };
 // Draco's speed 1: its valence connectivity coder and multi-parallelogram position prediction,
 // 1-6 % smaller than speed 5 on decimated cages (docs/results.md, where a cage's bytes go).
 constexpr int kDracoSpeed = 1;
@@ -37,6 +37,20 @@ using Cell = std::array<std::int32_t, 3>;  // a quantised position
 std::uint64_t cellKey(const Cell& c) {
     return std::uint64_t(std::uint32_t(c[0])) | std::uint64_t(std::uint32_t(c[1])) << 21 |
            std::uint64_t(std::uint32_t(c[2])) << 42;
+}
+
+// Bytes of `raw` zstd-packed as asset.subd packs a section.
+std::size_t zstdSize(std::span<const unsigned char> raw) {
+    std::vector<unsigned char> out(ZSTD_compressBound(raw.size()));
+    const std::size_t size = ZSTD_compress(out.data(), out.size(), raw.data(), raw.size(), kSubdZstdLevel);
+    if (ZSTD_isError(size)) throw Error(std::string("zstd: ") + ZSTD_getErrorName(size));
+    return size;
+}
+
+std::int64_t squaredLength(const Cell& a, const Cell& b) {
+    std::int64_t length = 0;
+    for (size_t i = 0; i < 3; ++i) length += std::int64_t(a[i] - b[i]) * (a[i] - b[i]);
+    return length;
 }
 
 std::uint64_t edgeKey(int from, int to) { return std::uint64_t(std::uint32_t(from)) << 32 | std::uint32_t(to); }
@@ -373,21 +387,53 @@ int longestEdge(const std::vector<Cell>& cells, const std::vector<int>& corners,
     int longest = 0;
     std::int64_t most = -1;
     for (int k = 0; k < 3; ++k) {
-        const Cell& a = cells[size_t(corners[3 * t + size_t(k)])];
-        const Cell& b = cells[size_t(corners[3 * t + size_t((k + 1) % 3)])];
-        std::int64_t length = 0;
-        for (int i = 0; i < 3; ++i) length += std::int64_t(a[size_t(i)] - b[size_t(i)]) * (a[size_t(i)] - b[size_t(i)]);
+        const std::int64_t length = squaredLength(cells[size_t(corners[3 * t + size_t(k)])],
+                                                  cells[size_t(corners[3 * t + size_t((k + 1) % 3)])]);
         if (length > most) most = length, longest = k;
     }
     return longest;
 }
 
-// Whether quad v's diagonal from corner a is longer than each of its sides.
-bool diagonalIsLongest(const std::vector<glm::vec3>& p, const int* v, int a) {
-    const float diagonal = glm::distance(p[size_t(v[a])], p[size_t(v[a + 2])]);
-    for (int k = 0; k < 4; ++k)
-        if (glm::distance(p[size_t(v[k])], p[size_t(v[(k + 1) % 4])]) >= diagonal) return false;
-    return true;
+// Per quad, the corner (0 or 1) its diagonal should leave from so that neighbouring quads'
+// diagonals run parallel, as in a grid split all one way: across a shared edge the two diagonals
+// touch its two different ends. Spread from each unvisited quad breadth first; -1 for other faces.
+// Draco's valence coder and parallelogram prediction code such a split cheapest (on OpenSubdiv's
+// bishop with its quads' first corners scattered, 13 % more bytes than split all one way).
+std::vector<int> parallelDiagonals(const mesh::PolygonMesh& cage) {
+    std::vector<int> first(size_t(cage.faceCount()) + 1, 0);
+    for (int f = 0; f < cage.faceCount(); ++f) first[size_t(f) + 1] = first[size_t(f)] + cage.faceSizes[size_t(f)];
+    std::unordered_map<std::uint64_t, std::vector<int>> quadsOfEdge;
+    const auto undirected = [](int a, int b) { return edgeKey(std::min(a, b), std::max(a, b)); };
+    for (int f = 0; f < cage.faceCount(); ++f)
+        if (cage.faceSizes[size_t(f)] == 4)
+            for (int k = 0; k < 4; ++k)
+                quadsOfEdge[undirected(cage.faceIndices[size_t(first[size_t(f)] + k)],
+                                       cage.faceIndices[size_t(first[size_t(f)] + (k + 1) % 4)])]
+                    .push_back(f);
+    std::vector<int> apex(size_t(cage.faceCount()), -1), queue;
+    for (int seed = 0; seed < cage.faceCount(); ++seed) {
+        if (cage.faceSizes[size_t(seed)] != 4 || apex[size_t(seed)] >= 0) continue;
+        apex[size_t(seed)] = 0;
+        queue.assign(1, seed);
+        for (size_t next = 0; next < queue.size(); ++next) {
+            const int f = queue[next];
+            const int* v = &cage.faceIndices[size_t(first[size_t(f)])];
+            for (int k = 0; k < 4; ++k) {
+                const auto& shared = quadsOfEdge[undirected(v[k], v[(k + 1) % 4])];
+                if (shared.size() != 2) continue;
+                const int g = shared[0] == f ? shared[1] : shared[0];
+                if (apex[size_t(g)] >= 0) continue;
+                // The end of edge k that f's diagonal does not touch; g's diagonal leaves from it.
+                const int other = k % 2 == apex[size_t(f)] ? v[(k + 1) % 4] : v[k];
+                const int* w = &cage.faceIndices[size_t(first[size_t(g)])];
+                for (int j = 0; j < 4; ++j)
+                    if (w[j] == other) apex[size_t(g)] = j % 2;
+                if (apex[size_t(g)] < 0) continue;
+                queue.push_back(g);
+            }
+        }
+    }
+    return apex;
 }
 
 // The polygon marks of a quad-dominant cage cost a byte per triangle as they are, where a
@@ -431,10 +477,139 @@ std::vector<unsigned char> marksFromPairs(const CellTriangles& mesh, ByteReader&
     return interior;
 }
 
-// The Draco body and the correspondence it gives, or nothing when Draco cannot carry this cage
-// as it is (repeated or unused vertices, non-manifold pieces it would cut, ...).
-std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBody(const mesh::PolygonMesh& cage,
-                                                                                   const Grid& grid) {
+// Each triangle's neighbour across each of its edges (the triangle whose edge runs the other
+// way), or -1 where there is none or more than one.
+std::vector<std::array<int, 3>> neighbours(const std::vector<int>& corners) {
+    const size_t triangles = corners.size() / 3;
+    std::unordered_map<std::uint64_t, int> edgeOwner;  // directed edge -> 3 t + k, or -1 when repeated
+    for (size_t t = 0; t < triangles; ++t)
+        for (int k = 0; k < 3; ++k) {
+            const auto key = edgeKey(corners[3 * t + size_t(k)], corners[3 * t + size_t((k + 1) % 3)]);
+            const auto [at, added] = edgeOwner.emplace(key, int(3 * t) + k);
+            if (!added) at->second = -1;
+        }
+    std::vector<std::array<int, 3>> across(triangles, {-1, -1, -1});
+    for (size_t t = 0; t < triangles; ++t)
+        for (int k = 0; k < 3; ++k) {
+            const auto it = edgeOwner.find(edgeKey(corners[3 * t + size_t((k + 1) % 3)], corners[3 * t + size_t(k)]));
+            if (it != edgeOwner.end() && it->second >= 0 &&
+                edgeOwner.at(edgeKey(corners[3 * t + size_t(k)], corners[3 * t + size_t((k + 1) % 3)])) >= 0)
+                across[t][size_t(k)] = it->second;
+        }
+    return across;
+}
+
+// Coding 3's marks name each interior edge once, in the first of its two triangles (in Draco's
+// order): a quad's second triangle has its diagonal from the first and, nearly always, nothing
+// more to say. Per triangle a 2-bit symbol over its edges to later triangles not yet marked,
+// longest first: 0 none; 1 the longest alone; 2 the second longest alone; 3 those given in a byte
+// after the symbols. The symbols of triangles that already have a marked edge are a stream of
+// their own (nearly all 0), after the others', whose count comes first.
+enum OnceSymbol : unsigned { kNoMore = 0, kFirst = 1, kSecond = 2, kGiven = 3 };
+
+// Triangle t's edges to later triangles not yet marked, longest first.
+std::vector<int> laterEdges(const CellTriangles& mesh, const std::vector<std::array<int, 3>>& across, size_t t,
+                            unsigned marked) {
+    std::vector<int> edges;
+    for (int k = 0; k < 3; ++k)
+        if (across[t][size_t(k)] / 3 > int(t) && !((marked >> k) & 1u)) edges.push_back(k);
+    const auto length = [&](int k) {
+        return squaredLength(mesh.cells[size_t(mesh.corners[3 * t + size_t(k)])],
+                             mesh.cells[size_t(mesh.corners[3 * t + size_t((k + 1) % 3)])]);
+    };
+    std::stable_sort(edges.begin(), edges.end(), [&](int a, int b) { return length(a) > length(b); });
+    return edges;
+}
+
+// The marks `interior` as coding 3, or nothing where some interior edge has no single twin.
+std::optional<std::vector<unsigned char>> onceMarks(const CellTriangles& mesh,
+                                                    std::span<const unsigned char> interior) {
+    const size_t triangles = interior.size();
+    const auto across = neighbours(mesh.corners);
+    std::vector<unsigned char> marked(triangles, 0), given;
+    std::vector<unsigned> fresh, known;  // the symbols of the two streams
+    for (size_t t = 0; t < triangles; ++t) {
+        const unsigned added = interior[t] & ~marked[t];
+        const std::vector<int> later = laterEdges(mesh, across, t, marked[t]);
+        unsigned reachable = 0;
+        for (int k : later) reachable |= 1u << k;
+        if (added & ~reachable) return std::nullopt;
+        unsigned symbol = kGiven;
+        if (added == 0) symbol = kNoMore;
+        else if (!later.empty() && added == 1u << later[0]) symbol = kFirst;
+        else if (later.size() > 1 && added == 1u << later[1]) symbol = kSecond;
+        if (symbol == kGiven) given.push_back(std::uint8_t(added));
+        (marked[t] ? known : fresh).push_back(symbol);
+        for (int k = 0; k < 3; ++k)
+            if ((added >> k) & 1u) {
+                const int twin = across[t][size_t(k)];
+                marked[size_t(twin / 3)] |= std::uint8_t(1u << (twin % 3));
+            }
+    }
+    ByteWriter out;
+    out.putVarint(fresh.size());
+    for (const auto* stream : {&fresh, &known}) {
+        std::vector<unsigned char> packed((stream->size() + 3) / 4, 0);
+        for (size_t i = 0; i < stream->size(); ++i) packed[i / 4] |= std::uint8_t((*stream)[i] << (2 * (i % 4)));
+        out.putBytes(packed);
+    }
+    out.putBytes(given);
+    return std::move(out.bytes());
+}
+
+std::vector<unsigned char> marksFromOnce(const CellTriangles& mesh, ByteReader& in) {
+    const size_t triangles = mesh.corners.size() / 3;
+    const auto across = neighbours(mesh.corners);
+    const size_t freshCount = in.getCount(0, "polygon mark");
+    if (freshCount > triangles) throw Error(in.what() + ": more polygon marks than triangles");
+    const auto fresh = in.take((freshCount + 3) / 4);
+    const auto known = in.take((triangles - freshCount + 3) / 4);
+    std::vector<unsigned char> marked(triangles, 0), interior(triangles, 0);
+    size_t nextFresh = 0, nextKnown = 0;
+    for (size_t t = 0; t < triangles; ++t) {
+        unsigned symbol;
+        if (marked[t]) {
+            if (nextKnown == triangles - freshCount) throw Error(in.what() + ": polygon marks out of step");
+            symbol = (known[nextKnown / 4] >> (2 * (nextKnown % 4))) & 3u;
+            ++nextKnown;
+        } else {
+            if (nextFresh == freshCount) throw Error(in.what() + ": polygon marks out of step");
+            symbol = (fresh[nextFresh / 4] >> (2 * (nextFresh % 4))) & 3u;
+            ++nextFresh;
+        }
+        const std::vector<int> later = laterEdges(mesh, across, t, marked[t]);
+        unsigned added = 0;
+        if (symbol == kGiven) {
+            added = in.get<std::uint8_t>();
+            unsigned reachable = 0;
+            for (int k : later) reachable |= 1u << k;
+            if (added & ~reachable) throw Error(in.what() + ": a polygon mark on an edge it cannot name");
+        } else if (symbol != kNoMore) {
+            const size_t rank = symbol == kFirst ? 0 : 1;
+            if (rank >= later.size()) throw Error(in.what() + ": a polygon mark on an edge it cannot name");
+            added = 1u << later[rank];
+        }
+        interior[t] = std::uint8_t(marked[t] | added);
+        for (int k = 0; k < 3; ++k)
+            if ((added >> k) & 1u) {
+                const int twin = across[t][size_t(k)];
+                marked[size_t(twin / 3)] |= std::uint8_t(1u << (twin % 3));
+            }
+    }
+    if (nextFresh != freshCount) throw Error(in.what() + ": polygon marks out of step");
+    return interior;
+}
+
+// A Draco-coded cage: the coding of its marks, the bytes after the header, the correspondence.
+struct DracoBody {
+    Coding coding = kDracoOnce;
+    std::vector<unsigned char> bytes;
+    CageCorrespondence to;
+};
+
+// The Draco body, or nothing when Draco cannot carry this cage as it is (repeated or unused
+// vertices, non-manifold pieces it would cut, ...).
+std::optional<DracoBody> dracoBody(const mesh::PolygonMesh& cage, const Grid& grid) {
     std::vector<Cell> cells;
     for (const auto& p : cage.positions) cells.push_back(grid.cell(p));
     const auto separated = separateCells(cells, cage.positions, grid);
@@ -451,6 +626,7 @@ std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBo
     auto taken = [&](int a, int b) {
         return edges.count(edgeKey(a, b)) || edges.count(edgeKey(b, a)) || diagonals.count(edgeKey(a, b));
     };
+    const std::vector<int> parallel = parallelDiagonals(cage);
     for (int f = 0, first = 0; f < cage.faceCount(); first += cage.faceSizes[size_t(f)], ++f) {
         const int n = cage.faceSizes[size_t(f)];
         const int* v = &cage.faceIndices[size_t(first)];
@@ -466,13 +642,7 @@ std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBo
         };
         while (apex < n && !free(apex)) ++apex;
         if (apex == n) return std::nullopt;
-        // A quad whose diagonal from corner 0 is not the longer edge of both its triangles, split
-        // along the other one where that is: the polygon marks' commonest symbol names a
-        // triangle's longest edge (pairMarks). Only then: a mesh whose diagonals all run one way
-        // is what Draco's traversal codes cheapest.
-        if (n == 4 && apex == 0 && !diagonalIsLongest(cage.positions, v, 0) && free(1) &&
-            diagonalIsLongest(cage.positions, v, 1))
-            apex = 1;
+        if (n == 4 && apex == 0 && parallel[size_t(f)] == 1 && free(1)) apex = 1;
         for (int k = 1; k + 1 < n; ++k)
             corners.insert(corners.end(), {v[apex], v[(apex + k) % n], v[(apex + k + 1) % n]});
         for (int k = 2; k + 1 < n; ++k)
@@ -525,11 +695,25 @@ std::optional<std::pair<std::vector<unsigned char>, CageCorrespondence>> dracoBo
         to.face[size_t(face)] = f;
         to.rotation[size_t(face)] = corner;
     }
+    // Coding 3's marks where they round-trip (every interior edge with one twin) and pack smaller
+    // (a quad's), else coding 2's (a triangle cage's: no marks either way).
+    const std::vector<unsigned char> pairs = pairMarks(decoded, interior);
+    std::optional<std::vector<unsigned char>> once = onceMarks(decoded, interior);
+    if (once) {
+        ByteReader check(*once, "polygon marks");
+        try {
+            if (marksFromOnce(decoded, check) != std::vector<unsigned char>(interior.begin(), interior.end()) ||
+                zstdSize(*once) >= zstdSize(pairs))
+                once.reset();
+        } catch (const Error&) {
+            once.reset();
+        }
+    }
     ByteWriter body;
     body.putVarint(draco.size());
     body.putBytes(draco);
-    body.putBytes(pairMarks(decoded, interior));
-    return std::pair{std::move(body.bytes()), std::move(to)};
+    body.putBytes(once ? *once : pairs);
+    return DracoBody{.coding = once ? kDracoOnce : kDracoPairs, .bytes = std::move(body.bytes()), .to = std::move(to)};
 }
 
 void readDraco(ByteReader& in, int coding, const Grid& grid, std::size_t vertices, std::size_t faces,
@@ -538,7 +722,9 @@ void readDraco(ByteReader& in, int coding, const Grid& grid, std::size_t vertice
     CellTriangles triangles = decodeDracoTriangles(draco, grid, in.what());
     if (triangles.cells.size() != vertices) throw Error(in.what() + ": the Draco cage has the wrong vertex count");
     for (const Cell& c : triangles.cells) cage.positions.push_back(grid.position(c));
-    if (coding == kDracoPairs) polygonsFromTriangles(triangles.corners, marksFromPairs(triangles, in), cage, in.what());
+    if (coding == kDracoOnce) polygonsFromTriangles(triangles.corners, marksFromOnce(triangles, in), cage, in.what());
+    else if (coding == kDracoPairs)
+        polygonsFromTriangles(triangles.corners, marksFromPairs(triangles, in), cage, in.what());
     else polygonsFromTriangles(triangles.corners, in.take(triangles.corners.size() / 3), cage, in.what());
     if (cage.faceSizes.size() != faces) throw Error(in.what() + ": the Draco cage has the wrong face count");
 }
@@ -555,14 +741,9 @@ CageCorrespondence identity(const mesh::PolygonMesh& cage) {
 }  // namespace
 
 CageByteParts cageByteParts(const mesh::PolygonMesh& cage, int positionBits) {
-    const auto packed = [](std::span<const unsigned char> raw) {
-        std::vector<unsigned char> out(ZSTD_compressBound(raw.size()));
-        const std::size_t size = ZSTD_compress(out.data(), out.size(), raw.data(), raw.size(), kSubdZstdLevel);
-        if (ZSTD_isError(size)) throw Error(std::string("zstd: ") + ZSTD_getErrorName(size));
-        return size;
-    };
+    const auto packed = [](std::span<const unsigned char> raw) { return zstdSize(raw); };
     const CodedCage coded = encodeCage(cage, positionBits);
-    CageByteParts parts{.draco = coded.bytes.at(0) == kDracoPairs, .stored = packed(coded.bytes)};
+    CageByteParts parts{.draco = coded.bytes.at(0) != kPlain, .stored = packed(coded.bytes)};
     ByteWriter tags;
     writeTags(cage.tags, coded.correspondence, tags);
     parts.tags = packed(tags.bytes());
@@ -577,7 +758,7 @@ CageByteParts cageByteParts(const mesh::PolygonMesh& cage, int positionBits) {
     }
     const auto body = dracoBody(cage, grid);
     SUBDFIT_CHECK(body.has_value());
-    ByteReader in(body->first, "Draco body");
+    ByteReader in(body->bytes, "Draco body");
     const auto draco = in.take(in.getCount(1, "Draco byte"));
     parts.polygonMarks = packed(in.take(in.remaining()));
     // The same triangles over one position: what Draco spends on connectivity alone.
@@ -597,15 +778,15 @@ CodedCage encodeCage(const mesh::PolygonMesh& cage, int positionBits) {
     writePlain(cage, grid, plain);
     // A cage of a few faces is smaller plain (Draco's header alone is ~40 bytes); zstd is left
     // out of the comparison, it shrinks both.
-    if (draco && draco->first.size() >= plain.bytes().size()) draco.reset();
+    if (draco && draco->bytes.size() >= plain.bytes().size()) draco.reset();
     CodedCage coded;
-    coded.correspondence = draco ? std::move(draco->second) : identity(cage);
+    coded.correspondence = draco ? std::move(draco->to) : identity(cage);
     ByteWriter out;
-    out.put<std::uint8_t>(draco ? kDracoPairs : kPlain);
+    out.put<std::uint8_t>(draco ? draco->coding : kPlain);
     out.putVarint(std::uint64_t(cage.vertexCount()));
     out.putVarint(std::uint64_t(cage.faceCount()));
     writeGrid(grid, out);
-    out.putBytes(draco ? draco->first : plain.bytes());
+    out.putBytes(draco ? draco->bytes : plain.bytes());
     writeTags(cage.tags, coded.correspondence, out);
     coded.bytes = std::move(out.bytes());
     ByteReader in(coded.bytes, "encoded cage");
@@ -617,7 +798,7 @@ CodedCage encodeCage(const mesh::PolygonMesh& cage, int positionBits) {
 
 mesh::PolygonMesh decodeCage(ByteReader& in, int* positionBits) {
     const int coding = in.get<std::uint8_t>();
-    if (coding != kPlain && coding != kDraco && coding != kDracoPairs)
+    if (coding != kPlain && coding != kDraco && coding != kDracoPairs && coding != kDracoOnce)
         throw Error(in.what() + ": unknown cage coding " + std::to_string(coding));
     const std::size_t vertices = in.getCount(coding == kPlain ? 6 : 0, "vertex"), faces = in.getCount(1, "face");
     if (vertices > std::size_t(mesh::kMaxVertices) || faces > std::size_t(mesh::kMaxTriangles))

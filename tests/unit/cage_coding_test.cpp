@@ -7,7 +7,9 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "codec/byte_stream.h"
 #include "codec/cage_coding.h"
+#include "error_message.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
 #include "test_paths.h"
@@ -17,7 +19,8 @@ namespace {
 
 constexpr int kBits = 14;
 
-bool usesDraco(const CodedCage& coded) { return coded.bytes.at(0) == 2; }  // Draco, marks in pairs
+// Draco, its marks in pairs (coding 2) or once per edge (coding 3).
+bool usesDraco(const CodedCage& coded) { return coded.bytes.at(0) == 2 || coded.bytes.at(0) == 3; }
 
 // Every face of `cage` is the decoded face the correspondence names, corner for corner.
 void expectSameFaces(const mesh::PolygonMesh& cage, const CodedCage& coded) {
@@ -113,6 +116,58 @@ TEST(CageCoding, AQuadCagesMarksCostAFewBitsAFace) {
     expectSameFaces(sphere, coded);
     const CageByteParts parts = cageByteParts(sphere, kBits);
     EXPECT_LT(double(parts.polygonMarks), sphere.faceCount() / 16.0) << sphere.faceCount() << " quads";
+}
+
+// A quad's diagonal is marked once, in the first of its triangles Draco lays: the second's
+// symbol (nothing more) goes in a stream of nearly all zeros. Quads whose corners start anywhere
+// (as a remesh leaves them) cost well under a bit a face, and a triangle cage keeps coding 2.
+TEST(CageCoding, AQuadsDiagonalIsMarkedOnce) {
+    mesh::PolygonMesh pawn = shape("catmark_pawn.obj");
+    for (int f = 0, first = 0; f < pawn.faceCount(); first += pawn.faceSizes[size_t(f)], ++f) {
+        const auto begin = pawn.faceIndices.begin() + first;
+        std::rotate(begin, begin + (f * 7 % 5) % pawn.faceSizes[size_t(f)], begin + pawn.faceSizes[size_t(f)]);
+    }
+    const auto coded = encodeCage(pawn, kBits);
+    ASSERT_EQ(coded.bytes.at(0), 3);
+    expectSameFaces(pawn, coded);
+    EXPECT_LT(double(cageByteParts(pawn, kBits).polygonMarks), pawn.faceCount() / 10.0);
+    EXPECT_EQ(encodeCage(mesh::makeLumpySphere(4, 0.1f, 3), kBits).bytes.at(0), 2);  // all triangles
+}
+
+// Coding 3's marks as a hostile file might give them: more symbols than triangles, or a symbol
+// naming an edge the triangle has not, is refused in one line naming the section.
+TEST(CageCoding, MarksOnceThatDoNotFitTheTrianglesAreRefused) {
+    const mesh::PolygonMesh pawn = shape("catmark_pawn.obj");
+    const auto coded = encodeCage(pawn, kBits);
+    ASSERT_EQ(coded.bytes.at(0), 3);
+    // coding | vertices | faces | origin, extent, bits | Draco's size and bytes | the marks' count ...
+    ByteReader header(coded.bytes, "cage");
+    header.get<std::uint8_t>();
+    header.getVarint();
+    header.getVarint();
+    header.take(4 * sizeof(float) + 1);
+    header.take(header.getVarint());
+    const std::size_t marks = coded.bytes.size() - header.remaining();
+    ByteReader counted(std::span(coded.bytes).subspan(marks), "cage");
+    const std::uint64_t fresh = counted.getVarint();
+    const std::size_t symbols = marks + (coded.bytes.size() - marks - counted.remaining());
+    const auto refusal = [](const std::vector<unsigned char>& bytes) {
+        ByteReader in(bytes, "hostile.subd: CAGE section");
+        return test::errorMessage([&] { decodeCage(in); });
+    };
+    std::size_t triangles = 0;
+    for (int n : pawn.faceSizes) triangles += std::size_t(n - 2);
+    ByteWriter tooMany;
+    tooMany.putBytes(std::span(coded.bytes).first(marks));
+    tooMany.putVarint(triangles + 1);
+    tooMany.putBytes(std::span(coded.bytes).subspan(symbols));
+    EXPECT_EQ(refusal(tooMany.bytes()), "hostile.subd: CAGE section: more polygon marks than triangles");
+    // Every first symbol "its second open edge": some triangle has fewer than two.
+    std::vector<unsigned char> named = coded.bytes;
+    for (std::size_t k = symbols; k < symbols + (fresh + 3) / 4; ++k) named[k] = 0xaa;
+    const std::string message = refusal(named);
+    EXPECT_EQ(message.rfind("hostile.subd: CAGE section: ", 0), 0u) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
 TEST(CageCoding, ACageOfAFewFacesStaysPlain) {

@@ -259,8 +259,8 @@ TEST(SubdFormat, AnythingButAWholeVersionThreeFileIsRefusedInOneLine) {
     expectRefused({'S', 'U', 'B', 'D', 1}, "truncated");
     expectRefused({good.begin(), good.begin() + good.size() / 2}, "checksum");
     auto version = good;
-    version[4] = 9;
-    expectRefused(version, "version 9");
+    version[4] = 200;
+    expectRefused(version, "version 200");
     auto flipped = good;
     flipped[good.size() / 2] ^= 0x40;
     expectRefused(flipped, "checksum");
