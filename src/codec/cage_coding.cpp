@@ -491,12 +491,22 @@ std::vector<std::array<int, 3>> neighbours(const std::vector<int>& corners) {
     std::vector<std::array<int, 3>> across(triangles, {-1, -1, -1});
     for (size_t t = 0; t < triangles; ++t)
         for (int k = 0; k < 3; ++k) {
-            const auto it = edgeOwner.find(edgeKey(corners[3 * t + size_t((k + 1) % 3)], corners[3 * t + size_t(k)]));
-            if (it != edgeOwner.end() && it->second >= 0 &&
-                edgeOwner.at(edgeKey(corners[3 * t + size_t(k)], corners[3 * t + size_t((k + 1) % 3)])) >= 0)
-                across[t][size_t(k)] = it->second;
+            const int from = corners[3 * t + size_t(k)], to = corners[3 * t + size_t((k + 1) % 3)];
+            const auto reversed = edgeOwner.find(edgeKey(to, from));
+            if (reversed != edgeOwner.end() && edgeOwner.at(edgeKey(from, to)) >= 0)
+                across[t][size_t(k)] = reversed->second;  // -1 where the other way is repeated
         }
     return across;
+}
+
+// Triangle t's edges in `added` marked on the triangles across them, as their twins.
+void markTwins(const std::vector<std::array<int, 3>>& across, size_t t, unsigned added,
+               std::vector<unsigned char>& marked) {
+    for (int k = 0; k < 3; ++k)
+        if ((added >> k) & 1u) {
+            const int twin = across[t][size_t(k)];
+            marked[size_t(twin / 3)] |= std::uint8_t(1u << (twin % 3));
+        }
 }
 
 // Coding 3's marks name each interior edge once, in the first of its two triangles (in Draco's
@@ -540,11 +550,7 @@ std::optional<std::vector<unsigned char>> onceMarks(const CellTriangles& mesh,
         else if (later.size() > 1 && added == 1u << later[1]) symbol = kSecond;
         if (symbol == kGiven) given.push_back(std::uint8_t(added));
         (marked[t] ? known : fresh).push_back(symbol);
-        for (int k = 0; k < 3; ++k)
-            if ((added >> k) & 1u) {
-                const int twin = across[t][size_t(k)];
-                marked[size_t(twin / 3)] |= std::uint8_t(1u << (twin % 3));
-            }
+        markTwins(across, t, added, marked);
     }
     ByteWriter out;
     out.putVarint(fresh.size());
@@ -590,11 +596,7 @@ std::vector<unsigned char> marksFromOnce(const CellTriangles& mesh, ByteReader& 
             added = 1u << later[rank];
         }
         interior[t] = std::uint8_t(marked[t] | added);
-        for (int k = 0; k < 3; ++k)
-            if ((added >> k) & 1u) {
-                const int twin = across[t][size_t(k)];
-                marked[size_t(twin / 3)] |= std::uint8_t(1u << (twin % 3));
-            }
+        markTwins(across, t, added, marked);
     }
     if (nextFresh != freshCount) throw Error(in.what() + ": polygon marks out of step");
     return interior;
