@@ -30,6 +30,8 @@
 #define SUBDFIT_SSBO_ADJACENCY_OFFSETS 16    // cage vertex -> neighbours (CSR)
 #define SUBDFIT_SSBO_ADJACENCY_INDICES 17
 #define SUBDFIT_SSBO_LOSS 18            // 256 float slots whose sum is the mean per-pixel loss
+// A scored view's loss summed per work group (scene::TargetSet::loss); never beside the SGE pass.
+#define SUBDFIT_SSBO_VIEW_LOSS SUBDFIT_SSBO_LOSS
 #define SUBDFIT_SSBO_SMOOTH_IN 19       // Jacobi iterate read by the preconditioner
 #define SUBDFIT_SSBO_FACE_DELTA 20      // Σ Δ_p/(2ε) per ptex face, then per pair of them (fixed point)
 #define SUBDFIT_SSBO_VERTEX_DELTA 46         // per base vertex, the sums of FACE_DELTA it is in (fixed point)
@@ -57,6 +59,9 @@
 #define SUBDFIT_IMAGE_TARGET 3
 #define SUBDFIT_IMAGE_UV_PLUS 4
 #define SUBDFIT_IMAGE_UV_MINUS 5
+// A target set's supersampled render and the image it is filtered into (scene::TargetSet).
+#define SUBDFIT_IMAGE_FINE 6
+#define SUBDFIT_IMAGE_FILTERED 7
 // Texture units of the gradient pass.
 #define SUBDFIT_UNIT_PAIR_REGIONS 26  // ptex face a -> (first slot, log2 slot count) of its pairs' hash
 #define SUBDFIT_UNIT_PAIR_SLOTS 27    // (b, pair index) per slot, b = −1 where empty

@@ -147,7 +147,7 @@ FitOptions withVertexRates(FitOptions options, const mesh::PolygonMesh& cage, co
 
 ViewSetScore score(const scene::TargetSet& targets, const scene::TargetSet::Draw& draw) {
     double loss = 0.0;
-    for (int i = 0; i < targets.size(); ++i) loss += meanPixelLoss(targets.render(i, draw), targets.readColor(i));
+    for (int i = 0; i < targets.size(); ++i) loss += targets.loss(i, draw);
     loss /= std::max(1, targets.size());
     return {loss, psnrFromLoss(loss)};
 }

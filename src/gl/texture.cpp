@@ -20,8 +20,8 @@ Texture::Texture(GLenum internalFormat, int width, int height, int layers)
     glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
-void Texture::bindImageForReading(GLuint unit) const {
-    glBindImageTexture(unit, id(), 0, layers_ > 0 ? GL_TRUE : GL_FALSE, 0, GL_READ_ONLY, format_);
+void Texture::bindImage(GLuint unit, GLenum access) const {
+    glBindImageTexture(unit, id(), 0, layers_ > 0 ? GL_TRUE : GL_FALSE, 0, access, format_);
 }
 
 Texture Texture::fromImage(const std::uint8_t* rgba, int width, int height, bool srgb) {

@@ -20,7 +20,8 @@ public:
 
     GLuint id() const { return handle_.id(); }
     // Binds level 0, all its layers, to image `unit` for imageLoad in its own format.
-    void bindImageForReading(GLuint unit) const;
+    void bindImageForReading(GLuint unit) const { bindImage(unit, GL_READ_ONLY); }
+    void bindImage(GLuint unit, GLenum access) const;  // GL_READ_ONLY, GL_WRITE_ONLY or GL_READ_WRITE
     int width() const { return width_; }
     int height() const { return height_; }
     int layers() const { return layers_; }

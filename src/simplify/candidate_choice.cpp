@@ -7,7 +7,6 @@
 #include <numeric>
 
 #include "fit/fit_run.h"
-#include "fit/image_metrics.h"
 #include "util/interrupt.h"
 
 namespace subdfit::simplify {
@@ -108,10 +107,8 @@ SettlingViews::SettlingViews(gl::ProgramCache& programs, const fit::FitScene& sc
 double SettlingViews::loss(fit::CageFitter& fitter, size_t v) {
     const scene::TargetSet& views = block(v / kSettleBlock);
     const int k = int(v % kSettleBlock);
-    return fit::meanPixelLoss(
-        views.render(k, [&](const render::Camera& camera,
-                            const render::RenderTarget& canvas) { fitter.render(camera, canvas); }),
-        views.readColor(k));
+    return views.loss(
+        k, [&](const render::Camera& camera, const render::RenderTarget& canvas) { fitter.render(camera, canvas); });
 }
 
 const scene::TargetSet& SettlingViews::block(size_t b) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "fit/image_metrics.h"
 #include "gl_test_context.h"
 #include "mesh/mesh_loader.h"
 #include "render/mesh_renderer.h"
@@ -49,6 +50,35 @@ TEST(TargetSet, ASupersampledPixelIsTheMeanOfItsBlockOfSamples) {
     EXPECT_GT(partial, kResolution);  // the outline is anti-aliased
     // The target of that view was made the same way.
     EXPECT_EQ(targets.readColor(1), filtered);
+    test::expectNoGlError();
+}
+
+// loss() is computed on the GPU: it must be the mean pixel loss of what render() returns against
+// the target, single-sampled and supersampled, for a drawing that differs from the target.
+TEST(TargetSet, ALossIsTheMeanPixelLossOfTheFilteredRender) {
+    constexpr int kResolution = 40;  // not a multiple of the work groups' 16 pixels
+    mesh::PolygonMesh spot = mesh::triangulated(mesh::loadMesh(test::assetPath("spot/spot_control_mesh.obj")));
+    spot.positions = frameAround(spot.positions).toNormalized(spot.positions);
+    const std::vector<unsigned> triangles(spot.faceIndices.begin(), spot.faceIndices.end());
+    const render::MeshRenderer renderer(spot.positions, mesh::vertexNormals(spot), triangles);
+    std::vector<glm::vec3> moved = spot.positions;
+    for (glm::vec3& p : moved) p = 0.9f * p + glm::vec3(0.05f, 0.0f, 0.0f);
+    const render::MeshRenderer other(moved, mesh::vertexNormals(spot), triangles);
+    gl::ProgramCache& programs = test::programs();
+    const auto drawOther = [&](const render::Camera& camera, const render::RenderTarget& canvas) {
+        other.draw(programs, camera, canvas);
+    };
+    for (int factor : {1, 4}) {
+        const TargetSet targets(programs, renderer, render::orbitCameras(3, 2), kResolution, factor);
+        for (int i = 0; i < targets.size(); ++i) {
+            const double expected = fit::meanPixelLoss(targets.render(i, drawOther), targets.readColor(i));
+            ASSERT_GT(expected, 1e-4);
+            EXPECT_NEAR(targets.loss(i, drawOther), expected, 1e-5 * expected) << "factor " << factor << ", view " << i;
+            EXPECT_EQ(targets.loss(i, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
+                renderer.draw(programs, camera, canvas);
+            }), 0.0) << "the target drawn again";
+        }
+    }
     test::expectNoGlError();
 }
 
