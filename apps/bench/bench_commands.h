@@ -135,7 +135,7 @@ struct SimplifyTradeoffOptions {
     int resolution = fit::kByDevice;
     context::GlProvider glProvider = context::GlProvider::Auto;
     simplify::CompareLevel compare = simplify::CompareLevel::Full;
-    simplify::CageShape cageShape = simplify::CageShape::Triangles;
+    simplify::CageShape cageShape = simplify::CageShape::Auto;
 };
 int runSimplifyTradeoff(const SimplifyTradeoffOptions& options);
 

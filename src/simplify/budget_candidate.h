@@ -11,6 +11,7 @@ namespace subdfit::simplify {
 
 struct BudgetCandidate {
     int faces = 0;          // of the cage, as built
+    int quads = 0;          // of those faces
     maps::MapEffects maps;  // none: the bare cage
     int mapResolution = 0;  // 0 without maps
     int mapBits = 0;        // per map value in asset.subd; 0 without maps
@@ -27,6 +28,8 @@ struct BudgetCandidate {
     // loss; 0 otherwise.
     double settledLoss = 0.0;
     int settledViews = 0;
+
+    bool quadDominant() const { return 2 * quads > faces; }
 };
 
 }  // namespace subdfit::simplify

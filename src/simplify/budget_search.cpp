@@ -44,6 +44,7 @@ std::string describe(const BudgetCandidate& c) {
     std::snprintf(line, sizeof line, "%6d faces, maps %-19s T=%d, %2d bits: %8ju bytes", c.faces,
                   maps::toString(c.maps).c_str(), c.mapResolution, c.mapBits, c.bytes);
     std::string text = line;
+    if (c.quadDominant()) text += ", " + std::to_string(c.quads) + " quads";
     if (c.positionBits != codec::SubdPrecision{}.positionBits)
         text += ", " + std::to_string(c.positionBits) + "-bit positions";
     if (c.shadingNormal == surface::ShadingNormal::Limit) text += ", limit-shaded";
@@ -56,6 +57,10 @@ std::string describe(const BudgetCandidate& c) {
         text += line;
     }
     return text;
+}
+
+int quadCount(const mesh::PolygonMesh& cage) {
+    return int(std::count(cage.faceSizes.begin(), cage.faceSizes.end(), 4));
 }
 
 // A candidate as it ships: encoded (its bytes) and decoded again (what is judged).
@@ -156,10 +161,10 @@ std::optional<TriedCage> ladderCage(const SearchInputs& in, size_t k) {
 }
 
 // A cage of (about) `faces` triangles off the ladder, or none when too few faces survive decimation.
-std::optional<TriedCage> cageOf(const SearchInputs& in, int faces) {
+std::optional<TriedCage> cageOf(const SearchInputs& in, int faces, CageShape shape) {
     throwIfStopRequested();
     try {
-        return asTried(in, in.cages.source().cage({.faces = faces, .shape = in.cages.shape()}));
+        return asTried(in, in.cages.source().cage({.faces = faces, .shape = shape}));
     } catch (const Interrupted&) {
         throw;
     } catch (const Error&) {
@@ -229,6 +234,7 @@ BudgetCandidate judge(const SearchInputs& in, Findings& found,
     timed.emplace(found.phases, "render");
     const bool atlas = appearance.maps.appearanceAtlas.present();
     BudgetCandidate c{.faces = cageWorld->faceCount(),
+                      .quads = quadCount(*cageWorld),
                       .maps = recipe.effects,
                       .mapResolution = recipe.resolution,
                       .mapBits = recipe.bits,
@@ -438,7 +444,8 @@ double bytesExponent(const std::vector<BudgetCandidate>& tried, const BudgetCand
     // By position bits: the two most faces (most, next).
     std::map<int, std::pair<const BudgetCandidate*, const BudgetCandidate*>> largest;
     for (const BudgetCandidate& c : tried) {
-        const bool same = c.maps == kind.maps && c.mapResolution == kind.mapResolution && c.mapBits == kind.mapBits &&
+        const bool same = c.quadDominant() == kind.quadDominant() && c.maps == kind.maps &&
+                          c.mapResolution == kind.mapResolution && c.mapBits == kind.mapBits &&
                           c.appearanceResolution == kind.appearanceResolution &&
                           c.appearanceAtlas == kind.appearanceAtlas && c.bytes > 0;
         if (!same) continue;
@@ -463,27 +470,31 @@ double bytesExponent(const std::vector<BudgetCandidate>& tried, const BudgetCand
 
 // Phase five: the ladder's steps leave bytes unspent. The preferred kind of asset so far (of
 // those `keep` takes) on a cage grown to what the budget holds (bytes ~ faces^bytesExponent),
-// shrinking until it fits and growing on while over kGrowthSlack of the budget is left.
+// shrinking until it fits and growing on while over kGrowthSlack of the budget is left. With
+// another `shape` than the ladder's (a quad trial), the same kind on a cage of that shape at the
+// same bytes, at least once: a quad has a vertex to itself where a triangle has half of one, so
+// it starts from half the faces.
 template <class Keep>
-void growBest(const SearchInputs& in, Findings& found, const Keep& keep) {
+void growBest(const SearchInputs& in, Findings& found, const Keep& keep, CageShape shape) {
     constexpr double kGrowthTarget = 0.97, kGrowthSlack = 1.05;
     const Fitting* ladderBest = preferred(found.fitting, keep, monitored);
     if (!ladderBest) return;
     const BudgetCandidate best = ladderBest->candidate;
-    int fromFaces = best.faces;
+    bool placed = shape == in.cages.shape();  // a cage of `shape` fits (the ladder's best does)
+    int fromFaces = placed ? best.faces : best.faces / 2;
     double exponent = bytesExponent(found.tried, best);
     double scale = std::pow(kGrowthTarget * double(in.search.budget) / double(best.bytes), 1.0 / exponent);
     std::uintmax_t fromBytes = best.bytes;
     // A quad remesh lands a few per cent off the count asked: the next ask allows for the last.
     double builtPerAsked = 1.0;
-    for (int attempt = 0; attempt < 3 && scale > kGrowthSlack; ++attempt) {
+    for (int attempt = 0; attempt < 3 && (scale > kGrowthSlack || !placed); ++attempt) {
         const int most = std::max(in.search.mostGrownFaces, in.search.faceCounts.front());
         const int faces = std::min(int(std::lround(fromFaces * scale)), most);
-        if (faces <= int(fromFaces * 1.05)) break;
+        if (placed && faces <= int(fromFaces * 1.05)) break;
         const int asked = std::max(1, int(std::lround(faces / builtPerAsked)));
         const std::optional<TriedCage> cage = [&] {
             TimedStage timed(found.phases, "cages");
-            return cageOf(in, asked);
+            return cageOf(in, asked, shape);
         }();
         if (!cage) break;
         builtPerAsked = double(cage->world->faceCount()) / asked;
@@ -507,6 +518,10 @@ void growBest(const SearchInputs& in, Findings& found, const Keep& keep) {
                                       0.7, 1.0);
             fromFaces = grown.faces;
             fromBytes = grown.bytes;
+            scale = std::pow(kGrowthTarget * double(in.search.budget) / double(grown.bytes), 1.0 / exponent);
+            placed = true;
+        } else if (!placed) {  // the other shape's first cage over the budget: shrunk to it
+            fromFaces = grown.faces;
             scale = std::pow(kGrowthTarget * double(in.search.budget) / double(grown.bytes), 1.0 / exponent);
         } else {
             scale = 1.0 + 0.6 * (scale - 1.0);
@@ -600,11 +615,12 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
     const Fitting* best = preferred(found.fitting, any, monitored);
     const bool bestIsBare = best && bare(best->candidate);
     fewerPositionBits(in, found, any);
-    growBest(in, found, any);
+    growBest(in, found, any, cages.shape());
     if (best && !bestIsBare) {
         fewerPositionBits(in, found, bare);
-        growBest(in, found, bare);
+        growBest(in, found, bare, cages.shape());
     }
+    if (search.quadTrial && cages.shape() != CageShape::Quads) growBest(in, found, bare, CageShape::Quads);
     BudgetChoice choice = settleChoice(in, found);
     choice.phases = found.phases;
     return choice;
@@ -652,6 +668,7 @@ nlohmann::json toJson(const BudgetReport& report) {
         nlohmann::json j{
             {"faces", c.faces},      {"maps", maps::toString(c.maps)},  {"map_resolution", c.mapResolution},
             {"map_bits", c.mapBits}, {"position_bits", c.positionBits}, {"bytes", c.bytes}};
+        if (c.quads > 0) j["quads"] = c.quads;
         if (c.maps.displacement && c.monitorLoss > 0.0) j["shading_normal"] = nameOf(c.shadingNormal);
         if (c.appearanceResolution > 0) j["appearance_resolution"] = c.appearanceResolution;
         if (c.appearanceAtlas > 0) j["appearance_atlas"] = c.appearanceAtlas;

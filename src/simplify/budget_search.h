@@ -47,6 +47,9 @@ struct BudgetSearch {
     // ... or in the reference's own texture atlas at these sizes (simplify/bake/atlas_bake.h), smallest
     // first, where the reference allows (atlasSizesFor); such candidates take heights alone.
     std::vector<int> appearanceAtlases;
+    // With a triangle ladder, its best bare cage tried once more as a quad-dominant remesh at the
+    // same bytes (--cage-shape auto): the two shapes lead on different references.
+    bool quadTrial = false;
     // Whether to settle the best candidate with maps too (the bake baseline's, --compare full).
     bool bestWithMaps = true;
     // The monitor PSNR below which no candidate is fitted (the triangle route ships instead,

@@ -23,8 +23,9 @@ const std::vector<fit::TableRow<SimplifyMember>>& simplifyOptionTable() {
         {{.key = "cage_shape",
           .flag = "--cage-shape",
           .help =
-              "the cage's faces: triangles (the reference decimated; ships better) or quads (a quad-dominant remesh "
-              "along the reference's cross field, to edit or rig)",
+              "the cage's faces: auto (the budget search's cages are triangles, and its best bare cage is also "
+              "remeshed into quads at the same bytes: the better ships), triangles (the reference decimated) or quads "
+              "(a quad-dominant remesh along the reference's cross field, every cage the search tries)",
           .setting = true},
          &S::cageShape},
         {{.key = "budget",

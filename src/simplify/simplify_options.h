@@ -49,7 +49,7 @@ inline fit::FitOptions simplifyFitDefaults() {
 struct SimplifyOptions {
     fit::FitOptions fit = simplifyFitDefaults();  // fit.reference: the dense asset; fit.cage is set by simplify
     std::optional<int> faces;                     // of the cage; none: chosen by the budget
-    CageShape cageShape = CageShape::Triangles;
+    CageShape cageShape = CageShape::Auto;
     // Bytes what ships may take (simplify/budget_search.h). Without it or `faces`, defaultBudget()
     // of the reference; with `faces` alone, the cage is fitted as asked and the triangle route
     // weighed at its bytes.

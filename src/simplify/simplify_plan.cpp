@@ -59,6 +59,7 @@ BudgetSearch budgetSearchFor(const SimplifyOptions& o, std::uintmax_t budget, co
             .appearanceQualities = {o.fit.appearanceQuality},
             .appearanceAtlases =
                 o.fit.appearanceAtlas > 0 ? std::vector<int>{o.fit.appearanceAtlas} : atlasSizesFor(scene.reference),
+            .quadTrial = o.cageShape == CageShape::Auto && !o.faces,
             .bestWithMaps = o.compare == CompareLevel::Full};
 }
 

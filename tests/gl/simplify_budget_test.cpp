@@ -242,6 +242,65 @@ TEST(SimplifyBudget, NoNearTieIsSettledWhereNoCandidateWillBeFitted) {
     expectNoGlError();
 }
 
+// --cage-shape auto: the triangle ladder's best bare cage is tried once more as a quad-dominant
+// remesh at its bytes and precision, judged like any candidate; without the trial, no quad cage.
+TEST(SimplifyBudget, TheQuadTrialRemeshesTheBestBareCageAtItsBytes) {
+    const mesh::PolygonMesh reference = mesh::makeLumpySphere(5, 0.15f, 5, 40, 0.005f, 0.02f);
+    fit::FitScene scene = smallSearchScene(reference, "simplify_budget_quad_trial");
+    simplify::BudgetSearch search;
+    search.budget = 3000;
+    search.faceCounts = simplify::faceCountsFor(search.budget, reference.faceCount(), 16000);
+    search.allowedMaps = {};
+    auto searched = [&](bool trial) {
+        search.quadTrial = trial;
+        simplify::CageLadder cages(reference, search.faceCounts, simplify::CageShape::Auto);
+        return simplify::searchBudget(programs(), scene, reference, search, cages, {});
+    };
+    const simplify::BudgetChoice without = searched(false), with = searched(true);
+    EXPECT_TRUE(std::none_of(without.tried.begin(), without.tried.end(), [](const auto& c) { return c.quads > 0; }));
+    ASSERT_GT(with.tried.size(), without.tried.size());
+    const simplify::BudgetCandidate* bestTriangles = nullptr;  // the best bare triangle cage within the budget
+    for (const auto& c : without.tried)
+        if (c.monitorLoss > 0.0 && (!bestTriangles || c.monitorLoss < bestTriangles->monitorLoss)) bestTriangles = &c;
+    ASSERT_NE(bestTriangles, nullptr);
+    // The trial's cages: the first from half the triangles' faces, then grown while bytes are left
+    // (or shrunk until one fits), as the triangle cage was.
+    std::vector<const simplify::BudgetCandidate*> fitting;
+    for (size_t k = without.tried.size(); k < with.tried.size(); ++k) {
+        const simplify::BudgetCandidate& c = with.tried[k];
+        EXPECT_TRUE(c.quadDominant()) << c.faces << " faces, " << c.quads << " quads";
+        EXPECT_EQ(c.positionBits, bestTriangles->positionBits);
+        EXPECT_FALSE(c.maps.any());
+        if (c.bytes <= search.budget) {
+            EXPECT_GT(c.monitorLoss, 0.0);
+            if (!fitting.empty()) {
+                EXPECT_GT(c.faces, fitting.back()->faces);
+            }
+            fitting.push_back(&c);
+        }
+    }
+    ASSERT_FALSE(fitting.empty()) << "no quad cage within the budget";
+    EXPECT_NEAR(double(with.tried[without.tried.size()].faces), 0.5 * bestTriangles->faces,
+                0.25 * bestTriangles->faces);
+    // Judged as the others are: a quad cage ships where it is one of the trial's and the lowest
+    // after settling; a clear lead on the monitor views decides either way.
+    const auto isTrial = [&](const simplify::BudgetCandidate& c) {
+        return std::any_of(fitting.begin(), fitting.end(),
+                           [&](const auto* f) { return f->faces == c.faces && f->bytes == c.bytes; });
+    };
+    EXPECT_EQ(with.chosen.quadDominant(), isTrial(with.chosen));
+    const auto lowestQuad = *std::min_element(
+        fitting.begin(), fitting.end(), [](const auto* a, const auto* b) { return a->monitorLoss < b->monitorLoss; });
+    const double monitorGap = lowestQuad->monitorLoss / bestTriangles->monitorLoss;
+    if (monitorGap < 0.8) {
+        EXPECT_TRUE(with.chosen.quadDominant());
+    }
+    if (monitorGap > 1.25) {
+        EXPECT_FALSE(with.chosen.quadDominant());
+    }
+    expectNoGlError();
+}
+
 // At a tight budget the first vertex coding (14-bit positions and normals) can fit at no texture
 // scale, a decimation being held above its fewest triangles by its texture seams: the scales are
 // then weighed at the leanest coding, and the baseline still ships within the budget.

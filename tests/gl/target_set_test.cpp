@@ -74,9 +74,11 @@ TEST(TargetSet, ALossIsTheMeanPixelLossOfTheFilteredRender) {
             const double expected = fit::meanPixelLoss(targets.render(i, drawOther), targets.readColor(i));
             ASSERT_GT(expected, 1e-4);
             EXPECT_NEAR(targets.loss(i, drawOther), expected, 1e-5 * expected) << "factor " << factor << ", view " << i;
-            EXPECT_EQ(targets.loss(i, [&](const render::Camera& camera, const render::RenderTarget& canvas) {
-                renderer.draw(programs, camera, canvas);
-            }), 0.0) << "the target drawn again";
+            EXPECT_EQ(
+                targets.loss(i, [&](const render::Camera& camera,
+                                    const render::RenderTarget& canvas) { renderer.draw(programs, camera, canvas); }),
+                0.0)
+                << "the target drawn again";
         }
     }
     test::expectNoGlError();

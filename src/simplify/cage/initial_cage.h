@@ -18,15 +18,18 @@
 namespace subdfit::simplify {
 
 // What a cage's faces are: quads along the reference's cross field (simplify/remesh), few of them
-// triangles, or the decimated reference's triangles.
-enum class CageShape { Quads, Triangles };
+// triangles, or the decimated reference's triangles. Auto is simplify's --budget choice: a
+// triangle ladder whose best bare cage is also tried as quads at the same bytes; a cage made
+// directly is then made of triangles.
+enum class CageShape { Quads, Triangles, Auto };
 
 }  // namespace subdfit::simplify
 
 template <>
 struct subdfit::EnumNames<subdfit::simplify::CageShape> {
     static constexpr std::array names{std::pair{simplify::CageShape::Quads, std::string_view("quads")},
-                                      std::pair{simplify::CageShape::Triangles, std::string_view("triangles")}};
+                                      std::pair{simplify::CageShape::Triangles, std::string_view("triangles")},
+                                      std::pair{simplify::CageShape::Auto, std::string_view("auto")}};
 };
 
 namespace subdfit::simplify {

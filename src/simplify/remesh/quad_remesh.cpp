@@ -15,7 +15,7 @@ namespace subdfit::simplify::remesh {
 namespace {
 
 // Samples per quad edge the fields need: fewer, and a quad's region may hold no sample.
-constexpr float kSamplesPerEdge = 3.0f;
+constexpr float kSamplesPerEdge = 2.0f;
 // A remesh further than this from the vertices asked is made once more at a corrected spacing.
 constexpr double kCountTolerance = 0.05;
 
