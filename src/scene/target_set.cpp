@@ -44,13 +44,18 @@ const render::RenderTarget& TargetSet::drawn(int i, const Draw& draw) const {
     return *canvas_;
 }
 
-void TargetSet::filterInto(const gl::Texture& layers, int layer) const {
-    const gl::Program& program = programs_.get(kDownsample);
+const gl::Program& TargetSet::overCanvas(const gl::ProgramSpec& spec, int layer) const {
+    const gl::Program& program = programs_.get(spec);
     program.use();
     program.set("uFactor", supersampling_);
     program.set("uResolution", resolution_);
     program.set("uLayer", layer);
     canvas_->color().bindImageForReading(SUBDFIT_IMAGE_FINE);
+    return program;
+}
+
+void TargetSet::filterInto(const gl::Texture& layers, int layer) const {
+    overCanvas(kDownsample, layer);
     layers.bindImage(SUBDFIT_IMAGE_FILTERED, GL_WRITE_ONLY);
     glDispatchCompute(gl::groupsOf(resolution_, kTile), gl::groupsOf(resolution_, kTile), 1);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -70,12 +75,7 @@ double TargetSet::loss(int i, const Draw& draw) const {
     drawn(i, draw);
     const GLuint groups = gl::groupsOf(resolution_, kTile);
     if (!groupSums_.id()) groupSums_ = gl::Buffer(GLsizeiptr(groups * groups * sizeof(float)));
-    const gl::Program& program = programs_.get(kViewLoss);
-    program.use();
-    program.set("uFactor", supersampling_);
-    program.set("uResolution", resolution_);
-    program.set("uLayer", i);
-    canvas_->color().bindImageForReading(SUBDFIT_IMAGE_FINE);
+    overCanvas(kViewLoss, i);
     colors_.bindImageForReading(SUBDFIT_IMAGE_TARGET);
     groupSums_.bindStorage(SUBDFIT_SSBO_VIEW_LOSS);
     glDispatchCompute(groups, groups, 1);

@@ -42,6 +42,8 @@ public:
 private:
     const render::RenderTarget& drawn(int i, const Draw& draw) const;  // at the supersampled resolution
     void filterInto(const gl::Texture& layers, int layer) const;       // the canvas, as the targets are
+    // `spec` (a pass over the canvas, glsl/supersampling.glsl) in use, its canvas and uniforms set.
+    const gl::Program& overCanvas(const gl::ProgramSpec& spec, int layer) const;
 
     gl::ProgramCache& programs_;
     std::vector<render::Camera> cameras_;
