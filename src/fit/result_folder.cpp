@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "io/asset_folder.h"
 #include "io/input_file.h"
@@ -16,7 +17,12 @@ double numberOr(const nlohmann::json& object, const char* key, double fallback) 
     return it != object.end() && it->is_number() ? it->get<double>() : fallback;
 }
 
-std::uintmax_t bytesOf(double bytes) { return bytes > 0.0 ? std::uintmax_t(bytes) : 0; }
+// A byte count as a report states it: negative or NaN as none, past what a count holds as the most.
+std::uintmax_t bytesOf(double bytes) {
+    constexpr std::uintmax_t kMost = std::numeric_limits<std::uintmax_t>::max();
+    if (!(bytes > 0.0)) return 0;
+    return bytes >= double(kMost) ? kMost : std::uintmax_t(bytes);
+}
 
 // A string member of `object`, or nothing (absent, or not a string).
 std::optional<std::string> stringAt(const nlohmann::json& object, const char* key) {

@@ -5,6 +5,8 @@
 // regular file is left out with a note, and the reference is opened only when it is still the
 // file the result was made from.
 #include <gtest/gtest.h>
+
+#include <limits>
 #include <sys/stat.h>
 
 #include <cmath>
@@ -85,6 +87,23 @@ TEST(ResultFolder, AFitFolderHasNoBaselinesAndItsBytesFromTheExports) {
     EXPECT_TRUE(folder.reference.empty());
     ASSERT_EQ(folder.notes.size(), 1u);
     EXPECT_NE(folder.notes[0].find("gone.obj"), std::string::npos);
+}
+
+// A report's byte counts are read as far as a count holds them: one past 2^64 is the most, a
+// negative one none (the fuzzer's case: a conversion out of range is undefined).
+TEST(ResultFolder, ByteCountsOutOfRangeAreClampedNotConverted) {
+    const auto dir = test::scratchDir("result_folder_huge");
+    writeFile(dir / "asset.subd", "SUBD");
+    for (const auto& [stated, read] :
+         {std::pair{1.8e28, std::numeric_limits<std::uintmax_t>::max()}, std::pair{-5.0, std::uintmax_t(0)}}) {
+        writeFile(
+            dir / "report.json",
+            nlohmann::json{{"psnr_holdout", 25.0}, {"bytes", stated}, {"reference", referenceJson(dir / "gone.obj", 0)}}
+                .dump());
+        const ResultFolder folder = readResultFolder(dir);
+        ASSERT_EQ(folder.entries.size(), 1u);
+        EXPECT_EQ(folder.entries[0].bytes, read) << stated;
+    }
 }
 
 TEST(ResultFolder, AFolderWithoutAResultIsRefusedNamingIt) {
