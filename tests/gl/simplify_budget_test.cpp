@@ -211,19 +211,31 @@ TEST(SimplifyBudget, ChoicesSeeTheMonitorCamerasAsAViewerDoes) {
     expectNoGlError();
 }
 
+// The lumpy sphere searched at 3 KB on a small scene: the case the search's tests vary one
+// setting of.
+struct LumpySearch {
+    explicit LumpySearch(const std::string& name) : scene(smallSearchScene(reference, name)) {
+        search.budget = 3000;
+        search.faceCounts = simplify::faceCountsFor(search.budget, reference.faceCount(), 16000);
+    }
+    simplify::BudgetChoice run(simplify::CageShape shape = simplify::CageShape::Triangles) {
+        simplify::CageLadder cages(reference, search.faceCounts, shape);
+        return simplify::searchBudget(programs(), scene, reference, search, cages, {});
+    }
+
+    const mesh::PolygonMesh reference = mesh::makeLumpySphere(5, 0.15f, 5, 40, 0.005f, 0.02f);
+    fit::FitScene scene;
+    simplify::BudgetSearch search;
+};
+
 // Where even the best candidate trails the triangle route by more than a fit gains, no cage is
 // fitted, so which of the near ties would be chosen changes nothing: the same search then draws
 // no training view to settle them, and chooses the lowest monitor loss.
 TEST(SimplifyBudget, NoNearTieIsSettledWhereNoCandidateWillBeFitted) {
-    const mesh::PolygonMesh reference = mesh::makeLumpySphere(5, 0.15f, 5, 40, 0.005f, 0.02f);
-    fit::FitScene scene = smallSearchScene(reference, "simplify_budget_unsettled");
-    simplify::BudgetSearch search;
-    search.budget = 3000;
-    search.faceCounts = simplify::faceCountsFor(search.budget, reference.faceCount(), 16000);
+    LumpySearch lumpy("simplify_budget_unsettled");
     auto searched = [&](double leastFitted) {
-        search.leastFittedMonitorPsnr = leastFitted;
-        simplify::CageLadder cages(reference, search.faceCounts);
-        return simplify::searchBudget(programs(), scene, reference, search, cages, {});
+        lumpy.search.leastFittedMonitorPsnr = leastFitted;
+        return lumpy.run();
     };
     const simplify::BudgetChoice settled = searched(-INFINITY), unsettled = searched(INFINITY);
 
@@ -245,16 +257,12 @@ TEST(SimplifyBudget, NoNearTieIsSettledWhereNoCandidateWillBeFitted) {
 // --cage-shape auto: the triangle ladder's best bare cage is tried once more as a quad-dominant
 // remesh at its bytes and precision, judged like any candidate; without the trial, no quad cage.
 TEST(SimplifyBudget, TheQuadTrialRemeshesTheBestBareCageAtItsBytes) {
-    const mesh::PolygonMesh reference = mesh::makeLumpySphere(5, 0.15f, 5, 40, 0.005f, 0.02f);
-    fit::FitScene scene = smallSearchScene(reference, "simplify_budget_quad_trial");
-    simplify::BudgetSearch search;
-    search.budget = 3000;
-    search.faceCounts = simplify::faceCountsFor(search.budget, reference.faceCount(), 16000);
-    search.allowedMaps = {};
+    LumpySearch lumpy("simplify_budget_quad_trial");
+    const simplify::BudgetSearch& search = lumpy.search;
+    lumpy.search.allowedMaps = {};
     auto searched = [&](bool trial) {
-        search.quadTrial = trial;
-        simplify::CageLadder cages(reference, search.faceCounts, simplify::CageShape::Auto);
-        return simplify::searchBudget(programs(), scene, reference, search, cages, {});
+        lumpy.search.quadTrial = trial;
+        return lumpy.run(simplify::CageShape::Auto);
     };
     const simplify::BudgetChoice without = searched(false), with = searched(true);
     EXPECT_TRUE(std::none_of(without.tried.begin(), without.tried.end(), [](const auto& c) { return c.quads > 0; }));
