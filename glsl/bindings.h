@@ -16,7 +16,7 @@
 
 // Subdivision tables (subdiv::PatchSet).
 #define SUBDFIT_SSBO_STENCIL_OFFSETS 8
-#define SUBDFIT_SSBO_POINTS 11          // base + refined + local points, 3 floats each
+#define SUBDFIT_SSBO_POINTS 11         // base + refined + local points, 3 floats each
 #define SUBDFIT_SSBO_SECOND_POINTS 39  // a second set evaluated in the same dispatch (θ− beside θ+)
 // The patches tessellated (render::PatchTessellation): each vertex's patch and domain point, the
 // vertices evaluated there (position, normal, tangents, ptex face and (u, v)) and the triangles
@@ -27,17 +27,17 @@
 // A second surface evaluated beside the first (θ− beside θ+): its vertices and triangles.
 #define SUBDFIT_SSBO_SECOND_SURFACE_VERTICES 42
 #define SUBDFIT_SSBO_SECOND_SURFACE_TRIANGLES 44
-#define SUBDFIT_SSBO_ADJACENCY_OFFSETS 16    // cage vertex -> neighbours (CSR)
+#define SUBDFIT_SSBO_ADJACENCY_OFFSETS 16  // cage vertex -> neighbours (CSR)
 #define SUBDFIT_SSBO_ADJACENCY_INDICES 17
-#define SUBDFIT_SSBO_LOSS 18            // 256 float slots whose sum is the mean per-pixel loss
+#define SUBDFIT_SSBO_LOSS 18  // 256 float slots whose sum is the mean per-pixel loss
 // A scored view's loss summed per work group (scene::TargetSet::loss); never beside the SGE pass.
 #define SUBDFIT_SSBO_VIEW_LOSS SUBDFIT_SSBO_LOSS
-#define SUBDFIT_SSBO_SMOOTH_IN 19       // Jacobi iterate read by the preconditioner
-#define SUBDFIT_SSBO_FACE_DELTA 20      // Σ Δ_p/(2ε) per ptex face, then per pair of them (fixed point)
-#define SUBDFIT_SSBO_VERTEX_DELTA 46         // per base vertex, the sums of FACE_DELTA it is in (fixed point)
+#define SUBDFIT_SSBO_SMOOTH_IN 19     // Jacobi iterate read by the preconditioner
+#define SUBDFIT_SSBO_FACE_DELTA 20    // Σ Δ_p/(2ε) per ptex face, then per pair of them (fixed point)
+#define SUBDFIT_SSBO_VERTEX_DELTA 46  // per base vertex, the sums of FACE_DELTA it is in (fixed point)
 
 // Map parameter groups (per-face tiles of (T+1)² shared nodes, maps::TexelLayout).
-#define SUBDFIT_SSBO_DISPLACEMENT 24         // height per node (θ, θ+ or θ− as the pass needs)
+#define SUBDFIT_SSBO_DISPLACEMENT 24           // height per node (θ, θ+ or θ− as the pass needs)
 #define SUBDFIT_SSBO_GRADIENT_DISPLACEMENT 26  // the map groups' sums of G (fixed point)
 #define SUBDFIT_SSBO_GRADIENT_NORMAL_MAP 27
 
@@ -102,15 +102,15 @@
 #define SUBDFIT_UNIT_STENCIL_ENTRIES 16  // (source index, weight's bits) per stencil entry
 // The patches' points, read by the surface pass as a buffer texture (render/patch_renderer.h).
 #define SUBDFIT_UNIT_PATCH_POINTS 17
-#define SUBDFIT_UNIT_PATCH_INFO 18  // ivec4 {cv offset, patch type, param0, param1} per patch
-#define SUBDFIT_UNIT_PATCH_CVS 19   // the patches' control point indices, four a texel
+#define SUBDFIT_UNIT_PATCH_INFO 18           // ivec4 {cv offset, patch type, param0, param1} per patch
+#define SUBDFIT_UNIT_PATCH_CVS 19            // the patches' control point indices, four a texel
 #define SUBDFIT_UNIT_PATCH_SECOND_POINTS 40  // a second set's (θ− beside θ+)
 // The split's reads (glsl/triangulate.comp): each quad's corners, and the evaluated vertices
 // (a record of four RGBA32F texels, its position first).
 #define SUBDFIT_UNIT_TESSELLATION_QUADS 37
 #define SUBDFIT_UNIT_SURFACE_VERTICES 38
 #define SUBDFIT_UNIT_SECOND_SURFACE_VERTICES 41  // a second surface's, split beside the first's
-#define SUBDFIT_UNIT_LIMIT_VERTICES 39  // a kept limit surface's vertices, displaced (glsl/displace.comp)
+#define SUBDFIT_UNIT_LIMIT_VERTICES 39           // a kept limit surface's vertices, displaced (glsl/displace.comp)
 
 // The map values the patch pass shades with, one texel per node (maps::MapParameters): the
 // normal map's tangent-space (x, y); on the appearance lattice sRGB base colour and (roughness,
@@ -127,12 +127,5 @@
 #define SUBDFIT_ATTACHMENT_COLOR 0
 #define SUBDFIT_ATTACHMENT_FACE_ID 1
 #define SUBDFIT_ATTACHMENT_PATCH_UV 2
-
-// Perturbation seeds per group: one hash stream each, so groups' signs are independent.
-#define SUBDFIT_SEED_VERTICES 0u
-#define SUBDFIT_SEED_DISPLACEMENT 0x68e31da4u
-#define SUBDFIT_SEED_NORMAL_MAP 0xb5297a4du
-#define SUBDFIT_SEED_BASE_COLOR 0x1b56c4e9u
-#define SUBDFIT_SEED_METALLIC_ROUGHNESS 0x7f4a7c15u
 
 #endif

@@ -168,7 +168,7 @@ std::vector<CountedPass> countSteps(gl::ProgramCache& programs, const mesh::Poly
     }
 
     // With displacement and normal maps, from the first step: turns alternate vertices / a map.
-    settings.mapEffects = {.displacement = true, .normalMap = true};
+    settings.mapEffects = {maps::MapKind::Displacement, maps::MapKind::NormalMap};
     fit::CageFitter mapped(programs, cage, settings);
     for (int warm = 0; warm < 4; ++warm) mapped.step(targets, kViews, false);
     glFinish();

@@ -33,7 +33,7 @@ FitInputs refineInputs(const ResultInputs& result, fit::FitOptions& options) {
     const surface::SurfaceMaps& maps = asset.maps;
     options.cage = ours->levels.front().path;
     options.reference = result.folder->reference;
-    options.maps = {.displacement = maps.hasDisplacement(), .normalMap = maps.hasNormal()};
+    options.maps = maps.kinds() & maps::MapEffects::on(kinds::MapLattice::Geometric);
     if (maps.layout.resolution > 0) options.mapResolution = maps.layout.resolution;
     options.shadingNormal = maps.shadingNormal;
     options.appearanceAtlas = maps.appearanceAtlas.size;

@@ -19,13 +19,7 @@ const char* resultModeName(ViewMode mode) {
 
 maps::MapEffects unionOfEffects(std::vector<std::unique_ptr<ResultColumn>>& columns) {
     maps::MapEffects all;
-    for (auto& column : columns) {
-        const auto e = column->mapEffects();
-        all.displacement |= e.displacement;
-        all.normalMap |= e.normalMap;
-        all.baseColor |= e.baseColor;
-        all.metallicRoughness |= e.metallicRoughness;
-    }
+    for (auto& column : columns) all = all | column->mapEffects();
     return all;
 }
 

@@ -31,10 +31,10 @@ const std::map<std::string, ViewMode>& viewModesByKey() {
 }
 
 bool viewModeAvailable(ViewMode mode, maps::MapEffects effects) {
-    if (mode == ViewMode::Displacement) return effects.displacement;
-    if (mode == ViewMode::NormalMap) return effects.normalMap;
-    if (mode == ViewMode::BaseColor) return effects.baseColor;
-    if (mode == ViewMode::MetallicRoughness) return effects.metallicRoughness;
+    if (mode == ViewMode::Displacement) return effects.has(maps::MapKind::Displacement);
+    if (mode == ViewMode::NormalMap) return effects.has(maps::MapKind::NormalMap);
+    if (mode == ViewMode::BaseColor) return effects.has(maps::MapKind::BaseColor);
+    if (mode == ViewMode::MetallicRoughness) return effects.has(maps::MapKind::MetallicRoughness);
     return true;
 }
 

@@ -35,9 +35,10 @@ void ViewRenderer::draw(const ViewSource& source, const render::Camera& camera, 
     const maps::MapEffects effects = maps ? maps->effects() : maps::MapEffects{};
     const bool atlas = maps && maps->appearanceAtlas().present();
     const auto& program = programs_.get(
-        kComposite, (effects.displacement ? kCompositeDisplacement : 0) |
-                        (effects.normalMap ? kCompositeNormalMap : 0) | (effects.baseColor ? kCompositeBaseColor : 0) |
-                        (effects.metallicRoughness ? kCompositeMetallicRoughness : 0) |
+        kComposite, (effects.has(maps::MapKind::Displacement) ? kCompositeDisplacement : 0) |
+                        (effects.has(maps::MapKind::NormalMap) ? kCompositeNormalMap : 0) |
+                        (effects.has(maps::MapKind::BaseColor) ? kCompositeBaseColor : 0) |
+                        (effects.has(maps::MapKind::MetallicRoughness) ? kCompositeMetallicRoughness : 0) |
                         (atlas && effects.appearance() ? kCompositeAppearanceAtlas : 0));
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(origin.x, origin.y, size.x, size.y);

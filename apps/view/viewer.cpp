@@ -35,13 +35,7 @@ maps::MapEffects resultEffects(const ResultInputs& result) {
     maps::MapEffects all;
     for (const auto& column : result.columns)
         for (const auto& level : column.levels)
-            if (level.asset) {
-                const auto& m = level.asset->maps;
-                all.displacement |= m.hasDisplacement();
-                all.normalMap |= m.hasNormal();
-                all.baseColor |= m.hasBaseColor();
-                all.metallicRoughness |= m.hasMetallicRoughness();
-            }
+            if (level.asset) all = all | level.asset->maps.kinds();
     return all;
 }
 

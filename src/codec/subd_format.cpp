@@ -33,9 +33,18 @@ namespace subdfit::codec {
 namespace {
 
 using Tag = std::array<char, 4>;
-constexpr Tag kCage{'C', 'A', 'G', 'E'}, kDisplacement{'D', 'I', 'S', 'P'}, kNormal{'N', 'O', 'R', 'M'},
-    kAtlasUvs{'A', 'U', 'V', 'S'}, kBaseColor{'B', 'C', 'O', 'L'}, kMetallicRoughness{'M', 'T', 'R', 'G'},
-    kNormalTexture{'N', 'T', 'E', 'X'}, kEmissive{'E', 'M', 'I', 'S'};
+using kinds::MapKind;
+// The map kinds' sections are theirs (kinds/map_kinds.h); these are the file's own.
+constexpr Tag kCage{'C', 'A', 'G', 'E'}, kAtlasUvs{'A', 'U', 'V', 'S'}, kNormalTexture{'N', 'T', 'E', 'X'},
+    kEmissive{'E', 'M', 'I', 'S'};
+constexpr Tag kBaseColor = kinds::info(MapKind::BaseColor).section,
+              kMetallicRoughness = kinds::info(MapKind::MetallicRoughness).section;
+
+// The geometric kind whose section `tag` is (node-coded on the cage's lattice); null for another.
+const kinds::MapKindInfo* geometricSection(const Tag& tag) {
+    const kinds::MapKindInfo* kind = kinds::kindWithSection(tag);
+    return kind && kind->lattice == kinds::MapLattice::Geometric ? kind : nullptr;
+}
 constexpr std::uint32_t kMostSections = 8;
 constexpr char kMagic[4] = {'S', 'U', 'B', 'D'};
 constexpr std::uint16_t kLimitShadingFlag = 1;
@@ -118,11 +127,12 @@ surface::SurfaceMaps carriedMaps(const mesh::PolygonMesh& cage, const surface::S
                                  const mesh::PolygonMesh& decoded, const CageCorrespondence& to) {
     surface::SurfaceMaps out;
     out.shadingNormal = maps.shadingNormal;
-    if (maps.layout.resolution > 0 && (maps.hasDisplacement() || maps.hasNormal())) {
+    if (maps.layout.resolution > 0 && maps.kinds().geometric()) {
         out.layout = surface::buildTexelLayout(decoded, maps.layout.resolution);
-        if (maps.hasDisplacement())
-            out.displacement = carriedValues(cage, maps.layout, maps.displacement, 1, decoded, out.layout, to);
-        if (maps.hasNormal()) out.normal = carriedValues(cage, maps.layout, maps.normal, 2, decoded, out.layout, to);
+        for (const kinds::MapKindInfo& kind : kinds::kMapKinds)
+            if (kind.lattice == kinds::MapLattice::Geometric && maps.has(kind.kind))
+                out.values(kind.kind) =
+                    carriedValues(cage, maps.layout, maps.values(kind.kind), kind.channels, decoded, out.layout, to);
     }
     if (maps.appearanceAtlas.present() && (maps.hasBaseColor() || maps.hasMetallicRoughness())) {
         // The texels stay; the corners' coordinates follow their faces and corners.
@@ -130,12 +140,10 @@ surface::SurfaceMaps carriedMaps(const mesh::PolygonMesh& cage, const surface::S
         out.appearanceAtlas = carriedCornerUvs(cage, maps.appearanceAtlas, decoded, to);
     } else if (maps.appearanceLayout.resolution > 0 && (maps.hasBaseColor() || maps.hasMetallicRoughness())) {
         out.appearanceLayout = surface::buildTexelLayout(decoded, maps.appearanceLayout.resolution);
-        if (maps.hasBaseColor())
-            out.baseColor =
-                carriedValues(cage, maps.appearanceLayout, maps.baseColor, 3, decoded, out.appearanceLayout, to);
-        if (maps.hasMetallicRoughness())
-            out.metallicRoughness = carriedValues(cage, maps.appearanceLayout, maps.metallicRoughness, 2, decoded,
-                                                  out.appearanceLayout, to);
+        for (const kinds::MapKindInfo& kind : kinds::kMapKinds)
+            if (kind.lattice == kinds::MapLattice::Appearance && maps.has(kind.kind))
+                out.values(kind.kind) = carriedValues(cage, maps.appearanceLayout, maps.values(kind.kind),
+                                                      kind.channels, decoded, out.appearanceLayout, to);
         // The reference's occlusion (shipped in the metallic-roughness image's red) and emission.
         if (maps.hasMetallicRoughness() && !maps.occlusion.empty())
             out.occlusion =
@@ -386,7 +394,8 @@ std::vector<std::uint64_t> priceMaps(const std::vector<SectionEntry>& sections, 
             continue;
         }
         const std::uint64_t resolution = in.getVarint(), nodes = std::min(in.getVarint(), std::uint64_t(1) << 40);
-        if (atlasSize == 0 || s.tag == kDisplacement || s.tag == kNormal) {
+        const kinds::MapKindInfo* geometric = geometricSection(s.tag);
+        if (atlasSize == 0 || geometric) {
             // Interior nodes are each tile's own, border ones at most each tile's.
             const std::uint64_t side = std::min<std::uint64_t>(resolution, 64) + 1;
             const std::uint64_t most = ptex * side * side,
@@ -396,10 +405,10 @@ std::vector<std::uint64_t> priceMaps(const std::vector<SectionEntry>& sections, 
                             std::to_string(nodes) + " do not match the cage's texel layout (" + std::to_string(fewest) +
                             " to " + std::to_string(most) + " nodes at resolution 1 to 64)");
         }
-        if (s.tag == kDisplacement || s.tag == kNormal) {
+        if (geometric) {
             priceTiles(resolution, tilesPriced, "a map lattice");
             mapResolution = int(resolution);
-            most[k] = kHeader + (s.tag == kNormal ? 2 : 1) * (8 + 2 + 10 * nodes);
+            most[k] = kHeader + std::uint64_t(geometric->channels) * (8 + 2 + 10 * nodes);
             continue;
         }
         std::uint64_t pixels = atlasSize * atlasSize;
@@ -442,8 +451,9 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
         writeMaps(layout, values, channels, bits, section);
         sections.emplace_back(tag, std::move(section.bytes()));
     };
-    add(kDisplacement, maps.layout, maps.displacement, 1, precision.displacementBits);
-    add(kNormal, maps.layout, maps.normal, 2, precision.normalBits);
+    for (const kinds::MapKindInfo& kind : kinds::kMapKinds)
+        if (kind.lattice == kinds::MapLattice::Geometric)
+            add(kind.section, maps.layout, maps.values(kind.kind), kind.channels, precision.bits(kind.kind));
     if (maps.appearanceAtlas.present() && (maps.hasBaseColor() || maps.hasMetallicRoughness())) {
         ByteWriter section;
         writeAtlasUvs(cage.decoded, maps.appearanceAtlas, section);
@@ -510,9 +520,8 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         std::memcpy(s.tag.data(), in.take(4).data(), 4);
         const auto storedSize = in.get<std::uint32_t>();
         s.rawSize = in.get<std::uint32_t>();
-        const bool known = s.tag == kCage || s.tag == kDisplacement || s.tag == kNormal || s.tag == kAtlasUvs ||
-                           s.tag == kBaseColor || s.tag == kMetallicRoughness || s.tag == kNormalTexture ||
-                           s.tag == kEmissive;
+        const bool known = s.tag == kCage || kinds::kindWithSection(s.tag) || s.tag == kAtlasUvs ||
+                           s.tag == kNormalTexture || s.tag == kEmissive;
         if (!known) throw Error(name + ": unknown section " + tagName(s.tag));
         const bool again =
             std::any_of(sections.begin(), sections.end(), [&](const SectionEntry& e) { return e.tag == s.tag; });
@@ -570,8 +579,8 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         const Tag& tag = sections[k].tag;
         const auto raw = inflated(sections[k], most[k]);
         ByteReader section(raw, name + ": " + sections[k].what());
-        if (tag == kDisplacement) asset.maps.displacement = readMaps(section, asset.cage, 1, asset.maps.layout);
-        else if (tag == kNormal) asset.maps.normal = readMaps(section, asset.cage, 2, asset.maps.layout);
+        if (const kinds::MapKindInfo* geometric = geometricSection(tag))
+            asset.maps.values(geometric->kind) = readMaps(section, asset.cage, geometric->channels, asset.maps.layout);
         else if (tag == kAtlasUvs) {
             if (asset.maps.appearanceLayout.resolution != 0) throw Error(name + ": section AUVS after the appearance");
             if (version == 4)

@@ -15,6 +15,7 @@
 
 #include "codec/map_atlas.h"
 #include "io/output_file.h"
+#include "kinds/map_kinds.h"
 #include "mesh/polygon_mesh.h"
 #include "surface/surface_maps.h"
 
@@ -47,6 +48,8 @@ struct SubdPrecision {
                 .normalBits = mapBits < 10 ? mapBits : 10,
                 .appearanceQuality = appearanceQuality};
     }
+    // The bits of a node-coded (geometric) kind's values.
+    int bits(kinds::MapKind kind) const { return kind == kinds::MapKind::NormalMap ? normalBits : displacementBits; }
 };
 
 std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecision& precision = {});

@@ -168,7 +168,7 @@ void CageFitter::evaluateOnCage(const render::PatchMaps& maps, const render::Pat
                                 bool cageStayed) {
     // Heights on a cage that stays (a map stage with the cage frozen): its limit surface is kept
     // and displaced by each set of them. A cage that moves between map turns is evaluated at once.
-    if (!maps.displacement || !cageStayed) {
+    if (!maps.kinds.has(kinds::MapKind::Displacement) || !cageStayed) {
         renderer_.evaluate(programs_, pointsPlus_, surface, &maps);
         return;
     }
@@ -282,16 +282,14 @@ surface::SurfaceMaps CageFitter::surfaceMaps() {
     maps.appearanceLayout = maps_->appearanceLayout();
     maps.appearanceAtlas = maps_->appearanceAtlas();
     maps_->readCarriedTextures(maps);
-    if (auto* g = maps_->displacement()) maps.displacement = g->read();
     maps.shadingNormal = maps_->shadingNormal();
-    if (auto* g = maps_->normalMap()) maps.normal = g->read();
-    // What the renderer reads them as: clamped to [0, 1].
-    auto clamped = [](std::vector<float> values) {
-        for (float& v : values) v = std::clamp(v, 0.0f, 1.0f);
-        return values;
-    };
-    if (auto* g = maps_->baseColor()) maps.baseColor = clamped(g->read());
-    if (auto* g = maps_->metallicRoughness()) maps.metallicRoughness = clamped(g->read());
+    for (const kinds::MapKindInfo& kind : kinds::kMapKinds) {
+        const optim::ParameterGroup* g = maps_->group(kind.kind);
+        if (!g) continue;
+        std::vector<float>& values = maps.values(kind.kind) = g->read();
+        if (kind.unitRange)  // what the renderer reads them as
+            for (float& v : values) v = std::clamp(v, 0.0f, 1.0f);
+    }
     return maps;
 }
 

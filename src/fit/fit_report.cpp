@@ -17,10 +17,8 @@ nlohmann::json referenceJson(const std::filesystem::path& reference, int triangl
 
 nlohmann::json toJson(const FitReport& r) {
     auto effects = nlohmann::json::array({"subdivision"});
-    if (r.effects.displacement) effects.push_back("displacement");
-    if (r.effects.normalMap) effects.push_back("normal_map");
-    if (r.effects.baseColor) effects.push_back("base_color");
-    if (r.effects.metallicRoughness) effects.push_back("metallic_roughness");
+    for (const kinds::MapKindInfo& kind : kinds::kMapKinds)
+        if (r.effects.has(kind.kind)) effects.push_back(kind.name);
     nlohmann::json parameters = nlohmann::json::object();
     for (const auto& [group, count] : r.parameters) parameters[group] = count;
     auto variants = nlohmann::json::array();

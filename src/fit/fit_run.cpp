@@ -15,17 +15,12 @@ namespace subdfit::fit {
 void writeMaps(CageFitter& fitter, const surface::SurfaceMaps& maps) {
     auto* parameters = fitter.maps();
     if (!parameters) return;
-    auto write = [](optim::ParameterGroup* group, const std::vector<float>& values) {
-        if (group && !values.empty()) group->write(values);
-    };
-    write(parameters->displacement(), maps.displacement);
-    write(parameters->normalMap(), maps.normal);
-    write(parameters->baseColor(), maps.baseColor);
-    write(parameters->metallicRoughness(), maps.metallicRoughness);
+    for (const kinds::MapKindInfo& kind : kinds::kMapKinds)
+        if (optim::ParameterGroup* group = parameters->group(kind.kind); group && maps.has(kind.kind))
+            group->write(maps.values(kind.kind));
     if (maps.appearanceAtlas.present() && parameters->appearanceAtlas().present())
         parameters->setAppearanceUvs(maps.appearanceAtlas.cornerUvs);
-    if (parameters->effects().appearance() && (maps.hasBaseColor() || maps.hasMetallicRoughness()))
-        parameters->setCarriedTextures(maps);
+    if (parameters->effects().appearance() && maps.kinds().appearance()) parameters->setCarriedTextures(maps);
 }
 
 }  // namespace subdfit::fit
@@ -253,7 +248,7 @@ void FitRun::joinMaps(const MapStage& stage, bool fresh) {
     }
     if (stage.freezeCage) fitter_->setOptimised(fitter_->vertexGroup(), false);
     for (optim::ParameterGroup* g : parameters->groups()) {
-        const bool appearance = g == parameters->baseColor() || g == parameters->metallicRoughness();
+        const bool appearance = kinds::info(parameters->kindOf(*g)).lattice == kinds::MapLattice::Appearance;
         fitter_->setRates(*g, g->settings().epsilon,
                           (appearance ? stage.appearanceRate : stage.geometricRate) * g->settings().learningRate);
         if (stage.noiseGate) g->settings().noiseGate = *stage.noiseGate;

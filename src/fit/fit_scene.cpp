@@ -50,10 +50,7 @@ render::ShadingModel shadingOf(const FitOptions& o, const mesh::PolygonMesh& ref
 }
 
 maps::MapEffects mapEffectsOf(const FitOptions& o, render::ShadingModel shading) {
-    maps::MapEffects effects = o.maps;
-    effects.baseColor = shading != render::ShadingModel::Geometry;
-    effects.metallicRoughness = shading == render::ShadingModel::MetallicRoughness;
-    return effects;
+    return o.maps | maps::appearanceFor(shading);
 }
 
 FitScene::FitScene(const ResolvedFitOptions& options, gl::ProgramCache& programs)
@@ -111,9 +108,7 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
     settings.smoothingLambda = o.smoothing * density * density;
     settings.smoothingIterations = std::clamp(int(std::lround(8.0 * std::sqrt(settings.smoothingLambda / 4.0))), 8, 48);
     settings.vertices.noiseGate = o.noiseGate;
-    for (auto* group : {&settings.maps.displacement, &settings.maps.normalMap, &settings.maps.baseColor,
-                        &settings.maps.metallicRoughness})
-        group->noiseGate = o.noiseGate;
+    for (optim::GroupSettings& group : settings.maps.groups) group.noiseGate = o.noiseGate;
     settings.relaxation = o.relaxation;
     settings.tangentialGradient = o.tangential;
     settings.tessLevel = std::max(o.tessLevel, screenSegments(cage, o.resolution, kSegmentPixels));
@@ -123,8 +118,9 @@ CageFitSettings fitSettings(const FitOptions& o, const mesh::PolygonMesh& cage, 
     settings.mapEffects = mapEffectsOf(o, shading);
     settings.shading = shading;
     settings.maps.resolution = o.mapResolution;
-    settings.maps.displacement.learningRate = std::min(settings.maps.displacement.learningRate,
-                                                       kHeightStepSlope * edge / float(std::max(1, o.mapResolution)));
+    optim::GroupSettings& heights = settings.maps.of(maps::MapKind::Displacement);
+    heights.learningRate =
+        std::min(heights.learningRate, kHeightStepSlope * edge / float(std::max(1, o.mapResolution)));
     settings.maps.appearanceResolution = o.appearanceResolution;
     settings.maps.appearanceAtlas = o.appearanceAtlas;
     settings.maps.shadingNormal = o.shadingNormal;

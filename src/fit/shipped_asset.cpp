@@ -17,11 +17,9 @@ surface::SurfaceMaps normalizedMaps(surface::SurfaceMaps maps, const scene::Scen
 
 CageFitSettings drawingSettings(const surface::SurfaceMaps& maps, render::ShadingModel shading, int tessLevel) {
     CageFitSettings settings;
-    settings.mapEffects = {
-        .displacement = maps.hasDisplacement(),
-        .normalMap = maps.hasNormal(),
-        .baseColor = maps.hasBaseColor() && shading != render::ShadingModel::Geometry,
-        .metallicRoughness = maps.hasMetallicRoughness() && shading == render::ShadingModel::MetallicRoughness};
+    // The maps it carries, of the appearance only what the shading draws.
+    settings.mapEffects =
+        maps.kinds() & (maps::MapEffects::on(kinds::MapLattice::Geometric) | maps::appearanceFor(shading));
     settings.shading = shading;
     settings.maps.resolution = std::max(1, maps.layout.resolution);
     settings.maps.appearanceResolution = std::max(1, maps.appearanceLayout.resolution);

@@ -4,25 +4,24 @@
 // (a base colour wherever there is a material, roughness and metallic under the glTF BRDF).
 #include <string>
 
+#include "kinds/map_kinds.h"
+#include "render/shading_model.h"
+
 namespace subdfit::maps {
 
-struct MapEffects {
-    bool displacement = false;
-    bool normalMap = false;
-    bool baseColor = false;          // sRGB base colour, 3 per node
-    bool metallicRoughness = false;  // roughness, metallic per node
-    bool geometric() const { return displacement || normalMap; }
-    bool appearance() const { return baseColor || metallicRoughness; }
-    bool any() const { return geometric() || appearance(); }
-    friend bool operator==(const MapEffects&, const MapEffects&) = default;
-};
+using kinds::MapKind;
+using MapEffects = kinds::MapKinds;
 
-// "none", "displacement", "normal", "displacement,normal" (any order). Throws subdfit::Error
-// saying what it got.
+// The appearance maps a shading model calls for: a base colour wherever there is a material,
+// roughness and metallic under the glTF BRDF.
+MapEffects appearanceFor(render::ShadingModel shading);
+
+// "none" or geometric kinds' --maps words joined by commas, in any order ("displacement",
+// "normal", "displacement,normal"). Throws subdfit::Error saying what it got.
 MapEffects parseMapEffects(const std::string& text);
 
-// The text parseMapEffects reads (of the geometric maps): "none", "displacement", "normal" or
-// "displacement,normal".
+// The text parseMapEffects reads (of the geometric maps), in table order: "none",
+// "displacement", "normal" or "displacement,normal".
 std::string toString(MapEffects effects);
 
 }  // namespace subdfit::maps

@@ -1,6 +1,7 @@
 #include "maps/map_parameters.h"
 
 #include <algorithm>
+#include <array>
 
 #include "bindings.h"
 #include "subdiv/topology.h"
@@ -22,22 +23,19 @@ std::vector<int> concatenated(const std::vector<int>& a, const std::vector<int>&
     return out;
 }
 
-std::unique_ptr<optim::ParameterGroup> makeGroup(bool wanted, optim::GroupKind kind, const char* name,
-                                                 const surface::TexelLayout& layout, int channels, float initial,
-                                                 const optim::GroupSettings& settings, std::uint32_t salt) {
-    if (!wanted) return nullptr;
-    return std::make_unique<optim::ParameterGroup>(
-        kind, name, std::vector<float>(size_t(layout.nodeCount) * size_t(channels), initial), settings, salt);
+// A kind's group on `layout`, each node at the kind's initial values.
+std::unique_ptr<optim::ParameterGroup> makeGroup(const kinds::MapKindInfo& kind, const surface::TexelLayout& layout,
+                                                 const optim::GroupSettings& settings) {
+    std::vector<float> initial(size_t(layout.nodeCount) * size_t(kind.channels));
+    for (size_t k = 0; k < initial.size(); ++k) initial[k] = kind.initial[k % size_t(kind.channels)];
+    return std::make_unique<optim::ParameterGroup>(optim::GroupKind::Map, std::string(kind.name), initial, settings,
+                                                   kind.seed);
 }
 
 const gl::Buffer& version(const optim::ParameterGroup& group, ParameterVersion v) {
     return v == ParameterVersion::Plus    ? group.thetaPlus
            : v == ParameterVersion::Minus ? group.thetaMinus
                                           : group.theta;
-}
-
-bool isAppearance(const optim::ParameterGroup& group) {
-    return group.kind() == optim::GroupKind::BaseColor || group.kind() == optim::GroupKind::MetallicRoughness;
 }
 
 surface::TexelLayout appearanceLayoutFor(const mesh::PolygonMesh& cage, MapEffects effects,
@@ -65,29 +63,29 @@ MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, 
       appearanceAdjacency_(uploadAdjacency(appearanceLayout_)),
       scratch_(GLsizeiptr(std::max({1, 2 * layout_.nodeCount, 3 * appearanceLayout_.nodeCount})) *
                GLsizeiptr(sizeof(float))) {
-    using optim::GroupKind;
-    displacement_ = makeGroup(effects.displacement, GroupKind::Displacement, "displacement", layout_, 1, 0.0f,
-                              settings.displacement, SUBDFIT_SEED_DISPLACEMENT);
-    normalMap_ = makeGroup(effects.normalMap, GroupKind::NormalMap, "normal_map", layout_, 2, 0.0f, settings.normalMap,
-                           SUBDFIT_SEED_NORMAL_MAP);
-    // Mid grey and half rough until a bake (or the fit) says otherwise.
-    baseColor_ = makeGroup(effects.baseColor, GroupKind::BaseColor, "base_color", appearanceLayout_, 3, 0.5f,
-                           settings.baseColor, SUBDFIT_SEED_BASE_COLOR);
-    metallicRoughness_ =
-        makeGroup(effects.metallicRoughness, GroupKind::MetallicRoughness, "metallic_roughness", appearanceLayout_, 2,
-                  0.0f, settings.metallicRoughness, SUBDFIT_SEED_METALLIC_ROUGHNESS);
-    if (metallicRoughness_) {
-        std::vector<float> values(size_t(metallicRoughness_->count()), 0.0f);
-        for (size_t k = 0; k < values.size(); k += 2) values[k] = 0.5f;  // (roughness, metallic)
-        metallicRoughness_->write(values);
+    for (const kinds::MapKindInfo& kind : kinds::kMapKinds)
+        if (effects.has(kind.kind))
+            groups_[size_t(kind.kind)] =
+                makeGroup(kind, kind.lattice == kinds::MapLattice::Appearance ? appearanceLayout_ : layout_,
+                          settings.of(kind.kind));
+    // The raster pass reads its kinds' nodes through views; the heights are read as storage.
+    for (const kinds::MapKindInfo& kind : kinds::kMapKinds) {
+        const optim::ParameterGroup* g = group(kind.kind);
+        if (!g || kind.rasterDefine.empty()) continue;
+        views_.emplace(g, NodeViews{gl::BufferTexture::ofFloats(g->theta, kind.channels),
+                                    gl::BufferTexture::ofFloats(g->thetaPlus, kind.channels),
+                                    gl::BufferTexture::ofFloats(g->thetaMinus, kind.channels)});
     }
-    for (const auto* g : {normalMap_.get(), baseColor_.get(), metallicRoughness_.get()}) {
-        if (!g) continue;
-        const int channels = g->count() / layoutOf(*g).nodeCount;
-        views_.emplace(g, NodeViews{gl::BufferTexture::ofFloats(g->theta, channels),
-                                    gl::BufferTexture::ofFloats(g->thetaPlus, channels),
-                                    gl::BufferTexture::ofFloats(g->thetaMinus, channels)});
-    }
+}
+
+MapKind MapParameters::kindOf(const optim::ParameterGroup& group) const {
+    for (const kinds::MapKindInfo& kind : kinds::kMapKinds)
+        if (groups_[size_t(kind.kind)].get() == &group) return kind.kind;
+    throw Error("map parameters: " + group.name() + " is not one of their groups");
+}
+
+bool MapParameters::inAppearance(const optim::ParameterGroup& group) const {
+    return kinds::info(kindOf(group)).lattice == kinds::MapLattice::Appearance;
 }
 
 const gl::BufferTexture& MapParameters::viewOf(const optim::ParameterGroup& group, ParameterVersion v) const {
@@ -97,13 +95,13 @@ const gl::BufferTexture& MapParameters::viewOf(const optim::ParameterGroup& grou
 
 std::vector<optim::ParameterGroup*> MapParameters::groups() {
     std::vector<optim::ParameterGroup*> out;
-    for (auto* g : {displacement_.get(), normalMap_.get(), baseColor_.get(), metallicRoughness_.get()})
-        if (g) out.push_back(g);
+    for (const auto& g : groups_)
+        if (g) out.push_back(g.get());
     return out;
 }
 
 bool MapParameters::inAtlas(const optim::ParameterGroup& group) const {
-    return isAppearance(group) && !appearanceUvs_.empty();
+    return inAppearance(group) && !appearanceUvs_.empty();
 }
 
 surface::AppearanceAtlas MapParameters::appearanceAtlas() const {
@@ -142,31 +140,33 @@ void MapParameters::readCarriedTextures(surface::SurfaceMaps& maps) const {
 }
 
 const surface::TexelLayout& MapParameters::layoutOf(const optim::ParameterGroup& group) const {
-    return isAppearance(group) ? appearanceLayout_ : layout_;
+    return inAppearance(group) ? appearanceLayout_ : layout_;
 }
 
 int MapParameters::tableOffsetOf(const optim::ParameterGroup& group) const {
-    return isAppearance(group) ? int(layout_.faceNodes.size()) : 0;
+    return inAppearance(group) ? int(layout_.faceNodes.size()) : 0;
 }
 
 render::PatchMaps MapParameters::forRaster(ParameterVersion v, const optim::ParameterGroup* perturbed) const {
     auto bind = [this, v, perturbed] {
         auto of = [&](const optim::ParameterGroup& g) { return &g == perturbed ? v : ParameterVersion::Current; };
         bindFaceNodes();
-        if (displacement_) version(*displacement_, of(*displacement_)).bindStorage(SUBDFIT_SSBO_DISPLACEMENT);
-        if (normalMap_) viewOf(*normalMap_, of(*normalMap_)).bind(SUBDFIT_UNIT_MAP_NORMAL);
-        if (baseColor_) viewOf(*baseColor_, of(*baseColor_)).bind(SUBDFIT_UNIT_MAP_BASE_COLOR);
-        if (metallicRoughness_)
-            viewOf(*metallicRoughness_, of(*metallicRoughness_)).bind(SUBDFIT_UNIT_MAP_METALLIC_ROUGHNESS);
+        // Each kind's binding is where its glsl reads it (bindings.h).
+        constexpr std::array<GLuint, kinds::kMapKindCount> kUnits{SUBDFIT_SSBO_DISPLACEMENT, SUBDFIT_UNIT_MAP_NORMAL,
+                                                                  SUBDFIT_UNIT_MAP_BASE_COLOR,
+                                                                  SUBDFIT_UNIT_MAP_METALLIC_ROUGHNESS};
+        for (const kinds::MapKindInfo& kind : kinds::kMapKinds) {
+            const optim::ParameterGroup* g = group(kind.kind);
+            if (!g) continue;
+            if (kind.rasterDefine.empty()) version(*g, of(*g)).bindStorage(kUnits[size_t(kind.kind)]);
+            else viewOf(*g, of(*g)).bind(kUnits[size_t(kind.kind)]);
+        }
         if (normalTexture_.view) normalTexture_.view->bind(SUBDFIT_UNIT_CARRIED_ATLAS_NORMAL);
         if (occlusion_.view) occlusion_.view->bind(SUBDFIT_UNIT_CARRIED_OCCLUSION);
         if (emissive_.view) emissive_.view->bind(SUBDFIT_UNIT_CARRIED_EMISSIVE);
     };
-    return {.displacement = effects_.displacement,
-            .normalMap = effects_.normalMap,
+    return {.kinds = effects_,
             .limitShading = settings_.shadingNormal == surface::ShadingNormal::Limit,
-            .baseColor = effects_.baseColor,
-            .metallicRoughness = effects_.metallicRoughness,
             .resolution = std::max(layout_.resolution, 1),
             .appearanceResolution = std::max(appearanceLayout_.resolution, 1),
             .appearanceAtlas = !appearanceUvs_.empty(),
@@ -184,7 +184,7 @@ void MapParameters::bindFaceNodes() const {
 }
 
 void MapParameters::update(gl::ProgramCache& programs, optim::ParameterGroup& group, float learningRate) {
-    optim::precondition(programs, group, isAppearance(group) ? appearanceAdjacency_ : adjacency_, settings_.smoothing,
+    optim::precondition(programs, group, inAppearance(group) ? appearanceAdjacency_ : adjacency_, settings_.smoothing,
                         settings_.smoothingIterations, scratch_);
     optim::adamStep(programs, group, group.gradientSmooth, learningRate);
 }

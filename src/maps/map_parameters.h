@@ -4,6 +4,7 @@
 // lattice, and the appearance maps (base colour, sRGB RGB per node; roughness and metallic per
 // node) on a finer one of their own. Only the groups the scene asks for exist: a run without
 // maps has no buffers, no shader defines and no passes for them.
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
@@ -26,12 +27,15 @@ struct MapSettings {
     // Texels per side of an appearance atlas (surface/appearance_atlas.h); 0: per-face tiles.
     int appearanceAtlas = 0;
     surface::ShadingNormal shadingNormal = surface::ShadingNormal::Displaced;  // with a displacement
-    // Heights in the normalised frame (scene radius 1); tangent offsets are dimensionless;
-    // colours are sRGB values and roughness / metallic fractions, all in [0, 1].
-    optim::GroupSettings displacement{.epsilon = 0.004f, .learningRate = 0.003f};
-    optim::GroupSettings normalMap{.epsilon = 0.05f, .learningRate = 0.01f};
-    optim::GroupSettings baseColor{.epsilon = 0.03f, .learningRate = 0.004f};
-    optim::GroupSettings metallicRoughness{.epsilon = 0.05f, .learningRate = 0.004f};
+    // Each kind's perturbation and learning rate (kinds/map_kinds.h has the defaults and units).
+    std::array<optim::GroupSettings, kinds::kMapKindCount> groups = [] {
+        std::array<optim::GroupSettings, kinds::kMapKindCount> out;
+        for (const kinds::MapKindInfo& i : kinds::kMapKinds)
+            out[size_t(i.kind)] = {.epsilon = i.epsilon, .learningRate = i.learningRate};
+        return out;
+    }();
+    optim::GroupSettings& of(MapKind kind) { return groups[size_t(kind)]; }
+    const optim::GroupSettings& of(MapKind kind) const { return groups[size_t(kind)]; }
     // (I + λL)⁻¹ on the node graph, as for the cage: texel estimates are noisy one by one.
     float smoothing = 2.0f;
     int smoothingIterations = 8;
@@ -66,10 +70,12 @@ public:
     MapEffects effects() const { return effects_; }
     surface::ShadingNormal shadingNormal() const { return settings_.shadingNormal; }
     void setShadingNormal(surface::ShadingNormal s) { settings_.shadingNormal = s; }  // the next pass draws with it
-    optim::ParameterGroup* displacement() { return displacement_.get(); }
-    optim::ParameterGroup* normalMap() { return normalMap_.get(); }
-    optim::ParameterGroup* baseColor() { return baseColor_.get(); }
-    optim::ParameterGroup* metallicRoughness() { return metallicRoughness_.get(); }
+    // The group of `kind`; null where the scene does not fit it.
+    optim::ParameterGroup* group(MapKind kind) { return groups_[size_t(kind)].get(); }
+    const optim::ParameterGroup* group(MapKind kind) const { return groups_[size_t(kind)].get(); }
+    optim::ParameterGroup* displacement() { return group(MapKind::Displacement); }
+    // The kind of one of this object's groups.
+    MapKind kindOf(const optim::ParameterGroup& group) const;
     std::vector<optim::ParameterGroup*> groups();
 
     // The patch pass's maps: θ± of the group being perturbed (`perturbed`, may be null) and θ of
@@ -100,7 +106,8 @@ private:
     Carried normalTexture_, occlusion_, emissive_;
     optim::Adjacency adjacency_, appearanceAdjacency_;
     gl::Buffer scratch_;  // Jacobi ping-pong partner, sized for the largest group
-    std::unique_ptr<optim::ParameterGroup> displacement_, normalMap_, baseColor_, metallicRoughness_;
+    std::array<std::unique_ptr<optim::ParameterGroup>, kinds::kMapKindCount> groups_;  // by kind; null: not fitted
+    bool inAppearance(const optim::ParameterGroup& group) const;
     // θ, θ+ and θ− of each group the patch pass shades with, as it reads them: one fetch a node.
     struct NodeViews {
         gl::BufferTexture current, plus, minus;

@@ -10,8 +10,9 @@
 
 namespace subdfit::optim {
 
-// What a group's parameters are. The fit tells its groups apart by this, never by address.
-enum class GroupKind { Vertices, Displacement, NormalMap, BaseColor, MetallicRoughness, Other };
+// What a group's parameters are: the cage's vertices, a map's texels (which map: its kind in
+// kinds/map_kinds.h), or something else (a benchmark's). The fit tells its groups apart by this.
+enum class GroupKind { Vertices, Map, Other };
 
 struct GroupSettings {
     float epsilon = 0.01f;        // perturbation magnitude, in the group's units

@@ -36,7 +36,7 @@ HeightTiles::HeightTiles(int faceCount, int resolution)
       texture_(makeTexture(faceCount, resolution)) {}
 
 void HeightTiles::fill(gl::ProgramCache& programs, const PatchMaps& maps) const {
-    SUBDFIT_CHECK(maps.displacement && maps.resolution == resolution_);
+    SUBDFIT_CHECK(maps.kinds.has(kinds::MapKind::Displacement) && maps.resolution == resolution_);
     if (maps.bind) maps.bind();
     const auto& program = programs.get(kHeightTiles);
     program.use();

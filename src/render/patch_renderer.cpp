@@ -26,19 +26,41 @@ const gl::ProgramSpec kTriangulate{
     "patch_triangulate", {{GL_COMPUTE_SHADER, "triangulate.comp"}}, {"SUBDFIT_SURFACE_PAIR"}};
 constexpr gl::VariantBits kTriangulatePair = 1u << 0;
 
+// The raster pass's variant bits: the shading model's (0-2), then one per map kind with a raster
+// define (kinds/map_kinds.h, in table order), then these.
+constexpr gl::VariantBits kPatchFirstMapBit = 3;
+constexpr gl::VariantBits kPatchMapBits = [] {
+    gl::VariantBits count = 0;
+    for (const kinds::MapKindInfo& i : kinds::kMapKinds) count += i.rasterDefine.empty() ? 0 : 1;
+    return count;
+}();
+constexpr gl::VariantBits kPatchAppearanceAtlas = 1u << (kPatchFirstMapBit + kPatchMapBits),
+                          kPatchAtlasNormal = kPatchAppearanceAtlas << 1,
+                          kPatchCarriedOcclusion = kPatchAtlasNormal << 1,
+                          kPatchCarriedEmissive = kPatchCarriedOcclusion << 1,
+                          kPatchFaceInAlpha = kPatchCarriedEmissive << 1;
+
 const gl::ProgramSpec kPatchRaster{
     "patch_raster", {{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "patch.frag"}}, [] {
-        std::vector<std::string> defines = kShadingDefines;  // bits 0-2
+        std::vector<std::string> defines = kShadingDefines;
+        for (const kinds::MapKindInfo& i : kinds::kMapKinds)
+            if (!i.rasterDefine.empty()) defines.emplace_back(i.rasterDefine);
         defines.insert(defines.end(),
-                       {"SUBDFIT_NORMAL_MAP", "SUBDFIT_BASE_COLOR_MAP", "SUBDFIT_METALLIC_ROUGHNESS_MAP",
-                        "SUBDFIT_APPEARANCE_ATLAS", "SUBDFIT_ATLAS_NORMAL_TEXTURE", "SUBDFIT_CARRIED_OCCLUSION",
+                       {"SUBDFIT_APPEARANCE_ATLAS", "SUBDFIT_ATLAS_NORMAL_TEXTURE", "SUBDFIT_CARRIED_OCCLUSION",
                         "SUBDFIT_CARRIED_EMISSIVE", "SUBDFIT_FACE_IN_ALPHA"});
         return defines;
     }()};
-constexpr gl::VariantBits kPatchNormalMap = 1u << 3, kPatchBaseColor = 1u << 4, kPatchMetallicRoughness = 1u << 5,
-                          kPatchAppearanceAtlas = 1u << 6, kPatchAtlasNormal = 1u << 7,
-                          kPatchCarriedOcclusion = 1u << 8, kPatchCarriedEmissive = 1u << 9,
-                          kPatchFaceInAlpha = 1u << 10;
+
+// The variant bits of the kinds `maps` applies in the raster pass.
+gl::VariantBits rasterMapBits(kinds::MapKinds maps) {
+    gl::VariantBits bits = 0, bit = 1u << kPatchFirstMapBit;
+    for (const kinds::MapKindInfo& i : kinds::kMapKinds) {
+        if (i.rasterDefine.empty()) continue;
+        if (maps.has(i.kind)) bits |= bit;
+        bit <<= 1;
+    }
+    return bits;
+}
 
 // A vertex of the evaluated surface (glsl/tessellate.comp): 16 floats.
 constexpr GLsizei kSurfaceVertexBytes = 16 * sizeof(float);
@@ -114,7 +136,7 @@ void PatchRenderer::evaluateLimit(gl::ProgramCache& programs, const gl::Buffer& 
 
 void PatchRenderer::displace(gl::ProgramCache& programs, const gl::Buffer& limitVertices, const Surface& surface,
                              const PatchMaps& maps) const {
-    SUBDFIT_CHECK(maps.displacement);
+    SUBDFIT_CHECK(maps.kinds.has(kinds::MapKind::Displacement));
     layOutHeights(programs, maps);
     const auto& program = programs.get(kDisplace, maps.limitShading ? kDisplaceLimitShading : 0);
     program.use();
@@ -130,7 +152,7 @@ void PatchRenderer::displace(gl::ProgramCache& programs, const gl::Buffer& limit
 
 void PatchRenderer::tessellate(gl::ProgramCache& programs, const gl::Buffer& points, const gl::Buffer& vertices,
                                const PatchMaps* maps, const Second* second) const {
-    const bool displaced = maps && maps->displacement;
+    const bool displaced = maps && maps->kinds.has(kinds::MapKind::Displacement);
     const gl::VariantBits variant =
         (displaced ? kTessellateDisplacement | (maps->limitShading ? kTessellateLimitShading : 0) : 0) |
         (second ? kTessellatePair : 0);
@@ -187,14 +209,12 @@ void PatchRenderer::split(gl::ProgramCache& programs, const Surface& surface, co
 
 void PatchRenderer::rasterize(gl::ProgramCache& programs, const Surface& surface, const Camera& camera,
                               const RenderTarget& target, const PatchMaps* maps) const {
+    const bool appearance = maps && maps->kinds.appearance();
     const gl::VariantBits mapBits =
-        maps ? (maps->normalMap ? kPatchNormalMap : 0) | (maps->baseColor ? kPatchBaseColor : 0) |
-                   (maps->metallicRoughness ? kPatchMetallicRoughness : 0) |
-                   (maps->appearanceAtlas && (maps->baseColor || maps->metallicRoughness) ? kPatchAppearanceAtlas : 0)
-             : 0;
+        maps ? rasterMapBits(maps->kinds) | (maps->appearanceAtlas && appearance ? kPatchAppearanceAtlas : 0) : 0;
     // The reference's textures the appearance lattice carries: only where it is drawn, with a
     // material (the normal texture only with its atlas, whose frame it is in).
-    const bool carried = (mapBits & (kPatchBaseColor | kPatchMetallicRoughness)) && shading_ != ShadingModel::Geometry;
+    const bool carried = appearance && shading_ != ShadingModel::Geometry;
     const gl::VariantBits carriedBits =
         carried ? (maps->atlasNormal && (mapBits & kPatchAppearanceAtlas) ? kPatchAtlasNormal : 0) |
                       (maps->carriedOcclusion ? kPatchCarriedOcclusion : 0) |

@@ -13,6 +13,7 @@
 #include "gl/program_cache.h"
 #include "gl/texture.h"
 #include "gl/vertex_array.h"
+#include "kinds/map_kinds.h"
 #include "render/camera.h"
 #include "render/height_tiles.h"
 #include "render/patch_tessellation.h"
@@ -25,13 +26,12 @@ namespace subdfit::render {
 // Per-texel maps the patch pass can apply (glsl/maps.glsl). Each effect is a bit of the pass's
 // shader variant; whoever owns the maps binds their buffers.
 struct PatchMaps {
-    bool displacement = false, normalMap = false;
-    bool limitShading = false;  // the heights place the surface, the limit normal shades it
-    bool baseColor = false, metallicRoughness = false;
-    int resolution = 1;                                      // cells per ptex-face edge of the geometric maps
-    int appearanceResolution = 1;                            // ... of the appearance maps
-    bool appearanceAtlas = false;                            // the appearance lattice is an atlas's texel grid
-    bool atlasNormal = false;                                // ... carrying the reference's normal texture
+    kinds::MapKinds kinds;         // the maps applied
+    bool limitShading = false;     // the heights place the surface, the limit normal shades it
+    int resolution = 1;            // cells per ptex-face edge of the geometric maps
+    int appearanceResolution = 1;  // ... of the appearance maps
+    bool appearanceAtlas = false;  // the appearance lattice is an atlas's texel grid
+    bool atlasNormal = false;      // ... carrying the reference's normal texture
     bool carriedOcclusion = false, carriedEmissive = false;  // the appearance lattice carries these
     int appearanceTable = 0;                                 // where their lattice starts in the face-node table
     int haloTable = 0;           // where the geometric lattice's ring across tile edges starts

@@ -175,9 +175,9 @@ std::optional<TriedCage> cageOf(const SearchInputs& in, int faces, CageShape sha
 // Geometry first: a normal map alone would buy image quality with no surface distance.
 std::vector<maps::MapEffects> mapChoicesOf(const BudgetSearch& search) {
     std::vector<maps::MapEffects> choices;
-    if (search.allowedMaps.displacement) choices.push_back({.displacement = true});
-    if (search.allowedMaps.displacement && search.allowedMaps.normalMap)
-        choices.push_back({.displacement = true, .normalMap = true});
+    if (search.allowedMaps.has(maps::MapKind::Displacement)) choices.push_back({maps::MapKind::Displacement});
+    if (search.allowedMaps.has(maps::MapKind::Displacement) && search.allowedMaps.has(maps::MapKind::NormalMap))
+        choices.push_back({maps::MapKind::Displacement, maps::MapKind::NormalMap});
     return choices;
 }
 
@@ -202,7 +202,7 @@ void scoreOnMonitor(const SearchInputs& in, const mesh::PolygonMesh& cageWorld, 
                     const Appearance& appearance, BudgetCandidate& c, Shipped& shipped) {
     const auto drawn = drawnAsFitted(in.programs, in.scene, shipped.decoded);
     c.monitorLoss = fit::score(*drawn, in.scene.choosing(in.programs)).loss;
-    if (!c.maps.displacement) return;
+    if (!c.maps.has(maps::MapKind::Displacement)) return;
     drawn->maps()->setShadingNormal(surface::ShadingNormal::Limit);
     if (const double loss = fit::score(*drawn, in.scene.choosing(in.programs)).loss; loss < c.monitorLoss) {
         c.monitorLoss = loss;
@@ -366,7 +366,7 @@ void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& ca
                     const std::vector<maps::MapEffects>& mapChoices, CageBakes& bakes) {
     const int faces = cage.world->faceCount();
     for (size_t m = 0; m < mapChoices.size(); ++m) {
-        if (bare.inAtlas && mapChoices[m].normalMap) continue;  // an atlas takes heights alone
+        if (bare.inAtlas && mapChoices[m].has(maps::MapKind::NormalMap)) continue;  // an atlas takes heights alone
         for (int resolution : in.search.mapResolutions) {
             throwIfStopRequested();
             const auto rung = std::make_tuple(m, resolution, in.search.mapBits.front());
@@ -669,7 +669,8 @@ nlohmann::json toJson(const BudgetReport& report) {
             {"faces", c.faces},      {"maps", maps::toString(c.maps)},  {"map_resolution", c.mapResolution},
             {"map_bits", c.mapBits}, {"position_bits", c.positionBits}, {"bytes", c.bytes}};
         if (c.quads > 0) j["quads"] = c.quads;
-        if (c.maps.displacement && c.monitorLoss > 0.0) j["shading_normal"] = nameOf(c.shadingNormal);
+        if (c.maps.has(maps::MapKind::Displacement) && c.monitorLoss > 0.0)
+            j["shading_normal"] = nameOf(c.shadingNormal);
         if (c.appearanceResolution > 0) j["appearance_resolution"] = c.appearanceResolution;
         if (c.appearanceAtlas > 0) j["appearance_atlas"] = c.appearanceAtlas;
         if (c.appearanceQuality > 0) j["appearance_quality"] = c.appearanceQuality;

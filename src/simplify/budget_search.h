@@ -32,7 +32,7 @@ struct BudgetSearch {
     // The most faces the best candidate's cage may grow to where bytes are left over (0: the
     // ladder's top): the ladder's top is a rough price, a cage's real bytes are measured.
     int mostGrownFaces = 0;
-    maps::MapEffects allowedMaps{.displacement = true, .normalMap = true};
+    maps::MapEffects allowedMaps{maps::MapKind::Displacement, maps::MapKind::NormalMap};
     std::vector<int> mapResolutions{2, 3, 4, 6, 8};
     // Bits per map value: 8 keeps a height's step under ~1/200 of its range, well below a pixel
     // at the resolutions fitted; 10 where the budget allows.

@@ -63,10 +63,7 @@ std::unique_ptr<fit::CageFitter> drawnAsFitted(gl::ProgramCache& programs, const
     for (float& d : maps.displacement) d *= scene.frame.scale;
     fit::CageFitSettings rendering;
     rendering.shading = scene.shading;
-    rendering.mapEffects = {.displacement = maps.hasDisplacement(),
-                            .normalMap = maps.hasNormal(),
-                            .baseColor = maps.hasBaseColor(),
-                            .metallicRoughness = maps.hasMetallicRoughness()};
+    rendering.mapEffects = maps.kinds();
     rendering.maps.resolution = std::max(maps.layout.resolution, 1);
     rendering.maps.appearanceResolution = std::max(maps.appearanceLayout.resolution, 1);
     rendering.maps.appearanceAtlas = maps.appearanceAtlas.size;

@@ -66,7 +66,7 @@ void validate(const SimplifyOptions& o) {
         throw OptionError("faces", "must be in 4..1000000, got " + std::to_string(*o.faces));
     if (o.budget && *o.budget < 100) throw OptionError("budget", "must be at least 100 bytes");
     if (o.surfaceSamples < 1000) throw OptionError("surface_samples", "must be >= 1000");
-    if (o.fit.appearanceAtlas > 0 && o.fit.maps.normalMap)
+    if (o.fit.appearanceAtlas > 0 && o.fit.maps.has(maps::MapKind::NormalMap))
         throw OptionError("appearance_atlas",
                           "takes heights alone (--maps displacement): the atlas's texture coordinates "
                           "leave the shipped glTF no room for a normal map on tiles");

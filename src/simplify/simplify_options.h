@@ -39,7 +39,7 @@ namespace subdfit::simplify {
 // the run, since the maps are baked onto it and only refined (see simplify_job.cpp).
 inline fit::FitOptions simplifyFitDefaults() {
     fit::FitOptions o;
-    o.maps = {.displacement = true};
+    o.maps = {maps::MapKind::Displacement};
     o.mapResolution = 4;
     o.mapsStart = 0.8f;
     o.compactMaps = true;

@@ -54,8 +54,7 @@ BudgetSearch budgetSearchFor(const SimplifyOptions& o, std::uintmax_t budget, co
                                       : std::min(kMostBudgetFaces, scene.reference.faceCount()) /
                                             (o.cageShape == CageShape::Quads ? 2 : 1),
             .allowedMaps = o.fit.maps,
-            .appearance = {.baseColor = scene.shading != render::ShadingModel::Geometry,
-                           .metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness},
+            .appearance = maps::appearanceFor(scene.shading),
             .appearanceQualities = {o.fit.appearanceQuality},
             .appearanceAtlases =
                 o.fit.appearanceAtlas > 0 ? std::vector<int>{o.fit.appearanceAtlas} : atlasSizesFor(scene.reference),

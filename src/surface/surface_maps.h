@@ -4,6 +4,7 @@
 #include <string_view>
 #include <vector>
 
+#include "kinds/map_kinds.h"
 #include "surface/appearance_atlas.h"
 #include "surface/texel_layout.h"
 #include "util/named_enum.h"
@@ -51,12 +52,27 @@ struct SurfaceMaps {
     // folded in); emissive (3 per texel, sRGB, the factor folded in). Empty = none.
     std::vector<float> normalTexture, occlusion, emissive;
 
+    // Each kind's node values (kinds/map_kinds.h), for code that is the same for every kind.
+    std::vector<float>& values(kinds::MapKind kind) { return this->*kValues[size_t(kind)]; }
+    const std::vector<float>& values(kinds::MapKind kind) const { return this->*kValues[size_t(kind)]; }
+    bool has(kinds::MapKind kind) const { return !values(kind).empty(); }
+    // The kinds present.
+    kinds::MapKinds kinds() const {
+        kinds::MapKinds out;
+        for (const kinds::MapKindInfo& i : kinds::kMapKinds) out.set(i.kind, has(i.kind));
+        return out;
+    }
+    // The lattice `kind`'s nodes lie on.
+    const TexelLayout& layoutOf(kinds::MapKind kind) const {
+        return kinds::info(kind).lattice == kinds::MapLattice::Appearance ? appearanceLayout : layout;
+    }
+
     // The appearance of `other` (lattice, atlas and values) in place of this one's.
     void setAppearance(const SurfaceMaps& other) {
         appearanceLayout = other.appearanceLayout;
         appearanceAtlas = other.appearanceAtlas;
-        baseColor = other.baseColor;
-        metallicRoughness = other.metallicRoughness;
+        for (const kinds::MapKindInfo& i : kinds::kMapKinds)
+            if (i.lattice == kinds::MapLattice::Appearance) values(i.kind) = other.values(i.kind);
         normalTexture = other.normalTexture;
         occlusion = other.occlusion;
         emissive = other.emissive;
@@ -66,6 +82,10 @@ struct SurfaceMaps {
     bool hasNormal() const { return !normal.empty(); }
     bool hasBaseColor() const { return !baseColor.empty(); }
     bool hasMetallicRoughness() const { return !metallicRoughness.empty(); }
+
+private:
+    static constexpr std::array<std::vector<float> SurfaceMaps::*, kinds::kMapKindCount> kValues{
+        &SurfaceMaps::displacement, &SurfaceMaps::normal, &SurfaceMaps::baseColor, &SurfaceMaps::metallicRoughness};
 };
 
 }  // namespace subdfit::surface

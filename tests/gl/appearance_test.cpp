@@ -80,12 +80,13 @@ double appearanceCosine(render::ShadingModel shading, bool baseColor, bool atlas
     fit::CageFitSettings settings;
     settings.resolution = 96;
     settings.shading = shading;
-    settings.mapEffects = {.baseColor = true, .metallicRoughness = shading == render::ShadingModel::MetallicRoughness};
+    settings.mapEffects = {maps::MapKind::BaseColor};
+    settings.mapEffects.set(maps::MapKind::MetallicRoughness, shading == render::ShadingModel::MetallicRoughness);
     settings.maps.appearanceResolution = 2;
     settings.maps.appearanceAtlas = atlas ? 4 : 0;
     fit::CageFitter fitter(programs(), scene.cage, settings);
     if (atlas) fitter.maps()->setAppearanceUvs(projectedCornerUvs(scene.cage));
-    auto& group = baseColor ? *fitter.maps()->baseColor() : *fitter.maps()->metallicRoughness();
+    auto& group = *fitter.maps()->group(baseColor ? maps::MapKind::BaseColor : maps::MapKind::MetallicRoughness);
     for (auto* g : fitter.groups()) fitter.setOptimised(*g, g == &group);
     const float epsilon = group.settings().epsilon;
     const int views[] = {0, 1};
@@ -177,7 +178,8 @@ TEST(AppearanceEffects, ASceneWithoutMaterialsCompilesAndRunsNoMaterialWork) {
         fit::CageFitSettings settings;
         settings.resolution = 48;
         settings.shading = shading;
-        settings.mapEffects = {.displacement = true, .baseColor = shading != render::ShadingModel::Geometry};
+        settings.mapEffects = {maps::MapKind::Displacement};
+        settings.mapEffects.set(maps::MapKind::BaseColor, shading != render::ShadingModel::Geometry);
         settings.maps.resolution = 2;
         settings.maps.appearanceResolution = 2;
         fit::CageFitter fitter(cache, cage, settings);

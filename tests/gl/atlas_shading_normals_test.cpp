@@ -41,12 +41,12 @@ double atlasLoss(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& referen
     const render::MeshRenderer renderer(reference, render::ShadingModel::Lambert);
     const scene::TargetSet targets(cache, renderer, render::orbitCameras(4, 2), 96);
     const surface::SurfaceMaps maps =
-        simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 64, 0.3f, carried);
+        simplify::bakeAtlasAppearance(cage, reference, {maps::MapKind::BaseColor}, 64, 0.3f, carried);
     EXPECT_EQ(maps.normalTexture.empty(), !carried);
     fit::CageFitSettings settings;
     settings.resolution = 96;
     settings.shading = render::ShadingModel::Lambert;
-    settings.mapEffects = {.baseColor = true};
+    settings.mapEffects = {maps::MapKind::BaseColor};
     settings.maps.appearanceAtlas = 64;
     fit::CageFitter fitter(cache, cage, settings);
     fit::writeMaps(fitter, maps);

@@ -16,7 +16,7 @@ namespace {
 fit::CageFitSettings withDisplacement() {
     fit::CageFitSettings settings;
     settings.resolution = 48;
-    settings.mapEffects.displacement = true;
+    settings.mapEffects.set(maps::MapKind::Displacement);
     settings.maps.resolution = 2;
     return settings;
 }
@@ -80,7 +80,7 @@ TEST(FitKnobs, AMapTurnDrawsTheCageAndHeightsAsTheyAreNow) {
     auto scene = makeFitScene(programs(), mesh::makeQuadSphere(2), mesh::makeLumpySphere(3, 0.2f, 3), 1, 64);
     auto settings = withDisplacement();
     settings.resolution = 64;
-    settings.mapEffects.normalMap = true;
+    settings.mapEffects.set(maps::MapKind::NormalMap);
     auto frozenButTheNormals = [](fit::CageFitter& f) {
         f.setOptimised(f.vertexGroup(), false);
         f.setOptimised(*f.maps()->displacement(), false);

@@ -28,7 +28,7 @@ fit::FitOptions stagedFit(const std::filesystem::path& dir) {
     o.views = 4;
     o.holdoutViews = 1;
     o.resolution = 48;
-    o.maps.displacement = true;
+    o.maps.set(maps::MapKind::Displacement);
     o.mapResolution = 2;
     o.mapsStart = 0.1f;
     return o;

@@ -18,7 +18,7 @@ namespace {
 
 fit::FitOptions smallFit(const std::filesystem::path& dir) {
     fit::FitOptions o = smallFitOptions(dir, 50);
-    o.maps = {.displacement = true};
+    o.maps = {maps::MapKind::Displacement};
     return o;
 }
 

@@ -26,7 +26,7 @@ TEST(MapsGradient, DisplacementTexelsAgreeWithFiniteDifferences) {
     auto scene = makeFitScene(programs(), mesh::makeQuadSphere(2), mesh::makeLumpySphere(4, 0.2f, 3), 2, 96);
     fit::CageFitSettings settings;
     settings.resolution = 96;
-    settings.mapEffects.displacement = true;
+    settings.mapEffects.set(maps::MapKind::Displacement);
     settings.maps.resolution = 2;
     fit::CageFitter fitter(programs(), scene.cage, settings);
     auto& displacement = *fitter.maps()->displacement();
@@ -69,7 +69,7 @@ TEST(MapsTessellation, EveryMapCellGetsASegmentOnQuadAndTriangleCages) {
         const mesh::PolygonMesh cage =
             triangles ? mesh::triangulated(mesh::makeQuadSphere(1)) : mesh::makeQuadSphere(1);
         fit::CageFitSettings settings;
-        settings.mapEffects.displacement = true;
+        settings.mapEffects.set(maps::MapKind::Displacement);
         settings.maps.resolution = 8;
         fit::CageFitter fitter(programs(), cage, settings);
         EXPECT_GE(fitter.renderer().tessLevel(), (triangles ? 2 : 1) * settings.maps.resolution) << triangles;
@@ -82,7 +82,7 @@ TEST(MapsBump, FlatCageRecoversABumpInTheDisplacementMap) {
     auto scene = makeFitScene(programs(), mesh::makeQuadGrid(3), mesh::makeQuadGrid(96, bump), 12, 128);
     fit::CageFitSettings settings;
     settings.resolution = 128;
-    settings.mapEffects.displacement = true;
+    settings.mapEffects.set(maps::MapKind::Displacement);
     settings.maps.resolution = 8;
     settings.plannedSteps = 2000;
     settings.mapsStartFraction = 0.0f;
@@ -153,7 +153,7 @@ TEST(MapsWatertight, ConstantDisplacementLeavesNoCrackAcrossTiles) {
     // Raster: the displaced, closed surface shows no pinholes from any view.
     fit::CageFitSettings settings;
     settings.resolution = 192;
-    settings.mapEffects.displacement = true;
+    settings.mapEffects.set(maps::MapKind::Displacement);
     settings.maps.resolution = 4;
     fit::CageFitter fitter(programs(), cage, settings);
     upload(*fitter.maps()->displacement(), heights);
@@ -185,7 +185,8 @@ TEST(MapsEffects, OnlyTheEffectsTheSceneUsesAreCompiledAndRun) {
         fitter.step(*scene.targets, view);
         render::RenderTarget image(48, 48);
         fitter.render(scene.targets->camera(0), image);
-        EXPECT_EQ(fitter.groups().size(), 1 + size_t(effects.displacement) + size_t(effects.normalMap));
+        EXPECT_EQ(fitter.groups().size(),
+                  1 + size_t(effects.has(maps::MapKind::Displacement)) + size_t(effects.has(maps::MapKind::NormalMap)));
         EXPECT_EQ(fitter.maps() == nullptr, !effects.any());
         return cache;
     };
@@ -194,10 +195,10 @@ TEST(MapsEffects, OnlyTheEffectsTheSceneUsesAreCompiledAndRun) {
     EXPECT_FALSE(anyVariantDefines(*plain, "SUBDFIT_DISPLACEMENT"));
     EXPECT_FALSE(anyVariantDefines(*plain, "SUBDFIT_NORMAL_MAP"));
     // Displacement only: its code, and still no normal-map code.
-    const auto displaced = run({.displacement = true});
+    const auto displaced = run({maps::MapKind::Displacement});
     EXPECT_TRUE(anyVariantDefines(*displaced, "SUBDFIT_DISPLACEMENT"));
     EXPECT_FALSE(anyVariantDefines(*displaced, "SUBDFIT_NORMAL_MAP"));
-    const auto normal = run({.normalMap = true});
+    const auto normal = run({maps::MapKind::NormalMap});
     EXPECT_FALSE(anyVariantDefines(*normal, "SUBDFIT_DISPLACEMENT"));
     EXPECT_TRUE(anyVariantDefines(*normal, "SUBDFIT_NORMAL_MAP"));
     EXPECT_FALSE(anyVariantDefines(*displaced, "SUBDFIT_LIMIT_SHADING"));  // only where asked for (below)
@@ -215,7 +216,7 @@ TEST(MapsShading, LimitShadingIgnoresTheHeightsSlopes) {
         auto cache = std::make_unique<gl::ProgramCache>(platformDefines());
         fit::CageFitSettings settings;
         settings.resolution = kSize;
-        settings.mapEffects.displacement = true;
+        settings.mapEffects.set(maps::MapKind::Displacement);
         settings.maps.resolution = 8;
         settings.maps.shadingNormal = shading;
         fit::CageFitter fitter(*cache, cage, settings);

@@ -243,7 +243,7 @@ TEST(PatchKinds, OnlyACageWithGregoryPatchesCompilesTheirVariant) {
 // the same heights, bit for bit, its vertices and its triangles, whichever normal shades them.
 TEST(PatchDisplacement, AKeptLimitSurfaceDisplacedIsTheSurfaceEvaluatedAtOnce) {
     const Cage cage(loadAsset("spot/spot_control_mesh.obj"));
-    maps::MapParameters maps(cage.mesh, {.displacement = true}, {.resolution = 3});
+    maps::MapParameters maps(cage.mesh, {maps::MapKind::Displacement}, {.resolution = 3});
     std::vector<float> heights(size_t(maps.displacement()->count()));
     for (size_t i = 0; i < heights.size(); ++i) heights[i] = 0.01f * std::sin(0.37f * float(i));
     maps.displacement()->write(heights);

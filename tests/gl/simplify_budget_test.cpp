@@ -333,7 +333,7 @@ std::map<int, std::map<int, std::uintmax_t>> appearanceBytes(std::uintmax_t budg
     search.budget = budget;
     search.faceCounts = {800, 400};
     search.allowedMaps = {};
-    search.appearance = {.baseColor = true};
+    search.appearance = {maps::MapKind::BaseColor};
     search.appearanceResolutions = {2, 4, 8, 16};
     simplify::CageLadder cages(duck, search.faceCounts);
     const simplify::BudgetChoice choice = simplify::searchBudget(programs(), scene, duck, search, cages, {});
@@ -372,7 +372,7 @@ TEST(SimplifyBudget, HeightsOnAFacetedReferenceShadeWithTheLimitNormal) {
     mesh::writeObj(dir / "faceted.obj", faceted);
     auto o = budgeted(dir / "faceted.obj", dir / "out", 4000);
     o.fit.resolution = 128;
-    o.fit.maps = {.displacement = true};
+    o.fit.maps = {maps::MapKind::Displacement};
     o.route =
         simplify::RouteChoice::Cage;  // it ships whole as triangles otherwise: this is about the cage the search finds
     const auto report = simplify::toJson(simplify::runSimplify(o));

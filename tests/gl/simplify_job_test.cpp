@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 // 120 faces with heights and normals at T = 2 (both, so that both are checked), a preview.
 simplify::SimplifyOptions smallMappedSimplify(const fs::path& reference, const fs::path& out) {
     simplify::SimplifyOptions o = smallSimplify(reference, out, 30);
-    o.fit.maps = {.displacement = true, .normalMap = true};
+    o.fit.maps = {maps::MapKind::Displacement, maps::MapKind::NormalMap};
     o.fit.mapResolution = 2;
     o.fit.checkpointEvery = 5;
     o.fit.preview = true;

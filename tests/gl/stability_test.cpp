@@ -56,8 +56,8 @@ TEST_P(ShapeFit, ShortFitStaysFiniteAndDoesNotDiverge) {
     scene.cage.positions = noised(scene.cage.positions, 0.02f, 5);
     fit::CageFitSettings settings;
     settings.resolution = 64;
-    settings.plannedSteps = 100;              // at 40 the first, noisiest Adam steps can still dominate
-    settings.mapEffects.displacement = true;  // the texel path through every topology too
+    settings.plannedSteps = 100;                           // at 40 the first, noisiest Adam steps can still dominate
+    settings.mapEffects.set(maps::MapKind::Displacement);  // the texel path through every topology too
     settings.maps.resolution = 2;
     settings.mapsStartFraction = 0.5f;
     fit::CageFitter fitter(programs(), scene.cage, settings);
@@ -174,8 +174,8 @@ TEST(Stability, TinyAndHugeEpsilonStayFinite) {
         fit::CageFitSettings settings;
         settings.resolution = 64;
         settings.vertices.epsilon = epsilon;
-        settings.mapEffects.displacement = true;
-        settings.maps.displacement.epsilon = epsilon;
+        settings.mapEffects.set(maps::MapKind::Displacement);
+        settings.maps.of(maps::MapKind::Displacement).epsilon = epsilon;
         settings.mapsStartFraction = 0.0f;
         fit::CageFitter fitter(programs(), scene.cage, settings);
         runSteps(fitter, *scene.targets, 20);
@@ -191,7 +191,7 @@ TEST(Stability, ZeroAreaFacesAndCoincidentVerticesStayFinite) {
     auto scene = makeFitScene(programs(), cage, mesh::makeLumpySphere(3, 0.2f, 2), 2, 64);
     fit::CageFitSettings settings;
     settings.resolution = 64;
-    settings.mapEffects = {.displacement = true, .normalMap = true};
+    settings.mapEffects = {maps::MapKind::Displacement, maps::MapKind::NormalMap};
     settings.mapsStartFraction = 0.0f;
     fit::CageFitter fitter(programs(), scene.cage, settings);
     runSteps(fitter, *scene.targets, 30);
@@ -205,7 +205,7 @@ TEST(Stability, DisplacementThatFoldsTheSurfaceStaysFinite) {
     auto scene = makeFitScene(programs(), mesh::makeQuadSphere(2), mesh::makeLumpySphere(3, 0.2f, 2), 2, 64);
     fit::CageFitSettings settings;
     settings.resolution = 64;
-    settings.mapEffects.displacement = true;
+    settings.mapEffects.set(maps::MapKind::Displacement);
     settings.mapsStartFraction = 0.0f;
     fit::CageFitter fitter(programs(), scene.cage, settings);
     auto& displacement = *fitter.maps()->displacement();

@@ -69,7 +69,7 @@ TEST(SurfacePair, EachSurfaceMatchesItsOwnEvaluationBitForBit) {
     const StencilEvaluator stencils(patches);
     expectPairMatchesAlone(nullptr, cage, PatchRenderer(patches, 4), stencils);
 
-    maps::MapParameters heights(cage, {.displacement = true}, {.resolution = 4});
+    maps::MapParameters heights(cage, {maps::MapKind::Displacement}, {.resolution = 4});
     std::vector<float> values(size_t(heights.displacement()->count()));
     for (size_t i = 0; i < values.size(); ++i) values[i] = 0.02f * std::sin(0.7f * float(i));
     heights.displacement()->write(values);

@@ -75,7 +75,7 @@ TEST(AtlasBake, APlaneGetsItsOwnTextureCoordinatesAndTexture) {
     paint(reference);
     ASSERT_EQ(simplify::atlasUnsuitability(reference), "");
     const mesh::PolygonMesh cage = mesh::makeQuadGrid(4);
-    const surface::SurfaceMaps maps = simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 16);
+    const surface::SurfaceMaps maps = simplify::bakeAtlasAppearance(cage, reference, {maps::MapKind::BaseColor}, 16);
     ASSERT_TRUE(maps.appearanceAtlas.present());
     ASSERT_EQ(maps.baseColor.size(), 3u * 16 * 16);
     // Inside, the limit surface of a uniform grid is parametrised linearly, and bilinear corners
@@ -109,7 +109,7 @@ TEST(AtlasBake, ChartBordersKeepTheirColourNotTheGutters) {
         return chart ? Rgba{255, 128, 0, 255} : Rgba{0, 0, 0, 255};
     });
     const surface::SurfaceMaps maps =
-        simplify::bakeAtlasAppearance(mesh::makeQuadGrid(2), reference, {.baseColor = true}, 8);
+        simplify::bakeAtlasAppearance(mesh::makeQuadGrid(2), reference, {maps::MapKind::BaseColor}, 8);
     ASSERT_EQ(maps.baseColor.size(), 3u * 8 * 8);
     for (size_t t = 0; t < 64; ++t) {
         EXPECT_NEAR(maps.baseColor[3 * t], 1.0f, 0.02f) << "texel " << t;
@@ -157,7 +157,7 @@ mesh::PolygonMesh tubeCage(int around, int along) {
 TEST(AtlasBake, TheTwoSidesOfASeamKeepTheirOwnCoordinates) {
     const mesh::PolygonMesh reference = seamedTube(96, 8);
     const mesh::PolygonMesh cage = tubeCage(12, 3);
-    const surface::SurfaceMaps maps = simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 32);
+    const surface::SurfaceMaps maps = simplify::bakeAtlasAppearance(cage, reference, {maps::MapKind::BaseColor}, 32);
     // Every surface point reads the texture where the reference has it (u by angle, modulo the
     // wrap: a face across the seam takes one side's coordinates and runs past 1 or below 0).
     float worst = 0.0f;

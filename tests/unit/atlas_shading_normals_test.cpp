@@ -127,14 +127,14 @@ TEST(AtlasShadingNormals, ABulgingCageShadesAsTheFlatReferenceItStandsFor) {
     });
     auto up = [](glm::vec3) { return glm::vec3(0, 0, 1); };
     const surface::SurfaceMaps plain =
-        simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 16, 0.5f, false);
+        simplify::bakeAtlasAppearance(cage, reference, {maps::MapKind::BaseColor}, 16, 0.5f, false);
     ASSERT_TRUE(plain.normalTexture.empty());  // the reference has no normal texture
     surface::SurfaceMaps flat = plain;
     flat.normalTexture.assign(3 * 16 * 16, 0.5f);
     for (size_t t = 0; t < 16 * 16; ++t) flat.normalTexture[3 * t + 2] = 1.0f;
     const AngleStats before = compare(cage, flat, up);
     const surface::SurfaceMaps carried =
-        simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 16, 0.5f, true);
+        simplify::bakeAtlasAppearance(cage, reference, {maps::MapKind::BaseColor}, 16, 0.5f, true);
     ASSERT_EQ(carried.normalTexture.size(), 3u * 16 * 16);
     const AngleStats after = compare(cage, carried, up);
     std::printf("shading normal error: %.2f° mean, %.2f° worst before; %.2f°, %.2f° carried\n", before.mean,
@@ -150,7 +150,7 @@ TEST(AtlasShadingNormals, ACageOnTheReferenceTakesItsAuthorsTiltedNormals) {
     const mesh::PolygonMesh reference = tiltedPlane(tilt);
     const mesh::PolygonMesh cage = mesh::makeQuadGrid(4);
     const surface::SurfaceMaps carried =
-        simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true}, 16, 0.5f, true);
+        simplify::bakeAtlasAppearance(cage, reference, {maps::MapKind::BaseColor}, 16, 0.5f, true);
     const AngleStats after = compare(cage, carried, tilt);
     std::printf("shading normal error: %.2f° mean, %.2f° worst\n", after.mean, after.worst);
     EXPECT_LT(after.mean, 1.0f);

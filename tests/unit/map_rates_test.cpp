@@ -15,7 +15,7 @@ float heightStep(const mesh::PolygonMesh& cage, int mapResolution) {
     o.views = 4;
     o.steps = 10;
     o.mapResolution = mapResolution;
-    return fitSettings(o, cage).maps.displacement.learningRate;
+    return fitSettings(o, cage).maps.of(maps::MapKind::Displacement).learningRate;
 }
 
 TEST(MapRates, AHeightStepIsASmallSlopeOfAMapCell) {

@@ -195,8 +195,9 @@ TEST(SimplifyBake, LeastSquaresHeightsLieCloserThanPointSamples) {
     const mesh::PolygonMesh reference = mesh::triangulated(mesh::makeLumpySphere(5, 0.04f, 3, 400, 0.002f, 0.004f));
     const mesh::PolygonMesh cage = initialCage(reference, {.faces = 200});
     auto distance = [&](bool leastSquares) {
-        const auto maps = bakeMaps(
-            cage, reference, {.effects = {.displacement = true}, .resolution = 3, .leastSquaresHeights = leastSquares});
+        const auto maps =
+            bakeMaps(cage, reference,
+                     {.effects = {maps::MapKind::Displacement}, .resolution = 3, .leastSquaresHeights = leastSquares});
         for (float d : maps.displacement) EXPECT_TRUE(std::isfinite(d));
         return geometry::surfaceDistance(surface::triangleMesh(surface::tessellate(cage, maps, 6)), reference, 20000)
             .meanDistance;
@@ -224,8 +225,8 @@ TEST(SimplifyBake, AppearanceFittedAcrossCellsLiesCloserThanPointSamples) {
     const mesh::PolygonMesh cage = mesh::makeQuadGrid(4);  // nodes every 4 texels, stripes every 5
 
     auto error = [&](bool acrossCells) {
-        const auto maps = bakeAppearance(cage, reference,
-                                         {.effects = {.baseColor = true}, .resolution = 4, .acrossCells = acrossCells});
+        const auto maps = bakeAppearance(
+            cage, reference, {.effects = {maps::MapKind::BaseColor}, .resolution = 4, .acrossCells = acrossCells});
         const subdiv::LimitEvaluator limit(cage);
         double sum = 0.0;
         int samples = 0;
@@ -252,10 +253,10 @@ TEST(SimplifyBake, AppearanceFittedAcrossCellsLiesCloserThanPointSamples) {
 TEST(SimplifyBake, OnlyTheAskedMapsAreBaked) {
     const mesh::PolygonMesh cage = mesh::makeQuadSphere(2);
     const mesh::PolygonMesh sphere = mesh::triangulated(mesh::makeQuadSphere(8));
-    const auto heights = bakeMaps(cage, sphere, {.effects = {.displacement = true}, .resolution = 2});
+    const auto heights = bakeMaps(cage, sphere, {.effects = {maps::MapKind::Displacement}, .resolution = 2});
     EXPECT_TRUE(heights.hasDisplacement());
     EXPECT_FALSE(heights.hasNormal());
-    const auto normals = bakeMaps(cage, sphere, {.effects = {.normalMap = true}, .resolution = 2});
+    const auto normals = bakeMaps(cage, sphere, {.effects = {maps::MapKind::NormalMap}, .resolution = 2});
     EXPECT_FALSE(normals.hasDisplacement());
     EXPECT_TRUE(normals.hasNormal());
 }
@@ -268,7 +269,7 @@ TEST(SimplifyDeterminism, InitialCageBakeAndDistanceRepeatExactly) {
     EXPECT_EQ(initialCage(reference, {.faces = 80}).positions, cage.positions);
     EXPECT_EQ(initialCage(reference, {.faces = 80}).faceIndices, cage.faceIndices);
 
-    const BakeOptions options{.effects = {.displacement = true, .normalMap = true}, .resolution = 3};
+    const BakeOptions options{.effects = {maps::MapKind::Displacement, maps::MapKind::NormalMap}, .resolution = 3};
     const auto first = bakeMaps(cage, reference, options), second = bakeMaps(cage, reference, options);
     EXPECT_EQ(first.displacement, second.displacement);
     EXPECT_EQ(first.normal, second.normal);
@@ -284,8 +285,8 @@ TEST(SimplifyDeterminism, InitialCageBakeAndDistanceRepeatExactly) {
 TEST(SimplifyDeterminism, BakesStartedAheadEqualBakesOnTheSpot) {
     const mesh::PolygonMesh reference = mesh::triangulated(mesh::makeLumpySphere(4, 0.15f, 4));
     const mesh::PolygonMesh cage = initialCage(reference, {.faces = 80});
-    const BakeOptions ahead{.effects = {.displacement = true}, .resolution = 3};
-    const BakeOptions later{.effects = {.displacement = true}, .resolution = 2};
+    const BakeOptions ahead{.effects = {maps::MapKind::Displacement}, .resolution = 3};
+    const BakeOptions later{.effects = {maps::MapKind::Displacement}, .resolution = 2};
     CageBakes bakes(cage, reference);
     bakes.startAhead(0, ahead);
     EXPECT_EQ(bakes.at(0, ahead).displacement, bakeMaps(cage, reference, ahead).displacement);

@@ -371,9 +371,9 @@ TEST(UsdExport, ATexturedAssetCarriesItsAppearance) {
     ASSERT_EQ(simplify::atlasUnsuitability(reference), "");
     const mesh::PolygonMesh cage = simplify::initialCage(reference, {.faces = 150});
     surface::SurfaceMaps maps =
-        simplify::bakeMaps(cage, reference, {.effects = {.displacement = true}, .resolution = 3});
-    maps.setAppearance(
-        simplify::bakeAtlasAppearance(cage, reference, {.baseColor = true, .metallicRoughness = true}, 32));
+        simplify::bakeMaps(cage, reference, {.effects = {maps::MapKind::Displacement}, .resolution = 3});
+    maps.setAppearance(simplify::bakeAtlasAppearance(cage, reference,
+                                                     {maps::MapKind::BaseColor, maps::MapKind::MetallicRoughness}, 32));
     const size_t texels = size_t(maps.appearanceLayout.nodeCount);
     maps.occlusion.assign(texels, 0.0f);
     maps.emissive.assign(3 * texels, 0.0f);
@@ -429,7 +429,8 @@ TEST(UsdExport, AnAppearanceOnTilesHasItsOwnCoordinates) {
     const mesh::PolygonMesh cage = simplify::initialCage(reference, {.faces = 12});
     ASSERT_FALSE(cage.tags.creases.empty());
     surface::SurfaceMaps maps = wavyMaps(cage, 2, false);
-    maps.setAppearance(simplify::bakeAppearance(cage, reference, {.effects = {.baseColor = true}, .resolution = 4}));
+    maps.setAppearance(
+        simplify::bakeAppearance(cage, reference, {.effects = {maps::MapKind::BaseColor}, .resolution = 4}));
     const codec::SubdAsset asset = shipped(cage, maps);
     const fs::path dir = scratchDir("usd_box_tiles");
     exporter::writeUsd(dir, asset);

@@ -266,12 +266,12 @@ surface::SurfaceMaps bakeAtlasAppearance(const mesh::PolygonMesh& cage, const me
     fillGutter(baked.normals, 3);
     fillGutter(baked.occlusions, 1);
     fillGutter(baked.emission, 3);
-    if (effects.baseColor) maps.baseColor = std::move(baked.color);
-    if (effects.metallicRoughness) maps.metallicRoughness = std::move(baked.roughnessMetallic);
+    if (effects.has(maps::MapKind::BaseColor)) maps.baseColor = std::move(baked.color);
+    if (effects.has(maps::MapKind::MetallicRoughness)) maps.metallicRoughness = std::move(baked.roughnessMetallic);
     // Occlusion rides in the metallic-roughness image's red channel (glTF's occlusion-roughness-
     // metallic packing), so only a scene with that image keeps it.
     maps.normalTexture = std::move(baked.normals);
-    if (effects.metallicRoughness) maps.occlusion = std::move(baked.occlusions);
+    if (effects.has(maps::MapKind::MetallicRoughness)) maps.occlusion = std::move(baked.occlusions);
     maps.emissive = std::move(baked.emission);
     return maps;
 }

@@ -229,13 +229,13 @@ surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
         if (hits[n]) heights[n] = hits[n]->distance;
     if (options.leastSquaresHeights)
         heights = leastSquaresHeights(cage, maps.layout, nodeHits, surface, maxDistanceFor(options, cage));
-    if (options.effects.displacement) maps.displacement = heights;
-    if (!options.effects.normalMap) return maps;
+    if (options.effects.has(maps::MapKind::Displacement)) maps.displacement = heights;
+    if (!options.effects.has(maps::MapKind::NormalMap)) return maps;
 
     // The renderer shades the displaced surface (when there is one) and tilts its normal by the
     // map: express the reference normal in that surface's frame (T, B, N'), n ∝ x T + y B + N'.
     const std::vector<float> zero(nodes, 0.0f);
-    const std::vector<float>& d = options.effects.displacement ? heights : zero;
+    const std::vector<float>& d = options.effects.has(maps::MapKind::Displacement) ? heights : zero;
     maps.normal.assign(2 * nodes, 0.0f);
     for (size_t n = 0; n < nodes; ++n) {
         if (!hits[n]) continue;
@@ -363,7 +363,7 @@ surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::P
     // (occlusion only beside a metallic-roughness map: the shipped file packs it in its red).
     const CarriedLook carried = carriedLookOf(reference);
     const bool emission = carried.emission && options.effects.appearance();
-    const bool occlusion = carried.occlusion && options.effects.metallicRoughness;
+    const bool occlusion = carried.occlusion && options.effects.has(maps::MapKind::MetallicRoughness);
     std::vector<float> emissive(emission ? 3 * nodes : 0, 0.0f), occlusions(occlusion ? nodes : 0, 1.0f);
     for (size_t n = 0; n < nodes; ++n) {
         if (!nodeHits.hits[n]) continue;
@@ -395,8 +395,8 @@ surface::SurfaceMaps bakeAppearance(const mesh::PolygonMesh& cage, const mesh::P
             for (int k = 0; k < 2; ++k) roughnessMetallic[2 * n + size_t(k)] = float(std::clamp(rm[n][k], 0.0, 1.0));
         }
     }
-    if (options.effects.baseColor) maps.baseColor = std::move(color);
-    if (options.effects.metallicRoughness) maps.metallicRoughness = std::move(roughnessMetallic);
+    if (options.effects.has(maps::MapKind::BaseColor)) maps.baseColor = std::move(color);
+    if (options.effects.has(maps::MapKind::MetallicRoughness)) maps.metallicRoughness = std::move(roughnessMetallic);
     return maps;
 }
 

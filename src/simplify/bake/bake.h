@@ -11,7 +11,7 @@
 namespace subdfit::simplify {
 
 struct BakeOptions {
-    maps::MapEffects effects{.displacement = true, .normalMap = true};
+    maps::MapEffects effects{maps::MapKind::Displacement, maps::MapKind::NormalMap};
     int resolution = 8;  // cells per ptex-face edge, as surface::TexelLayout
     // Farthest hit taken, in the meshes' units (none: height 0, flat normal); 0 = the cage's
     // mean edge length, since a surface farther than a cage edge is a different part of the
@@ -28,7 +28,7 @@ surface::SurfaceMaps bakeMaps(const mesh::PolygonMesh& cage, const mesh::Polygon
                               const BakeOptions& options);
 
 struct AppearanceBakeOptions {
-    maps::MapEffects effects{.baseColor = true, .metallicRoughness = true};
+    maps::MapEffects effects{maps::MapKind::BaseColor, maps::MapKind::MetallicRoughness};
     int resolution = 16;       // cells per ptex-face edge of the appearance lattice
     float maxDistance = 0.0f;  // as BakeOptions
     // Texels per side of an atlas in the reference's own texture space instead of tiles

@@ -261,11 +261,10 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
                      const BaselineSettings& settings) {
     const mesh::PolygonMesh& cage = route.cage;
     const int mapResolution = route.resolution;
-    maps::MapEffects effects = route.effects;
-    if (!effects.geometric()) effects.displacement = effects.normalMap = true;
-    if (route.appearanceAtlas > 0) effects.normalMap = false;  // an atlas pairs with heights alone
-    effects.baseColor = scene.shading != render::ShadingModel::Geometry;
-    effects.metallicRoughness = scene.shading == render::ShadingModel::MetallicRoughness;
+    maps::MapEffects effects = route.effects & maps::MapEffects::on(kinds::MapLattice::Geometric);
+    if (!effects.geometric()) effects = {maps::MapKind::Displacement, maps::MapKind::NormalMap};
+    if (route.appearanceAtlas > 0) effects.set(maps::MapKind::NormalMap, false);  // an atlas pairs with heights alone
+    effects = effects | maps::appearanceFor(scene.shading);
     surface::SurfaceMaps baked = bakeMaps(cage, scene.reference, {.effects = effects, .resolution = mapResolution});
     baked.shadingNormal = route.shadingNormal;
     if (effects.appearance()) {
