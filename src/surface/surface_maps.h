@@ -62,10 +62,6 @@ struct SurfaceMaps {
         for (const kinds::MapKindInfo& i : kinds::kMapKinds) out.set(i.kind, has(i.kind));
         return out;
     }
-    // The lattice `kind`'s nodes lie on.
-    const TexelLayout& layoutOf(kinds::MapKind kind) const {
-        return kinds::info(kind).lattice == kinds::MapLattice::Appearance ? appearanceLayout : layout;
-    }
 
     // The appearance of `other` (lattice, atlas and values) in place of this one's.
     void setAppearance(const SurfaceMaps& other) {
