@@ -134,11 +134,11 @@ surface::SurfaceMaps carriedMaps(const mesh::PolygonMesh& cage, const surface::S
                 out.values(kind.kind) =
                     carriedValues(cage, maps.layout, maps.values(kind.kind), kind.channels, decoded, out.layout, to);
     }
-    if (maps.appearanceAtlas.present() && (maps.hasBaseColor() || maps.hasMetallicRoughness())) {
+    if (maps.appearanceAtlas.present() && maps.kinds().appearance()) {
         // The texels stay; the corners' coordinates follow their faces and corners.
         out.setAppearance(maps);
         out.appearanceAtlas = carriedCornerUvs(cage, maps.appearanceAtlas, decoded, to);
-    } else if (maps.appearanceLayout.resolution > 0 && (maps.hasBaseColor() || maps.hasMetallicRoughness())) {
+    } else if (maps.appearanceLayout.resolution > 0 && maps.kinds().appearance()) {
         out.appearanceLayout = surface::buildTexelLayout(decoded, maps.appearanceLayout.resolution);
         for (const kinds::MapKindInfo& kind : kinds::kMapKinds)
             if (kind.lattice == kinds::MapLattice::Appearance && maps.has(kind.kind))
@@ -454,7 +454,7 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
     for (const kinds::MapKindInfo& kind : kinds::kMapKinds)
         if (kind.lattice == kinds::MapLattice::Geometric)
             add(kind.section, maps.layout, maps.values(kind.kind), kind.channels, precision.bits(kind.kind));
-    if (maps.appearanceAtlas.present() && (maps.hasBaseColor() || maps.hasMetallicRoughness())) {
+    if (maps.appearanceAtlas.present() && maps.kinds().appearance()) {
         ByteWriter section;
         writeAtlasUvs(cage.decoded, maps.appearanceAtlas, section);
         sections.emplace_back(kAtlasUvs, std::move(section.bytes()));

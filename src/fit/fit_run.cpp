@@ -248,7 +248,7 @@ void FitRun::joinMaps(const MapStage& stage, bool fresh) {
     }
     if (stage.freezeCage) fitter_->setOptimised(fitter_->vertexGroup(), false);
     for (optim::ParameterGroup* g : parameters->groups()) {
-        const bool appearance = kinds::info(parameters->kindOf(*g)).lattice == kinds::MapLattice::Appearance;
+        const bool appearance = parameters->inAppearance(*g);
         fitter_->setRates(*g, g->settings().epsilon,
                           (appearance ? stage.appearanceRate : stage.geometricRate) * g->settings().learningRate);
         if (stage.noiseGate) g->settings().noiseGate = *stage.noiseGate;

@@ -63,18 +63,16 @@ MapParameters::MapParameters(const mesh::PolygonMesh& cage, MapEffects effects, 
       appearanceAdjacency_(uploadAdjacency(appearanceLayout_)),
       scratch_(GLsizeiptr(std::max({1, 2 * layout_.nodeCount, 3 * appearanceLayout_.nodeCount})) *
                GLsizeiptr(sizeof(float))) {
-    for (const kinds::MapKindInfo& kind : kinds::kMapKinds)
-        if (effects.has(kind.kind))
-            groups_[size_t(kind.kind)] =
-                makeGroup(kind, kind.lattice == kinds::MapLattice::Appearance ? appearanceLayout_ : layout_,
-                          settings.of(kind.kind));
-    // The raster pass reads its kinds' nodes through views; the heights are read as storage.
     for (const kinds::MapKindInfo& kind : kinds::kMapKinds) {
-        const optim::ParameterGroup* g = group(kind.kind);
-        if (!g || kind.rasterDefine.empty()) continue;
-        views_.emplace(g, NodeViews{gl::BufferTexture::ofFloats(g->theta, kind.channels),
-                                    gl::BufferTexture::ofFloats(g->thetaPlus, kind.channels),
-                                    gl::BufferTexture::ofFloats(g->thetaMinus, kind.channels)});
+        if (!effects.has(kind.kind)) continue;
+        auto& g = groups_[size_t(kind.kind)];
+        g = makeGroup(kind, kind.lattice == kinds::MapLattice::Appearance ? appearanceLayout_ : layout_,
+                      settings.of(kind.kind));
+        // The raster pass reads its kinds' nodes through views; the heights are read as storage.
+        if (kind.rasterDefine.empty()) continue;
+        views_.emplace(g.get(), NodeViews{gl::BufferTexture::ofFloats(g->theta, kind.channels),
+                                          gl::BufferTexture::ofFloats(g->thetaPlus, kind.channels),
+                                          gl::BufferTexture::ofFloats(g->thetaMinus, kind.channels)});
     }
 }
 

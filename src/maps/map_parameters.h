@@ -74,8 +74,9 @@ public:
     optim::ParameterGroup* group(MapKind kind) { return groups_[size_t(kind)].get(); }
     const optim::ParameterGroup* group(MapKind kind) const { return groups_[size_t(kind)].get(); }
     optim::ParameterGroup* displacement() { return group(MapKind::Displacement); }
-    // The kind of one of this object's groups.
+    // The kind of one of this object's groups, and whether it lies on the appearance lattice.
     MapKind kindOf(const optim::ParameterGroup& group) const;
+    bool inAppearance(const optim::ParameterGroup& group) const;
     std::vector<optim::ParameterGroup*> groups();
 
     // The patch pass's maps: θ± of the group being perturbed (`perturbed`, may be null) and θ of
@@ -107,7 +108,6 @@ private:
     optim::Adjacency adjacency_, appearanceAdjacency_;
     gl::Buffer scratch_;  // Jacobi ping-pong partner, sized for the largest group
     std::array<std::unique_ptr<optim::ParameterGroup>, kinds::kMapKindCount> groups_;  // by kind; null: not fitted
-    bool inAppearance(const optim::ParameterGroup& group) const;
     // θ, θ+ and θ− of each group the patch pass shades with, as it reads them: one fetch a node.
     struct NodeViews {
         gl::BufferTexture current, plus, minus;
