@@ -6,6 +6,12 @@
 #include <limits>
 #include <vector>
 
+#include <draco/compression/config/compression_shared.h>
+#include <draco/compression/entropy/symbol_decoding.h>
+#include <draco/compression/entropy/symbol_encoding.h>
+#include <draco/core/decoder_buffer.h>
+#include <draco/core/encoder_buffer.h>
+
 namespace subdfit::codec {
 namespace {
 
@@ -16,14 +22,17 @@ struct Prediction {
     int ai, aj, bi, bj;  // its bracket
     float w;             // weight of b
     bool corner;
+    int pass;  // 0 the corners, then one per direction of each level
 };
 
-// The coding order of one tile: corners, then for s = the largest power of two below T down to
-// 1, the odd multiples of s along u on the rows coded so far, then along v on every column.
+// The coding order of one tile, in passes: the corners, then for s = the largest power of two
+// below T down to 1, the odd multiples of s along u on the rows coded so far, then along v on
+// every column.
 std::vector<Prediction> codingOrder(int T) {
     std::vector<Prediction> order;
     for (int j : {0, T})
-        for (int i : {0, T}) order.push_back({i, j, i, j, i, j, 0.0f, true});
+        for (int i : {0, T}) order.push_back({i, j, i, j, i, j, 0.0f, true, 0});
+    int pass = 0;
     std::vector<bool> rowCoded(size_t(T) + 1, false), columnCoded(size_t(T) + 1, false);
     rowCoded[0] = rowCoded[size_t(T)] = columnCoded[0] = columnCoded[size_t(T)] = true;
     int s = 1;
@@ -32,18 +41,21 @@ std::vector<Prediction> codingOrder(int T) {
         auto bracket = [&](int x) { return std::pair{x - s, std::min(x + s, T)}; };
         std::vector<int> fresh;  // odd multiples of s below T
         for (int x = s; x < T; x += 2 * s) fresh.push_back(x);
+        ++pass;
         for (int j = 0; j <= T; ++j) {
             if (!rowCoded[size_t(j)]) continue;
             for (int i : fresh) {
                 const auto [a, b] = bracket(i);
-                order.push_back({i, j, a, j, b, j, float(i - a) / float(b - a), false});
+                order.push_back({i, j, a, j, b, j, float(i - a) / float(b - a), false, pass});
             }
         }
         for (int i : fresh) columnCoded[size_t(i)] = true;
+        ++pass;
         for (int j : fresh) {
             const auto [a, b] = bracket(j);
             for (int i = 0; i <= T; ++i)
-                if (columnCoded[size_t(i)]) order.push_back({i, j, i, a, i, b, float(j - a) / float(b - a), false});
+                if (columnCoded[size_t(i)])
+                    order.push_back({i, j, i, a, i, b, float(j - a) / float(b - a), false, pass});
         }
         for (int j : fresh) rowCoded[size_t(j)] = true;
     }
@@ -82,24 +94,65 @@ Predictors cornerPredictors(const surface::TexelLayout& layout, int face, int i,
     return p;
 }
 
+// Visits every node once, in coding order, with what it is predicted from and its pass.
 template <class Visit>
-void forEachNode(const surface::TexelLayout& layout, Visit&& visit) {
+void forEachNode(const surface::TexelLayout& layout, NodeStream stream, Visit&& visit) {
     const auto order = codingOrder(layout.resolution);
     std::vector<bool> coded(size_t(layout.nodeCount), false);
-    for (int face = 0; face < layout.ptexFaceCount; ++face)
-        for (const Prediction& p : order) {
-            const int node = layout.node(face, p.i, p.j);
-            if (coded[size_t(node)]) continue;
-            Predictors predictors;
-            if (p.corner) {
-                predictors = cornerPredictors(layout, face, p.i, p.j, coded);
-            } else {
-                predictors.add(layout.node(face, p.ai, p.aj), 1.0f - p.w);
-                predictors.add(layout.node(face, p.bi, p.bj), p.w);
-            }
-            coded[size_t(node)] = true;
-            visit(node, predictors);
+    auto code = [&](int face, const Prediction& p) {
+        const int node = layout.node(face, p.i, p.j);
+        if (coded[size_t(node)]) return;
+        Predictors predictors;
+        if (p.corner) {
+            predictors = cornerPredictors(layout, face, p.i, p.j, coded);
+        } else {
+            predictors.add(layout.node(face, p.ai, p.aj), 1.0f - p.w);
+            predictors.add(layout.node(face, p.bi, p.bj), p.w);
         }
+        coded[size_t(node)] = true;
+        visit(node, predictors, p.pass);
+    };
+    if (stream == NodeStream::TileVarints) {
+        for (int face = 0; face < layout.ptexFaceCount; ++face)
+            for (const Prediction& p : order) code(face, p);
+        return;
+    }
+    for (size_t begin = 0; begin < order.size();) {  // a pass is a run of the tile's order
+        size_t end = begin;
+        while (end < order.size() && order[end].pass == order[begin].pass) ++end;
+        for (int face = 0; face < layout.ptexFaceCount; ++face)
+            for (size_t k = begin; k < end; ++k) code(face, order[k]);
+        begin = end;
+    }
+}
+
+int passCount(int resolution) { return codingOrder(resolution).back().pass + 1; }
+
+std::uint32_t zigzag(std::int64_t r) { return std::uint32_t((std::uint64_t(r) << 1) ^ std::uint64_t(r >> 63)); }
+std::int64_t unzigzag(std::uint32_t z) { return std::int64_t(z >> 1) ^ -std::int64_t(z & 1); }
+
+// One pass's residuals (zigzag-mapped) as a byte count and Draco's entropy-coded block.
+void putBlock(const std::vector<std::uint32_t>& symbols, ByteWriter& out) {
+    draco::EncoderBuffer block;
+    if (!symbols.empty() && !draco::EncodeSymbols(symbols.data(), int(symbols.size()), 1, nullptr, &block))
+        throw Error("a map's residuals could not be entropy-coded");
+    out.putVarint(block.size());
+    out.putBytes({reinterpret_cast<const unsigned char*>(block.data()), block.size()});
+}
+
+void getBlock(ByteReader& in, std::size_t count, std::vector<std::uint32_t>& symbols) {
+    const auto block = in.take(in.getCount(1, "residual block byte"));
+    if (count == 0) {
+        if (!block.empty()) throw Error(in.what() + ": residuals for a level without nodes");
+        return;
+    }
+    draco::DecoderBuffer buffer;  // the symbols' coding as Draco's current bitstream writes it
+    buffer.Init(reinterpret_cast<const char*>(block.data()), block.size(), draco::kDracoMeshBitstreamVersion);
+    const size_t at = symbols.size();
+    symbols.resize(at + count);
+    if (!draco::DecodeSymbols(std::uint32_t(count), 1, &buffer, symbols.data() + at))
+        throw Error(in.what() + ": malformed residuals");
+    if (buffer.remaining_size() != 0) throw Error(in.what() + ": bytes left over in a level's residuals");
 }
 
 // Predictions lean from the channel's center towards what the neighbours say by lean / kLeanSteps:
@@ -124,7 +177,7 @@ float predicted(const Predictors& p, const std::vector<float>& decoded, float ce
 Leans chooseLeans(const surface::TexelLayout& layout, const std::vector<float>& original,
                   const ChannelQuantisation& q) {
     std::array<double, kLeanSteps + 1> cornerCost{}, interpolatedCost{};
-    forEachNode(layout, [&](int node, const Predictors& from) {
+    forEachNode(layout, NodeStream::LevelBlocks, [&](int node, const Predictors& from, int) {
         if (from.count == 0) return;
         auto& cost = from.corner ? cornerCost : interpolatedCost;
         for (int lean = 0; lean <= kLeanSteps; ++lean) {
@@ -155,26 +208,38 @@ void encodeNodes(const surface::TexelLayout& layout, std::span<const float> valu
     const Leans leans = chooseLeans(layout, original, q);
     out.put<std::uint8_t>(std::uint8_t(leans.corner));
     out.put<std::uint8_t>(std::uint8_t(leans.interpolated));
+    std::vector<std::vector<std::uint32_t>> passes(size_t(passCount(layout.resolution)));
     std::vector<float> decoded(size_t(layout.nodeCount), 0.0f);
-    forEachNode(layout, [&](int node, const Predictors& from) {
+    forEachNode(layout, NodeStream::LevelBlocks, [&](int node, const Predictors& from, int pass) {
         const float prediction = predicted(from, decoded, q.center, leans);
         const double residual = std::round((double(original[size_t(node)]) - prediction) / q.step);
-        const auto r = std::int64_t(std::clamp(residual, -9.0e15, 9.0e15));
-        out.putSigned(r);
-        decoded[size_t(node)] = prediction + float(double(r) * q.step);
+        // A value within the range the step was made for is a few 2^24 steps from its prediction at most.
+        if (!(std::abs(residual) < double(1u << 30)))
+            throw Error("a map value lies far outside its quantisation range");
+        passes[size_t(pass)].push_back(zigzag(std::int64_t(residual)));
+        decoded[size_t(node)] = prediction + float(residual * q.step);
     });
+    for (const auto& symbols : passes) putBlock(symbols, out);
 }
 
 void decodeNodes(const surface::TexelLayout& layout, std::span<float> values, int stride, int channel,
-                 const ChannelQuantisation& q, ByteReader& in) {
+                 const ChannelQuantisation& q, ByteReader& in, NodeStream stream) {
     Leans leans;
     leans.corner = in.get<std::uint8_t>();
     leans.interpolated = in.get<std::uint8_t>();
     if (leans.corner > kLeanSteps || leans.interpolated > kLeanSteps) throw Error(in.what() + ": bad prediction lean");
+    std::vector<std::uint32_t> residuals;  // level by level: every node's, in coding order
+    if (stream == NodeStream::LevelBlocks) {
+        std::vector<std::size_t> counts(size_t(passCount(layout.resolution)), 0);
+        forEachNode(layout, stream, [&](int, const Predictors&, int pass) { ++counts[size_t(pass)]; });
+        residuals.reserve(size_t(layout.nodeCount));
+        for (std::size_t count : counts) getBlock(in, count, residuals);
+    }
+    size_t next = 0;
     std::vector<float> decoded(size_t(layout.nodeCount), 0.0f);
-    forEachNode(layout, [&](int node, const Predictors& from) {
-        const float prediction = predicted(from, decoded, q.center, leans);
-        const float value = prediction + float(double(in.getSigned()) * q.step);
+    forEachNode(layout, stream, [&](int node, const Predictors& from, int) {
+        const std::int64_t residual = stream == NodeStream::LevelBlocks ? unzigzag(residuals[next++]) : in.getSigned();
+        const float value = predicted(from, decoded, q.center, leans) + float(double(residual) * q.step);
         if (!std::isfinite(value)) throw Error(in.what() + ": a map value is not finite");
         decoded[size_t(node)] = value;
         values[size_t(node) * size_t(stride) + size_t(channel)] = value;

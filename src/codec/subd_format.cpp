@@ -192,7 +192,8 @@ void readLattice(ByteReader& in, const mesh::PolygonMesh& cage, surface::TexelLa
         throw Error(in.what() + ": node count does not match the cage's texel layout");
 }
 
-std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int channels, surface::TexelLayout& layout) {
+std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int channels, NodeStream stream,
+                            surface::TexelLayout& layout) {
     readLattice(in, cage, layout);
     std::vector<ChannelQuantisation> q(static_cast<size_t>(channels));
     for (auto& channel : q) {
@@ -202,7 +203,7 @@ std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int c
             throw Error(in.what() + ": bad quantisation");
     }
     std::vector<float> values(size_t(layout.nodeCount) * size_t(channels));
-    for (int c = 0; c < channels; ++c) decodeNodes(layout, values, channels, c, q[size_t(c)], in);
+    for (int c = 0; c < channels; ++c) decodeNodes(layout, values, channels, c, q[size_t(c)], in, stream);
     return values;
 }
 
@@ -408,7 +409,11 @@ std::vector<std::uint64_t> priceMaps(const std::vector<SectionEntry>& sections, 
         if (geometric) {
             priceTiles(resolution, tilesPriced, "a map lattice");
             mapResolution = int(resolution);
-            most[k] = kHeader + std::uint64_t(geometric->channels) * (8 + 2 + 10 * nodes);
+            // Per channel its quantisation, leans and nodes (a residual takes under 10 bytes as a
+            // varint or in an entropy-coded block), and each level's block its length and tables.
+            constexpr std::uint64_t kMostLevels = 13, kBlockOverhead = 4096;
+            most[k] =
+                kHeader + std::uint64_t(geometric->channels) * (8 + 2 + 10 * nodes + kMostLevels * kBlockOverhead);
             continue;
         }
         std::uint64_t pixels = atlasSize * atlasSize;
@@ -580,7 +585,9 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         const auto raw = inflated(sections[k], most[k]);
         ByteReader section(raw, name + ": " + sections[k].what());
         if (const kinds::MapKindInfo* geometric = geometricSection(tag))
-            asset.maps.values(geometric->kind) = readMaps(section, asset.cage, geometric->channels, asset.maps.layout);
+            asset.maps.values(geometric->kind) =
+                readMaps(section, asset.cage, geometric->channels,
+                         version >= 10 ? NodeStream::LevelBlocks : NodeStream::TileVarints, asset.maps.layout);
         else if (tag == kAtlasUvs) {
             if (asset.maps.appearanceLayout.resolution != 0) throw Error(name + ": section AUVS after the appearance");
             if (version == 4)

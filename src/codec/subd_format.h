@@ -1,5 +1,5 @@
 #pragma once
-// The shipped asset, one file: `.subd`, version 9. What a user ships is the control cage (with its
+// The shipped asset, one file: `.subd`, version 10. What a user ships is the control cage (with its
 // OpenSubdiv tags) and the maps' node values, quantised and entropy-coded; `subdfit decode`
 // turns it back into triangles. docs/asset-subd-format.md specifies the bytes (header, sections,
 // trailer) and which versions a reader takes; encodeSubd writes them and decodeSubd checks every
@@ -21,7 +21,7 @@
 
 namespace subdfit::codec {
 
-inline constexpr std::uint16_t kSubdVersion = 9;
+inline constexpr std::uint16_t kSubdVersion = 10;
 // zstd's level for every section: the asset is written once and shipped many times.
 inline constexpr int kSubdZstdLevel = 19;
 

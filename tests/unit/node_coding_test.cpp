@@ -1,5 +1,6 @@
 // The map node coder (codec/node_coding.h): a smooth map's residuals are near zero, corners
-// included, and a noisy map is predicted by its mean rather than by its noisy neighbours.
+// included, a noisy map is predicted by its mean rather than by its noisy neighbours, each
+// level's residuals cost about their entropy, and a damaged level is refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -44,10 +45,10 @@ Coded roundTrip(const surface::TexelLayout& layout, const std::vector<float>& va
     return coded;
 }
 
-TEST(NodeCoding, ASmoothMapFarFromItsMeanCostsAboutOneByteANode) {
+TEST(NodeCoding, ASmoothMapFarFromItsMeanCostsUnderABitANode) {
     // Heights around 0.3 with one spike to 1.0: the range's center (0.65) is far from every
     // corner, which a prediction from the center would pay for at every shared corner
-    // (residuals of ~-127 steps: two varint bytes each).
+    // (residuals of ~-127 steps: 8 bits each at least).
     const auto cage = mesh::makeQuadSphere(4);
     const auto layout = surface::buildTexelLayout(cage, kResolution);
     auto values = nodeValues(cage, layout, [](glm::vec3 p) { return 0.3f + 0.01f * p.x; });
@@ -56,7 +57,7 @@ TEST(NodeCoding, ASmoothMapFarFromItsMeanCostsAboutOneByteANode) {
     const Coded coded = roundTrip(layout, values, q);
     EXPECT_EQ(coded.bytes[0], 8) << "the corners lean fully on their neighbours";
     EXPECT_EQ(coded.bytes[1], 8) << "so do the interpolated nodes";
-    EXPECT_LT(double(coded.bytes.size()), 1.02 * layout.nodeCount + 2.0);
+    EXPECT_LT(8.0 * double(coded.bytes.size()), double(layout.nodeCount));
     for (size_t n = 0; n < values.size(); ++n)
         ASSERT_LE(std::abs(coded.decoded[n] - values[n]), 0.5f * q.step * 1.001f);
 }
@@ -74,6 +75,11 @@ TEST(NodeCoding, NoiseIsPredictedByItsMean) {
     const Coded coded = roundTrip(layout, values, q);
     EXPECT_LE(coded.bytes[0], 2) << "corner lean, in eighths";
     EXPECT_LE(coded.bytes[1], 4) << "interpolated lean, in eighths";
+    // Unit Gaussian noise quantised at step q costs its differential entropy less log2(q),
+    // log2(sqrt(2πe) / q) bits a value; the coder spends a few hundredths of a bit more, and
+    // each level's probability table (a few hundred bytes for the ~250 symbols of 8 bits).
+    const double entropy = std::log2(std::sqrt(2.0 * M_PI * M_E) / q.step);
+    EXPECT_LT(8.0 * double(coded.bytes.size()), (entropy + 0.15) * layout.nodeCount + 5 * 8 * 300);
     for (size_t n = 0; n < values.size(); ++n)
         ASSERT_LE(std::abs(coded.decoded[n] - values[n]), 0.5f * q.step * 1.001f);
 }
@@ -90,6 +96,38 @@ TEST(NodeCoding, AnImpossibleLeanIsRefused) {
     std::vector<float> decoded(values.size());
     ByteReader in(bytes, "nodes");
     EXPECT_THROW(decodeNodes(layout, decoded, 1, 0, q, in), Error);
+}
+
+TEST(NodeCoding, ADamagedLevelIsRefused) {
+    const auto cage = mesh::makeQuadSphere(4);
+    const auto layout = surface::buildTexelLayout(cage, kResolution);
+    const auto values = nodeValues(cage, layout, [](glm::vec3 p) { return std::sin(4.0f * p.x) + p.y; });
+    const ChannelQuantisation q = quantisationFor(values, 1, 0, 8);
+    ByteWriter out;
+    encodeNodes(layout, values, 1, 0, q, out);
+    auto refusal = [&](std::vector<unsigned char> bytes) {
+        std::vector<float> decoded(values.size());
+        ByteReader in(bytes, "nodes");
+        try {
+            decodeNodes(layout, decoded, 1, 0, q, in);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    // After the two leans, the corners' block: its byte count, then Draco's coding method.
+    const std::vector<unsigned char> good = out.bytes();
+    ASSERT_LT(good[2], 0x80) << "a one-byte count";
+    EXPECT_EQ(refusal(good), "");
+    auto method = good;
+    method[3] = 9;
+    EXPECT_EQ(refusal(method), "nodes: malformed residuals");
+    auto shorter = good;
+    shorter[2] -= 1;
+    EXPECT_NE(refusal(shorter), "");
+    auto truncated = good;
+    truncated.pop_back();
+    EXPECT_EQ(refusal(truncated).rfind("nodes: residual block byte count ", 0), 0u) << refusal(truncated);
 }
 
 }  // namespace

@@ -269,6 +269,21 @@ TEST(SubdFormat, AnythingButAWholeVersionThreeFileIsRefusedInOneLine) {
     expectRefused(garbage, "checksum");
 }
 
+// A file written before the heights were coded level by level (box.subd: version 7, its
+// residuals tile by tile as varints) decodes to the heights it held: the figures are what the
+// build that wrote it decodes (its `decode` .glb and this one's are the same bytes).
+TEST(SubdFormat, AFileCodedTileByTileDecodesToTheHeightsItHeld) {
+    const auto asset = readSubd(std::filesystem::path(SUBDFIT_SOURCE_DIR) / "tests/data/damaged-subd/box.subd");
+    const std::vector<float>& heights = asset.maps.displacement;
+    ASSERT_EQ(asset.maps.layout.resolution, 2);
+    ASSERT_EQ(heights.size(), 26u);
+    EXPECT_NEAR(std::accumulate(heights.begin(), heights.end(), 0.0), -0.127144121, 1e-8);
+    EXPECT_FLOAT_EQ(heights.front(), -0.00503052492f);
+    EXPECT_FLOAT_EQ(heights.back(), -0.00454217475f);
+    EXPECT_FLOAT_EQ(*std::min_element(heights.begin(), heights.end()), -0.00519900583f);
+    EXPECT_FLOAT_EQ(*std::max_element(heights.begin(), heights.end()), -0.0044402387f);
+}
+
 TEST(SubdDecode, WritesTheDisplacedSurfaceAndNothingForABadFile) {
     const auto dir = test::scratchDir("subd_decode");
     const auto cage = mesh::makeQuadSphere(3);
