@@ -645,7 +645,7 @@ BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
     std::vector<std::pair<int, int>> ladder;  // (bits, quality), coarser and coarser
     // Quality in small steps: a JPEG's bytes fall a few per cent a step, and every byte left is
     // detail lost.
-    constexpr int kFewestBits = 6, kLowestQuality = 30, kQualityStep = 5;
+    constexpr int kFewestBits = 3, kLowestQuality = 30, kQualityStep = 5;
     int quality = appearanceQuality;
     if (decoded.maps.hasBaseColor() || decoded.maps.hasMetallicRoughness())
         while (quality - kQualityStep >= kLowestQuality) ladder.emplace_back(mapBits, quality -= kQualityStep);

@@ -34,9 +34,10 @@ struct BudgetSearch {
     int mostGrownFaces = 0;
     maps::MapEffects allowedMaps{maps::MapKind::Displacement, maps::MapKind::NormalMap};
     std::vector<int> mapResolutions{2, 3, 4, 6, 8};
-    // Bits per map value: 8 keeps a height's step under ~1/200 of its range, well below a pixel
-    // at the resolutions fitted; 10 where the budget allows.
-    std::vector<int> mapBits{8, 10};
+    // Bits per map value over its range, fewest first. Four already hold relief within a
+    // fraction of a pixel at the budgets users ask for, and cost about a third of eight's bytes
+    // (docs/simplify.md); more where the loss says they pay.
+    std::vector<int> mapBits{4, 6, 8};
     // A scene with materials: every candidate carries the appearance maps its shading reads
     // (baked, shipped as JPEG), at one of these resolutions and the first of these qualities at
     // which the bare cage fits. More choices make the search several times slower for a tenth
