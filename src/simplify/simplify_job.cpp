@@ -17,6 +17,7 @@
 #include "simplify/bake/bake.h"
 #include "simplify/compare/baselines.h"
 #include "simplify/budget_search.h"
+#include "simplify/candidate_choice.h"
 #include "simplify/compare/comparison_image.h"
 #include "simplify/cage/initial_cage.h"
 #include "simplify/simplify_plan.h"
@@ -49,15 +50,16 @@ nlohmann::json shippedFiles(const std::map<std::string, std::uintmax_t>& exports
     return {{"asset.subd", exports.at("asset.subd")}};
 }
 
-// The fitted cage, as shipped (asset.subd): held-out scores and, with a full comparison, its
-// surface distance.
-Quality scoreCage(fit::FitRun& run, const fit::FitReport& fitted, const std::filesystem::path& out,
-                  const SimplifyOptions& o) {
+// The fitted cage as it ships: asset.subd decoded (its positions and maps at the bits they were
+// coded with) drawn on the held-out views, and with a full comparison its surface distance.
+Quality scoreCage(gl::ProgramCache& programs, fit::FitRun& run, const fit::FitReport& fitted,
+                  const std::filesystem::path& out, const SimplifyOptions& o) {
     Quality ours;
     ours.files = shippedFiles(fitted.exports);
     ours.bytes = totalBytes(ours.files);
     ours.shipped = "asset.subd";
-    setHoldout(fitted.holdoutAfter, ours);  // the fitted state, as asset.subd holds it
+    const auto shipped = drawnAsFitted(programs, run.scene(), codec::readSubd(out / "asset.subd"));
+    setHoldout(fit::scoreHoldout(*shipped, run.scene().holdout), ours);
     if (o.compare == CompareLevel::Full)
         ours.distance = shippedDistance(out / "asset.subd", run.fitter().renderer().tessLevel(), run.scene().frame,
                                         run.scene().reference, o.surfaceSamples);
@@ -288,7 +290,7 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
     mesh::writeObj(in.staged / "initial_cage.obj", cage);
     writeWithinBudget(run, plan, in);
     stages.lap("exports");
-    report.subdfit = scoreCage(run, *report.fit, in.staged, options);
+    report.subdfit = scoreCage(in.programs, run, *report.fit, in.staged, options);
     stages.lap("metrics");
     if (!budget) {
         triangles = triangleBaselines(in.programs, in.scene, report.subdfit.bytes, in.baselines, options.compare);
