@@ -644,12 +644,14 @@ BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
     const codec::SubdAsset decoded = codec::readSubd(subd);
     std::vector<std::pair<int, int>> ladder;  // (bits, quality), coarser and coarser
     // Quality in small steps: a JPEG's bytes fall a few per cent a step, and every byte left is
-    // detail lost.
-    constexpr int kFewestBits = 3, kLowestQuality = 30, kQualityStep = 5;
+    // detail lost. Map bits two fewer at most, and never below the ladder's fewest: coarser maps
+    // than any the search judged could lose to the bake that fits.
+    constexpr int kLowestQuality = 30, kQualityStep = 5;
+    const int fewestBits = std::max(mapBits - 2, 4);
     int quality = appearanceQuality;
     if (decoded.maps.hasBaseColor() || decoded.maps.hasMetallicRoughness())
         while (quality - kQualityStep >= kLowestQuality) ladder.emplace_back(mapBits, quality -= kQualityStep);
-    for (int bits = mapBits - 1; bits >= kFewestBits; --bits) ladder.emplace_back(bits, quality);
+    for (int bits = mapBits - 1; bits >= fewestBits; --bits) ladder.emplace_back(bits, quality);
     for (size_t k = 0; k < ladder.size(); ++k) {
         precision = codec::SubdPrecision::forMapBits(ladder[k].first, ladder[k].second, positionBits);
         const auto encoded = codec::encodeSubd(

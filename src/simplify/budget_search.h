@@ -119,7 +119,7 @@ struct BudgetShipment {
 // The fitted maps code differently from the baked ones the search measured (and the search
 // does not weigh the appearance maps): when `subd` (`bytes` as written) comes out over `budget`,
 // it is written again with the appearance images at a lower JPEG quality, then with the heights
-// and normals at fewer bits, until it fits or the ladder ends.
+// and normals at up to two fewer bits (none below 4), until it fits or the ladder ends.
 BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t bytes, std::uintmax_t budget,
                                 int mapBits, int positionBits, int appearanceQuality);
 
