@@ -24,7 +24,8 @@ void printSummary(const subdfit::fit::FitReport& r) {
     std::fprintf(stderr, "done: %d steps in %.1f s", r.steps, r.seconds);
     if (r.trainBefore && r.trainAfter)
         std::fprintf(stderr, ", loss %.4e -> %.4e", r.trainBefore->loss, r.trainAfter->loss);
-    std::fprintf(stderr, ", held-out PSNR %.2f -> %.2f dB\n", r.holdoutBefore.psnr, r.holdoutAfter.psnr);
+    std::fprintf(stderr, ", held-out PSNR as fitted (before coding) %.2f -> %.2f dB\n", r.holdoutBefore.psnr,
+                 r.holdoutAfter.psnr);
 }
 
 void printComparison(const subdfit::simplify::SimplifyReport& r) {

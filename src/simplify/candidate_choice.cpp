@@ -55,24 +55,6 @@ bool clearlyAhead(const std::vector<Fitting*>& near, int monitorViews, size_t vi
 
 }  // namespace
 
-std::unique_ptr<fit::CageFitter> drawnAsFitted(gl::ProgramCache& programs, const fit::FitScene& scene,
-                                               const codec::SubdAsset& shipped) {
-    mesh::PolygonMesh cage = shipped.cage;
-    cage.positions = scene.frame.toNormalized(cage.positions);
-    surface::SurfaceMaps maps = shipped.maps;
-    for (float& d : maps.displacement) d *= scene.frame.scale;
-    fit::CageFitSettings rendering;
-    rendering.shading = scene.shading;
-    rendering.mapEffects = maps.kinds();
-    rendering.maps.resolution = std::max(maps.layout.resolution, 1);
-    rendering.maps.appearanceResolution = std::max(maps.appearanceLayout.resolution, 1);
-    rendering.maps.appearanceAtlas = maps.appearanceAtlas.size;
-    rendering.maps.shadingNormal = maps.shadingNormal;
-    auto fitter = std::make_unique<fit::CageFitter>(programs, cage, rendering);
-    fit::writeMaps(*fitter, maps);
-    return fitter;
-}
-
 double monitored(const BudgetCandidate& c) { return c.monitorLoss; }
 double settled(const BudgetCandidate& c) { return c.settledLoss; }
 

@@ -14,6 +14,7 @@
 #include "gl/program_cache.h"
 #include "mesh/polygon_mesh.h"
 #include "simplify/budget_candidate.h"
+#include "simplify/compare/quality.h"
 
 namespace subdfit::simplify {
 
@@ -54,10 +55,6 @@ const Fitting* lowestOf(const std::vector<Fitting>& fitting, const Keep& keep, L
 // Of those `keep` accepts, the fewest bytes within kLossTolerance of the lowest `loss` that save
 // kBytesPerLoss times the loss they give up.
 const Fitting* preferred(const std::vector<Fitting>& fitting, const Keep& keep, LossOf loss);
-
-// The decoded candidate in a fitter of its own, drawn as the fit would draw it.
-std::unique_ptr<fit::CageFitter> drawnAsFitted(gl::ProgramCache& programs, const fit::FitScene& scene,
-                                               const codec::SubdAsset& shipped);
 
 // The training cameras drawn as `choosing` is (fit::kViewerSupersampling), in settling order, a
 // block of kSettleBlock at a time as the settling asks for them: most settlings end within a few

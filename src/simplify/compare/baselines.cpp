@@ -297,21 +297,12 @@ Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, con
                  {"position_bits", route.positionBits},
                  {"shading_normal", nameOf(route.shadingNormal)}};
 
-    // Rendered by the fitter's own renderer with the baked values in its map groups.
-    fit::CageFitSettings rendering;
-    rendering.mapEffects = effects;
-    rendering.shading = scene.shading;
-    rendering.maps.resolution = mapResolution;
-    rendering.maps.appearanceResolution = route.appearanceResolution;
-    rendering.maps.appearanceAtlas = effects.appearance() ? route.appearanceAtlas : 0;
-    rendering.maps.shadingNormal = route.shadingNormal;
-    rendering.tessLevel = settings.segments;
-    fit::CageFitter bakedScene(programs, cage, rendering);
-    fit::writeMaps(bakedScene, baked);
+    // Drawn as it ships: the file decoded (positions and maps at their bits), by the fitter's
+    // own renderer.
+    const auto shipped = drawnAsFitted(programs, scene, codec::readSubd(dir / "asset.subd"), settings.segments);
     scoreHoldout(
         scene.holdout,
-        [&](const render::Camera& camera, const render::RenderTarget& target) { bakedScene.render(camera, target); },
-        q);
+        [&](const render::Camera& camera, const render::RenderTarget& target) { shipped->render(camera, target); }, q);
     if (settings.distance)
         q.distance = shippedDistance(dir / "asset.subd", settings.segments, scene.frame, scene.reference,
                                      settings.surfaceSamples);

@@ -1,6 +1,7 @@
 #include "simplify/compare/quality.h"
 
 #include "codec/subd_format.h"
+#include "fit/fit_run.h"
 #include "fit/fit_scene.h"
 #include "fit/image_metrics.h"
 #include "surface/tessellation.h"
@@ -40,6 +41,25 @@ void setHoldout(const fit::HoldoutScore& score, Quality& quality) {
 
 void scoreHoldout(const scene::TargetSet& holdout, const DrawFunction& draw, Quality& quality) {
     setHoldout(fit::scoreHoldout(holdout, draw), quality);
+}
+
+std::unique_ptr<fit::CageFitter> drawnAsFitted(gl::ProgramCache& programs, const fit::FitScene& scene,
+                                               const codec::SubdAsset& shipped, int tessLevel) {
+    mesh::PolygonMesh cage = shipped.cage;
+    cage.positions = scene.frame.toNormalized(cage.positions);
+    surface::SurfaceMaps maps = shipped.maps;
+    for (float& d : maps.displacement) d *= scene.frame.scale;
+    fit::CageFitSettings rendering;
+    rendering.shading = scene.shading;
+    rendering.mapEffects = maps.kinds();
+    rendering.maps.resolution = std::max(maps.layout.resolution, 1);
+    rendering.maps.appearanceResolution = std::max(maps.appearanceLayout.resolution, 1);
+    rendering.maps.appearanceAtlas = maps.appearanceAtlas.size;
+    rendering.maps.shadingNormal = maps.shadingNormal;
+    if (tessLevel > 0) rendering.tessLevel = tessLevel;
+    auto fitter = std::make_unique<fit::CageFitter>(programs, cage, rendering);
+    fit::writeMaps(*fitter, maps);
+    return fitter;
 }
 
 geometry::SurfaceDistance worldDistance(const mesh::PolygonMesh& candidate, const mesh::PolygonMesh& reference,

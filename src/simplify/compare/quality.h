@@ -5,14 +5,19 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include <glm/vec4.hpp>
 #include <nlohmann/json.hpp>
 
+#include "codec/subd_format.h"
+#include "fit/cage_fitter.h"
 #include "fit/fit_report.h"
+#include "fit/fit_scene.h"
 #include "geometry/surface_distance.h"
+#include "gl/program_cache.h"
 #include "render/camera.h"
 #include "render/render_target.h"
 #include "scene/scene_frame.h"
@@ -54,6 +59,11 @@ using DrawFunction = std::function<void(const render::Camera&, const render::Ren
 void scoreHoldout(const scene::TargetSet& holdout, const DrawFunction& draw, Quality& quality);
 // The same from a score already taken (a fit's own).
 void setHoldout(const fit::HoldoutScore& score, Quality& quality);
+
+// A decoded asset.subd in a fitter of its own (the scene's normalised frame), drawn as the fit
+// draws; `tessLevel` 0: the fitter's default.
+std::unique_ptr<fit::CageFitter> drawnAsFitted(gl::ProgramCache& programs, const fit::FitScene& scene,
+                                               const codec::SubdAsset& shipped, int tessLevel = 0);
 
 // Surface distance of `candidate` (triangles, normalised frame) to `reference` (same), reported
 // in world units.
