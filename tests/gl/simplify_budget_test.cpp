@@ -407,6 +407,28 @@ TEST(SimplifyBudget, AFitCodedOverTheBudgetShipsItsBake) {
     }
 }
 
+// The fit and its bake weighed again as they ship (asset.subd decoded): at 600 bytes on
+// catmark_chaikin2 the fit leads before coding and trails once its heights are coded at 4 bits,
+// so the bake ships; at 900 bytes it leads both ways and ships.
+TEST(SimplifyBudget, TheFitShipsOnlyWhereItLeadsItsBakeAsCoded) {
+    const auto dir = scratchDir("simplify_budget_as_coded");
+    for (const std::uintmax_t budget : {600u, 900u}) {
+        const fs::path out = dir / std::to_string(budget);
+        simplify::SimplifyOptions o = smallSimplify(assetPath("osd-shapes/catmark_chaikin2.obj"), out, 60);
+        o.budget = budget;
+        o.compare = simplify::CompareLevel::None;
+        const auto report = simplify::toJson(simplify::runSimplify(o));
+        const auto& verdict = report["fit_verdict"];
+        ASSERT_TRUE(verdict.contains("shipped_choosing_loss")) << verdict.dump();
+        EXPECT_LT(verdict["choosing_loss"]["fit"].get<double>(), verdict["choosing_loss"]["bake"].get<double>());
+        const double fit = verdict["shipped_choosing_loss"]["fit"], bake = verdict["shipped_choosing_loss"]["bake"];
+        EXPECT_EQ(verdict["shipped"], fit < bake ? "fit" : "bake") << verdict.dump();
+        EXPECT_EQ(verdict["shipped"], budget == 600u ? "bake" : "fit") << verdict.dump();
+        EXPECT_EQ(fs::file_size(out / "asset.subd"), report["bytes"].get<std::uintmax_t>());
+        EXPECT_LE(report["bytes"].get<std::uintmax_t>(), budget);
+    }
+}
+
 TEST(SimplifyBudget, ABudgetNoCageFitsIsRefusedNamingTheReference) {
     const auto dir = scratchDir("simplify_budget_tiny");
     mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 3));
