@@ -11,6 +11,7 @@
 #include <draco/compression/entropy/symbol_encoding.h>
 #include <draco/core/decoder_buffer.h>
 #include <draco/core/encoder_buffer.h>
+#include <zstd.h>
 
 namespace subdfit::codec {
 namespace {
@@ -131,28 +132,79 @@ int passCount(int resolution) { return codingOrder(resolution).back().pass + 1; 
 std::uint32_t zigzag(std::int64_t r) { return std::uint32_t((std::uint64_t(r) << 1) ^ std::uint64_t(r >> 63)); }
 std::int64_t unzigzag(std::uint32_t z) { return std::int64_t(z >> 1) ^ -std::int64_t(z & 1); }
 
-// One pass's residuals (zigzag-mapped) as a byte count and Draco's entropy-coded block.
-void putBlock(const std::vector<std::uint32_t>& symbols, ByteWriter& out) {
-    draco::EncoderBuffer block;
-    if (!symbols.empty() && !draco::EncodeSymbols(symbols.data(), int(symbols.size()), 1, nullptr, &block))
-        throw Error("a map's residuals could not be entropy-coded");
-    out.putVarint(block.size());
-    out.putBytes({reinterpret_cast<const unsigned char*>(block.data()), block.size()});
+// Each pass's residuals (zigzag-mapped) are either Draco's entropy coding of them or plain
+// varints, which the section's zstd then packs: the varints where they pack smaller (a few dozen
+// nodes, whose probability table costs more than it saves; packed alone as the section packs
+// them, up to 64 KB, beyond which the tables are a small part). `varint mask` (bit p: pass p is
+// entropy-coded) comes first; an entropy-coded pass is `varint n` and its n bytes, a plain one
+// its count's varints.
+double packedBytes(ByteWriter& varints) {
+    const std::vector<unsigned char>& bytes = varints.bytes();
+    if (bytes.size() > 65536) return double(bytes.size());
+    std::vector<unsigned char> frame(ZSTD_compressBound(bytes.size()));
+    const std::size_t packed = ZSTD_compress(frame.data(), frame.size(), bytes.data(), bytes.size(), 19);
+    return ZSTD_isError(packed) ? double(bytes.size()) : double(packed);
 }
 
-void getBlock(ByteReader& in, std::size_t count, std::vector<std::uint32_t>& symbols) {
-    const auto block = in.take(in.getCount(1, "residual block byte"));
-    if (count == 0) {
-        if (!block.empty()) throw Error(in.what() + ": residuals for a level without nodes");
-        return;
+void putPasses(const std::vector<std::vector<std::uint32_t>>& passes, ByteWriter& out) {
+    std::vector<ByteWriter> plain(passes.size()), coded(passes.size());
+    ByteWriter allPlain;
+    std::uint64_t mask = 0;
+    for (size_t p = 0; p < passes.size(); ++p) {
+        for (const std::uint32_t z : passes[p]) plain[p].putVarint(z);
+        allPlain.putBytes(plain[p].bytes());
+        draco::EncoderBuffer symbols;
+        if (!passes[p].empty() && !draco::EncodeSymbols(passes[p].data(), int(passes[p].size()), 1, nullptr, &symbols))
+            throw Error("a map's residuals could not be entropy-coded");
+        if (passes[p].empty() || packedBytes(plain[p]) <= double(symbols.size())) continue;
+        mask |= std::uint64_t(1) << p;
+        coded[p].putVarint(symbols.size());
+        coded[p].putBytes({reinterpret_cast<const unsigned char*>(symbols.data()), symbols.size()});
     }
+    // A small map's passes pack better together than apart: all plain where that is smaller.
+    double mixed = 0.0;
+    ByteWriter plainPasses;
+    for (size_t p = 0; p < passes.size(); ++p)
+        if (mask >> p & 1) mixed += double(coded[p].bytes().size());
+        else plainPasses.putBytes(plain[p].bytes());
+    if (packedBytes(allPlain) <= mixed + packedBytes(plainPasses)) mask = 0;
+    out.putVarint(mask);
+    for (size_t p = 0; p < passes.size(); ++p) out.putBytes((mask >> p & 1 ? coded[p] : plain[p]).bytes());
+}
+
+void getEntropyCoded(ByteReader& in, std::size_t count, std::uint32_t* symbols) {
+    const std::uint64_t bytes = in.getVarint();
+    if (bytes > in.remaining())
+        throw Error(in.what() + ": a residual block of " + std::to_string(bytes) + " bytes exceeds the data");
+    const auto block = in.take(std::size_t(bytes));
     draco::DecoderBuffer buffer;  // the symbols' coding as Draco's current bitstream writes it
     buffer.Init(reinterpret_cast<const char*>(block.data()), block.size(), draco::kDracoMeshBitstreamVersion);
-    const size_t at = symbols.size();
-    symbols.resize(at + count);
-    if (!draco::DecodeSymbols(std::uint32_t(count), 1, &buffer, symbols.data() + at))
+    if (!draco::DecodeSymbols(std::uint32_t(count), 1, &buffer, symbols))
         throw Error(in.what() + ": malformed residuals");
     if (buffer.remaining_size() != 0) throw Error(in.what() + ": bytes left over in a level's residuals");
+}
+
+// Every node's residual, level by level; `counts` the nodes of each pass.
+std::vector<std::uint32_t> getPasses(ByteReader& in, const std::vector<std::size_t>& counts) {
+    const std::uint64_t mask = in.getVarint();
+    if (counts.size() < 64 && (mask >> counts.size()) != 0)
+        throw Error(in.what() + ": residuals for passes it has not");
+    std::vector<std::uint32_t> symbols;
+    for (size_t p = 0; p < counts.size(); ++p) {
+        const size_t at = symbols.size();
+        if (mask >> p & 1) {
+            if (counts[p] == 0) throw Error(in.what() + ": residuals for a level without nodes");
+            symbols.resize(at + counts[p]);
+            getEntropyCoded(in, counts[p], symbols.data() + at);
+            continue;
+        }
+        for (size_t k = 0; k < counts[p]; ++k) {
+            const std::uint64_t z = in.getVarint();
+            if (z > std::numeric_limits<std::uint32_t>::max()) throw Error(in.what() + ": a residual out of range");
+            symbols.push_back(std::uint32_t(z));
+        }
+    }
+    return symbols;
 }
 
 // Predictions lean from the channel's center towards what the neighbours say by lean / kLeanSteps:
@@ -219,7 +271,7 @@ void encodeNodes(const surface::TexelLayout& layout, std::span<const float> valu
         passes[size_t(pass)].push_back(zigzag(std::int64_t(residual)));
         decoded[size_t(node)] = prediction + float(residual * q.step);
     });
-    for (const auto& symbols : passes) putBlock(symbols, out);
+    putPasses(passes, out);
 }
 
 void decodeNodes(const surface::TexelLayout& layout, std::span<float> values, int stride, int channel,
@@ -232,8 +284,7 @@ void decodeNodes(const surface::TexelLayout& layout, std::span<float> values, in
     if (stream == NodeStream::LevelBlocks) {
         std::vector<std::size_t> counts(size_t(passCount(layout.resolution)), 0);
         forEachNode(layout, stream, [&](int, const Predictors&, int pass) { ++counts[size_t(pass)]; });
-        residuals.reserve(size_t(layout.nodeCount));
-        for (std::size_t count : counts) getBlock(in, count, residuals);
+        residuals = getPasses(in, counts);
     }
     size_t next = 0;
     std::vector<float> decoded(size_t(layout.nodeCount), 0.0f);
