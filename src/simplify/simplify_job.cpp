@@ -259,6 +259,7 @@ void writeWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInpu
     std::optional<FitVerdict>& verdict = in.report.fitVerdict;
     const bool fits = writeCoded(run, plan, in);
     if (!verdict || !verdict->fitShips) return;
+    const std::uintmax_t fittedBytes = in.report.budget ? in.report.budget->shipped.bytes : 0;
     fit::CageFitter& fitter = run.fitter();
     const fit::CageFitter::State fitted = fitter.state();
     const surface::SurfaceMaps fittedMaps = fitter.surfaceMaps();
@@ -267,7 +268,7 @@ void writeWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInpu
     writeCoded(run, plan, in);
     if (!fits) {
         verdict->fitShips = false;
-        verdict->overBudgetBytes = in.report.budget->shipped.bytes;
+        verdict->overBudgetBytes = fittedBytes;
         if (in.hooks.note)
             in.hooks.note("the fitted asset codes to " + std::to_string(verdict->overBudgetBytes) +
                           " bytes, over the budget: its bake ships");
