@@ -402,37 +402,49 @@ void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& ca
     }
 }
 
+// The maps and appearance of `kind` (a candidate judged on another cage, or on this one) baked
+// onto `normalized`, as the search bakes every candidate.
+struct BakedLike {
+    surface::SurfaceMaps maps;
+    MapRecipe recipe;
+    Appearance appearance;
+};
+
+BakedLike bakeLike(const SearchInputs& in, Findings& found, const mesh::PolygonMesh& normalized,
+                   const BudgetCandidate& kind) {
+    TimedStage timed(found.phases, "bake");
+    BakedLike baked{.recipe = {.effects = kind.maps, .resolution = kind.mapResolution, .bits = kind.mapBits},
+                    .appearance = {.quality = kind.appearanceQuality}};
+    if (kind.appearanceResolution > 0 || kind.appearanceAtlas > 0)
+        baked.appearance.maps = bakeAppearance(
+            normalized, in.scene.reference,
+            {.effects = in.search.appearance, .resolution = kind.appearanceResolution, .atlas = kind.appearanceAtlas});
+    if (kind.maps.any())
+        baked.maps = bakeMaps(normalized, in.scene.reference, {.effects = kind.maps, .resolution = kind.mapResolution});
+    return baked;
+}
+
 // Phase four: the best so far (of those `keep` takes) with its cage's positions at fewer bits,
-// re-encoded from what it shipped as, finest first, while the loss stays within kLossTolerance
-// of the 14-bit one: the bytes saved are what phase five grows the cage with.
+// its maps baked again (not the decoded ones: coded twice, they would lose more than the bits
+// say), finest first, while the loss stays within kLossTolerance of the 14-bit one: the bytes
+// saved are what phase five grows the cage with.
 template <class Keep>
 void fewerPositionBits(const SearchInputs& in, Findings& found, const Keep& keep) {
     const Fitting* best = preferred(found.fitting, keep, monitored);
     if (!best) return;
-    const BudgetCandidate start = best->candidate;
-    const codec::SubdAsset shipped = codec::decodeSubd(*best->encoded, "budget candidate");
-    const auto cageWorld = std::make_shared<const mesh::PolygonMesh>(shipped.cage);
+    const BudgetCandidate start = best->candidate;  // judging adds to found.fitting: `best` moves
+    const std::shared_ptr<const mesh::PolygonMesh> cageWorld = best->cageWorld;
+    std::optional<BakedLike> baked;
     for (int bits : kFewerPositionBits) {
         if (bits >= start.positionBits) continue;
         throwIfStopRequested();
-        std::optional<TimedStage> timed(std::in_place, found.phases, "encode");
-        const auto precision = precisionOf(start.mapBits, start.appearanceQuality, bits);
-        const auto encoded = std::make_shared<const std::vector<unsigned char>>(codec::encodeSubd(
-            codec::shippableAsset(shipped.cage, shipped.maps, bits, shipped.decodeTriangles), precision));
-        BudgetCandidate c = start;
-        c.positionBits = bits;
-        c.bytes = encoded->size();
-        c.monitorLoss = c.settledLoss = 0.0;
-        c.settledViews = 0;
-        const bool within = fits(in.search, c);
-        if (within) {
-            timed.emplace(found.phases, "render");
-            const auto drawn = drawnAsFitted(in.programs, in.scene, codec::decodeSubd(*encoded, "budget candidate"));
-            c.monitorLoss = fit::score(*drawn, in.scene.choosing(in.programs)).loss;
+        if (!baked) {
+            mesh::PolygonMesh normalized = *cageWorld;
+            normalized.positions = in.scene.frame.toNormalized(normalized.positions);
+            baked = bakeLike(in, found, normalized, start);
         }
-        const bool kept = within && c.monitorLoss <= (1.0 + kLossTolerance) * start.monitorLoss;
-        record(in, found, c, kept ? cageWorld : nullptr, encoded);
-        if (!kept) break;
+        const BudgetCandidate c = judge(in, found, cageWorld, baked->maps, baked->recipe, baked->appearance, bits);
+        if (!fits(in.search, c) || c.monitorLoss > (1.0 + kLossTolerance) * start.monitorLoss) break;
     }
 }
 
@@ -498,19 +510,9 @@ void growBest(const SearchInputs& in, Findings& found, const Keep& keep, CageSha
         }();
         if (!cage) break;
         builtPerAsked = double(cage->world->faceCount()) / asked;
-        Appearance appearance;
-        appearance.quality = best.appearanceQuality;
-        if (best.appearanceResolution > 0 || best.appearanceAtlas > 0)
-            appearance.maps = bakeAppearance(cage->normalized, in.scene.reference,
-                                             {.effects = in.search.appearance,
-                                              .resolution = best.appearanceResolution,
-                                              .atlas = best.appearanceAtlas});
-        const surface::SurfaceMaps baked = best.maps.any()
-                                               ? bakeMaps(cage->normalized, in.scene.reference,
-                                                          {.effects = best.maps, .resolution = best.mapResolution})
-                                               : surface::SurfaceMaps{};
-        const MapRecipe recipe{.effects = best.maps, .resolution = best.mapResolution, .bits = best.mapBits};
-        const BudgetCandidate grown = judge(in, found, cage->world, baked, recipe, appearance, best.positionBits);
+        const BakedLike baked = bakeLike(in, found, cage->normalized, best);
+        const BudgetCandidate grown =
+            judge(in, found, cage->world, baked.maps, baked.recipe, baked.appearance, best.positionBits);
         if (fits(in.search, grown)) {                                // on from it while bytes are left
             if (grown.bytes > fromBytes && grown.faces > fromFaces)  // the exponent as this growth measured it
                 exponent = std::clamp(std::log(double(grown.bytes) / double(fromBytes)) /

@@ -32,6 +32,15 @@ std::vector<float> nodeValues(const mesh::PolygonMesh& cage, const surface::Texe
     return values;
 }
 
+// Unit Gaussian noise, one value per node of `layout`.
+std::vector<float> unitNoise(const surface::TexelLayout& layout, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<float> noise(0.0f, 1.0f);
+    std::vector<float> values(size_t(layout.nodeCount));
+    for (float& v : values) v = noise(rng);
+    return values;
+}
+
 struct Coded {
     std::vector<unsigned char> bytes;
     std::vector<float> decoded;
@@ -74,10 +83,7 @@ TEST(NodeCoding, NoiseIsPredictedByItsMean) {
     // noise to every residual.
     const auto cage = mesh::makeQuadSphere(16);
     const auto layout = surface::buildTexelLayout(cage, kResolution);
-    std::mt19937 rng(3);
-    std::normal_distribution<float> noise(0.0f, 1.0f);
-    std::vector<float> values(size_t(layout.nodeCount));
-    for (float& v : values) v = noise(rng);
+    const std::vector<float> values = unitNoise(layout, 3);
     const ChannelQuantisation q = quantisationFor(values, 1, 0, 8);
     const Coded coded = roundTrip(layout, values, q);
     EXPECT_LE(coded.bytes[0], 2) << "corner lean, in eighths";
@@ -109,10 +115,7 @@ TEST(NodeCoding, ADamagedLevelIsRefused) {
     // Noise: every pass entropy-coded (its varints would pack larger).
     const auto cage = mesh::makeQuadSphere(32);
     const auto layout = surface::buildTexelLayout(cage, kResolution);
-    std::mt19937 rng(5);
-    std::normal_distribution<float> noise(0.0f, 1.0f);
-    std::vector<float> values(size_t(layout.nodeCount));
-    for (float& v : values) v = noise(rng);
+    const std::vector<float> values = unitNoise(layout, 5);
     const ChannelQuantisation q = quantisationFor(values, 1, 0, 8);
     ByteWriter out;
     encodeNodes(layout, values, 1, 0, q, out);
