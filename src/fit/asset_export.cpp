@@ -10,10 +10,24 @@
 
 namespace subdfit::fit {
 
-nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene::SceneFrame& frame,
-                           const mesh::PolygonMesh& fittedWorld, std::uint32_t referenceTriangles) {
+namespace {
+
+surface::SurfaceMaps worldMaps(CageFitter& fitter, const scene::SceneFrame& frame) {
     surface::SurfaceMaps maps = fitter.surfaceMaps();
     for (float& d : maps.displacement) d /= frame.scale;  // heights back to world units
+    return maps;
+}
+
+}  // namespace
+
+codec::SubdAsset shippableState(const FitOptions& o, CageFitter& fitter, const scene::SceneFrame& frame,
+                                const mesh::PolygonMesh& fittedWorld, std::uint32_t referenceTriangles) {
+    return codec::shippableAsset(fittedWorld, worldMaps(fitter, frame), o.positionBits, referenceTriangles);
+}
+
+nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene::SceneFrame& frame,
+                           const mesh::PolygonMesh& fittedWorld, std::uint32_t referenceTriangles) {
+    const surface::SurfaceMaps maps = worldMaps(fitter, frame);
     std::vector<io::WrittenFile> written;
     if (fitter.maps()) written = exporter::writeMapAtlases(o.out, maps, {.compact = o.compactMaps});
     if (o.preview)

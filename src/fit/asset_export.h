@@ -9,11 +9,18 @@
 
 #include <nlohmann/json.hpp>
 
+#include "codec/subd_format.h"
 #include "fit/cage_fitter.h"
 #include "fit/fit_options.h"
 #include "scene/scene_frame.h"
 
 namespace subdfit::fit {
+
+// What asset.subd codes of `fitter`'s state, before coding: the cage as fitted (`fittedWorld`,
+// world units) and the maps on it, heights in world units, laid out on the cage as it decodes at
+// options.positionBits.
+codec::SubdAsset shippableState(const FitOptions& options, CageFitter& fitter, const scene::SceneFrame& frame,
+                                const mesh::PolygonMesh& fittedWorld, std::uint32_t referenceTriangles);
 
 // Returns {file name: bytes} of everything written (each file atomically). asset.subd records
 // `referenceTriangles` as what it decodes to by default.

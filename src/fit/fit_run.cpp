@@ -368,6 +368,16 @@ void FitRun::applyStep() {
     fitter_->setVertexRateFactor(schedule.vertexRateScale() / schedule.learningRateScale());
 }
 
+mesh::PolygonMesh FitRun::fittedWorld() const {
+    mesh::PolygonMesh world = scene_.cageWorld;
+    world.positions = scene_.frame.toWorld(fitter_->vertices());
+    return world;
+}
+
+codec::SubdAsset FitRun::shippable() {
+    return shippableState(options_, *fitter_, scene_.frame, fittedWorld(), std::uint32_t(scene_.reference.faceCount()));
+}
+
 FitReport FitRun::writeResults(const std::filesystem::path& out, const context::GlContext& context) {
     FitReport r;
     r.options = options_;
@@ -401,8 +411,7 @@ FitReport FitRun::writeResults(const std::filesystem::path& out, const context::
 
     // Outputs only now that everything has worked; each file appears whole or not at all.
     std::filesystem::create_directories(out);
-    mesh::PolygonMesh fittedWorld = scene_.cageWorld;
-    fittedWorld.positions = scene_.frame.toWorld(fitter_->vertices());
+    const mesh::PolygonMesh fittedWorld = this->fittedWorld();
     mesh::writeObj(out / "cage.obj", fittedWorld);
     FitOptions exportOptions = options_;
     exportOptions.out = out;

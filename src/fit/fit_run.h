@@ -13,6 +13,7 @@
 #include <glm/vec4.hpp>
 
 #include "context/gl_context.h"
+#include "codec/subd_format.h"
 #include "fit/cage_fitter.h"
 #include "fit/fit_report.h"
 #include "fit/fit_scene.h"
@@ -122,6 +123,9 @@ public:
     // is the caller's to write: toJson(report), plus what it adds.
     FitReport writeResults(const std::filesystem::path& out, const context::GlContext& context);
 
+    // What writeResults codes into asset.subd, before coding (fit::shippableState).
+    codec::SubdAsset shippable();
+
     // How long the plateau schedule's windows grow (StepSchedule's `windowDoublings`).
     void setWindowDoublings(int doublings) { windowDoublings_ = doublings; }
 
@@ -135,6 +139,7 @@ public:
     gl::ProgramCache& programs() { return programs_; }
 
 private:
+    mesh::PolygonMesh fittedWorld() const;  // the cage as fitted, in world units
     // The schedule's step onto the fitter: the stage's for every group, times the cage's carried halvings for the vertices.
     void applyStep();
 

@@ -638,12 +638,9 @@ std::vector<int> atlasSizesFor(const mesh::PolygonMesh& reference) {
     return sizes;
 }
 
-BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t bytes, std::uintmax_t budget,
-                                int mapBits, int positionBits, int appearanceQuality) {
+BudgetShipment shipWithinBudget(const codec::SubdAsset& asset, const std::filesystem::path& subd, std::uintmax_t bytes,
+                                std::uintmax_t budget, int mapBits, int positionBits, int appearanceQuality) {
     auto precision = codec::SubdPrecision::forMapBits(mapBits, appearanceQuality, positionBits);
-    auto shipment = [&] { return BudgetShipment{precision.displacementBits, precision.appearanceQuality, bytes}; };
-    if (bytes <= budget) return shipment();
-    const codec::SubdAsset decoded = codec::readSubd(subd);
     std::vector<std::pair<int, int>> ladder;  // (bits, quality), coarser and coarser
     // Quality in small steps: a JPEG's bytes fall a few per cent a step, and every byte left is
     // detail lost. Map bits two fewer at most, and never below the ladder's fewest: coarser maps
@@ -651,20 +648,18 @@ BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_
     constexpr int kLowestQuality = 30, kQualityStep = 5;
     const int fewestBits = std::max(mapBits - 2, 4);
     int quality = appearanceQuality;
-    if (decoded.maps.hasBaseColor() || decoded.maps.hasMetallicRoughness())
+    if (asset.maps.hasBaseColor() || asset.maps.hasMetallicRoughness())
         while (quality - kQualityStep >= kLowestQuality) ladder.emplace_back(mapBits, quality -= kQualityStep);
     for (int bits = mapBits - 1; bits >= fewestBits; --bits) ladder.emplace_back(bits, quality);
     for (size_t k = 0; k < ladder.size(); ++k) {
         precision = codec::SubdPrecision::forMapBits(ladder[k].first, ladder[k].second, positionBits);
-        const auto encoded = codec::encodeSubd(
-            codec::shippableAsset(decoded.cage, decoded.maps, precision.positionBits, decoded.decodeTriangles),
-            precision);
+        const auto encoded = codec::encodeSubd(asset, precision);
         if (encoded.size() <= budget || k + 1 == ladder.size()) {
             bytes = io::writeBytes(subd, encoded).bytes;
             if (bytes <= budget) break;
         }
     }
-    return shipment();
+    return {precision.displacementBits, precision.appearanceQuality, bytes};
 }
 
 nlohmann::json toJson(const BudgetReport& report) {

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "codec/subd_format.h"
 #include "fit/fit_scene.h"
 #include "gl/program_cache.h"
 #include "maps/map_effects.h"
@@ -117,11 +118,13 @@ struct BudgetShipment {
 };
 
 // The fitted maps code differently from the baked ones the search measured (and the search
-// does not weigh the appearance maps): when `subd` (`bytes` as written) comes out over `budget`,
-// it is written again with the appearance images at a lower JPEG quality, then with the heights
-// and normals at up to two fewer bits (none below 4), until it fits or the ladder ends.
-BudgetShipment shipWithinBudget(const std::filesystem::path& subd, std::uintmax_t bytes, std::uintmax_t budget,
-                                int mapBits, int positionBits, int appearanceQuality);
+// does not weigh the appearance maps): where `subd` (`bytes` as written at `mapBits` and
+// `appearanceQuality`) is over `budget`, `asset` (what it codes, before coding:
+// fit::shippableState; not the file decoded, which would be quantised twice) is coded into it
+// again with the appearance images at a lower JPEG quality, then with the heights and normals at
+// up to two fewer bits (none below 4), until it fits or the ladder ends.
+BudgetShipment shipWithinBudget(const codec::SubdAsset& asset, const std::filesystem::path& subd, std::uintmax_t bytes,
+                                std::uintmax_t budget, int mapBits, int positionBits, int appearanceQuality);
 
 // report.json's `budget`: the search and what shipped.
 struct BudgetReport {

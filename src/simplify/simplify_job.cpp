@@ -232,29 +232,30 @@ bool writeCoded(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in)
     report.fit = run.writeResults(in.staged, in.context);
     if (!report.budget) return true;
     std::uintmax_t& bytes = report.fit->exports.at("asset.subd");
-    const std::uintmax_t written = bytes;
-    report.budget->shipped = shipWithinBudget(in.staged / "asset.subd", bytes, report.budget->bytes, plan.fit.mapBits,
-                                              plan.fit.positionBits, plan.fit.appearanceQuality);
+    const std::uintmax_t budget = report.budget->bytes;
+    report.budget->shipped = {
+        .mapBits = plan.fit.mapBits, .appearanceQuality = plan.fit.appearanceQuality, .bytes = bytes};
+    if (bytes <= budget) return true;
+    report.budget->shipped = shipWithinBudget(run.shippable(), in.staged / "asset.subd", bytes, budget,
+                                              plan.fit.mapBits, plan.fit.positionBits, plan.fit.appearanceQuality);
     bytes = report.budget->shipped.bytes;
-    // The USD export follows asset.subd, where that was coded again.
-    if (written > report.budget->bytes) {
-        const nlohmann::json usd = fit::exportUsd(plan.fit, in.staged);
-        for (const auto& [name, usdBytes] : usd.items()) report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
-    }
-    return bytes <= report.budget->bytes;
+    // The USD export follows asset.subd, coded again.
+    const nlohmann::json usd = fit::exportUsd(plan.fit, in.staged);
+    for (const auto& [name, usdBytes] : usd.items()) report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
+    return bytes <= budget;
 }
 
-// The asset written in the staging folder, decoded and drawn on the choosing views: its loss.
-double shippedChoosingLoss(fit::FitRun& run, const RunInputs& in) {
-    const auto shipped = drawnAsFitted(in.programs, run.scene(), codec::readSubd(in.staged / "asset.subd"));
-    return fit::score(*shipped, run.scene().choosing(in.programs)).loss;
+// The loss on the choosing views of `asset` (drawn decoded, as it ships).
+double choosingLoss(fit::FitRun& run, const RunInputs& in, const codec::SubdAsset& asset) {
+    return fit::score(*drawnAsFitted(in.programs, run.scene(), asset), run.scene().choosing(in.programs)).loss;
 }
 
 // Fitted heights are rougher than baked ones and code larger: where even the fewest bits leave
 // the fitted asset over the budget, its bake, weighed within the budget by the search, ships.
 // Where it fits, the two are weighed again as they ship: at few map bits the coding can undo what
 // the fit gained before it (the relief Duck at 20 KB: the fit ahead on the choosing views, 0.7 dB
-// behind its bake held out once both were coded at 4 bits).
+// behind its bake held out once both were coded at 4 bits). The bake is weighed coded in memory,
+// at the plan's precision (where the search judged it); the fitted asset as written.
 void writeWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in) {
     std::optional<FitVerdict>& verdict = in.report.fitVerdict;
     const bool fits = writeCoded(run, plan, in);
@@ -263,25 +264,28 @@ void writeWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInpu
     fit::CageFitter& fitter = run.fitter();
     const fit::CageFitter::State fitted = fitter.state();
     const surface::SurfaceMaps fittedMaps = fitter.surfaceMaps();
-    if (fits) verdict->shippedFittedLoss = shippedChoosingLoss(run, in);
+    if (fits) verdict->shippedFittedLoss = choosingLoss(run, in, codec::readSubd(in.staged / "asset.subd"));
     holdTheBake(run);
+    if (fits) {
+        const auto precision =
+            codec::SubdPrecision::forMapBits(plan.fit.mapBits, plan.fit.appearanceQuality, plan.fit.positionBits);
+        verdict->shippedBakedLoss =
+            choosingLoss(run, in, codec::decodeSubd(codec::encodeSubd(run.shippable(), precision), "the bake"));
+        if (verdict->shippedFittedLoss < verdict->shippedBakedLoss) {  // the fit as written ships
+            fit::writeMaps(fitter, fittedMaps);
+            fitter.restore(fitted);
+            return;
+        }
+    }
     writeCoded(run, plan, in);
+    verdict->fitShips = false;
     if (!fits) {
-        verdict->fitShips = false;
         verdict->overBudgetBytes = fittedBytes;
         if (in.hooks.note)
             in.hooks.note("the fitted asset codes to " + std::to_string(verdict->overBudgetBytes) +
                           " bytes, over the budget: its bake ships");
         return;
     }
-    verdict->shippedBakedLoss = shippedChoosingLoss(run, in);
-    if (verdict->shippedFittedLoss < verdict->shippedBakedLoss) {
-        fit::writeMaps(fitter, fittedMaps);
-        fitter.restore(fitted);
-        writeCoded(run, plan, in);
-        return;
-    }
-    verdict->fitShips = false;
     if (in.hooks.note) {
         char line[160];
         std::snprintf(line, sizeof line,
