@@ -413,8 +413,9 @@ struct BakedLike {
 BakedLike bakeLike(const SearchInputs& in, Findings& found, const mesh::PolygonMesh& normalized,
                    const BudgetCandidate& kind) {
     TimedStage timed(found.phases, "bake");
-    BakedLike baked{.recipe = {.effects = kind.maps, .resolution = kind.mapResolution, .bits = kind.mapBits},
-                    .appearance = {.quality = kind.appearanceQuality}};
+    BakedLike baked;
+    baked.recipe = {.effects = kind.maps, .resolution = kind.mapResolution, .bits = kind.mapBits};
+    baked.appearance.quality = kind.appearanceQuality;
     if (kind.appearanceResolution > 0 || kind.appearanceAtlas > 0)
         baked.appearance.maps = bakeAppearance(
             normalized, in.scene.reference,
