@@ -24,6 +24,7 @@
 #include "mesh/mesh_loader.h"
 #include "mesh/procedural.h"
 #include "surface/tessellation.h"
+#include "noisy_heights.h"
 #include "test_paths.h"
 #include "util/warnings.h"
 
@@ -34,14 +35,7 @@ namespace fs = std::filesystem;
 
 // A lumpy sphere: heights on 4-cell tiles, so that coarser densities do lose detail.
 codec::SubdAsset lumpySphere(std::uint32_t decodeTriangles, int n = 4) {
-    const auto cage = mesh::makeQuadSphere(n);
-    surface::SurfaceMaps maps;
-    maps.layout = surface::buildTexelLayout(cage, 4);
-    std::mt19937 rng(3);
-    std::uniform_real_distribution<float> height(-0.04f, 0.04f);
-    maps.displacement.resize(size_t(maps.layout.nodeCount));
-    for (float& d : maps.displacement) d = height(rng);
-    return codec::shippableAsset(cage, maps, 14, decodeTriangles);
+    return test::noisyHeightsSphere(n, 0.04f, 3, decodeTriangles);
 }
 
 nlohmann::json glbJson(const fs::path& path) {

@@ -6,34 +6,21 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <random>
 
 #include "codec/node_coding.h"
 #include "codec/subd_format.h"
 #include "io/output_file.h"
-#include "mesh/procedural.h"
 #include "simplify/budget_search.h"
+#include "noisy_heights.h"
 #include "test_paths.h"
 
 namespace subdfit::simplify {
 namespace {
 
-// Heights of uniform noise on a quad sphere's 4-cell tiles: the coarser bits cost bytes a node.
-codec::SubdAsset noisySphere() {
-    const auto cage = mesh::makeQuadSphere(6);
-    surface::SurfaceMaps maps;
-    maps.layout = surface::buildTexelLayout(cage, 4);
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<float> height(-0.05f, 0.05f);
-    maps.displacement.resize(size_t(maps.layout.nodeCount));
-    for (float& d : maps.displacement) d = height(rng);
-    return codec::shippableAsset(cage, maps, 14);
-}
-
 TEST(ShipWithinBudget, CodesTheAssetAgainAtFewerBitsOnce) {
     const auto dir = test::scratchDir("ship_within_budget");
     const std::filesystem::path subd = dir / "asset.subd";
-    const codec::SubdAsset asset = noisySphere();
+    const codec::SubdAsset asset = test::noisyHeightsSphere(6, 0.05f, 7);
     const auto at = [&](int bits) { return codec::encodeSubd(asset, codec::SubdPrecision::forMapBits(bits)); };
     const std::uintmax_t written = io::writeBytes(subd, at(8)).bytes;
     const std::uintmax_t budget = at(6).size();
