@@ -253,9 +253,9 @@ double choosingLoss(fit::FitRun& run, const RunInputs& in, const codec::SubdAsse
 // Fitted heights are rougher than baked ones and code larger: where even the fewest bits leave
 // the fitted asset over the budget, its bake, weighed within the budget by the search, ships.
 // Where it fits, the two are weighed again as they ship: at few map bits the coding can undo what
-// the fit gained before it (the relief Duck at 20 KB: the fit ahead on the choosing views, 0.7 dB
-// behind its bake held out once both were coded at 4 bits). The bake is weighed coded in memory,
-// at the plan's precision (where the search judged it); the fitted asset as written.
+// the fit gained before it (docs/simplify.md, "Within the budget, as coded"). The bake is weighed
+// coded in memory, at the plan's precision (where the search judged it); the fitted asset as
+// written.
 void writeWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in) {
     std::optional<FitVerdict>& verdict = in.report.fitVerdict;
     const bool fits = writeCoded(run, plan, in);
