@@ -20,6 +20,10 @@ surface::SurfaceMaps worldMaps(CageFitter& fitter, const scene::SceneFrame& fram
 
 }  // namespace
 
+codec::SubdPrecision subdPrecision(const FitOptions& o) {
+    return codec::SubdPrecision::forMapBits(o.mapBits, o.appearanceQuality, o.positionBits);
+}
+
 codec::SubdAsset shippableState(const FitOptions& o, CageFitter& fitter, const scene::SceneFrame& frame,
                                 const mesh::PolygonMesh& fittedWorld, std::uint32_t referenceTriangles) {
     return codec::shippableAsset(fittedWorld, worldMaps(fitter, frame), o.positionBits, referenceTriangles);
@@ -33,7 +37,7 @@ nlohmann::json exportAsset(const FitOptions& o, CageFitter& fitter, const scene:
     if (o.preview)
         written.push_back(
             exporter::writeSurfaceGlb(o.out / "fitted.glb", fittedWorld, maps, fitter.renderer().tessLevel(), o.draco));
-    const auto precision = codec::SubdPrecision::forMapBits(o.mapBits, o.appearanceQuality, o.positionBits);
+    const codec::SubdPrecision precision = subdPrecision(o);
     written.push_back(codec::writeSubd(
         o.out / "asset.subd", codec::shippableAsset(fittedWorld, maps, precision.positionBits, referenceTriangles),
         precision));

@@ -16,6 +16,10 @@
 
 namespace subdfit::fit {
 
+// How asset.subd codes what `options` asks: --map-bits, the appearance's JPEG quality, the
+// cage's position bits.
+codec::SubdPrecision subdPrecision(const FitOptions& options);
+
 // What asset.subd codes of `fitter`'s state, before coding: the cage as fitted (`fittedWorld`,
 // world units) and the maps on it, heights in world units, laid out on the cage as it decodes at
 // options.positionBits.

@@ -378,6 +378,8 @@ codec::SubdAsset FitRun::shippable() {
     return shippableState(options_, *fitter_, scene_.frame, fittedWorld(), std::uint32_t(scene_.reference.faceCount()));
 }
 
+std::vector<unsigned char> FitRun::coded() { return codec::encodeSubd(shippable(), subdPrecision(options_)); }
+
 FitReport FitRun::writeResults(const std::filesystem::path& out, const context::GlContext& context) {
     FitReport r;
     r.options = options_;

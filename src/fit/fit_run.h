@@ -123,8 +123,9 @@ public:
     // is the caller's to write: toJson(report), plus what it adds.
     FitReport writeResults(const std::filesystem::path& out, const context::GlContext& context);
 
-    // What writeResults codes into asset.subd, before coding (fit::shippableState).
+    // What writeResults codes into asset.subd, before coding (fit::shippableState), and as coded.
     codec::SubdAsset shippable();
+    std::vector<unsigned char> coded();
 
     // How long the plateau schedule's windows grow (StepSchedule's `windowDoublings`).
     void setWindowDoublings(int doublings) { windowDoublings_ = doublings; }

@@ -250,33 +250,33 @@ double choosingLoss(fit::FitRun& run, const RunInputs& in, const codec::SubdAsse
     return fit::score(*drawnAsFitted(in.programs, run.scene(), asset), run.scene().choosing(in.programs)).loss;
 }
 
+// The fitted asset as written against its bake as the plan codes it (where the search judged
+// it), both decoded, on the choosing views: at few map bits the coding can undo what the fit
+// gained before it (docs/simplify.md, "Within the budget, as coded"). Leaves the fitter holding
+// the one that ships; whether that is the fit.
+bool fitLeadsAsCoded(fit::FitRun& run, const RunInputs& in, FitVerdict& verdict) {
+    fit::CageFitter& fitter = run.fitter();
+    const fit::CageFitter::State fitted = fitter.state();
+    const surface::SurfaceMaps fittedMaps = fitter.surfaceMaps();
+    verdict.shippedFittedLoss = choosingLoss(run, in, codec::readSubd(in.staged / "asset.subd"));
+    holdTheBake(run);
+    verdict.shippedBakedLoss = choosingLoss(run, in, codec::decodeSubd(run.coded(), "the bake"));
+    if (verdict.shippedFittedLoss >= verdict.shippedBakedLoss) return false;
+    fit::writeMaps(fitter, fittedMaps);
+    fitter.restore(fitted);
+    return true;
+}
+
 // Fitted heights are rougher than baked ones and code larger: where even the fewest bits leave
 // the fitted asset over the budget, its bake, weighed within the budget by the search, ships.
-// Where it fits, the two are weighed again as they ship: at few map bits the coding can undo what
-// the fit gained before it (docs/simplify.md, "Within the budget, as coded"). The bake is weighed
-// coded in memory, at the plan's precision (where the search judged it); the fitted asset as
-// written.
+// Where it fits, it ships only where it leads its bake as both are coded.
 void writeWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in) {
     std::optional<FitVerdict>& verdict = in.report.fitVerdict;
     const bool fits = writeCoded(run, plan, in);
     if (!verdict || !verdict->fitShips) return;
+    if (fits && fitLeadsAsCoded(run, in, *verdict)) return;
     const std::uintmax_t fittedBytes = in.report.budget ? in.report.budget->shipped.bytes : 0;
-    fit::CageFitter& fitter = run.fitter();
-    const fit::CageFitter::State fitted = fitter.state();
-    const surface::SurfaceMaps fittedMaps = fitter.surfaceMaps();
-    if (fits) verdict->shippedFittedLoss = choosingLoss(run, in, codec::readSubd(in.staged / "asset.subd"));
-    holdTheBake(run);
-    if (fits) {
-        const auto precision =
-            codec::SubdPrecision::forMapBits(plan.fit.mapBits, plan.fit.appearanceQuality, plan.fit.positionBits);
-        verdict->shippedBakedLoss =
-            choosingLoss(run, in, codec::decodeSubd(codec::encodeSubd(run.shippable(), precision), "the bake"));
-        if (verdict->shippedFittedLoss < verdict->shippedBakedLoss) {  // the fit as written ships
-            fit::writeMaps(fitter, fittedMaps);
-            fitter.restore(fitted);
-            return;
-        }
-    }
+    if (!fits) holdTheBake(run);
     writeCoded(run, plan, in);
     verdict->fitShips = false;
     if (!fits) {
