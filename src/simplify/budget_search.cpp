@@ -194,15 +194,23 @@ std::vector<AppearanceBakeOptions> appearancesOf(const BudgetSearch& search) {
     return appearances;
 }
 
+// A reference of over this many faces a cage face is dense: heights baked onto the cage do not
+// copy its facets, and their slopes shade it better than the limit normal (the README demo's and
+// the bunny's candidates at 20 KB, every one: the limit-shaded loss 1.4-8x the other).
+constexpr double kDenseFacesPerCageFace = 8.0;
+
 // A candidate within the budget, scored on the monitor views as the fit would draw it. Heights
 // baked onto a faceted reference copy its facets into the shading, which the limit normal does
-// not, but a coarse cage needs the heights' slopes to shade its shape: with heights both are
-// judged, and when the limit normal wins, `baked` takes its flag and is shipped again with it.
+// not, but a coarse cage needs the heights' slopes to shade its shape: with heights on a cage of
+// about the reference's own density both are judged, and when the limit normal wins, `baked`
+// takes its flag and is shipped again with it.
 void scoreOnMonitor(const SearchInputs& in, const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps& baked,
                     const Appearance& appearance, BudgetCandidate& c, Shipped& shipped) {
     const auto drawn = drawnAsFitted(in.programs, in.scene, shipped.decoded);
     c.monitorLoss = fit::score(*drawn, in.scene.choosing(in.programs)).loss;
-    if (!c.maps.has(maps::MapKind::Displacement)) return;
+    if (!c.maps.has(maps::MapKind::Displacement) ||
+        in.scene.reference.faceCount() > kDenseFacesPerCageFace * double(c.faces))
+        return;
     drawn->maps()->setShadingNormal(surface::ShadingNormal::Limit);
     if (const double loss = fit::score(*drawn, in.scene.choosing(in.programs)).loss; loss < c.monitorLoss) {
         c.monitorLoss = loss;
