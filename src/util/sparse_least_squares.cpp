@@ -1,5 +1,7 @@
 #include "util/sparse_least_squares.h"
 
+#include <cstdint>
+
 namespace subdfit {
 
 SparseSquare normalMatrixOf(const SparseRows& L, const std::vector<double>& rowWeight, std::size_t n) {
@@ -7,12 +9,13 @@ SparseSquare normalMatrixOf(const SparseRows& L, const std::vector<double>& rowW
     std::vector<std::size_t> first(n + 1, 0);
     for (const int c : L.column) ++first[std::size_t(c) + 1];
     for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
-    std::vector<std::size_t> fill(first.begin(), first.end() - 1), rowOf(L.column.size());
+    std::vector<std::size_t> fill(first.begin(), first.end() - 1);
+    std::vector<std::uint32_t> rowOf(L.column.size());  // the limit fit's rows number a few million
     std::vector<double> weightOf(L.column.size());
     for (std::size_t s = 0; s < L.rows(); ++s)
         for (std::size_t e = L.offsets[s]; e < L.offsets[s + 1]; ++e) {
             const std::size_t at = fill[std::size_t(L.column[e])]++;
-            rowOf[at] = s;
+            rowOf[at] = std::uint32_t(s);
             weightOf[at] = L.weight[e];
         }
     SparseSquare A;

@@ -61,6 +61,7 @@ struct SparseSquare {
 // LᵀWL over `n` unknowns: for each unknown, the rows it appears in (Lᵀ), each row's entries
 // gathered into a dense scratch row. It costs Σ_s |row s|² once, and a product with it its
 // entries (the unknowns' neighbours), where a product through L costs twice L's entries.
+// L of fewer than 2^32 rows.
 SparseSquare normalMatrixOf(const SparseRows& L, const std::vector<double>& rowWeight, std::size_t n);
 
 // Mean entries a row from which the normal matrix is built rather than applied through L: the
@@ -84,7 +85,8 @@ std::vector<T> solveDampedLeastSquares(const SparseRows& L, const std::vector<T>
     const double mu = mean > 0.0 ? dampingFraction * mean : 1.0;
     for (double& d : diagonal) d += mu;
 
-    const bool built = L.rows() > 0 && double(L.column.size()) >= kNormalMatrixRowEntries * double(L.rows());
+    const bool built = L.rows() > 0 && L.rows() <= 0xffffffffu &&
+                       double(L.column.size()) >= kNormalMatrixRowEntries * double(L.rows());
     const SparseSquare A = built ? normalMatrixOf(L, rowWeight, n) : SparseSquare{};
     auto normalMatrix = [&](const std::vector<T>& x) {  // (LᵀWL + μI) x
         std::vector<T> out(n);
