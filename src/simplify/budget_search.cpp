@@ -598,6 +598,18 @@ std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, in
     return counts;
 }
 
+bool ladderPastItsBest(bool bestHasMaps, const std::vector<double>& cageBests) {
+    if (!bestHasMaps) return false;
+    int trailing = 0;
+    double lowest = INFINITY;
+    for (const double loss : cageBests) {
+        if (loss < lowest) lowest = loss, trailing = 0;
+        else if (loss > kTrailingLoss * lowest) ++trailing;
+        else trailing = 0;
+    }
+    return trailing >= kTrailingCages;
+}
+
 BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene,
                           const mesh::PolygonMesh& referenceWorld, const BudgetSearch& search, CageLadder& cages,
                           const std::function<void(const std::string&)>& say) {
@@ -606,7 +618,14 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
     const SearchInputs in{programs, scene, referenceWorld, cages, search, say};
     const std::vector<AppearanceBakeOptions> appearances = appearancesOf(search);
     const std::vector<maps::MapEffects> mapChoices = mapChoicesOf(search);
+    std::vector<double> cageBests;  // each judged cage's lowest monitor loss, in ladder order
     for (size_t k = 0; k < cages.size(); ++k) {
+        const Fitting* best = lowestOf(
+            found.fitting, [](const BudgetCandidate&) { return true; }, monitored);
+        if (ladderPastItsBest(best && best->candidate.maps.any(), cageBests)) {
+            if (say) say("the ladder's smaller cages trail its best: not tried");
+            break;
+        }
         const std::optional<TriedCage> cage = [&] {
             TimedStage timed(found.phases, "cages");  // the wait for the builder
             return ladderCage(in, k);
@@ -616,8 +635,13 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
         if (!mapChoices.empty() && !search.mapResolutions.empty() &&
             firstRungLikely(in, found, cage->world->faceCount()))
             bakes.startAhead(0, {.effects = mapChoices.front(), .resolution = in.search.mapResolutions.front()});
+        const size_t judged = found.fitting.size();
         const std::vector<Bare> bare = judgeBare(in, found, *cage, appearances);
         for (const Bare* b : worthMaps(bare)) climbMapLadder(in, found, *cage, *b, mapChoices, bakes);
+        double cageBest = INFINITY;
+        for (size_t f = judged; f < found.fitting.size(); ++f)
+            cageBest = std::min(cageBest, found.fitting[f].candidate.monitorLoss);
+        if (std::isfinite(cageBest)) cageBests.push_back(cageBest);
     }
     // The best, and where that has maps the best bare cage too: a bare cage spends fewer position
     // bits on more faces, where maps spend them on heights, and the grown bare cage can lead.

@@ -77,6 +77,16 @@ struct BudgetChoice {
 // the reference's own triangle count.
 std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, int mostFaces);
 
+// The ladder's loss at a budget falls as its cages shrink while the bytes they free buy maps,
+// then rises: past its lowest the smaller cages cannot pay. True once the best so far has maps
+// and the last kTrailingCages of `cageBests` (each judged cage's lowest monitor loss, in ladder
+// order, of those with a candidate that fits) each lie over kTrailingLoss times the lowest
+// before them. Never before the best has maps: where maps first fit only on small cages, bare
+// cages trail on the way to them.
+inline constexpr double kTrailingLoss = 1.5;
+inline constexpr int kTrailingCages = 2;
+bool ladderPastItsBest(bool bestHasMaps, const std::vector<double>& cageBests);
+
 // What searchBudget throws when no candidate fits the budget: the reference's path and why, and
 // that reason alone (simplify ships a triangle route instead where one fits).
 class NoCageFits : public Error {
