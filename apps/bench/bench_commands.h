@@ -147,4 +147,18 @@ struct DecodeLodsOptions {
 };
 int runDecodeLods(const DecodeLodsOptions& options);
 
+struct SubdPrefixOptions {
+    std::filesystem::path asset;              // the asset.subd whose prefixes are decoded
+    std::vector<std::filesystem::path> made;  // files made for their own budgets, scored whole
+    std::filesystem::path reference;          // the dense reference they were made from
+    std::filesystem::path out = "bench-prefix";
+    int cuts = 16;  // prefixes from the cage's end to the file's end
+    // --grow T,BITS: cut a file grown from the asset instead (subd_prefix.cpp); 0: the asset itself
+    int growResolution = 0, growBits = 0;
+    int prefixBits = 4;     // the grown file's first levels: the asset's own bits
+    int positionBits = 11;  // the grown file's cage: the asset's own position bits
+    context::GlProvider glProvider = context::GlProvider::Auto;
+};
+int runSubdPrefix(const SubdPrefixOptions& options);
+
 }  // namespace subdfit::bench

@@ -192,6 +192,38 @@ int main(int argc, char** argv) {
     lodsCommand->add_option("--lods", decodeLods.lods, "levels")->capture_default_str()->check(CLI::Range(2, 8));
     addOut(lodsCommand, decodeLods.out, "decode_lods.csv", "output folder")->capture_default_str();
 
+    subdfit::bench::SubdPrefixOptions prefix;
+    auto* prefixCommand =
+        command("prefix", "asset.subd prefixes as a stream delivers them: held-out PSNR against bytes", prefix,
+                subdfit::bench::runSubdPrefix);
+    prefixCommand->add_option("asset", prefix.asset, "the asset.subd to cut")->required();
+    prefixCommand->add_option("made", prefix.made, "files made for their own budgets, scored whole beside it");
+    prefixCommand->add_option("--reference", prefix.reference, "the dense reference they were made from")->required();
+    prefixCommand->add_option("--cuts", prefix.cuts, "prefixes between the cage's end and the file's end")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 256));
+    prefixCommand
+        ->add_option_function<std::vector<int>>(
+            "--grow",
+            [&prefix](const std::vector<int>& grow) {
+                prefix.growResolution = grow[0];
+                prefix.growBits = grow[1];
+            },
+            "T,BITS: cut a file grown from the asset instead: its cage with heights baked at T cells a face edge and "
+            "BITS, its own lattice first")
+        ->expected(2)
+        ->delimiter(',')
+        ->check(CLI::Range(1, 64));
+    prefixCommand->add_option("--prefix-bits", prefix.prefixBits, "the grown file's first levels' bits (the asset's)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 24));
+    prefixCommand
+        ->add_option("--position-bits", prefix.positionBits, "the grown file's cage position bits (the asset's)")
+        ->capture_default_str()
+        ->check(CLI::Range(8, 16));
+    subdfit::apps::addGlProvider(*prefixCommand, prefix.glProvider);
+    addOut(prefixCommand, prefix.out, "subd_prefix.csv", "output folder")->capture_default_str();
+
     bool force = false;
     app.add_flag("--force", force, "write into a non-empty --out folder that holds no earlier results of the command");
 

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <optional>
 
 #include "common/command_line.h"
@@ -127,6 +128,11 @@ int main(int argc, char** argv) {
             "a chain of K levels of detail, about half the triangles each: OUT, OUT_lod1.glb ... and OUT_lods.json "
             "(triangles, bytes, distances, screen sizes)")
         ->check(CLI::Range(1, subdfit::exporter::kMostLods));
+    decodeCommand
+        ->add_option("--bytes", decode.firstBytes,
+                     "decode only the file's first N bytes, as a stream delivers them: the cage and the map levels "
+                     "wholly in them, a coarser asset")
+        ->check(CLI::Range(std::size_t(1), std::numeric_limits<std::size_t>::max()));
     bool decodeMeshopt = false;
     decodeCommand->add_flag("--meshopt", decodeMeshopt,
                             "EXT_meshopt_compression besides KHR_mesh_quantization: smallest, for readers with "

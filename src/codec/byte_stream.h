@@ -13,6 +13,13 @@
 
 namespace subdfit::codec {
 
+// Data that ends before what it states: where a reader takes a file's first bytes (a prefix, as a
+// stream delivers them), the one problem it forgives, by decoding less.
+class TruncatedData : public Error {
+public:
+    using Error::Error;
+};
+
 class ByteWriter {
 public:
     template <class T>
@@ -77,7 +84,7 @@ public:
         return std::size_t(n);
     }
     std::span<const unsigned char> take(std::size_t n) {
-        if (n > remaining()) throw Error(what_ + ": truncated");
+        if (n > remaining()) throw TruncatedData(what_ + ": truncated");
         const auto part = bytes_.subspan(offset_, n);
         offset_ += n;
         return part;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -127,8 +128,6 @@ void forEachNode(const surface::TexelLayout& layout, NodeStream stream, Visit&& 
     }
 }
 
-int passCount(int resolution) { return codingOrder(resolution).back().pass + 1; }
-
 std::uint32_t zigzag(std::int64_t r) { return std::uint32_t((std::uint64_t(r) << 1) ^ std::uint64_t(r >> 63)); }
 std::int64_t unzigzag(std::uint32_t z) { return std::int64_t(z >> 1) ^ -std::int64_t(z & 1); }
 
@@ -149,7 +148,8 @@ double packedBytes(ByteWriter& varints) {
     return ZSTD_isError(packed) ? double(bytes.size()) : double(packed);
 }
 
-void putPasses(const std::vector<std::vector<std::uint32_t>>& passes, ByteWriter& out) {
+void putPasses(const std::vector<std::vector<std::uint32_t>>& passes, ByteWriter& out,
+               std::vector<std::size_t>* passEnds) {
     std::vector<ByteWriter> plain(passes.size()), coded(passes.size());
     ByteWriter allPlain;
     std::uint64_t mask = 0;
@@ -172,13 +172,16 @@ void putPasses(const std::vector<std::vector<std::uint32_t>>& passes, ByteWriter
         else plainPasses.putBytes(plain[p].bytes());
     if (packedBytes(allPlain) <= mixed + packedBytes(plainPasses)) mask = 0;
     out.putVarint(mask);
-    for (size_t p = 0; p < passes.size(); ++p) out.putBytes((mask >> p & 1 ? coded[p] : plain[p]).bytes());
+    for (size_t p = 0; p < passes.size(); ++p) {
+        out.putBytes((mask >> p & 1 ? coded[p] : plain[p]).bytes());
+        if (passEnds) passEnds->push_back(out.bytes().size());
+    }
 }
 
 void getEntropyCoded(ByteReader& in, std::size_t count, std::uint32_t* symbols) {
     const std::uint64_t bytes = in.getVarint();
     if (bytes > in.remaining())
-        throw Error(in.what() + ": a residual block of " + std::to_string(bytes) + " bytes exceeds the data");
+        throw TruncatedData(in.what() + ": a residual block of " + std::to_string(bytes) + " bytes exceeds the data");
     const auto block = in.take(std::size_t(bytes));
     draco::DecoderBuffer buffer;  // the symbols' coding as Draco's current bitstream writes it
     buffer.Init(reinterpret_cast<const char*>(block.data()), block.size(), draco::kDracoMeshBitstreamVersion);
@@ -187,25 +190,44 @@ void getEntropyCoded(ByteReader& in, std::size_t count, std::uint32_t* symbols) 
     if (buffer.remaining_size() != 0) throw Error(in.what() + ": bytes left over in a level's residuals");
 }
 
-// Every node's residual, level by level; `counts` the nodes of each pass.
-std::vector<std::uint32_t> getPasses(ByteReader& in, const std::vector<std::size_t>& counts) {
-    const std::uint64_t mask = in.getVarint();
-    if (counts.size() < 64 && (mask >> counts.size()) != 0)
-        throw Error(in.what() + ": residuals for passes it has not");
+// One pass's residuals, appended to `symbols`.
+void getPass(ByteReader& in, std::size_t count, bool entropyCoded, std::vector<std::uint32_t>& symbols) {
+    const size_t at = symbols.size();
+    if (entropyCoded) {
+        if (count == 0) throw Error(in.what() + ": residuals for a level without nodes");
+        symbols.resize(at + count);
+        getEntropyCoded(in, count, symbols.data() + at);
+        return;
+    }
+    for (size_t k = 0; k < count; ++k) {
+        const std::uint64_t z = in.getVarint();
+        if (z > std::numeric_limits<std::uint32_t>::max()) throw Error(in.what() + ": a residual out of range");
+        symbols.push_back(std::uint32_t(z));
+    }
+}
+
+// Every node's residual, level by level (`counts` the nodes of each pass), as far as the passes
+// are wholly present: all of them, but where a Prefix ends early.
+std::vector<std::uint32_t> getPasses(ByteReader& in, const std::vector<std::size_t>& counts, NodeEnding ending) {
     std::vector<std::uint32_t> symbols;
-    for (size_t p = 0; p < counts.size(); ++p) {
-        const size_t at = symbols.size();
-        if (mask >> p & 1) {
-            if (counts[p] == 0) throw Error(in.what() + ": residuals for a level without nodes");
-            symbols.resize(at + counts[p]);
-            getEntropyCoded(in, counts[p], symbols.data() + at);
-            continue;
+    try {
+        const std::uint64_t mask = in.getVarint();
+        if (counts.size() < 64 && (mask >> counts.size()) != 0)
+            throw Error(in.what() + ": residuals for passes it has not");
+        for (size_t p = 0; p < counts.size(); ++p) {
+            const ByteReader passStart = in;
+            const size_t decoded = symbols.size();
+            try {
+                getPass(in, counts[p], mask >> p & 1, symbols);
+            } catch (const TruncatedData&) {
+                if (ending == NodeEnding::Whole) throw;
+                in = passStart;
+                symbols.resize(decoded);
+                break;
+            }
         }
-        for (size_t k = 0; k < counts[p]; ++k) {
-            const std::uint64_t z = in.getVarint();
-            if (z > std::numeric_limits<std::uint32_t>::max()) throw Error(in.what() + ": a residual out of range");
-            symbols.push_back(std::uint32_t(z));
-        }
+    } catch (const TruncatedData&) {
+        if (ending == NodeEnding::Whole) throw;  // else not even the mask: no pass
     }
     return symbols;
 }
@@ -214,6 +236,17 @@ std::vector<std::uint32_t> getPasses(ByteReader& in, const std::vector<std::size
 // fully on a smooth map, hardly on a noisy one, where the neighbours' own noise would double the
 // residuals' spread.
 constexpr int kLeanSteps = 8;
+// The coarse passes' step is at most 2^16 fine steps (its shift and their count share a byte).
+constexpr int kMostCoarseShift = 16;
+
+// Where each level's pass lies in the stream of an embedded coding: the coarse passes, the pass
+// that refines their nodes, then the finer passes (predicted from the refined values, so they
+// cost what they would at one step).
+struct StreamOrder {
+    int coarsePasses = 0;  // 0: no refinement, the passes in level order
+    int index(int pass) const { return coarsePasses > 0 && pass >= coarsePasses ? pass + 1 : pass; }
+    int passes(int levels) const { return levels + (coarsePasses > 0 ? 1 : 0); }
+};
 
 struct Leans {
     int corner = kLeanSteps, interpolated = kLeanSteps;
@@ -246,6 +279,18 @@ Leans chooseLeans(const surface::TexelLayout& layout, const std::vector<float>& 
 
 }  // namespace
 
+int passCount(int resolution) { return codingOrder(resolution).back().pass + 1; }
+
+int passesOfLattice(int resolution, int coarse) {
+    SUBDFIT_CHECK(coarse >= 1 && resolution % coarse == 0 && std::has_single_bit(unsigned(resolution / coarse)));
+    const int spacing = resolution / coarse;
+    int s = 1;  // the first level's spacing, as codingOrder
+    while (s * 2 < resolution) s *= 2;
+    int passes = 1;
+    for (; s >= spacing && s >= 1; s /= 2) passes += 2;
+    return passes;
+}
+
 ChannelQuantisation quantisationFor(std::span<const float> values, int stride, int channel, int bits) {
     float low = std::numeric_limits<float>::infinity(), high = -low;
     for (size_t k = size_t(channel); k < values.size(); k += size_t(stride)) {
@@ -257,47 +302,111 @@ ChannelQuantisation quantisationFor(std::span<const float> values, int stride, i
 }
 
 void encodeNodes(const surface::TexelLayout& layout, std::span<const float> values, int stride, int channel,
-                 const ChannelQuantisation& q, ByteWriter& out) {
+                 const ChannelQuantisation& q, ByteWriter& out, std::vector<std::size_t>* passEnds) {
     std::vector<float> original(size_t(layout.nodeCount));
     for (size_t n = 0; n < original.size(); ++n) original[n] = values[n * size_t(stride) + size_t(channel)];
     const Leans leans = chooseLeans(layout, original, q);
-    out.put<std::uint8_t>(std::uint8_t(leans.corner));
-    out.put<std::uint8_t>(std::uint8_t(leans.interpolated));
-    std::vector<std::vector<std::uint32_t>> passes(size_t(passCount(layout.resolution)));
+    const int levels = passCount(layout.resolution);
+    SUBDFIT_CHECK(q.coarsePasses >= 0 && q.coarsePasses <= levels && q.coarsePasses < 16 && q.coarseShift >= 0 &&
+                  q.coarseShift <= kMostCoarseShift);
+    const bool embedded = q.coarsePasses > 0 && q.coarseShift > 0;
+    out.put<std::uint8_t>(std::uint8_t(leans.corner | leans.interpolated << 4));
+    out.put<std::uint8_t>(embedded ? std::uint8_t(q.coarsePasses << 4 | (q.coarseShift - 1)) : std::uint8_t(0));
+    const StreamOrder order{embedded ? q.coarsePasses : 0};
+    std::vector<std::vector<std::uint32_t>> passes(size_t(order.passes(levels)));
     std::vector<float> decoded(size_t(layout.nodeCount), 0.0f);
-    forEachNode(layout, NodeStream::LevelBlocks, [&](int node, const Predictors& from, int pass) {
-        const float prediction = predicted(from, decoded, q.center, leans);
-        const double residual = std::round((double(original[size_t(node)]) - prediction) / q.step);
+    std::vector<int> coarseNodes;  // in coding order, refined before the finer levels
+    auto code = [&](int node, float prediction, double step, std::vector<std::uint32_t>& pass) {
+        const double residual = std::round((double(original[size_t(node)]) - prediction) / step);
         // A value within the range the step was made for is a few 2^24 steps from its prediction at most.
         if (!(std::abs(residual) < double(1u << 30)))
             throw Error("a map value lies far outside its quantisation range");
-        passes[size_t(pass)].push_back(zigzag(std::int64_t(residual)));
-        decoded[size_t(node)] = prediction + float(residual * q.step);
+        pass.push_back(zigzag(std::int64_t(residual)));
+        decoded[size_t(node)] = prediction + float(residual * step);
+    };
+    bool refined = !embedded;
+    auto refine = [&] {
+        for (const int node : coarseNodes) code(node, decoded[size_t(node)], q.step, passes[size_t(q.coarsePasses)]);
+        refined = true;
+    };
+    forEachNode(layout, NodeStream::LevelBlocks, [&](int node, const Predictors& from, int pass) {
+        if (!refined && pass >= q.coarsePasses) refine();
+        const bool coarse = embedded && pass < q.coarsePasses;
+        if (coarse) coarseNodes.push_back(node);
+        code(node, predicted(from, decoded, q.center, leans), std::ldexp(double(q.step), coarse ? q.coarseShift : 0),
+             passes[size_t(order.index(pass))]);
     });
-    putPasses(passes, out);
+    if (!refined) refine();
+    putPasses(passes, out, passEnds);
 }
 
-void decodeNodes(const surface::TexelLayout& layout, std::span<float> values, int stride, int channel,
-                 const ChannelQuantisation& q, ByteReader& in, NodeStream stream) {
+int decodeNodes(const surface::TexelLayout& layout, std::span<float> values, int stride, int channel,
+                const ChannelQuantisation& q, ByteReader& in, NodeStream stream, NodeEnding ending) {
+    SUBDFIT_CHECK(stream != NodeStream::TileVarints || ending == NodeEnding::Whole);
+    const bool blocks = stream != NodeStream::TileVarints;
+    const int levels = passCount(layout.resolution);
     Leans leans;
-    leans.corner = in.get<std::uint8_t>();
-    leans.interpolated = in.get<std::uint8_t>();
-    if (leans.corner > kLeanSteps || leans.interpolated > kLeanSteps) throw Error(in.what() + ": bad prediction lean");
-    std::vector<std::uint32_t> residuals;  // level by level: every node's, in coding order
+    int coarsePasses = 0, coarseShift = 0;
+    if (ending == NodeEnding::Prefix && in.remaining() < 2) {
+        in.take(in.remaining());
+        return 0;  // the channel's head is not here: no pass
+    }
     if (stream == NodeStream::LevelBlocks) {
-        std::vector<std::size_t> counts(size_t(passCount(layout.resolution)), 0);
-        forEachNode(layout, stream, [&](int, const Predictors&, int pass) { ++counts[size_t(pass)]; });
-        residuals = getPasses(in, counts);
+        const auto packed = in.get<std::uint8_t>(), coarse = in.get<std::uint8_t>();
+        leans = {packed & 15, packed >> 4};
+        coarsePasses = coarse >> 4;
+        coarseShift = coarse == 0 ? 0 : (coarse & 15) + 1;
+        if (coarse != 0 && (coarsePasses == 0 || coarsePasses > levels))
+            throw Error(in.what() + ": bad coarse passes (" + std::to_string(coarsePasses) + " of " +
+                        std::to_string(levels) + ")");
+    } else {
+        leans.corner = in.get<std::uint8_t>();
+        leans.interpolated = in.get<std::uint8_t>();
+    }
+    if (leans.corner > kLeanSteps || leans.interpolated > kLeanSteps) throw Error(in.what() + ": bad prediction lean");
+    const StreamOrder order{coarsePasses};
+    const int passes = order.passes(levels);
+    std::vector<std::uint32_t> residuals;  // level by level: every node's, in coding order
+    int present = passes;                  // the passes whose residuals are here
+    if (blocks) {
+        std::vector<std::size_t> counts(size_t(passes), 0);
+        forEachNode(layout, stream, [&](int, const Predictors&, int pass) {
+            ++counts[size_t(order.index(pass))];
+            if (pass < coarsePasses) ++counts[size_t(coarsePasses)];  // and refined
+        });
+        residuals = getPasses(in, counts, ending);
+        std::size_t held = 0;
+        for (present = 0; present < passes && held + counts[size_t(present)] <= residuals.size(); ++present)
+            held += counts[size_t(present)];
     }
     size_t next = 0;
     std::vector<float> decoded(size_t(layout.nodeCount), 0.0f);
-    forEachNode(layout, stream, [&](int node, const Predictors& from, int) {
-        const std::int64_t residual = stream == NodeStream::LevelBlocks ? unzigzag(residuals[next++]) : in.getSigned();
-        const float value = predicted(from, decoded, q.center, leans) + float(double(residual) * q.step);
+    std::vector<int> coarseNodes;
+    const Leans interpolation;  // where a pass is missing: between the bracket, not towards the center
+    auto set = [&](int node, float value) {
         if (!std::isfinite(value)) throw Error(in.what() + ": a map value is not finite");
         decoded[size_t(node)] = value;
         values[size_t(node) * size_t(stride) + size_t(channel)] = value;
+    };
+    bool refined = coarsePasses == 0;
+    auto refine = [&] {
+        if (coarsePasses < present)  // the refinement is here
+            for (const int node : coarseNodes)
+                set(node, decoded[size_t(node)] + float(double(unzigzag(residuals[next++])) * q.step));
+        refined = true;
+    };
+    forEachNode(layout, stream, [&](int node, const Predictors& from, int pass) {
+        if (!refined && pass >= coarsePasses) refine();
+        const bool here = order.index(pass) < present;
+        std::int64_t residual = 0;
+        if (here) residual = blocks ? unzigzag(residuals[next++]) : in.getSigned();
+        const bool coarse = pass < coarsePasses;
+        if (coarse) coarseNodes.push_back(node);
+        set(node, predicted(from, decoded, q.center, here ? leans : interpolation) +
+                      float(std::ldexp(double(residual) * q.step, coarse ? coarseShift : 0)));
     });
+    if (!refined) refine();
+    return present;
 }
 
 }  // namespace subdfit::codec

@@ -52,6 +52,8 @@ constexpr std::uint16_t kLimitShadingFlag = 1;
 constexpr std::uint32_t kMaxRawSection = 1u << 26;
 // What a section's first raw bytes must hold for its counts to be read (varints and a byte).
 constexpr std::size_t kSectionHeadBytes = 64;
+// The fewest raw bytes between two points where a node-coded section's frame is flushed.
+constexpr std::size_t kLeastFlushedBytes = 256;
 
 std::string tagName(const Tag& tag) { return printable(std::string_view(tag.data(), tag.size())); }
 
@@ -155,17 +157,31 @@ surface::SurfaceMaps carriedMaps(const mesh::PolygonMesh& cage, const surface::S
     return out;
 }
 
+// A section's raw bytes and where a prefix of them may end: its zstd frame is flushed there, so
+// that what a stream has delivered up to each point inflates on its own (codec/node_coding.h).
+struct RawSection {
+    Tag tag;
+    std::vector<unsigned char> bytes;
+    std::vector<std::size_t> prefixEnds;
+};
+
+// `prefix`: the coarse lattice and bits of an embedded coding (ChannelQuantisation), or none.
 void writeMaps(const surface::TexelLayout& layout, const std::vector<float>& values, int channels, int bits,
-               ByteWriter& out) {
+               const EmbeddedPrefix& prefix, ByteWriter& out, std::vector<std::size_t>& passEnds) {
     out.putVarint(std::uint64_t(layout.resolution));
     out.putVarint(std::uint64_t(layout.nodeCount));
     std::vector<ChannelQuantisation> q;
     for (int c = 0; c < channels; ++c) {
         q.push_back(quantisationFor(values, channels, c, bits));
+        if (prefix.resolution > 0 && prefix.bits < bits) {
+            q.back().coarsePasses = passesOfLattice(layout.resolution, prefix.resolution);
+            q.back().coarseShift = bits - prefix.bits;
+        }
         out.put<float>(q.back().center);
         out.put<float>(q.back().step);
     }
-    for (int c = 0; c < channels; ++c) encodeNodes(layout, values, channels, c, q[size_t(c)], out);
+    passEnds.push_back(out.bytes().size());  // the counts, before any level
+    for (int c = 0; c < channels; ++c) encodeNodes(layout, values, channels, c, q[size_t(c)], out, &passEnds);
 }
 
 // A map section's lattice: its resolution and node count, checked against the one the cage
@@ -193,7 +209,7 @@ void readLattice(ByteReader& in, const mesh::PolygonMesh& cage, surface::TexelLa
 }
 
 std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int channels, NodeStream stream,
-                            surface::TexelLayout& layout) {
+                            surface::TexelLayout& layout, NodeEnding ending) {
     readLattice(in, cage, layout);
     std::vector<ChannelQuantisation> q(static_cast<size_t>(channels));
     for (auto& channel : q) {
@@ -203,7 +219,9 @@ std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int c
             throw Error(in.what() + ": bad quantisation");
     }
     std::vector<float> values(size_t(layout.nodeCount) * size_t(channels));
-    for (int c = 0; c < channels; ++c) decodeNodes(layout, values, channels, c, q[size_t(c)], in, stream);
+    for (int c = 0; c < channels; ++c)
+        if (decodeNodes(layout, values, channels, c, q[size_t(c)], in, stream, ending) == 0 && c == 0)
+            return {};  // a prefix without even the corners: no map
     return values;
 }
 
@@ -294,19 +312,34 @@ void decodeAppearance(const ShippedImage& shipped, const std::string& what, surf
     if (shipped.occlusion) maps.occlusion = occlusionFromPixels(atlas, layout, rgb);
 }
 
-void putSection(ByteWriter& file, const Tag& tag, const std::vector<unsigned char>& raw) {
+void putSection(ByteWriter& file, const RawSection& section) {
     // Each frame carries a checksum of its content (version 7): a section damaged inside is
     // refused by every decoder alike, whatever its zstd would make of it otherwise.
     std::unique_ptr<ZSTD_CCtx, decltype(&ZSTD_freeCCtx)> context(ZSTD_createCCtx(), &ZSTD_freeCCtx);
     ZSTD_CCtx_setParameter(context.get(), ZSTD_c_compressionLevel, kSubdZstdLevel);
     ZSTD_CCtx_setParameter(context.get(), ZSTD_c_checksumFlag, 1);
-    std::vector<unsigned char> stored(ZSTD_compressBound(raw.size()));
-    const std::size_t size = ZSTD_compress2(context.get(), stored.data(), stored.size(), raw.data(), raw.size());
-    if (ZSTD_isError(size)) throw Error(std::string("zstd: ") + ZSTD_getErrorName(size));
-    file.putBytes({reinterpret_cast<const unsigned char*>(tag.data()), 4});
-    file.put<std::uint32_t>(std::uint32_t(size));
+    const std::vector<unsigned char>& raw = section.bytes;
+    ZSTD_CCtx_setPledgedSrcSize(context.get(), raw.size());  // the frame states its size
+    std::vector<unsigned char> stored(ZSTD_compressBound(raw.size()) + 64 * (section.prefixEnds.size() + 1));
+    ZSTD_outBuffer out{stored.data(), stored.size(), 0};
+    std::size_t from = 0;
+    auto compress = [&](std::size_t to, ZSTD_EndDirective directive) {
+        ZSTD_inBuffer in{raw.data() + from, to - from, 0};
+        std::size_t left;
+        do {
+            left = ZSTD_compressStream2(context.get(), &out, &in, directive);
+            if (ZSTD_isError(left)) throw Error(std::string("zstd: ") + ZSTD_getErrorName(left));
+        } while (left != 0);
+        from = to;
+    };
+    // A block costs its header and its own entropy tables: a pass of a few dozen bytes joins the next.
+    for (const std::size_t end : section.prefixEnds)
+        if (end >= from + kLeastFlushedBytes && end < raw.size()) compress(end, ZSTD_e_flush);
+    compress(raw.size(), ZSTD_e_end);
+    file.putBytes({reinterpret_cast<const unsigned char*>(section.tag.data()), 4});
+    file.put<std::uint32_t>(std::uint32_t(out.pos));
     file.put<std::uint32_t>(std::uint32_t(raw.size()));
-    file.putBytes({stored.data(), size});
+    file.putBytes({stored.data(), out.pos});
 }
 
 // The first `n` raw bytes of a section's zstd frame (fewer when it holds fewer), without
@@ -342,6 +375,7 @@ struct SectionEntry {
     std::span<const unsigned char> stored;
     std::uint32_t rawSize = 0;
     std::vector<unsigned char> head;  // the first raw bytes: the section's counts
+    bool cut = false;                 // the last section of a prefix, its frame cut short
     std::string what() const { return tagName(tag) + " section"; }
 };
 
@@ -441,28 +475,18 @@ SubdAsset shippableAsset(const mesh::PolygonMesh& cage, const surface::SurfaceMa
 
 std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecision& precision) {
     SUBDFIT_CHECK(precision.positionBits >= 8 && precision.positionBits <= 16);
-    std::vector<std::pair<Tag, std::vector<unsigned char>>> sections;
+    std::vector<RawSection> sections;
     CodedCage cage = encodeCage(asset.cage, precision.positionBits);
     const auto& maps = asset.maps;
     const int ptexFaces = firstPtexFaces(cage.decoded).back();
     SUBDFIT_CHECK(maps.layout.resolution == 0 || maps.layout.ptexFaceCount == ptexFaces);
     SUBDFIT_CHECK(maps.appearanceLayout.resolution == 0 || maps.appearanceAtlas.present() ||
                   maps.appearanceLayout.ptexFaceCount == ptexFaces);
-    sections.emplace_back(kCage, std::move(cage.bytes));
-    auto add = [&](const Tag& tag, const surface::TexelLayout& layout, const std::vector<float>& values, int channels,
-                   int bits) {
-        if (layout.resolution == 0 || values.empty()) return;
-        ByteWriter section;
-        writeMaps(layout, values, channels, bits, section);
-        sections.emplace_back(tag, std::move(section.bytes()));
-    };
-    for (const kinds::MapKindInfo& kind : kinds::kMapKinds)
-        if (kind.lattice == kinds::MapLattice::Geometric)
-            add(kind.section, maps.layout, maps.values(kind.kind), kind.channels, precision.bits(kind.kind));
+    sections.push_back({kCage, std::move(cage.bytes), {}});
     if (maps.appearanceAtlas.present() && maps.kinds().appearance()) {
         ByteWriter section;
         writeAtlasUvs(cage.decoded, maps.appearanceAtlas, section);
-        sections.emplace_back(kAtlasUvs, std::move(section.bytes()));
+        sections.push_back({kAtlasUvs, std::move(section.bytes()), {}});
     }
     const bool atlas = maps.appearanceAtlas.present();
     for (const auto& [tag, which, present] :
@@ -473,7 +497,17 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
         if (maps.appearanceLayout.resolution == 0 || !present) continue;
         ByteWriter section;
         writeAppearance(maps, which, precision.appearanceQuality, section);
-        sections.emplace_back(tag, std::move(section.bytes()));
+        sections.push_back({tag, std::move(section.bytes()), {}});
+    }
+    // The node-coded maps last, coarse levels first: a prefix of the file is a coarser asset.
+    for (const kinds::MapKindInfo& kind : kinds::kMapKinds) {
+        if (kind.lattice != kinds::MapLattice::Geometric || maps.layout.resolution == 0 || !maps.has(kind.kind))
+            continue;
+        ByteWriter section;
+        std::vector<std::size_t> passEnds;
+        writeMaps(maps.layout, maps.values(kind.kind), kind.channels, precision.bits(kind.kind),
+                  kind.kind == MapKind::Displacement ? precision.prefix : EmbeddedPrefix{}, section, passEnds);
+        sections.push_back({kind.section, std::move(section.bytes()), std::move(passEnds)});
     }
     ByteWriter file;
     // Assigned, not inserted: GCC 12 misreads an insert into the still-empty vector
@@ -484,43 +518,51 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
     file.put<std::uint16_t>(limitShading ? kLimitShadingFlag : 0);
     file.put<std::uint32_t>(std::uint32_t(sections.size()));
     file.put<std::uint32_t>(asset.decodeTriangles);
-    for (const auto& [tag, raw] : sections) putSection(file, tag, raw);
+    for (const RawSection& section : sections) putSection(file, section);
     const auto& bytes = file.bytes();
     file.put<std::uint64_t>(hash64({reinterpret_cast<const char*>(bytes.data()), bytes.size()}));
     return std::move(file.bytes());
 }
 
 ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::string& name, DecodeBudget* sharedBudget,
-                            const std::function<void(const SubdOutline&)>& priced) {
+                            const std::function<void(const SubdOutline&)>& priced, SubdEnding ending) {
     DecodeBudget ownBudget(name);
     DecodeBudget& budget = sharedBudget ? *sharedBudget : ownBudget;
     if (bytes.size() < 4 || std::memcmp(bytes.data(), kMagic, 4) != 0) throw Error(name + ": not a .subd file");
     if (bytes.size() < 20) throw Error(name + ": truncated");
+    ShippedSubd shipped;
     ByteReader header(bytes, name);
     header.take(4);
     const auto version = header.get<std::uint16_t>();
     if (version < 3 || version > kSubdVersion)  // the versions differ in AUVS and the decode triangles
         throw Error(name + ": .subd version " + std::to_string(version) + ", this subdfit reads version " +
                     std::to_string(kSubdVersion));
-    const auto body = bytes.first(bytes.size() - 8);
-    std::uint64_t stored;
-    std::memcpy(&stored, bytes.data() + body.size(), 8);
-    if (hash64({reinterpret_cast<const char*>(body.data()), body.size()}) != stored)
-        throw Error(name + ": checksum mismatch (damaged or truncated)");
-    ByteReader in(body, name);
+    // A prefix has no trailer: each section whole in it is checked by its frame's checksum, the
+    // one cut short is what a stream delivered so far.
+    auto intact = [&] {
+        std::uint64_t stored;
+        std::memcpy(&stored, bytes.data() + bytes.size() - 8, 8);
+        return hash64({reinterpret_cast<const char*>(bytes.data()), bytes.size() - 8}) == stored;
+    };
+    const bool prefix = ending == SubdEnding::Prefix && !intact();
+    if (!prefix && !intact()) throw Error(name + ": checksum mismatch (damaged or truncated)");
+    if (prefix && version < 10)
+        throw Error(name + ": .subd version " + std::to_string(version) + " is read whole only");
+    shipped.whole = !prefix;
+    ByteReader in(prefix ? bytes : bytes.first(bytes.size() - 8), name);
     in.take(6);
-    const auto flags = in.get<std::uint16_t>();
+    auto flags = in.get<std::uint16_t>();
     if ((flags & ~kLimitShadingFlag) != 0) throw Error(name + ": unknown flags");
     const auto count = in.get<std::uint32_t>();
     if (count < 1 || count > kMostSections) throw Error(name + ": " + std::to_string(count) + " sections");
 
-    ShippedSubd shipped;
     SubdAsset& asset = shipped.asset;
     if (version >= 6) asset.decodeTriangles = in.get<std::uint32_t>();
     // The section table first: tags, sizes and each section's first bytes, so that everything
     // the file states is checked and priced before anything is inflated or built.
     std::vector<SectionEntry> sections;
     for (std::uint32_t k = 0; k < count; ++k) {
+        if (prefix && in.remaining() < 12) break;  // the prefix ends before this section begins
         SectionEntry s;
         std::memcpy(s.tag.data(), in.take(4).data(), 4);
         const auto storedSize = in.get<std::uint32_t>();
@@ -534,25 +576,38 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         if (s.rawSize > kMaxRawSection)
             throw Error(name + ": section " + tagName(s.tag) + " holds " + std::to_string(s.rawSize) +
                         " bytes, more than the " + std::to_string(kMaxRawSection) + " a section may");
-        s.stored = in.take(storedSize);
-        if (ZSTD_getFrameContentSize(s.stored.data(), s.stored.size()) != s.rawSize)
+        s.cut = prefix && storedSize > in.remaining();
+        s.stored = in.take(s.cut ? in.remaining() : storedSize);
+        const unsigned long long stated = ZSTD_getFrameContentSize(s.stored.data(), s.stored.size());
+        if (s.cut && stated == ZSTD_CONTENTSIZE_ERROR) break;  // not even the frame's header
+        if (stated != s.rawSize)
             throw Error(name + ": section " + tagName(s.tag) + " does not decompress to its stated size");
         if (version >= 7 && !hasContentChecksum(s.stored))
             throw Error(name + ": section " + tagName(s.tag) + " has no checksum of its content");
-        s.head = sectionHead(s.stored, std::min<std::size_t>(s.rawSize, kSectionHeadBytes));
+        const std::size_t headBytes = std::min<std::size_t>(s.rawSize, kSectionHeadBytes);
+        s.head = sectionHead(s.stored, headBytes);
+        // A cut section decodes only where it refines: a node-coded map's levels, counts whole.
+        if (s.cut && (!geometricSection(s.tag) || s.head.size() < headBytes)) break;
         shipped.sectionBytes.emplace_back(tagName(s.tag), 12 + s.stored.size());
         sections.push_back(std::move(s));
+        if (sections.back().cut) break;
     }
-    if (in.remaining() != 0) throw Error(name + ": trailing bytes after the sections");
+    if (sections.empty() || sections[0].cut)
+        throw Error(name + ": the first " + std::to_string(bytes.size()) + " bytes end before the cage does");
+    if (!prefix && in.remaining() != 0) throw Error(name + ": trailing bytes after the sections");
 
     auto inflated = [&](const SectionEntry& s, std::uint64_t most) {
         if (s.rawSize > most)
             throw Error(name + ": section " + tagName(s.tag) + " holds " + std::to_string(s.rawSize) +
                         " bytes, more than its counts allow (" + std::to_string(most) + ")");
+        if (s.cut) return sectionHead(s.stored, s.rawSize);  // the blocks that are whole
         std::vector<unsigned char> raw(s.rawSize);
         const std::size_t got = ZSTD_decompress(raw.data(), raw.size(), s.stored.data(), s.stored.size());
         if (ZSTD_isError(got) && ZSTD_getErrorCode(got) == ZSTD_error_checksum_wrong)
             throw Error(name + ": section " + tagName(s.tag) + " fails its checksum (damaged)");
+        // A frame of several blocks (flushed where a prefix may end) can break before its checksum.
+        if (ZSTD_isError(got) && version >= 7)
+            throw Error(name + ": section " + tagName(s.tag) + " is damaged (zstd: " + ZSTD_getErrorName(got) + ")");
         if (ZSTD_isError(got) || got != s.rawSize)
             throw Error(name + ": section " + tagName(s.tag) + " does not decompress");
         return raw;
@@ -564,7 +619,7 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
             return price();
         } catch (const Error&) {
             for (const SectionEntry& s : sections)
-                if (version >= 7 && !frameIntact(s.stored, s.rawSize))
+                if (version >= 7 && !s.cut && !frameIntact(s.stored, s.rawSize))
                     throw Error(name + ": section " + tagName(s.tag) + " fails its checksum (damaged)");
             throw;
         }
@@ -587,7 +642,10 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         if (const kinds::MapKindInfo* geometric = geometricSection(tag))
             asset.maps.values(geometric->kind) =
                 readMaps(section, asset.cage, geometric->channels,
-                         version >= 10 ? NodeStream::LevelBlocks : NodeStream::TileVarints, asset.maps.layout);
+                         version >= 11   ? NodeStream::LevelBlocks
+                         : version == 10 ? NodeStream::LevelBlocksOneStep
+                                         : NodeStream::TileVarints,
+                         asset.maps.layout, sections[k].cut ? NodeEnding::Prefix : NodeEnding::Whole);
         else if (tag == kAtlasUvs) {
             if (asset.maps.appearanceLayout.resolution != 0) throw Error(name + ": section AUVS after the appearance");
             if (version == 4)
@@ -606,13 +664,17 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         } else {
             shipped.images.push_back(readAppearance(section, asset.cage, AppearanceImage::Emissive, asset.maps));
         }
-        if (section.remaining() != 0) throw Error(section.what() + ": trailing bytes");
+        if (!sections[k].cut && section.remaining() != 0) throw Error(section.what() + ": trailing bytes");
     }
     const bool appearance = std::any_of(shipped.images.begin(), shipped.images.end(), [](const ShippedImage& image) {
         return image.which == AppearanceImage::BaseColor || image.which == AppearanceImage::MetallicRoughness;
     });
-    if (asset.maps.appearanceAtlas.present() && !appearance)
-        throw Error(name + ": atlas coordinates without an appearance");
+    if (asset.maps.appearanceAtlas.present() && !appearance) {
+        if (!prefix) throw Error(name + ": atlas coordinates without an appearance");
+        asset.maps.appearanceAtlas = {};  // the images lie beyond the prefix
+        asset.maps.appearanceLayout = {};
+    }
+    if (prefix && !asset.maps.hasDisplacement()) flags &= ~kLimitShadingFlag;
     if (flags & kLimitShadingFlag) {
         if (!asset.maps.hasDisplacement()) throw Error(name + ": limit shading flagged without a displacement");
         asset.maps.shadingNormal = surface::ShadingNormal::Limit;
@@ -621,8 +683,8 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
 }
 
 SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& name, DecodeBudget* budget,
-                     const std::function<void(const SubdOutline&)>& priced) {
-    ShippedSubd shipped = readShippedSubd(bytes, name, budget, priced);
+                     const std::function<void(const SubdOutline&)>& priced, SubdEnding ending) {
+    ShippedSubd shipped = readShippedSubd(bytes, name, budget, priced, ending);
     for (const ShippedImage& image : shipped.images)
         decodeAppearance(image, name + ": " + tagName(tagOf(image.which)) + " section", shipped.asset.maps);
     return std::move(shipped.asset);
@@ -633,10 +695,11 @@ io::WrittenFile writeSubd(const std::filesystem::path& path, const SubdAsset& as
 }
 
 SubdAsset readSubd(const std::filesystem::path& path, DecodeBudget* budget,
-                   const std::function<void(const SubdOutline&)>& priced) {
+                   const std::function<void(const SubdOutline&)>& priced, std::size_t firstBytes) {
     const std::string bytes = io::readInputFile(path);
-    return decodeSubd({reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()}, path.string(), budget,
-                      priced);
+    const bool prefix = firstBytes < bytes.size();
+    return decodeSubd({reinterpret_cast<const unsigned char*>(bytes.data()), prefix ? firstBytes : bytes.size()},
+                      path.string(), budget, priced, prefix ? SubdEnding::Prefix : SubdEnding::Whole);
 }
 
 }  // namespace subdfit::codec

@@ -1,5 +1,5 @@
 #pragma once
-// The shipped asset, one file: `.subd`, version 10. What a user ships is the control cage (with its
+// The shipped asset, one file: `.subd`, version 11. What a user ships is the control cage (with its
 // OpenSubdiv tags) and the maps' node values, quantised and entropy-coded; `subdfit decode`
 // turns it back into triangles. docs/asset-subd-format.md specifies the bytes (header, sections,
 // trailer) and which versions a reader takes; encodeSubd writes them and decodeSubd checks every
@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <span>
 #include <string>
 #include <utility>
@@ -21,7 +22,7 @@
 
 namespace subdfit::codec {
 
-inline constexpr std::uint16_t kSubdVersion = 10;
+inline constexpr std::uint16_t kSubdVersion = 11;
 // zstd's level for every section: the asset is written once and shipped many times.
 inline constexpr int kSubdZstdLevel = 19;
 
@@ -34,11 +35,19 @@ struct SubdAsset {
     std::uint32_t decodeTriangles = 0;  // the reference's triangle count; 0: unknown
 };
 
+// A coarser asset the heights' first levels make on their own (docs/asset-subd-format.md,
+// "Prefixes"): the levels down to the lattice of `resolution` (the map's own divided by a power of
+// two) coded at `bits`, refined to the map's bits after its finest level. 0: none.
+struct EmbeddedPrefix {
+    int resolution = 0, bits = 0;
+};
+
 struct SubdPrecision {
     int positionBits = 14;       // per coordinate, over the cage's bounding cube (8..16), as Draco's default for meshes
     int displacementBits = 12;   // over the heights' range (1..24)
     int normalBits = 10;         // over each tangent-space channel's range (1..24)
     int appearanceQuality = 90;  // JPEG quality of the appearance maps' atlases (1..100)
+    EmbeddedPrefix prefix{};     // of the heights
 
     // What `--map-bits`, `--appearance-quality` and `--position-bits` ask for: heights at
     // `mapBits`, normals at most 10 (finer than a renderer resolves a normal).
@@ -61,13 +70,20 @@ struct SubdOutline {
     int mapResolution = 0;  // of the displacement / normal tiles; 0: none
 };
 
+// Whether the bytes are a whole file or may be its first bytes (a file cut short, a download
+// under way). A prefix decodes as far as it goes: the sections wholly in it, and of a node-coded
+// map cut short the levels wholly in it, its finer nodes interpolated (codec/node_coding.h).
+// Its cage must be whole; a section after it is absent. A whole file read as a Prefix is read
+// whole.
+enum class SubdEnding { Whole, Prefix };
+
 // `name` names the data in errors. Throws subdfit::Error ("name: problem") for anything that is
 // not a whole, checksummed version-3 to 7 file whose cage and maps are sound, or that would take
 // more than `budget` (by default a DecodeBudget of its own) to decode. Every section's counts
 // are checked and priced, and the cage decoded, before any map is built; then `priced` is
 // called (a caller's chance to price its own work from the outline, e.g. the triangles to write).
 SubdAsset decodeSubd(std::span<const unsigned char> bytes, const std::string& name, DecodeBudget* budget = nullptr,
-                     const std::function<void(const SubdOutline&)>& priced = {});
+                     const std::function<void(const SubdOutline&)>& priced = {}, SubdEnding ending = SubdEnding::Whole);
 
 // An appearance image (BCOL, MTRG, NTEX, EMIS) as the file carries it, still encoded: its size is
 // read from its header and checked against its lattice's atlas, its pixels are not decoded.
@@ -87,18 +103,22 @@ struct ShippedSubd {
     // Each section's tag and the bytes it takes in the file (its 12-byte head included), in order.
     std::vector<std::pair<std::string, std::size_t>> sectionBytes;
     int positionBits = 0;  // per cage coordinate, as coded
+    bool whole = true;     // false: a prefix (SubdEnding), decoded as far as it goes
 };
 
 // What decodeSubd reads before it decodes the images (with OpenImageIO): the one reader of the
 // format, shared with the web decoder (apps/web), which leaves the images to the browser. The
 // images' pixels are priced in `budget` with their sections. Throws subdfit::Error as decodeSubd.
 ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::string& name,
-                            DecodeBudget* budget = nullptr, const std::function<void(const SubdOutline&)>& priced = {});
+                            DecodeBudget* budget = nullptr, const std::function<void(const SubdOutline&)>& priced = {},
+                            SubdEnding ending = SubdEnding::Whole);
 
 io::WrittenFile writeSubd(const std::filesystem::path& path, const SubdAsset& asset,
                           const SubdPrecision& precision = {});
+// `firstBytes`: read only the file's first bytes, as a prefix (whole where the file is no longer).
 SubdAsset readSubd(const std::filesystem::path& path, DecodeBudget* budget = nullptr,
-                   const std::function<void(const SubdOutline&)>& priced = {});
+                   const std::function<void(const SubdOutline&)>& priced = {},
+                   std::size_t firstBytes = std::numeric_limits<std::size_t>::max());
 
 // The asset to encode for `cage` and `maps` (laid out on `cage`), decoding by default to
 // `decodeTriangles` (0: unknown): the decoder rebuilds the texel

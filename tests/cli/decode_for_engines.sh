@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # `subdfit decode` for engines on a simplify result: by default about the reference's triangles
 # (within 2x), `--lods 3` three files whose distances to level 0 rise as their triangles fall
-# (with the JSON's counts and bytes true to the files), `--max-error` within its bound; bad
-# options refused with exit 2 in one line naming the option, nothing written.
+# (with the JSON's counts and bytes true to the files), `--max-error` within its bound, `--bytes`
+# a prefix from the cage's end on (and one ending inside the cage refused); bad options refused
+# with exit 2 in one line naming the option, nothing written.
 #   decode_for_engines.sh SUBDFIT OUT_DIR RESULT_DIR REFERENCE.obj
 set -u
 subdfit=$1 out=$2 result=$3 reference=$4
@@ -41,7 +42,14 @@ assert 0 < e['max_distance'] <= e['bound'], e
 " || fail "--max-error: the chosen density is not within its bound"
 fi
 
-for args in "--max-error 0" "--max-error abc" "--max-error -1%" "--lods 0" "--lods 9" "--tess 0"; do
+# A prefix: from the end of the cage (the first section) on it decodes; a byte short it is refused.
+cage_end=$(python3 -c "import struct,sys; b=open(sys.argv[1],'rb').read(); print(28 + struct.unpack_from('<I', b, 20)[0])" "$subd")
+if ! "$subdfit" decode "$subd" --out "$out/prefix.glb" --bytes "$cage_end" >/dev/null || [ ! -s "$out/prefix.glb" ]; then
+  fail "decode --bytes $cage_end (the cage whole) failed"
+fi
+expect 1 "end before the cage does" -- decode "$subd" --out "$out/refused.glb" --bytes $((cage_end - 1))
+
+for args in "--bytes 0" "--max-error 0" "--max-error abc" "--max-error -1%" "--lods 0" "--lods 9" "--tess 0"; do
   option=${args%% *}
   # shellcheck disable=SC2086
   expect 2 "$option" -- decode "$subd" --out "$out/refused.glb" $args

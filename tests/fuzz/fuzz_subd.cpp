@@ -6,7 +6,9 @@
 //    NTEX, EMIS in turn from there), wrapped in a valid container (subd_container.h), so the
 //    section parsers themselves see hostile data;
 //  - 'R' + bytes: a real file of a cage and maps built from the bytes, with one byte flipped
-//    where the input says: refused, or, if the flip changed nothing, decoded as encoded.
+//    where the input says: refused, or, if the flip changed nothing, decoded as encoded; and the
+//    good file cut there, read as a prefix: decoded wherever its cage is whole.
+// Every input is read both whole and as a prefix (codec::SubdEnding).
 #include <zstd.h>
 
 #include <algorithm>
@@ -26,9 +28,16 @@ namespace {
 using subdfit::fuzz::Bytes;
 
 void decode(const Bytes& bytes) {
-    try {
-        (void)subdfit::codec::decodeSubd(bytes, "fuzz.subd");
-    } catch (const subdfit::Error&) {}
+    for (const auto ending : {subdfit::codec::SubdEnding::Whole, subdfit::codec::SubdEnding::Prefix}) try {
+            (void)subdfit::codec::decodeSubd(bytes, "fuzz.subd", nullptr, {}, ending);
+        } catch (const subdfit::Error&) {}
+}
+
+// Where the cage's section ends in a file encodeSubd wrote (its first section).
+size_t cageEnd(const Bytes& file) {
+    uint32_t stored;
+    std::memcpy(&stored, file.data() + 20, 4);
+    return 16 + 12 + size_t(stored);
 }
 
 }  // namespace
@@ -52,6 +61,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             const auto read = subdfit::codec::decodeSubd(bad, "flipped.subd");
             if (read.cage.positions.size() != asset.cage.positions.size()) std::abort();  // a flip was read as data
         } catch (const subdfit::Error&) {}
+        const size_t cut = where % (good.size() + 1);
+        try {
+            const auto read = subdfit::codec::decodeSubd(std::span(good).first(cut), "cut.subd", nullptr, {},
+                                                         subdfit::codec::SubdEnding::Prefix);
+            if (read.cage.positions.size() != asset.cage.positions.size()) std::abort();
+        } catch (const subdfit::Error&) {
+            if (cut >= cageEnd(good)) std::abort();  // a good file's prefix past its cage decodes
+        }
         return 0;
     }
     decode(Bytes(data, data + size));

@@ -2,7 +2,8 @@
 // what the WebAssembly module runs on the bytes a page or decode.mjs hands it, built natively. Two
 // ways: raw bytes (mostly stopped by the file's checksum), and 'S' + a byte for the density + bytes
 // made into a valid container's sections (subd_container.h), so that the reader, the density's
-// pricing, the tessellation and the material see hostile contents. Every input must give a
+// pricing, the tessellation and the material see hostile contents; raw bytes are read as a
+// prefix too (the first bytes of a download). Every input must give a
 // surface whose arrays are consistent, or one line of subdfit::Error naming the file.
 #include <cstdint>
 #include <cstdio>
@@ -15,9 +16,10 @@
 
 namespace {
 
-void decode(const subdfit::fuzz::Bytes& bytes, std::int64_t triangles) {
+void decode(const subdfit::fuzz::Bytes& bytes, std::int64_t triangles,
+            subdfit::codec::SubdEnding ending = subdfit::codec::SubdEnding::Whole) {
     try {
-        const auto decoded = subdfit::web::decode(bytes, triangles, "fuzz.subd");
+        const auto decoded = subdfit::web::decode(bytes, triangles, "fuzz.subd", ending);
         const subdfit::web::Result& r = decoded->result;
         if (r.indexCount % 3 != 0 || r.vertexCount == 0) std::abort();
         for (std::uint32_t k = 0; k < r.indexCount; ++k)
@@ -40,5 +42,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         return 0;
     }
     decode(subdfit::fuzz::Bytes(data, data + size), 1000);
+    decode(subdfit::fuzz::Bytes(data, data + size), 1000, subdfit::codec::SubdEnding::Prefix);  // as it arrives
     return 0;
 }

@@ -71,8 +71,8 @@ TEST(NodeCoding, ASmoothMapFarFromItsMeanCostsUnderABitANode) {
     values[7] = 1.0f;
     const ChannelQuantisation q = quantisationFor(values, 1, 0, 8);
     const Coded coded = roundTrip(layout, values, q);
-    EXPECT_EQ(coded.bytes[0], 8) << "the corners lean fully on their neighbours";
-    EXPECT_EQ(coded.bytes[1], 8) << "so do the interpolated nodes";
+    EXPECT_EQ(coded.bytes[0] & 15, 8) << "the corners lean fully on their neighbours";
+    EXPECT_EQ(coded.bytes[0] >> 4, 8) << "so do the interpolated nodes";
     EXPECT_LT(8.0 * double(coded.packed()), double(layout.nodeCount));
     for (size_t n = 0; n < values.size(); ++n)
         ASSERT_LE(std::abs(coded.decoded[n] - values[n]), 0.5f * q.step * 1.001f);
@@ -86,8 +86,8 @@ TEST(NodeCoding, NoiseIsPredictedByItsMean) {
     const std::vector<float> values = unitNoise(layout, 3);
     const ChannelQuantisation q = quantisationFor(values, 1, 0, 8);
     const Coded coded = roundTrip(layout, values, q);
-    EXPECT_LE(coded.bytes[0], 2) << "corner lean, in eighths";
-    EXPECT_LE(coded.bytes[1], 4) << "interpolated lean, in eighths";
+    EXPECT_LE(coded.bytes[0] & 15, 2) << "corner lean, in eighths";
+    EXPECT_LE(coded.bytes[0] >> 4, 4) << "interpolated lean, in eighths";
     // Unit Gaussian noise quantised at step q costs its differential entropy less log2(q),
     // log2(sqrt(2πe) / q) bits a value; the coder spends a few hundredths of a bit more, and
     // each level's probability table (a few hundred bytes for the ~250 symbols of 8 bits).
@@ -129,9 +129,10 @@ TEST(NodeCoding, ADamagedLevelIsRefused) {
         }
         return std::string();
     };
-    // After the two leans, the mask of entropy-coded passes, then the corners': their byte count
-    // (a varint) and Draco's coding, its method first.
+    // After the leans and the coarse passes (none), the mask of entropy-coded passes, then the
+    // corners': their byte count (a varint) and Draco's coding, its method first.
     const std::vector<unsigned char> good = out.bytes();
+    ASSERT_EQ(good[1], 0);
     ASSERT_EQ(good[2], 0x1f) << "five passes, every one entropy-coded";
     size_t method = 3;
     while (good[method] & 0x80) ++method;
@@ -146,6 +147,68 @@ TEST(NodeCoding, ADamagedLevelIsRefused) {
     auto truncated = good;
     truncated.pop_back();
     EXPECT_NE(refusal(truncated), "");
+}
+
+}  // namespace
+}  // namespace subdfit::codec
+
+namespace subdfit::codec {
+namespace {
+
+// Embedded coding: the levels down to a coarser lattice at a coarse step, refined at the end.
+// The whole stream decodes every node within step/2; the stream cut where the coarse passes end
+// decodes the coarse lattice within the coarse step's half and interpolates the rest; the
+// refinement costs about the bits it adds.
+TEST(NodeCoding, AnEmbeddedCodingsCoarsePassesDecodeOnTheirOwn) {
+    constexpr int kFine = 8, kCoarse = 2;
+    const auto cage = mesh::makeQuadSphere(3);
+    const auto layout = surface::buildTexelLayout(cage, kFine);
+    std::mt19937 rng(3);
+    std::normal_distribution<float> noise(0.0f, 0.01f);
+    std::vector<float> values(size_t(layout.nodeCount), 0.0f);
+    const auto limit = surface::tessellate(cage, {}, kFine);
+    for (size_t k = 0; k < limit.vertexCount(); ++k) {
+        const auto& at = limit.ptex[k];
+        const glm::vec3 p = limit.positions[k];
+        values[size_t(layout.node(at.face, int(std::lround(at.u * kFine)), int(std::lround(at.v * kFine))))] =
+            std::sin(3.0f * p.x) * std::cos(2.0f * p.y) + noise(rng);
+    }
+    ChannelQuantisation q = quantisationFor(values, 1, 0, 10);
+    const Coded single = roundTrip(layout, values, q);
+    q.coarsePasses = passesOfLattice(kFine, kCoarse);
+    q.coarseShift = 4;             // the coarse levels at 6 bits
+    ASSERT_EQ(q.coarsePasses, 3);  // the corners, u and v at s = 4
+    ByteWriter out;
+    std::vector<std::size_t> ends;
+    encodeNodes(layout, values, 1, 0, q, out, &ends);
+    ASSERT_EQ(ends.size(), size_t(passCount(kFine)) + 1);  // every level and the refinement
+
+    std::vector<float> whole(values.size());
+    ByteReader all(out.bytes(), "nodes");
+    EXPECT_EQ(decodeNodes(layout, whole, 1, 0, q, all), passCount(kFine) + 1);
+    for (size_t n = 0; n < values.size(); ++n) EXPECT_LE(std::abs(whole[n] - values[n]), 0.5001f * q.step) << n;
+
+    std::vector<float> coarse(values.size());
+    ByteReader cut(std::span(out.bytes()).first(ends[size_t(q.coarsePasses) - 1]), "nodes");
+    EXPECT_EQ(decodeNodes(layout, coarse, 1, 0, q, cut, NodeStream::LevelBlocks, NodeEnding::Prefix), q.coarsePasses);
+    const float coarseStep = std::ldexp(q.step, q.coarseShift);
+    const int spacing = kFine / kCoarse;
+    double offLattice = 0.0;
+    for (int face = 0; face < layout.ptexFaceCount; ++face)
+        for (int j = 0; j <= kFine; ++j)
+            for (int i = 0; i <= kFine; ++i) {
+                const size_t n = size_t(layout.node(face, i, j));
+                if (i % spacing == 0 && j % spacing == 0)
+                    EXPECT_LE(std::abs(coarse[n] - values[n]), 0.5001f * coarseStep);
+                else offLattice = std::max(offLattice, double(std::abs(coarse[n] - values[n])));
+            }
+    EXPECT_GT(offLattice, 0.5 * coarseStep) << "the finer nodes are interpolated, not coded";
+
+    const Coded embedded{out.bytes(), whole};
+    std::printf("single step %zu bytes, embedded %zu (coarse passes %zu raw)\n", single.packed(), embedded.packed(),
+                ends[size_t(q.coarsePasses) - 1]);
+    // The refinement re-codes the coarse nodes' last 4 bits: a few percent of the whole at most.
+    EXPECT_LT(double(embedded.packed()), 1.10 * double(single.packed()));
 }
 
 }  // namespace

@@ -51,6 +51,20 @@ for (const kind of kinds) {
   });
 }
 
+test('a prefix: the same triangles as subdfit decode --bytes', async () => {
+  const subd = path.join(ASSETS, 'spot', 'asset.subd');
+  const file = fs.readFileSync(subd);
+  const cageEnd = 28 + file.readUInt32LE(20);  // the first section's end
+  const bytes = String(cageEnd + Math.floor((file.length - cageEnd) / 2));
+  const native = path.join(scratch, 'prefix_native.glb'), web = path.join(scratch, 'prefix_web.glb');
+  const run = spawnSync(SUBDFIT, ['decode', subd, '--out', native, '--uncompressed', '--bytes', bytes], { encoding: 'utf8' });
+  assert.equal(run.status, 0, run.stderr);
+  const webRun = decode(subd, web, '--bytes', bytes);
+  assert.equal(webRun.status, 0, webRun.stderr);
+  await expectSameTriangles(native, web);
+  expectRefused(subd, 'end before the cage does', '--bytes', String(cageEnd - 1));
+});
+
 test('the README demo: the same triangles as subdfit decode', { skip: !DEMO || !fs.existsSync(DEMO) ? 'no README demo result (README command 1 makes out/relief_spot/asset.subd)' : false }, async () => {
   const native = path.join(scratch, 'demo_native.glb'), web = path.join(scratch, 'demo_web.glb');
   const run = spawnSync(SUBDFIT, ['decode', DEMO, '--out', native, '--uncompressed'], { encoding: 'utf8' });

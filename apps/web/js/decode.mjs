@@ -1,23 +1,28 @@
 #!/usr/bin/env node
 // `subdfit decode` in Node, through the web decoder: asset.subd -> .glb of the same triangles.
-//   node decode.mjs IN.subd OUT.glb [--triangles N]
+//   node decode.mjs IN.subd OUT.glb [--triangles N] [--bytes B]
 // One line on stderr and exit status 1 for anything it refuses; OUT is written whole or not at all.
 import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
 import { createDecoderInstance } from './subd_core.mjs';
 
-const USAGE = 'usage: node decode.mjs IN.subd OUT.glb [--triangles N]';
+const USAGE = 'usage: node decode.mjs IN.subd OUT.glb [--triangles N] [--bytes B]';
+
+function wholeNumber(option, text) {
+  if (text === undefined || !/^[0-9]+$/.test(text) || Number(text) < 1 || !Number.isSafeInteger(Number(text)))
+    throw new Error(`${option}: must be a whole number >= 1, got ${text ?? 'nothing'}`);
+  return Number(text);
+}
 
 function parseArguments(args) {
   const positional = [];
-  let triangles = 0;
+  let triangles = 0, bytes = Infinity;
   for (let k = 0; k < args.length; ++k) {
     if (args[k] === '--triangles') {
-      const text = args[++k];
-      if (text === undefined || !/^[0-9]+$/.test(text) || Number(text) < 1 || !Number.isSafeInteger(Number(text)))
-        throw new Error(`--triangles: must be a whole number >= 1, got ${text ?? 'nothing'}`);
-      triangles = Number(text);
+      triangles = wholeNumber('--triangles', args[++k]);
+    } else if (args[k] === '--bytes') {
+      bytes = wholeNumber('--bytes', args[++k]);
     } else if (args[k].startsWith('-')) {
       throw new Error(`unknown option ${args[k]} (${USAGE})`);
     } else {
@@ -25,7 +30,7 @@ function parseArguments(args) {
     }
   }
   if (positional.length !== 2) throw new Error(USAGE);
-  return { input: positional[0], output: positional[1], triangles };
+  return { input: positional[0], output: positional[1], triangles, bytes };
 }
 
 // PNG of 8-bit RGBA rows, top first (PNG 1.2: signature, IHDR, one IDAT, IEND).
@@ -223,14 +228,17 @@ function writeAtomically(output, input, bytes) {
 }
 
 async function main() {
-  const { input, output, triangles } = parseArguments(process.argv.slice(2));
+  const { input, output, triangles, bytes: firstBytes } = parseArguments(process.argv.slice(2));
   // The output is checked before any work, as `subdfit decode` checks it.
   const problem = outputProblem(output, input);
   if (problem) throw new Error(`${output}: ${problem}`);
   const bytes = readInput(input);
   const wasm = fs.readFileSync(new URL('./subd_decoder_wasm.wasm', import.meta.url));
   const decoder = await createDecoderInstance(wasm);
-  const decoded = decoder.decode(new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength), { triangles, name: input });
+  // --bytes: the file's first bytes, as a download delivers them (`subdfit decode --bytes`).
+  const prefix = firstBytes < bytes.byteLength;
+  const length = prefix ? firstBytes : bytes.byteLength;
+  const decoded = decoder.decode(new Uint8Array(bytes.buffer, bytes.byteOffset, length), { triangles, name: input, prefix });
   for (const warning of decoded.warnings) process.stderr.write(`decode.mjs: warning: ${warning}\n`);
   writeAtomically(output, input, glbOf(decoded));
   process.stdout.write(`${output}\n`);

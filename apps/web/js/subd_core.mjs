@@ -31,9 +31,10 @@ class DecoderInstance {
     return this.wasm.HEAPU8.length;
   }
 
-  // bytes: Uint8Array of an asset.subd. Returns the decoded surface (see subd_decoder.d.ts) or
-  // throws an Error whose message is one line naming `name`.
-  decode(bytes, { triangles = 0, name = 'asset.subd' } = {}) {
+  // bytes: Uint8Array of an asset.subd (with `prefix`, its first bytes, as they arrive). Returns
+  // the decoded surface (see subd_decoder.d.ts) or throws an Error whose message is one line
+  // naming `name`.
+  decode(bytes, { triangles = 0, name = 'asset.subd', prefix = false } = {}) {
     if (this.broken) throw new Error(`${name}: the decoder stopped after an earlier failure`);
     const w = this.wasm;
     const nameBytes = new TextEncoder().encode(`${name}\0`);
@@ -44,7 +45,7 @@ class DecoderInstance {
     w.HEAPU8.set(nameBytes, namePtr);
     let result;
     try {
-      result = w._subd_decode(input, bytes.length, triangles, namePtr);
+      result = w._subd_decode(input, bytes.length, triangles, namePtr, prefix ? 1 : 0);
     } catch (error) {
       this.broken = true;
       throw new Error(`${name}: the decoder failed (${error.message ?? error})`);

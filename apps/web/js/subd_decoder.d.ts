@@ -48,6 +48,8 @@ export interface DecodeOptions {
   triangles?: number;
   /** Names the file in error messages. */
   name?: string;
+  /** The bytes are the file's first, as a download delivers them: the cage and the levels in them (`subdfit decode --bytes`). */
+  prefix?: boolean;
 }
 
 export interface SubdDecoderOptions {

@@ -37,10 +37,11 @@ export class SubdDecoder {
 
   // bytes: ArrayBuffer or Uint8Array of an asset.subd (an ArrayBuffer is transferred to the
   // worker, so the caller's copy is emptied). options.triangles: about how many triangles (0 or
-  // absent: decode's default density); options.name: names the file in errors.
-  async decode(bytes, { triangles = 0, name = 'asset.subd' } = {}) {
+  // absent: decode's default density); options.name: names the file in errors; options.prefix:
+  // the bytes are the file's first, as a download delivers them (a coarser asset).
+  async decode(bytes, { triangles = 0, name = 'asset.subd', prefix = false } = {}) {
     if (!Number.isInteger(triangles) || triangles < 0) throw new Error(`${name}: triangles must be a whole number >= 0`);
-    const options = { triangles, name };
+    const options = { triangles, name, prefix };
     if (typeof Worker === 'undefined') {
       this.local ??= this.#compile().then(createDecoderInstance);
       const instance = await this.local;

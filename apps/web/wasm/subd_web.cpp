@@ -26,14 +26,17 @@ std::unordered_map<const Result*, std::unique_ptr<Decoded>> live;  // until subd
 extern "C" {
 
 // The decoded surface, or null with subd_error() saying why in one line. `triangles` 0: the
-// default density; `name` (UTF-8) names the file in messages.
+// default density; `name` (UTF-8) names the file in messages; `prefix` 1: the bytes are the
+// file's first, as they arrive (codec::SubdEnding::Prefix).
 EMSCRIPTEN_KEEPALIVE Result* subd_decode(const std::uint8_t* bytes, std::uint32_t size, double triangles,
-                                         const char* name) {
+                                         const char* name, std::uint32_t prefix) {
     try {
         if (!(triangles >= 0.0) || triangles > double(subdfit::codec::kMaxDecodeTriangles))
             throw subdfit::Error("invalid option: triangles: must be in 0.." +
                                  std::to_string(subdfit::codec::kMaxDecodeTriangles));
-        auto decoded = subdfit::web::decode({bytes, size}, std::int64_t(triangles), name);
+        auto decoded =
+            subdfit::web::decode({bytes, size}, std::int64_t(triangles), name,
+                                 prefix ? subdfit::codec::SubdEnding::Prefix : subdfit::codec::SubdEnding::Whole);
         Result* result = &decoded->result;
         live.emplace(result, std::move(decoded));
         return result;

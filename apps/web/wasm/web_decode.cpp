@@ -23,7 +23,8 @@ std::uint32_t roleOf(codec::AppearanceImage which) {
 
 }  // namespace
 
-std::unique_ptr<Decoded> decode(std::span<const std::uint8_t> bytes, std::int64_t triangles, const std::string& name) {
+std::unique_ptr<Decoded> decode(std::span<const std::uint8_t> bytes, std::int64_t triangles, const std::string& name,
+                                codec::SubdEnding ending) {
     auto out = std::make_unique<Decoded>();
     const WarningSink previous = setWarningSink([&](const std::string& line) { out->warnings += line + "\n"; });
     struct Restore {
@@ -34,9 +35,12 @@ std::unique_ptr<Decoded> decode(std::span<const std::uint8_t> bytes, std::int64_
     // Every count the file states, and the triangles to write, priced before they are allocated.
     codec::DecodeBudget budget(name);
     codec::DecodeDensity density;
-    codec::ShippedSubd shipped = codec::readShippedSubd(bytes, name, &budget, [&](const codec::SubdOutline& outline) {
-        density = codec::pricedDensity(outline, {.triangles = triangles}, budget);
-    });
+    codec::ShippedSubd shipped = codec::readShippedSubd(
+        bytes, name, &budget,
+        [&](const codec::SubdOutline& outline) {
+            density = codec::pricedDensity(outline, {.triangles = triangles}, budget);
+        },
+        ending);
     const codec::SubdAsset& asset = shipped.asset;
     const int segments = density.segments;
     exporter::SurfaceTextures textures{.normalMap = asset.maps.hasNormal()};

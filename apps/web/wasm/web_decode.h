@@ -52,7 +52,9 @@ struct Decoded {
 };
 
 // The decoded surface of `bytes` (`triangles` 0: the default density; `name` names the file in
-// messages). Throws subdfit::Error as decodeSubd does, in one line naming the file.
-std::unique_ptr<Decoded> decode(std::span<const std::uint8_t> bytes, std::int64_t triangles, const std::string& name);
+// messages; `ending` Prefix: the file's first bytes, as they arrive, a coarser asset). Throws
+// subdfit::Error as decodeSubd does, in one line naming the file.
+std::unique_ptr<Decoded> decode(std::span<const std::uint8_t> bytes, std::int64_t triangles, const std::string& name,
+                                codec::SubdEnding ending = codec::SubdEnding::Whole);
 
 }  // namespace subdfit::web

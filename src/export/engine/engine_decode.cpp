@@ -37,8 +37,8 @@ std::vector<io::WrittenFile> decodeForEngines(const std::filesystem::path& subd,
         codec::DecodeBudget budget(subd.string());
         // The whole chain is priced before any of it is made (with the file, where the density
         // is the default or asked for; an error bound's once it is known).
-        const DecodeInput input =
-            readForDecode(subd, o.maxError ? codec::DensityRequest{} : o.density, budget, o.maxError ? 1 : levels);
+        const DecodeInput input = readForDecode(subd, o.maxError ? codec::DensityRequest{} : o.density, budget,
+                                                o.maxError ? 1 : levels, o.firstBytes);
         const codec::SubdAsset& asset = input.asset;
         codec::DecodeDensity density = input.density;
         std::optional<ErrorDensity> fromError;

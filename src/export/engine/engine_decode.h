@@ -5,6 +5,7 @@
 // (KHR_mesh_quantization, which every glTF reader opens), meshopt-compressed where the caller
 // asks, or floats (export/gltf/glb_writer.h MeshCoding).
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -22,6 +23,8 @@ struct EngineDecodeOptions {
     int lods = 0;                          // --lods K: K files and the JSON; 0: one file, no JSON
     MeshCoding coding = MeshCoding::Quantized;
     ScreenSizeRule screenSize{};
+    // --bytes N: only the file's first N bytes, as a stream delivers them (codec::SubdEnding::Prefix)
+    std::size_t firstBytes = std::numeric_limits<std::size_t>::max();
 };
 
 // `out` is level 0; level k (k >= 1) goes to `<stem>_lod<k>.glb` beside it, and with --lods the

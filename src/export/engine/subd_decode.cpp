@@ -9,12 +9,15 @@
 namespace subdfit::exporter {
 
 DecodeInput readForDecode(const std::filesystem::path& subd, const codec::DensityRequest& request,
-                          codec::DecodeBudget& budget, int lods) {
+                          codec::DecodeBudget& budget, int lods, std::size_t firstBytes) {
     DecodeInput input;
     // The triangles to write are priced with the file, before its maps are built.
-    input.asset = codec::readSubd(subd, &budget, [&](const codec::SubdOutline& outline) {
-        input.density = codec::pricedDensity(outline, request, budget, lods);
-    });
+    input.asset = codec::readSubd(
+        subd, &budget,
+        [&](const codec::SubdOutline& outline) {
+            input.density = codec::pricedDensity(outline, request, budget, lods);
+        },
+        firstBytes);
     return input;
 }
 

@@ -6,6 +6,7 @@
 // it is allocated; `out` is written only over a regular file (or where nothing is). The LOD chain
 // and the density from an error bound are export/engine/engine_decode.h's.
 #include <filesystem>
+#include <limits>
 
 #include "codec/decode_budget.h"
 #include "codec/decode_density.h"
@@ -15,15 +16,16 @@
 
 namespace subdfit::exporter {
 
-// A .subd read for decoding: the asset, and the density `request` gets, whose triangles (and
-// `lods` levels of detail from them: codec::pricedDensity) were priced in `budget` with the file's
-// counts before the maps were built.
+// A .subd read for decoding (only its first `firstBytes`, where that is fewer: a prefix): the
+// asset, and the density `request` gets, whose triangles (and `lods` levels of detail from them:
+// codec::pricedDensity) were priced in `budget` with the file's counts before the maps were built.
 struct DecodeInput {
     codec::SubdAsset asset;
     codec::DecodeDensity density;
 };
 DecodeInput readForDecode(const std::filesystem::path& subd, const codec::DensityRequest& request,
-                          codec::DecodeBudget& budget, int lods = 1);
+                          codec::DecodeBudget& budget, int lods = 1,
+                          std::size_t firstBytes = std::numeric_limits<std::size_t>::max());
 
 // Writes `out` (.glb) atomically, its mesh stored as `coding` says. Throws subdfit::Error naming
 // the file for a bad input, an impossible density or an output that may not be written (empty,
