@@ -9,6 +9,7 @@
 #include <zstd.h>
 
 #include "codec/node_coding.h"
+#include "limit_values.h"
 #include "mesh/procedural.h"
 #include "surface/tessellation.h"
 #include "surface/texel_layout.h"
@@ -17,20 +18,6 @@ namespace subdfit::codec {
 namespace {
 
 constexpr int kResolution = 4;
-
-// One value per node of the quad sphere's layout, from where the node lies on the limit surface.
-template <class Value>
-std::vector<float> nodeValues(const mesh::PolygonMesh& cage, const surface::TexelLayout& layout, Value value) {
-    std::vector<float> values(size_t(layout.nodeCount), 0.0f);
-    const auto limit = surface::tessellate(cage, {}, kResolution);
-    for (size_t k = 0; k < limit.vertexCount(); ++k) {
-        const auto& at = limit.ptex[k];
-        const int node =
-            layout.node(at.face, int(std::lround(at.u * kResolution)), int(std::lround(at.v * kResolution)));
-        values[size_t(node)] = value(limit.positions[k]);
-    }
-    return values;
-}
 
 // Unit Gaussian noise, one value per node of `layout`.
 std::vector<float> unitNoise(const surface::TexelLayout& layout, unsigned seed) {
@@ -67,7 +54,7 @@ TEST(NodeCoding, ASmoothMapFarFromItsMeanCostsUnderABitANode) {
     // (residuals of ~-127 steps: 8 bits each at least).
     const auto cage = mesh::makeQuadSphere(4);
     const auto layout = surface::buildTexelLayout(cage, kResolution);
-    auto values = nodeValues(cage, layout, [](glm::vec3 p) { return 0.3f + 0.01f * p.x; });
+    auto values = test::valuesOnLimit(cage, layout, [](glm::vec3 p) { return 0.3f + 0.01f * p.x; });
     values[7] = 1.0f;
     const ChannelQuantisation q = quantisationFor(values, 1, 0, 8);
     const Coded coded = roundTrip(layout, values, q);
@@ -165,14 +152,8 @@ TEST(NodeCoding, AnEmbeddedCodingsCoarsePassesDecodeOnTheirOwn) {
     const auto layout = surface::buildTexelLayout(cage, kFine);
     std::mt19937 rng(3);
     std::normal_distribution<float> noise(0.0f, 0.01f);
-    std::vector<float> values(size_t(layout.nodeCount), 0.0f);
-    const auto limit = surface::tessellate(cage, {}, kFine);
-    for (size_t k = 0; k < limit.vertexCount(); ++k) {
-        const auto& at = limit.ptex[k];
-        const glm::vec3 p = limit.positions[k];
-        values[size_t(layout.node(at.face, int(std::lround(at.u * kFine)), int(std::lround(at.v * kFine))))] =
-            std::sin(3.0f * p.x) * std::cos(2.0f * p.y) + noise(rng);
-    }
+    const std::vector<float> values = test::valuesOnLimit(
+        cage, layout, [&](glm::vec3 p) { return std::sin(3.0f * p.x) * std::cos(2.0f * p.y) + noise(rng); });
     ChannelQuantisation q = quantisationFor(values, 1, 0, 10);
     const Coded single = roundTrip(layout, values, q);
     q.coarsePasses = passesOfLattice(kFine, kCoarse);

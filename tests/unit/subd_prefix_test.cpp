@@ -14,8 +14,8 @@
 
 #include "codec/subd_format.h"
 #include "error_message.h"
+#include "limit_values.h"
 #include "mesh/procedural.h"
-#include "surface/tessellation.h"
 #include "util/hash.h"
 
 namespace subdfit::codec {
@@ -30,15 +30,9 @@ SubdAsset displacedSphere(int resolution) {
     maps.layout = surface::buildTexelLayout(cage, resolution);
     std::mt19937 rng(7);
     std::normal_distribution<float> noise(0.0f, 0.003f);
-    const auto limit = surface::tessellate(cage, {}, resolution);
-    maps.displacement.assign(size_t(maps.layout.nodeCount), 0.0f);
-    for (size_t k = 0; k < limit.vertexCount(); ++k) {
-        const auto& at = limit.ptex[k];
-        const int node = maps.layout.node(at.face, int(std::lround(at.u * float(resolution))),
-                                          int(std::lround(at.v * float(resolution))));
-        const glm::vec3 p = limit.positions[k];
-        maps.displacement[size_t(node)] = 0.05f * std::sin(4.0f * p.x) * std::cos(3.0f * p.y) + noise(rng);
-    }
+    maps.displacement = test::valuesOnLimit(cage, maps.layout, [&](glm::vec3 p) {
+        return 0.05f * std::sin(4.0f * p.x) * std::cos(3.0f * p.y) + noise(rng);
+    });
     return shippableAsset(cage, maps);
 }
 
