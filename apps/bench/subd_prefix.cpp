@@ -4,9 +4,9 @@
 // surface distance; files made for their own budgets, given after it, are scored whole beside
 // them. CSV and a plot of PSNR against bytes.
 // With --grow T,BITS the file cut is made first: the asset's cage with heights baked from the
-// reference at T cells a face edge (its own resolution times a power of two) and BITS, their
-// levels down to the asset's own lattice coded at --prefix-bits first (codec::EmbeddedPrefix): a
-// larger file whose prefix is about the asset.
+// reference at T cells a face edge (its own resolution times a power of two) and BITS, whose
+// levels down to the asset's own lattice hold the asset's own heights at --prefix-bits
+// (codec::EmbeddedPrefix): a larger file whose prefix is about the asset.
 #include <bit>
 #include <cstdio>
 #include <cstring>
@@ -46,21 +46,32 @@ std::size_t cageEnd(const std::string& file) {
 // --prefix-bits first; written into the output folder.
 std::filesystem::path grown(const SubdPrefixOptions& o, const mesh::PolygonMesh& reference) {
     const codec::SubdAsset asset = codec::readSubd(o.asset);
-    const int own = asset.maps.layout.resolution;
-    if (own == 0 || o.growResolution % own != 0 || !std::has_single_bit(unsigned(o.growResolution / own)))
-        throw OptionError("grow", "needs an asset with heights whose resolution (" + std::to_string(own) +
+    const int resolution = asset.maps.layout.resolution;
+    if (resolution == 0 || o.growResolution % resolution != 0 ||
+        !std::has_single_bit(unsigned(o.growResolution / resolution)))
+        throw OptionError("grow", "needs an asset with heights whose resolution (" + std::to_string(resolution) +
                                       ") times a power of two is " + std::to_string(o.growResolution));
     simplify::BakeOptions bake;
     bake.effects = {maps::MapKind::Displacement};
     bake.resolution = o.growResolution;
     surface::SurfaceMaps maps = simplify::bakeMaps(asset.cage, reference, bake);
     maps.shadingNormal = asset.maps.shadingNormal;
+    // The asset's heights on the grown layout: node (i, j) of its tile is (i s, j s) of the grown one.
+    surface::SurfaceMaps own = maps;
+    const int s = o.growResolution / asset.maps.layout.resolution;
+    for (int face = 0; face < own.layout.ptexFaceCount; ++face)
+        for (int j = 0; j <= asset.maps.layout.resolution; ++j)
+            for (int i = 0; i <= asset.maps.layout.resolution; ++i)
+                own.displacement[size_t(own.layout.node(face, i * s, j * s))] =
+                    asset.maps.displacement[size_t(asset.maps.layout.node(face, i, j))];
     codec::SubdPrecision precision = codec::SubdPrecision::forMapBits(o.growBits, 90, o.positionBits);
-    precision.prefix = {.resolution = own, .bits = o.prefixBits};
+    precision.prefix = {.resolution = asset.maps.layout.resolution,
+                        .bits = o.prefixBits,
+                        .heights = codec::shippableAsset(asset.cage, own, o.positionBits).maps.displacement};
     const std::filesystem::path out = o.out / "grown.subd";
     codec::writeSubd(out, codec::shippableAsset(asset.cage, maps, o.positionBits, asset.decodeTriangles), precision);
     std::printf("%s: the cage of %s, heights at T = %d and %d bits, T = %d at %d bits first\n", out.string().c_str(),
-                o.asset.string().c_str(), o.growResolution, o.growBits, own, o.prefixBits);
+                o.asset.string().c_str(), o.growResolution, o.growBits, resolution, o.prefixBits);
     return out;
 }
 

@@ -302,7 +302,9 @@ ChannelQuantisation quantisationFor(std::span<const float> values, int stride, i
 }
 
 void encodeNodes(const surface::TexelLayout& layout, std::span<const float> values, int stride, int channel,
-                 const ChannelQuantisation& q, ByteWriter& out, std::vector<std::size_t>* passEnds) {
+                 const ChannelQuantisation& q, ByteWriter& out, std::vector<std::size_t>* passEnds,
+                 std::span<const float> coarseValues) {
+    SUBDFIT_CHECK(coarseValues.empty() || coarseValues.size() == size_t(layout.nodeCount));
     std::vector<float> original(size_t(layout.nodeCount));
     for (size_t n = 0; n < original.size(); ++n) original[n] = values[n * size_t(stride) + size_t(channel)];
     const Leans leans = chooseLeans(layout, original, q);
@@ -316,8 +318,8 @@ void encodeNodes(const surface::TexelLayout& layout, std::span<const float> valu
     std::vector<std::vector<std::uint32_t>> passes(size_t(order.passes(levels)));
     std::vector<float> decoded(size_t(layout.nodeCount), 0.0f);
     std::vector<int> coarseNodes;  // in coding order, refined before the finer levels
-    auto code = [&](int node, float prediction, double step, std::vector<std::uint32_t>& pass) {
-        const double residual = std::round((double(original[size_t(node)]) - prediction) / step);
+    auto code = [&](int node, float target, float prediction, double step, std::vector<std::uint32_t>& pass) {
+        const double residual = std::round((double(target) - prediction) / step);
         // A value within the range the step was made for is a few 2^24 steps from its prediction at most.
         if (!(std::abs(residual) < double(1u << 30)))
             throw Error("a map value lies far outside its quantisation range");
@@ -326,15 +328,17 @@ void encodeNodes(const surface::TexelLayout& layout, std::span<const float> valu
     };
     bool refined = !embedded;
     auto refine = [&] {
-        for (const int node : coarseNodes) code(node, decoded[size_t(node)], q.step, passes[size_t(q.coarsePasses)]);
+        for (const int node : coarseNodes)
+            code(node, original[size_t(node)], decoded[size_t(node)], q.step, passes[size_t(q.coarsePasses)]);
         refined = true;
     };
     forEachNode(layout, NodeStream::LevelBlocks, [&](int node, const Predictors& from, int pass) {
         if (!refined && pass >= q.coarsePasses) refine();
         const bool coarse = embedded && pass < q.coarsePasses;
         if (coarse) coarseNodes.push_back(node);
-        code(node, predicted(from, decoded, q.center, leans), std::ldexp(double(q.step), coarse ? q.coarseShift : 0),
-             passes[size_t(order.index(pass))]);
+        const float target = coarse && !coarseValues.empty() ? coarseValues[size_t(node)] : original[size_t(node)];
+        code(node, target, predicted(from, decoded, q.center, leans),
+             std::ldexp(double(q.step), coarse ? q.coarseShift : 0), passes[size_t(order.index(pass))]);
     });
     if (!refined) refine();
     putPasses(passes, out, passEnds);

@@ -48,9 +48,12 @@ ChannelQuantisation quantisationFor(std::span<const float> values, int stride, i
 // passes and their shift (a u8: 0, or the passes in its high 4 bits and the shift less 1 in its
 // low) and the residuals of channel `channel` of `values` (`stride` floats per node), level by
 // level; with `passEnds`, the size of `out` after each pass is appended to it (where a prefix of
-// the stream can end).
+// the stream can end). `coarseValues` (one per node, or none): what the coarse passes of an
+// embedded coding code instead (the values best on the coarse lattice alone, e.g. a bake at its
+// resolution); the refinement then codes the difference to `values`.
 void encodeNodes(const surface::TexelLayout& layout, std::span<const float> values, int stride, int channel,
-                 const ChannelQuantisation& q, ByteWriter& out, std::vector<std::size_t>* passEnds = nullptr);
+                 const ChannelQuantisation& q, ByteWriter& out, std::vector<std::size_t>* passEnds = nullptr,
+                 std::span<const float> coarseValues = {});
 
 // Whether the residuals may end early: the first bytes of a stream (a file cut short, a download
 // under way). The passes wholly present decode; every node of a later pass takes its prediction

@@ -53,7 +53,7 @@ constexpr std::uint32_t kMaxRawSection = 1u << 26;
 // What a section's first raw bytes must hold for its counts to be read (varints and a byte).
 constexpr std::size_t kSectionHeadBytes = 64;
 // The fewest raw bytes between two points where a node-coded section's frame is flushed.
-constexpr std::size_t kLeastFlushedBytes = 256;
+constexpr std::size_t kLeastFlushedBytes = 1024;
 
 std::string tagName(const Tag& tag) { return printable(std::string_view(tag.data(), tag.size())); }
 
@@ -181,7 +181,8 @@ void writeMaps(const surface::TexelLayout& layout, const std::vector<float>& val
         out.put<float>(q.back().step);
     }
     passEnds.push_back(out.bytes().size());  // the counts, before any level
-    for (int c = 0; c < channels; ++c) encodeNodes(layout, values, channels, c, q[size_t(c)], out, &passEnds);
+    for (int c = 0; c < channels; ++c)
+        encodeNodes(layout, values, channels, c, q[size_t(c)], out, &passEnds, prefix.heights);
 }
 
 // A map section's lattice: its resolution and node count, checked against the one the cage

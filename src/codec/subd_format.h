@@ -37,9 +37,12 @@ struct SubdAsset {
 
 // A coarser asset the heights' first levels make on their own (docs/asset-subd-format.md,
 // "Prefixes"): the levels down to the lattice of `resolution` (the map's own divided by a power of
-// two) coded at `bits`, refined to the map's bits after its finest level. 0: none.
+// two) coded at `bits`, then refined to the map's bits. 0: none.
 struct EmbeddedPrefix {
     int resolution = 0, bits = 0;
+    // What those levels hold, on the map's layout (its coarse lattice's nodes are read): the
+    // heights best on the coarse lattice alone (a bake at its resolution); empty: the map's.
+    std::vector<float> heights{};
 };
 
 struct SubdPrecision {

@@ -192,5 +192,35 @@ TEST(NodeCoding, AnEmbeddedCodingsCoarsePassesDecodeOnTheirOwn) {
     EXPECT_LT(double(embedded.packed()), 1.10 * double(single.packed()));
 }
 
+// The coarse passes may hold other values (the best on the coarse lattice alone): the prefix
+// decodes those, the whole stream the map's own.
+TEST(NodeCoding, AnEmbeddedCodingsCoarsePassesMayHoldValuesOfTheirOwn) {
+    constexpr int kFine = 4;
+    const auto cage = mesh::makeQuadSphere(3);
+    const auto layout = surface::buildTexelLayout(cage, kFine);
+    const std::vector<float> values =
+        test::valuesOnLimit(cage, layout, [](glm::vec3 p) { return std::sin(3.0f * p.x); });
+    std::vector<float> coarseValues(values.size());
+    for (size_t n = 0; n < values.size(); ++n) coarseValues[n] = values[n] + 0.05f;  // off by 0.05 everywhere
+    ChannelQuantisation q = quantisationFor(values, 1, 0, 8);
+    q.coarsePasses = passesOfLattice(kFine, 2);
+    q.coarseShift = 2;
+    ByteWriter out;
+    std::vector<std::size_t> ends;
+    encodeNodes(layout, values, 1, 0, q, out, &ends, coarseValues);
+    std::vector<float> whole(values.size()), coarse(values.size());
+    ByteReader all(out.bytes(), "nodes");
+    decodeNodes(layout, whole, 1, 0, q, all);
+    ByteReader cut(std::span(out.bytes()).first(ends[size_t(q.coarsePasses) - 1]), "nodes");
+    ASSERT_EQ(decodeNodes(layout, coarse, 1, 0, q, cut, NodeStream::LevelBlocks, NodeEnding::Prefix), q.coarsePasses);
+    for (int face = 0; face < layout.ptexFaceCount; ++face)
+        for (int j = 0; j <= kFine; j += 2)
+            for (int i = 0; i <= kFine; i += 2) {
+                const size_t n = size_t(layout.node(face, i, j));
+                EXPECT_LE(std::abs(coarse[n] - coarseValues[n]), 0.5001f * std::ldexp(q.step, q.coarseShift)) << n;
+            }
+    for (size_t n = 0; n < values.size(); ++n) EXPECT_LE(std::abs(whole[n] - values[n]), 0.5001f * q.step) << n;
+}
+
 }  // namespace
 }  // namespace subdfit::codec
