@@ -155,8 +155,7 @@ struct SubdPrefixOptions {
     int cuts = 16;  // prefixes from the cage's end to the file's end
     // --grow T,BITS: cut a file grown from the asset instead (subd_prefix.cpp); 0: the asset itself
     int growResolution = 0, growBits = 0;
-    int prefixBits = 4;     // the grown file's first levels: the asset's own bits
-    int positionBits = 11;  // the grown file's cage: the asset's own position bits
+    int prefixBits = 4;  // the asset's own bits: the grown file's first levels are coded at them
     context::GlProvider glProvider = context::GlProvider::Auto;
 };
 int runSubdPrefix(const SubdPrefixOptions& options);

@@ -214,13 +214,11 @@ int main(int argc, char** argv) {
         ->expected(2)
         ->delimiter(',')
         ->check(CLI::Range(1, 64));
-    prefixCommand->add_option("--prefix-bits", prefix.prefixBits, "the grown file's first levels' bits (the asset's)")
+    prefixCommand
+        ->add_option("--prefix-bits", prefix.prefixBits,
+                     "the asset's bits: the grown heights' step is its step over 2^(BITS - these)")
         ->capture_default_str()
         ->check(CLI::Range(1, 24));
-    prefixCommand
-        ->add_option("--position-bits", prefix.positionBits, "the grown file's cage position bits (the asset's)")
-        ->capture_default_str()
-        ->check(CLI::Range(8, 16));
     subdfit::apps::addGlProvider(*prefixCommand, prefix.glProvider);
     addOut(prefixCommand, prefix.out, "subd_prefix.csv", "output folder")->capture_default_str();
 

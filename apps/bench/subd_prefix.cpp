@@ -2,11 +2,12 @@
 // points from the end of its cage to its end, each prefix decoded (codec::SubdEnding::Prefix) and
 // scored as simplify scores what it ships: held-out PSNR against the dense reference and mean
 // surface distance; files made for their own budgets, given after it, are scored whole beside
-// them. CSV and a plot of PSNR against bytes.
+// them (and the file is cut at their bytes too). CSV and a plot of PSNR against bytes.
 // With --grow T,BITS the file cut is made first: the asset's cage with heights baked from the
 // reference at T cells a face edge (its own resolution times a power of two) and BITS, whose
-// levels down to the asset's own lattice hold the asset's own heights at --prefix-bits
-// (codec::EmbeddedPrefix): a larger file whose prefix is about the asset.
+// levels down to the asset's own lattice hold the asset's own heights on its own grid
+// (codec::EmbeddedPrefix): a larger file whose prefix is the asset's heights on its cage.
+#include <algorithm>
 #include <bit>
 #include <cstdio>
 #include <cstring>
@@ -64,12 +65,18 @@ std::filesystem::path grown(const SubdPrefixOptions& o, const mesh::PolygonMesh&
             for (int i = 0; i <= asset.maps.layout.resolution; ++i)
                 own.displacement[size_t(own.layout.node(face, i * s, j * s))] =
                     asset.maps.displacement[size_t(asset.maps.layout.node(face, i, j))];
-    codec::SubdPrecision precision = codec::SubdPrecision::forMapBits(o.growBits, 90, o.positionBits);
+    // The asset's cage section byte for byte and its heights on their own grid: the prefix is the asset.
+    const std::string file = io::readInputFile(o.asset);
+    const codec::ShippedSubd shipped =
+        codec::readShippedSubd({reinterpret_cast<const unsigned char*>(file.data()), file.size()}, o.asset.string());
+    codec::SubdPrecision precision = codec::SubdPrecision::forMapBits(o.growBits, 90, shipped.positionBits);
     precision.prefix = {.resolution = asset.maps.layout.resolution,
                         .bits = o.prefixBits,
-                        .heights = codec::shippableAsset(asset.cage, own, o.positionBits).maps.displacement};
+                        .heights = own.displacement,
+                        .coding = asset.heightsCoding,
+                        .cageSection = shipped.cageSection};
     const std::filesystem::path out = o.out / "grown.subd";
-    codec::writeSubd(out, codec::shippableAsset(asset.cage, maps, o.positionBits, asset.decodeTriangles), precision);
+    codec::writeSubd(out, {.cage = asset.cage, .maps = maps, .decodeTriangles = asset.decodeTriangles}, precision);
     std::printf("%s: the cage of %s, heights at T = %d and %d bits, T = %d at %d bits first\n", out.string().c_str(),
                 o.asset.string().c_str(), o.growResolution, o.growBits, resolution, o.prefixBits);
     return out;
@@ -107,9 +114,16 @@ int runSubdPrefix(const SubdPrefixOptions& o) {
         std::printf("%-40s %-7s %9zu %8.2f dB %11.4e\n", name.c_str(), kind.c_str(), bytes, psnr, mean);
         std::fflush(stdout);
     };
+    // Evenly spaced from the cage's end, and at each whole file's bytes: prefixes and files compared at equal bytes.
     const std::size_t first = cageEnd(file);
-    for (int k = 0; k <= o.cuts; ++k) {
-        const std::size_t bytes = first + (file.size() - first) * std::size_t(k) / std::size_t(o.cuts);
+    std::vector<std::size_t> cuts;
+    for (int k = 0; k <= o.cuts; ++k)
+        cuts.push_back(first + (file.size() - first) * std::size_t(k) / std::size_t(o.cuts));
+    for (const auto& made : o.made)
+        if (const auto bytes = std::size_t(std::filesystem::file_size(made)); bytes > first && bytes < file.size())
+            cuts.push_back(bytes);
+    std::sort(cuts.begin(), cuts.end());
+    for (const std::size_t bytes : cuts) {
         const auto* data = reinterpret_cast<const unsigned char*>(file.data());
         score(cut.string(), "prefix", bytes,
               codec::decodeSubd({data, bytes}, cut.string(), nullptr, {}, codec::SubdEnding::Prefix));

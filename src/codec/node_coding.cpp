@@ -307,7 +307,9 @@ void encodeNodes(const surface::TexelLayout& layout, std::span<const float> valu
     SUBDFIT_CHECK(coarseValues.empty() || coarseValues.size() == size_t(layout.nodeCount));
     std::vector<float> original(size_t(layout.nodeCount));
     for (size_t n = 0; n < original.size(); ++n) original[n] = values[n * size_t(stride) + size_t(channel)];
-    const Leans leans = chooseLeans(layout, original, q);
+    const Leans leans = q.cornerLean >= 0 ? Leans{q.cornerLean, q.interpolatedLean} : chooseLeans(layout, original, q);
+    SUBDFIT_CHECK(leans.corner >= 0 && leans.corner <= kLeanSteps && leans.interpolated >= 0 &&
+                  leans.interpolated <= kLeanSteps);
     const int levels = passCount(layout.resolution);
     SUBDFIT_CHECK(q.coarsePasses >= 0 && q.coarsePasses <= levels && q.coarsePasses < 16 && q.coarseShift >= 0 &&
                   q.coarseShift <= kMostCoarseShift);
@@ -345,7 +347,8 @@ void encodeNodes(const surface::TexelLayout& layout, std::span<const float> valu
 }
 
 int decodeNodes(const surface::TexelLayout& layout, std::span<float> values, int stride, int channel,
-                const ChannelQuantisation& q, ByteReader& in, NodeStream stream, NodeEnding ending) {
+                const ChannelQuantisation& q, ByteReader& in, NodeStream stream, NodeEnding ending,
+                ChannelQuantisation* coded) {
     SUBDFIT_CHECK(stream != NodeStream::TileVarints || ending == NodeEnding::Whole);
     const bool blocks = stream != NodeStream::TileVarints;
     const int levels = passCount(layout.resolution);
@@ -368,6 +371,13 @@ int decodeNodes(const surface::TexelLayout& layout, std::span<float> values, int
         leans.interpolated = in.get<std::uint8_t>();
     }
     if (leans.corner > kLeanSteps || leans.interpolated > kLeanSteps) throw Error(in.what() + ": bad prediction lean");
+    if (coded) {
+        *coded = q;
+        coded->coarsePasses = coarsePasses;
+        coded->coarseShift = coarseShift;
+        coded->cornerLean = leans.corner;
+        coded->interpolatedLean = leans.interpolated;
+    }
     const StreamOrder order{coarsePasses};
     const int passes = order.passes(levels);
     std::vector<std::uint32_t> residuals;  // level by level: every node's, in coding order

@@ -26,6 +26,10 @@ struct ChannelQuantisation {
     // coarse step, as a file made for fewer bits would. 0: every pass at `step`. (Written by
     // encodeNodes, read back by decodeNodes from the stream.)
     int coarsePasses = 0, coarseShift = 0;
+    // The leans (eighths) to code with; -1: encodeNodes picks the cheapest. Given with the center
+    // and a coarse step of another coding of the same lattice order, the coarse passes code that
+    // coding's decoded values exactly (every residual a whole number of steps).
+    int cornerLean = -1, interpolatedLean = -1;
 };
 
 // How the residuals are laid out. Level by level (what encodeNodes writes, .subd version 11):
@@ -61,11 +65,12 @@ void encodeNodes(const surface::TexelLayout& layout, std::span<const float> valu
 enum class NodeEnding { Whole, Prefix };
 
 // Fills channel `channel` of `values` (layout.nodeCount × stride floats); returns the passes
-// decoded (all of them but where a Prefix ends early). Throws subdfit::Error for malformed data,
-// data that ends early (but a Prefix) or a residual that does not fit a float.
+// decoded (all of them but where a Prefix ends early); `coded` receives `q` with the coarse
+// passes and leans the stream states. Throws subdfit::Error for malformed data, data that ends
+// early (but a Prefix) or a residual that does not fit a float.
 int decodeNodes(const surface::TexelLayout& layout, std::span<float> values, int stride, int channel,
                 const ChannelQuantisation& q, ByteReader& in, NodeStream stream = NodeStream::LevelBlocks,
-                NodeEnding ending = NodeEnding::Whole);
+                NodeEnding ending = NodeEnding::Whole, ChannelQuantisation* coded = nullptr);
 
 // The passes of a tile at resolution `resolution` (the corners, then two per level).
 int passCount(int resolution);

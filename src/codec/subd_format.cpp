@@ -163,11 +163,13 @@ struct RawSection {
     Tag tag;
     std::vector<unsigned char> bytes;
     std::vector<std::size_t> prefixEnds;
+    std::size_t embeddedEnd = 0;  // where an embedded coding's coarse levels end: flushed whatever its size
 };
 
 // `prefix`: the coarse lattice and bits of an embedded coding (ChannelQuantisation), or none.
 void writeMaps(const surface::TexelLayout& layout, const std::vector<float>& values, int channels, int bits,
-               const EmbeddedPrefix& prefix, ByteWriter& out, std::vector<std::size_t>& passEnds) {
+               const EmbeddedPrefix& prefix, ByteWriter& out, std::vector<std::size_t>& passEnds,
+               std::size_t& embeddedEnd) {
     out.putVarint(std::uint64_t(layout.resolution));
     out.putVarint(std::uint64_t(layout.nodeCount));
     std::vector<ChannelQuantisation> q;
@@ -176,13 +178,22 @@ void writeMaps(const surface::TexelLayout& layout, const std::vector<float>& val
         if (prefix.resolution > 0 && prefix.bits < bits) {
             q.back().coarsePasses = passesOfLattice(layout.resolution, prefix.resolution);
             q.back().coarseShift = bits - prefix.bits;
+            if (prefix.coding) {  // the asset's grid and leans: its values code exactly
+                q.back().center = prefix.coding->center;
+                q.back().step = std::ldexp(prefix.coding->step, -q.back().coarseShift);
+                q.back().cornerLean = prefix.coding->cornerLean;
+                q.back().interpolatedLean = prefix.coding->interpolatedLean;
+            }
         }
         out.put<float>(q.back().center);
         out.put<float>(q.back().step);
     }
     passEnds.push_back(out.bytes().size());  // the counts, before any level
-    for (int c = 0; c < channels; ++c)
+    for (int c = 0; c < channels; ++c) {
+        const std::size_t first = passEnds.size();
         encodeNodes(layout, values, channels, c, q[size_t(c)], out, &passEnds, prefix.heights);
+        if (c == 0 && q[0].coarsePasses > 0) embeddedEnd = passEnds[first + size_t(q[0].coarsePasses) - 1];
+    }
 }
 
 // A map section's lattice: its resolution and node count, checked against the one the cage
@@ -209,8 +220,9 @@ void readLattice(ByteReader& in, const mesh::PolygonMesh& cage, surface::TexelLa
         throw Error(in.what() + ": node count does not match the cage's texel layout");
 }
 
+// `coded` (one per channel) receives how each channel was coded.
 std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int channels, NodeStream stream,
-                            surface::TexelLayout& layout, NodeEnding ending) {
+                            surface::TexelLayout& layout, NodeEnding ending, std::vector<ChannelQuantisation>& coded) {
     readLattice(in, cage, layout);
     std::vector<ChannelQuantisation> q(static_cast<size_t>(channels));
     for (auto& channel : q) {
@@ -220,8 +232,10 @@ std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int c
             throw Error(in.what() + ": bad quantisation");
     }
     std::vector<float> values(size_t(layout.nodeCount) * size_t(channels));
+    coded.assign(size_t(channels), {});
     for (int c = 0; c < channels; ++c)
-        if (decodeNodes(layout, values, channels, c, q[size_t(c)], in, stream, ending) == 0 && c == 0)
+        if (decodeNodes(layout, values, channels, c, q[size_t(c)], in, stream, ending, &coded[size_t(c)]) == 0 &&
+            c == 0)
             return {};  // a prefix without even the corners: no map
     return values;
 }
@@ -335,7 +349,8 @@ void putSection(ByteWriter& file, const RawSection& section) {
     };
     // A block costs its header and its own entropy tables: a pass of a few dozen bytes joins the next.
     for (const std::size_t end : section.prefixEnds)
-        if (end >= from + kLeastFlushedBytes && end < raw.size()) compress(end, ZSTD_e_flush);
+        if ((end >= from + kLeastFlushedBytes || end == section.embeddedEnd) && end > from && end < raw.size())
+            compress(end, ZSTD_e_flush);
     compress(raw.size(), ZSTD_e_end);
     file.putBytes({reinterpret_cast<const unsigned char*>(section.tag.data()), 4});
     file.put<std::uint32_t>(std::uint32_t(out.pos));
@@ -477,7 +492,15 @@ SubdAsset shippableAsset(const mesh::PolygonMesh& cage, const surface::SurfaceMa
 std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecision& precision) {
     SUBDFIT_CHECK(precision.positionBits >= 8 && precision.positionBits <= 16);
     std::vector<RawSection> sections;
-    CodedCage cage = encodeCage(asset.cage, precision.positionBits);
+    CodedCage cage;
+    if (precision.prefix.cageSection.empty()) {
+        cage = encodeCage(asset.cage, precision.positionBits);
+    } else {  // the asset's own, byte for byte: it must be the cage being encoded
+        ByteReader in(precision.prefix.cageSection, "the prefix's cage");
+        cage = {.bytes = precision.prefix.cageSection, .decoded = decodeCage(in), .correspondence = {}};
+        SUBDFIT_CHECK(cage.decoded.positions == asset.cage.positions &&
+                      cage.decoded.faceIndices == asset.cage.faceIndices);
+    }
     const auto& maps = asset.maps;
     const int ptexFaces = firstPtexFaces(cage.decoded).back();
     SUBDFIT_CHECK(maps.layout.resolution == 0 || maps.layout.ptexFaceCount == ptexFaces);
@@ -506,9 +529,11 @@ std::vector<unsigned char> encodeSubd(const SubdAsset& asset, const SubdPrecisio
             continue;
         ByteWriter section;
         std::vector<std::size_t> passEnds;
+        std::size_t embeddedEnd = 0;
         writeMaps(maps.layout, maps.values(kind.kind), kind.channels, precision.bits(kind.kind),
-                  kind.kind == MapKind::Displacement ? precision.prefix : EmbeddedPrefix{}, section, passEnds);
-        sections.push_back({kind.section, std::move(section.bytes()), std::move(passEnds)});
+                  kind.kind == MapKind::Displacement ? precision.prefix : EmbeddedPrefix{}, section, passEnds,
+                  embeddedEnd);
+        sections.push_back({kind.section, std::move(section.bytes()), std::move(passEnds), embeddedEnd});
     }
     ByteWriter file;
     // Assigned, not inserted: GCC 12 misreads an insert into the still-empty vector
@@ -629,6 +654,7 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         const auto raw = inflated(sections[0], damageFirst([&] { return priceCage(sections[0], name, budget); }));
         ByteReader section(raw, name + ": " + sections[0].what());
         asset.cage = decodeCage(section, &shipped.positionBits);
+        shipped.cageSection = raw;
         if (section.remaining() != 0) throw Error(section.what() + ": trailing bytes");
     }
     int mapResolution = 0;
@@ -640,14 +666,17 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         const Tag& tag = sections[k].tag;
         const auto raw = inflated(sections[k], most[k]);
         ByteReader section(raw, name + ": " + sections[k].what());
-        if (const kinds::MapKindInfo* geometric = geometricSection(tag))
+        if (const kinds::MapKindInfo* geometric = geometricSection(tag)) {
+            std::vector<ChannelQuantisation> coded;
             asset.maps.values(geometric->kind) =
                 readMaps(section, asset.cage, geometric->channels,
                          version >= 11   ? NodeStream::LevelBlocks
                          : version == 10 ? NodeStream::LevelBlocksOneStep
                                          : NodeStream::TileVarints,
-                         asset.maps.layout, sections[k].cut ? NodeEnding::Prefix : NodeEnding::Whole);
-        else if (tag == kAtlasUvs) {
+                         asset.maps.layout, sections[k].cut ? NodeEnding::Prefix : NodeEnding::Whole, coded);
+            if (geometric->kind == MapKind::Displacement && asset.maps.hasDisplacement())
+                asset.heightsCoding = coded.front();
+        } else if (tag == kAtlasUvs) {
             if (asset.maps.appearanceLayout.resolution != 0) throw Error(name + ": section AUVS after the appearance");
             if (version == 4)
                 throw Error(name +

@@ -9,12 +9,14 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "codec/map_atlas.h"
+#include "codec/node_coding.h"
 #include "io/output_file.h"
 #include "kinds/map_kinds.h"
 #include "mesh/polygon_mesh.h"
@@ -33,6 +35,8 @@ struct SubdAsset {
     mesh::PolygonMesh cage;
     surface::SurfaceMaps maps;          // layout.resolution 0: none
     std::uint32_t decodeTriangles = 0;  // the reference's triangle count; 0: unknown
+    // How a decoded file coded its heights (the reader fills it; the writer ignores it).
+    std::optional<ChannelQuantisation> heightsCoding{};
 };
 
 // A coarser asset the heights' first levels make on their own (docs/asset-subd-format.md,
@@ -41,8 +45,15 @@ struct SubdAsset {
 struct EmbeddedPrefix {
     int resolution = 0, bits = 0;
     // What those levels hold, on the map's layout (its coarse lattice's nodes are read): the
-    // heights best on the coarse lattice alone (a bake at its resolution); empty: the map's.
+    // heights best on the coarse lattice alone; empty: the map's.
     std::vector<float> heights{};
+    // Where `heights` are a decoded asset's (SubdAsset::heightsCoding, at `resolution`): its center,
+    // step and leans, so that the levels code its values exactly, and its cage section
+    // (ShippedSubd::cageSection), written byte for byte: the asset's cage is the one being
+    // encoded, in its order, and the levels' coding order is the asset's own. The prefix is then
+    // that asset's cage and heights.
+    std::optional<ChannelQuantisation> coding{};
+    std::vector<unsigned char> cageSection{};
 };
 
 struct SubdPrecision {
@@ -105,8 +116,9 @@ struct ShippedSubd {
     std::vector<ShippedImage> images;  // in the file's order, each kind at most once
     // Each section's tag and the bytes it takes in the file (its 12-byte head included), in order.
     std::vector<std::pair<std::string, std::size_t>> sectionBytes;
-    int positionBits = 0;  // per cage coordinate, as coded
-    bool whole = true;     // false: a prefix (SubdEnding), decoded as far as it goes
+    int positionBits = 0;                    // per cage coordinate, as coded
+    std::vector<unsigned char> cageSection;  // the CAGE section's raw bytes
+    bool whole = true;                       // false: a prefix (SubdEnding), decoded as far as it goes
 };
 
 // What decodeSubd reads before it decodes the images (with OpenImageIO): the one reader of the

@@ -200,3 +200,65 @@ TEST(SubdPrefix, AVersion10FileDecodesAsItDidAndABadCoarseCodingIsRefused) {
 
 }  // namespace
 }  // namespace subdfit::codec
+
+namespace subdfit::codec {
+namespace {
+
+// A file grown from an asset (its cage section byte for byte, finer heights whose coarse levels
+// hold the asset's own on its own grid): a prefix of it decodes to the asset's cage and heights
+// exactly, and the whole of it to the finer heights within their step.
+TEST(SubdPrefix, AGrownFilesPrefixIsTheAssetItGrewFrom) {
+    constexpr int kOwn = 2, kGrown = 8;
+    const Bytes small = encodeSubd(displacedSphere(kOwn), {.displacementBits = 4});
+    const ShippedSubd shipped = readShippedSubd(small, "small.subd");
+    const SubdAsset asset = decodeSubd(small, "small.subd");
+    ASSERT_TRUE(asset.heightsCoding);
+
+    SubdAsset grown{.cage = asset.cage};
+    grown.maps.layout = surface::buildTexelLayout(asset.cage, kGrown);
+    grown.maps.displacement = test::valuesOnLimit(
+        asset.cage, grown.maps.layout, [](glm::vec3 p) { return 0.05f * std::sin(4.0f * p.x) * std::cos(3.0f * p.y); });
+    std::vector<float> own = grown.maps.displacement;
+    constexpr int s = kGrown / kOwn;
+    for (int face = 0; face < grown.maps.layout.ptexFaceCount; ++face)
+        for (int j = 0; j <= kOwn; ++j)
+            for (int i = 0; i <= kOwn; ++i)
+                own[size_t(grown.maps.layout.node(face, i * s, j * s))] =
+                    asset.maps.displacement[size_t(asset.maps.layout.node(face, i, j))];
+    SubdPrecision precision{.displacementBits = 8};
+    precision.prefix = {.resolution = kOwn,
+                        .bits = 4,
+                        .heights = own,
+                        .coding = asset.heightsCoding,
+                        .cageSection = shipped.cageSection};
+    const Bytes file = encodeSubd(grown, precision);
+    ASSERT_GT(file.size(), small.size());
+
+    auto isTheAsset = [&](const SubdAsset& prefix) {
+        if (prefix.cage.positions != asset.cage.positions || prefix.cage.faceIndices != asset.cage.faceIndices ||
+            !prefix.maps.hasDisplacement())
+            return false;
+        for (int face = 0; face < asset.maps.layout.ptexFaceCount; ++face)
+            for (int j = 0; j <= kOwn; ++j)
+                for (int i = 0; i <= kOwn; ++i)
+                    if (prefix.maps.displacement[size_t(prefix.maps.layout.node(face, i * s, j * s))] !=
+                        asset.maps.displacement[size_t(asset.maps.layout.node(face, i, j))])
+                        return false;
+        return true;
+    };
+    size_t shortest = 0;
+    for (size_t bytes = sectionSpan(file, "CAGE").second; bytes < file.size() && shortest == 0; bytes += 7)
+        if (isTheAsset(prefixOf(file, bytes))) shortest = bytes;
+    ASSERT_GT(shortest, 0u) << "no prefix decodes to the asset";
+    std::printf("the asset: %zu bytes; the grown file: %zu, its first %zu bytes the asset\n", small.size(), file.size(),
+                shortest);
+    EXPECT_LT(double(shortest), 1.1 * double(small.size()));  // its levels' residuals are the asset's own
+
+    const SubdAsset whole = decodeSubd(file, "grown.subd");
+    const ChannelQuantisation fine = *whole.heightsCoding;
+    for (size_t n = 0; n < grown.maps.displacement.size(); ++n)
+        ASSERT_LE(std::abs(whole.maps.displacement[n] - grown.maps.displacement[n]), 0.5001f * fine.step) << n;
+}
+
+}  // namespace
+}  // namespace subdfit::codec
