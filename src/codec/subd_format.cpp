@@ -220,9 +220,11 @@ void readLattice(ByteReader& in, const mesh::PolygonMesh& cage, surface::TexelLa
         throw Error(in.what() + ": node count does not match the cage's texel layout");
 }
 
-// `coded` (one per channel) receives how each channel was coded.
+// `coded` (one per channel) receives how each channel was coded, `levels` the level passes of the
+// first channel that were decoded (all of them but in a prefix).
 std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int channels, NodeStream stream,
-                            surface::TexelLayout& layout, NodeEnding ending, std::vector<ChannelQuantisation>& coded) {
+                            surface::TexelLayout& layout, NodeEnding ending, std::vector<ChannelQuantisation>& coded,
+                            int& levels) {
     readLattice(in, cage, layout);
     std::vector<ChannelQuantisation> q(static_cast<size_t>(channels));
     for (auto& channel : q) {
@@ -233,11 +235,41 @@ std::vector<float> readMaps(ByteReader& in, const mesh::PolygonMesh& cage, int c
     }
     std::vector<float> values(size_t(layout.nodeCount) * size_t(channels));
     coded.assign(size_t(channels), {});
-    for (int c = 0; c < channels; ++c)
-        if (decodeNodes(layout, values, channels, c, q[size_t(c)], in, stream, ending, &coded[size_t(c)]) == 0 &&
-            c == 0)
-            return {};  // a prefix without even the corners: no map
+    for (int c = 0; c < channels; ++c) {
+        const int present =
+            decodeNodes(layout, values, channels, c, q[size_t(c)], in, stream, ending, &coded[size_t(c)]);
+        if (c > 0) continue;
+        if (present == 0) return {};                   // a prefix without even the corners: no map
+        const int refinement = coded[0].coarsePasses;  // its index in the stream, where there is one
+        levels = refinement > 0 && present > refinement ? present - 1 : present;
+    }
     return values;
+}
+
+// A map cut short (`levels` of its passes decoded) whose levels make a whole coarser lattice,
+// the only geometric map: laid out at that lattice's resolution, as a file made for it on the
+// same cage holds it (and a renderer draws it), instead of interpolated on the finer one.
+void keepTheWholeLattice(const mesh::PolygonMesh& cage, surface::SurfaceMaps& maps, const kinds::MapKindInfo& kind,
+                         int levels) {
+    for (const kinds::MapKindInfo& other : kinds::kMapKinds)
+        if (other.lattice == kinds::MapLattice::Geometric && other.kind != kind.kind && maps.has(other.kind)) return;
+    const int T = maps.layout.resolution;
+    for (int spacing = 2; spacing <= T; spacing *= 2) {
+        if (T % spacing != 0 || passesOfLattice(T, T / spacing) > levels) continue;
+        const surface::TexelLayout coarse = surface::buildTexelLayout(cage, T / spacing);
+        const std::vector<float>& fine = maps.values(kind.kind);
+        std::vector<float> values(size_t(coarse.nodeCount) * size_t(kind.channels));
+        for (int face = 0; face < coarse.ptexFaceCount; ++face)
+            for (int j = 0; j <= coarse.resolution; ++j)
+                for (int i = 0; i <= coarse.resolution; ++i)
+                    for (int c = 0; c < kind.channels; ++c)
+                        values[size_t(coarse.node(face, i, j)) * size_t(kind.channels) + size_t(c)] =
+                            fine[size_t(maps.layout.node(face, i * spacing, j * spacing)) * size_t(kind.channels) +
+                                 size_t(c)];
+        maps.layout = coarse;
+        maps.values(kind.kind) = std::move(values);
+        return;
+    }
 }
 
 // An appearance map as a JPEG of its atlas (codec/map_atlas.h), 8-bit sRGB: textures carry
@@ -668,14 +700,17 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         ByteReader section(raw, name + ": " + sections[k].what());
         if (const kinds::MapKindInfo* geometric = geometricSection(tag)) {
             std::vector<ChannelQuantisation> coded;
+            int levels = 0;
             asset.maps.values(geometric->kind) =
                 readMaps(section, asset.cage, geometric->channels,
                          version >= 11   ? NodeStream::LevelBlocks
                          : version == 10 ? NodeStream::LevelBlocksOneStep
                                          : NodeStream::TileVarints,
-                         asset.maps.layout, sections[k].cut ? NodeEnding::Prefix : NodeEnding::Whole, coded);
+                         asset.maps.layout, sections[k].cut ? NodeEnding::Prefix : NodeEnding::Whole, coded, levels);
             if (geometric->kind == MapKind::Displacement && asset.maps.hasDisplacement())
                 asset.heightsCoding = coded.front();
+            if (sections[k].cut && asset.maps.has(geometric->kind))
+                keepTheWholeLattice(asset.cage, asset.maps, *geometric, levels);
         } else if (tag == kAtlasUvs) {
             if (asset.maps.appearanceLayout.resolution != 0) throw Error(name + ": section AUVS after the appearance");
             if (version == 4)

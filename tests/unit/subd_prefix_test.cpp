@@ -55,6 +55,8 @@ SubdAsset prefixOf(const Bytes& file, size_t bytes) {
     return decodeSubd(std::span(file).first(bytes), "prefix.subd", nullptr, {}, SubdEnding::Prefix);
 }
 
+// A prefix's levels decode as in the whole file, the map at the resolution of the finest whole
+// lattice they make (a file made for it on the same cage holds that), finer with every level.
 TEST(SubdPrefix, EveryPrefixPastTheCageDecodesItsLevelsAsTheWholeFileDoes) {
     const SubdAsset asset = displacedSphere(8, 6);  // 216 faces: every level's pass over 1 KB
     const Bytes file = encodeSubd(asset, {.displacementBits = 12});
@@ -62,10 +64,8 @@ TEST(SubdPrefix, EveryPrefixPastTheCageDecodesItsLevelsAsTheWholeFileDoes) {
     const auto [dispBegin, dispEnd] = sectionSpan(file, "DISP");
     ASSERT_GT(dispBegin, 0u);
     ASSERT_EQ(dispEnd, file.size() - 8) << "the heights are the file's last section";
-    const size_t nodes = whole.maps.displacement.size();
-    size_t exactBefore = 0, shapes = 0;
-    double errorBefore = INFINITY;
-    std::vector<float> previous;
+    const surface::TexelLayout& layout = whole.maps.layout;
+    std::vector<int> resolutions;
     // Every 11th byte from the heights' section on, and the whole file last.
     std::vector<size_t> cuts;
     for (size_t bytes = dispBegin; bytes < file.size(); bytes += 11) cuts.push_back(bytes);
@@ -74,32 +74,23 @@ TEST(SubdPrefix, EveryPrefixPastTheCageDecodesItsLevelsAsTheWholeFileDoes) {
         const SubdAsset prefix = prefixOf(file, bytes);
         ASSERT_EQ(prefix.cage.positions, whole.cage.positions);
         if (!prefix.maps.hasDisplacement()) {  // not even the corners: the bare limit surface
-            EXPECT_TRUE(previous.empty()) << "the heights went missing again at " << bytes;
+            EXPECT_TRUE(resolutions.empty()) << "the heights went missing again at " << bytes;
             continue;
         }
-        ASSERT_EQ(prefix.maps.displacement.size(), nodes);
-        size_t exact = 0;
-        double error = 0.0;
-        for (size_t n = 0; n < nodes; ++n) {
-            ASSERT_TRUE(std::isfinite(prefix.maps.displacement[n]));
-            exact += prefix.maps.displacement[n] == whole.maps.displacement[n];
-            error += std::abs(double(prefix.maps.displacement[n]) - double(whole.maps.displacement[n]));
-        }
-        // Each level, once in, decodes as in the whole file, and more bytes never lose one.
-        EXPECT_GE(exact, exactBefore) << bytes;
-        if (prefix.maps.displacement != previous) {
-            ++shapes;
-            EXPECT_LT(error, errorBefore) << "a longer prefix moved away from the whole file at " << bytes;
-        }
-        exactBefore = exact;
-        errorBefore = error;
-        previous = prefix.maps.displacement;
+        const surface::TexelLayout& at = prefix.maps.layout;
+        ASSERT_EQ(layout.resolution % at.resolution, 0);
+        if (resolutions.empty() || resolutions.back() != at.resolution) resolutions.push_back(at.resolution);
+        const int spacing = layout.resolution / at.resolution;
+        for (int face = 0; face < at.ptexFaceCount; ++face)
+            for (int j = 0; j <= at.resolution; ++j)
+                for (int i = 0; i <= at.resolution; ++i)
+                    ASSERT_EQ(prefix.maps.displacement[size_t(at.node(face, i, j))],
+                              whole.maps.displacement[size_t(layout.node(face, i * spacing, j * spacing))])
+                        << bytes;
     }
-    EXPECT_EQ(exactBefore, nodes);
-    EXPECT_EQ(previous, whole.maps.displacement);
-    // T = 8: the corners, then u and v at s = 4, 2, 1; each flushed (over 1 KB), so each a coarser
-    // asset of its own.
-    EXPECT_GE(shapes, 5u);
+    // T = 8: the corners (T = 1), u and v at s = 4 (T = 2), at 2 (T = 4), at 1; each level's
+    // passes over 1 KB, flushed, so each a coarser asset of its own, in order.
+    EXPECT_EQ(resolutions, (std::vector<int>{1, 2, 4, 8}));
 }
 
 TEST(SubdPrefix, AWholeFileReadAsAPrefixIsTheWholeFile) {
@@ -235,16 +226,8 @@ TEST(SubdPrefix, AGrownFilesPrefixIsTheAssetItGrewFrom) {
     ASSERT_GT(file.size(), small.size());
 
     auto isTheAsset = [&](const SubdAsset& prefix) {
-        if (prefix.cage.positions != asset.cage.positions || prefix.cage.faceIndices != asset.cage.faceIndices ||
-            !prefix.maps.hasDisplacement())
-            return false;
-        for (int face = 0; face < asset.maps.layout.ptexFaceCount; ++face)
-            for (int j = 0; j <= kOwn; ++j)
-                for (int i = 0; i <= kOwn; ++i)
-                    if (prefix.maps.displacement[size_t(prefix.maps.layout.node(face, i * s, j * s))] !=
-                        asset.maps.displacement[size_t(asset.maps.layout.node(face, i, j))])
-                        return false;
-        return true;
+        return prefix.cage.positions == asset.cage.positions && prefix.cage.faceIndices == asset.cage.faceIndices &&
+               prefix.maps.layout.resolution == kOwn && prefix.maps.displacement == asset.maps.displacement;
     };
     size_t shortest = 0;
     for (size_t bytes = sectionSpan(file, "CAGE").second; bytes < file.size() && shortest == 0; bytes += 7)
