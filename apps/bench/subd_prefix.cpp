@@ -119,9 +119,9 @@ int runSubdPrefix(const SubdPrefixOptions& o) {
     std::vector<std::size_t> cuts;
     for (int k = 0; k <= o.cuts; ++k)
         cuts.push_back(first + (file.size() - first) * std::size_t(k) / std::size_t(o.cuts));
-    std::vector<std::filesystem::path> whole = o.made;
-    if (o.growResolution > 0) whole.push_back(o.asset);  // what it grew from
-    for (const auto& made : whole)
+    std::vector<std::filesystem::path> comparedAt = o.made;
+    if (o.growResolution > 0) comparedAt.push_back(o.asset);  // what it grew from
+    for (const auto& made : comparedAt)
         if (const auto bytes = std::size_t(std::filesystem::file_size(made)); bytes > first && bytes < file.size())
             cuts.push_back(bytes);
     std::sort(cuts.begin(), cuts.end());
