@@ -48,10 +48,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         return 0;
     }
     if (size >= 7 && data[0] == 'R') {
-        subdfit::codec::SubdAsset asset{.cage = subdfit::mesh::makeQuadSphere(1 + data[1] % 3), .maps = {}};
-        asset.maps.layout = subdfit::surface::buildTexelLayout(asset.cage, 1 + data[2] % 4);
-        for (int n = 0; n < asset.maps.layout.nodeCount; ++n)
-            asset.maps.displacement.push_back(float(data[6 + size_t(n) % (size - 6)]) / 100.0f);
+        const auto cage = subdfit::mesh::makeQuadSphere(1 + data[1] % 3);
+        subdfit::surface::SurfaceMaps maps;
+        maps.layout = subdfit::surface::buildTexelLayout(cage, 1 + data[2] % 4);
+        for (int n = 0; n < maps.layout.nodeCount; ++n)
+            maps.displacement.push_back(float(data[6 + size_t(n) % (size - 6)]) / 100.0f);
+        // Laid out on the cage as it decodes, as every asset encodeSubd is given (shippableAsset).
+        const subdfit::codec::SubdAsset asset = subdfit::codec::shippableAsset(cage, maps);
         const Bytes good = subdfit::codec::encodeSubd(asset);
         Bytes bad = good;
         uint32_t where;
