@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <bit>
 #include <cstdio>
-#include <cstring>
 
 #include "bench_commands.h"
 #include "bench_common.h"
@@ -35,13 +34,6 @@ struct Row {
     std::size_t bytes = 0;
     double psnr = 0.0, meanDistance = 0.0;
 };
-
-// Where the file's first section, its cage, ends.
-std::size_t cageEnd(const std::string& file) {
-    std::uint32_t stored = 0;
-    if (file.size() >= 24) std::memcpy(&stored, file.data() + 20, 4);
-    return 28 + std::size_t(stored);
-}
 
 // The asset's cage with heights baked at the grown resolution and bits, its own lattice and
 // --prefix-bits first; written into the output folder.
@@ -115,7 +107,11 @@ int runSubdPrefix(const SubdPrefixOptions& o) {
         std::fflush(stdout);
     };
     // Evenly spaced from the cage's end, and at each whole file's bytes: prefixes and files compared at equal bytes.
-    const std::size_t first = cageEnd(file);
+    // Where the cage ends: the header and its section (the reader's account of the file).
+    const std::size_t first =
+        16 + codec::readShippedSubd({reinterpret_cast<const unsigned char*>(file.data()), file.size()}, cut.string())
+                 .sectionBytes.front()
+                 .second;
     std::vector<std::size_t> cuts;
     for (int k = 0; k <= o.cuts; ++k)
         cuts.push_back(first + (file.size() - first) * std::size_t(k) / std::size_t(o.cuts));

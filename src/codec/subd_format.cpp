@@ -602,11 +602,11 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
         std::memcpy(&stored, bytes.data() + bytes.size() - 8, 8);
         return hash64({reinterpret_cast<const char*>(bytes.data()), bytes.size() - 8}) == stored;
     };
-    const bool prefix = ending == SubdEnding::Prefix && !intact();
-    if (!prefix && !intact()) throw Error(name + ": checksum mismatch (damaged or truncated)");
+    const bool whole = intact();
+    const bool prefix = ending == SubdEnding::Prefix && !whole;
+    if (!prefix && !whole) throw Error(name + ": checksum mismatch (damaged or truncated)");
     if (prefix && version < 10)
         throw Error(name + ": .subd version " + std::to_string(version) + " is read whole only");
-    shipped.whole = !prefix;
     ByteReader in(prefix ? bytes : bytes.first(bytes.size() - 8), name);
     in.take(6);
     auto flags = in.get<std::uint16_t>();

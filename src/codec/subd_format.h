@@ -118,7 +118,6 @@ struct ShippedSubd {
     std::vector<std::pair<std::string, std::size_t>> sectionBytes;
     int positionBits = 0;                    // per cage coordinate, as coded
     std::vector<unsigned char> cageSection;  // the CAGE section's raw bytes
-    bool whole = true;                       // false: a prefix (SubdEnding), decoded as far as it goes
 };
 
 // What decodeSubd reads before it decodes the images (with OpenImageIO): the one reader of the
