@@ -11,18 +11,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "simplify/compare/compare_level.h"
 #include "simplify/compare/quality.h"
 #include "simplify/compare/triangle_baseline.h"
 #include "util/named_enum.h"
 
 namespace subdfit::simplify {
-
-// How much comparison a run makes beside what it ships:
-//  none: only what chooses the route (decimation + Draco at the budget, on the held-out views);
-//        no baselines/ folder, no comparison.png, no surface distances;
-//  fast: the triangle baselines too (gltfpack), each with its files and held-out scores;
-//  full: also the bake route, the surface distances and comparison.png.
-enum class CompareLevel { None, Fast, Full };
 
 // Without --budget or --faces: a tenth of the reference compressed (what the triangle route ships
 // holding all of it), never under kSmallestDefaultBudget, and never over the reference compressed:
@@ -71,11 +65,3 @@ std::optional<Route> routeWithoutCage(const TriangleChoice& triangles, const std
 nlohmann::json toJson(const Route& route);
 
 }  // namespace subdfit::simplify
-
-template <>
-struct subdfit::EnumNames<subdfit::simplify::CompareLevel> {
-    using L = simplify::CompareLevel;
-    static constexpr std::array names{std::pair{L::None, std::string_view("none")},
-                                      std::pair{L::Fast, std::string_view("fast")},
-                                      std::pair{L::Full, std::string_view("full")}};
-};

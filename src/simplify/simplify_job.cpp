@@ -60,7 +60,7 @@ Quality scoreCage(gl::ProgramCache& programs, fit::FitRun& run, const fit::FitRe
     ours.shipped = "asset.subd";
     const auto shipped = drawnAsFitted(programs, run.scene(), codec::readSubd(out / "asset.subd"));
     setHoldout(fit::scoreHoldout(*shipped, run.scene().holdout), ours);
-    if (o.compare == CompareLevel::Full)
+    if (o.compare >= CompareLevel::Full)
         ours.distance = shippedDistance(out / "asset.subd", run.fitter().renderer().tessLevel(), run.scene().frame,
                                         run.scene().reference, o.surfaceSamples);
     return ours;
@@ -340,7 +340,7 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
         report.cage = report.subdfit;
         report.subdfit = shipTriangles(best, in.staged);
     }
-    if (options.compare == CompareLevel::Full) {
+    if (options.compare >= CompareLevel::Full) {
         in.baselines.segments = run.fitter().renderer().tessLevel();
         report.bake = bakeBaseline(in.programs, in.scene, plan.bakeRoute, in.baselines);
         if (plan.budget) report.bake->details["over_budget"] = report.bake->bytes > plan.budget->bytes;
@@ -453,7 +453,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     BaselineSettings baselineSettings{.dir = staged.path() / "baselines",
                                       .compactMaps = fitOptions.compactMaps,
                                       .surfaceSamples = options.surfaceSamples,
-                                      .distance = options.compare == CompareLevel::Full};
+                                      .distance = options.compare >= CompareLevel::Full};
     const TargetBudget target = targetBudget(options, scene, staged.path(), hooks, stages);
     report.budgetBytes = target.bytes.value_or(0);
     report.budgetDerived = target.bytes && !options.budget;
@@ -472,7 +472,7 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     report.unavailable = std::move(triangles.unavailable);
     // Weighed by the route (report.json's route.weighed), not kept as baselines.
     if (options.compare == CompareLevel::None) std::filesystem::remove_all(baselineSettings.dir);
-    if (options.compare == CompareLevel::Full) {
+    if (options.compare >= CompareLevel::Full) {
         writeComparisonImage(report, options.fit.resolution > 0 ? options.fit.resolution : scene.holdout.resolution(),
                              scene, staged.path());
         stages.lap("comparison_image");

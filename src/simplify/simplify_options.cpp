@@ -45,8 +45,10 @@ const std::vector<fit::TableRow<SimplifyMember>>& simplifyOptionTable() {
          &S::surfaceSamples},
         {{.key = "compare",
           .flag = "--compare",
-          .help = "what is compared beside what ships: none (only what chooses the route), fast (+ the triangle "
-                  "baselines' files and scores), full (+ the bake route, surface distances, comparison.png)",
+          .help =
+              "what is compared beside what ships: none (only what chooses the route), fast (+ the triangle "
+              "baselines' files and scores), full (+ the bake route, surface distances, comparison.png), all (+ every "
+              "triangle baseline, those that rarely lead too)",
           .setting = true},
          &S::compare},
         {{.key = "route",

@@ -59,7 +59,7 @@ BudgetSearch budgetSearchFor(const SimplifyOptions& o, std::uintmax_t budget, co
             .appearanceAtlases =
                 o.fit.appearanceAtlas > 0 ? std::vector<int>{o.fit.appearanceAtlas} : atlasSizesFor(scene.reference),
             .quadTrial = o.cageShape == CageShape::Auto && !o.faces,
-            .bestWithMaps = o.compare == CompareLevel::Full};
+            .bestWithMaps = o.compare >= CompareLevel::Full};
 }
 
 // The search's choice into the fit's options: its maps, their resolution, bits and shading

@@ -25,7 +25,7 @@ TriangleBaselines triangleBaselines(gl::ProgramCache& programs, const fit::FitSc
                                     const BaselineSettings& settings, CompareLevel level) {
     std::filesystem::create_directories(settings.dir);
     TriangleBaselines t;
-    for (const auto& baseline : triangleBaselinesFor(scene, level != CompareLevel::None)) {
+    for (const auto& baseline : triangleBaselinesFor(scene, level)) {
         if (std::string why = baseline->unavailable(); !why.empty()) {
             t.unavailable.emplace_back(baseline->name(), std::move(why));
             continue;

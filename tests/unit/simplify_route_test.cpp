@@ -90,6 +90,7 @@ TEST(SimplifyRoute, CompareLevelsParseAndRefuse) {
     EXPECT_EQ(parseNamed<simplify::CompareLevel>("none"), simplify::CompareLevel::None);
     EXPECT_EQ(parseNamed<simplify::CompareLevel>("fast"), simplify::CompareLevel::Fast);
     EXPECT_EQ(parseNamed<simplify::CompareLevel>("full"), simplify::CompareLevel::Full);
+    EXPECT_EQ(parseNamed<simplify::CompareLevel>("all"), simplify::CompareLevel::All);
     EXPECT_EQ(parseNamed<simplify::CompareLevel>("most"), std::nullopt);
     EXPECT_EQ(nameOf(simplify::CompareLevel::Fast), "fast");
 }

@@ -96,10 +96,11 @@ constexpr int kProbeSourceGuesses = 8;
 
 // That copy, where the reference has more than twice its triangles; else none (the probes start
 // from the reference itself).
-std::optional<mesh::PolygonMesh> probeSourceFor(const mesh::PolygonMesh& welded, std::uintmax_t budget) {
+std::optional<mesh::PolygonMesh> probeSourceFor(const mesh::PolygonMesh& welded, std::uintmax_t budget,
+                                                const Decimations::Decimate& reduce) {
     const int triangles = kProbeSourceGuesses * firstGuess(budget, welded.faceCount());
     if (welded.faceCount() <= 2 * triangles) return std::nullopt;
-    return decimate(welded, triangles);
+    return reduce(welded, triangles);
 }
 
 // The file as held-out views and (when asked) the surface distance see it.
@@ -120,8 +121,8 @@ void scoreShipped(gl::ProgramCache& programs, const fit::FitScene& scene, const 
 }  // namespace
 
 Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& welded,
-                           std::uintmax_t budget, const BaselineSettings& settings) {
-    const auto path = settings.dir / "decimated.glb";
+                           std::uintmax_t budget, const BaselineSettings& settings, const Reduction& reduction) {
+    const auto path = settings.dir / reduction.file;
     const ReferenceNormals referenceNormals(scene.reference);
     const bool splitNormals = !mesh::oneNormalPerPosition(scene.reference);
     const auto shipFrom = [&](Decimations& decimations) {
@@ -132,8 +133,9 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
             return writeDecimation(scene, referenceNormals, decimations.at(triangles), encoding, path);
         };
     };
-    const std::optional<mesh::PolygonMesh> probeSource = probeSourceFor(welded, budget);
-    Decimations fromReference(welded, decimate), fromCopy(probeSource ? *probeSource : welded, decimate);
+    const std::optional<mesh::PolygonMesh> probeSource = probeSourceFor(welded, budget, reduction.reduce);
+    Decimations fromReference(welded, reduction.reduce),
+        fromCopy(probeSource ? *probeSource : welded, reduction.reduce);
     EncodedChoice chosen = bestEncoding(programs, scene, budget, (probeSource ? *probeSource : welded).faceCount(),
                                         path, shipFrom(probeSource ? fromCopy : fromReference),
                                         {.positionBits = 14, .normals = false}, firstGuess(budget, welded.faceCount()));
@@ -146,7 +148,7 @@ Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scen
     }
     Quality q;
     q.bytes = chosen.bytes;
-    q.files = {{"decimated.glb", chosen.bytes}};
+    q.files = {{reduction.file, chosen.bytes}};
     q.shipped = settings.dir.filename() / path.filename();
     q.details = {{"over_budget", chosen.bytes > budget},
                  {"encoding", toJson(chosen.encoding)},
@@ -212,7 +214,7 @@ std::optional<Quality> gltfpackBaseline(gl::ProgramCache& programs, const fit::F
     // As the decimation's: a dense reference's probes start from a copy decimated once (with the
     // reference's own normals where it kept its vertices); what ships starts from the reference.
     std::optional<Input> copy;
-    if (const auto probeSource = probeSourceFor(welded, budget))
+    if (const auto probeSource = probeSourceFor(welded, budget, decimate))
         copy = writeInput(*probeSource, referenceNormals.at(*probeSource), "gltfpack_probe_input");
     const Input& probes = copy ? *copy : whole;
     const auto output = settings.dir / "gltfpack.glb";

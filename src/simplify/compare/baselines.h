@@ -51,10 +51,18 @@ struct BakeRoute {
     surface::ShadingNormal shadingNormal = surface::ShadingNormal::Displaced;  // of its heights
 };
 
-// Both triangle baselines start from `welded`: weldedTriangles(scene.reference), made once.
-// Writes dir/decimated.glb (Draco).
+// How a triangle baseline brings the welded reference down to a count (simplify/cage/decimate.h's
+// decimate or cluster), and the file under BaselineSettings::dir it ships.
+struct Reduction {
+    std::function<mesh::PolygonMesh(const mesh::PolygonMesh& welded, int triangles)> reduce;
+    std::string file;  // "decimated.glb"
+};
+
+// The triangle baselines start from `welded`: weldedTriangles(scene.reference), made once.
+// Writes dir/reduction.file (Draco): the reference reduced to the most triangles that fit the
+// budget, at the encoding that scores best.
 Quality decimationBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const mesh::PolygonMesh& welded,
-                           std::uintmax_t budget, const BaselineSettings& settings);
+                           std::uintmax_t budget, const BaselineSettings& settings, const Reduction& reduction);
 
 // The reference as decimationBaseline ships it at every triangle (positions at 14 bits, the
 // reference's normals at 10 where `normals`; welded unless its normals split): writes `path`,

@@ -34,7 +34,7 @@ public:
     Quality ship(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
                  const BaselineSettings& settings) const override {
         if (shipsMaterials(scene)) return texturedDecimationBaseline(programs, scene, budget, settings);
-        return decimationBaseline(programs, scene, welded_->get(), budget, settings);
+        return decimationBaseline(programs, scene, welded_->get(), budget, settings, {decimate, "decimated.glb"});
     }
     // Every triangle holds the look where it ships normals (the reference's own: at every
     // triangle it ships the reference as it is where its normals split), or the reference is
@@ -103,11 +103,11 @@ bool shadedFlat(const fit::FitScene& scene) {
     return true;
 }
 
-std::vector<std::unique_ptr<TriangleBaseline>> triangleBaselinesFor(const fit::FitScene& scene, bool all) {
+std::vector<std::unique_ptr<TriangleBaseline>> triangleBaselinesFor(const fit::FitScene& scene, CompareLevel level) {
     const auto welded = std::make_shared<const WeldedReference>(scene);
     std::vector<std::unique_ptr<TriangleBaseline>> baselines;
     baselines.push_back(std::make_unique<Decimation>(welded));
-    if (all) baselines.push_back(std::make_unique<Gltfpack>(welded));
+    if (level >= CompareLevel::Fast) baselines.push_back(std::make_unique<Gltfpack>(welded));
     return baselines;
 }
 

@@ -11,6 +11,7 @@
 
 #include "gl/program_cache.h"
 #include "simplify/compare/baselines.h"
+#include "simplify/compare/compare_level.h"
 #include "simplify/compare/quality.h"
 
 namespace subdfit::fit {
@@ -52,8 +53,8 @@ bool shipsMaterials(const fit::FitScene& scene);
 // as viewers draw a file that ships none, look just as it does.
 bool shadedFlat(const fit::FitScene& scene);
 
-// The triangle baselines for `scene`: decimation + Draco first (the route always weighs it),
-// then, with `all`, gltfpack.
-std::vector<std::unique_ptr<TriangleBaseline>> triangleBaselinesFor(const fit::FitScene& scene, bool all);
+// The triangle baselines `level` makes for `scene`: decimation + Draco first (the route always
+// weighs it), then gltfpack (fast and up).
+std::vector<std::unique_ptr<TriangleBaseline>> triangleBaselinesFor(const fit::FitScene& scene, CompareLevel level);
 
 }  // namespace subdfit::simplify
