@@ -21,6 +21,7 @@
 #include "simplify/budget_search.h"
 #include "simplify/compare/textured_baselines.h"
 #include "simplify/simplify_job.h"
+#include "simplify/triangle_route.h"
 #include "small_simplify.h"
 #include "test_paths.h"
 #include "util/error.h"
@@ -323,6 +324,40 @@ TEST(TexturedBaselines, ATightBudgetStillShipsADecimationWithinIt) {
         << "the first coding fits: the case no longer tests this";
     EXPECT_LE(q.bytes, kBudget) << q.details.dump();
     EXPECT_FALSE(q.details["over_budget"].get<bool>());
+    expectNoGlError();
+}
+
+// Each comparison level makes its list of triangle baselines (decimation first, as the route
+// weighs it; clustering only with `all`), each within the budget, its file as it reports.
+TEST(TriangleBaselines, EachLevelMakesItsListWithinTheBudget) {
+    const fit::FitScene scene =
+        smallSearchScene(mesh::makeLumpySphere(5, 0.15f, 5, 40, 0.005f, 0.02f), "triangle_baselines");
+    constexpr std::uintmax_t kBudget = 3000;
+    const std::vector<std::pair<simplify::CompareLevel, std::vector<std::string>>> levels{
+        {simplify::CompareLevel::None, {"decimation"}},
+        {simplify::CompareLevel::Fast, {"decimation", "gltfpack"}},
+        {simplify::CompareLevel::All, {"decimation", "gltfpack", "clustering"}}};
+    for (const auto& [level, expected] : levels) {
+        SCOPED_TRACE(nameOf(level));
+        const simplify::BaselineSettings settings{.dir = scratchDir("triangle_baselines_" + std::string(nameOf(level))),
+                                                  .distance = false};
+        const simplify::TriangleBaselines made =
+            simplify::triangleBaselines(programs(), scene, kBudget, settings, level);
+        std::vector<std::string> names;
+        for (const auto& b : made.made) names.push_back(b.name);
+        for (const auto& [name, why] : made.unavailable) names.push_back(name);  // gltfpack, where not on PATH
+        std::sort(names.begin() + 1, names.end());
+        std::vector<std::string> sorted = expected;
+        std::sort(sorted.begin() + 1, sorted.end());
+        EXPECT_EQ(names, sorted);
+        ASSERT_EQ(made.made.front().name, "decimation");
+        for (const auto& b : made.made) {
+            SCOPED_TRACE(b.name);
+            EXPECT_LE(b.quality.bytes, kBudget);
+            EXPECT_GT(b.quality.psnrHoldout, 10.0);
+            EXPECT_EQ(fs::file_size(settings.dir.parent_path() / b.quality.shipped), b.quality.bytes);
+        }
+    }
     expectNoGlError();
 }
 

@@ -4,8 +4,10 @@
 
 #include <glm/geometric.hpp>
 
+#include <array>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "geometry/surface_distance.h"
 #include "geometry/surface_queries.h"
@@ -62,6 +64,35 @@ TEST(SimplifyDecimate, ClosedMeshStaysClosedWithinTheBudget) {
     }
     EXPECT_EQ(decimate(dense, dense.faceCount() + 10).faceCount(), dense.faceCount());
     EXPECT_THROW(decimate(dense, 0), Error);
+}
+
+// Clustering merges vertices cell by cell: within the count, on the input's own vertices (which
+// the triangle baselines' normals are found by), components free to merge or vanish.
+TEST(SimplifyCluster, StaysWithinTheCountOnTheInputsVertices) {
+    const mesh::PolygonMesh sphere = weldedTriangles(mesh::makeQuadSphere(3));
+    mesh::PolygonMesh many;  // 40 spheres on a grid
+    for (int k = 0; k < 40; ++k) {
+        const int first = many.vertexCount();
+        for (const glm::vec3& p : sphere.positions)
+            many.positions.push_back(p + glm::vec3(2.5f * float(k % 8), 2.5f * float(k / 8), 0));
+        for (int i : sphere.faceIndices) many.faceIndices.push_back(first + i);
+        many.faceSizes.insert(many.faceSizes.end(), sphere.faceSizes.begin(), sphere.faceSizes.end());
+    }
+    std::set<std::array<float, 3>> input;
+    for (const glm::vec3& p : many.positions) input.insert({p.x, p.y, p.z});
+    for (int target : {100, 600, 2000}) {
+        SCOPED_TRACE(target);
+        const mesh::PolygonMesh coarse = cluster(many, target);
+        EXPECT_LE(coarse.faceCount(), target);
+        EXPECT_GE(coarse.faceCount(), target / 4);
+        for (const glm::vec3& p : coarse.positions) ASSERT_TRUE(input.count({p.x, p.y, p.z}));
+        for (int i = 0; i < coarse.faceCount(); ++i) {
+            const int* f = &coarse.faceIndices[size_t(3 * i)];
+            ASSERT_TRUE(f[0] != f[1] && f[1] != f[2] && f[0] != f[2]);
+        }
+    }
+    EXPECT_EQ(cluster(many, many.faceCount()).faceCount(), many.faceCount());
+    EXPECT_THROW(cluster(many, 0), Error);
 }
 
 // The limit surface passes through the decimated vertices: the initial cage's first step.

@@ -55,27 +55,46 @@ mesh::PolygonMesh weldedTriangles(const mesh::PolygonMesh& input) {
     return compacted(positions, welded, input.sourcePath);
 }
 
+namespace {
+
+// meshoptimizer's sloppy simplifier on `indices`, to at most `target` indices.
+std::vector<unsigned> sloppy(const mesh::PolygonMesh& triangles, const std::vector<unsigned>& indices, size_t target) {
+    std::vector<unsigned> out(indices.size());
+    out.resize(meshopt_simplifySloppy(out.data(), indices.data(), indices.size(), &triangles.positions[0].x,
+                                      triangles.positions.size(), sizeof(glm::vec3), target, 1.0f));
+    return out;
+}
+
+// What a reduction to `targetTriangles` left, compacted; throws where it left nothing.
+mesh::PolygonMesh reduced(const mesh::PolygonMesh& triangles, const std::vector<unsigned>& kept, int targetTriangles) {
+    if (kept.empty())
+        throw fileError(triangles.sourcePath,
+                        "decimation to " + std::to_string(targetTriangles) + " triangles left nothing");
+    return compacted(triangles.positions, kept, triangles.sourcePath);
+}
+
+}  // namespace
+
 mesh::PolygonMesh decimate(const mesh::PolygonMesh& triangles, int targetTriangles) {
     if (targetTriangles < 1) throw Error("cannot decimate to " + std::to_string(targetTriangles) + " triangles");
     const std::vector<unsigned> indices(triangles.faceIndices.begin(), triangles.faceIndices.end());
     const size_t target = size_t(targetTriangles) * 3;
     if (indices.size() <= target) return compacted(triangles.positions, indices, triangles.sourcePath);
 
-    const float* positions = &triangles.positions[0].x;
-    const size_t vertexCount = triangles.positions.size();
     std::vector<unsigned> out(indices.size());
     // Any error is allowed (a relative 1 is the whole mesh): the face budget is what binds.
-    out.resize(meshopt_simplify(out.data(), indices.data(), indices.size(), positions, vertexCount, sizeof(glm::vec3),
-                                target, 1.0f));
-    if (out.size() > target * 2 || out.empty()) {
-        out.resize(indices.size());
-        out.resize(meshopt_simplifySloppy(out.data(), indices.data(), indices.size(), positions, vertexCount,
-                                          sizeof(glm::vec3), target, 1.0f));
-    }
-    if (out.empty())
-        throw fileError(triangles.sourcePath,
-                        "decimation to " + std::to_string(targetTriangles) + " triangles left nothing");
-    return compacted(triangles.positions, out, triangles.sourcePath);
+    out.resize(meshopt_simplify(out.data(), indices.data(), indices.size(), &triangles.positions[0].x,
+                                triangles.positions.size(), sizeof(glm::vec3), target, 1.0f));
+    if (out.size() > target * 2 || out.empty()) out = sloppy(triangles, indices, target);
+    return reduced(triangles, out, targetTriangles);
+}
+
+mesh::PolygonMesh cluster(const mesh::PolygonMesh& triangles, int targetTriangles) {
+    if (targetTriangles < 1) throw Error("cannot cluster to " + std::to_string(targetTriangles) + " triangles");
+    const std::vector<unsigned> indices(triangles.faceIndices.begin(), triangles.faceIndices.end());
+    const size_t target = size_t(targetTriangles) * 3;
+    if (indices.size() <= target) return compacted(triangles.positions, indices, triangles.sourcePath);
+    return reduced(triangles, sloppy(triangles, indices, target), targetTriangles);
 }
 
 }  // namespace subdfit::simplify

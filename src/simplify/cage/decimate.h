@@ -16,4 +16,10 @@ mesh::PolygonMesh weldedTriangles(const mesh::PolygonMesh& mesh);
 // returns an empty mesh for a non-empty input. Throws subdfit::Error for targetTriangles < 1.
 mesh::PolygonMesh decimate(const mesh::PolygonMesh& triangles, int targetTriangles);
 
+// `triangles` (welded) clustered to at most `targetTriangles` by meshoptimizer's sloppy
+// simplifier alone: vertices merged cell by cell, components and holes free to merge, so any
+// count is reached on any input (scans, CAD soups) where edge collapse may stall. Its vertices
+// are a subset of the input's. Throws as decimate does.
+mesh::PolygonMesh cluster(const mesh::PolygonMesh& triangles, int targetTriangles);
+
 }  // namespace subdfit::simplify

@@ -58,6 +58,22 @@ private:
     std::shared_ptr<const WeldedReference> welded_;
 };
 
+// What a pipeline that must reach a count whatever the topology runs: meshoptimizer's clustering
+// (simplifySloppy) + Draco, searched as the decimation is. Untextured only: clusters ignore seams.
+class Clustering final : public TriangleBaseline {
+public:
+    explicit Clustering(std::shared_ptr<const WeldedReference> welded) : welded_(std::move(welded)) {}
+    std::string name() const override { return "clustering"; }
+    std::string title() const override { return "clustering + Draco"; }
+    Quality ship(gl::ProgramCache& programs, const fit::FitScene& scene, std::uintmax_t budget,
+                 const BaselineSettings& settings) const override {
+        return decimationBaseline(programs, scene, welded_->get(), budget, settings, {cluster, "clustered.glb"});
+    }
+
+private:
+    std::shared_ptr<const WeldedReference> welded_;
+};
+
 class Gltfpack final : public TriangleBaseline {
 public:
     explicit Gltfpack(std::shared_ptr<const WeldedReference> welded) : welded_(std::move(welded)) {}
@@ -108,6 +124,7 @@ std::vector<std::unique_ptr<TriangleBaseline>> triangleBaselinesFor(const fit::F
     std::vector<std::unique_ptr<TriangleBaseline>> baselines;
     baselines.push_back(std::make_unique<Decimation>(welded));
     if (level >= CompareLevel::Fast) baselines.push_back(std::make_unique<Gltfpack>(welded));
+    if (level >= CompareLevel::All && !shipsMaterials(scene)) baselines.push_back(std::make_unique<Clustering>(welded));
     return baselines;
 }
 

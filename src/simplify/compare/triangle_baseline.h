@@ -54,7 +54,7 @@ bool shipsMaterials(const fit::FitScene& scene);
 bool shadedFlat(const fit::FitScene& scene);
 
 // The triangle baselines `level` makes for `scene`: decimation + Draco first (the route always
-// weighs it), then gltfpack (fast and up).
+// weighs it), then gltfpack (fast and up), then clustering (all; untextured).
 std::vector<std::unique_ptr<TriangleBaseline>> triangleBaselinesFor(const fit::FitScene& scene, CompareLevel level);
 
 }  // namespace subdfit::simplify
