@@ -1,6 +1,7 @@
 // The example page in Debian's Chromium, headless, WebGL through SwiftShader (ctest -L web):
 // asset.subd through SubdLoader renders as `subdfit decode`'s glb through three's GLTFLoader
-// (PSNR >= 40 dB on the canvas), with no console errors; a damaged file fails in one line.
+// (PSNR >= 40 dB on the canvas), with no console errors, streamed too (drawn from its first
+// bytes, refined to the same); a damaged file fails in one line.
 //   WEB=<build/web> ASSETS=<fixture dir> NODE_MODULES=<apps/web/node_modules> node --test browser_test.mjs
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -92,6 +93,25 @@ for (const kind of kinds) {
     assert.ok(psnr >= 40, `PSNR ${psnr.toFixed(2)} dB`);
   });
 }
+
+test('streamed over a slow network, SubdLoader draws the cage first and refines to the whole file', async (t) => {
+  const total = fs.statSync(path.join(ASSETS, 'spot', 'asset.subd')).size;
+  const streamed = await show(`stream=1&src=${encodeURIComponent('/data/spot/asset.subd?chunk=2048&ms=40')}`);
+  const glb = await show('loader=gltf&src=/data/spot/native.glb');
+  assert.deepEqual(streamed.errors, [], 'console errors while streaming');
+  assert.equal(streamed.error, undefined, streamed.error);
+  const updates = streamed.updates;
+  t.diagnostic(updates.map((u) => `${u.bytes} B: ${u.triangles} triangles at ${u.ms.toFixed(0)} ms`).join('; '));
+  assert.ok(updates.length >= 3, `${updates.length} refinements`);
+  assert.ok(updates[0].bytes < total / 2 && !updates[0].complete, `first drawn at ${updates[0].bytes} of ${total} bytes`);
+  for (let k = 1; k < updates.length; ++k) assert.ok(updates[k].bytes > updates[k - 1].bytes);
+  assert.ok(updates.at(-1).complete && updates.at(-1).bytes === total && updates.at(-1).total === total);
+  assert.ok(updates.at(-1).ms - updates[0].ms > 100, 'the cage is drawn well before the file is in');
+  assert.equal(streamed.triangles, glb.triangles);
+  fs.writeFileSync(path.join(shots, 'streamed.png'), streamed.png);
+  const { psnr } = await compare(streamed.png, glb.png);
+  assert.ok(psnr >= 40, `PSNR ${psnr.toFixed(2)} dB against the whole file's glb`);
+});
 
 test('a damaged asset.subd fails the load with one line naming the file', async () => {
   const good = fs.readFileSync(path.join(ASSETS, 'spot', 'asset.subd'));

@@ -27,13 +27,30 @@ sun.position.set(1, 2, 1.5);
 scene.add(sun);
 const camera = new THREE.PerspectiveCamera(35, renderer.domElement.width / renderer.domElement.height, 0.01, 100);
 
+// A surface without an appearance comes in glTF's default material, fully metallic, which shows
+// dark with no environment to reflect: the page draws it in a neutral grey instead, either loader.
+const grey = new THREE.MeshStandardMaterial({ color: 0xcccccc, metalness: 0, roughness: 0.5 });
+let triangles = 0;
+const updates = [];  // with ?stream: { bytes, total, complete, triangles, ms } of each refinement drawn
+
 function load() {
   // `subdfit decode` writes KHR_mesh_quantization, which GLTFLoader reads as it is; with
   // --meshopt, EXT_meshopt_compression besides, which needs meshoptimizer's decoder.
   if (useGltf) return new GLTFLoader().setMeshoptDecoder(MeshoptDecoder).loadAsync(src).then((gltf) => gltf.scene);
   const loader = new SubdLoader();
   if (params.has('triangles')) loader.setTriangles(Number(params.get('triangles')));
-  return loader.loadAsync(src);
+  if (!params.has('stream')) return loader.loadAsync(src);
+  // ?stream: drawn from the file's first bytes on, each refinement as it comes.
+  return loader.loadStreaming(src, (mesh, progress) => {
+    updates.push({ ...progress, triangles: mesh.userData.subd.triangles, ms: performance.now() });
+    if (!mesh.material.map && !mesh.material.normalMap) mesh.material = grey;
+    if (!mesh.parent) {
+      scene.add(mesh);
+      frame(mesh);
+    }
+    renderer.render(scene, camera);
+    status.textContent = `${src}: ${progress.bytes} of ${progress.total} bytes, ${mesh.userData.subd.triangles} triangles`;
+  });
 }
 
 function frame(object) {
@@ -51,10 +68,7 @@ function frame(object) {
   return sphere;
 }
 
-let triangles = 0;
-// A surface without an appearance comes in glTF's default material, fully metallic, which shows
-// dark with no environment to reflect: the page draws it in a neutral grey instead, either loader.
-const grey = new THREE.MeshStandardMaterial({ color: 0xcccccc, metalness: 0, roughness: 0.5 });
+
 const ready = load().then((object) => {
   object.traverse((o) => {
     if (o.isMesh && !o.material.map && !o.material.normalMap) o.material = grey;
@@ -70,7 +84,7 @@ const ready = load().then((object) => {
   return new Promise((resolve) => requestAnimationFrame(() => {
     const firstFrameMs = performance.now();
     status.textContent = `${src}: ${triangles} triangles, first frame ${firstFrameMs.toFixed(0)} ms after the request`;
-    resolve({ firstFrameMs, triangles });
+    resolve({ firstFrameMs, triangles, updates });
   }));
 }).catch((error) => {
   status.textContent = String(error?.message ?? error);

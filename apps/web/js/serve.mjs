@@ -1,7 +1,8 @@
 #!/usr/bin/env node
 // A static file server on 127.0.0.1 for the example page (module workers and fetch need http:):
 //   node serve.mjs [--port 8080] [--mount /PREFIX=FOLDER ...]
-// serves this folder at / (the example at /example/) and each FOLDER under its /PREFIX.
+// serves this folder at / (the example at /example/) and each FOLDER under its /PREFIX; a file
+// asked for with ?chunk=N&ms=M comes N bytes every M milliseconds (a slow network).
 import fs from 'node:fs';
 import http from 'node:http';
 import path from 'node:path';
@@ -11,6 +12,15 @@ const TYPES = {
   '.html': 'text/html; charset=utf-8', '.mjs': 'text/javascript', '.js': 'text/javascript', '.json': 'application/json',
   '.wasm': 'application/wasm', '.glb': 'model/gltf-binary', '.png': 'image/png', '.jpg': 'image/jpeg', '.css': 'text/css',
 };
+
+function trickle(bytes, chunk, ms, response) {
+  const send = (at) => {
+    if (at >= bytes.length || response.destroyed) return response.end();
+    response.write(bytes.subarray(at, at + chunk));
+    setTimeout(send, ms, at + chunk);
+  };
+  send(0);
+}
 
 // mounts: { '/': folder, '/data': folder, ... }. Resolves to { server, url } once listening.
 export function startServer({ mounts, port = 0 }) {
@@ -32,7 +42,11 @@ export function startServer({ mounts, port = 0 }) {
     }
     response.writeHead(200, { 'content-type': TYPES[path.extname(file)] ?? 'application/octet-stream',
                               'content-length': stat.size, 'cache-control': 'no-store' });
-    fs.createReadStream(file).pipe(response);
+    // ?chunk=N&ms=M: N bytes every M milliseconds, as a slow network delivers them.
+    const query = new URL(request.url, 'http://localhost').searchParams;
+    const chunk = Number(query.get('chunk')), ms = Number(query.get('ms'));
+    if (chunk > 0 && ms > 0) trickle(fs.readFileSync(file), chunk, ms, response);
+    else fs.createReadStream(file).pipe(response);
   });
   return new Promise((resolve, reject) => {
     server.once('error', reject);

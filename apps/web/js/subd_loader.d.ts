@@ -15,6 +15,18 @@ export class SubdLoader extends Loader<Mesh<BufferGeometry, MeshStandardMaterial
     onProgress?: (event: ProgressEvent) => void,
     onError?: (error: unknown) => void,
   ): void;
+  /**
+   * Draws the asset as its bytes arrive: the Mesh is made once the file's cage is in and refined
+   * in place (geometry, and material where the images change) as more arrives; resolves with it
+   * once the whole file is in and decoded as parse() decodes it.
+   */
+  loadStreaming(
+    url: string,
+    onUpdate?: (
+      mesh: Mesh<BufferGeometry, MeshStandardMaterial>,
+      progress: { bytes: number; total: number; complete: boolean },
+    ) => void,
+  ): Promise<Mesh<BufferGeometry, MeshStandardMaterial>>;
   /** An asset.subd's bytes to a Mesh; `name` names the file in errors. */
   parse(buffer: ArrayBuffer, name?: string): Promise<Mesh<BufferGeometry, MeshStandardMaterial>>;
   dispose(): this;

@@ -3,6 +3,10 @@
 //   const loader = new SubdLoader().setDecoderPath('/subdfit/');
 //   scene.add(await loader.loadAsync('asset.subd'));
 //
+// or, drawn from its first bytes on and refined as the rest arrives:
+//
+//   await loader.loadStreaming('asset.subd', (mesh, { complete }) => { if (!scene.children.includes(mesh)) scene.add(mesh); });
+//
 // It builds the Mesh and MeshStandardMaterial that three's GLTFLoader builds from the glb of
 // `subdfit decode` for the same file: the same triangles, the same material factors, the same
 // textures (the JPEGs the file carries, decoded by the browser as GLTFLoader decodes images).
@@ -57,11 +61,55 @@ export class SubdLoader extends Loader {
 
   // An asset.subd's bytes to a Mesh. `name` names the file in errors.
   async parse(buffer, name = 'asset.subd') {
-    this.decoder ??= new SubdDecoder({ decoderPath: this.decoderPath, workerLimit: this.workerLimit });
-    const decoded = await this.decoder.decode(buffer, { triangles: this.triangles, name });
-    const mesh = new Mesh(geometryOf(decoded), await materialOf(decoded, this));
+    const mesh = new Mesh();
     mesh.name = name;
-    mesh.userData.subd = { segments: decoded.segments, triangles: decoded.indices.length / 3, warnings: decoded.warnings };
+    await refine(mesh, await this.#decoder().decode(buffer, { triangles: this.triangles, name }), this);
+    return mesh;
+  }
+
+  // Draws the asset as its bytes arrive: the file's first bytes decode to a coarser asset (the
+  // cage, then its maps level by level), so the Mesh is made once the cage is in and refined in
+  // place as more arrives. onUpdate(mesh, { bytes, total, complete }) after each refinement
+  // (total: the file's bytes, 0 where the server does not say); resolves with the Mesh once the
+  // whole file is in and decoded, exactly as parse() decodes it.
+  async loadStreaming(url, onUpdate = () => {}) {
+    const name = url.split('/').pop().split('?')[0] || url;
+    const response = await fetch(this.manager.resolveURL((this.path ?? '') + url), {
+      headers: this.requestHeader, credentials: this.withCredentials ? 'include' : 'same-origin' });
+    if (!response.ok) throw new Error(`${name}: HTTP ${response.status}`);
+    const total = Number(response.headers.get('content-length')) || 0;
+    const bytes = new ArrivingBytes(total);
+    const mesh = new Mesh();
+    mesh.name = name;
+    let decoding = null, decodedAt = 0, failure = null;
+    // One prefix decode at a time, each once the bytes have grown by half since the last.
+    const decodeMore = () => {
+      if (decoding || failure || bytes.length < Math.max(kFirstPrefixBytes, 1.5 * decodedAt)) return;
+      const at = bytes.length;
+      decoding = this.#decoder().decode(bytes.first(at), { triangles: this.triangles, name, prefix: true })
+        .then((decoded) => refine(mesh, decoded, this))
+        .then(() => onUpdate(mesh, { bytes: at, total, complete: false }))
+        .catch((error) => { if (!kBeforeTheCage.test(error?.message)) failure = error; })
+        .finally(() => {
+          decoding = null;
+          decodedAt = at;
+          decodeMore();
+        });
+    };
+    for (const reader = response.body.getReader();;) {
+      const { done, value } = await reader.read();
+      if (done) break;
+      bytes.append(value);
+      decodeMore();
+      if (failure) {
+        reader.cancel();
+        throw failure;
+      }
+    }
+    while (decoding) await decoding;
+    if (failure) throw failure;
+    await refine(mesh, await this.#decoder().decode(bytes.first(bytes.length), { triangles: this.triangles, name }), this);
+    onUpdate(mesh, { bytes: bytes.length, total, complete: true });
     return mesh;
   }
 
@@ -70,6 +118,54 @@ export class SubdLoader extends Loader {
     this.decoder = null;
     return this;
   }
+
+  #decoder() {
+    this.decoder ??= new SubdDecoder({ decoderPath: this.decoderPath, workerLimit: this.workerLimit });
+    return this.decoder;
+  }
+}
+
+// No prefix shorter than this is tried: a file's header and cage take more.
+const kFirstPrefixBytes = 256;
+// The one refusal a prefix decode makes for want of bytes (subdfit decode --bytes's message).
+const kBeforeTheCage = / bytes end before the cage does$/;
+
+// A download's bytes so far, in one buffer grown as they arrive.
+class ArrivingBytes {
+  constructor(total) {
+    this.buffer = new Uint8Array(Math.max(total, 1 << 16));
+    this.length = 0;
+  }
+
+  append(chunk) {
+    if (this.length + chunk.length > this.buffer.length) {
+      const grown = new Uint8Array(Math.max(2 * this.buffer.length, this.length + chunk.length));
+      grown.set(this.buffer.subarray(0, this.length));
+      this.buffer = grown;
+    }
+    this.buffer.set(chunk, this.length);
+    this.length += chunk.length;
+  }
+
+  // A copy of the first n bytes (the decoder takes its input's buffer).
+  first(n) {
+    return this.buffer.slice(0, n);
+  }
+}
+
+// `mesh` made to show `decoded`: its geometry replaced, its material made again where the
+// images it has changed (a prefix may end before the appearance does).
+async function refine(mesh, decoded, loader) {
+  const images = Object.keys(decoded.images).sort().join();
+  const old = mesh.geometry;
+  mesh.geometry = geometryOf(decoded);
+  old?.dispose();
+  if (mesh.userData.subd?.images !== images) {
+    mesh.material?.dispose?.();
+    mesh.material = await materialOf(decoded, loader);
+  }
+  mesh.userData.subd = { segments: decoded.segments, triangles: decoded.indices.length / 3, warnings: decoded.warnings,
+                         images };
 }
 
 function geometryOf(decoded) {
