@@ -8,7 +8,6 @@
 // levels down to the asset's own lattice hold the asset's own heights on its own grid
 // (codec::EmbeddedPrefix): a larger file whose prefix is the asset's heights on its cage.
 #include <algorithm>
-#include <bit>
 #include <cstdio>
 
 #include "bench_commands.h"
@@ -17,11 +16,12 @@
 #include "fit/device_defaults.h"
 #include "fit/fit_scene.h"
 #include "gl/platform_defines.h"
+#include "io/atomic_file.h"
 #include "io/input_file.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_loader.h"
 #include "plot.h"
-#include "simplify/bake/bake.h"
+#include "simplify/prefix_growth.h"
 #include "simplify/compare/quality.h"
 #include "simplify/simplify_options.h"
 #include "surface/tessellation.h"
@@ -36,41 +36,21 @@ struct Row {
 };
 
 // The asset's cage with heights baked at the grown resolution and bits, its own lattice and
-// --prefix-bits first; written into the output folder.
+// --prefix-bits first (simplify/prefix_growth.h); written into the output folder.
 std::filesystem::path grown(const SubdPrefixOptions& o, const mesh::PolygonMesh& reference) {
-    const codec::SubdAsset asset = codec::readSubd(o.asset);
-    const int resolution = asset.maps.layout.resolution;
-    if (resolution == 0 || o.growResolution % resolution != 0 ||
-        !std::has_single_bit(unsigned(o.growResolution / resolution)))
-        throw OptionError("grow", "needs an asset with heights whose resolution (" + std::to_string(resolution) +
-                                      ") times a power of two is " + std::to_string(o.growResolution));
-    simplify::BakeOptions bake;
-    bake.effects = {maps::MapKind::Displacement};
-    bake.resolution = o.growResolution;
-    surface::SurfaceMaps maps = simplify::bakeMaps(asset.cage, reference, bake);
-    maps.shadingNormal = asset.maps.shadingNormal;
-    // The asset's heights on the grown layout: node (i, j) of its tile is (i s, j s) of the grown one.
-    surface::SurfaceMaps own = maps;
-    const int s = o.growResolution / asset.maps.layout.resolution;
-    for (int face = 0; face < own.layout.ptexFaceCount; ++face)
-        for (int j = 0; j <= asset.maps.layout.resolution; ++j)
-            for (int i = 0; i <= asset.maps.layout.resolution; ++i)
-                own.displacement[size_t(own.layout.node(face, i * s, j * s))] =
-                    asset.maps.displacement[size_t(asset.maps.layout.node(face, i, j))];
-    // The asset's cage section byte for byte and its heights on their own grid: the prefix is the asset.
-    const std::string file = io::readInputFile(o.asset);
-    const codec::ShippedSubd shipped =
-        codec::readShippedSubd({reinterpret_cast<const unsigned char*>(file.data()), file.size()}, o.asset.string());
-    codec::SubdPrecision precision = codec::SubdPrecision::forMapBits(o.growBits, 90, shipped.positionBits);
-    precision.prefix = {.resolution = asset.maps.layout.resolution,
-                        .bits = o.prefixBits,
-                        .heights = own.displacement,
-                        .coding = asset.heightsCoding,
-                        .cageSection = shipped.cageSection};
+    const std::string bytes = io::readInputFile(o.asset);
+    const std::span file{reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()};
+    const simplify::GrowingAsset asset{.file = file,
+                                       .asset = codec::decodeSubd(file, o.asset.string()),
+                                       .bits = o.prefixBits,
+                                       .name = o.asset.string()};
+    const std::vector<unsigned char> grownFile = simplify::grownFile(
+        asset, simplify::grownHeights(asset, reference, o.growResolution), o.growResolution, o.growBits);
     const std::filesystem::path out = o.out / "grown.subd";
-    codec::writeSubd(out, {.cage = asset.cage, .maps = maps, .decodeTriangles = asset.decodeTriangles}, precision);
+    io::writeTextAtomically(out, {reinterpret_cast<const char*>(grownFile.data()), grownFile.size()});
     std::printf("%s: the cage of %s, heights at T = %d and %d bits, T = %d at %d bits first\n", out.string().c_str(),
-                o.asset.string().c_str(), o.growResolution, o.growBits, resolution, o.prefixBits);
+                o.asset.string().c_str(), o.growResolution, o.growBits, asset.asset.maps.layout.resolution,
+                o.prefixBits);
     return out;
 }
 

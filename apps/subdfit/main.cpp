@@ -43,6 +43,8 @@ void printComparison(const subdfit::simplify::SimplifyReport& r) {
         else std::fprintf(stderr, "%14s %12s\n", subdfit::simplify::kNotMeasured, subdfit::simplify::kNotMeasured);
     };
     row("subdfit", &r.subdfit);
+    // --prefix: what its first bytes decode to, the asset weighed against the baselines below.
+    row(" its prefix", r.prefix && r.prefix->grown() ? &r.prefix->asset : nullptr);
     row("cage", r.cage ? &*r.cage : nullptr);
     for (const subdfit::simplify::MadeBaseline& b : r.triangles) row(b.name, &b.quality);
     row("bake", r.bake ? &*r.bake : nullptr);

@@ -3,13 +3,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "fit/asset_export.h"
 #include "fit/device_defaults.h"
 #include "gl/platform_defines.h"
 #include "io/atomic_file.h"
+#include "io/input_file.h"
 #include "io/output_folder.h"
 #include "io/staged_folder.h"
+#include "mesh/mesh_geometry.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
 #include "codec/subd_format.h"
@@ -156,6 +159,7 @@ struct RunInputs {
     const std::filesystem::path& staged;
     BaselineSettings& baselines;
     SimplifyReport& report;
+    std::optional<std::uintmax_t> grownTo = std::nullopt;  // --prefix: the whole file's budget
 };
 
 // The bytes a run aims at: --budget as given; without one (and without --faces), derived from
@@ -295,6 +299,46 @@ void writeWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInpu
     }
 }
 
+// --prefix: the asset shipped at the prefix's budget grown to the whole budget
+// (simplify/prefix_growth.h) where it can and a grown file draws closer on the choosing views:
+// asset.subd and its USD replaced, what shipped measured again.
+void growToTheBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in, std::uintmax_t budget) {
+    SimplifyReport& report = in.report;
+    PrefixReport& prefix = report.prefix.emplace(PrefixReport{.budget = budget, .asset = report.subdfit});
+    const auto note = [&](const std::string& why) {
+        prefix.why = why;
+        if (in.hooks.note) in.hooks.note("the file does not grow past its prefix: " + why);
+    };
+    if (report.route.shipped != "cage") return note("a triangle mesh ships at the prefix's budget");
+    const std::filesystem::path path = in.staged / "asset.subd";
+    const std::string bytes = io::readInputFile(path);
+    const std::span file{reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()};
+    const GrowingAsset asset{.file = file,
+                             .asset = codec::decodeSubd(file, path.string()),
+                             .bits = report.budget ? report.budget->shipped.mapBits : plan.fit.mapBits,
+                             .name = path.string()};
+    if (const std::string why = whyNotGrown(asset.asset); !why.empty()) return note(why);
+    Growth growth = growWithinBudget(asset, mesh::triangulated(in.reference), budget,
+                                     [&](const codec::SubdAsset& a) { return choosingLoss(run, in, a); });
+    if (growth.file.empty()) {
+        note(growth.why);
+        prefix.growth = std::move(growth);
+        return;
+    }
+    io::writeTextAtomically(path, {reinterpret_cast<const char*>(growth.file.data()), growth.file.size()});
+    report.fit->exports["asset.subd"] = growth.file.size();
+    const nlohmann::json usd = fit::exportUsd(plan.fit, in.staged);
+    for (const auto& [name, usdBytes] : usd.items())
+        report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
+    report.subdfit = scoreCage(in.programs, run, *report.fit, in.staged, in.options);
+    if (in.hooks.note)
+        in.hooks.note("grown to " + std::to_string(growth.file.size()) + " bytes (heights at T = " +
+                      std::to_string(growth.chosen.resolution) + ", " + std::to_string(growth.chosen.bits) +
+                      " bits): its first " + std::to_string(prefix.asset.bytes) + " bytes are the asset above");
+    growth.file.clear();
+    prefix.growth = std::move(growth);
+}
+
 // Fits the plan's cage, writes its results into the staging folder, and weighs it against the
 // triangle route (made here at the cage's bytes when there is no budget): the better ships. With
 // --compare full, the bake route too.
@@ -340,12 +384,33 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
         report.cage = report.subdfit;
         report.subdfit = shipTriangles(best, in.staged);
     }
+    if (in.grownTo) {
+        growToTheBudget(run, plan, in, *in.grownTo);
+        stages.lap("growth");
+    }
     if (options.compare >= CompareLevel::Full) {
         in.baselines.segments = run.fitter().renderer().tessLevel();
         report.bake = bakeBaseline(in.programs, in.scene, plan.bakeRoute, in.baselines);
         if (plan.budget) report.bake->details["over_budget"] = report.bake->bytes > plan.budget->bytes;
         stages.lap("baseline_bake");
     }
+}
+
+nlohmann::json toJson(const PrefixReport& p) {
+    nlohmann::json out = {{"bytes", p.asset.bytes}, {"psnr_holdout", p.asset.psnrHoldout}, {"budget", p.budget}};
+    if (p.asset.distance) out["mean_distance"] = p.asset.distance->meanDistance;
+    const auto candidate = [](const GrowthCandidate& c) {
+        return nlohmann::json{
+            {"resolution", c.resolution}, {"bits", c.bits}, {"bytes", c.bytes}, {"choosing_loss", c.loss}};
+    };
+    if (p.growth) {
+        out["asset_choosing_loss"] = p.growth->assetLoss;
+        nlohmann::json& weighed = out["grown_candidates"] = nlohmann::json::array();
+        for (const GrowthCandidate& c : p.growth->candidates) weighed.push_back(candidate(c));
+    }
+    if (p.grown()) out["grown"] = candidate(p.growth->chosen);
+    else out["why"] = p.why;
+    return out;
 }
 
 }  // namespace
@@ -362,11 +427,13 @@ nlohmann::json toJson(const SimplifyReport& r) {
     report["seconds"] = r.seconds;
     report["seconds_by_stage"] = r.stages.toJson();
 
+    // The routes and baselines were weighed at the prefix's budget, against what it holds.
+    const Quality& weighedCage = r.cage ? *r.cage : r.prefix ? r.prefix->asset : r.subdfit;
     nlohmann::json route = toJson(r.route), weighed = nlohmann::json::object();
     auto weigh = [&](const std::string& name, const Quality& q) {
         weighed[name] = {{"psnr_holdout", q.psnrHoldout}, {"bytes", q.bytes}};
     };
-    if (r.fit) weigh("cage", r.cage ? *r.cage : r.subdfit);
+    if (r.fit) weigh("cage", weighedCage);
     for (const MadeBaseline& b : r.triangles) weigh(b.name, b.quality);
     route["weighed"] = weighed;
     report["route"] = route;
@@ -377,7 +444,7 @@ nlohmann::json toJson(const SimplifyReport& r) {
         auto add = [&](const std::string& name, const Quality* q) {
             if (!q) return;
             baselines[name] = toJson(*q);
-            margins[name] = r.subdfit.psnrHoldout - q->psnrHoldout;
+            margins[name] = (r.prefix ? r.prefix->asset : r.subdfit).psnrHoldout - q->psnrHoldout;
             columns.push_back(name);
         };
         add("cage", r.cage ? &*r.cage : nullptr);
@@ -394,6 +461,7 @@ nlohmann::json toJson(const SimplifyReport& r) {
                           {"budget", r.budgetBytes},
                           {"budget_derived", r.budgetDerived}};
     if (r.budget) report["budget"] = toJson(*r.budget);
+    if (r.prefix) report["prefix"] = toJson(*r.prefix);
     if (r.fitVerdict) {
         nlohmann::json& verdict = report["fit_verdict"] = {{"shipped", r.fitVerdict->fitShips ? "fit" : "bake"}};
         if (r.fitVerdict->fitMoved)
@@ -425,8 +493,11 @@ mesh::PolygonMesh loadReference(const SimplifyOptions& options) {
 
 }  // namespace
 
-SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& hooks) {
-    validate(options);
+SimplifyReport runSimplify(const SimplifyOptions& asked, const fit::FitHooks& hooks) {
+    validate(asked);
+    // With --prefix every choice is made at the prefix's budget; the file then grows to the budget.
+    SimplifyOptions options = asked;
+    if (asked.prefix) options.budget = std::exchange(options.prefix, std::nullopt);
     const std::filesystem::path& out = options.fit.out;
     io::checkOutputFolder(out, {.ownMarkers = fit::kFitResultMarkers, .force = options.fit.force});
     const auto started = std::chrono::steady_clock::now();
@@ -464,8 +535,11 @@ SimplifyReport runSimplify(const SimplifyOptions& options, const fit::FitHooks& 
     if (decided.route) {
         report.route = *decided.route;
         report.subdfit = shipTriangles(triangles.best(), staged.path());
+        if (asked.prefix)
+            report.prefix = {.budget = *asked.budget, .asset = report.subdfit, .why = "a triangle mesh ships"};
     } else {
-        fitAndWeigh({options, hooks, programs, scene, reference, *context, staged.path(), baselineSettings, report},
+        fitAndWeigh({options, hooks, programs, scene, reference, *context, staged.path(), baselineSettings, report,
+                     asked.prefix ? asked.budget : std::nullopt},
                     *decided.plan, triangles, target.bytes);
     }
     report.triangles = std::move(triangles.made);

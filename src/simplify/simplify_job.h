@@ -13,12 +13,23 @@
 #include "fit/fit_job.h"
 #include "simplify/budget_search.h"
 #include "simplify/fit_verdict.h"
+#include "simplify/prefix_growth.h"
 #include "simplify/compare/quality.h"
 #include "simplify/route.h"
 #include "simplify/simplify_options.h"
 #include "simplify/stage_seconds.h"
 
 namespace subdfit::simplify {
+
+// With --prefix: the asset the file's first bytes are (what the prefix's budget shipped; the
+// routes and baselines were weighed at it), and how its heights grew to the whole budget.
+struct PrefixReport {
+    std::uintmax_t budget = 0;     // the whole file's (--budget)
+    Quality asset;                 // the file's first bytes, as they decode alone
+    std::optional<Growth> growth;  // the grown files weighed (Growth::file not kept)
+    std::string why;               // where the file did not grow
+    bool grown() const { return growth && growth->chosen.resolution > 0; }
+};
 
 // What a simplify did: the route it shipped, the fit's report when a cage was fitted, and what
 // shipped and each baseline measured the same way at the same byte budget.
@@ -36,6 +47,7 @@ struct SimplifyReport {
     int facesRequested = 0;
     std::optional<FitVerdict> fitVerdict;  // where a cage was fitted
     std::optional<BudgetReport> budget;    // the search and what shipped, with a budget
+    std::optional<PrefixReport> prefix;    // with --prefix
     std::uintmax_t budgetBytes = 0;        // the budget the routes were weighed at (0: the cage's bytes, --faces alone)
     bool budgetDerived = false;            // from the reference (route.h's defaultBudget)
     CompareLevel compare = CompareLevel::Full;
@@ -51,6 +63,8 @@ struct SimplifyReport {
 // DIR; the fitted cage among them where it did not ship) and `margin_db` (the shipped held-out
 // PSNR minus each baseline's), unless --compare none; `simplify`; `seconds_by_stage`; and with a
 // budget, `budget` (its bytes, whether derived, the candidates tried, the one chosen, `over_budget`);
+// with --prefix, `prefix` (its bytes and held-out PSNR, the budget grown to, the grown files
+// weighed and the one that shipped, or why none did: the margins are then the prefix's);
 // where a cage was fitted, `fit_verdict` (whether the fit or its bake shipped, and their losses).
 nlohmann::json toJson(const SimplifyReport& report);
 

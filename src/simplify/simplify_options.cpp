@@ -36,6 +36,13 @@ const std::vector<fit::TableRow<SimplifyMember>>& simplifyOptionTable() {
               "least 16 KB)",
           .setting = true},
          &S::budget},
+        {{.key = "prefix",
+          .flag = "--prefix",
+          .help = "with --budget: bytes of the file's first part, 100 B up to the budget, which decodes alone to what "
+                  "--budget PREFIX ships; the rest refines its heights to the budget, a file that streams (heights "
+                  "alone: an asset with a normal map or an appearance ships as --budget PREFIX would)",
+          .setting = true},
+         &S::prefix},
         {{.key = "surface_samples",
           .flag = "",
           .help = "surface samples per side, for Chamfer and Hausdorff",
@@ -67,6 +74,10 @@ void validate(const SimplifyOptions& o) {
     if (o.faces && (*o.faces < kLeastFaces || *o.faces > kMostFaces))
         throw OptionError("faces", "must be in 4..1000000, got " + std::to_string(*o.faces));
     if (o.budget && *o.budget < 100) throw OptionError("budget", "must be at least 100 bytes");
+    if (o.prefix && !o.budget) throw OptionError("prefix", "needs --budget: the bytes the whole file grows to");
+    if (o.prefix && (*o.prefix < 100 || *o.prefix >= *o.budget))
+        throw OptionError("prefix", "must be at least 100 bytes and under the budget (" + std::to_string(*o.budget) +
+                                        "), got " + std::to_string(*o.prefix));
     if (o.surfaceSamples < 1000) throw OptionError("surface_samples", "must be >= 1000");
     if (o.fit.appearanceAtlas > 0 && o.fit.maps.has(maps::MapKind::NormalMap))
         throw OptionError("appearance_atlas",

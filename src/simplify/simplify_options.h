@@ -54,6 +54,9 @@ struct SimplifyOptions {
     // of the reference; with `faces` alone, the cage is fitted as asked and the triangle route
     // weighed at its bytes.
     std::optional<std::uintmax_t> budget;
+    // With a budget: the file's first bytes, which decode alone to the asset --budget PREFIX
+    // ships; the rest, to the budget, refines its heights (simplify/prefix_growth.h).
+    std::optional<std::uintmax_t> prefix;
     int surfaceSamples = 100000;  // per side, for Chamfer and Hausdorff
     CompareLevel compare = CompareLevel::Full;
     RouteChoice route = RouteChoice::Auto;

@@ -181,6 +181,37 @@ TEST(SimplifyBudget, ShipsWithinTheBudgetAndListsTheCandidates) {
     EXPECT_TRUE(fs::exists(dir / "out" / "comparison.png"));
 }
 
+// --prefix: the file grows past the asset the prefix's budget ships, and its first bytes decode
+// to that asset (what --budget PREFIX alone ships), cage and heights, exactly.
+TEST(SimplifyPrefix, TheFileGrowsAndItsFirstBytesAreWhatThePrefixsBudgetShips) {
+    const auto dir = scratchDir("simplify_prefix");
+    mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(5, 0.15f, 3, 40, 0.005f, 0.02f));
+    constexpr std::uintmax_t kPrefix = 3000, kBudget = 8000;
+    auto grown = budgeted(dir / "lumpy.obj", dir / "grown", kBudget);
+    grown.prefix = kPrefix;
+    grown.compare = simplify::CompareLevel::None;
+    const auto report = simplify::toJson(simplify::runSimplify(grown));
+    const auto& prefix = report["prefix"];
+    ASSERT_TRUE(prefix.contains("grown")) << prefix.dump();
+    const std::uintmax_t bytes = fs::file_size(dir / "grown" / "asset.subd");
+    EXPECT_EQ(report["bytes"].get<std::uintmax_t>(), bytes);
+    EXPECT_LE(bytes, kBudget);
+    EXPECT_GT(bytes, kPrefix);
+    EXPECT_LT(prefix["grown"]["choosing_loss"].get<double>(), prefix["asset_choosing_loss"].get<double>());
+    EXPECT_TRUE(fs::exists(dir / "grown" / "asset.usdz"));
+
+    auto alone = budgeted(dir / "lumpy.obj", dir / "alone", kPrefix);
+    alone.compare = simplify::CompareLevel::None;
+    simplify::runSimplify(alone);
+    EXPECT_EQ(prefix["bytes"].get<std::uintmax_t>(), fs::file_size(dir / "alone" / "asset.subd"));
+    const codec::SubdAsset asset = codec::readSubd(dir / "alone" / "asset.subd");
+    const codec::SubdAsset first =
+        codec::readSubd(dir / "grown" / "asset.subd", nullptr, {}, prefix["bytes"].get<std::size_t>());
+    EXPECT_EQ(first.cage.positions, asset.cage.positions);
+    ASSERT_FALSE(asset.maps.displacement.empty());
+    EXPECT_EQ(first.maps.displacement, asset.maps.displacement);
+}
+
 // A scene for the search alone: few views, small, a placeholder cage (the search brings its own).
 fit::FitScene smallSearchScene(const mesh::PolygonMesh& reference, const std::string& name) {
     fit::FitOptions o;

@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "common/simplify_cli.h"
+#include "util/error.h"
 
 namespace subdfit::simplify {
 namespace {
@@ -40,6 +41,24 @@ TEST(SimplifyOptionsCli, RefusesWhatNoRowTakes) {
     for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
              {"--route", "triangles"}, {"--compare", "most"}, {"--faces", "3"}, {"--budget", "20parsecs"}}) {
         EXPECT_THROW(parsed(args), CLI::ParseError) << args[0] << " " << args[1];
+    }
+}
+
+// --prefix is a part of a budget: given with one, under it.
+TEST(SimplifyOptionsCli, APrefixIsPartOfABudget) {
+    const auto checked = [](std::vector<std::string> args) {
+        SimplifyOptions o = parsed(std::move(args));
+        o.fit.reference = "reference.obj";
+        o.fit.out = "out";
+        validate(o);
+        return o;
+    };
+    EXPECT_EQ(checked({"--budget", "100KB", "--prefix", "20KB"}).prefix, 20000u);
+    for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+             {"--prefix", "20KB"}, {"--budget", "20KB", "--prefix", "20KB"}, {"--budget", "5KB", "--prefix", "10KB"}}) {
+        std::string joined;
+        for (const std::string& a : args) joined += a + " ";
+        EXPECT_THROW(checked(args), OptionError) << joined;
     }
 }
 

@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 
+#include "codec/subd_format.h"
 #include "geometry/surface_distance.h"
 #include "geometry/surface_queries.h"
 #include "mesh/mesh_geometry.h"
@@ -19,6 +20,7 @@
 #include "simplify/cage/decimate.h"
 #include "simplify/cage/initial_cage.h"
 #include "simplify/cage_bakes.h"
+#include "simplify/prefix_growth.h"
 #include "split_triangles.h"
 #include "subdiv/limit_evaluator.h"
 #include "surface/tessellation.h"
@@ -93,6 +95,74 @@ TEST(SimplifyCluster, StaysWithinTheCountOnTheInputsVertices) {
     }
     EXPECT_EQ(cluster(many, many.faceCount()).faceCount(), many.faceCount());
     EXPECT_THROW(cluster(many, 0), Error);
+}
+
+// Heights on `a`'s lattice sampled bilinearly at the nodes of `fine` (a finer lattice of its cage).
+std::vector<float> onFinerLattice(const codec::SubdAsset& a, const surface::TexelLayout& fine) {
+    const surface::TexelLayout& own = a.maps.layout;
+    std::vector<float> out(size_t(fine.nodeCount), 0.0f);
+    for (int face = 0; face < fine.ptexFaceCount; ++face)
+        for (int j = 0; j <= fine.resolution; ++j)
+            for (int i = 0; i <= fine.resolution; ++i) {
+                const float u = float(i * own.resolution) / float(fine.resolution),
+                            v = float(j * own.resolution) / float(fine.resolution);
+                const int i0 = std::min(int(u), own.resolution - 1), j0 = std::min(int(v), own.resolution - 1);
+                const float fu = u - float(i0), fv = v - float(j0);
+                const auto h = [&](int di, int dj) {
+                    return a.maps.displacement[size_t(own.node(face, i0 + di, j0 + dj))];
+                };
+                out[size_t(fine.node(face, i, j))] =
+                    (1 - fv) * ((1 - fu) * h(0, 0) + fu * h(1, 0)) + fv * ((1 - fu) * h(0, 1) + fu * h(1, 1));
+            }
+    return out;
+}
+
+// --prefix's growth: finer lattices at the most bits that fit, weighed by the caller's measure
+// (here how far the heights lie from the finest bake); the best ships where it beats the asset,
+// and nothing grows where no finer file fits.
+TEST(SimplifyPrefixGrowth, TheBestGrownFileWithinTheBudgetShips) {
+    const mesh::PolygonMesh reference = mesh::triangulated(mesh::makeLumpySphere(5, 0.15f, 5, 40, 0.005f, 0.02f));
+    const mesh::PolygonMesh cage = mesh::makeQuadSphere(2);
+    BakeOptions bake;
+    bake.effects = {maps::MapKind::Displacement};
+    bake.resolution = 2;
+    const std::vector<unsigned char> small =
+        codec::encodeSubd(codec::shippableAsset(cage, bakeMaps(cage, reference, bake)), {.displacementBits = 4});
+    const GrowingAsset asset{.file = small, .asset = codec::decodeSubd(small, "small"), .bits = 4, .name = "small"};
+    ASSERT_EQ(whyNotGrown(asset.asset), "");
+    const surface::TexelLayout finest = surface::buildTexelLayout(asset.asset.cage, kMostGrownResolution);
+    const std::vector<float> truth = grownHeights(asset, reference, kMostGrownResolution);
+    const auto loss = [&](const codec::SubdAsset& a) {
+        const std::vector<float> h = onFinerLattice(a, finest);
+        double sum = 0.0;
+        for (size_t n = 0; n < h.size(); ++n) sum += std::abs(h[n] - truth[n]);
+        return sum / double(h.size());
+    };
+    const std::uintmax_t budget = 6 * small.size();
+    const Growth growth = growWithinBudget(asset, reference, budget, loss);
+    ASSERT_FALSE(growth.file.empty()) << growth.why;
+    EXPECT_LE(growth.file.size(), budget);
+    EXPECT_EQ(growth.chosen.bytes, growth.file.size());
+    EXPECT_LT(growth.chosen.loss, growth.assetLoss);
+    int resolution = 2;
+    for (const GrowthCandidate& c : growth.candidates) {
+        EXPECT_EQ(c.resolution, 2 * resolution);
+        resolution = c.resolution;
+        EXPECT_LE(c.bytes, budget);
+        EXPECT_GT(c.bits, 4);
+        EXPECT_GE(c.loss, growth.chosen.loss);
+    }
+    // Its first bytes, as many as the asset's, decode to the asset; its whole to the lattice it
+    // chose. A budget no finer file fits grows nothing.
+    const codec::SubdAsset prefix =
+        codec::decodeSubd(std::span(growth.file).first(small.size()), "grown", nullptr, {}, codec::SubdEnding::Prefix);
+    EXPECT_EQ(prefix.cage.positions, asset.asset.cage.positions);
+    EXPECT_EQ(prefix.maps.displacement, asset.asset.maps.displacement);
+    EXPECT_EQ(codec::decodeSubd(growth.file, "grown").maps.layout.resolution, growth.chosen.resolution);
+    const Growth none = growWithinBudget(asset, reference, small.size() + 1, loss);
+    EXPECT_TRUE(none.file.empty());
+    EXPECT_TRUE(none.candidates.empty());
+    EXPECT_FALSE(none.why.empty());
 }
 
 // The limit surface passes through the decimated vertices: the initial cage's first step.

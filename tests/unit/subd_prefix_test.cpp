@@ -17,6 +17,7 @@
 #include "error_message.h"
 #include "limit_values.h"
 #include "mesh/procedural.h"
+#include "simplify/prefix_growth.h"
 #include "util/hash.h"
 
 namespace subdfit::codec {
@@ -201,33 +202,19 @@ namespace {
 TEST(SubdPrefix, AGrownFilesPrefixIsTheAssetItGrewFrom) {
     constexpr int kOwn = 2, kGrown = 8;
     const Bytes small = encodeSubd(displacedSphere(kOwn), {.displacementBits = 4});
-    const ShippedSubd shipped = readShippedSubd(small, "small.subd");
-    const SubdAsset asset = decodeSubd(small, "small.subd");
-    ASSERT_TRUE(asset.heightsCoding);
-
-    SubdAsset grown{.cage = asset.cage};
-    grown.maps.layout = surface::buildTexelLayout(asset.cage, kGrown);
-    grown.maps.displacement = test::valuesOnLimit(
-        asset.cage, grown.maps.layout, [](glm::vec3 p) { return 0.05f * std::sin(4.0f * p.x) * std::cos(3.0f * p.y); });
-    std::vector<float> own = grown.maps.displacement;
-    constexpr int s = kGrown / kOwn;
-    for (int face = 0; face < grown.maps.layout.ptexFaceCount; ++face)
-        for (int j = 0; j <= kOwn; ++j)
-            for (int i = 0; i <= kOwn; ++i)
-                own[size_t(grown.maps.layout.node(face, i * s, j * s))] =
-                    asset.maps.displacement[size_t(asset.maps.layout.node(face, i, j))];
-    SubdPrecision precision{.displacementBits = 8};
-    precision.prefix = {.resolution = kOwn,
-                        .bits = 4,
-                        .heights = own,
-                        .coding = asset.heightsCoding,
-                        .cageSection = shipped.cageSection};
-    const Bytes file = encodeSubd(grown, precision);
+    const simplify::GrowingAsset asset{
+        .file = small, .asset = decodeSubd(small, "small.subd"), .bits = 4, .name = "small.subd"};
+    ASSERT_TRUE(asset.asset.heightsCoding);
+    const std::vector<float> heights =
+        test::valuesOnLimit(asset.asset.cage, surface::buildTexelLayout(asset.asset.cage, kGrown),
+                            [](glm::vec3 p) { return 0.05f * std::sin(4.0f * p.x) * std::cos(3.0f * p.y); });
+    const Bytes file = simplify::grownFile(asset, heights, kGrown, 8);
     ASSERT_GT(file.size(), small.size());
 
     auto isTheAsset = [&](const SubdAsset& prefix) {
-        return prefix.cage.positions == asset.cage.positions && prefix.cage.faceIndices == asset.cage.faceIndices &&
-               prefix.maps.layout.resolution == kOwn && prefix.maps.displacement == asset.maps.displacement;
+        const SubdAsset& a = asset.asset;
+        return prefix.cage.positions == a.cage.positions && prefix.cage.faceIndices == a.cage.faceIndices &&
+               prefix.maps.layout.resolution == kOwn && prefix.maps.displacement == a.maps.displacement;
     };
     size_t shortest = 0;
     for (size_t bytes = sectionSpan(file, "CAGE").second; bytes < file.size() && shortest == 0; bytes += 7)
@@ -239,8 +226,12 @@ TEST(SubdPrefix, AGrownFilesPrefixIsTheAssetItGrewFrom) {
 
     const SubdAsset whole = decodeSubd(file, "grown.subd");
     const ChannelQuantisation fine = *whole.heightsCoding;
-    for (size_t n = 0; n < grown.maps.displacement.size(); ++n)
-        ASSERT_LE(std::abs(whole.maps.displacement[n] - grown.maps.displacement[n]), 0.5001f * fine.step) << n;
+    ASSERT_EQ(whole.maps.displacement.size(), heights.size());
+    for (size_t n = 0; n < heights.size(); ++n)
+        ASSERT_LE(std::abs(whole.maps.displacement[n] - heights[n]), 0.5001f * fine.step) << n;
+    // It grows only to a power-of-two multiple of its lattice at more bits than its own.
+    EXPECT_THROW(simplify::grownFile(asset, heights, 6, 8), Error);
+    EXPECT_THROW(simplify::grownFile(asset, heights, kGrown, 4), Error);
 }
 
 }  // namespace

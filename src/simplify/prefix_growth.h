@@ -1,0 +1,63 @@
+#pragma once
+// `simplify --prefix`: a shipped asset.subd grown into a larger file whose first bytes are that
+// asset (codec::EmbeddedPrefix): its cage section byte for byte, its heights on their own lattice
+// and grid, then finer levels of heights baked from the reference at the asset's resolution times
+// a power of two. A stream of the file draws the asset once its bytes are in and refines it as
+// the rest arrives (docs/asset-subd-format.md, "Prefixes").
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "codec/subd_format.h"
+#include "mesh/polygon_mesh.h"
+
+namespace subdfit::simplify {
+
+// Why `asset` (as decoded) cannot grow; "" where it can: heights alone on the geometric lattice
+// (a normal map or an appearance would not be its own byte for byte in the grown file).
+std::string whyNotGrown(const codec::SubdAsset& asset);
+
+// An asset.subd to grow: its bytes as shipped, decoded, and the bits its heights were coded at.
+struct GrowingAsset {
+    std::span<const unsigned char> file;
+    codec::SubdAsset asset;  // decodeSubd(file)
+    int bits = 0;
+    std::string name;  // in errors
+};
+
+// The heights `asset` holds, baked from `reference` (triangles, world units) at `resolution`.
+std::vector<float> grownHeights(const GrowingAsset& asset, const mesh::PolygonMesh& reference, int resolution);
+
+// The grown file of `heights` (grownHeights at `resolution`, a power-of-two multiple of the
+// asset's) at `bits` (more than the asset's): its first bytes decode to the asset node for node.
+std::vector<unsigned char> grownFile(const GrowingAsset& asset, const std::vector<float>& heights, int resolution,
+                                     int bits);
+
+// One grown file weighed: its lattice, bits, bytes and loss (the caller's measure of the decoded
+// file; lower is better).
+struct GrowthCandidate {
+    int resolution = 0, bits = 0;
+    std::uintmax_t bytes = 0;
+    double loss = 0.0;
+};
+
+struct Growth {
+    std::vector<unsigned char> file;  // the best grown file; empty where none beats the asset
+    GrowthCandidate chosen;           // its figures
+    double assetLoss = 0.0;           // the asset's own
+    std::vector<GrowthCandidate> candidates;
+    std::string why;  // where none ships: why
+};
+
+// The largest resolution grown to (as the budget search's finest tiles).
+inline constexpr int kMostGrownResolution = 16;
+
+// For each resolution the asset's times 2, 4, ... up to kMostGrownResolution, the most bits (up
+// to 8) whose file fits `budget`, weighed by `loss`; the least loss ships where it is below the
+// asset's. Larger lattices are not baked once one fits at no bits.
+Growth growWithinBudget(const GrowingAsset& asset, const mesh::PolygonMesh& reference, std::uintmax_t budget,
+                        const std::function<double(const codec::SubdAsset&)>& loss);
+
+}  // namespace subdfit::simplify
