@@ -73,6 +73,8 @@ Quality scoreCage(gl::ProgramCache& programs, fit::FitRun& run, const fit::FitRe
 void writeComparisonImage(const SimplifyReport& report, int resolution, const fit::FitScene& scene,
                           const std::filesystem::path& out) {
     std::vector<ComparisonColumn> columns{{"subdfit", &report.subdfit}};
+    // A grown file's prefix is what the baselines, made at its budget, are weighed against.
+    if (report.prefix && report.prefix->grown()) columns.push_back({"its prefix", &report.prefix->asset});
     if (report.cage) columns.push_back({"fitted cage", &*report.cage});
     for (const MadeBaseline& b : report.triangles) columns.push_back({b.title, &b.quality});
     if (report.bake) columns.push_back({"bake", &*report.bake});
@@ -328,8 +330,7 @@ void growToTheBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs
     io::writeTextAtomically(path, {reinterpret_cast<const char*>(growth.file.data()), growth.file.size()});
     report.fit->exports["asset.subd"] = growth.file.size();
     const nlohmann::json usd = fit::exportUsd(plan.fit, in.staged);
-    for (const auto& [name, usdBytes] : usd.items())
-        report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
+    for (const auto& [name, usdBytes] : usd.items()) report.fit->exports[name] = usdBytes.get<std::uintmax_t>();
     report.subdfit = scoreCage(in.programs, run, *report.fit, in.staged, in.options);
     if (in.hooks.note)
         in.hooks.note("grown to " + std::to_string(growth.file.size()) + " bytes (heights at T = " +
@@ -441,6 +442,7 @@ nlohmann::json toJson(const SimplifyReport& r) {
     if (r.compare != CompareLevel::None) {
         nlohmann::json baselines = nlohmann::json::object(), margins = nlohmann::json::object();
         nlohmann::json columns = {"reference", "subdfit"};
+        if (r.prefix && r.prefix->grown()) columns.push_back("prefix");
         auto add = [&](const std::string& name, const Quality* q) {
             if (!q) return;
             baselines[name] = toJson(*q);
