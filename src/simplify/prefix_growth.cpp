@@ -1,5 +1,6 @@
 #include "simplify/prefix_growth.h"
 
+#include <algorithm>
 #include <bit>
 
 #include "simplify/bake/bake.h"
@@ -9,7 +10,6 @@ namespace subdfit::simplify {
 
 std::string whyNotGrown(const codec::SubdAsset& asset) {
     const surface::SurfaceMaps& m = asset.maps;
-    if (!m.hasDisplacement()) return "it has no heights";
     if (m.hasNormal()) return "it has a normal map";
     if (m.kinds().appearance() || !m.normalTexture.empty() || !m.emissive.empty()) return "it has an appearance";
     return "";
@@ -17,9 +17,17 @@ std::string whyNotGrown(const codec::SubdAsset& asset) {
 
 namespace {
 
-// Throws unless `asset`'s heights grow to `resolution` (its own times a power of two) at `bits`.
+// The fewest bits a bare cage's heights grow at (the budget search's fewest).
+constexpr int kFewestBits = 4, kMostBits = 8;
+// Lattices are tried finer and finer until this many in a row score behind the best (as the
+// budget search's cage ladder ends): each is a bake of the whole cage, finer ones the costliest.
+constexpr int kTrailingLattices = 2;
+
+// Throws unless `asset`'s heights grow to `resolution` (a bare cage: any; else its own times a
+// power of two) at `bits`.
 void checkGrowth(const GrowingAsset& asset, int resolution, int bits) {
     const int own = asset.asset.maps.layout.resolution;
+    if (own == 0 && resolution >= 1 && resolution <= kMostGrownResolution && bits >= kFewestBits) return;
     if (own == 0 || resolution % own != 0 || !std::has_single_bit(unsigned(resolution / own)) || bits <= asset.bits)
         throw Error(asset.name + ": heights at T = " + std::to_string(own) + " and " + std::to_string(asset.bits) +
                     " bits grow only to T = " + std::to_string(own) + " times a power of two at more bits, not T = " +
@@ -29,7 +37,7 @@ void checkGrowth(const GrowingAsset& asset, int resolution, int bits) {
 }  // namespace
 
 std::vector<float> grownHeights(const GrowingAsset& asset, const mesh::PolygonMesh& reference, int resolution) {
-    checkGrowth(asset, resolution, asset.bits + 1);
+    checkGrowth(asset, resolution, std::max(asset.bits + 1, kFewestBits));
     BakeOptions bake;
     bake.effects = {maps::MapKind::Displacement};
     bake.resolution = resolution;
@@ -44,21 +52,23 @@ std::vector<unsigned char> grownFile(const GrowingAsset& asset, const std::vecto
     surface::SurfaceMaps maps = a.maps;
     maps.layout = surface::buildTexelLayout(a.cage, resolution);
     maps.displacement = heights;
-    // The asset's heights on the grown layout: node (i, j) of its tile is (i s, j s) of the grown one.
-    std::vector<float> prefixHeights = heights;
-    const int s = resolution / own.resolution;
-    for (int face = 0; face < own.ptexFaceCount; ++face)
-        for (int j = 0; j <= own.resolution; ++j)
-            for (int i = 0; i <= own.resolution; ++i)
-                prefixHeights[size_t(maps.layout.node(face, i * s, j * s))] =
-                    a.maps.displacement[size_t(own.node(face, i, j))];
     const codec::ShippedSubd shipped = codec::readShippedSubd(asset.file, asset.name);
     codec::SubdPrecision precision = codec::SubdPrecision::forMapBits(bits, 90, shipped.positionBits);
-    precision.prefix = {.resolution = own.resolution,
-                        .bits = asset.bits,
-                        .heights = std::move(prefixHeights),
-                        .coding = a.heightsCoding,
-                        .cageSection = shipped.cageSection};
+    precision.prefix.cageSection = shipped.cageSection;
+    if (own.resolution > 0) {
+        // The asset's heights on the grown layout: node (i, j) of its tile is (i s, j s) of the grown one.
+        std::vector<float> prefixHeights = heights;
+        const int s = resolution / own.resolution;
+        for (int face = 0; face < own.ptexFaceCount; ++face)
+            for (int j = 0; j <= own.resolution; ++j)
+                for (int i = 0; i <= own.resolution; ++i)
+                    prefixHeights[size_t(maps.layout.node(face, i * s, j * s))] =
+                        a.maps.displacement[size_t(own.node(face, i, j))];
+        precision.prefix.resolution = own.resolution;
+        precision.prefix.bits = asset.bits;
+        precision.prefix.heights = std::move(prefixHeights);
+        precision.prefix.coding = a.heightsCoding;
+    }
     return codec::encodeSubd({.cage = a.cage, .maps = maps, .decodeTriangles = a.decodeTriangles}, precision);
 }
 
@@ -66,14 +76,22 @@ Growth growWithinBudget(const GrowingAsset& asset, const mesh::PolygonMesh& refe
                         const std::function<double(const codec::SubdAsset&)>& loss) {
     Growth growth;
     growth.assetLoss = loss(asset.asset);
-    constexpr int kMostBits = 8;
-    for (int resolution = 2 * asset.asset.maps.layout.resolution; resolution <= kMostGrownResolution; resolution *= 2) {
+    const int own = asset.asset.maps.layout.resolution;
+    std::vector<int> resolutions(kBareCageResolutions.begin(), kBareCageResolutions.end());
+    if (own > 0) {
+        resolutions.clear();
+        for (int r = 2 * own; r <= kMostGrownResolution; r *= 2) resolutions.push_back(r);
+    }
+    const int fewestBits = std::max(asset.bits + 1, kFewestBits);
+    int trailing = 0;  // lattices in a row scored behind the best so far
+    for (const int resolution : resolutions) {
+        if (trailing == kTrailingLattices) break;  // finer ones cost more bakes for less
         const std::vector<float> heights = grownHeights(asset, reference, resolution);
         std::vector<unsigned char> file;
         int bits = kMostBits;
-        for (; bits > asset.bits; --bits)
+        for (; bits >= fewestBits; --bits)
             if (file = grownFile(asset, heights, resolution, bits); file.size() <= budget) break;
-        if (bits == asset.bits) break;  // finer lattices cost more still
+        if (bits < fewestBits) break;  // finer lattices cost more still
         const GrowthCandidate c{.resolution = resolution,
                                 .bits = bits,
                                 .bytes = file.size(),
@@ -82,10 +100,14 @@ Growth growWithinBudget(const GrowingAsset& asset, const mesh::PolygonMesh& refe
         if (c.loss < growth.assetLoss && (growth.file.empty() || c.loss < growth.chosen.loss)) {
             growth.file = std::move(file);
             growth.chosen = c;
+            trailing = 0;
+        } else {
+            ++trailing;
         }
     }
-    if (growth.candidates.empty()) growth.why = "no finer heights fit the budget at more bits than the asset's";
-    else if (growth.file.empty()) growth.why = "no finer heights that fit the budget draw closer than the asset's";
+    const std::string heights = own > 0 ? "finer heights" : "heights on its cage";
+    if (growth.candidates.empty()) growth.why = "no " + heights + " fit the budget";
+    else if (growth.file.empty()) growth.why = "no " + heights + " that fit the budget draw closer than the asset";
     return growth;
 }
 

@@ -315,10 +315,9 @@ void growToTheBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs
     const std::filesystem::path path = in.staged / "asset.subd";
     const std::string bytes = io::readInputFile(path);
     const std::span file{reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()};
-    const GrowingAsset asset{.file = file,
-                             .asset = codec::decodeSubd(file, path.string()),
-                             .bits = report.budget ? report.budget->shipped.mapBits : plan.fit.mapBits,
-                             .name = path.string()};
+    GrowingAsset asset{.file = file, .asset = codec::decodeSubd(file, path.string()), .bits = 0, .name = path.string()};
+    if (asset.asset.maps.hasDisplacement())
+        asset.bits = report.budget ? report.budget->shipped.mapBits : plan.fit.mapBits;
     if (const std::string why = whyNotGrown(asset.asset); !why.empty()) return note(why);
     Growth growth = growWithinBudget(asset, mesh::triangulated(in.reference), budget,
                                      [&](const codec::SubdAsset& a) { return choosingLoss(run, in, a); });

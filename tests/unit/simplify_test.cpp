@@ -100,7 +100,8 @@ TEST(SimplifyCluster, StaysWithinTheCountOnTheInputsVertices) {
 // Heights on `a`'s lattice sampled bilinearly at the nodes of `fine` (a finer lattice of its cage).
 std::vector<float> onFinerLattice(const codec::SubdAsset& a, const surface::TexelLayout& fine) {
     const surface::TexelLayout& own = a.maps.layout;
-    std::vector<float> out(size_t(fine.nodeCount), 0.0f);
+    std::vector<float> out(size_t(fine.nodeCount), 0.0f);  // a bare cage's: none
+    if (!a.maps.hasDisplacement()) return out;
     for (int face = 0; face < fine.ptexFaceCount; ++face)
         for (int j = 0; j <= fine.resolution; ++j)
             for (int i = 0; i <= fine.resolution; ++i) {
@@ -163,6 +164,21 @@ TEST(SimplifyPrefixGrowth, TheBestGrownFileWithinTheBudgetShips) {
     EXPECT_TRUE(none.file.empty());
     EXPECT_TRUE(none.candidates.empty());
     EXPECT_FALSE(none.why.empty());
+
+    // A bare cage grows heights at any resolution; its first bytes, up to its own trailer, decode
+    // to the cage alone.
+    const std::vector<unsigned char> bareFile = codec::encodeSubd(codec::shippableAsset(cage, {}));
+    const GrowingAsset bare{.file = bareFile, .asset = codec::decodeSubd(bareFile, "bare"), .bits = 0, .name = "bare"};
+    const Growth heights = growWithinBudget(bare, reference, 3 * small.size(), loss);
+    ASSERT_FALSE(heights.file.empty()) << heights.why;
+    EXPECT_LE(heights.file.size(), 3 * small.size());
+    EXPECT_EQ(heights.candidates.front().resolution, kBareCageResolutions.front());
+    EXPECT_GE(heights.chosen.bits, 4);
+    const codec::SubdAsset cageAlone = codec::decodeSubd(std::span(heights.file).first(bareFile.size() - 8), "grown",
+                                                         nullptr, {}, codec::SubdEnding::Prefix);
+    EXPECT_EQ(cageAlone.cage.positions, bare.asset.cage.positions);
+    EXPECT_TRUE(cageAlone.maps.displacement.empty());
+    EXPECT_LT(heights.chosen.loss, heights.assetLoss);
 }
 
 // The limit surface passes through the decimated vertices: the initial cage's first step.
