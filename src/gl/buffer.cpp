@@ -1,5 +1,7 @@
 #include "gl/buffer.h"
 
+#include <string>
+
 #include "util/error.h"
 
 namespace subdfit::gl {
@@ -13,7 +15,16 @@ Buffer::Buffer(GLsizeiptr bytes, const void* data) : bytes_(bytes) {
     if (!data) clearToZero();
 }
 
-void Buffer::bindStorage(GLuint binding) const { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, id()); }
+void Buffer::bindStorage(GLuint binding) const {
+    // A shader reads no further into a storage buffer than this GL's largest block: past it,
+    // llvmpipe drops what it reads and writes, silently (a surface drawn wrong).
+    static thread_local GLint64 most = 0;
+    if (most == 0) glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &most);
+    if (bytes_ > most)
+        throw Error("a storage buffer of " + std::to_string(bytes_) + " bytes is past this GL's largest storage block (" +
+                    std::to_string(most) + " bytes): ask for fewer faces, map cells or segments");
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, id());
+}
 
 void Buffer::upload(const void* data, GLsizeiptr bytes, GLintptr offset) {
     SUBDFIT_CHECK(offset + bytes <= bytes_);
