@@ -21,8 +21,9 @@ void Buffer::bindStorage(GLuint binding) const {
     static thread_local GLint64 most = 0;
     if (most == 0) glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &most);
     if (bytes_ > most)
-        throw Error("a storage buffer of " + std::to_string(bytes_) + " bytes is past this GL's largest storage block (" +
-                    std::to_string(most) + " bytes): ask for fewer faces, map cells or segments");
+        throw StorageBlockExceeded("a storage buffer of " + std::to_string(bytes_) +
+                                   " bytes is past this GL's largest storage block (" + std::to_string(most) +
+                                   " bytes): ask for fewer faces, map cells or segments");
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, id());
 }
 

@@ -5,8 +5,16 @@
 #include <vector>
 
 #include "gl/gl_handle.h"
+#include "util/error.h"
 
 namespace subdfit::gl {
+
+// A storage buffer past this GL's largest block (Buffer::bindStorage): what needs it cannot be
+// drawn here, which a search may weigh as such.
+class StorageBlockExceeded : public Error {
+public:
+    using Error::Error;
+};
 
 class Buffer {
 public:

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -11,6 +12,7 @@
 
 #include "codec/subd_format.h"
 #include "fit/image_metrics.h"
+#include "gl/buffer.h"
 #include "simplify/bake/atlas_bake.h"
 #include "simplify/bake/bake.h"
 #include "simplify/cage/cage_ladder.h"
@@ -206,8 +208,16 @@ constexpr double kDenseFacesPerCageFace = 8.0;
 // takes its flag and is shipped again with it.
 void scoreOnMonitor(const SearchInputs& in, const mesh::PolygonMesh& cageWorld, surface::SurfaceMaps& baked,
                     const Appearance& appearance, BudgetCandidate& c, Shipped& shipped) {
-    const auto drawn = drawnAsFitted(in.programs, in.scene, shipped.decoded);
-    c.monitorLoss = fit::score(*drawn, in.scene.choosing(in.programs)).loss;
+    std::unique_ptr<fit::CageFitter> drawn;
+    try {
+        drawn = drawnAsFitted(in.programs, in.scene, shipped.decoded);
+        c.monitorLoss = fit::score(*drawn, in.scene.choosing(in.programs)).loss;
+    } catch (const gl::StorageBlockExceeded& e) {  // not drawable here: never chosen
+        c.monitorLoss = std::numeric_limits<double>::infinity();
+        if (in.say)
+            in.say(std::to_string(c.faces) + " faces at T = " + std::to_string(c.mapResolution) + ": " + e.what());
+        return;
+    }
     if (!c.maps.has(maps::MapKind::Displacement) ||
         in.scene.reference.faceCount() > kDenseFacesPerCageFace * double(c.faces))
         return;

@@ -3,10 +3,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <utility>
 
 #include "fit/asset_export.h"
 #include "fit/device_defaults.h"
+#include "gl/buffer.h"
 #include "gl/platform_defines.h"
 #include "io/atomic_file.h"
 #include "io/input_file.h"
@@ -319,8 +321,13 @@ void growToTheBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs
     if (asset.asset.maps.hasDisplacement())
         asset.bits = report.budget ? report.budget->shipped.mapBits : plan.fit.mapBits;
     if (const std::string why = whyNotGrown(asset.asset); !why.empty()) return note(why);
-    Growth growth = growWithinBudget(asset, mesh::triangulated(in.reference), budget,
-                                     [&](const codec::SubdAsset& a) { return choosingLoss(run, in, a); });
+    Growth growth = growWithinBudget(asset, mesh::triangulated(in.reference), budget, [&](const codec::SubdAsset& a) {
+        try {
+            return choosingLoss(run, in, a);
+        } catch (const gl::StorageBlockExceeded&) {  // not drawable here: never chosen
+            return std::numeric_limits<double>::infinity();
+        }
+    });
     if (growth.file.empty()) {
         note(growth.why);
         prefix.growth = std::move(growth);
