@@ -27,8 +27,13 @@ constexpr int kTrailingLattices = 2;
 // power of two) at `bits`.
 void checkGrowth(const GrowingAsset& asset, int resolution, int bits) {
     const int own = asset.asset.maps.layout.resolution;
-    if (own == 0 && resolution >= 1 && resolution <= kMostGrownResolution && bits >= kFewestBits) return;
-    if (own == 0 || resolution % own != 0 || !std::has_single_bit(unsigned(resolution / own)) || bits <= asset.bits)
+    if (own == 0) {
+        if (resolution >= 1 && resolution <= kMostGrownResolution && bits >= kFewestBits) return;
+        throw Error(asset.name + ": a bare cage grows heights at T = 1 to " + std::to_string(kMostGrownResolution) +
+                    " and at least " + std::to_string(kFewestBits) + " bits, not T = " + std::to_string(resolution) +
+                    " at " + std::to_string(bits));
+    }
+    if (resolution % own != 0 || !std::has_single_bit(unsigned(resolution / own)) || bits <= asset.bits)
         throw Error(asset.name + ": heights at T = " + std::to_string(own) + " and " + std::to_string(asset.bits) +
                     " bits grow only to T = " + std::to_string(own) + " times a power of two at more bits, not T = " +
                     std::to_string(resolution) + " at " + std::to_string(bits));

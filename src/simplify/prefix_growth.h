@@ -54,8 +54,9 @@ struct Growth {
     std::string why;  // where none ships: why
 };
 
-// The largest resolution grown to, the budget search's finest (T = 16 on a 6 500-face cage drew
-// wrong on llvmpipe: docs/simplify.md); a bare cage's heights at the search's resolutions.
+// The largest resolution grown to, the budget search's finest (T = 16 on a 6 500-face cage passes
+// llvmpipe's largest storage block: docs/limits.md); a bare cage's heights at the search's
+// resolutions.
 inline constexpr int kMostGrownResolution = 8;
 inline constexpr std::array kBareCageResolutions{2, 3, 4, 6, 8};
 
