@@ -40,10 +40,7 @@ struct Row {
 std::filesystem::path grown(const SubdPrefixOptions& o, const mesh::PolygonMesh& reference) {
     const std::string bytes = io::readInputFile(o.asset);
     const std::span file{reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()};
-    const simplify::GrowingAsset asset{.file = file,
-                                       .asset = codec::decodeSubd(file, o.asset.string()),
-                                       .bits = o.prefixBits,
-                                       .name = o.asset.string()};
+    const simplify::GrowingAsset asset = simplify::growingAsset(file, o.asset.string(), o.prefixBits);
     const std::vector<unsigned char> grownFile = simplify::grownFile(
         asset, simplify::grownHeights(asset, reference, o.growResolution), o.growResolution, o.growBits);
     const std::filesystem::path out = o.out / "grown.subd";

@@ -41,6 +41,15 @@ void checkGrowth(const GrowingAsset& asset, int resolution, int bits) {
 
 }  // namespace
 
+GrowingAsset growingAsset(std::span<const unsigned char> file, const std::string& name, int bits) {
+    codec::ShippedSubd shipped = codec::readShippedSubd(file, name);
+    return {.asset = codec::decodeSubd(file, name),
+            .cageSection = std::move(shipped.cageSection),
+            .positionBits = shipped.positionBits,
+            .bits = bits,
+            .name = name};
+}
+
 std::vector<float> grownHeights(const GrowingAsset& asset, const mesh::PolygonMesh& reference, int resolution) {
     checkGrowth(asset, resolution, std::max(asset.bits + 1, kFewestBits));
     BakeOptions bake;
@@ -57,9 +66,8 @@ std::vector<unsigned char> grownFile(const GrowingAsset& asset, const std::vecto
     surface::SurfaceMaps maps = a.maps;
     maps.layout = surface::buildTexelLayout(a.cage, resolution);
     maps.displacement = heights;
-    const codec::ShippedSubd shipped = codec::readShippedSubd(asset.file, asset.name);
-    codec::SubdPrecision precision = codec::SubdPrecision::forMapBits(bits, 90, shipped.positionBits);
-    precision.prefix.cageSection = shipped.cageSection;
+    codec::SubdPrecision precision = codec::SubdPrecision::forMapBits(bits, 90, asset.positionBits);
+    precision.prefix.cageSection = asset.cageSection;
     if (own.resolution > 0) {
         // The asset's heights on the grown layout: node (i, j) of its tile is (i s, j s) of the grown one.
         std::vector<float> prefixHeights = heights;

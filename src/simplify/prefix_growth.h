@@ -21,13 +21,18 @@ namespace subdfit::simplify {
 // normal map or an appearance would not be its own byte for byte in the grown file).
 std::string whyNotGrown(const codec::SubdAsset& asset);
 
-// An asset.subd to grow: its bytes as shipped, decoded, and the bits its heights were coded at.
+// An asset.subd to grow, read once (growingAsset): decoded, the bytes of its cage section and
+// its position bits (which the grown file keeps), and the bits its heights were coded at.
 struct GrowingAsset {
-    std::span<const unsigned char> file;
-    codec::SubdAsset asset;  // decodeSubd(file)
-    int bits = 0;            // 0: a bare cage
-    std::string name;        // in errors
+    codec::SubdAsset asset;
+    std::vector<unsigned char> cageSection;
+    int positionBits = 0;
+    int bits = 0;      // 0: a bare cage
+    std::string name;  // in errors
 };
+
+// `file`, a shipped asset.subd whose heights were coded at `bits` (0: none), to grow.
+GrowingAsset growingAsset(std::span<const unsigned char> file, const std::string& name, int bits);
 
 // The heights `asset` holds, baked from `reference` (triangles, world units) at `resolution`.
 std::vector<float> grownHeights(const GrowingAsset& asset, const mesh::PolygonMesh& reference, int resolution);

@@ -317,7 +317,7 @@ void growToTheBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs
     const std::filesystem::path path = in.staged / "asset.subd";
     const std::string bytes = io::readInputFile(path);
     const std::span file{reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()};
-    GrowingAsset asset{.file = file, .asset = codec::decodeSubd(file, path.string()), .bits = 0, .name = path.string()};
+    GrowingAsset asset = growingAsset(file, path.string(), 0);
     if (asset.asset.maps.hasDisplacement())
         asset.bits = report.budget ? report.budget->shipped.mapBits : plan.fit.mapBits;
     if (const std::string why = whyNotGrown(asset.asset); !why.empty()) return note(why);

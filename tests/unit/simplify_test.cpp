@@ -129,7 +129,7 @@ TEST(SimplifyPrefixGrowth, TheBestGrownFileWithinTheBudgetShips) {
     bake.resolution = 2;
     const std::vector<unsigned char> small =
         codec::encodeSubd(codec::shippableAsset(cage, bakeMaps(cage, reference, bake)), {.displacementBits = 4});
-    const GrowingAsset asset{.file = small, .asset = codec::decodeSubd(small, "small"), .bits = 4, .name = "small"};
+    const GrowingAsset asset = growingAsset(small, "small", 4);
     ASSERT_EQ(whyNotGrown(asset.asset), "");
     const surface::TexelLayout finest = surface::buildTexelLayout(asset.asset.cage, kMostGrownResolution);
     const std::vector<float> truth = grownHeights(asset, reference, kMostGrownResolution);
@@ -168,7 +168,7 @@ TEST(SimplifyPrefixGrowth, TheBestGrownFileWithinTheBudgetShips) {
     // A bare cage grows heights at any resolution; its first bytes, up to its own trailer, decode
     // to the cage alone.
     const std::vector<unsigned char> bareFile = codec::encodeSubd(codec::shippableAsset(cage, {}));
-    const GrowingAsset bare{.file = bareFile, .asset = codec::decodeSubd(bareFile, "bare"), .bits = 0, .name = "bare"};
+    const GrowingAsset bare = growingAsset(bareFile, "bare", 0);
     const Growth heights = growWithinBudget(bare, reference, 3 * small.size(), loss);
     ASSERT_FALSE(heights.file.empty()) << heights.why;
     EXPECT_LE(heights.file.size(), 3 * small.size());

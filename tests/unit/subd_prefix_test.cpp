@@ -202,8 +202,7 @@ namespace {
 TEST(SubdPrefix, AGrownFilesPrefixIsTheAssetItGrewFrom) {
     constexpr int kOwn = 2, kGrown = 8;
     const Bytes small = encodeSubd(displacedSphere(kOwn), {.displacementBits = 4});
-    const simplify::GrowingAsset asset{
-        .file = small, .asset = decodeSubd(small, "small.subd"), .bits = 4, .name = "small.subd"};
+    const simplify::GrowingAsset asset = simplify::growingAsset(small, "small.subd", 4);
     ASSERT_TRUE(asset.asset.heightsCoding);
     const std::vector<float> heights =
         test::valuesOnLimit(asset.asset.cage, surface::buildTexelLayout(asset.asset.cage, kGrown),
