@@ -423,4 +423,17 @@ int decodeNodes(const surface::TexelLayout& layout, std::span<float> values, int
     return present;
 }
 
+std::vector<float> codedValues(const surface::TexelLayout& layout, std::span<const float> values, int stride,
+                               int bits) {
+    std::vector<float> decoded(values.size());
+    for (int c = 0; c < stride; ++c) {
+        const ChannelQuantisation q = quantisationFor(values, stride, c, bits);
+        ByteWriter out;
+        encodeNodes(layout, values, stride, c, q, out);
+        ByteReader in(out.bytes(), "coded values");
+        decodeNodes(layout, decoded, stride, c, q, in);
+    }
+    return decoded;
+}
+
 }  // namespace subdfit::codec

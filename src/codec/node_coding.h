@@ -75,4 +75,9 @@ int decodeNodes(const surface::TexelLayout& layout, std::span<float> values, int
 // The passes of a tile at resolution `resolution` (the corners, then two per level).
 int passCount(int resolution);
 
+// `values` (`stride` channels a node) as a decoder reads them back once each channel is coded at
+// `bits` with the quantisation and leans a file's writer picks (quantisationFor, no embedded
+// coding): what a fit of the coded asset draws.
+std::vector<float> codedValues(const surface::TexelLayout& layout, std::span<const float> values, int stride, int bits);
+
 }  // namespace subdfit::codec

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "fit/asset_export.h"
+#include "fit/coded_refinement.h"
 #include "fit/device_defaults.h"
 #include "gl/buffer.h"
 #include "gl/platform_defines.h"
@@ -303,6 +304,51 @@ void writeWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInpu
     }
 }
 
+// --coded-steps: the heights that ship refined as the decoder reads them (fit/coded_refinement.h):
+// at a budget's few bits the rounding costs more than the fit gains. What ships is replaced where
+// the refined heights, coded, fit the budget and draw closer on the choosing views; else the
+// fitter holds what shipped again.
+void refineAsCoded(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in) {
+    SimplifyReport& report = in.report;
+    fit::CageFitter& fitter = run.fitter();
+    if (in.options.codedSteps == 0 || !fitter.maps() || !fitter.maps()->displacement()) return;
+    const fit::CageFitter::State shipped = fitter.state();
+    const surface::SurfaceMaps shippedMaps = fitter.surfaceMaps();
+    codec::SubdPrecision precision = fit::subdPrecision(plan.fit);
+    if (report.budget) {
+        precision.displacementBits = report.budget->shipped.mapBits;
+        precision.appearanceQuality = report.budget->shipped.appearanceQuality;
+    }
+    const auto withinBudget = [&] {
+        return !report.budget || codec::encodeSubd(run.shippable(), precision).size() <= report.budget->bytes;
+    };
+    const fit::CodedRefinement refined = fit::refineAsCoded(
+        run, {.bits = precision.displacementBits, .steps = in.options.codedSteps},
+        [&] { return fit::score(fitter, in.scene.choosing(in.programs)).loss; }, withinBudget);
+    CodedFitReport& coded =
+        report.codedFit.emplace(CodedFitReport{.refinement = refined, .bits = precision.displacementBits});
+    if (refined.bestStep > 0) {
+        const std::vector<unsigned char> file = codec::encodeSubd(run.shippable(), precision);
+        coded.bytes = file.size();
+        coded.shippedLoss = choosingLoss(run, in, codec::readSubd(in.staged / "asset.subd"));
+        coded.refinedLoss = choosingLoss(run, in, codec::decodeSubd(file, "the refined heights"));
+        coded.ships = withinBudget() && coded.refinedLoss < coded.shippedLoss;
+    }
+    if (!coded.ships) {
+        fit::writeMaps(fitter, shippedMaps);
+        fitter.restore(shipped);
+    } else {
+        writeCoded(run, plan, in);
+    }
+    if (in.hooks.note) {
+        char line[200];
+        std::snprintf(line, sizeof line, "the heights fitted as coded: %d steps (%.1f s), their lowest at step %d%s",
+                      refined.steps, refined.seconds, refined.bestStep,
+                      coded.ships ? ": they ship" : ": what was written ships");
+        in.hooks.note(line);
+    }
+}
+
 // --prefix: the asset shipped at the prefix's budget grown to the whole budget
 // (simplify/prefix_growth.h) where it can and a grown file draws closer on the choosing views:
 // asset.subd and its USD replaced, what shipped measured again.
@@ -378,6 +424,8 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
     mesh::writeObj(in.staged / "initial_cage.obj", cage);
     writeWithinBudget(run, plan, in);
     stages.lap("exports");
+    refineAsCoded(run, plan, in);
+    stages.lap("coded_fit");
     report.subdfit = scoreCage(in.programs, run, *report.fit, in.staged, options);
     stages.lap("metrics");
     if (!budget) {
@@ -401,6 +449,24 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
         if (plan.budget) report.bake->details["over_budget"] = report.bake->bytes > plan.budget->bytes;
         stages.lap("baseline_bake");
     }
+}
+
+nlohmann::json toJson(const CodedFitReport& c) {
+    const fit::CodedRefinement& r = c.refinement;
+    nlohmann::json out = {{"bits", c.bits},
+                          {"steps", r.steps},
+                          {"best_step", r.bestStep},
+                          {"seconds", r.seconds},
+                          {"start_loss", r.startLoss},
+                          {"best_loss", r.bestLoss},
+                          {"over_budget", r.overBudget},
+                          {"ships", c.ships}};
+    if (r.bestStep > 0) {
+        out["bytes"] = c.bytes;
+        out["shipped_choosing_loss"] = c.shippedLoss;
+        out["refined_choosing_loss"] = c.refinedLoss;
+    }
+    return out;
 }
 
 nlohmann::json toJson(const PrefixReport& p) {
@@ -470,6 +536,7 @@ nlohmann::json toJson(const SimplifyReport& r) {
                           {"budget_derived", r.budgetDerived}};
     if (r.budget) report["budget"] = toJson(*r.budget);
     if (r.prefix) report["prefix"] = toJson(*r.prefix);
+    if (r.codedFit) report["coded_fit"] = toJson(*r.codedFit);
     if (r.fitVerdict) {
         nlohmann::json& verdict = report["fit_verdict"] = {{"shipped", r.fitVerdict->fitShips ? "fit" : "bake"}};
         if (r.fitVerdict->fitMoved)

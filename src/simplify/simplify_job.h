@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fit/coded_refinement.h"
 #include "fit/fit_job.h"
 #include "simplify/budget_search.h"
 #include "simplify/fit_verdict.h"
@@ -31,6 +32,16 @@ struct PrefixReport {
     bool grown() const { return growth && growth->chosen.resolution > 0; }
 };
 
+// The heights' fit on what the decoder reads (fit/coded_refinement.h), after what ships was
+// written: whether its heights, coded, fit the budget and draw closer on the choosing views.
+struct CodedFitReport {
+    fit::CodedRefinement refinement;
+    int bits = 0;                                 // of the heights
+    std::uintmax_t bytes = 0;                     // the refined file's (0: none, nothing lowered the loss)
+    double shippedLoss = 0.0, refinedLoss = 0.0;  // both decoded, on the choosing views
+    bool ships = false;
+};
+
 // What a simplify did: the route it shipped, the fit's report when a cage was fitted, and what
 // shipped and each baseline measured the same way at the same byte budget.
 struct SimplifyReport {
@@ -45,11 +56,12 @@ struct SimplifyReport {
     std::vector<std::pair<std::string, std::string>> unavailable;  // asked for, not made here: name, why
     std::optional<Quality> bake;
     int facesRequested = 0;
-    std::optional<FitVerdict> fitVerdict;  // where a cage was fitted
-    std::optional<BudgetReport> budget;    // the search and what shipped, with a budget
-    std::optional<PrefixReport> prefix;    // with --prefix
-    std::uintmax_t budgetBytes = 0;        // the budget the routes were weighed at (0: the cage's bytes, --faces alone)
-    bool budgetDerived = false;            // from the reference (route.h's defaultBudget)
+    std::optional<FitVerdict> fitVerdict;    // where a cage was fitted
+    std::optional<BudgetReport> budget;      // the search and what shipped, with a budget
+    std::optional<PrefixReport> prefix;      // with --prefix
+    std::optional<CodedFitReport> codedFit;  // with a budget and heights
+    std::uintmax_t budgetBytes = 0;  // the budget the routes were weighed at (0: the cage's bytes, --faces alone)
+    bool budgetDerived = false;      // from the reference (route.h's defaultBudget)
     CompareLevel compare = CompareLevel::Full;
     std::filesystem::path reference;
     int referenceTriangles = 0;

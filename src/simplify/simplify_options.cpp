@@ -43,6 +43,15 @@ const std::vector<fit::TableRow<SimplifyMember>>& simplifyOptionTable() {
                   "alone: an asset with a normal map or an appearance ships as --budget PREFIX would)",
           .setting = true},
          &S::prefix},
+        {{.key = "coded_steps",
+          .flag = "--coded-steps",
+          .help = "at most this many steps fitting the heights as the decoder reads them (which way each rounds), "
+                  "after the fit, judged every 25 steps; what ships is replaced where they draw closer within the "
+                  "budget (default 0: none; 200 is a run's worth)",
+          .min = 0,
+          .max = 100000,
+          .setting = true},
+         &S::codedSteps},
         {{.key = "surface_samples",
           .flag = "",
           .help = "surface samples per side, for Chamfer and Hausdorff",

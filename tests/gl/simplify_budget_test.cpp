@@ -499,6 +499,29 @@ TEST(SimplifyBudget, TheFitShipsOnlyWhereItLeadsItsBakeAsCoded) {
     }
 }
 
+// --coded-steps: the heights fitted as coded after the fit (fit/coded_refinement.h) replace what
+// shipped only within the budget and closer on the choosing views, and the report says so.
+TEST(SimplifyBudget, HeightsFittedAsCodedShipOnlyWithinTheBudgetAndCloser) {
+    const auto dir = scratchDir("simplify_budget_coded_fit");
+    simplify::SimplifyOptions o = smallSimplify(assetPath("osd-shapes/catmark_flap.obj"), dir / "out", 60);
+    o.budget = 500;
+    o.compare = simplify::CompareLevel::None;
+    o.route = simplify::RouteChoice::Cage;
+    o.codedSteps = 100;
+    const auto report = simplify::toJson(simplify::runSimplify(o));
+    ASSERT_TRUE(report.contains("coded_fit")) << report.dump();
+    const auto& coded = report["coded_fit"];
+    EXPECT_GT(coded["steps"].get<int>(), 0);
+    EXPECT_EQ(coded["bits"], report["budget"]["map_bits"]);
+    EXPECT_LE(coded["best_loss"].get<double>(), coded["start_loss"].get<double>());
+    if (coded["ships"].get<bool>()) {
+        EXPECT_LT(coded["refined_choosing_loss"].get<double>(), coded["shipped_choosing_loss"].get<double>());
+        EXPECT_EQ(coded["bytes"], report["bytes"]);
+    }
+    EXPECT_EQ(fs::file_size(dir / "out" / "asset.subd"), report["bytes"].get<std::uintmax_t>());
+    EXPECT_LE(report["bytes"].get<std::uintmax_t>(), *o.budget);
+}
+
 TEST(SimplifyBudget, ABudgetNoCageFitsIsRefusedNamingTheReference) {
     const auto dir = scratchDir("simplify_budget_tiny");
     mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 3));

@@ -174,6 +174,22 @@ TEST(SubdFormat, ACageWithoutMapsRoundTrips) {
     EXPECT_FALSE(decoded.maps.hasDisplacement());
 }
 
+// What a fit of the coded asset draws (fit/coded_refinement.h) is what a file's decoder reads:
+// the same quantisation and leans, node for node, at the few bits budgets ask for and at more.
+TEST(SubdFormat, CodedValuesAreWhatTheFileDecodesTo) {
+    const auto cage = mesh::makeQuadSphere(4);
+    for (const int bits : {4, 8}) {
+        const SubdAsset asset = shippableAsset(cage, someMaps(cage, 4, 9));
+        const SubdAsset decoded = decodeSubd(encodeSubd(asset, SubdPrecision::forMapBits(bits)), "heights");
+        const std::vector<float> coded = codedValues(asset.maps.layout, asset.maps.displacement, 1, bits);
+        ASSERT_EQ(coded.size(), decoded.maps.displacement.size());
+        int differing = 0;
+        for (size_t n = 0; n < coded.size(); ++n) differing += coded[n] != decoded.maps.displacement[n];
+        EXPECT_EQ(differing, 0) << bits << " bits";
+        EXPECT_NE(coded, asset.maps.displacement) << "coding at " << bits << " bits rounds the heights";
+    }
+}
+
 // The appearance maps ship as JPEGs of their atlas: what decodes is within a few 8-bit steps of
 // what was fitted where the colours vary smoothly, on the decoded cage's own lattice.
 // Tiles of `resolution` cells on `cage` whose base colour and roughness follow each node's limit
