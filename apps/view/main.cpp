@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,17 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 64))
         ->group(kResultGroup);
 
+    subdfit::view::SubdReading subd;
+    app.add_option("--bytes", subd.firstBytes,
+                   "read each asset.subd's first N bytes only, as a stream delivers them (as subdfit decode --bytes): "
+                   "the cage and the map levels wholly in them, a coarser asset")
+        ->check(CLI::Range(std::size_t(1), std::numeric_limits<std::size_t>::max()))
+        ->group(kResultGroup);
+    app.add_flag("--prefixes", subd.prefixes,
+                 "each asset.subd's prefixes as its column's levels (a slider): the whole file (or --bytes), half of "
+                 "it, a quarter ... down to its cage alone, each as a download that far draws it")
+        ->group(kResultGroup);
+
     app.add_flag("--refine", refine,
                  "fit the RESULT folder's asset further against its reference (Save writes to --out)")
         ->group(kFitGroup);
@@ -117,11 +129,11 @@ int main(int argc, char** argv) {
             auto inputs = subdfit::view::loadFitInputs(options.fit);
             subdfit::view::runViewer(options, std::move(inputs));
         } else if (refine) {
-            auto inputs =
-                subdfit::view::refineInputs(subdfit::view::loadResultInputs(results, resultReference), options.fit);
+            auto inputs = subdfit::view::refineInputs(subdfit::view::loadResultInputs(results, resultReference, subd),
+                                                      options.fit);
             subdfit::view::runViewer(options, std::move(inputs));
         } else {
-            auto result = subdfit::view::loadResultInputs(results, resultReference);
+            auto result = subdfit::view::loadResultInputs(results, resultReference, subd);
             subdfit::view::checkResultOptions(options, result);
             subdfit::view::runViewer(options, std::move(result));
         }

@@ -43,11 +43,17 @@ void columnTable(ResultPanelState& state, const ResultInputs& inputs,
         }
         ImGui::SameLine(kStatsAt);
         ImGui::TextUnformatted(column.stats.c_str());
-        // A chain of levels of detail: a slider for each column that has one.
+        // A chain of levels of detail, or a file's prefixes: a slider for each column that has one.
         int level = columns[c]->level();
-        if (column.levels.size() > 1 && ImGui::SliderInt("level of detail", &level, 0, int(column.levels.size()) - 1)) {
+        const bool prefixes = !column.levels.back().label.empty();
+        if (column.levels.size() > 1 &&
+            ImGui::SliderInt(prefixes ? "prefix" : "level of detail", &level, 0, int(column.levels.size()) - 1)) {
             requests.levelColumn = int(c);
             requests.level = level;
+        }
+        if (prefixes) {
+            const std::string& label = column.levels[size_t(columns[c]->level())].label;
+            ImGui::TextDisabled("%s", label.empty() ? "the whole file" : label.c_str());
         }
         ImGui::PopID();
     }

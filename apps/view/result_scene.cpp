@@ -4,8 +4,11 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
+#include <span>
 
 #include "codec/decode_density.h"
+#include "io/input_file.h"
 #include "mesh/mesh_loader.h"
 #include "util/error.h"
 
@@ -27,28 +30,52 @@ bool isSubd(const std::filesystem::path& path) {
     return extension == ".subd";
 }
 
-LoadedLevel loadLevel(const std::filesystem::path& path) {
-    LoadedLevel level{.path = path};
-    if (isSubd(path)) level.asset = codec::readSubd(path);
-    else level.mesh = mesh::triangulated(mesh::loadReference(path));
-    return level;
+std::string kilobytes(std::size_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f", double(bytes) / 1000.0);
+    return text;
 }
 
-ColumnInputs fileColumn(const std::filesystem::path& path) {
+// A mesh file's one level, or an asset.subd's levels as `subd` reads them.
+std::vector<LoadedLevel> loadLevels(const std::filesystem::path& path, const SubdReading& subd) {
+    if (!isSubd(path)) return {{.path = path, .mesh = mesh::triangulated(mesh::loadReference(path))}};
+    const std::string file = io::readInputFile(path);
+    const std::span bytes{reinterpret_cast<const unsigned char*>(file.data()), file.size()};
+    std::vector<std::size_t> firsts{std::min(subd.firstBytes, bytes.size())};
+    if (subd.prefixes)
+        if (const std::size_t cage = codec::cageEnd(bytes, path.string()); cage > 0) {
+            for (std::size_t n = firsts.front() / 2; n > cage; n /= 2) firsts.push_back(n);
+            if (cage < firsts.front()) firsts.push_back(cage);
+        }
+    std::vector<LoadedLevel> levels;
+    for (const std::size_t n : firsts) {
+        const bool prefix = n < bytes.size();
+        LoadedLevel& level = levels.emplace_back(
+            LoadedLevel{.path = path,
+                        .asset = codec::decodeSubd(bytes.first(n), path.string(), nullptr, {},
+                                                   prefix ? codec::SubdEnding::Prefix : codec::SubdEnding::Whole)});
+        if (prefix) level.label = "its first " + kilobytes(n) + " of " + kilobytes(bytes.size()) + " KB";
+    }
+    return levels;
+}
+
+ColumnInputs fileColumn(const std::filesystem::path& path, const SubdReading& subd) {
     std::error_code ec;
     const auto bytes = std::filesystem::file_size(path, ec);
-    return {.name = path.filename().string(), .stats = describe(ec ? 0 : bytes, NAN, NAN), .levels = {loadLevel(path)}};
+    return {.name = path.filename().string(),
+            .stats = describe(ec ? 0 : bytes, NAN, NAN),
+            .levels = loadLevels(path, subd)};
 }
 
 ColumnInputs referenceColumn(const std::filesystem::path& path) {
-    ColumnInputs reference = fileColumn(path);
+    ColumnInputs reference = fileColumn(path, {});
     reference.name = "reference";
     reference.stats = std::to_string(reference.levels.front().mesh.faceCount()) + " triangles";
     reference.reference = true;
     return reference;
 }
 
-void addFolder(ResultInputs& inputs, const std::filesystem::path& dir, bool referenceGiven) {
+void addFolder(ResultInputs& inputs, const std::filesystem::path& dir, bool referenceGiven, const SubdReading& subd) {
     fit::ResultFolder folder = fit::readResultFolder(dir);
     if (referenceGiven) {
         std::erase_if(folder.notes, [](const std::string& note) { return note.starts_with("the reference "); });
@@ -57,7 +84,8 @@ void addFolder(ResultInputs& inputs, const std::filesystem::path& dir, bool refe
     }
     for (const auto& entry : folder.entries) {
         ColumnInputs column{.name = entry.name, .stats = describe(entry.bytes, entry.psnrHoldout, entry.ssimHoldout)};
-        for (const auto& path : entry.levels) column.levels.push_back(loadLevel(path));
+        for (const auto& path : entry.levels)
+            std::ranges::move(loadLevels(path, subd), std::back_inserter(column.levels));
         inputs.columns.push_back(std::move(column));
     }
     for (const auto& note : folder.notes) inputs.notes.push_back(dir.filename().string() + ": " + note);
@@ -91,14 +119,14 @@ render::ShadingModel shadingOf(const ResultInputs& inputs, const LoadedLevel& le
 
 }  // namespace
 
-ResultInputs loadResultInputs(const std::vector<std::filesystem::path>& results,
-                              const std::filesystem::path& reference) {
+ResultInputs loadResultInputs(const std::vector<std::filesystem::path>& results, const std::filesystem::path& reference,
+                              const SubdReading& subd) {
     ResultInputs inputs;
     if (!reference.empty()) inputs.columns.push_back(referenceColumn(reference));
     for (const auto& path : results) {
         std::error_code ec;
-        if (std::filesystem::is_directory(path, ec)) addFolder(inputs, path, !reference.empty());
-        else inputs.columns.push_back(fileColumn(path));
+        if (std::filesystem::is_directory(path, ec)) addFolder(inputs, path, !reference.empty(), subd);
+        else inputs.columns.push_back(fileColumn(path, subd));
         if (!inputs.title.empty()) inputs.title += ", ";
         inputs.title += path.string();
     }

@@ -4,6 +4,7 @@
 // files are read and checked first, with no GL (so a damaged one is refused before a window
 // opens); the columns' GL objects are built once the window's context is current.
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,6 +24,15 @@ struct LoadedLevel {
     std::filesystem::path path;
     std::optional<codec::SubdAsset> asset{};
     mesh::PolygonMesh mesh{};
+    std::string label{};  // an asset.subd's prefix: "its first 9.2 of 18.5 KB"; empty: the whole file
+};
+
+// How each asset.subd is read: whole, or its first bytes (--bytes, as `subdfit decode --bytes`
+// and a stream deliver them), and with its prefixes as its column's levels (--prefixes): those
+// bytes, then half of them, a quarter ... down to the cage alone (codec::cageEnd).
+struct SubdReading {
+    std::size_t firstBytes = std::numeric_limits<std::size_t>::max();
+    bool prefixes = false;
 };
 
 struct ColumnInputs {
@@ -42,10 +52,11 @@ struct ResultInputs {
 
 // Reads every RESULT: a fit or simplify output folder (its reference, asset.subd and baselines:
 // fit/result_folder.h says which files a folder may name), an asset.subd, or a mesh file (.glb,
-// .gltf, .obj, .drc); `reference`, when given, is the reference instead of the folder's. Throws
-// subdfit::Error "path: problem" for a folder without a result and for a damaged or unreadable file.
+// .gltf, .obj, .drc); `reference`, when given, is the reference instead of the folder's; every
+// asset.subd as `subd` says. Throws subdfit::Error "path: problem" for a folder without a result
+// and for a damaged or unreadable file (or one whose first bytes end before its cage does).
 ResultInputs loadResultInputs(const std::vector<std::filesystem::path>& results,
-                              const std::filesystem::path& reference = {});
+                              const std::filesystem::path& reference = {}, const SubdReading& subd = {});
 
 // A column on the GPU, at one level.
 class ResultColumn {

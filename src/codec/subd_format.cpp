@@ -759,6 +759,16 @@ io::WrittenFile writeSubd(const std::filesystem::path& path, const SubdAsset& as
     return io::writeBytes(path, encodeSubd(asset, precision));
 }
 
+std::size_t cageEnd(std::span<const unsigned char> bytes, const std::string& name) {
+    const ShippedSubd shipped = readShippedSubd(bytes, name);
+    std::uint16_t version;
+    std::memcpy(&version, bytes.data() + 4, sizeof version);
+    if (version < 10) return 0;
+    std::size_t end = bytes.size() - 8;  // the trailer's hash
+    for (size_t k = 1; k < shipped.sectionBytes.size(); ++k) end -= shipped.sectionBytes[k].second;
+    return end;
+}
+
 SubdAsset readSubd(const std::filesystem::path& path, DecodeBudget* budget,
                    const std::function<void(const SubdOutline&)>& priced, std::size_t firstBytes) {
     const std::string bytes = io::readInputFile(path);

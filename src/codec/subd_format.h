@@ -127,6 +127,11 @@ ShippedSubd readShippedSubd(std::span<const unsigned char> bytes, const std::str
                             DecodeBudget* budget = nullptr, const std::function<void(const SubdOutline&)>& priced = {},
                             SubdEnding ending = SubdEnding::Whole);
 
+// The fewest first bytes of a whole file `bytes` that decode as a prefix (SubdEnding::Prefix): its
+// header and cage section, a bare cage; 0 where the file's version is read whole only (before
+// 10). Throws subdfit::Error as readShippedSubd.
+std::size_t cageEnd(std::span<const unsigned char> bytes, const std::string& name);
+
 io::WrittenFile writeSubd(const std::filesystem::path& path, const SubdAsset& asset,
                           const SubdPrecision& precision = {});
 // `firstBytes`: read only the file's first bytes, as a prefix (whole where the file is no longer).

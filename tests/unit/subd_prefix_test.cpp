@@ -102,6 +102,18 @@ TEST(SubdPrefix, AWholeFileReadAsAPrefixIsTheWholeFile) {
     EXPECT_EQ(prefix.cage.positions, whole.cage.positions);
 }
 
+// What a viewer steps a file's prefixes down to (subdfit-view --prefixes): the fewest bytes that
+// decode, the bare cage.
+TEST(SubdPrefix, TheCagesEndIsTheFewestBytesThatDecode) {
+    const Bytes file = encodeSubd(displacedSphere(4));
+    const size_t end = cageEnd(file, "a.subd");
+    EXPECT_EQ(end, sectionSpan(file, "CAGE").second);
+    EXPECT_FALSE(prefixOf(file, end).maps.hasDisplacement());
+    EXPECT_THROW(prefixOf(file, end - 1), Error);
+    const Bytes bare = encodeSubd({.cage = mesh::makeQuadSphere(3), .maps = {}});
+    EXPECT_EQ(cageEnd(bare, "bare.subd"), bare.size() - 8);
+}
+
 TEST(SubdPrefix, APrefixEndingBeforeTheCageDoesOrDamagedIsRefusedInOneLine) {
     const Bytes file = encodeSubd(displacedSphere(4));
     const auto [cageBegin, cageEnd] = sectionSpan(file, "CAGE");

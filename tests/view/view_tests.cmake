@@ -65,6 +65,11 @@ subdfit_view_screenshot(refine SAVED ${SUBDFIT_VIEW_RESULT} --refine --res 48 --
                         --frames 3 --width 640 --height 400)
 set_tests_properties(view.screenshot.refine PROPERTIES FIXTURES_REQUIRED simplify_spot)
 
+# Its asset.subd with its prefixes as levels (each decoded as the file loads: half the bytes, a
+# quarter ... down to the cage alone), the whole file drawn first.
+subdfit_view_screenshot(prefixes ${SUBDFIT_VIEW_RESULT}/asset.subd --prefixes --width 640 --height 400)
+set_tests_properties(view.screenshot.prefixes PROPERTIES FIXTURES_REQUIRED simplify_spot)
+
 # Refused with one stderr line naming the culprit (tests/cli/expect_failure.cmake), no window needed.
 function(subdfit_view_refuses name expect)
   list(JOIN ARGN "|" args)
@@ -84,3 +89,6 @@ subdfit_view_refuses(folder_without_result "data: not a subdfit result: no repor
 subdfit_view_refuses(neither_result_nor_fit "give a RESULT" --width 640)
 subdfit_view_refuses(appearance_mode_without_material "needs a reference whose material" --cage ${SUBDFIT_VIEW_CAGE}
                      --reference ${SUBDFIT_VIEW_REFERENCE} --mode metallic_roughness)
+# First bytes that end before the cage does: refused as `decode --bytes` refuses them.
+subdfit_view_refuses(bytes_before_the_cage "end before the cage does" ${SUBDFIT_VIEW_RESULT}/asset.subd --bytes 20)
+set_tests_properties(view.refuses.bytes_before_the_cage PROPERTIES FIXTURES_REQUIRED simplify_spot)
