@@ -40,6 +40,7 @@ constexpr size_t kMostAppearancesWithMaps = 2;
 // None below 10: a step of over a thousandth of the cage's size shows at resolutions above the
 // monitor views' that judge it.
 constexpr int kFewerPositionBits[] = {12, 11, 10};
+constexpr int kFewestPositionBits = 10;
 
 std::string describe(const BudgetCandidate& c) {
     char line[160];
@@ -404,12 +405,20 @@ void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& ca
             }
             bool fitted = false;
             double fewerBitsLoss = 0.0;
+            int positionBits = codec::SubdPrecision{}.positionBits;
             for (int bits : in.search.mapBits) {
                 if (fitted && !found.moreBitsPay) break;
                 const MapRecipe recipe{.effects = mapChoices[m], .resolution = resolution, .bits = bits};
-                const BudgetCandidate c = judge(in, found, cage.world, *baked, recipe, bare.appearance);
-                found.mapBytesPerFace[std::make_tuple(m, resolution, bits)] =
-                    double(c.bytes > bare.candidate.bytes ? c.bytes - bare.candidate.bytes : 0) / faces;
+                BudgetCandidate c = judge(in, found, cage.world, *baked, recipe, bare.appearance, positionBits);
+                if (positionBits == codec::SubdPrecision{}.positionBits)
+                    found.mapBytesPerFace[std::make_tuple(m, resolution, bits)] =
+                        double(c.bytes > bare.candidate.bytes ? c.bytes - bare.candidate.bytes : 0) / faces;
+                // The fewest map bits over the budget at full position bits may fit at the fewest
+                // position bits (the cage is most of a file's bytes), and more map bits then only there.
+                if (!fits(in.search, c) && !fitted && positionBits > kFewestPositionBits) {
+                    positionBits = kFewestPositionBits;
+                    c = judge(in, found, cage.world, *baked, recipe, bare.appearance, positionBits);
+                }
                 if (!fits(in.search, c)) break;
                 if (fitted && c.monitorLoss > (1.0 - kLossTolerance) * fewerBitsLoss) found.moreBitsPay = false;
                 fitted = true;

@@ -104,6 +104,29 @@ TEST(SimplifyBudget, ShipsWithinTheBudgetAndListsTheCandidates) {
             bestBytes = double(c["bytes"].get<std::uintmax_t>());
         }
     }
+    // A rung of maps over the budget at 14-bit positions, its resolution's first on its cage, is
+    // judged again at 10 bits next (the cage is most of its bytes).
+    const auto& tried = budget["candidates"];
+    int retried = 0;
+    for (size_t k = 0; k + 1 < tried.size(); ++k) {
+        const auto& c = tried[k];
+        if (c["maps"] == "none" || c["position_bits"] != 14 || c["bytes"].get<std::uintmax_t>() <= kBudget) continue;
+        const auto sameRung = [&](const nlohmann::json& o) {
+            return o["faces"] == c["faces"] && o["maps"] == c["maps"] && o["map_resolution"] == c["map_resolution"];
+        };
+        // On a cage of the ladder (judged bare first; a grown cage is not), its resolution's first fit.
+        bool ladderCage = false, firstOfItsResolution = true;
+        for (size_t j = 0; j < k; ++j) {
+            ladderCage |= tried[j]["faces"] == c["faces"] && tried[j]["maps"] == "none";
+            firstOfItsResolution &= !(sameRung(tried[j]) && tried[j]["bytes"].get<std::uintmax_t>() <= kBudget);
+        }
+        if (!ladderCage || !firstOfItsResolution) continue;
+        const auto& next = tried[k + 1];
+        EXPECT_TRUE(sameRung(next) && next["map_bits"] == c["map_bits"] && next["position_bits"] == 10)
+            << c.dump() << " then " << next.dump();
+        ++retried;
+    }
+    EXPECT_GT(retried, 0) << "no rung over the budget at 14 bits: the case is not exercised";
     auto worthIt = [&](const nlohmann::json& c) {
         if (!c.contains("settled_loss")) return false;
         const double lossGivenUp = c["settled_loss"].get<double>() / bestLoss - 1.0;
@@ -266,6 +289,9 @@ struct LumpySearch {
 // no training view to settle them, and chooses the lowest monitor loss.
 TEST(SimplifyBudget, NoNearTieIsSettledWhereNoCandidateWillBeFitted) {
     LumpySearch lumpy("simplify_budget_unsettled");
+    // At 2.5 KB its candidates tie (at 3 KB one with heights at 10-bit positions leads alone).
+    lumpy.search.budget = 2500;
+    lumpy.search.faceCounts = simplify::faceCountsFor(lumpy.search.budget, lumpy.reference.faceCount(), 16000);
     auto searched = [&](double leastFitted) {
         lumpy.search.leastFittedMonitorPsnr = leastFitted;
         return lumpy.run();
