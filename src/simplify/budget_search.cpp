@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <memory>
@@ -40,7 +41,7 @@ constexpr size_t kMostAppearancesWithMaps = 2;
 // None below 10: a step of over a thousandth of the cage's size shows at resolutions above the
 // monitor views' that judge it.
 constexpr int kFewerPositionBits[] = {12, 11, 10};
-constexpr int kFewestPositionBits = 10;
+constexpr int kFewestPositionBits = kFewerPositionBits[std::size(kFewerPositionBits) - 1];
 
 std::string describe(const BudgetCandidate& c) {
     char line[160];
@@ -375,7 +376,8 @@ bool firstRungLikely(const SearchInputs& in, const Findings& found, int faces) {
 
 // Phase three on a cage: the map ladder on each appearance worth it, each choice of maps at each
 // resolution, coarsest first, and at each bit depth while it fits: more bits and finer maps
-// only cost more, so a rung over the budget ends its ladder. Maps are baked once per (choice,
+// only cost more, so a rung over the budget ends its ladder (a resolution's first is judged
+// again at the fewest position bits before it does). Maps are baked once per (choice,
 // resolution) on the cage. Two rules spare work that cannot pay:
 //  - a rung whose bytes the rungs measured on other cages predict well over the budget (map
 //    bytes grow in proportion to the faces) ends its ladder unbaked;
