@@ -4,7 +4,7 @@
 // (codec::codedValues) and moves the heights as fitted by the gradient estimated there (a
 // straight-through estimate), so the fit chooses which way each height rounds. At the few bits
 // the budgets ask for, the rounding, not the fit, is what the asset loses most to
-// (docs/simplify.md, "The fit on what ships").
+// (docs/simplify.md, "The heights fitted as coded").
 #include <functional>
 
 #include "fit/fit_run.h"

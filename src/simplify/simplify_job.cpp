@@ -319,9 +319,8 @@ void refineAsCoded(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& 
         precision.displacementBits = report.budget->shipped.mapBits;
         precision.appearanceQuality = report.budget->shipped.appearanceQuality;
     }
-    const auto withinBudget = [&] {
-        return !report.budget || codec::encodeSubd(run.shippable(), precision).size() <= report.budget->bytes;
-    };
+    const auto fits = [&](std::size_t bytes) { return !report.budget || bytes <= report.budget->bytes; };
+    const auto withinBudget = [&] { return fits(codec::encodeSubd(run.shippable(), precision).size()); };
     const fit::CodedRefinement refined = fit::refineAsCoded(
         run, {.bits = precision.displacementBits, .steps = in.options.codedSteps},
         [&] { return fit::score(fitter, in.scene.choosing(in.programs)).loss; }, withinBudget);
@@ -332,7 +331,7 @@ void refineAsCoded(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& 
         coded.bytes = file.size();
         coded.shippedLoss = choosingLoss(run, in, codec::readSubd(in.staged / "asset.subd"));
         coded.refinedLoss = choosingLoss(run, in, codec::decodeSubd(file, "the refined heights"));
-        coded.ships = withinBudget() && coded.refinedLoss < coded.shippedLoss;
+        coded.ships = fits(file.size()) && coded.refinedLoss < coded.shippedLoss;
     }
     if (!coded.ships) {
         fit::writeMaps(fitter, shippedMaps);

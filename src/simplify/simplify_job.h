@@ -59,7 +59,7 @@ struct SimplifyReport {
     std::optional<FitVerdict> fitVerdict;    // where a cage was fitted
     std::optional<BudgetReport> budget;      // the search and what shipped, with a budget
     std::optional<PrefixReport> prefix;      // with --prefix
-    std::optional<CodedFitReport> codedFit;  // with a budget and heights
+    std::optional<CodedFitReport> codedFit;  // with --coded-steps and heights
     std::uintmax_t budgetBytes = 0;  // the budget the routes were weighed at (0: the cage's bytes, --faces alone)
     bool budgetDerived = false;      // from the reference (route.h's defaultBudget)
     CompareLevel compare = CompareLevel::Full;
