@@ -4,18 +4,13 @@
 #include <utility>
 
 #include "codec/node_coding.h"
+#include "fit/state_blend.h"
 #include "util/error.h"
 
 namespace subdfit::fit {
 namespace {
 
 constexpr int kBudgetBisections = 4;  // a sixteenth of the way at most is given up
-
-std::vector<float> between(const std::vector<float>& from, const std::vector<float>& to, float t) {
-    std::vector<float> out(to.size());
-    for (size_t n = 0; n < to.size(); ++n) out[n] = from[n] + t * (to[n] - from[n]);
-    return out;
-}
 
 // Refined heights are rougher and code larger: where `values` do not fit (`fits`, with the group
 // holding them), they become the most of the way from `start` to them that fits, if any.
@@ -24,14 +19,14 @@ bool withinBudget(optim::ParameterGroup& heights, const std::vector<float>& star
     if (!fits) return true;
     heights.write(values);
     if (fits()) return true;
-    float low = 0.0f, high = 1.0f;
-    for (int k = 0; k < kBudgetBisections; ++k) {
-        const float mid = 0.5f * (low + high);
-        heights.write(between(start, values, mid));
-        (fits() ? low : high) = mid;
-    }
-    if (low == 0.0f) return false;
-    values = between(start, values, low);
+    const float t = furthestThatHolds(
+        [&](float t) {
+            heights.write(between(start, values, t));
+            return fits();
+        },
+        kBudgetBisections);
+    if (t == 0.0f) return false;
+    values = between(start, values, t);
     return true;
 }
 

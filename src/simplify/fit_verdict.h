@@ -12,6 +12,9 @@ struct FitVerdict {
     bool fitMoved = true;                      // false: the fit ended at its bake (no losses measured)
     double fittedLoss = 0.0, bakedLoss = 0.0;  // on the choosing views
     std::uintmax_t overBudgetBytes = 0;        // > 0: the fit won there, but its asset came to this, over the budget
+    // < 1: the fitted asset being over the budget, what was weighed in its place is this fraction of
+    // the way to it from the bake (the most that codes within the budget).
+    float withinBudgetFraction = 1.0f;
     // Both as asset.subd holds them (decoded, on the choosing views), where the fit won before
     // coding and its asset fits: few map bits can undo what the fit gained. 0: not weighed.
     double shippedFittedLoss = 0.0, shippedBakedLoss = 0.0;

@@ -9,6 +9,7 @@
 #include "fit/asset_export.h"
 #include "fit/coded_refinement.h"
 #include "fit/device_defaults.h"
+#include "fit/state_blend.h"
 #include "gl/buffer.h"
 #include "gl/platform_defines.h"
 #include "io/atomic_file.h"
@@ -276,23 +277,66 @@ bool fitLeadsAsCoded(fit::FitRun& run, const RunInputs& in, FitVerdict& verdict)
     return true;
 }
 
+// A fitted asset over the budget: the most of the way from its bake to it (bisected) that codes
+// within the budget, written, and false with the fitter holding the bake where none does.
+bool pullWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in) {
+    constexpr int kBisections = 4;  // a sixteenth of the fit's way at most is given up
+    fit::CageFitter& fitter = run.fitter();
+    const fit::CageFitter::State fitted = fitter.state();
+    const surface::SurfaceMaps fittedMaps = fitter.surfaceMaps();  // what θ does not hold
+    holdTheBake(run);
+    const fit::CageFitter::State baked = fitter.state();
+    const auto hold = [&](float t) {
+        fit::writeMaps(fitter, fittedMaps);
+        fitter.restore(fit::between(baked, fitted, t));
+    };
+    const float t = fit::furthestThatHolds(
+        [&](float t) {
+            hold(t);
+            return writeCoded(run, plan, in);
+        },
+        kBisections);
+    if (t == 0.0f) {
+        holdTheBake(run);
+        return false;
+    }
+    hold(t);
+    writeCoded(run, plan, in);
+    in.report.fitVerdict->withinBudgetFraction = t;
+    return true;
+}
+
 // Fitted heights are rougher than baked ones and code larger: where even the fewest bits leave
-// the fitted asset over the budget, its bake, weighed within the budget by the search, ships.
-// Where it fits, it ships only where it leads its bake as both are coded.
+// the fitted asset over the budget, the most of the way to it from its bake that fits is weighed
+// instead, and where none fits, its bake (weighed within the budget by the search) ships. What
+// fits ships only where it leads its bake as both are coded.
 void writeWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in) {
     std::optional<FitVerdict>& verdict = in.report.fitVerdict;
-    const bool fits = writeCoded(run, plan, in);
+    bool fits = writeCoded(run, plan, in);
     if (!verdict || !verdict->fitShips) return;
-    if (fits && fitLeadsAsCoded(run, in, *verdict)) return;
     const std::uintmax_t fittedBytes = in.report.budget ? in.report.budget->shipped.bytes : 0;
+    if (!fits) {
+        verdict->overBudgetBytes = fittedBytes;
+        fits = pullWithinBudget(run, plan, in);
+    }
+    if (fits && fitLeadsAsCoded(run, in, *verdict)) {
+        if (verdict->withinBudgetFraction < 1.0f && in.hooks.note) {
+            char line[160];
+            std::snprintf(line, sizeof line,
+                          "the fitted asset codes to %ju bytes, over the budget: %.0f %% of the way to it from its "
+                          "bake fits, and ships",
+                          fittedBytes, 100.0 * verdict->withinBudgetFraction);
+            in.hooks.note(line);
+        }
+        return;
+    }
     if (!fits) holdTheBake(run);
     writeCoded(run, plan, in);
     verdict->fitShips = false;
-    if (!fits) {
-        verdict->overBudgetBytes = fittedBytes;
+    if (verdict->overBudgetBytes > 0 && verdict->withinBudgetFraction == 1.0f) {
         if (in.hooks.note)
             in.hooks.note("the fitted asset codes to " + std::to_string(verdict->overBudgetBytes) +
-                          " bytes, over the budget: its bake ships");
+                          " bytes, over the budget, and no way to it from its bake fits: its bake ships");
         return;
     }
     if (in.hooks.note) {
@@ -541,9 +585,18 @@ nlohmann::json toJson(const SimplifyReport& r) {
         if (r.fitVerdict->fitMoved)
             verdict["choosing_loss"] = {{"fit", r.fitVerdict->fittedLoss}, {"bake", r.fitVerdict->bakedLoss}};
         else verdict["why"] = "the fit ended at its bake";
-        if (r.fitVerdict->overBudgetBytes > 0)
+        if (r.fitVerdict->overBudgetBytes > 0) {
             verdict["why"] = "the fitted asset coded to " + std::to_string(r.fitVerdict->overBudgetBytes) +
                              " bytes, over the budget";
+            verdict["over_budget_bytes"] = r.fitVerdict->overBudgetBytes;
+            // What was weighed in its place: this fraction of the way to it from the bake.
+            if (r.fitVerdict->withinBudgetFraction < 1.0f) {
+                verdict["within_budget_fraction"] = r.fitVerdict->withinBudgetFraction;
+                verdict["why"] = verdict["why"].get<std::string>() +
+                                 "; the most of the way to it from the bake "
+                                 "that fits was weighed in its place";
+            }
+        }
         if (r.fitVerdict->shippedBakedLoss > 0.0) {
             verdict["shipped_choosing_loss"] = {{"fit", r.fitVerdict->shippedFittedLoss},
                                                 {"bake", r.fitVerdict->shippedBakedLoss}};
