@@ -586,16 +586,12 @@ nlohmann::json toJson(const SimplifyReport& r) {
             verdict["choosing_loss"] = {{"fit", r.fitVerdict->fittedLoss}, {"bake", r.fitVerdict->bakedLoss}};
         else verdict["why"] = "the fit ended at its bake";
         if (r.fitVerdict->overBudgetBytes > 0) {
+            const bool pulled = r.fitVerdict->withinBudgetFraction < 1.0f;
             verdict["why"] = "the fitted asset coded to " + std::to_string(r.fitVerdict->overBudgetBytes) +
-                             " bytes, over the budget";
+                             " bytes, over the budget" +
+                             (pulled ? "; the most of the way to it from the bake that fits was weighed instead" : "");
             verdict["over_budget_bytes"] = r.fitVerdict->overBudgetBytes;
-            // What was weighed in its place: this fraction of the way to it from the bake.
-            if (r.fitVerdict->withinBudgetFraction < 1.0f) {
-                verdict["within_budget_fraction"] = r.fitVerdict->withinBudgetFraction;
-                verdict["why"] = verdict["why"].get<std::string>() +
-                                 "; the most of the way to it from the bake "
-                                 "that fits was weighed in its place";
-            }
+            if (pulled) verdict["within_budget_fraction"] = r.fitVerdict->withinBudgetFraction;
         }
         if (r.fitVerdict->shippedBakedLoss > 0.0) {
             verdict["shipped_choosing_loss"] = {{"fit", r.fitVerdict->shippedFittedLoss},
