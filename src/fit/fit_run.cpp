@@ -149,6 +149,15 @@ std::optional<StopReason> FitRun::monitor(StepSchedule& schedule, const FitHooks
                        std::to_string(step() - judged_.step) + " steps: the stage stops (stop_reason converged)");
         return StopReason::Converged;
     }
+    if (hooks.judge && schedule_.probationOver && schedule_.bestStep >= 0 &&
+        step() - schedule_.bestStep >= kStalledSteps) {
+        if (judgeTheBest(hooks) > 0) takeTheJudgedBest();
+        else restoreBest();
+        if (hooks.note)
+            hooks.note("the monitor's best has not improved in " + std::to_string(step() - schedule_.bestStep) +
+                       " steps: the stage stops (stop_reason converged)");
+        return StopReason::Converged;
+    }
     if (decision.action == StepSchedule::Action::Converged) return StopReason::Converged;
     return std::nullopt;
 }

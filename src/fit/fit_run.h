@@ -107,6 +107,10 @@ public:
     // The single-sample monitor can keep improving while the judge's loss rises: the glTF Duck's
     // atlas at 10 KB, its lowest 100 steps in and 12 % above it 800 steps later.
     static constexpr int kJudgeEvery = 100, kJudgedWorse = 2;
+    // With hooks.judge, a stage past its probation whose monitored best is this many steps old
+    // stops (converged): a refinement of a near-optimal start (simplify's bake) that stalls this
+    // long gains nothing held out for its seconds (docs/measurements.md).
+    static constexpr int kStalledSteps = 100;
     StopReason runTo(int until, const std::filesystem::path& checkpoint, const FitHooks& hooks = {});
 
     // The end of a stage: back to the best monitored parameters, if the last are not (so a fit

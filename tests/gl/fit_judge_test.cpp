@@ -3,6 +3,9 @@
 // judge agrees with the monitor.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <string>
+
 #include "fit/fit_run.h"
 #include "fit/fit_scene.h"
 #include "gl_test_context.h"
@@ -97,10 +100,44 @@ TEST(FitJudge, AStageKeepsTheJudgesLowestAndStopsOnceItRises) {
     }};
 
     EXPECT_EQ(run.runTo(f.options.steps, f.dir / "checkpoint.bin", hooks), fit::StopReason::Converged);
-    EXPECT_LT(run.step(), f.options.steps);
-    EXPECT_GE(run.step(), 150 + fit::FitRun::kJudgedWorse * fit::FitRun::kJudgeEvery - fit::FitRun::kJudgeEvery);
+    // Within kJudgedWorse judgments of the rise (or sooner, where the monitor stalls first).
+    EXPECT_LE(run.step(), 150 + (fit::FitRun::kJudgedWorse + 1) * fit::FitRun::kJudgeEvery);
     ASSERT_FALSE(lowestTheta.empty());
     EXPECT_EQ(thetaOf(run.fitter()), lowestTheta);
+    expectNoGlError();
+}
+
+// With a judge (simplify's fits), a stage whose monitored best is kStalledSteps old stops, in
+// the best state, and says so; without one the same fit runs on.
+TEST(FitJudge, AStageWhoseMonitorStallsStopsAtItsBest) {
+    RoomyFit f("judge_stalls", 800);
+    fit::FitRun run = f.run();
+    double lowest = INFINITY;
+    std::vector<std::vector<float>> lowestTheta;
+    std::vector<std::string> notes;
+    const fit::FitHooks hooks{.note = [&](const std::string& line) { notes.push_back(line); },
+                              .judge =
+                                  [&] {
+                                      const double loss = fit::score(run.fitter(), f.scene.monitor).loss;
+                                      if (loss < lowest) {
+                                          lowest = loss;
+                                          lowestTheta = thetaOf(run.fitter());
+                                      }
+                                      return loss;
+                                  }};
+
+    EXPECT_EQ(run.runTo(f.options.steps, f.dir / "checkpoint.bin", hooks), fit::StopReason::Converged);
+    const auto stalled = std::find_if(notes.begin(), notes.end(), [](const std::string& n) {
+        return n.find("the monitor's best has not improved in") != std::string::npos;
+    });
+    ASSERT_NE(stalled, notes.end()) << "the schedule converged first: the case is not exercised";
+    EXPECT_GE(std::stoi(stalled->substr(stalled->find(" in ") + 4)), fit::FitRun::kStalledSteps) << *stalled;
+    ASSERT_FALSE(lowestTheta.empty());
+    EXPECT_EQ(thetaOf(run.fitter()), lowestTheta);
+
+    fit::FitRun alone = f.run();  // no judge: the schedule alone decides, later
+    alone.runTo(f.options.steps, f.dir / "alone" / "checkpoint.bin");
+    EXPECT_GT(alone.step(), run.step());
     expectNoGlError();
 }
 
