@@ -138,8 +138,9 @@ std::optional<StopReason> FitRun::monitor(StepSchedule& schedule, const FitHooks
         if (monitorLoss > kRestoreAbove * schedule_.bestLoss) restoreBest();
         applyStep();
     }
-    if (!schedule_.probationOver && step() - schedule_.stageStart >= probationSteps())
-        if (const auto ended = endProbation(schedule, hooks)) return ended;
+    const bool risingLate = schedule_.probationAsksAGain && !schedule_.probationOver && schedule.clearlyRose();
+    if (!schedule_.probationOver && (step() - schedule_.stageStart >= probationSteps() || risingLate))
+        if (const auto ended = endProbation(schedule, hooks, risingLate)) return ended;
     const int lastJudged = judged_.stageStart == schedule_.stageStart ? judged_.lastJudged : schedule_.stageStart;
     if (hooks.judge && schedule_.probationOver && step() - lastJudged >= kJudgeEvery &&
         judgeTheBest(hooks) >= kJudgedWorse) {
@@ -163,9 +164,9 @@ std::optional<StopReason> FitRun::monitor(StepSchedule& schedule, const FitHooks
 }
 
 // The end of the stage's probation: whether the steps pay, and if not, why the stage ends.
-std::optional<StopReason> FitRun::endProbation(StepSchedule& schedule, const FitHooks& hooks) {
+std::optional<StopReason> FitRun::endProbation(StepSchedule& schedule, const FitHooks& hooks, bool rising) {
     schedule_.probationOver = true;
-    const StepSchedule::Verdict verdict = schedule.probation();
+    const StepSchedule::Verdict verdict = rising ? StepSchedule::Verdict::NoGain : schedule.probation();
     if (verdict == StepSchedule::Verdict::StepTooLarge) {
         const int stageSteps = step() - schedule_.stageStart;
         restoreBest();
@@ -197,8 +198,8 @@ std::optional<StopReason> FitRun::endProbation(StepSchedule& schedule, const Fit
         }
         restoreBest();
         if (hooks.note)
-            hooks.note((schedule_.probationStopsOnlyARise ? "the steps made the start worse in "
-                                                          : "no gain on the start in ") +
+            hooks.note((schedule_.probationStopsOnlyARise || rising ? "the steps made the start worse in "
+                                                                    : "no gain on the start in ") +
                        std::to_string(step() - schedule_.stageStart) +
                        " steps, and none likely: the stage stops (stop_reason no_gain)");
         return StopReason::NoGain;

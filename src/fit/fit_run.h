@@ -182,7 +182,8 @@ private:
     int probationSteps() const;                  // of the stage under way
     // The monitor views' loss now, recorded into `schedule`, and why the stage ends, if it does.
     std::optional<StopReason> monitor(StepSchedule& schedule, const FitHooks& hooks);
-    std::optional<StopReason> endProbation(StepSchedule& schedule, const FitHooks& hooks);
+    // `rising`: a later probation ended early by a clear rise (StepSchedule::clearlyRose).
+    std::optional<StopReason> endProbation(StepSchedule& schedule, const FitHooks& hooks, bool rising = false);
     StopReason stopReason_ = StopReason::Reached;
     int monitorEvery_;
     int windowDoublings_ = StepSchedule::kMostWindowDoublings;

@@ -37,6 +37,17 @@ bool likelyImproving(const LossTrend& trend, double minFall, double confidence) 
     return std::isfinite(trend.standardError) && trend.fall + confidence * trend.standardError >= minFall;
 }
 
+namespace {
+
+// A rise of kClearRise even at the losses' fall plus kProbationConfidence standard errors.
+bool rose(const std::vector<double>& losses) {
+    const LossTrend trend = lossTrend(losses);
+    return std::isfinite(trend.standardError) &&
+           trend.fall + StepSchedule::kProbationConfidence * trend.standardError < -StepSchedule::kClearRise;
+}
+
+}  // namespace
+
 StepSchedule::Decision StepSchedule::record(double loss, int step) {
     const bool finite = std::isfinite(loss);
     const bool best = finite && loss < state_.bestLoss;
@@ -81,17 +92,16 @@ StepSchedule::Verdict StepSchedule::probation() const {
                              likelyImproving(lossTrend(state_.window), kMinImprovement, kProbationConfidence);
         return fell || falling ? Verdict::Paying : Verdict::NoGain;
     }
-    if (state_.probationStopsOnlyARise) {
-        const LossTrend trend = lossTrend(losses);
-        const bool rose =
-            std::isfinite(trend.standardError) && trend.fall + kProbationConfidence * trend.standardError < -kClearRise;
-        return rose ? Verdict::NoGain : Verdict::Paying;
-    }
+    if (state_.probationStopsOnlyARise) return rose(losses) ? Verdict::NoGain : Verdict::Paying;
     if (paying()) return Verdict::Paying;
     if (losses.empty()) return Verdict::NoGain;
     const bool fell = state_.bestLoss < (1.0 - kMinImprovement) * losses.front();
     const bool rebounding = losses.back() < (1.0 - kRebound) * *std::max_element(losses.begin(), losses.end());
     return (fell || rebounding) && state_.halvings < kMaxHalvings ? Verdict::StepTooLarge : Verdict::NoGain;
+}
+
+bool StepSchedule::clearlyRose() const {
+    return state_.stageLosses.size() >= size_t(kWindow) && rose(state_.stageLosses);
 }
 
 void StepSchedule::halve() {

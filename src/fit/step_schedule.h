@@ -84,6 +84,10 @@ public:
     // (kProbationConfidence).
     enum class Verdict { Paying, StepTooLarge, NoGain };
     Verdict probation() const;
+    // Whether the stage's first measurements (a window's) show a clear rise: kClearRise even at
+    // their fall plus kProbationConfidence standard errors. A later probation that sees one ends
+    // then (FitRun): a start the steps make steadily worse is not waiting to fall.
+    bool clearlyRose() const;
     // The step halved by hand, with a fresh window.
     void halve();
     // A probation's StepTooLarge: the step halved, and the stage on probation again from its

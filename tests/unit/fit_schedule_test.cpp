@@ -227,6 +227,24 @@ TEST(StepSchedule, ALaterProbationAsksTheHeightsForAGain) {
               StepSchedule::Verdict::NoGain);
 }
 
+// A later probation ends early once the stage's first window of measurements clearly rose (the
+// README demo's heights, their monitored losses over the start: up 3.2 % in 60 steps), and
+// never on fewer, a flat one or a dip and a return.
+TEST(StepSchedule, AClearRiseOverAWindowIsSeenOnceTheWindowIsFull) {
+    auto rose = [](const std::vector<double>& losses) {
+        ScheduleState state{.probationAsksAGain = true};
+        StepSchedule schedule(state);
+        for (size_t k = 0; k < losses.size(); ++k) schedule.record(losses[k], 5 * int(k));
+        return schedule.clearlyRose();
+    };
+    const std::vector<double> demo{1.0, 1.0029, 1.0085, 1.0181, 1.0158, 1.0147, 1.0133, 1.0226, 1.0274, 1.0316};
+    EXPECT_TRUE(rose(demo));
+    EXPECT_FALSE(rose({demo.begin(), demo.end() - 1}));  // one short of a window
+    EXPECT_FALSE(rose({1.0, 1.0004, 0.9991, 1.0, 0.9998, 1.0009, 1.0022, 1.0029, 1.0007, 1.0003}));
+    // The relief bishop's: a 2 % dip and back to the start.
+    EXPECT_FALSE(rose({1.0, 0.9997, 0.9992, 0.9896, 0.9873, 0.9793, 0.9817, 0.9853, 0.9914, 0.9984}));
+}
+
 TEST(DeviceDefaults, SoftwareRenderersAreRecognised) {
     EXPECT_FALSE(isHardwareRenderer("llvmpipe (LLVM 15.0.6, 256 bits)"));
     EXPECT_FALSE(isHardwareRenderer("softpipe"));
