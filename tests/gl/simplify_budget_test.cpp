@@ -503,7 +503,9 @@ TEST(SimplifyBudget, AFitCodedOverTheBudgetShipsTheMostOfItThatFitsOrItsBake) {
     const double fit = verdict["shipped_choosing_loss"]["fit"], bake = verdict["shipped_choosing_loss"]["bake"];
     EXPECT_EQ(verdict["shipped"], fit < bake ? "fit" : "bake") << verdict.dump();
     // A bake that ships is the candidate the search judged (at 10-bit positions), to the byte.
-    if (verdict["shipped"] == "bake") EXPECT_EQ(report["bytes"], report["budget"]["chosen"]["bytes"]);
+    if (verdict["shipped"] == "bake") {
+        EXPECT_EQ(report["bytes"], report["budget"]["chosen"]["bytes"]);
+    }
     if (report["route"]["shipped"] == "cage") {
         EXPECT_EQ(fs::file_size(dir / "out" / "asset.subd"), report["bytes"].get<std::uintmax_t>());
     }
