@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 #include <string>
 
 #include "fit/fit_run.h"
@@ -47,6 +48,22 @@ std::vector<std::vector<float>> thetaOf(fit::CageFitter& fitter) {
     return theta;
 }
 
+// A judge that scores the monitor views and keeps the lowest state it saw.
+struct LowestOnTheMonitor {
+    fit::FitRun& run;
+    const fit::FitScene& scene;
+    double lowest = INFINITY;
+    std::vector<std::vector<float>> theta{};
+    double operator()() {
+        const double loss = fit::score(run.fitter(), scene.monitor).loss;
+        if (loss < lowest) {
+            lowest = loss;
+            theta = thetaOf(run.fitter());
+        }
+        return loss;
+    }
+};
+
 TEST(FitJudge, AJudgeThatSeesNoGainStopsTheStageAtItsStart) {
     RoomyFit f("judge_no_gain", 100);
     fit::FitRun run = f.run();
@@ -87,23 +104,14 @@ TEST(FitJudge, AStageKeepsTheJudgesLowestAndStopsOnceItRises) {
     fit::FitRun run = f.run();
     // The monitor's view until step 150; from there every state the judge sees is worse than
     // any before, as an atlas fitting single samples can look to a supersampled eye.
-    double lowest = INFINITY;
-    std::vector<std::vector<float>> lowestTheta;
-    const fit::FitHooks hooks{.judge = [&] {
-        if (run.step() >= 150) return 1.0 + run.step();
-        const double loss = fit::score(run.fitter(), f.scene.monitor).loss;
-        if (loss < lowest) {
-            lowest = loss;
-            lowestTheta = thetaOf(run.fitter());
-        }
-        return loss;
-    }};
+    LowestOnTheMonitor judge{run, f.scene};
+    const fit::FitHooks hooks{.judge = [&] { return run.step() >= 150 ? 1.0 + run.step() : judge(); }};
 
     EXPECT_EQ(run.runTo(f.options.steps, f.dir / "checkpoint.bin", hooks), fit::StopReason::Converged);
     // Within kJudgedWorse judgments of the rise (or sooner, where the monitor stalls first).
     EXPECT_LE(run.step(), 150 + (fit::FitRun::kJudgedWorse + 1) * fit::FitRun::kJudgeEvery);
-    ASSERT_FALSE(lowestTheta.empty());
-    EXPECT_EQ(thetaOf(run.fitter()), lowestTheta);
+    ASSERT_FALSE(judge.theta.empty());
+    EXPECT_EQ(thetaOf(run.fitter()), judge.theta);
     expectNoGlError();
 }
 
@@ -112,19 +120,10 @@ TEST(FitJudge, AStageKeepsTheJudgesLowestAndStopsOnceItRises) {
 TEST(FitJudge, AStageWhoseMonitorStallsStopsAtItsBest) {
     RoomyFit f("judge_stalls", 800);
     fit::FitRun run = f.run();
-    double lowest = INFINITY;
-    std::vector<std::vector<float>> lowestTheta;
+    LowestOnTheMonitor judge{run, f.scene};
     std::vector<std::string> notes;
     const fit::FitHooks hooks{.note = [&](const std::string& line) { notes.push_back(line); },
-                              .judge =
-                                  [&] {
-                                      const double loss = fit::score(run.fitter(), f.scene.monitor).loss;
-                                      if (loss < lowest) {
-                                          lowest = loss;
-                                          lowestTheta = thetaOf(run.fitter());
-                                      }
-                                      return loss;
-                                  }};
+                              .judge = std::ref(judge)};
 
     EXPECT_EQ(run.runTo(f.options.steps, f.dir / "checkpoint.bin", hooks), fit::StopReason::Converged);
     const auto stalled = std::find_if(notes.begin(), notes.end(), [](const std::string& n) {
@@ -132,8 +131,8 @@ TEST(FitJudge, AStageWhoseMonitorStallsStopsAtItsBest) {
     });
     ASSERT_NE(stalled, notes.end()) << "the schedule converged first: the case is not exercised";
     EXPECT_GE(std::stoi(stalled->substr(stalled->find(" in ") + 4)), fit::FitRun::kStalledSteps) << *stalled;
-    ASSERT_FALSE(lowestTheta.empty());
-    EXPECT_EQ(thetaOf(run.fitter()), lowestTheta);
+    ASSERT_FALSE(judge.theta.empty());
+    EXPECT_EQ(thetaOf(run.fitter()), judge.theta);
 
     fit::FitRun alone = f.run();  // no judge: the schedule alone decides, later
     alone.runTo(f.options.steps, f.dir / "alone" / "checkpoint.bin");

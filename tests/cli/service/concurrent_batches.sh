@@ -23,15 +23,16 @@ done
 
 # SIGKILL while an asset is held: its lock dies with the process, and the next run takes the
 # asset up again (then SIGTERM stops that one promptly, its status saying interrupted).
-printf 'asset1.obj --steps 10000 --res 64\n' >slow.txt
+# A fit of fixed length (anneal: no schedule that stops a stalled fit), long enough to be held.
+printf 'asset1.obj --steps 10000 --res 64 --schedule anneal\n' >slow.txt
 "$SUBDFIT" batch slow.txt --out killed "${QUICK[@]}" 2>killed.txt &
 victim=$!
 for _ in $(seq 200); do grep -q "^step " killed.txt && break; sleep 0.1; done
 kill -KILL $victim; wait $victim || true
 "$SUBDFIT" batch slow.txt --out killed "${QUICK[@]}" 2>after.txt &
 again=$!
-for _ in $(seq 200); do grep -qE "running elsewhere|^step " after.txt && break; sleep 0.1; done
-grep -q "running elsewhere" after.txt && fail "the killed holder's lock outlived it"
+for _ in $(seq 200); do grep -qE ": running elsewhere|^step " after.txt && break; sleep 0.1; done
+grep -q ": running elsewhere" after.txt && fail "the killed holder's lock outlived it"
 kill -TERM $again
 rc=0
 wait $again || rc=$?
