@@ -10,8 +10,6 @@
 namespace subdfit::fit {
 namespace {
 
-constexpr int kBudgetBisections = 4;  // a sixteenth of the way at most is given up
-
 // Refined heights are rougher and code larger: where `values` do not fit (`fits`, with the group
 // holding them), they become the most of the way from `start` to them that fits, if any.
 bool withinBudget(optim::ParameterGroup& heights, const std::vector<float>& start, std::vector<float>& values,

@@ -15,6 +15,9 @@ std::vector<float> between(const std::vector<float>& from, const std::vector<flo
 // CageFitter::state() of one fitter gives them); the moments, schedule and history stay `to`'s.
 FitState between(const FitState& from, const FitState& to, float t);
 
+// Bisections of the way back: a sixteenth of the way at most is given up.
+inline constexpr int kBudgetBisections = 4;
+
 // Where holds(1) is false: the largest t in [0, 1) at which `holds(t)` is true, assuming it holds
 // below some t, bisected `bisections` times (a 2^-bisections of the way at most is given up); 0
 // where none of the t tried holds. Calls holds(t) once per t tried, in order.

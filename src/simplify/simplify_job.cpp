@@ -280,7 +280,6 @@ bool fitLeadsAsCoded(fit::FitRun& run, const RunInputs& in, FitVerdict& verdict)
 // A fitted asset over the budget: the most of the way from its bake to it (bisected) that codes
 // within the budget, written, and false with the fitter holding the bake where none does.
 bool pullWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in) {
-    constexpr int kBisections = 4;  // a sixteenth of the fit's way at most is given up
     fit::CageFitter& fitter = run.fitter();
     const fit::CageFitter::State fitted = fitter.state();
     const surface::SurfaceMaps fittedMaps = fitter.surfaceMaps();  // what θ does not hold
@@ -290,18 +289,21 @@ bool pullWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInput
         fit::writeMaps(fitter, fittedMaps);
         fitter.restore(fit::between(baked, fitted, t));
     };
+    float written = -1.0f;  // the last way tried, whose files the staged folder holds
     const float t = fit::furthestThatHolds(
         [&](float t) {
-            hold(t);
+            hold(written = t);
             return writeCoded(run, plan, in);
         },
-        kBisections);
+        fit::kBudgetBisections);
     if (t == 0.0f) {
         holdTheBake(run);
         return false;
     }
-    hold(t);
-    writeCoded(run, plan, in);
+    if (written != t) {
+        hold(t);
+        writeCoded(run, plan, in);
+    }
     in.report.fitVerdict->withinBudgetFraction = t;
     return true;
 }
