@@ -382,12 +382,19 @@ bool firstRungLikely(const SearchInputs& in, const Findings& found, int faces) {
 //  - a rung whose bytes the rungs measured on other cages predict well over the budget (map
 //    bytes grow in proportion to the faces) ends its ladder unbaked;
 //  - once more bits have failed to lower a rung's loss by more than kLossTolerance, no rung
-//    tries them again (preferred() would never choose them: more bytes for a loss within it).
+//    tries them again (preferred() would never choose them: more bytes for a loss within it);
+//  - a resolution whose loss trails a coarser one's by over kLossTolerance with its rung past
+//    kNearlySpent of the budget ends its ladder: a finer map (10-125 % more map bytes on the
+//    references) then fits only by taking position bits from the cage, and the loss has turned
+//    up already. Short of it, the loss can dip again (catmark_cubes_infsharp's 24 faces at 700
+//    bytes: T = 3 trails T = 2 by 10 %, at 67 % of the budget, and T = 8 leads both by 2.2x).
+constexpr double kNearlySpent = 0.9;
 void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& cage, const Bare& bare,
                     const std::vector<maps::MapEffects>& mapChoices, CageBakes& bakes) {
     const int faces = cage.world->faceCount();
     for (size_t m = 0; m < mapChoices.size(); ++m) {
         if (bare.inAtlas && mapChoices[m].has(maps::MapKind::NormalMap)) continue;  // an atlas takes heights alone
+        double coarserLoss = INFINITY;  // the lowest of the coarser resolutions
         for (int resolution : in.search.mapResolutions) {
             throwIfStopRequested();
             const auto rung = std::make_tuple(m, resolution, in.search.mapBits.front());
@@ -406,7 +413,8 @@ void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& ca
                 baked = &bakes.at(m, {.effects = mapChoices[m], .resolution = resolution});
             }
             bool fitted = false;
-            double fewerBitsLoss = 0.0;
+            double fewerBitsLoss = 0.0, resolutionLoss = INFINITY;  // and the bytes of its lowest
+            std::uintmax_t resolutionBytes = 0;
             int positionBits = codec::SubdPrecision{}.positionBits;
             for (int bits : in.search.mapBits) {
                 if (fitted && !found.moreBitsPay) break;
@@ -425,8 +433,17 @@ void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& ca
                 if (fitted && c.monitorLoss > (1.0 - kLossTolerance) * fewerBitsLoss) found.moreBitsPay = false;
                 fitted = true;
                 fewerBitsLoss = c.monitorLoss;
+                if (c.monitorLoss < resolutionLoss) resolutionLoss = c.monitorLoss, resolutionBytes = c.bytes;
             }
             if (!fitted) break;
+            if (resolutionLoss > (1.0 + kLossTolerance) * coarserLoss &&
+                double(resolutionBytes) > kNearlySpent * double(in.search.budget)) {
+                if (in.say)
+                    in.say(std::to_string(faces) + " faces: maps finer than T=" + std::to_string(resolution) +
+                           " not tried (it trails a coarser map near the budget)");
+                break;
+            }
+            coarserLoss = std::min(coarserLoss, resolutionLoss);
         }
     }
 }
@@ -619,6 +636,12 @@ std::vector<int> faceCountsFor(std::uintmax_t budget, int referenceTriangles, in
     return counts;
 }
 
+bool bareMayReach(const BudgetCandidate& bare, double loss, std::uintmax_t budget) {
+    const double fewestBitsBytes = double(bare.bytes) * kFewestPositionBits / bare.positionBits;
+    const double faceGrowth = std::max(1.0, double(budget) / fewestBitsBytes);
+    return bare.monitorLoss / (kBareGrowthSlack * faceGrowth) < loss;
+}
+
 bool ladderPastItsBest(bool bestHasMaps, const std::vector<double>& cageBests) {
     if (!bestHasMaps) return false;
     int trailing = 0;
@@ -670,13 +693,21 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
     const auto bare = [](const BudgetCandidate& c) { return !c.maps.any(); };
     const Fitting* best = preferred(found.fitting, any, monitored);
     const bool bestIsBare = best && bare(best->candidate);
+    const Fitting* bestBare = lowestOf(found.fitting, bare, monitored);
+    // Judging adds to found.fitting (`best` moves): what is read of it, read first.
+    const bool bareMayLead =
+        bestIsBare ||
+        (best && bestBare && bareMayReach(bestBare->candidate, best->candidate.monitorLoss, search.budget));
     fewerPositionBits(in, found, any);
     growBest(in, found, any, cages.shape());
-    if (best && !bestIsBare) {
+    if (best && !bestIsBare && bareMayLead) {
         fewerPositionBits(in, found, bare);
         growBest(in, found, bare, cages.shape());
     }
-    if (search.quadTrial && cages.shape() != CageShape::Quads) growBest(in, found, bare, CageShape::Quads);
+    if (best && !bareMayLead && say)
+        say("the best bare cage grown to the budget would still trail the best: not grown, nor tried as quads");
+    if (bareMayLead && search.quadTrial && cages.shape() != CageShape::Quads)
+        growBest(in, found, bare, CageShape::Quads);
     BudgetChoice choice = settleChoice(in, found);
     choice.phases = found.phases;
     return choice;

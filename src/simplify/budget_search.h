@@ -87,6 +87,15 @@ inline constexpr double kTrailingLoss = 1.5;
 inline constexpr int kTrailingCages = 2;
 bool ladderPastItsBest(bool bestHasMaps, const std::vector<double>& cageBests);
 
+// Whether the cage `bare` (within the budget, judged), coded at the fewest position bits and
+// grown to `budget`, may reach a monitor loss below `loss`: the search grows the best bare cage,
+// and remeshes it into quads, only then. Grown so, a bare cage's loss fell about as its faces
+// grew (1.7-2.4x on the references, 0.86-1.03 times the faces' growth; its quad remesh at most
+// 10 % below that: docs/simplify.md); its faces grow as the budget over its bytes at the fewest
+// bits, taken as bits in proportion (0.62-0.70 of the 14-bit bytes at 10 measured, 0.71 assumed).
+inline constexpr double kBareGrowthSlack = 1.25;
+bool bareMayReach(const BudgetCandidate& bare, double loss, std::uintmax_t budget);
+
 // What searchBudget throws when no candidate fits the budget: the reference's path and why, and
 // that reason alone (simplify ships a triangle route instead where one fits).
 class NoCageFits : public Error {

@@ -399,7 +399,7 @@ void refineAsCoded(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& 
 // asset.subd and its USD replaced, what shipped measured again.
 void growToTheBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in, std::uintmax_t budget) {
     SimplifyReport& report = in.report;
-    PrefixReport& prefix = report.prefix.emplace(PrefixReport{.budget = budget, .asset = report.subdfit});
+    PrefixReport& prefix = report.prefix.emplace(PrefixReport{.budget = budget, .asset = report.subdfit, .growth = {}, .why = {}});
     const auto note = [&](const std::string& why) {
         prefix.why = why;
         if (in.hooks.note) in.hooks.note("the file does not grow past its prefix: " + why);
@@ -661,7 +661,7 @@ SimplifyReport runSimplify(const SimplifyOptions& asked, const fit::FitHooks& ho
         report.route = *decided.route;
         report.subdfit = shipTriangles(triangles.best(), staged.path());
         if (asked.prefix)
-            report.prefix = {.budget = *asked.budget, .asset = report.subdfit, .why = "a triangle mesh ships"};
+            report.prefix = {.budget = *asked.budget, .asset = report.subdfit, .growth = {}, .why = "a triangle mesh ships"};
     } else {
         fitAndWeigh({options, hooks, programs, scene, reference, *context, staged.path(), baselineSettings, report,
                      asked.prefix ? asked.budget : std::nullopt},

@@ -284,6 +284,97 @@ struct LumpySearch {
     simplify::BudgetSearch search;
 };
 
+// Where the search's cage ladder ends in `tried`: at the first candidate of the phases after it,
+// which code the best at 12 or 11 position bits or judge a cage the ladder did not (judged bare first).
+size_t ladderEnd(const std::vector<simplify::BudgetCandidate>& tried) {
+    for (size_t k = 0; k < tried.size(); ++k) {
+        const bool cageOfTheLadder = std::any_of(tried.begin(), tried.begin() + std::ptrdiff_t(k), [&](const auto& c) {
+            return c.faces == tried[k].faces && !c.maps.any() && c.positionBits == 14;
+        });
+        const bool ladderBits = tried[k].positionBits == 14 || tried[k].positionBits == 10;
+        if (!ladderBits || (tried[k].maps.any() && !cageOfTheLadder)) return k;
+    }
+    return tried.size();
+}
+
+// On one cage, a map resolution whose lowest loss trails a coarser one's by over 2 % with over
+// 90 % of the budget spent ends that cage's ladder of those maps: no finer resolution is tried there.
+TEST(SimplifyBudget, AMapResolutionTrailingACoarserOneNearTheBudgetEndsItsLadderOnThatCage) {
+    LumpySearch lumpy("simplify_budget_map_ladder_end");
+    lumpy.search.budget = 2500;
+    lumpy.search.faceCounts = simplify::faceCountsFor(lumpy.search.budget, lumpy.reference.faceCount(), 16000);
+    const simplify::BudgetChoice choice = lumpy.run();
+    const auto& tried = choice.tried;
+    const size_t end = ladderEnd(tried);
+    int ended = 0;
+    for (size_t k = 0; k < end; ++k) {
+        if (tried[k].maps.any()) continue;  // a cage's bare candidate: its ladders follow
+        // By maps: each resolution's lowest loss within the budget, and the finest tried.
+        std::map<std::string, std::map<int, std::pair<double, std::uintmax_t>>> lowest;  // and its bytes
+        std::map<std::string, int> finest;
+        for (size_t j = k + 1; j < end && tried[j].faces == tried[k].faces && tried[j].maps.any(); ++j) {
+            const auto& c = tried[j];
+            const std::string kind = maps::toString(c.maps);
+            finest[kind] = std::max(finest[kind], c.mapResolution);
+            if (c.bytes > lumpy.search.budget) continue;
+            auto& own = lowest[kind].try_emplace(c.mapResolution, INFINITY, 0).first->second;
+            if (c.monitorLoss < own.first) own = {c.monitorLoss, c.bytes};
+        }
+        for (const auto& [kind, byResolution] : lowest) {
+            double coarser = INFINITY;
+            for (const auto& [resolution, lowestAt] : byResolution) {
+                const auto [loss, bytes] = lowestAt;
+                if (loss > 1.02 * coarser && double(bytes) > 0.9 * double(lumpy.search.budget)) {
+                    ++ended;
+                    EXPECT_EQ(finest[kind], resolution) << tried[k].faces << " faces: maps finer than T=" << resolution
+                                                        << ", which trails near the budget, were tried";
+                    break;
+                }
+                coarser = std::min(coarser, loss);
+            }
+        }
+    }
+    EXPECT_GT(ended, 0) << "no resolution trailed a coarser one: the case is not exercised";
+    expectNoGlError();
+}
+
+// Where the best candidate has maps, the best bare cage is coded at fewer position bits, grown
+// to the budget and tried as quads only where, grown, it may reach the best (bareMayReach).
+TEST(SimplifyBudget, ABareCageThatCannotReachTheBestIsNotGrown) {
+    int grown = 0, notGrown = 0;
+    for (const std::uintmax_t budget : {std::uintmax_t(3000), std::uintmax_t(12000)}) {
+        LumpySearch lumpy("simplify_budget_bare_growth");
+        lumpy.search.budget = budget;
+        lumpy.search.faceCounts = simplify::faceCountsFor(budget, lumpy.reference.faceCount(), 16000);
+        lumpy.search.quadTrial = true;
+        const simplify::BudgetChoice choice = lumpy.run(simplify::CageShape::Auto);
+        const auto& tried = choice.tried;
+        const size_t end = ladderEnd(tried);
+        const simplify::BudgetCandidate *best = nullptr, *bestBare = nullptr;
+        for (size_t k = 0; k < end; ++k) {
+            const auto& c = tried[k];
+            if (c.bytes > budget) continue;
+            if (!best || c.monitorLoss < best->monitorLoss) best = &c;
+            if (!c.maps.any() && (!bestBare || c.monitorLoss < bestBare->monitorLoss)) bestBare = &c;
+        }
+        ASSERT_TRUE(best && bestBare);
+        ASSERT_TRUE(best->maps.any()) << budget << " bytes: the best is bare; the case is not exercised";
+        // The search weighs the preferred candidate, within 2 % of the lowest: clear of the line here.
+        const bool reaches = bareMayReach(*bestBare, best->monitorLoss, budget);
+        ASSERT_EQ(reaches, bareMayReach(*bestBare, 1.02 * best->monitorLoss, budget))
+            << budget << " bytes: too near to call";
+        const bool bareGrown =
+            std::any_of(tried.begin() + std::ptrdiff_t(end), tried.end(), [](const auto& c) { return !c.maps.any(); });
+        const bool quadTried = std::any_of(tried.begin(), tried.end(), [](const auto& c) { return c.quads > 0; });
+        EXPECT_EQ(bareGrown, reaches) << budget << " bytes";
+        EXPECT_EQ(quadTried, reaches) << budget << " bytes";
+        ++(reaches ? grown : notGrown);
+    }
+    EXPECT_EQ(grown, 1) << "at 12 000 bytes the bare cage grown may reach the best";
+    EXPECT_EQ(notGrown, 1) << "at 3 000 bytes it may not";
+    expectNoGlError();
+}
+
 // Where even the best candidate trails the triangle route by more than a fit gains, no cage is
 // fitted, so which of the near ties would be chosen changes nothing: the same search then draws
 // no training view to settle them, and chooses the lowest monitor loss.
