@@ -723,8 +723,8 @@ std::vector<int> atlasSizesFor(const mesh::PolygonMesh& reference) {
     return sizes;
 }
 
-BudgetShipment shipWithinBudget(const codec::SubdAsset& asset, const std::filesystem::path& subd, std::uintmax_t bytes,
-                                std::uintmax_t budget, int mapBits, int positionBits, int appearanceQuality) {
+BudgetShipment codeWithinBudget(const codec::SubdAsset& asset, std::uintmax_t budget, int mapBits, int positionBits,
+                                int appearanceQuality, std::vector<unsigned char>* encoded) {
     auto precision = codec::SubdPrecision::forMapBits(mapBits, appearanceQuality, positionBits);
     std::vector<std::pair<int, int>> ladder;  // (bits, quality), coarser and coarser
     // Quality in small steps: a JPEG's bytes fall a few per cent a step, and every byte left is
@@ -736,15 +736,26 @@ BudgetShipment shipWithinBudget(const codec::SubdAsset& asset, const std::filesy
     if (asset.maps.hasBaseColor() || asset.maps.hasMetallicRoughness())
         while (quality - kQualityStep >= kLowestQuality) ladder.emplace_back(mapBits, quality -= kQualityStep);
     for (int bits = mapBits - 1; bits >= fewestBits; --bits) ladder.emplace_back(bits, quality);
+    std::vector<unsigned char> coded;
+    if (ladder.empty()) coded = codec::encodeSubd(asset, precision);  // no coarser rung: as it is
     for (size_t k = 0; k < ladder.size(); ++k) {
         precision = codec::SubdPrecision::forMapBits(ladder[k].first, ladder[k].second, positionBits);
-        const auto encoded = codec::encodeSubd(asset, precision);
-        if (encoded.size() <= budget || k + 1 == ladder.size()) {
-            bytes = io::writeBytes(subd, encoded).bytes;
-            if (bytes <= budget) break;
-        }
+        coded = codec::encodeSubd(asset, precision);
+        if (coded.size() <= budget) break;
     }
+    const std::uintmax_t bytes = coded.size();
+    if (encoded) *encoded = std::move(coded);
     return {precision.displacementBits, precision.appearanceQuality, bytes};
+}
+
+BudgetShipment shipWithinBudget(const codec::SubdAsset& asset, const std::filesystem::path& subd, std::uintmax_t bytes,
+                                std::uintmax_t budget, int mapBits, int positionBits, int appearanceQuality) {
+    std::vector<unsigned char> encoded;
+    BudgetShipment shipped = codeWithinBudget(asset, budget, mapBits, positionBits, appearanceQuality, &encoded);
+    if (shipped.mapBits == mapBits && shipped.appearanceQuality == appearanceQuality)
+        return {mapBits, appearanceQuality, bytes};  // no coarser rung: as written
+    shipped.bytes = io::writeBytes(subd, encoded).bytes;
+    return shipped;
 }
 
 nlohmann::json toJson(const BudgetReport& report) {

@@ -255,6 +255,15 @@ bool writeCoded(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in)
     return bytes <= budget;
 }
 
+// Whether the fitter's state, coded as writeCoded codes it, fits the budget; nothing written.
+bool codesWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in) {
+    const std::uintmax_t budget = in.report.budget->bytes;
+    if (run.coded().size() <= budget) return true;
+    return codeWithinBudget(run.shippable(), budget, plan.fit.mapBits, plan.fit.positionBits,
+                            plan.fit.appearanceQuality)
+               .bytes <= budget;
+}
+
 // The loss on the choosing views of `asset` (drawn decoded, as it ships).
 double choosingLoss(fit::FitRun& run, const RunInputs& in, const codec::SubdAsset& asset) {
     return fit::score(*drawnAsFitted(in.programs, run.scene(), asset), run.scene().choosing(in.programs)).loss;
@@ -289,21 +298,18 @@ bool pullWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInput
         fit::writeMaps(fitter, fittedMaps);
         fitter.restore(fit::between(baked, fitted, t));
     };
-    float written = -1.0f;  // the last way tried, whose files the staged folder holds
     const float t = fit::furthestThatHolds(
         [&](float t) {
-            hold(written = t);
-            return writeCoded(run, plan, in);
+            hold(t);
+            return codesWithinBudget(run, plan, in);
         },
         fit::kBudgetBisections);
     if (t == 0.0f) {
         holdTheBake(run);
         return false;
     }
-    if (written != t) {
-        hold(t);
-        writeCoded(run, plan, in);
-    }
+    hold(t);
+    writeCoded(run, plan, in);
     in.report.fitVerdict->withinBudgetFraction = t;
     return true;
 }
@@ -399,7 +405,8 @@ void refineAsCoded(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& 
 // asset.subd and its USD replaced, what shipped measured again.
 void growToTheBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in, std::uintmax_t budget) {
     SimplifyReport& report = in.report;
-    PrefixReport& prefix = report.prefix.emplace(PrefixReport{.budget = budget, .asset = report.subdfit, .growth = {}, .why = {}});
+    PrefixReport& prefix =
+        report.prefix.emplace(PrefixReport{.budget = budget, .asset = report.subdfit, .growth = {}, .why = {}});
     const auto note = [&](const std::string& why) {
         prefix.why = why;
         if (in.hooks.note) in.hooks.note("the file does not grow past its prefix: " + why);
@@ -661,7 +668,8 @@ SimplifyReport runSimplify(const SimplifyOptions& asked, const fit::FitHooks& ho
         report.route = *decided.route;
         report.subdfit = shipTriangles(triangles.best(), staged.path());
         if (asked.prefix)
-            report.prefix = {.budget = *asked.budget, .asset = report.subdfit, .growth = {}, .why = "a triangle mesh ships"};
+            report.prefix = {
+                .budget = *asked.budget, .asset = report.subdfit, .growth = {}, .why = "a triangle mesh ships"};
     } else {
         fitAndWeigh({options, hooks, programs, scene, reference, *context, staged.path(), baselineSettings, report,
                      asked.prefix ? asked.budget : std::nullopt},
