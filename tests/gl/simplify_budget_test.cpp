@@ -345,7 +345,12 @@ TEST(SimplifyBudget, ABareCageThatCannotReachTheBestIsNotGrown) {
     for (const std::uintmax_t budget : {std::uintmax_t(3000), std::uintmax_t(12000)}) {
         LumpySearch lumpy("simplify_budget_bare_growth");
         lumpy.search.budget = budget;
+        // A short ladder of heights alone: the three largest cages, T = 2 at 4 bits.
         lumpy.search.faceCounts = simplify::faceCountsFor(budget, lumpy.reference.faceCount(), 16000);
+        lumpy.search.faceCounts.resize(std::min<size_t>(lumpy.search.faceCounts.size(), 3));
+        lumpy.search.allowedMaps = {maps::MapKind::Displacement};
+        lumpy.search.mapResolutions = {2};
+        lumpy.search.mapBits = {4};
         lumpy.search.quadTrial = true;
         const simplify::BudgetChoice choice = lumpy.run(simplify::CageShape::Auto);
         const auto& tried = choice.tried;
