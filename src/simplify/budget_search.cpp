@@ -374,6 +374,9 @@ bool firstRungLikely(const SearchInputs& in, const Findings& found, int faces) {
     return (bareBytesPerFace + rung->second) * faces <= kPredictedOver * double(in.search.budget);
 }
 
+// Past this share of the budget a cage's map ladder has no room left but the cage's position bits.
+constexpr double kNearlySpent = 0.9;
+
 // Phase three on a cage: the map ladder on each appearance worth it, each choice of maps at each
 // resolution, coarsest first, and at each bit depth while it fits: more bits and finer maps
 // only cost more, so a rung over the budget ends its ladder (a resolution's first is judged
@@ -388,7 +391,6 @@ bool firstRungLikely(const SearchInputs& in, const Findings& found, int faces) {
 //    references) then fits only by taking position bits from the cage, and the loss has turned
 //    up already. Short of it, the loss can dip again (catmark_cubes_infsharp's 24 faces at 700
 //    bytes: T = 3 trails T = 2 by 10 %, at 67 % of the budget, and T = 8 leads both by 2.2x).
-constexpr double kNearlySpent = 0.9;
 void climbMapLadder(const SearchInputs& in, Findings& found, const TriedCage& cage, const Bare& bare,
                     const std::vector<maps::MapEffects>& mapChoices, CageBakes& bakes) {
     const int faces = cage.world->faceCount();
@@ -723,9 +725,10 @@ std::vector<int> atlasSizesFor(const mesh::PolygonMesh& reference) {
     return sizes;
 }
 
-BudgetShipment codeWithinBudget(const codec::SubdAsset& asset, std::uintmax_t budget, int mapBits, int positionBits,
-                                int appearanceQuality, std::vector<unsigned char>* encoded) {
-    auto precision = codec::SubdPrecision::forMapBits(mapBits, appearanceQuality, positionBits);
+BudgetShipment codeWithinBudget(const codec::SubdAsset& asset, std::uintmax_t bytes, std::uintmax_t budget, int mapBits,
+                                int positionBits, int appearanceQuality, std::vector<unsigned char>* encoded) {
+    BudgetShipment shipment{mapBits, appearanceQuality, bytes};
+    if (bytes <= budget) return shipment;
     std::vector<std::pair<int, int>> ladder;  // (bits, quality), coarser and coarser
     // Quality in small steps: a JPEG's bytes fall a few per cent a step, and every byte left is
     // detail lost. Map bits two fewer at most, and never below the ladder's fewest: coarser maps
@@ -737,24 +740,21 @@ BudgetShipment codeWithinBudget(const codec::SubdAsset& asset, std::uintmax_t bu
         while (quality - kQualityStep >= kLowestQuality) ladder.emplace_back(mapBits, quality -= kQualityStep);
     for (int bits = mapBits - 1; bits >= fewestBits; --bits) ladder.emplace_back(bits, quality);
     std::vector<unsigned char> coded;
-    if (ladder.empty()) coded = codec::encodeSubd(asset, precision);  // no coarser rung: as it is
-    for (size_t k = 0; k < ladder.size(); ++k) {
-        precision = codec::SubdPrecision::forMapBits(ladder[k].first, ladder[k].second, positionBits);
+    for (const auto& [bits, rungQuality] : ladder) {
+        const auto precision = codec::SubdPrecision::forMapBits(bits, rungQuality, positionBits);
         coded = codec::encodeSubd(asset, precision);
+        shipment = {precision.displacementBits, precision.appearanceQuality, coded.size()};
         if (coded.size() <= budget) break;
     }
-    const std::uintmax_t bytes = coded.size();
     if (encoded) *encoded = std::move(coded);
-    return {precision.displacementBits, precision.appearanceQuality, bytes};
+    return shipment;
 }
 
 BudgetShipment shipWithinBudget(const codec::SubdAsset& asset, const std::filesystem::path& subd, std::uintmax_t bytes,
                                 std::uintmax_t budget, int mapBits, int positionBits, int appearanceQuality) {
     std::vector<unsigned char> encoded;
-    BudgetShipment shipped = codeWithinBudget(asset, budget, mapBits, positionBits, appearanceQuality, &encoded);
-    if (shipped.mapBits == mapBits && shipped.appearanceQuality == appearanceQuality)
-        return {mapBits, appearanceQuality, bytes};  // no coarser rung: as written
-    shipped.bytes = io::writeBytes(subd, encoded).bytes;
+    BudgetShipment shipped = codeWithinBudget(asset, bytes, budget, mapBits, positionBits, appearanceQuality, &encoded);
+    if (!encoded.empty()) shipped.bytes = io::writeBytes(subd, encoded).bytes;  // else as written
     return shipped;
 }
 

@@ -145,11 +145,11 @@ struct BudgetShipment {
 BudgetShipment shipWithinBudget(const codec::SubdAsset& asset, const std::filesystem::path& subd, std::uintmax_t bytes,
                                 std::uintmax_t budget, int mapBits, int positionBits, int appearanceQuality);
 
-// The same coding of `asset` over `budget`, nothing written: what it ships at and its bytes (its
-// coarsest rung's where none fits; at `mapBits` and `appearanceQuality` where the ladder has no
-// rung below them), and in `encoded` the file.
-BudgetShipment codeWithinBudget(const codec::SubdAsset& asset, std::uintmax_t budget, int mapBits, int positionBits,
-                                int appearanceQuality, std::vector<unsigned char>* encoded = nullptr);
+// The same coding of `asset` (`bytes` as coded at `mapBits` and `appearanceQuality`) over
+// `budget`, nothing written: what it ships at and its bytes (the coarsest rung's where none
+// fits), and in `encoded` the file where a coarser rung was coded (else none: `bytes` stand).
+BudgetShipment codeWithinBudget(const codec::SubdAsset& asset, std::uintmax_t bytes, std::uintmax_t budget, int mapBits,
+                                int positionBits, int appearanceQuality, std::vector<unsigned char>* encoded = nullptr);
 
 // report.json's `budget`: the search and what shipped.
 struct BudgetReport {

@@ -258,9 +258,9 @@ bool writeCoded(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in)
 // Whether the fitter's state, coded as writeCoded codes it, fits the budget; nothing written.
 bool codesWithinBudget(fit::FitRun& run, const SimplifyPlan& plan, const RunInputs& in) {
     const std::uintmax_t budget = in.report.budget->bytes;
-    if (run.coded().size() <= budget) return true;
-    return codeWithinBudget(run.shippable(), budget, plan.fit.mapBits, plan.fit.positionBits,
-                            plan.fit.appearanceQuality)
+    const codec::SubdAsset asset = run.shippable();
+    const std::uintmax_t bytes = codec::encodeSubd(asset, fit::subdPrecision(run.options())).size();
+    return codeWithinBudget(asset, bytes, budget, plan.fit.mapBits, plan.fit.positionBits, plan.fit.appearanceQuality)
                .bytes <= budget;
 }
 
