@@ -70,26 +70,32 @@ FitRun::FitRun(const ResolvedFitOptions& options, gl::ProgramCache& programs, Fi
       fingerprint_(checkpointFingerprint(options_, scene.cage, scene.reference)),
       monitorEvery_(std::clamp(options_.steps / 50, 5, 10)),
       started_(Clock::now()),
-      scores_(scores) {
-    scoreStart();
-}
+      scores_(scores) {}
 
 void FitRun::scoreStart() {
     if (scores_ == ReportScores::TrainingAndHoldout) trainBefore_ = score(*fitter_, scene_.training);
     holdoutBefore_ = scoreHoldout(*fitter_, scene_.holdout);
     scoredTheta_ = readTheta(*fitter_);
+    startScored_ = true;
+}
+
+// The start is scored when the first step is about to leave it, not when the run is made: maps
+// a stage bakes in (startFrom) would make a score of the bare cage a render thrown away.
+void FitRun::scoreStartOnce() {
+    if (!startScored_) scoreStart();
 }
 
 void FitRun::startFrom(const surface::SurfaceMaps& maps) {
     SUBDFIT_CHECK(step() == 0);
     writeMaps(*fitter_, maps);
     mapsGiven_ = true;
-    scoreStart();
+    startScored_ = false;
 }
 
 bool FitRun::resume(const std::filesystem::path& checkpoint) {
     const auto saved = readCheckpoint(checkpoint, fingerprint_);
     if (!saved) return false;
+    scoreStartOnce();  // the run's start, not the checkpoint's state
     try {
         fitter_->restore(*saved);
     } catch (const Error& e) {
@@ -113,6 +119,7 @@ void FitRun::saveCheckpoint(const std::filesystem::path& checkpoint) {
 }
 
 void FitRun::advance(bool measureLoss) {
+    scoreStartOnce();
     const auto began = Clock::now();
     const auto views = viewsForStep(options_, step());
     for (int sample = 0; sample < options_.samplesPerStep; ++sample)
@@ -391,6 +398,7 @@ codec::SubdAsset FitRun::shippable() {
 std::vector<unsigned char> FitRun::coded() { return codec::encodeSubd(shippable(), subdPrecision(options_)); }
 
 FitReport FitRun::writeResults(const std::filesystem::path& out, const context::GlContext& context) {
+    scoreStartOnce();
     FitReport r;
     r.options = options_;
     r.steps = step();

@@ -73,7 +73,7 @@ public:
     bool resume(const std::filesystem::path& checkpoint);
 
     // Sets the maps `maps` holds (baked elsewhere: simplify's bake) as the fit's start, before any
-    // step: the groups it has values for take them, and the "before" scores are taken again.
+    // step: the groups it has values for take them, and the "before" scores are of them.
     void startFrom(const surface::SurfaceMaps& maps);
     void saveCheckpoint(const std::filesystem::path& checkpoint);
 
@@ -192,7 +192,9 @@ private:
     double fitSecondsBefore_ = 0.0;  // a resumed run's steps before its resume, as last monitored
     std::vector<MonitorMeasurement> monitored_;
     void scoreStart();
+    void scoreStartOnce();
     ReportScores scores_;
+    bool startScored_ = false;
     std::optional<ViewSetScore> trainBefore_;
     HoldoutScore holdoutBefore_;
     std::vector<std::vector<float>> scoredTheta_;  // the θ those scores are of (empty: not to be reused)

@@ -65,11 +65,13 @@ Quality scoreCage(gl::ProgramCache& programs, fit::FitRun& run, const fit::FitRe
     ours.files = shippedFiles(fitted.exports);
     ours.bytes = totalBytes(ours.files);
     ours.shipped = "asset.subd";
-    const auto shipped = drawnAsFitted(programs, run.scene(), codec::readSubd(out / "asset.subd"));
+    // Drawn and measured with the fit's segments, as the bake route is (bakeBaseline).
+    const int segments = run.fitter().renderer().tessLevel();
+    const auto shipped = drawnAsFitted(programs, run.scene(), codec::readSubd(out / "asset.subd"), segments);
     setHoldout(fit::scoreHoldout(*shipped, run.scene().holdout), ours);
     if (o.compare >= CompareLevel::Full)
-        ours.distance = shippedDistance(out / "asset.subd", run.fitter().renderer().tessLevel(), run.scene().frame,
-                                        run.scene().reference, o.surfaceSamples);
+        ours.distance =
+            shippedDistance(out / "asset.subd", segments, run.scene().frame, run.scene().reference, o.surfaceSamples);
     return ours;
 }
 
@@ -497,7 +499,12 @@ void fitAndWeigh(const RunInputs& in, SimplifyPlan& plan, TriangleBaselines& tri
     }
     if (options.compare >= CompareLevel::Full) {
         in.baselines.segments = run.fitter().renderer().tessLevel();
-        report.bake = bakeBaseline(in.programs, in.scene, plan.bakeRoute, in.baselines);
+        // A fit that kept its bake ships the bake route's own file, already scored.
+        const Quality& cage = report.cage ? *report.cage : report.subdfit;
+        std::optional<ScoredFile> scored;
+        if (std::filesystem::exists(in.staged / "asset.subd"))
+            scored.emplace(in.staged / "asset.subd", cage, in.baselines.segments);
+        report.bake = bakeBaseline(in.programs, in.scene, plan.bakeRoute, in.baselines, scored);
         if (plan.budget) report.bake->details["over_budget"] = report.bake->bytes > plan.budget->bytes;
         stages.lap("baseline_bake");
     }

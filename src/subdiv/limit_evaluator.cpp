@@ -25,6 +25,26 @@ glm::dvec3 pointPosition(const Far::StencilTable& stencils, int point, std::span
     return sum;
 }
 
+// The limit sample at (ptexFace, u, v), its patch's CVs read through `point`.
+template <typename PointAt>
+LimitSample sampleThrough(const Far::PatchTable& patches, const Far::PatchMap& patchMap, int ptexFace, float u, float v,
+                          const PointAt& point) {
+    const Far::PatchTable::PatchHandle& handle = *patchMap.FindPatch(ptexFace, u, v);
+    // EvaluateBasis takes the ptex face's (u, v) and already scales the derivative weights by
+    // the sub-patch's size, so dP/du here is per unit of the face parameter.
+    float wP[20], wDu[20], wDv[20];
+    patches.EvaluateBasis(handle, u, v, wP, wDu, wDv);
+    const Far::ConstIndexArray cvs = patches.GetPatchVertices(handle);
+    glm::dvec3 p(0.0), du(0.0), dv(0.0);
+    for (int k = 0; k < cvs.size(); ++k) {
+        const glm::dvec3 cv = point(cvs[k]);
+        p += double(wP[k]) * cv;
+        du += double(wDu[k]) * cv;
+        dv += double(wDv[k]) * cv;
+    }
+    return {glm::vec3(p), glm::vec3(du), glm::vec3(dv)};
+}
+
 }  // namespace
 
 LimitEvaluator::LimitEvaluator(const mesh::PolygonMesh& mesh)
@@ -42,21 +62,23 @@ bool LimitEvaluator::hasSurface(int ptexFace, float u, float v) const {
 LimitSample LimitEvaluator::evaluate(int ptexFace, float u, float v, std::span<const glm::vec3> basePositions) const {
     SUBDFIT_CHECK(int(basePositions.size()) == baseVertexCount());
     SUBDFIT_CHECK(hasSurface(ptexFace, u, v));
-    const Far::PatchTable::PatchHandle& handle = *patchMap_->FindPatch(ptexFace, u, v);
+    return sampleThrough(*tables_->patches, *patchMap_, ptexFace, u, v,
+                         [&](int point) { return pointPosition(*tables_->stencils, point, basePositions); });
+}
 
-    // EvaluateBasis takes the ptex face's (u, v) and already scales the derivative weights by
-    // the sub-patch's size, so dP/du here is per unit of the face parameter.
-    float wP[20], wDu[20], wDv[20];
-    tables_->patches->EvaluateBasis(handle, u, v, wP, wDu, wDv);
-    const Far::ConstIndexArray cvs = tables_->patches->GetPatchVertices(handle);
-    glm::dvec3 p(0.0), du(0.0), dv(0.0);
-    for (int k = 0; k < cvs.size(); ++k) {
-        const glm::dvec3 cv = pointPosition(*tables_->stencils, cvs[k], basePositions);
-        p += double(wP[k]) * cv;
-        du += double(wDu[k]) * cv;
-        dv += double(wDv[k]) * cv;
-    }
-    return {glm::vec3(p), glm::vec3(du), glm::vec3(dv)};
+std::vector<glm::dvec3> LimitEvaluator::patchPoints(std::span<const glm::vec3> basePositions) const {
+    SUBDFIT_CHECK(int(basePositions.size()) == baseVertexCount());
+    std::vector<glm::dvec3> points(size_t(tables_->pointCount()));
+    for (int point = 0; point < int(points.size()); ++point)
+        points[size_t(point)] = pointPosition(*tables_->stencils, point, basePositions);
+    return points;
+}
+
+LimitSample LimitEvaluator::evaluate(int ptexFace, float u, float v, std::span<const glm::dvec3> patchPoints) const {
+    SUBDFIT_CHECK(int(patchPoints.size()) == tables_->pointCount());
+    SUBDFIT_CHECK(hasSurface(ptexFace, u, v));
+    return sampleThrough(*tables_->patches, *patchMap_, ptexFace, u, v,
+                         [&](int point) { return patchPoints[size_t(point)]; });
 }
 
 std::vector<LimitEvaluator::BaseWeight> LimitEvaluator::positionWeights(int ptexFace, float u, float v) const {

@@ -37,6 +37,12 @@ public:
     // built: topology is fixed, positions are not). Requires hasSurface(ptexFace, u, v).
     LimitSample evaluate(int ptexFace, float u, float v, std::span<const glm::vec3> basePositions) const;
 
+    // Every point the patches read (the base, then each refined and local point) from base
+    // positions: for many samples of the same positions, each point's stencil is applied once,
+    // not at every sample that reads it. evaluate() on them gives the same bits as on the base.
+    std::vector<glm::dvec3> patchPoints(std::span<const glm::vec3> basePositions) const;
+    LimitSample evaluate(int ptexFace, float u, float v, std::span<const glm::dvec3> patchPoints) const;
+
     // The limit position at (ptexFace, u, v) as weights on the base vertices: position =
     // Σ weight · base[vertex], for any positions (the surface is linear in its cage). Each
     // vertex appears once. Requires hasSurface(ptexFace, u, v).

@@ -39,7 +39,7 @@ glm::vec3 anyPerpendicular(const glm::vec3& n) {
 }  // namespace
 
 DisplacedSurface::DisplacedSurface(const mesh::PolygonMesh& cage, const SurfaceMaps& maps)
-    : cage_(cage), maps_(maps), evaluator_(cage) {
+    : maps_(maps), evaluator_(cage), patchPoints_(evaluator_.patchPoints(cage.positions)) {
     SUBDFIT_CHECK(!maps.hasDisplacement() || maps.layout.ptexFaceCount == evaluator_.ptexFaceCount());
     SUBDFIT_CHECK(!maps.hasDisplacement() || maps.displacement.size() == size_t(maps.layout.nodeCount));
 }
@@ -49,7 +49,7 @@ DisplacedSurface::DisplacedSurface(const mesh::PolygonMesh& cage, const SurfaceM
 // normal is still continuous, so a point nudged towards the face centre gives it.
 DisplacedSurface::LimitPoint DisplacedSurface::limitPoint(int face, float u, float v) const {
     auto evaluate = [&](float pu, float pv) {
-        const subdiv::LimitSample s = evaluator_.evaluate(face, pu, pv, cage_.positions);
+        const subdiv::LimitSample s = evaluator_.evaluate(face, pu, pv, patchPoints_);
         return LimitPoint{s.position, s.dPdu, s.dPdv, glm::vec3(0.0f)};
     };
     LimitPoint point = evaluate(u, v);

@@ -25,7 +25,8 @@ struct SurfaceVertex {
 
 class DisplacedSurface {
 public:
-    // Both must outlive the surface; `maps` without a displacement gives the limit surface.
+    // `maps` must outlive the surface (the cage is read here); without a displacement it gives the
+    // limit surface.
     DisplacedSurface(const mesh::PolygonMesh& cage, const SurfaceMaps& maps);
 
     int ptexFaceCount() const { return evaluator_.ptexFaceCount(); }
@@ -42,9 +43,9 @@ private:
     float height(int face, float u, float v) const;
     glm::vec2 heightGradient(int face, float u, float v) const;
 
-    const mesh::PolygonMesh& cage_;
     const SurfaceMaps& maps_;
     subdiv::LimitEvaluator evaluator_;
+    std::vector<glm::dvec3> patchPoints_;  // of cage_'s positions: each stencil applied once
 };
 
 }  // namespace subdfit::surface

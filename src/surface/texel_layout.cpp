@@ -118,6 +118,7 @@ TexelLayout layOut(const mesh::PolygonMesh& cage, int resolution) {
     const size_t perFace = size_t(layout.nodesPerFace());
     std::vector<char> surface(size_t(layout.ptexFaceCount));
     std::vector<glm::vec3> borderPoints(layout.faceNodes.size());
+    const std::vector<glm::dvec3> points = evaluator.patchPoints(positions);
     parallelFor(0, layout.ptexFaceCount, [&](int face) {
         surface[size_t(face)] = evaluator.hasSurface(face, 0.5f, 0.5f);
         if (!surface[size_t(face)]) return;
@@ -125,7 +126,7 @@ TexelLayout layOut(const mesh::PolygonMesh& cage, int resolution) {
             for (int i = 0; i <= n; ++i)
                 if (i == 0 || j == 0 || i == n || j == n)
                     borderPoints[size_t(face) * perFace + size_t(j) * size_t(n + 1) + size_t(i)] =
-                        evaluator.evaluate(face, float(i) / float(n), float(j) / float(n), positions).position;
+                        evaluator.evaluate(face, float(i) / float(n), float(j) / float(n), points).position;
     });
 
     // Far below the node spacing of any sane map, far above float rounding of one limit point.

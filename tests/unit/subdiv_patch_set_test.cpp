@@ -647,5 +647,34 @@ TEST(LimitEvaluator, EvaluatesACageAtTheLevelItIsDrawnAt) {
               lightLevel3.evaluate(0, 0.3f, 0.6f, light.positions).position);
 }
 
+TEST(LimitEvaluator, PatchPointsGiveTheSameBitsAsTheBase) {
+    // Bakes and limit fits evaluate thousands of samples of one position set through the points
+    // the patches read, each stencil applied once: the same samples, bit for bit, on a creased
+    // cage with extraordinary corners and on a dense triangle cage (Gregory end caps), moved.
+    const PolygonMesh creased = mesh::readObj(test::assetPath("osd-shapes/catmark_cube_creases1.obj"));
+    for (const PolygonMesh& cage : {creased, bumpyCages().triangles}) {
+        const LimitEvaluator evaluator(cage);
+        std::vector<glm::vec3> moved = cage.positions;
+        for (size_t k = 0; k < moved.size(); ++k) moved[k] += 0.01f * glm::vec3(float(k % 7), float(k % 3), 1.0f);
+        for (const std::vector<glm::vec3>& positions : {cage.positions, moved}) {
+            const std::vector<glm::dvec3> points = evaluator.patchPoints(positions);
+            int compared = 0;
+            const int stride = evaluator.ptexFaceCount() > 100 ? 3 : 1;
+            for (int f = 0; f < evaluator.ptexFaceCount(); f += stride)
+                for (float u : kSampleCoords)
+                    for (float v : kSampleCoords) {
+                        if (!evaluator.hasSurface(f, u, v)) continue;
+                        const LimitSample a = evaluator.evaluate(f, u, v, positions);
+                        const LimitSample b = evaluator.evaluate(f, u, v, points);
+                        ASSERT_EQ(a.position, b.position) << "face " << f;
+                        ASSERT_EQ(a.dPdu, b.dPdu) << "face " << f;
+                        ASSERT_EQ(a.dPdv, b.dPdv) << "face " << f;
+                        ++compared;
+                    }
+            EXPECT_GE(compared, 150);  // the cube's 6 faces at 25 samples each, or more
+        }
+    }
+}
+
 }  // namespace
 }  // namespace subdfit::subdiv

@@ -216,6 +216,7 @@ void snapToVertexMeans(const mesh::PolygonMesh& cage, std::vector<glm::vec2>& co
 std::vector<glm::vec2> atlasCornerUvs(const mesh::PolygonMesh& cage, const mesh::PolygonMesh& reference,
                                       float maxDistance) {
     const subdiv::LimitEvaluator limit(cage);
+    const std::vector<glm::dvec3> limitPoints = limit.patchPoints(cage.positions);
     const int faces = limit.ptexFaceCount();
     // Sized, not constructed with the size: GCC 12 misreads the latter's release (-Wfree-nonheap-object).
     std::vector<glm::vec3> origins, normals;
@@ -228,7 +229,7 @@ std::vector<glm::vec2> atlasCornerUvs(const mesh::PolygonMesh& cage, const mesh:
             // A hair inside the face: the derivatives vanish at some extraordinary corners.
             const glm::vec2 uv =
                 glm::mix(glm::vec2(float(k % kGrid), float(k / kGrid)) / float(kGrid - 1), glm::vec2(0.5f), 1e-3f);
-            const subdiv::LimitSample s = limit.evaluate(f, uv.x, uv.y, cage.positions);
+            const subdiv::LimitSample s = limit.evaluate(f, uv.x, uv.y, limitPoints);
             const glm::vec3 n = glm::cross(s.dPdu, s.dPdv);
             origins[size_t(f) * kGrid * kGrid + size_t(k)] = s.position;
             if (glm::length(n) > 1e-20f) normals[size_t(f) * kGrid * kGrid + size_t(k)] = glm::normalize(n);

@@ -42,12 +42,12 @@ std::vector<NodeSite> nodeSites(const surface::TexelLayout& layout) {
 // The limit sample at a node; where the derivatives vanish (some extraordinary corners), a
 // hair inside the face, as the renderer does.
 subdiv::LimitSample sampleAt(const subdiv::LimitEvaluator& limit, const NodeSite& s, int resolution,
-                             const std::vector<glm::vec3>& base) {
+                             std::span<const glm::dvec3> points) {
     glm::vec2 uv = glm::vec2(float(s.i), float(s.j)) / float(resolution);
-    subdiv::LimitSample sample = limit.evaluate(s.face, uv.x, uv.y, base);
+    subdiv::LimitSample sample = limit.evaluate(s.face, uv.x, uv.y, points);
     if (glm::length(glm::cross(sample.dPdu, sample.dPdv)) < 1e-12f) {
         uv = glm::mix(uv, glm::vec2(0.5f), 1e-3f);
-        const subdiv::LimitSample inside = limit.evaluate(s.face, uv.x, uv.y, base);
+        const subdiv::LimitSample inside = limit.evaluate(s.face, uv.x, uv.y, points);
         sample.dPdu = inside.dPdu, sample.dPdv = inside.dPdv;
     }
     return sample;
@@ -87,13 +87,14 @@ NodeHits castNodes(const mesh::PolygonMesh& cage, const surface::TexelLayout& la
     h.sites = nodeSites(layout);
     const size_t nodes = h.sites.size();
     const subdiv::LimitEvaluator limit(cage);
+    const std::vector<glm::dvec3> points = limit.patchPoints(cage.positions);
     h.samples.resize(nodes);
     h.normals.resize(nodes);
     std::vector<glm::vec3> origins(nodes);
     for (size_t n = 0; n < nodes; ++n) {
         if (n % 4096 == 0) throwIfStopRequested();
         if (h.sites[n].face < 0 || !limit.hasSurface(h.sites[n].face, 0.5f, 0.5f)) continue;
-        h.samples[n] = sampleAt(limit, h.sites[n], layout.resolution, cage.positions);
+        h.samples[n] = sampleAt(limit, h.sites[n], layout.resolution, points);
         h.normals[n] = unitNormal(h.samples[n].dPdu, h.samples[n].dPdv, glm::vec3(0.0f, 0.0f, 1.0f));
         origins[n] = h.samples[n].position;
     }
@@ -118,9 +119,10 @@ std::vector<std::optional<geometry::RayHit>> castFromLimit(const mesh::PolygonMe
                                                            const geometry::SurfaceQueries& surface, float maxDistance,
                                                            float facing) {
     std::vector<glm::vec3> origins(points.size()), normals(points.size());
+    const std::vector<glm::dvec3> patchPoints = limit.patchPoints(cage.positions);
     parallelFor(0, int(points.size()), [&](int k) {
         const PtexPoint& p = points[size_t(k)];
-        const subdiv::LimitSample at = limit.evaluate(p.face, p.uv.x, p.uv.y, cage.positions);
+        const subdiv::LimitSample at = limit.evaluate(p.face, p.uv.x, p.uv.y, patchPoints);
         origins[size_t(k)] = at.position;
         normals[size_t(k)] = unitNormal(at.dPdu, at.dPdv, glm::vec3(0.0f));
     });

@@ -75,9 +75,10 @@ LimitFitReport fitLimitToSurface(mesh::PolygonMesh& cage, const mesh::PolygonMes
     // samples that found the reference (the ones `used` then marks, with their `targets`).
     auto project = [&] {
         const std::vector<glm::vec3> positions(P.begin(), P.end());
+        const std::vector<glm::dvec3> points = limit.patchPoints(positions);
         std::vector<glm::vec3> origins(L.size()), normals(L.size());
         tbb::parallel_for(size_t(0), L.size(), [&](size_t s) {
-            const subdiv::LimitSample at = limit.evaluate(L.ptexFace[s], L.uv[s].x, L.uv[s].y, positions);
+            const subdiv::LimitSample at = limit.evaluate(L.ptexFace[s], L.uv[s].x, L.uv[s].y, points);
             const glm::vec3 n = glm::cross(at.dPdu, at.dPdv);
             origins[s] = at.position;
             normals[s] = glm::length(n) > 1e-20f ? glm::normalize(n) : glm::vec3(0.0f);

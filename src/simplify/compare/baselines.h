@@ -86,8 +86,16 @@ std::uintmax_t runGltfpack(const std::filesystem::path& gltfpack, const std::fil
 // The command line that made a gltfpack baseline, as the report says it.
 std::string gltfpackCommand(const VertexEncoding& encoding, const std::vector<std::string>& flags);
 
-// Writes dir/bake/{asset.subd, maps}.
+// An asset.subd already drawn and measured: its file and its scores, drawn with `segments`.
+struct ScoredFile {
+    std::filesystem::path path;
+    const Quality& quality;
+    int segments;
+};
+
+// Writes dir/bake/{asset.subd, maps}. Where that file is, byte for byte, `scored`'s (a fit that
+// kept its bake), drawn with the same segments, its scores are `scored`'s: not drawn again.
 Quality bakeBaseline(gl::ProgramCache& programs, const fit::FitScene& scene, const BakeRoute& route,
-                     const BaselineSettings& settings);
+                     const BaselineSettings& settings, const std::optional<ScoredFile>& scored = std::nullopt);
 
 }  // namespace subdfit::simplify
