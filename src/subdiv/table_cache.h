@@ -76,7 +76,9 @@ private:
     std::list<Entry> entries_;
 };
 
-// How many points each cache may hold.
-inline constexpr long kMostCachedPoints = 1'500'000;
+// How many points each cache may hold: the budget search's cage being judged, in both its
+// topologies (as built and as decoded), and the next rungs its builder prepares (CageLadder's
+// kRunAhead) fit in it on the README demo (docs/measurements.md).
+inline constexpr long kMostCachedPoints = 2'500'000;
 
 }  // namespace subdfit::subdiv

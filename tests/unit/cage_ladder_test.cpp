@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <mutex>
+#include <thread>
 #include <vector>
 
 #include "mesh/procedural.h"
@@ -51,6 +53,51 @@ TEST(CageLadder, PreparesEachCageBeforeHandingItOver) {
         const std::lock_guard lock(mutex);
         EXPECT_NE(std::find(prepared.begin(), prepared.end(), cage->faceCount()), prepared.end()) << cage->faceCount();
     }
+}
+
+// Prepared cages' tables fill the caches the judge reads from, so the builder keeps only
+// kRunAhead rungs past those taken; a ladder left part way, or asked for its source, still ends.
+TEST(CageLadder, BuildsOnlyKRunAheadRungsPastThoseTaken) {
+    const mesh::PolygonMesh reference = mesh::makeLumpySphere(4, 0.15f, 5);
+    const std::vector<int> counts{400, 300, 250, 200, 160, 120};
+    std::mutex mutex;
+    std::vector<int> prepared;
+    const auto preparedCount = [&] {
+        const std::lock_guard lock(mutex);
+        return prepared.size();
+    };
+    // Waits (up to a minute, for a loaded machine) until `n` cages are prepared.
+    const auto waitFor = [&](size_t n) {
+        for (int tries = 0; tries < 6000 && preparedCount() < n; ++tries)
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        return preparedCount();
+    };
+    {
+        CageLadder ladder(
+            reference, counts, CageShape::Triangles,
+            [&](const mesh::PolygonMesh& cage) {
+                const std::lock_guard lock(mutex);
+                prepared.push_back(cage.faceCount());
+            },
+            1);
+        ASSERT_TRUE(ladder.take(0).has_value());
+        const size_t allowed = 1 + CageLadder::kRunAhead;
+        ASSERT_EQ(waitFor(allowed), allowed);
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));  // time enough to build one more
+        EXPECT_EQ(preparedCount(), allowed) << "the builder ran past kRunAhead";
+        ASSERT_TRUE(ladder.take(1).has_value());
+        EXPECT_EQ(waitFor(allowed + 1), allowed + 1) << "taking a rung lets the next be built";
+    }  // left part way: the builder, waiting, is let go
+    EXPECT_LT(preparedCount(), counts.size());
+
+    prepared.clear();
+    CageLadder whole(reference, counts, CageShape::Triangles, [&](const mesh::PolygonMesh& cage) {
+        const std::lock_guard lock(mutex);
+        prepared.push_back(cage.faceCount());
+    });
+    ASSERT_TRUE(whole.take(0).has_value());
+    whole.source();  // builds every rung, taken or not
+    EXPECT_EQ(preparedCount(), counts.size());
 }
 
 TEST(CageLadder, AStopRequestReachesTheCageWaitedFor) {

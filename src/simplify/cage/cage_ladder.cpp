@@ -29,6 +29,7 @@ CageLadder::CageLadder(const mesh::PolygonMesh& reference, std::vector<int> face
 
 CageLadder::~CageLadder() {
     stop_ = true;
+    releaseRunAhead();
     if (builder_.joinable()) builder_.join();
 }
 
@@ -55,7 +56,7 @@ void CageLadder::build(const mesh::PolygonMesh& reference, const std::vector<int
 }
 
 void CageLadder::buildRungs(const std::vector<int>& faceCounts, const Prepare& prepare) {
-    for (size_t k = next_++; k < faceCounts.size() && !stop_; k = next_++) {
+    for (size_t k = next_++; k < faceCounts.size() && mayBuild(k); k = next_++) {
         try {
             mesh::PolygonMesh cage = source_->cage({.faces = faceCounts[k], .shape = shape_});
             if (prepare) prepare(cage);
@@ -74,9 +75,31 @@ void CageLadder::buildRungs(const std::vector<int>& faceCounts, const Prepare& p
     }
 }
 
-std::optional<mesh::PolygonMesh> CageLadder::take(size_t k) { return cages_.at(k).get(); }
+bool CageLadder::mayBuild(size_t k) {
+    std::unique_lock lock(takenMutex_);
+    takenChanged_.wait(lock, [&] { return stop_ || runAhead_ || k < taken_ + kRunAhead; });
+    return !stop_;
+}
+
+void CageLadder::releaseRunAhead() {
+    {
+        const std::lock_guard lock(takenMutex_);
+        runAhead_ = true;
+    }
+    takenChanged_.notify_all();
+}
+
+std::optional<mesh::PolygonMesh> CageLadder::take(size_t k) {
+    {
+        const std::lock_guard lock(takenMutex_);
+        taken_ = std::max(taken_, k + 1);
+    }
+    takenChanged_.notify_all();
+    return cages_.at(k).get();
+}
 
 const CageSource& CageLadder::source() {
+    releaseRunAhead();
     if (builder_.joinable()) builder_.join();
     if (!source_) throw Error("the cage ladder has no source: preparing the reference failed");
     return *source_;

@@ -4,8 +4,10 @@
 // is GL work, and each leaves the other core idle. On a machine of many cores several rungs are
 // built at once: much of a rung (decimating the reference, OpenSubdiv's tables) runs on one core.
 #include <atomic>
+#include <condition_variable>
 #include <functional>
 #include <future>
+#include <mutex>
 #include <optional>
 #include <thread>
 #include <vector>
@@ -36,10 +38,18 @@ public:
     // Where the ladder's cages came from, for cages of other counts once the ladder is built.
     const CageSource& source();
 
+    // How many rungs may be built beyond those taken. The builder prepares each cage's
+    // subdivision tables for its judge; built further ahead, they would push the tables of the
+    // cage being judged out of their caches (subdiv/table_cache.h), to be built again.
+    static constexpr size_t kRunAhead = 2;
+
 private:
     void build(const mesh::PolygonMesh& reference, const std::vector<int>& faceCounts, const Prepare& prepare,
                unsigned builders);
     void buildRungs(const std::vector<int>& faceCounts, const Prepare& prepare);
+    // Waits until rung k may be built (kRunAhead); false once building stops.
+    bool mayBuild(size_t k);
+    void releaseRunAhead();  // every rung may be built: the ladder is going, or is wanted whole
 
     CageShape shape_;
     std::vector<std::promise<std::optional<mesh::PolygonMesh>>> promises_;
@@ -48,6 +58,10 @@ private:
     std::vector<char> built_;  // promises_[k] was set (each k by the one thread that took it)
     std::atomic<size_t> next_{0};
     std::atomic<bool> stop_{false};
+    std::mutex takenMutex_;
+    std::condition_variable takenChanged_;
+    size_t taken_ = 0;       // rungs below it taken (or passed over)
+    bool runAhead_ = false;  // releaseRunAhead() was called
     std::thread builder_;
 };
 
