@@ -1,6 +1,7 @@
 #include "subdiv/adaptive_tables.h"
 
 #include <opensubdiv/far/patchTableFactory.h>
+#include <opensubdiv/far/ptexIndices.h>
 #include <opensubdiv/far/stencilTableFactory.h>
 
 #include "subdiv/osd_messages.h"
@@ -38,6 +39,8 @@ AdaptiveTables buildAdaptiveTables(const mesh::PolygonMesh& mesh, int isolationL
 
     tables.patches.reset(Far::PatchTableFactory::Create(*tables.refiner, patchOptions));
     if (!tables.patches) throw fileError(meshName(mesh), "OpenSubdiv could not build patches: " + messages.summary());
+    tables.patchMap = std::make_unique<const Far::PatchMap>(*tables.patches);
+    tables.ptexFaceCount = Far::PtexIndices(*tables.refiner).GetNumFaces();
 
     Far::StencilTableFactory::Options stencilOptions;
     stencilOptions.generateIntermediateLevels = true;   // patches use vertices of every level

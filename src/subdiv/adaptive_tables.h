@@ -2,6 +2,7 @@
 // The OpenSubdiv objects behind one cage at one isolation level. PatchSet (for the GPU) and
 // LimitEvaluator (the CPU reference) are both derived from these, so they share one index
 // space by construction.
+#include <opensubdiv/far/patchMap.h>
 #include <opensubdiv/far/patchTable.h>
 #include <opensubdiv/far/stencilTable.h>
 
@@ -18,6 +19,10 @@ struct AdaptiveTables {
     // point baseVertexCount + i. The points are the refined vertices of levels 1..max (in level
     // order), then the end-cap local points -- the space patch CV indices refer to.
     std::unique_ptr<const OpenSubdiv::Far::StencilTable> stencils;
+    // The patch covering a ptex face's (u, v): built once with the tables, not by every
+    // evaluator of them (a bake, a map layout, a decode each make one).
+    std::unique_ptr<const OpenSubdiv::Far::PatchMap> patchMap;
+    int ptexFaceCount = 0;
 
     int baseVertexCount() const;
     int pointCount() const;  // base vertices + stencil rows

@@ -1,7 +1,5 @@
 #include "subdiv/limit_evaluator.h"
 
-#include <opensubdiv/far/ptexIndices.h>
-
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -51,18 +49,17 @@ LimitEvaluator::LimitEvaluator(const mesh::PolygonMesh& mesh)
     : LimitEvaluator(mesh, {.isolationLevel = drawingIsolationLevel(mesh)}) {}
 
 LimitEvaluator::LimitEvaluator(const mesh::PolygonMesh& mesh, const PatchSetOptions& options)
-    : tables_(cachedAdaptiveTables(mesh, options.isolationLevel)),
-      patchMap_(std::make_unique<Far::PatchMap>(*tables_->patches)),
-      ptexFaceCount_(Far::PtexIndices(*tables_->refiner).GetNumFaces()) {}
+    : tables_(cachedAdaptiveTables(mesh, options.isolationLevel)) {}
 
 bool LimitEvaluator::hasSurface(int ptexFace, float u, float v) const {
-    return ptexFace >= 0 && ptexFace < ptexFaceCount_ && patchMap_->FindPatch(ptexFace, u, v) != nullptr;
+    return ptexFace >= 0 && ptexFace < tables_->ptexFaceCount &&
+           tables_->patchMap->FindPatch(ptexFace, u, v) != nullptr;
 }
 
 LimitSample LimitEvaluator::evaluate(int ptexFace, float u, float v, std::span<const glm::vec3> basePositions) const {
     SUBDFIT_CHECK(int(basePositions.size()) == baseVertexCount());
     SUBDFIT_CHECK(hasSurface(ptexFace, u, v));
-    return sampleThrough(*tables_->patches, *patchMap_, ptexFace, u, v,
+    return sampleThrough(*tables_->patches, *tables_->patchMap, ptexFace, u, v,
                          [&](int point) { return pointPosition(*tables_->stencils, point, basePositions); });
 }
 
@@ -77,13 +74,13 @@ std::vector<glm::dvec3> LimitEvaluator::patchPoints(std::span<const glm::vec3> b
 LimitSample LimitEvaluator::evaluate(int ptexFace, float u, float v, std::span<const glm::dvec3> patchPoints) const {
     SUBDFIT_CHECK(int(patchPoints.size()) == tables_->pointCount());
     SUBDFIT_CHECK(hasSurface(ptexFace, u, v));
-    return sampleThrough(*tables_->patches, *patchMap_, ptexFace, u, v,
+    return sampleThrough(*tables_->patches, *tables_->patchMap, ptexFace, u, v,
                          [&](int point) { return patchPoints[size_t(point)]; });
 }
 
 std::vector<LimitEvaluator::BaseWeight> LimitEvaluator::positionWeights(int ptexFace, float u, float v) const {
     SUBDFIT_CHECK(hasSurface(ptexFace, u, v));
-    const Far::PatchTable::PatchHandle& handle = *patchMap_->FindPatch(ptexFace, u, v);
+    const Far::PatchTable::PatchHandle& handle = *tables_->patchMap->FindPatch(ptexFace, u, v);
     float wP[20];
     tables_->patches->EvaluateBasis(handle, u, v, wP);
     const Far::ConstIndexArray cvs = tables_->patches->GetPatchVertices(handle);

@@ -4,7 +4,6 @@
 // Slow per call: for bakes, fits of the cage to a reference, exports and checks, not for the
 // fitting loop.
 #include <glm/vec3.hpp>
-#include <opensubdiv/far/patchMap.h>
 
 #include <memory>
 #include <span>
@@ -29,7 +28,7 @@ public:
     LimitEvaluator(const mesh::PolygonMesh& mesh, const PatchSetOptions& options);
 
     int baseVertexCount() const { return tables_->baseVertexCount(); }
-    int ptexFaceCount() const { return ptexFaceCount_; }
+    int ptexFaceCount() const { return tables_->ptexFaceCount; }
     // False for holes (no surface there) and ids out of range.
     bool hasSurface(int ptexFace, float u, float v) const;
 
@@ -54,8 +53,6 @@ public:
 
 private:
     std::shared_ptr<const AdaptiveTables> tables_;  // shared with other evaluators of the same topology
-    std::unique_ptr<OpenSubdiv::Far::PatchMap> patchMap_;
-    int ptexFaceCount_ = 0;
 };
 
 // All pointCount points of a PatchSet from base positions: the base copied, then each stencil
