@@ -60,38 +60,25 @@ void mapPtexFaces(const Far::TopologyRefiner& refiner, PatchSet& set) {
 // of stencil supports over all CVs of all patches of the face (zero weights left out).
 void collectFaceVertices(PatchSet& set) {
     std::vector<std::vector<int>> perFace(set.ptexFaceCount);
-    // A vertex reaches a face through many CVs' stencils: each is listed once, as it is first met
-    // (`listedFor`: the face it was last listed for), then the few left are sorted.
-    std::vector<int> listedFor(size_t(set.baseVertexCount), -1);
-    const auto list = [&](int face, int vertex) {
-        if (listedFor[size_t(vertex)] == face) return;
-        listedFor[size_t(vertex)] = face;
-        perFace[size_t(face)].push_back(vertex);
-    };
-    // Patches are grouped by face (the refiner's order), but a face met again after another is
-    // checked against what it holds.
-    int previous = -1;
     for (int patch = 0; patch < set.patchCount(); ++patch) {
         const glm::ivec4& info = set.patchInfo[patch];
-        const int face = set.patchParam(patch).GetFaceId();
-        if (face != previous)
-            for (int vertex : perFace[size_t(face)]) listedFor[size_t(vertex)] = face;
-        previous = face;
+        std::vector<int>& vertices = perFace[set.patchParam(patch).GetFaceId()];
         for (int k = 0; k < patchCvCount(info.y); ++k) {
             const int point = set.patchCvIndices[info.x + k];
             if (point < set.baseVertexCount) {
-                list(face, point);
+                vertices.push_back(point);
                 continue;
             }
             const int row = point - set.baseVertexCount;
             for (int e = set.stencilOffsets[row]; e < set.stencilOffsets[row + 1]; ++e)
-                if (set.stencilWeights[e] != 0.0f) list(face, set.stencilIndices[e]);
+                if (set.stencilWeights[e] != 0.0f) vertices.push_back(set.stencilIndices[e]);
         }
     }
     set.faceVertexOffsets.assign(1, 0);
     set.faceVertexIndices.clear();
     for (std::vector<int>& vertices : perFace) {
         std::sort(vertices.begin(), vertices.end());
+        vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
         set.faceVertexIndices.insert(set.faceVertexIndices.end(), vertices.begin(), vertices.end());
         set.faceVertexOffsets.push_back(int(set.faceVertexIndices.size()));
     }
