@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
     subdfit::apps::addNamedOption(*simplifyCommand, "--compare", tradeoff.compare,
                                   "what each run compares: none, fast or full");
     subdfit::apps::addNamedOption(*simplifyCommand, "--cage-shape", tradeoff.cageShape,
-                                  "the cages' faces: auto, triangles or quads (as simplify's)");
+                                  "the cages' faces: auto, triangles, quads or paired (as simplify's)");
     subdfit::apps::addGlProvider(*simplifyCommand, tradeoff.glProvider);
 
     subdfit::bench::ConvergenceOptions convergence;

@@ -708,8 +708,7 @@ BudgetChoice searchBudget(gl::ProgramCache& programs, const fit::FitScene& scene
     }
     if (best && !bareMayLead && say)
         say("the best bare cage grown to the budget would still trail the best: not grown, nor tried as quads");
-    if (bareMayLead && search.quadTrial && cages.shape() != CageShape::Quads)
-        growBest(in, found, bare, CageShape::Quads);
+    if (bareMayLead && search.quadTrial && !quadDominant(cages.shape())) growBest(in, found, bare, CageShape::Quads);
     BudgetChoice choice = settleChoice(in, found);
     choice.phases = found.phases;
     return choice;

@@ -24,8 +24,9 @@ const std::vector<fit::TableRow<SimplifyMember>>& simplifyOptionTable() {
           .flag = "--cage-shape",
           .help =
               "the cage's faces: auto (the budget search's cages are triangles, and its best bare cage is also "
-              "remeshed into quads at the same bytes: the better ships), triangles (the reference decimated) or quads "
-              "(a quad-dominant remesh along the reference's cross field, every cage the search tries)",
+              "remeshed into quads at the same bytes: the better ships), triangles (the reference decimated), quads "
+              "(a quad-dominant remesh along the reference's cross field, every cage the search tries) or paired "
+              "(the decimated triangles joined in pairs into quads)",
           .setting = true},
          &S::cageShape},
         {{.key = "budget",

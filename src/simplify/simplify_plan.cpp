@@ -48,18 +48,18 @@ namespace {
 
 // What the budget search tries for `o` on `scene`.
 BudgetSearch budgetSearchFor(const SimplifyOptions& o, std::uintmax_t budget, const fit::FitScene& scene) {
-    return {.budget = budget,
-            .faceCounts = budgetFaceCounts(o, budget, scene),
-            .mostGrownFaces = o.faces ? 0
-                                      : std::min(kMostBudgetFaces, scene.reference.faceCount()) /
-                                            (o.cageShape == CageShape::Quads ? 2 : 1),
-            .allowedMaps = o.fit.maps,
-            .appearance = maps::appearanceFor(scene.shading),
-            .appearanceQualities = {o.fit.appearanceQuality},
-            .appearanceAtlases =
-                o.fit.appearanceAtlas > 0 ? std::vector<int>{o.fit.appearanceAtlas} : atlasSizesFor(scene.reference),
-            .quadTrial = o.cageShape == CageShape::Auto && !o.faces,
-            .bestWithMaps = o.compare >= CompareLevel::Full};
+    return {
+        .budget = budget,
+        .faceCounts = budgetFaceCounts(o, budget, scene),
+        .mostGrownFaces =
+            o.faces ? 0 : std::min(kMostBudgetFaces, scene.reference.faceCount()) / (quadDominant(o.cageShape) ? 2 : 1),
+        .allowedMaps = o.fit.maps,
+        .appearance = maps::appearanceFor(scene.shading),
+        .appearanceQualities = {o.fit.appearanceQuality},
+        .appearanceAtlases =
+            o.fit.appearanceAtlas > 0 ? std::vector<int>{o.fit.appearanceAtlas} : atlasSizesFor(scene.reference),
+        .quadTrial = o.cageShape == CageShape::Auto && !o.faces,
+        .bestWithMaps = o.compare >= CompareLevel::Full};
 }
 
 // The search's choice into the fit's options: its maps, their resolution, bits and shading
@@ -115,7 +115,7 @@ std::vector<int> budgetFaceCounts(const SimplifyOptions& o, std::uintmax_t budge
     if (o.faces) return {*o.faces};
     std::vector<int> counts = faceCountsFor(budget, scene.reference.faceCount(), kMostBudgetFaces);
     // A quad has a vertex to itself where a triangle has half of one: about twice the bytes.
-    if (o.cageShape == CageShape::Quads)
+    if (quadDominant(o.cageShape))
         for (int& faces : counts) faces = std::max(kFewestQuadFaces, faces / 2);
     return counts;
 }

@@ -11,6 +11,7 @@
 #include "simplify/cage/decimate.h"
 #include "simplify/cage/feature_edges.h"
 #include "simplify/cage/limit_fit.h"
+#include "simplify/cage/triangle_pairing.h"
 #include "simplify/remesh/quad_remesh.h"
 #include "subdiv/limit_evaluator.h"
 #include "util/error.h"
@@ -175,6 +176,11 @@ mesh::PolygonMesh CageSource::decimatedCage(const InitialCageOptions& options) c
 mesh::PolygonMesh CageSource::cage(const InitialCageOptions& options) const {
     std::optional<mesh::PolygonMesh> quads;
     if (options.shape == CageShape::Quads) quads = quadCage(options.faces);
+    if (options.shape == CageShape::Paired) {
+        InitialCageOptions triangles = options;
+        triangles.faces = 2 * options.faces;
+        quads = pairTriangles(decimatedCage(triangles));
+    }
     mesh::PolygonMesh cage = quads ? std::move(*quads) : decimatedCage(options);
     if (cage.faceCount() < 2) throw fileError(reference_.sourcePath, "too few faces survive decimation to make a cage");
     cage.sourcePath = reference_.sourcePath;

@@ -18,10 +18,14 @@
 namespace subdfit::simplify {
 
 // What a cage's faces are: quads along the reference's cross field (simplify/remesh), few of them
-// triangles, or the decimated reference's triangles. Auto is simplify's --budget choice: a
-// triangle ladder whose best bare cage is also tried as quads at the same bytes; a cage made
-// directly is then made of triangles.
-enum class CageShape { Quads, Triangles, Auto };
+// triangles; the decimated reference's triangles; or those triangles joined in pairs into quads
+// (simplify/cage/triangle_pairing.h: quad-dominant, its vertices where decimation put them).
+// Auto is simplify's --budget choice: a triangle ladder whose best bare cage is also tried as
+// quads at the same bytes; a cage made directly is then made of triangles.
+enum class CageShape { Quads, Triangles, Auto, Paired };
+
+// Whether a cage of `shape` has about a vertex a face (quads) rather than half of one.
+constexpr bool quadDominant(CageShape shape) { return shape == CageShape::Quads || shape == CageShape::Paired; }
 
 }  // namespace subdfit::simplify
 
@@ -29,14 +33,15 @@ template <>
 struct subdfit::EnumNames<subdfit::simplify::CageShape> {
     static constexpr std::array names{std::pair{simplify::CageShape::Quads, std::string_view("quads")},
                                       std::pair{simplify::CageShape::Triangles, std::string_view("triangles")},
-                                      std::pair{simplify::CageShape::Auto, std::string_view("auto")}};
+                                      std::pair{simplify::CageShape::Auto, std::string_view("auto")},
+                                      std::pair{simplify::CageShape::Paired, std::string_view("paired")}};
 };
 
 namespace subdfit::simplify {
 
 struct InitialCageOptions {
     // Faces of the cage: at most (triangles), about (quads; a quad cage has about as many
-    // vertices as faces, a triangle cage half as many).
+    // vertices as faces, a triangle cage half as many; paired: from twice as many triangles).
     int faces = 1000;
     CageShape shape = CageShape::Triangles;
     int evenOutRounds = 3;             // tangential smoothing of decimation's slivers (features stay)
@@ -47,7 +52,8 @@ struct InitialCageOptions {
 
 // `reference` in any units, any polygons. A quad cage is a quad remesh of the reference (where
 // remeshing fails, a part thinner than its quads say, the decimated cage is made instead, with
-// a warning), its hard edges not yet creased. A triangle cage is welded, with OpenSubdiv's
+// a warning), its hard edges not yet creased. A paired cage is the triangle cage's decimation
+// with its triangles joined in pairs (never across a crease). A triangle cage is welded, with OpenSubdiv's
 // smooth-triangle rule (Loop-like weights on triangles, which keeps them from pinching),
 // boundaries interpolated with their corners, and the reference's hard edges as sharp creases. Throws subdfit::Error naming the reference when
 // the result is not a usable cage.
