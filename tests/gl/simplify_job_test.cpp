@@ -2,6 +2,7 @@
 // on disk and compare at equal bytes; and `batch` skips, resumes, shards and records failures.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <fstream>
@@ -9,6 +10,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "codec/subd_format.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/obj_writer.h"
 #include "mesh/procedural.h"
@@ -164,6 +166,28 @@ TEST(SimplifyJob, TwoRunsOfOneSeedWriteTheSameFiles) {
         EXPECT_EQ(readBytes(dir / "first" / name), readBytes(dir / "second" / name)) << name;
     for (const char* key : {"psnr_holdout", "psnr_holdout_initial", "chamfer"})
         EXPECT_EQ(first[key], second[key]) << key;
+}
+
+// --cage-shape paired: the cage that ships, in cage.obj and in asset.subd, is the decimated
+// triangles joined in pairs: quad-dominant, about the faces asked, the same faces in both files.
+TEST(SimplifyJob, APairedCageShipsQuadDominant) {
+    const auto dir = scratchDir("simplify_paired");
+    mesh::writeObj(dir / "lumpy.obj", mesh::makeLumpySphere(4, 0.15f, 4));
+    simplify::SimplifyOptions options = smallMappedSimplify(dir / "lumpy.obj", dir / "out");
+    options.fit.steps = 5;
+    options.cageShape = simplify::CageShape::Paired;
+    options.route = simplify::RouteChoice::Cage;
+    options.compare = simplify::CompareLevel::None;
+    simplify::runSimplify(options);
+    const mesh::PolygonMesh cage = mesh::loadMesh(dir / "out" / "cage.obj");
+    const auto quads = std::count(cage.faceSizes.begin(), cage.faceSizes.end(), 4);
+    EXPECT_GE(double(quads), 0.9 * cage.faceCount()) << quads << " quads of " << cage.faceCount();
+    EXPECT_GE(cage.faceCount(), 120);
+    EXPECT_LT(cage.faceCount(), 150);
+    std::vector<int> shipped = codec::readSubd(dir / "out" / "asset.subd").cage.faceSizes, written = cage.faceSizes;
+    std::sort(shipped.begin(), shipped.end());  // the coded cage numbers its faces its own way
+    std::sort(written.begin(), written.end());
+    EXPECT_EQ(shipped, written);
 }
 
 TEST(SimplifyBatch, SkipsFinishedResumesInterruptedAndRecordsFailures) {
