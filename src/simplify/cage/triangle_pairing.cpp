@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <set>
-#include <functional>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -72,7 +72,8 @@ mesh::PolygonMesh pairTriangles(const mesh::PolygonMesh& triangles, const Triang
     for (const auto& [edge, at] : sides) {
         if (at.size() != 2 || creased.contains(edge)) continue;
         const Side &a = at[0], &b = at[1];
-        if (a.from == b.from || holes.contains(a.face) != holes.contains(b.face)) continue;  // opposite winding
+        if (a.from == b.from) continue;                                  // wound opposite ways
+        if (holes.contains(a.face) != holes.contains(b.face)) continue;  // a hole's rim
         // a runs p -> q, so a is (p, q, r) and b is (q, p, s): the quad q r p s in a's winding.
         const int p = a.from, q = p == edge.first ? edge.second : edge.first;
         const std::array<int, 4> quad{q, a.opposite, p, b.opposite};
