@@ -25,9 +25,9 @@ struct TopologyKey {
     friend bool operator==(const TopologyKey&, const TopologyKey&) = default;
 };
 
-// Entries are weighed in points (`pointsOf`). Once they pass `mostPoints` (an 8 000-face
-// triangle cage's patch set holds about 850 000 at level 2, a few hundred MB), the least recently
-// used leave first: simplify's search comes back to the light cages of its map ladders again and
+// Entries are weighed in points (`pointsOf`). Once they pass `mostPoints` (a 5 000-face
+// triangle cage's tables hold about half a million; their sizes in docs/measurements.md), the
+// least recently used leave first: simplify's search comes back to the light cages of its map ladders again and
 // again, while a dense cage, drawn at a shallow level, builds again in a fraction of a second.
 template <class Tables>
 class TableCache {
