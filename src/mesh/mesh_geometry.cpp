@@ -118,6 +118,8 @@ bool hasNonQuadFaces(const PolygonMesh& m) {
     return std::any_of(m.faceSizes.begin(), m.faceSizes.end(), [](int n) { return n != 4; });
 }
 
+int quadCount(const PolygonMesh& m) { return int(std::count(m.faceSizes.begin(), m.faceSizes.end(), 4)); }
+
 float meanEdgeLength(const PolygonMesh& m) {
     double total = 0.0;
     size_t edges = 0;

@@ -37,5 +37,7 @@ float meanEdgeLength(const PolygonMesh& mesh);
 // Whether any face is not a quad: OpenSubdiv splits such a face into ptex faces (one per
 // corner) whose edges are half the face's, each with a whole map tile.
 bool hasNonQuadFaces(const PolygonMesh& mesh);
+// How many faces are quads.
+int quadCount(const PolygonMesh& mesh);
 
 }  // namespace subdfit::mesh

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "codec/subd_format.h"
+#include "mesh/mesh_geometry.h"
 #include "fit/image_metrics.h"
 #include "gl/buffer.h"
 #include "simplify/bake/atlas_bake.h"
@@ -61,10 +62,6 @@ std::string describe(const BudgetCandidate& c) {
         text += line;
     }
     return text;
-}
-
-int quadCount(const mesh::PolygonMesh& cage) {
-    return int(std::count(cage.faceSizes.begin(), cage.faceSizes.end(), 4));
 }
 
 // A candidate as it ships: encoded (its bytes) and decoded again (what is judged).
@@ -254,7 +251,7 @@ BudgetCandidate judge(const SearchInputs& in, Findings& found,
     timed.emplace(found.phases, "render");
     const bool atlas = appearance.maps.appearanceAtlas.present();
     BudgetCandidate c{.faces = cageWorld->faceCount(),
-                      .quads = quadCount(*cageWorld),
+                      .quads = mesh::quadCount(*cageWorld),
                       .maps = recipe.effects,
                       .mapResolution = recipe.resolution,
                       .mapBits = recipe.bits,

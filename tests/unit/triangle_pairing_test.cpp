@@ -34,9 +34,7 @@ std::vector<int> canonical(std::vector<int> face) {
     return face;
 }
 
-double quadShare(const mesh::PolygonMesh& m) {
-    return double(std::count(m.faceSizes.begin(), m.faceSizes.end(), 4)) / double(m.faceCount());
-}
+double quadShare(const mesh::PolygonMesh& m) { return double(mesh::quadCount(m)) / double(m.faceCount()); }
 
 // Every directed edge of `m` once at most (oriented), and the same edges as `triangles` but the
 // joined diagonals: each pair's outline is its two triangles' outline.
@@ -55,7 +53,7 @@ void expectSameSurface(const mesh::PolygonMesh& triangles, const mesh::PolygonMe
             EXPECT_TRUE(before.contains({e.second, e.first})) << "an outline edge lost";
         }
     for (const auto& e : after) EXPECT_TRUE(before.contains(e)) << "an edge made up";
-    EXPECT_EQ(diagonals, 2 * int(std::count(m.faceSizes.begin(), m.faceSizes.end(), 4)));
+    EXPECT_EQ(diagonals, 2 * mesh::quadCount(m));
     EXPECT_EQ(m.positions, triangles.positions);
 }
 

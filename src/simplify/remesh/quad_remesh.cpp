@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "mesh/mesh_geometry.h"
 #include "simplify/remesh/polygon_repair.h"
 #include "simplify/remesh/quad_extraction.h"
 #include "simplify/remesh/split_long_edges.h"
@@ -36,7 +37,7 @@ float evenEdgeLength(const mesh::PolygonMesh& triangles, int vertices) {
 
 double QuadRemesh::quadShare() const {
     if (mesh.faceSizes.empty()) return 0.0;
-    return double(std::count(mesh.faceSizes.begin(), mesh.faceSizes.end(), 4)) / double(mesh.faceSizes.size());
+    return double(mesh::quadCount(mesh)) / double(mesh.faceSizes.size());
 }
 
 QuadRemesh quadRemesh(const mesh::PolygonMesh& triangles, const QuadRemeshOptions& options) {
