@@ -163,6 +163,11 @@ int main(int argc, char** argv) {
         ->add_option("--amplitude", relief.relief.amplitude, "RMS height, a fraction of the bounding-box diagonal")
         ->capture_default_str();
     reliefCommand->add_option("--seed", relief.relief.seed, "seed of the relief's waves")->capture_default_str();
+    reliefCommand
+        ->add_option("--coverage", relief.relief.coverage,
+                     "the share of the surface the relief covers, in patches (1: everywhere), the rest left smooth")
+        ->check(CLI::Range(0.0f, 1.0f))
+        ->capture_default_str();
 
     subdfit::bench::GradientOptions gradient;
     auto* gradientCommand = command("gradient", "SGE gradient quality against cost; per-pixel vs full-image; ε",

@@ -41,6 +41,38 @@ std::vector<glm::vec3> normalsByPosition(const mesh::PolygonMesh& mesh, const st
     return out;
 }
 
+// Per vertex, how much of the relief it carries (0..1) so that about `coverage` of the vertices
+// carry it: four long waves (a third to two thirds of the diagonal) summed, 0 below their
+// (1 - coverage) quantile and 1 above it, but for a fade a tenth of their spread wide across it.
+// Empty for coverage >= 1.
+std::vector<float> coverageMask(const std::vector<glm::vec3>& positions, float coverage, float diagonal,
+                                std::mt19937& rng) {
+    if (coverage >= 1.0f || positions.empty()) return {};
+    std::normal_distribution<float> gaussian;
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<float> field(positions.size(), 0.0f);
+    for (int w = 0; w < 4; ++w) {
+        const glm::vec3 direction = glm::normalize(glm::vec3(gaussian(rng), gaussian(rng), gaussian(rng)) + 1e-6f);
+        const float wavelength = (1.0f / 3.0f + unit(rng) / 3.0f) * diagonal;
+        const glm::vec3 k = direction * (2.0f * float(M_PI) / wavelength);
+        const float phase = 2.0f * float(M_PI) * unit(rng);
+        for (size_t v = 0; v < positions.size(); ++v) field[v] += std::sin(glm::dot(k, positions[v]) + phase);
+    }
+    std::vector<float> sorted = field;
+    const auto at = [&](float q) {
+        const size_t k = std::min(sorted.size() - 1, size_t(std::max(0.0f, q) * float(sorted.size())));
+        std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(k), sorted.end());
+        return sorted[k];
+    };
+    const float threshold = at(1.0f - std::max(coverage, 0.0f)), margin = 0.1f * (at(0.95f) - at(0.05f));
+    std::vector<float> mask(positions.size());
+    for (size_t v = 0; v < positions.size(); ++v) {
+        const float t = std::clamp((field[v] - threshold) / margin + 0.5f, 0.0f, 1.0f);
+        mask[v] = t * t * (3.0f - 2.0f * t);
+    }
+    return mask;
+}
+
 }  // namespace
 
 void addRelief(mesh::PolygonMesh& surface, const ReliefOptions& o) {
@@ -67,11 +99,12 @@ void addRelief(mesh::PolygonMesh& surface, const ReliefOptions& o) {
     const float scale = o.amplitude * diagonal / std::sqrt(0.5f * float(std::max(o.waves, 1)));
     const std::vector<int> position = positionIndices(surface, 1e-6f * diagonal);
     const auto normals = normalsByPosition(surface, position);
+    const std::vector<float> cover = coverageMask(surface.positions, o.coverage, diagonal, rng);
     for (size_t v = 0; v < surface.positions.size(); ++v) {
         const glm::vec3 p = surface.positions[v];
         float height = 0.0f;
         for (const Wave& wave : waves) height += std::sin(glm::dot(wave.k, p) + wave.phase);
-        surface.positions[v] = p + scale * height * normals[v];
+        surface.positions[v] = p + (cover.empty() ? 1.0f : cover[v]) * scale * height * normals[v];
     }
     // Shaded smooth across seams, as a sculpting tool would export it.
     surface.normals = normalsByPosition(surface, position);

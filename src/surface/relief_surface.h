@@ -15,6 +15,10 @@ struct ReliefOptions {
     float shortestWavelength = 0.02f, longestWavelength = 0.06f;  // same units
     int waves = 16;                                               // plane waves summed, random directions and phases
     std::uint32_t seed = 1;
+    // The share of the surface the relief covers: 1 everywhere; below it, patches where a field
+    // of long waves passes its quantile, fading over a short margin (a sculpt's detail lies where
+    // the artist put it, the rest of the base left smooth).
+    float coverage = 1.0f;
 };
 
 // Moves every vertex of `surface` along its normal by the relief's height there (the options'

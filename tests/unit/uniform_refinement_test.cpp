@@ -112,5 +112,22 @@ TEST(ReliefSurface, IsDenseAndWatertight) {
     EXPECT_EQ(openEdges(relief), 0);
 }
 
+// Relief in patches: about `coverage` of the surface moves (and a fade around the patches), the
+// rest stays the smooth base.
+TEST(ReliefSurface, CoversTheShareOfTheSurfaceAsked) {
+    const auto cage = mesh::loadMesh(test::assetPath("spot/spot_control_mesh.obj"));
+    const auto base = surface::reliefSurface(cage, {.segments = 8, .amplitude = 0.0f});
+    for (const float coverage : {0.35f, 1.0f}) {
+        const auto relief = surface::reliefSurface(cage, {.segments = 8, .coverage = coverage});
+        ASSERT_EQ(relief.positions.size(), base.positions.size());
+        size_t moved = 0;
+        for (size_t v = 0; v < base.positions.size(); ++v)
+            moved += glm::distance(relief.positions[v], base.positions[v]) > 1e-6f;
+        const double share = double(moved) / double(base.positions.size());
+        EXPECT_GE(share, coverage - 0.02) << "coverage " << coverage;
+        EXPECT_LE(share, coverage + 0.1) << "coverage " << coverage;
+    }
+}
+
 }  // namespace
 }  // namespace subdfit
