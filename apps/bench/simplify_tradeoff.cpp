@@ -3,7 +3,9 @@
 // Draco, gltfpack when installed, the bake route); plotted as held-out PSNR and symmetric mean
 // surface distance against bytes, one pair of plots per reference; and where the bytes of each
 // asset.subd it wrote go (the shipped one, the bake baseline's): cage connectivity, positions,
-// polygon marks, tags and each map, with the cage's faces, quads and regular vertices.
+// polygon marks, tags and each map, with the cage's faces, quads and regular vertices; and where
+// a cage shipped, its held-out PSNR as fitted, before coding (what the cage and maps could reach
+// unquantised) beside what the file draws.
 #include <cstdio>
 #include <map>
 
@@ -32,7 +34,7 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
     if (references.empty()) references.push_back(reliefReference(o.out));
     std::vector<std::vector<std::string>> rows{{"reference", "budget", "method", "bytes", "psnr_holdout",
                                                 "ssim_holdout", "mean_distance", "chamfer", "hausdorff", "seconds",
-                                                "chosen"}};
+                                                "chosen", "psnr_holdout_unquantised"}};
     std::vector<std::vector<std::string>> stageRows{{"reference", "budget", "route", "stage", "seconds"}};
     std::vector<std::vector<std::string>> byteRows{{"reference", "budget", "file", "bytes", "faces", "quads",
                                                     "vertices", "position_bits", "regular_vertices",
@@ -55,11 +57,17 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
             s.compare = o.compare;
             s.cageShape = o.cageShape;
             const auto report = simplify::runSimplify(s);
+            // The shipped state before coding: the fit's end, or its start where the bake shipped.
+            double unquantised = 0.0;
+            if (report.route.shipped == "cage" && report.fit)
+                unquantised = report.fitVerdict && !report.fitVerdict->fitShips ? report.fit->holdoutBefore.psnr
+                                                                                : report.fit->holdoutAfter.psnr;
             std::string choice = report.route.shipped;
             if (report.route.shipped == "cage" && report.budget) {
                 const simplify::BudgetCandidate& chosen = report.budget->chosen;
                 choice = std::to_string(chosen.faces) + " faces, " + maps::toString(chosen.maps) +
-                         " T=" + std::to_string(chosen.mapResolution);
+                         " T=" + std::to_string(chosen.mapResolution) + " at " + std::to_string(chosen.mapBits) +
+                         " bits, " + std::to_string(chosen.positionBits) + "-bit positions";
             }
             std::vector<std::pair<std::string, const simplify::Quality*>> methods{{"subdfit", &report.subdfit}};
             if (report.cage) methods.emplace_back("cage", &*report.cage);
@@ -72,14 +80,18 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
                 const geometry::SurfaceDistance d =
                     q->distance.value_or(geometry::SurfaceDistance{});  // --compare full: measured
                 const std::string chosenText = method == "subdfit" ? choice : "";
-                std::printf("%-18.18s %8ju  %-10s %8ju %9.2f %7.4f %13.4e %9.1f  %s\n", name.c_str(), budget,
+                char unquantisedText[40] = "";
+                if (method == "subdfit" && unquantised > 0.0)
+                    std::snprintf(unquantisedText, sizeof unquantisedText, " (%.2f dB unquantised)", unquantised);
+                std::printf("%-18.18s %8ju  %-10s %8ju %9.2f %7.4f %13.4e %9.1f  %s%s\n", name.c_str(), budget,
                             method.c_str(), q->bytes, q->psnrHoldout, q->ssimHoldout, d.meanDistance, seconds,
-                            chosenText.c_str());
+                            chosenText.c_str(), unquantisedText);
                 std::fflush(stdout);
                 rows.push_back({name, std::to_string(budget), method, std::to_string(q->bytes),
                                 std::to_string(q->psnrHoldout), std::to_string(q->ssimHoldout),
                                 std::to_string(d.meanDistance), std::to_string(d.chamferL2Squared),
-                                std::to_string(d.hausdorff), std::to_string(seconds), chosenText});
+                                std::to_string(d.hausdorff), std::to_string(seconds), chosenText,
+                                method == "subdfit" && unquantised > 0.0 ? std::to_string(unquantised) : ""});
                 // A decimation that fits the whole reference is lossless (PSNR capped at 120 dB):
                 // in the CSV, off the plots, whose scale it would flatten.
                 if (q->psnrHoldout >= 100.0) continue;
