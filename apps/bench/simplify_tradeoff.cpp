@@ -57,11 +57,7 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
             s.compare = o.compare;
             s.cageShape = o.cageShape;
             const auto report = simplify::runSimplify(s);
-            // The shipped state before coding: the fit's end, or its start where the bake shipped.
-            double unquantised = 0.0;
-            if (report.route.shipped == "cage" && report.fit)
-                unquantised = report.fitVerdict && !report.fitVerdict->fitShips ? report.fit->holdoutBefore.psnr
-                                                                                : report.fit->holdoutAfter.psnr;
+            const double unquantised = simplify::unquantisedPsnr(report).value_or(0.0);
             std::string choice = report.route.shipped;
             if (report.route.shipped == "cage" && report.budget) {
                 const simplify::BudgetCandidate& chosen = report.budget->chosen;

@@ -547,6 +547,12 @@ nlohmann::json toJson(const PrefixReport& p) {
 
 }  // namespace
 
+std::optional<double> unquantisedPsnr(const SimplifyReport& r) {
+    // The fit's end is what ships before coding: where its bake won, the fitter holds the bake again.
+    if (r.route.shipped != "cage" || !r.fit) return std::nullopt;
+    return r.fit->holdoutAfter.psnr;
+}
+
 nlohmann::json toJson(const SimplifyReport& r) {
     nlohmann::json report = r.fit
                                 ? fit::toJson(*r.fit)
@@ -556,6 +562,7 @@ nlohmann::json toJson(const SimplifyReport& r) {
     nlohmann::json shipped = toJson(r.subdfit);
     shipped.erase("path");  // `route` names it
     report.update(shipped);
+    if (const auto unquantised = unquantisedPsnr(r)) report["psnr_holdout_unquantised"] = *unquantised;
     report["seconds"] = r.seconds;
     report["seconds_by_stage"] = r.stages.toJson();
 

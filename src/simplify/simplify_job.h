@@ -69,6 +69,10 @@ struct SimplifyReport {
     double seconds = 0.0;  // the whole run
 };
 
+// The shipped cage and maps as fitted, before coding (the fit's end, or its bake where that won):
+// what they would draw unquantised, held out. None where no cage shipped.
+std::optional<double> unquantisedPsnr(const SimplifyReport& report);
+
 // report.json: the fit's keys (when one ran); what shipped: `route` (shipped, path, why, and the
 // held-out PSNR and bytes of each route weighed), bytes / files / psnr_holdout / ssim_holdout /
 // chamfer / hausdorff / mean_distance; `baselines` (each with the `path` of its shipped file in
@@ -77,7 +81,8 @@ struct SimplifyReport {
 // budget, `budget` (its bytes, whether derived, the candidates tried, the one chosen, `over_budget`);
 // with --prefix, `prefix` (its bytes and held-out PSNR, the budget grown to, the grown files
 // weighed and the one that shipped, or why none did: the margins are then the prefix's);
-// where a cage was fitted, `fit_verdict` (whether the fit or its bake shipped, and their losses).
+// where a cage was fitted, `fit_verdict` (whether the fit or its bake shipped, and their losses);
+// where one shipped, `psnr_holdout_unquantised` (unquantisedPsnr: what the coding cost).
 nlohmann::json toJson(const SimplifyReport& report);
 
 // Checks DIR (io::checkOutputFolder), loads, chooses the route (route.h), fits a cage where one
