@@ -48,6 +48,7 @@ std::vector<glm::vec3> normalsByPosition(const mesh::PolygonMesh& mesh, const st
 std::vector<float> coverageMask(const std::vector<glm::vec3>& positions, float coverage, float diagonal,
                                 std::mt19937& rng) {
     if (coverage >= 1.0f || positions.empty()) return {};
+    if (coverage <= 0.0f) return std::vector<float>(positions.size(), 0.0f);
     std::normal_distribution<float> gaussian;
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     std::vector<float> field(positions.size(), 0.0f);
@@ -64,7 +65,8 @@ std::vector<float> coverageMask(const std::vector<glm::vec3>& positions, float c
         std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(k), sorted.end());
         return sorted[k];
     };
-    const float threshold = at(1.0f - std::max(coverage, 0.0f)), margin = 0.1f * (at(0.95f) - at(0.05f));
+    const float threshold = at(1.0f - coverage);
+    const float margin = std::max(0.1f * (at(0.95f) - at(0.05f)), 1e-6f);  // a flat field: a step
     std::vector<float> mask(positions.size());
     for (size_t v = 0; v < positions.size(); ++v) {
         const float t = std::clamp((field[v] - threshold) / margin + 0.5f, 0.0f, 1.0f);
