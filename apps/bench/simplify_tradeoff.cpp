@@ -8,6 +8,7 @@
 // unquantised) beside what the file draws.
 #include <cstdio>
 #include <map>
+#include <optional>
 
 #include "bench_commands.h"
 #include "bench_common.h"
@@ -57,7 +58,7 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
             s.compare = o.compare;
             s.cageShape = o.cageShape;
             const auto report = simplify::runSimplify(s);
-            const double unquantised = simplify::unquantisedPsnr(report).value_or(0.0);
+            const std::optional<double> unquantised = simplify::unquantisedPsnr(report);
             std::string choice = report.route.shipped;
             if (report.route.shipped == "cage" && report.budget) {
                 const simplify::BudgetCandidate& chosen = report.budget->chosen;
@@ -77,8 +78,9 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
                     q->distance.value_or(geometry::SurfaceDistance{});  // --compare full: measured
                 const std::string chosenText = method == "subdfit" ? choice : "";
                 char unquantisedText[40] = "";
-                if (method == "subdfit" && unquantised > 0.0)
-                    std::snprintf(unquantisedText, sizeof unquantisedText, " (%.2f dB unquantised)", unquantised);
+                const bool withUnquantised = method == "subdfit" && unquantised;
+                if (withUnquantised)
+                    std::snprintf(unquantisedText, sizeof unquantisedText, " (%.2f dB unquantised)", *unquantised);
                 std::printf("%-18.18s %8ju  %-10s %8ju %9.2f %7.4f %13.4e %9.1f  %s%s\n", name.c_str(), budget,
                             method.c_str(), q->bytes, q->psnrHoldout, q->ssimHoldout, d.meanDistance, seconds,
                             chosenText.c_str(), unquantisedText);
@@ -87,7 +89,7 @@ int runSimplifyTradeoff(const SimplifyTradeoffOptions& o) {
                                 std::to_string(q->psnrHoldout), std::to_string(q->ssimHoldout),
                                 std::to_string(d.meanDistance), std::to_string(d.chamferL2Squared),
                                 std::to_string(d.hausdorff), std::to_string(seconds), chosenText,
-                                method == "subdfit" && unquantised > 0.0 ? std::to_string(unquantised) : ""});
+                                withUnquantised ? std::to_string(*unquantised) : ""});
                 // A decimation that fits the whole reference is lossless (PSNR capped at 120 dB):
                 // in the CSV, off the plots, whose scale it would flatten.
                 if (q->psnrHoldout >= 100.0) continue;

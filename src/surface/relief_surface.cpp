@@ -41,6 +41,33 @@ std::vector<glm::vec3> normalsByPosition(const mesh::PolygonMesh& mesh, const st
     return out;
 }
 
+// A plane wave, sin(k·p + phase).
+struct Wave {
+    glm::vec3 k;
+    float phase;
+};
+
+float sumOfWaves(const std::vector<Wave>& waves, const glm::vec3& p) {
+    float sum = 0.0f;
+    for (const Wave& wave : waves) sum += std::sin(glm::dot(wave.k, p) + wave.phase);
+    return sum;
+}
+
+// `count` waves of random directions and phases (isotropic), each of wavelength `wavelength(u)`
+// for a uniform u drawn between its direction and its phase.
+template <class Wavelength>
+std::vector<Wave> randomWaves(int count, std::mt19937& rng, Wavelength wavelength) {
+    std::normal_distribution<float> gaussian;
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<Wave> waves;
+    for (int w = 0; w < count; ++w) {
+        const glm::vec3 direction = glm::normalize(glm::vec3(gaussian(rng), gaussian(rng), gaussian(rng)) + 1e-6f);
+        const float length = wavelength(unit(rng));
+        waves.push_back({direction * (2.0f * float(M_PI) / length), 2.0f * float(M_PI) * unit(rng)});
+    }
+    return waves;
+}
+
 // Per vertex, how much of the relief it carries (0..1) so that about `coverage` of the vertices
 // carry it: four long waves (a third to two thirds of the diagonal) summed, 0 below their
 // (1 - coverage) quantile and 1 above it, but for a fade a tenth of their spread wide across it.
@@ -49,16 +76,9 @@ std::vector<float> coverageMask(const std::vector<glm::vec3>& positions, float c
                                 std::mt19937& rng) {
     if (coverage >= 1.0f || positions.empty()) return {};
     if (coverage <= 0.0f) return std::vector<float>(positions.size(), 0.0f);
-    std::normal_distribution<float> gaussian;
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    std::vector<float> field(positions.size(), 0.0f);
-    for (int w = 0; w < 4; ++w) {
-        const glm::vec3 direction = glm::normalize(glm::vec3(gaussian(rng), gaussian(rng), gaussian(rng)) + 1e-6f);
-        const float wavelength = (1.0f / 3.0f + unit(rng) / 3.0f) * diagonal;
-        const glm::vec3 k = direction * (2.0f * float(M_PI) / wavelength);
-        const float phase = 2.0f * float(M_PI) * unit(rng);
-        for (size_t v = 0; v < positions.size(); ++v) field[v] += std::sin(glm::dot(k, positions[v]) + phase);
-    }
+    const std::vector<Wave> waves = randomWaves(4, rng, [&](float u) { return (1.0f / 3.0f + u / 3.0f) * diagonal; });
+    std::vector<float> field(positions.size());
+    for (size_t v = 0; v < positions.size(); ++v) field[v] = sumOfWaves(waves, positions[v]);
     std::vector<float> sorted = field;
     const auto at = [&](float q) {
         const size_t k = std::min(sorted.size() - 1, size_t(std::max(0.0f, q) * float(sorted.size())));
@@ -83,30 +103,18 @@ void addRelief(mesh::PolygonMesh& surface, const ReliefOptions& o) {
     const float diagonal = glm::length(high - low);
 
     // Plane waves of log-uniform wavelengths: isotropic, band-limited detail.
-    struct Wave {
-        glm::vec3 k;
-        float phase;
-    };
     std::mt19937 rng(o.seed);
-    std::normal_distribution<float> gaussian;
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    std::vector<Wave> waves;
-    for (int w = 0; w < o.waves; ++w) {
-        const glm::vec3 direction = glm::normalize(glm::vec3(gaussian(rng), gaussian(rng), gaussian(rng)) + 1e-6f);
-        const float wavelength =
-            o.shortestWavelength * std::pow(o.longestWavelength / o.shortestWavelength, unit(rng)) * diagonal;
-        waves.push_back({direction * (2.0f * float(M_PI) / wavelength), 2.0f * float(M_PI) * unit(rng)});
-    }
+    const std::vector<Wave> waves = randomWaves(o.waves, rng, [&](float u) {
+        return o.shortestWavelength * std::pow(o.longestWavelength / o.shortestWavelength, u) * diagonal;
+    });
     // A sum of N unit sines has RMS sqrt(N / 2).
     const float scale = o.amplitude * diagonal / std::sqrt(0.5f * float(std::max(o.waves, 1)));
     const std::vector<int> position = positionIndices(surface, 1e-6f * diagonal);
     const auto normals = normalsByPosition(surface, position);
     const std::vector<float> cover = coverageMask(surface.positions, o.coverage, diagonal, rng);
     for (size_t v = 0; v < surface.positions.size(); ++v) {
-        const glm::vec3 p = surface.positions[v];
-        float height = 0.0f;
-        for (const Wave& wave : waves) height += std::sin(glm::dot(wave.k, p) + wave.phase);
-        surface.positions[v] = p + (cover.empty() ? 1.0f : cover[v]) * scale * height * normals[v];
+        const float height = sumOfWaves(waves, surface.positions[v]);
+        surface.positions[v] += (cover.empty() ? 1.0f : cover[v]) * scale * height * normals[v];
     }
     // Shaded smooth across seams, as a sculpting tool would export it.
     surface.normals = normalsByPosition(surface, position);
